@@ -111,7 +111,7 @@ def build_operator(mesh: FilmMesh) -> FilmOperator:
         ff_indptr=ff.indptr, ff_indices=ff.indices,
         ff_select=ff.data.astype(np.int64) - 1,
         b_sin=_load_sin.assemble(basis), b_cos=_load_cos.assemble(basis),
-        qp_theta=np.array(basis.global_coordinates().value[0]), qp_weight=np.array(basis.dx))
+        qp_theta=np.array(basis.global_coordinates()[0]), qp_weight=np.array(basis.dx))
 
 
 @lru_cache(maxsize=32)

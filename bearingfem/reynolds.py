@@ -57,7 +57,7 @@ def fe_pressure(op: FilmOperator, state: JournalState, cavitation="reynolds",
 
 def _qp_fields(op: FilmOperator, P: np.ndarray):
     f = op.mesh.basis.interpolate(P)
-    return np.asarray(f.value), np.asarray(f.grad[0])
+    return np.asarray(f), np.asarray(f.grad[0])
 
 
 def _integrated_force(op: FilmOperator, P: np.ndarray, clip: bool):
