@@ -172,4 +172,5 @@ def fvm_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z:
         friction_force=friction, friction_torque=friction * R, side_leakage=leakage,
         iterations=res.iterations, residual=res.residual, converged=res.converged,
         method="fvm" + (f"/{method}" if cavitation == "reynolds" else ""),
-        cavitation=cavitation, n_dofs=g.n, half=False, mesh=g)
+        cavitation=cavitation, n_dofs=g.n, half=False, radius=R,
+        gamma=state.gamma, mesh=g)

@@ -165,4 +165,5 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
         side_leakage=leakage,
         iterations=res.iterations, residual=res.residual, converged=res.converged,
         method=f"fem-{element}" + (f"/{method}" if cavitation == "reynolds" else ""),
-        cavitation=cavitation, n_dofs=op.mesh.ndofs, half=op.mesh.half, mesh=op.mesh)
+        cavitation=cavitation, n_dofs=op.mesh.ndofs, half=op.mesh.half,
+        radius=R, gamma=state.gamma, mesh=op.mesh)

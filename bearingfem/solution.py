@@ -30,6 +30,7 @@ class FilmSolution:
     friction_torque : friction_force * R [N m]
     side_leakage : volume flow out of both axial ends [m^3/s]
     iterations, residual, converged : record of the (cavitation) solve
+    radius, gamma : journal radius [m] and attitude angle [rad] of the solved state
     """
 
     force_local: tuple
@@ -54,6 +55,8 @@ class FilmSolution:
     cavitation: str
     n_dofs: int
     half: bool
+    radius: float             # journal radius R [m]
+    gamma: float              # attitude angle of the solved state [rad]
     mesh: object = field(default=None, repr=False)   # FilmMesh (FE) or grid shape (FV)
 
     def summary(self) -> str:
