@@ -110,6 +110,28 @@ def _assemble(g: FVMGrid, eps: float, eps_dot: float, w: float):
     return A, rhs
 
 
+def _pressure(g: FVMGrid, state: JournalState, cavitation: str, method="active-set",
+              tol=1e-10) -> LCPResult:
+    A, rhs = _assemble(g, state.eps, state.eps_dot, state.wedge_speed)
+    if not np.any(rhs):
+        return LCPResult(np.zeros(g.n), 0, 0.0, True, np.zeros(g.n, bool))
+    if cavitation == "reynolds":
+        return psor(A, rhs, tol=tol) if method == "psor" else active_set(A, rhs, tol=tol)
+    return LCPResult(spla.spsolve(A.tocsc(), rhs), 1, 0.0, True, np.zeros(g.n, bool))
+
+
+def fvm_force(bearing: Bearing, state: JournalState, n_theta: int = 48, n_z: int = 8,
+              cavitation: str = "gumbel"):
+    """(F_r, F_t) [N] only: the light path used inside time integration."""
+    g = fvm_grid(n_theta, n_z, bearing.slenderness, None)
+    P = _pressure(g, state, cavitation).pressure
+    if cavitation != "none":
+        P = np.maximum(P, 0.0)
+    Pg = P.reshape(g.n_theta, g.n_z).sum(axis=1)
+    k = bearing.force_scale * g.dtheta * g.dzeta
+    return k * float(Pg @ np.cos(g.theta_c)), k * float(Pg @ np.sin(g.theta_c))
+
+
 def fvm_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z: int = 20,
                  cavitation: str = "reynolds", *, method: str = "active-set",
                  supply_angle=None, tol: float = 1e-10) -> FilmSolution:
@@ -128,13 +150,7 @@ def fvm_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z:
     if supply_angle is not None:
         theta0 = float(np.mod(supply_angle - state.gamma - np.pi, 2 * np.pi))
     g = fvm_grid(n_theta, n_z, bearing.slenderness, theta0)
-    A, rhs = _assemble(g, state.eps, state.eps_dot, state.wedge_speed)
-    if not np.any(rhs):
-        res = LCPResult(np.zeros(g.n), 0, 0.0, True, np.zeros(g.n, bool))
-    elif cavitation == "reynolds":
-        res = psor(A, rhs, tol=tol) if method == "psor" else active_set(A, rhs, tol=tol)
-    else:
-        res = LCPResult(spla.spsolve(A.tocsc(), rhs), 1, 0.0, True, np.zeros(g.n, bool))
+    res = _pressure(g, state, cavitation, method, tol)
     P = res.pressure if cavitation == "none" else np.maximum(res.pressure, 0.0)
 
     th = np.repeat(g.theta_c, n_z)

@@ -29,20 +29,42 @@ def short_bearing_pressure(bearing: Bearing, state: JournalState, theta, z):
     return bearing.pressure_scale * f * (bearing.slenderness ** 2 - zeta ** 2) / (2 * H ** 3)
 
 
-def short_bearing_force(bearing: Bearing, state: JournalState):
-    """(F_r, F_t) [N]: Frene's short bearing with Gumbel's condition, seed Eq. 9 as published.
+def short_bearing_force(bearing: Bearing, state: JournalState, *, half_film: str = "wedge",
+                        switch_speed: float = 0.0):
+    """(F_r, F_t) [N]: Frene's short bearing with Gumbel's condition, seed Eq. 9.
 
-    The pressure is integrated over the fixed half film 0 <= theta <= pi. This equals the
-    Gumbel solution when eps_dot = 0 and departs from it when squeeze dominates (the
-    positive-pressure region is then not [0, pi]); see :func:`short_bearing_exact_force`.
+    The pressure is integrated over a fixed half film. With ``half_film="wedge"`` (default)
+    it is the half the wedge pressurises: 0 <= theta <= pi when omega - 2 gamma_dot >= 0,
+    where this is seed Eq. 9 exactly, and its mirror image pi..2 pi otherwise (F_r kept,
+    F_t reversed). ``half_film="fixed"`` applies Eq. 9 literally for every sign; for
+    omega - 2 gamma_dot < 0 it then integrates the diverging half and pulls the journal
+    outward (F_r > 0). Either way the result equals the Gumbel solution only when
+    eps_dot = 0; see :func:`short_bearing_exact_force` for the exact positive region.
+
+    Turning the half film makes the squeeze part of F_t, 4 k eps eps_dot, jump sign where
+    omega - 2 gamma_dot changes sign. ``switch_speed`` > 0 [rad/s] smooths that switch to
+    tanh((omega - 2 gamma_dot) / switch_speed), which a time integrator can follow.
     """
     check_inputs(bearing, state)
+    if half_film not in ("wedge", "fixed"):
+        raise ValueError(f"half_film must be 'wedge' or 'fixed', got {half_film!r}")
+    if not (math.isfinite(switch_speed) and switch_speed >= 0.0):
+        raise ValueError(f"switch_speed must be a finite number >= 0 [rad/s], got {switch_speed!r}")
     mu, R, L, c = bearing.viscosity, bearing.radius, bearing.length, bearing.clearance
     e, ed, w = state.eps, state.eps_dot, state.wedge_speed
+    if half_film == "fixed":
+        sign, w_abs = 1.0, w
+    else:
+        w_abs = abs(w)
+        if switch_speed > 0.0:
+            sign = math.tanh(w / switch_speed)
+        else:
+            sign = -1.0 if w < 0.0 else 1.0
     s2 = 1.0 - e * e
     k = mu * L ** 3 * R / (2.0 * c * c * s2 * s2)
-    f_r = -k * (math.pi * ed * (1.0 + 2.0 * e * e) / math.sqrt(s2) + 2.0 * e * e * w)
-    f_t = k * e * (4.0 * ed + 0.5 * math.pi * math.sqrt(s2) * w)
+    f_r = -k * (math.pi * ed * (1.0 + 2.0 * e * e) / math.sqrt(s2) + 2.0 * e * e * w_abs)
+    # sign(w) * (4 eps_dot + pi/2 sqrt(1-eps^2) |w|) with only the squeeze part switched
+    f_t = k * e * (4.0 * ed * sign + 0.5 * math.pi * math.sqrt(s2) * (w if half_film == "wedge" else w_abs))
     return f_r, f_t
 
 

@@ -20,16 +20,23 @@ STATES = [JournalState(0.6, 0.0, 0.3, 0.0, 250.0), JournalState(0.3, 40.0, 0.0, 
 @pytest.mark.parametrize("s", STATES)
 def test_eq9_is_the_fixed_half_film_integral_of_eq8(s):
     b = table1_bearing(0.2)
-    # Independent: adaptive quadrature of Eq. 8 over z and 0 <= theta <= pi.
+    # Independent: adaptive quadrature of Eq. 8 over z and a half film.
     L, R = b.length, b.radius
-    def comp(trig):
+
+    def comp(trig, lo, hi):
         g = lambda th: short_bearing_pressure(b, s, th, 0.0) * trig(th)
-        v, _ = quad(g, 0.0, np.pi, limit=400, epsabs=0, epsrel=1e-12)
+        v, _ = quad(g, lo, hi, limit=400, epsabs=0, epsrel=1e-12)
         return v * R * (2.0 / 3.0) * L   # int (1 - (2z/L)^2) dz = 2L/3
-    ref = (comp(np.cos), comp(np.sin))
-    assert short_bearing_force(b, s) == pytest.approx(ref, rel=1e-9, abs=1e-9 * np.abs(ref).max())
-    assert short_bearing_exact_force(b, s, fixed_half_film=True) == pytest.approx(
-        ref, rel=1e-9, abs=1e-9 * np.abs(ref).max())
+
+    literal = (comp(np.cos, 0.0, np.pi), comp(np.sin, 0.0, np.pi))
+    tol = dict(rel=1e-9, abs=1e-9 * np.abs(literal).max())
+    assert short_bearing_force(b, s, half_film="fixed") == pytest.approx(literal, **tol)
+    assert short_bearing_exact_force(b, s, fixed_half_film=True) == pytest.approx(literal, **tol)
+    # the default turns the half film toward the wedge: [pi, 2 pi] when omega - 2 gamma_dot < 0
+    lo, hi = (0.0, np.pi) if s.wedge_speed >= 0 else (np.pi, 2 * np.pi)
+    wedge = (comp(np.cos, lo, hi), comp(np.sin, lo, hi))
+    assert short_bearing_force(b, s) == pytest.approx(wedge, rel=1e-9,
+                                                      abs=1e-9 * np.abs(wedge).max())
 
 
 @pytest.mark.parametrize("s", STATES)

@@ -1,0 +1,47 @@
+"""The one place the mechanism meets bearingfem: film models by name -> (F_r, F_t) [N].
+
+Every model is a function (bearing, JournalState, **options) -> (F_r, F_t) on the journal.
+"""
+from __future__ import annotations
+
+from bearingfem import (long_bearing_exact_force, long_bearing_force, short_bearing_exact_force,
+                        short_bearing_force)
+from bearingfem.fvm import fvm_force
+from bearingfem.reynolds import fe_force
+
+__all__ = ["FILM_MODELS", "NUMERIC_MODELS", "film_force_function"]
+
+
+def _fem(bearing, state, n_theta=48, n_z=8, element="P1", cavitation="gumbel"):
+    return fe_force(bearing, state, n_theta, n_z, element, cavitation)[0]
+
+
+def _fvm(bearing, state, n_theta=48, n_z=8, cavitation="gumbel"):
+    return fvm_force(bearing, state, n_theta, n_z, cavitation)
+
+
+FILM_MODELS = {
+    "short": short_bearing_force,
+    "long": long_bearing_force,
+    "short-exact": short_bearing_exact_force,
+    "long-exact": long_bearing_exact_force,
+    "fem": _fem,
+    "fvm": _fvm,
+}
+#: Options each model accepts in a scene's lubrication table (besides "model", "eps_max").
+MODEL_OPTIONS = {
+    "short": {"half_film", "switch_speed"}, "long": set(), "short-exact": set(), "long-exact": set(),
+    "fem": {"n_theta", "n_z", "element", "cavitation"},
+    "fvm": {"n_theta", "n_z", "cavitation"},
+}
+NUMERIC_MODELS = {"fem", "fvm"}
+
+
+def film_force_function(model: str):
+    if model == "fem-table":
+        raise ValueError("lubrication.model 'fem-table' is not available in this version; "
+                         f"choose one of {', '.join(sorted(FILM_MODELS))}")
+    if model not in FILM_MODELS:
+        raise ValueError(f"lubrication.model must be one of {', '.join(sorted(FILM_MODELS))}, "
+                         f"got {model!r}")
+    return FILM_MODELS[model]
