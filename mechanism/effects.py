@@ -14,7 +14,7 @@ from bearingfem.film import local_to_inertial
 
 from .lubrication import film_force_function
 
-__all__ = ["JointKinematics", "FilmEffect", "HertzContact", "CoulombFriction",
+__all__ = ["JointKinematics", "FilmEffect", "HertzContact", "CoulombFriction", "LinearSpring",
            "hertz_stiffness"]
 
 
@@ -136,3 +136,16 @@ class CoulombFriction:
         v_t = k.de_x * tx + k.de_y * ty + k.omega * self.radius
         ft = -self.coefficient * fn * math.tanh(v_t / self.v_reg)
         return ft * tx, ft * ty
+
+
+@dataclass
+class LinearSpring:
+    """A linear spring-damper joint, F = -k e - d e_dot: as k grows the clearance joint
+    tends to the ideal joint (a verification device, not a bearing model)."""
+
+    stiffness: float
+    damping: float = 0.0
+
+    def force(self, k: JointKinematics):
+        return (-self.stiffness * k.e_x - self.damping * k.de_x,
+                -self.stiffness * k.e_y - self.damping * k.de_y)

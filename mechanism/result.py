@@ -19,7 +19,8 @@ UNITS = {"t": "s", "crank_angle": "rad", "crank_speed": "rad/s", "rod_angle": "r
 @dataclass(frozen=True, eq=False)
 class SimulationResult:
     """One run. Arrays (SI, rad) over the saved time points; ``force_x``/``force_y`` are the
-    joint's total force on the pin (inertial frame). ``partial`` is True when the run
+    joint's total force on the pin (inertial frame); ``film_min`` = c (1 - eps), clipped at 0
+    in contact (where eps > 1 measures the penetration). ``partial`` is True when the run
     stopped early; ``message`` says why and when."""
 
     t: np.ndarray

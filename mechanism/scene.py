@@ -48,6 +48,12 @@ class Friction:
 
 
 @dataclass(frozen=True)
+class Spring:
+    stiffness: float
+    damping: float = 0.0
+
+
+@dataclass(frozen=True)
 class Run:
     turns: float = 5.0
     record_from_turn: float = 0.0
@@ -75,6 +81,7 @@ class Scene:
     lubrication: Lubrication | None
     contact: Contact | None
     friction: Friction | None
+    spring: Spring | None = None
     description: str = ""
 
 
@@ -181,7 +188,8 @@ def _lubrication(t: _Table) -> Lubrication:
         opts["cavitation"] = t.choice("cavitation", CAVITATION, "gumbel")
     if "switch_speed" in allowed:
         opts["half_film"] = t.choice("half_film", ("wedge", "fixed"), "wedge")
-        opts["switch_speed"] = t.number("switch_speed", 0.0, lo=0.0)
+        # 0 is the sharp switch of the literal model, which integrators chatter on
+        opts["switch_speed"] = t.number("switch_speed", 1.0, lo=0.0)
     if "element" in allowed:
         opts["element"] = t.choice("element", tuple(ELEMENTS), "P1")
     t.done()
@@ -220,6 +228,12 @@ def parse_scene(data: dict, name: str = "scene") -> Scene:
     slider_force = et.number("slider_force", 0.0)
     crank_torque = et.number("crank_torque", 0.0)
     lt, ct, ft = et.table("lubrication"), et.table("contact"), et.table("friction")
+    st = et.table("spring")
+    spring = None
+    if st is not None:
+        spring = Spring(stiffness=st.number("stiffness", required=True, lo=0.0, lo_open=True),
+                        damping=st.number("damping", 0.0, lo=0.0))
+        st.done()
     lub = _lubrication(lt) if lt is not None else None
     contact = None
     if ct is not None:
@@ -238,9 +252,9 @@ def parse_scene(data: dict, name: str = "scene") -> Scene:
     if friction is not None and contact is None:
         raise ValueError("scene.effects.friction acts at the contact: add scene.effects.contact")
     if joint == "ideal":
-        if bt is not None or lub or contact:
+        if bt is not None or lub or contact or spring:
             raise ValueError("scene.joint = 'ideal' has no clearance: remove scene.bearing and "
-                             "the lubrication/contact/friction effects")
+                             "the lubrication/contact/friction/spring effects")
         bearing = None
     else:
         if bt is None:
@@ -250,7 +264,7 @@ def parse_scene(data: dict, name: str = "scene") -> Scene:
     return Scene(name=name, mechanism=mech, bearing=bearing, joint=joint,
                  crank_angle=crank_angle, crank_speed=crank_speed, run=run, gravity=gravity,
                  slider_force=slider_force, crank_torque=crank_torque, lubrication=lub,
-                 contact=contact, friction=friction, description=description)
+                 contact=contact, friction=friction, spring=spring, description=description)
 
 
 def load_scene(path) -> Scene:

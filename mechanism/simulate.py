@@ -18,7 +18,8 @@ from scipy.integrate import solve_ivp
 
 from .dynamics import (accelerations, eccentricity_accelerations, pin_position, pin_velocity,
                        rod_from_eccentricity)
-from .effects import CoulombFriction, FilmEffect, HertzContact, JointKinematics, hertz_stiffness
+from .effects import (CoulombFriction, FilmEffect, HertzContact, JointKinematics, LinearSpring,
+                      hertz_stiffness)
 from .parameters import GRAVITY
 from .progress import Progress
 from .result import SimulationResult
@@ -51,6 +52,8 @@ def build_effects(scene: Scene):
         if scene.friction is not None:
             effects.append(CoulombFriction(contact, scene.friction.coefficient, b.radius,
                                            scene.friction.v_reg))
+    if scene.spring is not None:
+        effects.append(LinearSpring(scene.spring.stiffness, scene.spring.damping))
     return effects, film, contact
 
 
@@ -113,11 +116,16 @@ def simulate(scene: Scene, progress: bool | None = None) -> SimulationResult:
         return y[0] - q_end
     ev_end.terminal, ev_end.direction = True, 1
 
-    def ev_wall(t, y):   # eps - 1
-        k = _joint(m, y)
-        return k.e / c - 1.0
-    ev_wall.terminal, ev_wall.direction = True, 1
-    events = [ev_end, ev_wall]
+    def gap(t, y):   # eps - 1: positive in contact
+        return math.hypot(y[1], y[2]) / c - 1.0
+
+    def ev_in(t, y):
+        return gap(t, y)
+    ev_in.terminal, ev_in.direction = True, 1
+
+    def ev_out(t, y):
+        return gap(t, y)
+    ev_out.terminal, ev_out.direction = True, -1
 
     a_len = run.atol if run.atol is not None else 1e-4 * c
     w = scene.crank_speed
@@ -128,6 +136,7 @@ def simulate(scene: Scene, progress: bool | None = None) -> SimulationResult:
         opts["max_step"] = run.max_step
 
     t, y = 0.0, _initial_state(scene)
+    in_contact = gap(t, y) > 0.0
     pieces, steps, message, partial = [], 0, "completed", False
     first_step = None
     start = time.perf_counter()
@@ -136,7 +145,8 @@ def simulate(scene: Scene, progress: bool | None = None) -> SimulationResult:
             t_stop = min(t + 0.25 * turn_time, t_limit)
             if first_step is not None and opts["method"] != "LSODA":
                 opts["first_step"] = min(first_step, t_stop - t)
-            sol = solve_ivp(rhs, (t, t_stop), y, events=events, **opts)
+            wall = ev_out if in_contact else ev_in
+            sol = solve_ivp(rhs, (t, t_stop), y, events=[ev_end, wall], **opts)
             if sol.status == -1:
                 raise RunStopped(f"integrator failed at t = {sol.t[-1]:.6g} s: {sol.message}")
             if len(sol.t) > 1:
@@ -147,17 +157,17 @@ def simulate(scene: Scene, progress: bool | None = None) -> SimulationResult:
             if sol.t_events[0].size:
                 break
             if sol.t_events[1].size:
-                k = _joint(m, y)
-                if contact is None:
+                if in_contact:
+                    in_contact = False
+                elif contact is None and scene.spring is None:
                     raise RunStopped(
                         f"the journal reached the bearing wall (eps = 1) at t = {t:.6g} s, "
                         f"crank angle {math.degrees(y[0]):.1f} deg, and the scene has no "
                         "contact effect: add scene.effects.contact or a stiffer film")
-                contact.v_impact = (k.e_x * k.de_x + k.e_y * k.de_y) / k.e
-                # step just past the onset so the event does not fire again at once
-                events[1] = _after(ev_wall)
-            elif not isinstance(events[1], type(ev_wall)) or events[1] is not ev_wall:
-                events[1] = ev_wall
+                else:
+                    in_contact = True
+                    if contact is not None:   # Lankarani-Nikravesh needs the impact speed
+                        contact.v_impact = (y[1] * y[4] + y[2] * y[5]) / math.hypot(y[1], y[2])
             if t >= t_limit:
                 raise RunStopped(f"crank did not finish {run.turns} turns by t = {t:.6g} s")
     except RunStopped as err:
@@ -174,14 +184,6 @@ def simulate(scene: Scene, progress: bool | None = None) -> SimulationResult:
              "integrator": run.integrator, "rtol": run.rtol, "atol_length": a_len,
              "effects": [type(e).__name__ for e in effects]}
     return _sample(scene, pieces, effects, g, stats, partial, message)
-
-
-def _after(ev):
-    """A copy of the wall event, so the simulator can tell a fresh onset from a restart."""
-    def ev2(t, y):
-        return ev(t, y)
-    ev2.terminal, ev2.direction = True, 1
-    return ev2
 
 
 def _dense(pieces):
@@ -235,7 +237,7 @@ def _sample(scene, pieces, effects, g, stats, partial, message):
         t=t, crank_angle=Y[0], crank_speed=Y[3], rod_angle=out["rod_angle"],
         slider_position=out["slider_position"],
         slider_acceleration=out["slider_acceleration"], eps=eps, e_x=Y[1],
-        e_y=Y[2], film_min=c * (1.0 - eps), force_x=out["force_x"],
+        e_y=Y[2], film_min=np.maximum(c * (1.0 - eps), 0.0), force_x=out["force_x"],
         force_y=out["force_y"], scene=scene.name, partial=partial, message=message,
         stats=stats)
 

@@ -1,0 +1,75 @@
+"""Scenes are validated before any integration; the paper scenes load."""
+import copy
+from pathlib import Path
+
+import pytest
+
+from mechanism import load_scene, parse_scene
+
+SCENES = Path(__file__).resolve().parent.parent / "scenes"
+BASE = {"name": "t", "bearing": {"diameter": 0.02, "length_ratio": 0.2, "clearance": 20e-6,
+                                 "viscosity": 0.0117},
+        "effects": {"lubrication": {"model": "short"}}}
+
+
+@pytest.mark.parametrize("path", sorted(SCENES.glob("*.toml")), ids=lambda p: p.stem)
+def test_shipped_scenes_load(path):
+    s = load_scene(path)
+    assert s.name == path.stem
+
+
+def _with(path, value):
+    d = copy.deepcopy(BASE)
+    node = d
+    for k in path[:-1]:
+        node = node.setdefault(k, {})
+    if value is KeyError:
+        del node[path[-1]]
+    else:
+        node[path[-1]] = value
+    return d
+
+
+@pytest.mark.parametrize("path,value,message", [
+    (("bearing", "colour"), "red", r"scene.bearing has unknown key\(s\): colour"),
+    (("effects", "magnetism"), {}, r"scene.effects has unknown key\(s\): magnetism"),
+    (("bearing", "clearance"), -1e-6, r"scene.bearing.clearance must lie in"),
+    (("bearing", "clearance"), KeyError, r"scene.bearing.clearance is required"),
+    (("bearing", "viscosity"), "thick", r"scene.bearing.viscosity must be a finite number"),
+    (("run", "rtol"), 0.5, r"scene.run.rtol must lie in \[1e-13, 0.1\]"),
+    (("run", "integrator"), "euler", r"scene.run.integrator must be one of"),
+    (("run", "record_from_turn"), 9, r"record_from_turn must be smaller"),
+    (("initial", "crank_speed"), 0.0, r"scene.initial.crank_speed must lie in \(0"),
+    (("effects", "lubrication", "model"), "magic", r"lubrication.model"),
+    (("effects", "lubrication", "n_theta"), 40, r"not an option of model 'short'"),
+    (("effects", "contact"), {"poisson": 0.7}, r"scene.effects.contact.poisson must lie in \[0.0, 0.5\)"),
+    (("effects", "friction"), {"coefficient": 0.1}, r"friction acts at the contact"),
+    (("mechanism", "rod_length"), 0.01, r"crank_length must be smaller than rod_length"),
+    (("joint",), "welded", r"scene.joint must be one of"),
+])
+def test_bad_scene_is_rejected_naming_the_field(path, value, message):
+    with pytest.raises(ValueError, match=message):
+        parse_scene(_with(path, value))
+
+
+def test_fem_options_validated():
+    d = _with(("effects", "lubrication"), {"model": "fem", "n_theta": 4})
+    with pytest.raises(ValueError, match=r"n_theta must lie in \[8"):
+        parse_scene(d)
+    d = _with(("effects", "lubrication"), {"model": "fem", "element": "Q9"})
+    with pytest.raises(ValueError, match="element must be one of"):
+        parse_scene(d)
+
+
+def test_fem_table_is_named_as_unavailable():
+    with pytest.raises(ValueError, match="fem-table"):
+        parse_scene(_with(("effects", "lubrication", "model"), "fem-table"))
+
+
+def test_missing_file_and_bad_toml(tmp_path):
+    with pytest.raises(ValueError, match="not found"):
+        load_scene(tmp_path / "nope.toml")
+    p = tmp_path / "bad.toml"
+    p.write_text("name = \n")
+    with pytest.raises(ValueError, match="not valid TOML"):
+        load_scene(p)
