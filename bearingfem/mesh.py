@@ -7,6 +7,8 @@ natural (zero-flux) condition on the mid-plane.
 """
 from __future__ import annotations
 
+import logging
+from contextlib import contextmanager
 from dataclasses import dataclass
 from functools import lru_cache
 
@@ -34,6 +36,7 @@ class FilmMesh:
     end : dofs on the axial end(s), where side leakage leaves
     theta, zeta : dof coordinates (theta in [theta0, theta0 + 2 pi], zeta = z/R)
     half : True when only zeta >= 0 is meshed (results are doubled)
+    n_theta, n_z, slenderness, theta0 : the arguments the mesh was built from
     """
 
     basis: object
@@ -44,10 +47,26 @@ class FilmMesh:
     zeta: np.ndarray
     half: bool
     periodic: bool
+    n_theta: int
+    n_z: int
+    slenderness: float
+    theta0: float | None
 
     @property
     def ndofs(self) -> int:
         return self.basis.N
+
+
+@contextmanager
+def _quiet_skfem():
+    """scikit-fem logs that it copies large coordinate arrays to C order: harmless here."""
+    log = logging.getLogger("skfem")
+    level = log.level
+    log.setLevel(logging.ERROR)
+    try:
+        yield
+    finally:
+        log.setLevel(level)
 
 
 def _axis(n: int, lo: float, hi: float) -> np.ndarray:
@@ -75,11 +94,12 @@ def film_mesh(n_theta: int, n_z: int, element: str, slenderness: float,
         ze = _axis(max(1, -(-n_z // 2)), 0.0, lam)
     else:
         ze = _axis(n_z, -lam, lam)
-    if theta0 is None:
-        mesh = MeshTri1DG.init_tensor(th, ze, periodic=[0])
-    else:
-        mesh = MeshTri1.init_tensor(th, ze)
-    basis = Basis(mesh, ELEMENTS[element](), intorder=4 if element == "P1" else 6)
+    with _quiet_skfem():
+        if theta0 is None:
+            mesh = MeshTri1DG.init_tensor(th, ze, periodic=[0])
+        else:
+            mesh = MeshTri1.init_tensor(th, ze)
+        basis = Basis(mesh, ELEMENTS[element](), intorder=4 if element == "P1" else 6)
     x = basis.doflocs
     # Select boundary dofs by their coordinates: get_dofs(lambda) misses dofs on periodic
     # meshes (scikit-fem 12), so the count is tested in tests/test_mesh.py.
@@ -93,4 +113,5 @@ def film_mesh(n_theta: int, n_z: int, element: str, slenderness: float,
     free = np.setdiff1d(np.arange(basis.N), fixed)
     return FilmMesh(basis=basis, fixed=fixed, free=free, end=end,
                     theta=np.array(x[0]), zeta=np.array(x[1]), half=half,
-                    periodic=theta0 is None)
+                    periodic=theta0 is None, n_theta=n_theta, n_z=n_z, slenderness=lam,
+                    theta0=theta0)

@@ -5,6 +5,7 @@ import numpy as np
 import scipy.sparse.linalg as spla
 
 from .assembly import FilmOperator, film_operator
+from .multilevel import COARSEST_FREE_DOFS, grid_interpolator
 from .bearing import Bearing, JournalState
 from .cavitation import LCPResult, active_set, psor
 from .film import local_to_inertial
@@ -45,6 +46,8 @@ def fe_pressure(op: FilmOperator, state: JournalState, cavitation="reynolds",
         if method == "psor":
             res = psor(K, b, tol=tol, colours=colours)
         else:
+            if active0 is None and len(free) > COARSEST_FREE_DOFS:
+                active0 = _coarse_active_set(op, state, tol)
             a0 = None if active0 is None else np.asarray(active0, bool)[free]
             res = active_set(K, b, active0=a0, tol=tol)
         P[free] = res.pressure
@@ -53,6 +56,17 @@ def fe_pressure(op: FilmOperator, state: JournalState, cavitation="reynolds",
         return LCPResult(P, res.iterations, res.residual, res.converged, active)
     P[free] = spla.spsolve(K.tocsc(), b)
     return LCPResult(P, 1, 0.0, True, np.zeros(op.mesh.ndofs, bool))
+
+
+def _coarse_active_set(op: FilmOperator, state: JournalState, tol: float) -> np.ndarray:
+    """First active set for ``op`` from the solution on a mesh half as fine (P1)."""
+    m = op.mesh
+    n_theta = max(MIN_N_THETA, m.n_theta // 2)
+    n_z = max(MIN_N_Z, m.n_z // 2)
+    coarse = film_operator(n_theta, n_z, "P1", m.slenderness, m.theta0, m.half)
+    Pc = fe_pressure(coarse, state, "reynolds", "active-set", tol).pressure
+    P = grid_interpolator(coarse.mesh, Pc)(m.theta, m.zeta)
+    return P <= 0.0
 
 
 def _qp_fields(op: FilmOperator, P: np.ndarray):

@@ -53,3 +53,31 @@ def test_reynolds_pressure_is_complementary(state):
     # Swift-Stieber carries more load than Gumbel's clipped full solution never less than 0
     g = solve_reynolds(table1_bearing(1.0), state, 60, 10, "P1", "gumbel")
     assert np.all(g.pressure >= 0.0)
+
+
+@pytest.mark.parametrize("supply", [None, 0.0])
+def test_nested_start_gives_the_cold_start_answer_in_fewer_iterations(supply):
+    from bearingfem.cavitation import active_set
+    from bearingfem.reynolds import fe_operator, fe_pressure
+    b = table1_bearing(1.0)
+    s = JournalState(0.9, 5.0, 0.0, 0.0, 250.0)
+    op = fe_operator(b, s, 240, 40, "P1", supply)
+    nested = fe_pressure(op, s, "reynolds")
+    free = op.mesh.free
+    K = op.free_stiffness(s.eps)
+    cold = active_set(K, op.load(s.eps, s.eps_dot, s.wedge_speed)[free])
+    assert np.max(np.abs(nested.pressure[free] - cold.pressure)) < 1e-9 * cold.pressure.max()
+    assert nested.iterations <= 5 < cold.iterations
+
+
+@pytest.mark.parametrize("periodic", [True, False])
+def test_grid_interpolator_is_exact_for_bilinear_data(periodic):
+    from bearingfem.mesh import film_mesh
+    from bearingfem.multilevel import grid_interpolator
+    coarse = film_mesh(16, 4, "P1", 0.5, None if periodic else 0.0, True)
+    fine = film_mesh(64, 16, "P1", 0.5, None if periodic else 0.0, True)
+    # cos(theta) is not bilinear, but 1 + zeta is, and a periodic hat is piecewise linear
+    f = lambda th, ze: (1.0 + ze) * (2.0 + np.interp(np.mod(th, 2 * np.pi),
+                                                      [0, np.pi, 2 * np.pi], [0.0, 1.0, 0.0]))
+    at = grid_interpolator(coarse, f(coarse.theta, coarse.zeta))
+    np.testing.assert_allclose(at(fine.theta, fine.zeta), f(fine.theta, fine.zeta), atol=1e-12)
