@@ -45,10 +45,14 @@ class FVMGrid:
     zeta_c: np.ndarray    # (n_z,)
     dtheta: float
     dzeta: float
-    # Sparsity structure (COO) of the 5-point stencil: row, col, and which face each
-    # off-diagonal entry crosses.
+    # Sparsity structure of the 5-point stencil, built once: COO rows/cols, and the CSR
+    # layout (entry order, row pointer, column indices) the values are scattered into.
     rows: np.ndarray
     cols: np.ndarray
+    order: np.ndarray = None
+    indptr: np.ndarray = None
+    indices: np.ndarray = None
+    masks: tuple = ()          # cells with an E, W, N, S neighbour
 
     @property
     def n(self) -> int:
@@ -64,46 +68,58 @@ def fvm_grid(n_theta: int, n_z: int, slenderness: float, theta0: float | None) -
     theta_f = t0 + dth * np.arange(n_theta + 1)
     theta_c = theta_f[:-1] + 0.5 * dth
     zeta_c = -lam + dze * (np.arange(n_z) + 0.5)
+    g = FVMGrid(n_theta, n_z, lam, theta0, theta_c, theta_f, zeta_c, dth, dze,
+                np.empty(0, int), np.empty(0, int))
+    rows, cols = _structure(g)
+    order = np.lexsort((cols, rows))
+    indptr = np.concatenate(([0], np.cumsum(np.bincount(rows, minlength=g.n))))
+    masks = tuple(m for m, _, _ in _links(g)[2])
     return FVMGrid(n_theta, n_z, lam, theta0, theta_c, theta_f, zeta_c, dth, dze,
-                   np.empty(0, int), np.empty(0, int))
+                   rows, cols, order, indptr, cols[order], masks)
+
+
+def _links(g: FVMGrid):
+    """Masks of the cells that have an east/west/north/south neighbour, and the offsets."""
+    nt, nz = g.n_theta, g.n_z
+    I, J = np.meshgrid(np.arange(nt), np.arange(nz), indexing="ij")
+    periodic = g.theta0 is None
+    full = np.ones((nt, nz), bool)
+    return I, J, [(full if periodic else I < nt - 1, 1, 0), (full if periodic else I > 0, -1, 0),
+                  (J < nz - 1, 0, 1), (J > 0, 0, -1)]
+
+
+def _structure(g: FVMGrid):
+    """COO rows and columns of the 5-point stencil: the diagonal, then E, W, N, S links."""
+    nt, nz = g.n_theta, g.n_z
+    I, J, links = _links(g)
+    idx = I * nz + J
+    rows, cols = [idx.ravel()], [idx.ravel()]
+    for mask, di, dj in links:
+        rows.append(idx[mask])
+        cols.append((((I + di) % nt) * nz + (J + dj))[mask])
+    return np.concatenate(rows), np.concatenate(cols)
 
 
 def _assemble(g: FVMGrid, eps: float, eps_dot: float, w: float):
-    """Matrix (CSR) and right-hand side of the finite-volume balance."""
+    """Matrix (CSR, on the grid's fixed layout) and right-hand side of the balance."""
     nt, nz = g.n_theta, g.n_z
-    I, J = np.meshgrid(np.arange(nt), np.arange(nz), indexing="ij")
-    idx = I * nz + J
     He = 1.0 + eps * np.cos(g.theta_f[1:])          # east face of each theta column
     Hw = 1.0 + eps * np.cos(g.theta_f[:-1])
     Hc = 1.0 + eps * np.cos(g.theta_c)
-    cE = (He ** 3 * g.dzeta / g.dtheta)[:, None] * np.ones((1, nz))
-    cW = (Hw ** 3 * g.dzeta / g.dtheta)[:, None] * np.ones((1, nz))
-    cN = (Hc ** 3 * g.dtheta / g.dzeta)[:, None] * np.ones((1, nz))
-    cS = cN.copy()
-    periodic = g.theta0 is None
+    ones = np.ones((1, nz))
+    cE = (He ** 3 * g.dzeta / g.dtheta)[:, None] * ones
+    cW = (Hw ** 3 * g.dzeta / g.dtheta)[:, None] * ones
+    cN = (Hc ** 3 * g.dtheta / g.dzeta)[:, None] * ones
+    cS = cN
     diag = cE + cW + cN + cS
     # Axial ends: ambient on the face half a cell away doubles the face conductance.
     diag[:, -1] += cN[:, -1]
     diag[:, 0] += cS[:, 0]
-    if not periodic:
+    if g.theta0 is not None:
         diag[-1, :] += cE[-1, :]
         diag[0, :] += cW[0, :]
-    rows, cols, vals = [idx.ravel()], [idx.ravel()], [diag.ravel()]
-
-    def link(mask, di, dj, coef):
-        src = idx[mask]
-        dst = (((I + di) % nt) * nz + (J + dj))[mask]
-        rows.append(src), cols.append(dst), vals.append(-coef[mask])
-
-    inner_t = np.ones((nt, nz), bool)
-    east = inner_t.copy() if periodic else (I < nt - 1)
-    west = inner_t.copy() if periodic else (I > 0)
-    link(east, 1, 0, cE)
-    link(west, -1, 0, cW)
-    link(J < nz - 1, 0, 1, cN)
-    link(J > 0, 0, -1, cS)
-    A = sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
-                      shape=(g.n, g.n))
+    vals = np.concatenate([diag.ravel()] + [-c[m] for c, m in zip((cE, cW, cN, cS), g.masks)])
+    A = sp.csr_matrix((vals[g.order], g.indices, g.indptr), shape=(g.n, g.n))
     B = (-6.0 * w * (He - Hw) * g.dzeta
          - 12.0 * eps_dot * (np.sin(g.theta_f[1:]) - np.sin(g.theta_f[:-1])) * g.dzeta)
     rhs = np.repeat(B[:, None], nz, axis=1).ravel()

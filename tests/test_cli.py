@@ -1,0 +1,53 @@
+"""The command line: help, one-line errors with exit status 2, and the simulate output."""
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parent.parent
+
+
+def run(*args):
+    return subprocess.run([sys.executable, "-m", "bearingfem", *args], cwd=ROOT,
+                          capture_output=True, text=True, timeout=300)
+
+
+def test_help_lists_commands():
+    r = run("--help")
+    assert r.returncode == 0
+    for cmd in ("simulate", "solve", "examples:"):
+        assert cmd in r.stdout
+
+
+@pytest.mark.parametrize("args,needle", [
+    (("solve", "--eps", "1.5"), "eps must lie in [0, 1)"),
+    (("solve", "--cavitation", "swift"), "cavitation must be one of"),
+    (("solve", "--ld", "-1"), "length must be positive"),
+    (("simulate", "no/such/scene.toml", "-o", "x"), "scene file not found"),
+])
+def test_bad_input_is_one_line_and_exit_2(args, needle):
+    r = run(*args)
+    assert r.returncode == 2
+    lines = r.stderr.strip().splitlines()
+    assert len(lines) == 1 and needle in lines[0] and lines[0].startswith("bearingfem: error:")
+
+
+def test_solve_prints_forces_and_exports(tmp_path):
+    r = run("solve", "--ld", "0.5", "--eps", "0.7", "--n-theta", "48", "--n-z", "8",
+            "-o", str(tmp_path / "film.vtu"))
+    assert r.returncode == 0, r.stderr
+    assert "F_r=" in r.stdout and (tmp_path / "film.vtu").is_file()
+
+
+def test_simulate_writes_result_and_figure(tmp_path):
+    scene = tmp_path / "quick.toml"
+    scene.write_text((ROOT / "scenes" / "paper-long-analytic.toml").read_text()
+                     .replace("turns = 5", "turns = 0.5").replace("record_from_turn = 4",
+                                                                  "record_from_turn = 0"))
+    r = run("simulate", str(scene), "-o", str(tmp_path / "out"), "-q")
+    assert r.returncode == 0, r.stderr
+    meta = json.loads((tmp_path / "out" / "result.json").read_text())
+    assert meta["partial"] is False and meta["stats"]["film_solves"] > 0
+    assert (tmp_path / "out" / "run.png").stat().st_size > 10_000
