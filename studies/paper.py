@@ -16,14 +16,25 @@ import numpy as np
 
 from mechanism import load_scene, simulate
 from mechanism.figures import plot_comparison
+from mechanism.parameters import GRAVITY
+from mechanism.rigid import simulate_rigid
 
 SCENES = Path(__file__).resolve().parent.parent / "scenes"
 PAPER = [f"paper-{b}-{m}" for b in ("short", "long") for m in ("analytic", "fem", "fvm")]
 COLUMNS = ("scene", "status", "wall_time_s", "steps", "rhs_evals", "film_solves", "peak_eps",
-           "min_film_um", "crank_speed_min", "crank_speed_max", "peak_slider_acc")
+           "min_film_um", "crank_speed_min", "crank_speed_max", "max_dspeed_vs_ideal",
+           "peak_slider_acc")
 
 
-def summarise(name, r):
+def ideal_crank_speed(scene, crank_angle):
+    """The ideal (rigid-joint) mechanism's crank speed at the given crank angles."""
+    g = GRAVITY if scene.gravity else 0.0
+    _, q, qd = simulate_rigid(scene.mechanism, scene.crank_speed, scene.run.turns + 0.1, g,
+                              samples_per_turn=4000)
+    return np.interp(crank_angle, q, qd)
+
+
+def summarise(name, r, scene=None):
     if len(r.t) == 0:
         return {"scene": name, "status": r.message}
     s = r.stats
@@ -34,6 +45,8 @@ def summarise(name, r):
             "min_film_um": round(float(np.min(r.film_min)) * 1e6, 4),
             "crank_speed_min": round(float(np.min(r.crank_speed)), 2),
             "crank_speed_max": round(float(np.max(r.crank_speed)), 2),
+            "max_dspeed_vs_ideal": "" if scene is None else round(float(np.max(np.abs(
+                r.crank_speed - ideal_crank_speed(scene, r.crank_angle)))), 3),
             "peak_slider_acc": round(float(np.max(np.abs(r.slider_acceleration))), 1)}
 
 
@@ -48,7 +61,7 @@ def run(out: Path, names=PAPER, turns=None, progress=None):
         r = simulate(scene, progress=progress)
         r.save(out / name)
         results[name] = (scene, r)
-        rows.append(summarise(name, r))
+        rows.append(summarise(name, r, scene))
         print(r.summary(), flush=True)
     for bearing, figs in (("short", "Figs. 2-4"), ("long", "Figs. 5-7")):
         chosen = [n for n in names if n.startswith(f"paper-{bearing}-")]

@@ -106,3 +106,30 @@ def test_ideal_joint_scene_matches_rigid_reference():
     assert np.max(np.abs(r.crank_speed - _rigid_speed_at(r.crank_angle))) < 1e-4
     # the joint reaction along the slider axis carries the slider's inertia and weight
     assert np.allclose(r.force_x, -(0.91 * r.slider_acceleration + 0.91 * 9.81))
+
+
+def test_interrupted_run_keeps_results(monkeypatch):
+    """Ctrl-C in the middle of a run: the finished segments come back, marked partial."""
+    calls = {"n": 0}
+    original = FilmEffect.force
+
+    def force(self, k):
+        calls["n"] += 1
+        if calls["n"] == 800:
+            raise KeyboardInterrupt
+        return original(self, k)
+
+    monkeypatch.setattr(FilmEffect, "force", force)
+    r = simulate(scene({"lubrication": {"model": "long"}}, ld=2.0), progress=False)
+    assert r.partial and r.message.startswith("interrupted at t = ")
+    assert len(r.t) > 10 and np.all(np.isfinite(r.eps))
+
+
+def test_progress_bar_reports_on_a_stream():
+    import io
+    from mechanism.progress import Progress
+    buf = io.StringIO()
+    p = Progress(2.0, "run", enabled=True, stream=buf)
+    p.update(1.0)
+    p.close()
+    assert "50.0%" in buf.getvalue() and "100.0%" in buf.getvalue()
