@@ -8,6 +8,8 @@ from pathlib import Path
 EXAMPLES = """examples:
   bearingfem simulate scenes/paper-short-fem.toml -o results/short-fem
   bearingfem solve --ld 1.0 --eps 0.6 --cavitation reynolds
+  bearingfem render --ld 1.0 --eps 0.6 --cavitation reynolds -o film.png
+  bearingfem convergence --ld 1.0 --eps 0.6 -o results/convergence
 """
 
 
@@ -51,6 +53,36 @@ def _solve(args):
     return 0
 
 
+def _convergence(args):
+    from bearingfem.convergence import convergence_study
+    b, s = _table1(args)
+    methods = tuple(args.methods.split(","))
+    st = convergence_study(b, s, levels=args.levels, n_theta=args.n_theta, n_z=args.n_z,
+                           cavitation=args.cavitation, methods=methods, progress=print)
+    out = Path(args.output)
+    out.mkdir(parents=True, exist_ok=True)
+    st.write_csv(out / "convergence.csv")
+    st.plot(out / "convergence.png", args.quantity)
+    print(f"{'method':6s} {'quantity':18s} {'finest':>14s} {'order':>7s} {'extrapolated':>14s} {'GCI':>9s}")
+    for r in st.summary:
+        print(f"{r['method']:6s} {r['quantity']:18s} {r['finest']:14.6g} {r['order']:7.3f} "
+              f"{r['extrapolated']:14.6g} {r['gci']:9.2e}")
+    print(f"wrote {out / 'convergence.csv'}, {out / 'convergence_summary.csv'}, "
+          f"{out / 'convergence.png'}")
+    return 0
+
+
+def _render(args):
+    from bearingfem import solve_reynolds
+    from bearingfem.render import render_film
+    b, s = _table1(args)
+    sol = solve_reynolds(b, s, args.n_theta, args.n_z, args.element, args.cavitation)
+    render_film(sol, args.output, field=args.field, surface=args.surface)
+    print(sol.summary())
+    print(f"wrote {args.output}")
+    return 0
+
+
 def _film_args(p):
     p.add_argument("--ld", type=float, default=1.0, help="L/D (default 1.0)")
     p.add_argument("--eps", type=float, default=0.6, help="eccentricity ratio in [0, 1)")
@@ -82,6 +114,22 @@ def build_parser():
     f.add_argument("--method", default="fem", choices=["fem", "fvm"])
     f.add_argument("-o", "--output", help="write the film (.vtu, .xdmf)")
     f.set_defaults(func=_solve)
+    c = sub.add_parser("convergence", help="mesh-convergence study: CSV table + log-log PNG",
+                       epilog="example: bearingfem convergence --ld 1.0 --eps 0.6 -o conv")
+    _film_args(c)
+    c.set_defaults(n_theta=24, n_z=4)
+    c.add_argument("--levels", type=int, default=4, help="meshes, each twice as fine (>= 3)")
+    c.add_argument("--methods", default="P1,P2,fvm", help="comma list of P1, P2, fvm")
+    c.add_argument("--quantity", default="force", help="quantity for the figure")
+    c.add_argument("-o", "--output", required=True, help="output directory")
+    c.set_defaults(func=_convergence)
+    r = sub.add_parser("render", help="off-screen PNG of the film pressure or thickness",
+                       epilog="example: bearingfem render --ld 1.0 --eps 0.6 -o film.png")
+    _film_args(r)
+    r.add_argument("--field", default="pressure", help="pressure | film_thickness")
+    r.add_argument("--surface", default="journal", help="journal | unwrapped")
+    r.add_argument("-o", "--output", required=True, help="PNG file")
+    r.set_defaults(func=_render)
     return p
 
 

@@ -56,10 +56,18 @@ def to_meshio(sol: FilmSolution, surface: str = "journal") -> meshio.Mesh:
     if surface == "journal":
         alpha = theta + sol.gamma + np.pi
         pts = np.column_stack([R * np.cos(alpha), R * np.sin(alpha), z])
-    else:
-        pts = np.column_stack([R * theta, z, np.zeros_like(z)])
-    return meshio.Mesh(pts, [(ctype, cells)],
-                       point_data={"pressure": p, "film_thickness": h})
+        return meshio.Mesh(pts, [(ctype, cells)],
+                           point_data={"pressure": p, "film_thickness": h})
+    # Unwrapped: cells across the periodic seam would span the whole plane, so every cell
+    # gets its own vertices and seam cells are unwrapped by 2 pi.
+    th = theta[cells]
+    th = np.where((th.max(axis=1, keepdims=True) - th.min(axis=1, keepdims=True) > np.pi)
+                  & (th < np.pi), th + 2 * np.pi, th)
+    flat = cells.ravel()
+    pts = np.column_stack([R * th.ravel(), z[flat], np.zeros(flat.size)])
+    own = np.arange(flat.size).reshape(cells.shape)
+    return meshio.Mesh(pts, [(ctype, own)],
+                       point_data={"pressure": p[flat], "film_thickness": h[flat]})
 
 
 def write_solution(sol: FilmSolution, path, surface: str = "journal"):

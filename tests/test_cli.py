@@ -17,7 +17,7 @@ def run(*args):
 def test_help_lists_commands():
     r = run("--help")
     assert r.returncode == 0
-    for cmd in ("simulate", "solve", "examples:"):
+    for cmd in ("simulate", "solve", "render", "convergence", "examples:"):
         assert cmd in r.stdout
 
 
@@ -51,3 +51,17 @@ def test_simulate_writes_result_and_figure(tmp_path):
     meta = json.loads((tmp_path / "out" / "result.json").read_text())
     assert meta["partial"] is False and meta["stats"]["film_solves"] > 0
     assert (tmp_path / "out" / "run.png").stat().st_size > 10_000
+
+
+def test_convergence_and_render_commands(tmp_path):
+    r = run("convergence", "--ld", "1.0", "--eps", "0.6", "--levels", "3", "--methods", "P1,fvm",
+            "-o", str(tmp_path / "conv"))
+    assert r.returncode == 0, r.stderr
+    assert (tmp_path / "conv" / "convergence.csv").is_file()
+    assert (tmp_path / "conv" / "convergence.png").is_file()
+    r = run("render", "--ld", "1.0", "--eps", "0.6", "--n-theta", "48", "--n-z", "8",
+            "-o", str(tmp_path / "film.png"))
+    assert r.returncode == 0, r.stderr
+    assert (tmp_path / "film.png").stat().st_size > 5000
+    r = run("render", "--field", "temperature", "-o", str(tmp_path / "x.png"))
+    assert r.returncode == 2 and "field must be one of" in r.stderr

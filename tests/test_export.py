@@ -33,3 +33,13 @@ def test_roundtrip(tmp_path, solve, suffix):
     i = np.argmax(back.point_data["pressure"])
     alpha = np.arctan2(back.points[i, 1], back.points[i, 0]) % (2 * np.pi)
     assert np.isclose(np.cos(alpha - sol.pressure_max_angle), 1.0, atol=1e-9)
+
+
+def test_unwrapped_export_has_no_cell_across_the_seam():
+    b = table1_bearing(0.5)
+    for sol in (solve_reynolds(b, JournalState(0.6, omega=250.0), 24, 4, "P2"),
+                fvm_reynolds(b, JournalState(0.6, omega=250.0), 24, 4)):
+        m = to_meshio(sol, surface="unwrapped")
+        x = m.points[m.cells[0].data][..., 0]
+        assert (x.max(axis=1) - x.min(axis=1)).max() < 0.5 * np.pi * b.radius
+        assert x.max() == pytest.approx(2 * np.pi * b.radius, rel=0.05)
