@@ -63,8 +63,8 @@ def short_bearing_force(bearing: Bearing, state: JournalState, *, half_film: str
     s2 = 1.0 - e * e
     k = mu * L ** 3 * R / (2.0 * c * c * s2 * s2)
     f_r = -k * (math.pi * ed * (1.0 + 2.0 * e * e) / math.sqrt(s2) + 2.0 * e * e * w_abs)
-    # sign(w) * (4 eps_dot + pi/2 sqrt(1-eps^2) |w|) with only the squeeze part switched
-    f_t = k * e * (4.0 * ed * sign + 0.5 * math.pi * math.sqrt(s2) * (w if half_film == "wedge" else w_abs))
+    # sign(w) (4 eps_dot + pi/2 sqrt(1-eps^2) |w|): only the squeeze part switches
+    f_t = k * e * (4.0 * ed * sign + 0.5 * math.pi * math.sqrt(s2) * w)
     return f_r, f_t
 
 

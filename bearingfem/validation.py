@@ -1,9 +1,7 @@
 """Argument checks shared by the solvers: fail before any work, naming the parameter."""
 from __future__ import annotations
 
-import math
-
-from .bearing import Bearing, JournalState
+from .bearing import Bearing, JournalState, check_finite
 
 CAVITATION = ("none", "gumbel", "reynolds")
 METHODS = ("active-set", "psor")
@@ -33,12 +31,5 @@ def check_inputs(bearing, state):
 
 
 def check_supply_angle(value):
-    if value is None:
-        return None
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise ValueError(f"supply_angle must be None or a finite angle [rad], got {value!r}") from None
-    if not math.isfinite(v):
-        raise ValueError(f"supply_angle must be None or a finite angle [rad], got {value!r}")
-    return v
+    """None (fully periodic film) or a finite angle [rad]."""
+    return None if value is None else check_finite("supply_angle", value)

@@ -16,8 +16,8 @@ import time
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from .dynamics import (accelerations, eccentricity_accelerations, pin_position, pin_velocity,
-                       rod_from_eccentricity)
+from .dynamics import (_gravity_terms, _mass_terms, accelerations, eccentricity_accelerations,
+                       pin_position, pin_velocity, rod_from_eccentricity)
 from .effects import (CoulombFriction, FilmEffect, HertzContact, JointKinematics, LinearSpring,
                       hertz_stiffness)
 from .parameters import GRAVITY
@@ -270,7 +270,6 @@ def _simulate_ideal(scene: Scene, progress=None) -> SimulationResult:
     Xdd = X1 * qdd + X2 * qd * qd
     # Joint reaction on the pin: F_x from the slider's equation, F_y from the rod's.
     Fx = -(m.slider_mass * Xdd + scene.slider_force + g * m.slider_mass)
-    from .dynamics import _gravity_terms, _mass_terms
     m11, m12, m22, s = _mass_terms(m, q, A)
     gq, gA = _gravity_terms(m, q, A, g)
     L = m.rod_length

@@ -86,7 +86,7 @@ states = st.builds(JournalState, eps=st.floats(0.0, 0.98), eps_dot=st.floats(-50
                    omega=st.floats(-500, 500))
 
 
-@settings(max_examples=60, deadline=None)
+@settings(max_examples=60, deadline=None, derandomize=True)
 @given(states, st.floats(0.1, 10.0))
 def test_properties_closed_forms(s, k):
     for f in CLOSED:
@@ -97,17 +97,20 @@ def test_properties_closed_forms(s, k):
         assert np.allclose(f(B, sk), k * a, rtol=1e-8, atol=1e-9 * (1 + np.abs(a).max()))
 
 
-@settings(max_examples=15, deadline=None)
+@settings(max_examples=15, deadline=None, derandomize=True)
 @given(states)
 def test_properties_fem(s):
     sol = solve_reynolds(B, s, 32, 6, "P1", "reynolds")
     assert np.all(np.isfinite(sol.force_local)) and sol.pressure.min() >= 0.0
-    # mirror: omega, gamma_dot -> -omega, -gamma_dot keeps F_r and flips F_t (to mesh error)
+    # mirror: omega, gamma_dot -> -omega, -gamma_dot keeps F_r and flips F_t. On one mesh
+    # that holds to discretisation error, estimated by one mesh doubling.
     m = solve_reynolds(B, JournalState(s.eps, s.eps_dot, s.gamma, -s.gamma_dot, -s.omega),
                        32, 6, "P1", "reynolds")
-    scale = np.abs(sol.force_local).max() + 1e-12
-    assert abs(m.force_local[0] - sol.force_local[0]) < 0.1 * scale
-    assert abs(m.force_local[1] + sol.force_local[1]) < 0.1 * scale
+    fine = solve_reynolds(B, s, 64, 12, "P1", "reynolds")
+    est = np.abs(np.subtract(sol.force_local, fine.force_local)).max()
+    tol = 2.0 * est + 1e-9 * (np.abs(sol.force_local).max() + 1e-12)
+    assert abs(m.force_local[0] - sol.force_local[0]) < tol
+    assert abs(m.force_local[1] + sol.force_local[1]) < tol
 
 
 def test_load_grows_with_eccentricity():
