@@ -40,11 +40,10 @@ def _load_cos(v, w):
     return np.cos(w.x[0]) * v
 
 
-def _aligned_data(mats, pattern: sp.csr_matrix) -> np.ndarray:
-    """Value arrays of ``mats`` laid out on the CSR ``pattern`` (rows k of the result)."""
-    out = np.zeros((len(mats), pattern.nnz))
-    pos = sp.csr_matrix((np.arange(1, pattern.nnz + 1, dtype=float),
-                         pattern.indices, pattern.indptr), shape=pattern.shape)
+def _aligned_data(mats, pos: sp.csr_matrix) -> np.ndarray:
+    """Value arrays of ``mats`` laid out on the pattern whose entries ``pos`` numbers 1..nnz
+    (rows k of the result)."""
+    out = np.zeros((len(mats), pos.nnz))
     for k, m in enumerate(mats):
         m = m.tocoo()
         idx = np.asarray(pos[m.row, m.col]).ravel().astype(np.int64) - 1
@@ -100,10 +99,11 @@ def build_operator(mesh: FilmMesh) -> FilmOperator:
     mats = [_stiffness_form(k).assemble(basis) for k in range(4)]
     pattern = sum(abs(m) for m in mats).tocsr()
     pattern.sort_indices()
-    terms = _aligned_data(mats, pattern)
-    free = mesh.free
+    # Number the pattern's entries 1..nnz: slicing this matrix tells where entries go.
     pos = sp.csr_matrix((np.arange(1, pattern.nnz + 1, dtype=float), pattern.indices,
                          pattern.indptr), shape=pattern.shape)
+    terms = _aligned_data(mats, pos)
+    free = mesh.free
     ff = pos[free][:, free].tocsr()
     ff.sort_indices()
     return FilmOperator(

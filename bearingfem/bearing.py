@@ -109,8 +109,11 @@ class JournalState:
         return self.omega - 2.0 * self.gamma_dot
 
     @classmethod
-    def from_eccentricity(cls, e_x, e_y, de_x, de_y, clearance, omega):
+    def from_eccentricity(cls, e_x, e_y, de_x, de_y, clearance, omega, eps_max=None):
         """State from the eccentricity vector (seed Eq. 2-5) and its rate [m, m/s].
+
+        ``eps_max`` caps eps (same direction and rates), for callers that must evaluate a
+        film at or beyond the wall.
 
         At e = 0 the attitude angle is undefined: gamma is then taken along the
         velocity (or 0) and gamma_dot = 0, which gives the correct forces because
@@ -125,5 +128,6 @@ class JournalState:
             gamma = math.atan2(de_y, de_x) if (de_x or de_y) else 0.0
             e_dot = math.hypot(de_x, de_y)
             gamma_dot = 0.0
-        return cls(eps=e / clearance, eps_dot=e_dot / clearance, gamma=gamma,
-                   gamma_dot=gamma_dot, omega=omega)
+        eps = e / clearance if eps_max is None else min(e / clearance, eps_max)
+        return cls(eps=eps, eps_dot=e_dot / clearance, gamma=gamma, gamma_dot=gamma_dot,
+                   omega=omega)

@@ -68,30 +68,26 @@ def fvm_grid(n_theta: int, n_z: int, slenderness: float, theta0: float | None) -
     theta_f = t0 + dth * np.arange(n_theta + 1)
     theta_c = theta_f[:-1] + 0.5 * dth
     zeta_c = -lam + dze * (np.arange(n_z) + 0.5)
-    g = FVMGrid(n_theta, n_z, lam, theta0, theta_c, theta_f, zeta_c, dth, dze,
-                np.empty(0, int), np.empty(0, int))
-    rows, cols = _structure(g)
+    periodic = theta0 is None
+    rows, cols = _structure(n_theta, n_z, periodic)
     order = np.lexsort((cols, rows))
-    indptr = np.concatenate(([0], np.cumsum(np.bincount(rows, minlength=g.n))))
-    masks = tuple(m for m, _, _ in _links(g)[2])
+    indptr = np.concatenate(([0], np.cumsum(np.bincount(rows, minlength=n_theta * n_z))))
+    masks = tuple(m for m, _, _ in _links(n_theta, n_z, periodic)[2])
     return FVMGrid(n_theta, n_z, lam, theta0, theta_c, theta_f, zeta_c, dth, dze,
                    rows, cols, order, indptr, cols[order], masks)
 
 
-def _links(g: FVMGrid):
+def _links(nt: int, nz: int, periodic: bool):
     """Masks of the cells that have an east/west/north/south neighbour, and the offsets."""
-    nt, nz = g.n_theta, g.n_z
     I, J = np.meshgrid(np.arange(nt), np.arange(nz), indexing="ij")
-    periodic = g.theta0 is None
     full = np.ones((nt, nz), bool)
     return I, J, [(full if periodic else I < nt - 1, 1, 0), (full if periodic else I > 0, -1, 0),
                   (J < nz - 1, 0, 1), (J > 0, 0, -1)]
 
 
-def _structure(g: FVMGrid):
+def _structure(nt: int, nz: int, periodic: bool):
     """COO rows and columns of the 5-point stencil: the diagonal, then E, W, N, S links."""
-    nt, nz = g.n_theta, g.n_z
-    I, J, links = _links(g)
+    I, J, links = _links(nt, nz, periodic)
     idx = I * nz + J
     rows, cols = [idx.ravel()], [idx.ravel()]
     for mask, di, dj in links:

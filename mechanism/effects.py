@@ -53,21 +53,11 @@ class FilmEffect:
         self._f = film_force_function(self.model)
 
     def force(self, k: JointKinematics):
-        c = self.bearing.clearance
-        e = k.e
-        if e > 0.0:
-            gamma = math.atan2(k.e_y, k.e_x)
-            e_dot = (k.e_x * k.de_x + k.e_y * k.de_y) / e
-            gamma_dot = (k.e_x * k.de_y - k.e_y * k.de_x) / (e * e)
-        else:
-            # At e = 0 only squeeze along the velocity acts (no attitude is defined).
-            gamma = math.atan2(k.de_y, k.de_x) if (k.de_x or k.de_y) else 0.0
-            e_dot, gamma_dot = math.hypot(k.de_x, k.de_y), 0.0
-        s = JournalState(eps=min(e / c, self.eps_max), eps_dot=e_dot / c, gamma=gamma,
-                         gamma_dot=gamma_dot, omega=k.omega)
+        s = JournalState.from_eccentricity(k.e_x, k.e_y, k.de_x, k.de_y,
+                                           self.bearing.clearance, k.omega, self.eps_max)
         self.solves += 1
         f_r, f_t = self._f(self.bearing, s, **self.options)
-        return local_to_inertial(f_r, f_t, gamma)
+        return local_to_inertial(f_r, f_t, s.gamma)
 
 
 def hertz_stiffness(radius, clearance, young_modulus, poisson):
