@@ -23,7 +23,7 @@ import scipy.sparse.linalg as spla
 
 from .bearing import Bearing, JournalState
 from .cavitation import LCPResult, active_set, psor
-from .film import local_to_inertial
+from .film import local_to_inertial, theta_from_inertial
 from .mesh import MIN_N_THETA, MIN_N_Z
 from .solution import FilmSolution
 from .validation import (CAVITATION, METHODS, check_choice, check_inputs, check_int,
@@ -139,6 +139,11 @@ def fvm_force(bearing: Bearing, state: JournalState, n_theta: int = 48, n_z: int
     P = _pressure(g, state, cavitation).pressure
     if cavitation != "none":
         P = np.maximum(P, 0.0)
+    return _force(bearing, g, P)
+
+
+def _force(bearing: Bearing, g: FVMGrid, P: np.ndarray):
+    """(F_r, F_t) [N]: midpoint sums of seed Eq. 16, sum p (cos, sin)(theta) dA."""
     Pg = P.reshape(g.n_theta, g.n_z).sum(axis=1)
     k = bearing.force_scale * g.dtheta * g.dzeta
     return k * float(Pg @ np.cos(g.theta_c)), k * float(Pg @ np.sin(g.theta_c))
@@ -158,9 +163,8 @@ def fvm_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z:
     check_choice("cavitation", cavitation, CAVITATION)
     check_choice("method", method, METHODS)
     supply_angle = check_supply_angle(supply_angle)
-    theta0 = None
-    if supply_angle is not None:
-        theta0 = float(np.mod(supply_angle - state.gamma - np.pi, 2 * np.pi))
+    theta0 = None if supply_angle is None else float(theta_from_inertial(supply_angle,
+                                                                         state.gamma))
     g = fvm_grid(n_theta, n_z, bearing.slenderness, theta0)
     res = _pressure(g, state, cavitation, method, tol)
     P = res.pressure if cavitation == "none" else np.maximum(res.pressure, 0.0)
@@ -168,9 +172,7 @@ def fvm_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z:
     th = np.repeat(g.theta_c, n_z)
     ze = np.tile(g.zeta_c, n_theta)
     dA = g.dtheta * g.dzeta
-    k = bearing.force_scale
-    f_r = k * float(np.sum(P * np.cos(th))) * dA
-    f_t = k * float(np.sum(P * np.sin(th))) * dA
+    f_r, f_t = _force(bearing, g, P)
     H = 1.0 + state.eps * np.cos(th)
     mu, R, c = bearing.viscosity, bearing.radius, bearing.clearance
     wet = P > 0 if cavitation != "none" else np.ones(g.n, bool)
@@ -181,7 +183,7 @@ def fvm_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z:
         dP = (np.roll(Pg, -1, 0) - np.roll(Pg, 1, 0)) / (2 * g.dtheta)
     else:
         dP = np.gradient(np.vstack([np.zeros((1, n_z)), Pg, np.zeros((1, n_z))]),
-                         g.dtheta, axis=0)[1:-1] * 1.0
+                         g.dtheta, axis=0)[1:-1]
     friction = mu * R ** 3 / c * dA * float(np.sum(state.omega / H + 0.5 * H * dP.ravel()))
     # Side leakage through the end faces: flux H^3 (P_face=0 - P_c) / (dzeta/2) per face.
     Hc3 = (1.0 + state.eps * np.cos(g.theta_c)) ** 3

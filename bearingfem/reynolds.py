@@ -8,7 +8,7 @@ from .assembly import FilmOperator, film_operator
 from .multilevel import COARSEST_FREE_DOFS, grid_interpolator
 from .bearing import Bearing, JournalState
 from .cavitation import LCPResult, active_set, psor
-from .film import local_to_inertial
+from .film import local_to_inertial, theta_from_inertial
 from .mesh import ELEMENTS, MIN_N_THETA, MIN_N_Z
 from .solution import FilmSolution
 from .validation import (CAVITATION, METHODS, check_choice, check_inputs, check_int,
@@ -23,8 +23,8 @@ def fe_operator(bearing: Bearing, state: JournalState, n_theta=120, n_z=20, elem
                 supply_angle=None, half=True) -> FilmOperator:
     """The cached film operator for this bearing and mesh (supply line in the film frame)."""
     theta0 = None
-    if supply_angle is not None:
-        theta0 = float(np.round(np.mod(supply_angle - state.gamma - np.pi, 2 * np.pi), 12))
+    if supply_angle is not None:   # rounded: it is part of the operator cache key
+        theta0 = float(np.round(theta_from_inertial(supply_angle, state.gamma), 12))
     return film_operator(int(n_theta), int(n_z), element, bearing.slenderness, theta0, bool(half))
 
 
