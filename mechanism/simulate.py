@@ -22,7 +22,7 @@ from .effects import (CoulombFriction, FilmEffect, HertzContact, JointKinematics
                       hertz_stiffness)
 from .parameters import GRAVITY
 from .progress import Progress
-from .result import SimulationResult
+from .result import FIELDS, SimulationResult
 from .rigid import rigid_kinematics, rigid_rhs
 from .scene import Scene
 
@@ -199,24 +199,25 @@ def _dense(pieces):
     return at, bounds[0], bounds[-1]
 
 
+def _output_times(scene, crank_angle_at, t0, t1):
+    """Saved time points: every 1/samples_per_turn of a nominal turn, from where the crank
+    passes q0 + 2 pi record_from_turn (or t1 if it never does) to t1."""
+    tt = np.linspace(t0, t1, 20001)
+    q = crank_angle_at(tt)
+    q_rec = scene.crank_angle + 2 * math.pi * scene.run.record_from_turn
+    t_rec = float(np.interp(q_rec, q, tt)) if q[-1] >= q_rec else t1
+    dt = 2 * math.pi / scene.crank_speed / scene.run.samples_per_turn
+    t = np.arange(t_rec, t1 + 0.5 * dt, dt)
+    return t[t <= t1]
+
+
 def _sample(scene, pieces, effects, g, stats, partial, message):
     m = scene.mechanism
-    empty = {k: np.empty(0) for k in ("t", "crank_angle", "crank_speed", "rod_angle",
-                                      "slider_position", "slider_acceleration", "eps", "e_x",
-                                      "e_y", "film_min", "force_x", "force_y")}
     if not pieces:
-        return SimulationResult(**empty, scene=scene.name, partial=partial, message=message,
-                                stats=stats)
+        return SimulationResult(**{k: np.empty(0) for k in FIELDS}, scene=scene.name,
+                                partial=partial, message=message, stats=stats)
     at, t0, t1 = _dense(pieces)
-    run = scene.run
-    # Start of the recorded turns: where q passes q0 + 2 pi record_from_turn.
-    tt = np.linspace(t0, t1, 20001)
-    q = at(tt)[0]
-    q_rec = scene.crank_angle + 2 * math.pi * run.record_from_turn
-    t_rec = float(np.interp(q_rec, q, tt)) if q[-1] >= q_rec else t1
-    dt = 2 * math.pi / scene.crank_speed / run.samples_per_turn
-    t = np.arange(t_rec, t1 + 0.5 * dt, dt)
-    t = t[t <= t1]
+    t = _output_times(scene, lambda tt: at(tt)[0], t0, t1)
     Y = at(t)
     c = scene.bearing.clearance
     n = len(t)
@@ -257,12 +258,7 @@ def _simulate_ideal(scene: Scene, progress=None) -> SimulationResult:
                     method=_METHODS[run.integrator], rtol=min(run.rtol, 1e-8), atol=1e-10,
                     dense_output=True, events=ev)
     wall = time.perf_counter() - start
-    tt = np.linspace(0, sol.t[-1], 20001)
-    q_rec = scene.crank_angle + 2 * math.pi * run.record_from_turn
-    t_rec = float(np.interp(q_rec, sol.sol(tt)[0], tt))
-    dt = turn / run.samples_per_turn
-    t = np.arange(t_rec, sol.t[-1] + 0.5 * dt, dt)
-    t = t[t <= sol.t[-1]]
+    t = _output_times(scene, lambda tt: sol.sol(tt)[0], 0.0, sol.t[-1])
     q, qd = sol.sol(t)
     qdd = np.array([f(0, [a, b])[1] for a, b in zip(q, qd)])
     A, A1, A2, X, X1, X2 = rigid_kinematics(m, q)
@@ -271,7 +267,7 @@ def _simulate_ideal(scene: Scene, progress=None) -> SimulationResult:
     # Joint reaction on the pin: F_x from the slider's equation, F_y from the rod's.
     Fx = -(m.slider_mass * Xdd + scene.slider_force + g * m.slider_mass)
     m11, m12, m22, s = _mass_terms(m, q, A)
-    gq, gA = _gravity_terms(m, q, A, g)
+    _, gA = _gravity_terms(m, q, A, g)
     L = m.rod_length
     Fy = -(m12 * qdd + m22 * Add + s * qd * qd + gA + Fx * L * np.sin(A)) / (L * np.cos(A))
     z = np.zeros_like(t)
