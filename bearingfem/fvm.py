@@ -98,7 +98,7 @@ def _structure(nt: int, nz: int, periodic: bool):
 
 def _assemble(g: FVMGrid, eps: float, eps_dot: float, w: float):
     """Matrix (CSR, on the grid's fixed layout) and right-hand side of the balance."""
-    nt, nz = g.n_theta, g.n_z
+    nz = g.n_z
     He = 1.0 + eps * np.cos(g.theta_f[1:])          # east face of each theta column
     Hw = 1.0 + eps * np.cos(g.theta_f[:-1])
     Hc = 1.0 + eps * np.cos(g.theta_c)

@@ -82,9 +82,8 @@ def _joint_force(effects, k):
 
 
 def _initial_state(scene: Scene):
-    m = scene.mechanism
-    q0, qd0 = scene.crank_angle, scene.crank_speed
-    return np.array([q0, 0.0, 0.0, qd0, 0.0, 0.0])   # pin centred, moving with the slider
+    """Pin centred in the bush and moving with the slider: e = 0, e' = 0."""
+    return np.array([scene.crank_angle, 0.0, 0.0, scene.crank_speed, 0.0, 0.0])
 
 
 def simulate(scene: Scene, progress: bool | None = None) -> SimulationResult:
@@ -262,7 +261,7 @@ def _simulate_ideal(scene: Scene, progress=None) -> SimulationResult:
     q, qd = sol.sol(t)
     qdd = np.array([f(0, [a, b])[1] for a, b in zip(q, qd)])
     A, A1, A2, X, X1, X2 = rigid_kinematics(m, q)
-    Ad, Add = A1 * qd, A1 * qdd + A2 * qd * qd
+    Add = A1 * qdd + A2 * qd * qd
     Xdd = X1 * qdd + X2 * qd * qd
     # Joint reaction on the pin: F_x from the slider's equation, F_y from the rod's.
     Fx = -(m.slider_mass * Xdd + scene.slider_force + g * m.slider_mass)
