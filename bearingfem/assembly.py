@@ -70,6 +70,7 @@ class FilmOperator:
     b_cos: np.ndarray
     qp_theta: np.ndarray       # theta at the quadrature points (elements x points)
     qp_weight: np.ndarray      # quadrature weight times Jacobian at the same points
+    qp_interp: sp.csr_matrix   # nodal values -> values at those points (flattened)
 
     @property
     def shape(self):
@@ -88,6 +89,10 @@ class FilmOperator:
         v = self.values(eps) if values is None else values
         n = len(self.mesh.free)
         return sp.csr_matrix((v[self.ff_select], self.ff_indices, self.ff_indptr), shape=(n, n))
+
+    def at_quadrature(self, P: np.ndarray) -> np.ndarray:
+        """Values of the nodal field P at the quadrature points (elements x points)."""
+        return (self.qp_interp @ P).reshape(self.qp_theta.shape)
 
     def load(self, eps: float, eps_dot: float, wedge_speed: float) -> np.ndarray:
         """Load vector of f = 6 w eps sin(theta) - 12 eps_dot cos(theta), all dofs."""
@@ -111,7 +116,22 @@ def build_operator(mesh: FilmMesh) -> FilmOperator:
         ff_indptr=ff.indptr, ff_indices=ff.indices,
         ff_select=ff.data.astype(np.int64) - 1,
         b_sin=_load_sin.assemble(basis), b_cos=_load_cos.assemble(basis),
-        qp_theta=np.array(basis.global_coordinates()[0]), qp_weight=np.array(basis.dx))
+        qp_theta=np.array(basis.global_coordinates()[0]), qp_weight=np.array(basis.dx),
+        qp_interp=_interpolation_matrix(basis))
+
+
+def _interpolation_matrix(basis) -> sp.csr_matrix:
+    """Sparse map from nodal values to values at quadrature points: one mat-vec replaces
+    the basis's interpolation inside time integration."""
+    n_el, n_qp = basis.dx.shape
+    rows = np.arange(n_el * n_qp).reshape(n_el, n_qp)
+    r, c, v = [], [], []
+    for i in range(basis.Nbfun):   # loop over the few local shape functions only
+        r.append(rows.ravel())
+        c.append(np.repeat(basis.element_dofs[i], n_qp))
+        v.append(np.asarray(basis.basis[i][0].value).ravel())
+    return sp.csr_matrix((np.concatenate(v), (np.concatenate(r), np.concatenate(c))),
+                         shape=(n_el * n_qp, basis.N))
 
 
 @lru_cache(maxsize=32)

@@ -13,11 +13,12 @@ Two solvers give the same discrete answer:
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 import scipy.sparse as sp
-import scipy.sparse.linalg as spla
+
+from .linsolve import solve_spd
 
 __all__ = ["LCPResult", "active_set", "psor", "complementarity_residual", "graph_colouring"]
 
@@ -31,6 +32,8 @@ class LCPResult:
     residual: float           # complementarity residual, relative to max pressure
     converged: bool
     active: np.ndarray        # boolean mask: dofs held at P = 0 (cavitated)
+    factor: object = field(default=None, repr=False, compare=False)  # reusable, see active_set
+    factorisations: int = 0   # sparse LU factorisations the solve needed
 
 
 def complementarity_residual(K: sp.spmatrix, b: np.ndarray, P: np.ndarray) -> float:
@@ -41,17 +44,24 @@ def complementarity_residual(K: sp.spmatrix, b: np.ndarray, P: np.ndarray) -> fl
     return float(np.max(np.abs(np.minimum(P, r / d)))) / scale
 
 
-def _solve_block(K: sp.csr_matrix, b: np.ndarray, inactive: np.ndarray) -> np.ndarray:
-    P = np.zeros_like(b)
-    idx = np.flatnonzero(inactive)
-    if idx.size:
-        Kii = K[idx][:, idx].tocsc()
-        P[idx] = spla.spsolve(Kii, b[idx])
-    return P
+def _pinned(K: sp.csr_matrix, inactive: np.ndarray) -> sp.csc_matrix:
+    """K with the rows and columns of the cavitated dofs replaced by the identity.
+
+    Solving it with the load zeroed on those dofs is the inactive-block solve, but the
+    matrix keeps the size of K: one factorisation can precondition the next active set.
+    """
+    rows = np.repeat(np.arange(K.shape[0]), np.diff(K.indptr))
+    keep = inactive[rows] & inactive[K.indices]
+    data = np.where(keep, K.data, 0.0)
+    data[(rows == K.indices) & ~inactive[rows]] = 1.0
+    A = sp.csr_matrix((data, K.indices.copy(), K.indptr.copy()), shape=K.shape)
+    A.eliminate_zeros()   # in place: hence the copies, K shares nothing with A
+    return A.tocsc()
 
 
 def active_set(K: sp.csr_matrix, b: np.ndarray, *, active0: np.ndarray | None = None,
-               tol: float = 1e-10, max_iter: int = 100) -> LCPResult:
+               tol: float = 1e-10, max_iter: int = 100, factor=None,
+               few_changes: int = 8) -> LCPResult:
     """Primal-dual active-set solve of the complementarity problem.
 
     Parameters
@@ -59,18 +69,37 @@ def active_set(K: sp.csr_matrix, b: np.ndarray, *, active0: np.ndarray | None = 
     K, b : free-dof stiffness and load
     active0 : initial cavitated set (boolean); by default the set where the unconstrained
         (full-Sommerfeld) solution is negative, which is usually a few dofs from the answer.
+    factor : factors returned by an earlier call (``LCPResult.factor``) for a matrix of the
+        same size, e.g. the previous time step's: they precondition the first solve.
+    few_changes : when the set moves by at most this many dofs, the next solve is CG
+        preconditioned by the last factors (a rank <= 2 x few_changes change) instead of
+        a new factorisation.
     """
+    K = sp.csr_matrix(K)
+    n = b.shape[0]
     r_scale = max(float(np.abs(b).max(initial=0.0)), np.finfo(float).tiny)
+    factorisations = 0
     if active0 is None:
-        P = _solve_block(K, b, np.ones(b.shape, bool))
+        P, factor, fresh = solve_spd(K, b, factor)
+        factorisations += fresh
         active = P < 0.0
         iterations = 1
     else:
         active = np.asarray(active0, bool).copy()
+        P = np.zeros(n)
         iterations = 0
+    factored = None if factor is None or factor.shape != (n, n) else active
     converged = False
     while iterations < max_iter:
-        P = _solve_block(K, b, ~active)
+        inactive = ~active
+        A = _pinned(K, inactive)
+        rhs = np.where(inactive, b, 0.0)
+        near = factored is not None and np.count_nonzero(factored != active) <= few_changes
+        P, factor, fresh = solve_spd(A, rhs, factor if near else None,
+                                     np.where(inactive, P, 0.0))
+        if fresh:
+            factored = active
+            factorisations += 1
         iterations += 1
         r = K @ P - b
         # Semismooth Newton step on min(P, r / diag K) = 0: an active dof stays while its
@@ -82,8 +111,8 @@ def active_set(K: sp.csr_matrix, b: np.ndarray, *, active0: np.ndarray | None = 
         active = new
     P = np.maximum(P, 0.0)
     res = complementarity_residual(K, b, P) if P.any() else 0.0
-    return LCPResult(pressure=P, iterations=iterations, residual=res,
-                     converged=converged, active=P <= 0.0)
+    return LCPResult(pressure=P, iterations=iterations, residual=res, converged=converged,
+                     active=P <= 0.0, factor=factor, factorisations=factorisations)
 
 
 def graph_colouring(K: sp.spmatrix, seed: int = 0) -> list[np.ndarray]:

@@ -2,12 +2,12 @@
 from __future__ import annotations
 
 import numpy as np
-import scipy.sparse.linalg as spla
 
 from .assembly import FilmOperator, film_operator
 from .multilevel import COARSEST_FREE_DOFS, grid_interpolator
 from .bearing import Bearing, JournalState
 from .cavitation import LCPResult, active_set, psor
+from .linsolve import solve_spd
 from .film import local_to_inertial, theta_from_inertial
 from .mesh import ELEMENTS, MIN_N_THETA, MIN_N_Z
 from .solution import FilmSolution
@@ -29,11 +29,13 @@ def fe_operator(bearing: Bearing, state: JournalState, n_theta=120, n_z=20, elem
 
 
 def fe_pressure(op: FilmOperator, state: JournalState, cavitation="reynolds",
-                method="active-set", tol=1e-10, active0=None, colours=None) -> LCPResult:
+                method="active-set", tol=1e-10, active0=None, colours=None,
+                factor=None) -> LCPResult:
     """Dimensionless nodal pressure P (p = mu (R/c)^2 P) on all dofs, ambient on fixed ones.
 
     For "gumbel" the returned field is the unconstrained (full-Sommerfeld) solution; the
-    half-Sommerfeld clip is applied where pressure is used.
+    half-Sommerfeld clip is applied where pressure is used. ``active0`` and ``factor``
+    (from the result of a nearby state on the same operator) warm-start the solve.
     """
     free = op.mesh.free
     b = op.load(state.eps, state.eps_dot, state.wedge_speed)[free]
@@ -41,7 +43,7 @@ def fe_pressure(op: FilmOperator, state: JournalState, cavitation="reynolds",
     P = np.zeros(op.mesh.ndofs)
     if not np.any(b):
         # No wedge and no squeeze: ambient everywhere (avoids 0/0 in residuals).
-        return LCPResult(P, 0, 0.0, True, np.zeros(op.mesh.ndofs, bool))
+        return LCPResult(P, 0, 0.0, True, np.zeros(op.mesh.ndofs, bool), factor)
     if cavitation == "reynolds":
         if method == "psor":
             res = psor(K, b, tol=tol, colours=colours)
@@ -49,13 +51,14 @@ def fe_pressure(op: FilmOperator, state: JournalState, cavitation="reynolds",
             if active0 is None and len(free) > COARSEST_FREE_DOFS:
                 active0 = _coarse_active_set(op, state, tol)
             a0 = None if active0 is None else np.asarray(active0, bool)[free]
-            res = active_set(K, b, active0=a0, tol=tol)
+            res = active_set(K, b, active0=a0, tol=tol, factor=factor)
         P[free] = res.pressure
         active = np.zeros(op.mesh.ndofs, bool)
         active[free] = res.active
-        return LCPResult(P, res.iterations, res.residual, res.converged, active)
-    P[free] = spla.spsolve(K.tocsc(), b)
-    return LCPResult(P, 1, 0.0, True, np.zeros(op.mesh.ndofs, bool))
+        return LCPResult(P, res.iterations, res.residual, res.converged, active, res.factor,
+                         res.factorisations)
+    P[free], factor, fresh = solve_spd(K, b, factor)
+    return LCPResult(P, 1, 0.0, True, np.zeros(op.mesh.ndofs, bool), factor, int(fresh))
 
 
 def _coarse_active_set(op: FilmOperator, state: JournalState, tol: float) -> np.ndarray:
@@ -70,6 +73,7 @@ def _coarse_active_set(op: FilmOperator, state: JournalState, tol: float) -> np.
 
 
 def _qp_fields(op: FilmOperator, P: np.ndarray):
+    """Pressure and its theta-derivative at the quadrature points (elements x points)."""
     f = op.mesh.basis.interpolate(P)
     return np.asarray(f), np.asarray(f.grad[0])
 
@@ -78,19 +82,25 @@ def _integrated_force(op: FilmOperator, P: np.ndarray, clip: bool):
     """(integral of P cos theta, integral of P sin theta) over the meshed film."""
     if not clip:
         return float(op.b_cos @ P), float(op.b_sin @ P)
-    Pq, _ = _qp_fields(op, P)
-    Pq = np.maximum(Pq, 0.0) * op.qp_weight
+    Pq = np.maximum(op.at_quadrature(P), 0.0) * op.qp_weight
     return float(np.sum(Pq * np.cos(op.qp_theta))), float(np.sum(Pq * np.sin(op.qp_theta)))
 
 
 def fe_force(bearing: Bearing, state: JournalState, n_theta=60, n_z=10, element="P1",
-             cavitation="gumbel", method="active-set", half=True, active0=None):
-    """(F_r, F_t) [N] and the cavitated set: the light path used inside time integration."""
+             cavitation="gumbel", method="active-set", half=True, warm: LCPResult | None = None):
+    """(F_r, F_t) [N] and the :class:`LCPResult`: the light path used in time integration.
+
+    Pass the previous call's result as ``warm`` (same mesh, nearby state): its cavitated
+    set and factorisation start this solve.
+    """
     op = fe_operator(bearing, state, n_theta, n_z, element, None, half)
-    res = fe_pressure(op, state, cavitation, method, active0=active0)
+    a0, factor = (None, None) if warm is None else (warm.active, warm.factor)
+    if a0 is not None and (a0.shape != (op.mesh.ndofs,) or not a0.any()):
+        a0 = None
+    res = fe_pressure(op, state, cavitation, method, active0=a0, factor=factor)
     ic, is_ = _integrated_force(op, res.pressure, cavitation == "gumbel")
     k = bearing.force_scale * (2.0 if op.mesh.half else 1.0)
-    return (k * ic, k * is_), res.active
+    return (k * ic, k * is_), res
 
 
 def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z: int = 20,

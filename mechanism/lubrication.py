@@ -16,6 +16,20 @@ def _fem(bearing, state, n_theta=48, n_z=8, element="P1", cavitation="gumbel"):
     return fe_force(bearing, state, n_theta, n_z, element, cavitation)[0]
 
 
+def _warm_fem():
+    """The "fem" model with memory: each solve starts from the previous one's cavitated set
+    and factorisation (consecutive states of an integration are close). The answer is the
+    same as a cold solve to the solver tolerance; only the cost changes."""
+    last = {}
+
+    def fem(bearing, state, n_theta=48, n_z=8, element="P1", cavitation="gumbel"):
+        key = (bearing.slenderness, n_theta, n_z, element, cavitation)
+        force, last[key] = fe_force(bearing, state, n_theta, n_z, element, cavitation,
+                                    warm=last.get(key))
+        return force
+    return fem
+
+
 def _fvm(bearing, state, n_theta=48, n_z=8, cavitation="gumbel"):
     return fvm_force(bearing, state, n_theta, n_z, cavitation)
 
@@ -44,4 +58,5 @@ def film_force_function(model: str):
     if model not in FILM_MODELS:
         raise ValueError(f"lubrication.model must be one of {', '.join(sorted(FILM_MODELS))}, "
                          f"got {model!r}")
-    return FILM_MODELS[model]
+    # A fresh warm-started solver per caller: its memory belongs to one integration.
+    return _warm_fem() if model == "fem" else FILM_MODELS[model]

@@ -1,0 +1,101 @@
+"""What one film solve costs: linear vs cavitated (active set, cold / nested / warm) vs PSOR.
+
+    python -m benchmarks.film_solve            # the table, 120x20 and 480x80, eps 0.6 / 0.95
+    python -m benchmarks.film_solve --quick    # a smoke run on small meshes (CI)
+    python -m benchmarks.film_solve --memory   # peak memory of a ~200k-dof cavitated solve
+
+All times in one run, best of ``--repeat``, warm operator caches (assembly is once per
+mesh and excluded); every row is the same P1 film, L/D = 1, omega = 100 rad/s.
+"""
+from __future__ import annotations
+
+import argparse
+import resource
+import subprocess
+import sys
+import time
+
+import numpy as np
+
+from bearingfem import Bearing, JournalState
+from bearingfem.cavitation import active_set
+from bearingfem.linsolve import factorise
+from bearingfem.reynolds import fe_operator, fe_pressure
+
+BEARING = Bearing(radius=0.01, length=0.02, clearance=20e-6, viscosity=0.0117)
+
+
+def best_time(f, repeat):
+    times = []
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        out = f()
+        times.append(time.perf_counter() - t0)
+    return min(times), out
+
+
+def measure(n_theta, n_z, eps, repeat=3, psor=True):
+    s = JournalState(eps, 0.0, 0.0, 0.0, 100.0)
+    near = JournalState(eps * (1.0 + 1e-3), 0.0, 0.0, 0.0, 100.0)   # the next time step
+    op = fe_operator(BEARING, s, n_theta, n_z)
+    K = op.free_stiffness(eps)
+    b = op.load(eps, 0.0, s.wedge_speed)[op.mesh.free]
+    t_lin, _ = best_time(lambda: factorise(K).solve(b), repeat)
+    t_cold, cold = best_time(lambda: active_set(K, b), repeat)
+    t_nest, nest = best_time(lambda: fe_pressure(op, s, "reynolds"), repeat)
+    prev = fe_pressure(op, near, "reynolds")
+    t_warm, warm = best_time(lambda: fe_pressure(op, s, "reynolds", active0=prev.active,
+                                                 factor=prev.factor), repeat)
+    row = dict(mesh=f"{n_theta}x{n_z}", eps=eps, dofs=len(op.mesh.free), linear_ms=1e3 * t_lin,
+               cold_ms=1e3 * t_cold, cold_it=cold.iterations, nested_ms=1e3 * t_nest,
+               nested_it=nest.iterations, warm_ms=1e3 * t_warm, warm_it=warm.iterations)
+    if psor:
+        t_psor, ps = best_time(lambda: fe_pressure(op, s, "reynolds", "psor"), 1)
+        row.update(psor_ms=1e3 * t_psor, psor_it=ps.iterations,
+                   psor_gap=float(np.max(np.abs(ps.pressure - nest.pressure))
+                                  / nest.pressure.max()))
+    for key in ("cold_ms", "nested_ms", "warm_ms"):
+        row[key.replace("_ms", "/lin")] = row[key] / row["linear_ms"]
+    if psor:
+        row["psor/nested"] = row["psor_ms"] / row["nested_ms"]
+        row["psor/warm"] = row["psor_ms"] / row["warm_ms"]
+    return row
+
+
+def print_table(rows):
+    keys = list(rows[0])
+    print(" | ".join(keys))
+    for r in rows:
+        print(" | ".join(f"{r[k]:.3g}" if isinstance(r[k], float) else str(r[k]) for k in keys))
+
+
+def peak_memory(n_theta, n_z):
+    """Peak resident memory [MB] of a fresh process doing one cavitated solve."""
+    code = ("import resource; from benchmarks.film_solve import *; "
+            f"s = JournalState(0.8, 0.0, 0.0, 0.0, 100.0); op = fe_operator(BEARING, s, {n_theta}, {n_z}); "
+            "r = fe_pressure(op, s, 'reynolds'); "
+            "print(len(op.mesh.free), r.iterations, resource.getrusage(resource.RUSAGE_SELF).ru_maxrss)")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    dofs, it, kb = out.stdout.split()
+    return int(dofs), int(it), int(kb) / 1024.0
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--quick", action="store_true", help="small meshes, one repeat (CI smoke)")
+    ap.add_argument("--memory", action="store_true", help="peak memory of a ~200k-dof solve")
+    ap.add_argument("--repeat", type=int, default=3)
+    a = ap.parse_args(argv)
+    if a.memory:
+        dofs, it, mb = peak_memory(1000, 400)
+        print(f"free dofs {dofs}, active-set iterations {it}, peak RSS {mb:.0f} MB")
+        return
+    meshes = [(48, 8)] if a.quick else [(120, 20), (480, 80)]
+    rows = [measure(nt, nz, eps, 1 if a.quick else a.repeat)
+            for nt, nz in meshes for eps in (0.6, 0.95)]
+    print_table(rows)
+    return rows
+
+
+if __name__ == "__main__":
+    main()

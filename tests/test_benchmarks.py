@@ -1,0 +1,11 @@
+"""Smoke runs of the benchmark scripts: they run and their rows are self-consistent.
+(Timings are printed by the scripts, never asserted: this machine is shared and noisy.)"""
+from benchmarks import film_solve
+
+
+def test_film_solve_benchmark_smoke(capsys):
+    rows = film_solve.main(["--quick"])
+    assert len(rows) == 2 and "psor/nested" in capsys.readouterr().out
+    for r in rows:
+        assert r["psor_gap"] < 1e-6          # PSOR and the active set solved the same film
+        assert r["warm_it"] <= r["nested_it"]
