@@ -6,6 +6,7 @@ from __future__ import annotations
 
 from bearingfem import (long_bearing_exact_force, long_bearing_force, short_bearing_exact_force,
                         short_bearing_force)
+from bearingfem.force_table import table_force
 from bearingfem.fvm import fvm_force
 from bearingfem.reynolds import fe_force
 
@@ -41,20 +42,19 @@ FILM_MODELS = {
     "long-exact": long_bearing_exact_force,
     "fem": _fem,
     "fvm": _fvm,
+    "fem-table": table_force,
 }
 #: Options each model accepts in a scene's lubrication table (besides "model", "eps_max").
 MODEL_OPTIONS = {
     "short": {"half_film", "switch_speed"}, "long": set(), "short-exact": set(), "long-exact": set(),
     "fem": {"n_theta", "n_z", "element", "cavitation"},
     "fvm": {"n_theta", "n_z", "cavitation"},
+    "fem-table": {"n_theta", "n_z", "element", "cavitation", "n_eps", "n_phi"},
 }
 NUMERIC_MODELS = {"fem", "fvm"}
 
 
 def film_force_function(model: str):
-    if model == "fem-table":
-        raise ValueError("lubrication.model 'fem-table' is not available in this version; "
-                         f"choose one of {', '.join(sorted(FILM_MODELS))}")
     if model not in FILM_MODELS:
         raise ValueError(f"lubrication.model must be one of {', '.join(sorted(FILM_MODELS))}, "
                          f"got {model!r}")

@@ -174,7 +174,7 @@ def _lubrication(t: _Table) -> Lubrication:
         film_force_function(model)
     except ValueError as err:
         raise ValueError(f"{t.where}.model: {err}") from None
-    eps_max = t.number("eps_max", 0.999 if model in ("fem", "fvm") else 1.0 - 1e-6,
+    eps_max = t.number("eps_max", 0.999 if model in ("fem", "fvm", "fem-table") else 1.0 - 1e-6,
                        lo=0.5, hi=1.0, hi_open=True)
     opts = {}
     allowed = MODEL_OPTIONS[model]
@@ -183,13 +183,18 @@ def _lubrication(t: _Table) -> Lubrication:
             raise ValueError(f"{t.where}.{key} is not an option of model {model!r} "
                              f"(options: {', '.join(sorted(allowed)) or 'none'})")
     if "n_theta" in allowed:
-        opts["n_theta"] = int(t.number("n_theta", 48, lo=MIN_N_THETA))
-        opts["n_z"] = int(t.number("n_z", 8, lo=MIN_N_Z))
+        # a table is built once, so its default mesh can be finer than a per-step solve's
+        fine = model == "fem-table"
+        opts["n_theta"] = int(t.number("n_theta", 96 if fine else 48, lo=MIN_N_THETA))
+        opts["n_z"] = int(t.number("n_z", 16 if fine else 8, lo=MIN_N_Z))
         opts["cavitation"] = t.choice("cavitation", CAVITATION, "gumbel")
     if "switch_speed" in allowed:
         opts["half_film"] = t.choice("half_film", ("wedge", "fixed"), "wedge")
         # 0 is the sharp switch of the literal model, which integrators chatter on
         opts["switch_speed"] = t.number("switch_speed", 1.0, lo=0.0)
+    if "n_eps" in allowed:
+        opts["n_eps"] = int(t.number("n_eps", 40, lo=6, hi=400))
+        opts["n_phi"] = int(t.number("n_phi", 96, lo=16, hi=1000))
     if "element" in allowed:
         opts["element"] = t.choice("element", tuple(ELEMENTS), "P1")
     t.done()

@@ -21,3 +21,10 @@ def long_b():
 def rel(a, b):
     a, b = np.asarray(a, float), np.asarray(b, float)
     return float(np.linalg.norm(a - b) / np.linalg.norm(b))
+
+
+# FE force tables are cached on disk: keep the suite's tables out of the user's cache.
+import os as _os
+import tempfile as _tempfile
+
+_os.environ.setdefault("BEARINGFEM_CACHE", _tempfile.mkdtemp(prefix="bearingfem-tables-"))

@@ -61,9 +61,19 @@ def test_fem_options_validated():
         parse_scene(d)
 
 
-def test_fem_table_is_named_as_unavailable():
-    with pytest.raises(ValueError, match="fem-table"):
-        parse_scene(_with(("effects", "lubrication", "model"), "fem-table"))
+def test_fem_table_options_parse_with_their_defaults_and_ranges():
+    sc = parse_scene(_with(("effects", "lubrication"), {"model": "fem-table", "n_phi": 48}))
+    assert sc.lubrication.options == dict(n_theta=96, n_z=16, cavitation="gumbel", n_eps=40, n_phi=48,
+                               element="P1")
+    with pytest.raises(ValueError, match=r"n_eps must lie in \[6"):
+        parse_scene(_with(("effects", "lubrication"), {"model": "fem-table", "n_eps": 2}))
+    with pytest.raises(ValueError, match="not an option of model 'fem-table'"):
+        parse_scene(_with(("effects", "lubrication"), {"model": "fem-table", "half_film": "x"}))
+
+
+def test_unknown_model_is_named():
+    with pytest.raises(ValueError, match="model must be one of .*fem-table"):
+        parse_scene(_with(("effects", "lubrication", "model"), "fem-tabel"))
 
 
 def test_missing_file_and_bad_toml(tmp_path):
