@@ -10,6 +10,7 @@ EXAMPLES = """examples:
   bearingfem solve --ld 1.0 --eps 0.6 --cavitation reynolds
   bearingfem render --ld 1.0 --eps 0.6 --cavitation reynolds -o film.png
   bearingfem convergence --ld 1.0 --eps 0.6 -o results/convergence
+  bearingfem sweep sweeps/capacity.toml -o results/capacity --workers 2
 """
 
 
@@ -83,6 +84,22 @@ def _render(args):
     return 0
 
 
+def _sweep(args):
+    from studies.sweep import load_sweep, run_sweep
+    sweep = load_sweep(args.sweep)
+    res = run_sweep(sweep, args.output, scheduler=args.scheduler, workers=args.workers,
+                    progress=None if not args.quiet else False)
+    out = Path(args.output)
+    print(f"sweep {sweep.name}: {res.computed} computed, {res.skipped} already done, "
+          f"{len(res.failed)} failed in {res.wall_time:.1f} s"
+          + (" - interrupted, rerun to continue" if res.interrupted else ""))
+    for cid, msg in res.failed.items():
+        print(f"  {cid}: {msg}")
+    if res.rows:
+        print(f"wrote {out / 'results.csv'}, {out / 'summary.png'} ({len(res.rows)} cases)")
+    return 1 if res.failed or res.interrupted else 0
+
+
 def _film_args(p):
     p.add_argument("--ld", type=float, default=1.0, help="L/D (default 1.0)")
     p.add_argument("--eps", type=float, default=0.6, help="eccentricity ratio in [0, 1)")
@@ -130,6 +147,16 @@ def build_parser():
     r.add_argument("--surface", default="journal", help="journal | unwrapped")
     r.add_argument("-o", "--output", required=True, help="PNG file")
     r.set_defaults(func=_render)
+    w = sub.add_parser("sweep", help="parameter sweep on Dask: one file per case, resumable",
+                       epilog="example: bearingfem sweep sweeps/capacity.toml -o out "
+                              "--scheduler tcp://10.0.0.5:8786")
+    w.add_argument("sweep", help="sweep TOML file (see sweeps/)")
+    w.add_argument("-o", "--output", required=True, help="output directory (rerun to resume)")
+    w.add_argument("--scheduler", help="address of a running Dask scheduler; default: a "
+                   "local cluster")
+    w.add_argument("--workers", type=int, default=2, help="local cluster processes (default 2)")
+    w.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
+    w.set_defaults(func=_sweep)
     return p
 
 

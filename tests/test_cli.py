@@ -17,7 +17,7 @@ def run(*args):
 def test_help_lists_commands():
     r = run("--help")
     assert r.returncode == 0
-    for cmd in ("simulate", "solve", "render", "convergence", "examples:"):
+    for cmd in ("simulate", "solve", "render", "convergence", "sweep", "examples:"):
         assert cmd in r.stdout
 
 
@@ -26,6 +26,7 @@ def test_help_lists_commands():
     (("solve", "--cavitation", "swift"), "cavitation must be one of"),
     (("solve", "--ld", "-1"), "length must be positive"),
     (("simulate", "no/such/scene.toml", "-o", "x"), "scene file not found"),
+    (("sweep", "no/such/sweep.toml", "-o", "x"), "sweep file 'no/such/sweep.toml' not found"),
 ])
 def test_bad_input_is_one_line_and_exit_2(args, needle):
     r = run(*args)
@@ -65,3 +66,13 @@ def test_convergence_and_render_commands(tmp_path):
     assert (tmp_path / "film.png").stat().st_size > 5000
     r = run("render", "--field", "temperature", "-o", str(tmp_path / "x.png"))
     assert r.returncode == 2 and "field must be one of" in r.stderr
+
+
+def test_sweep_command_runs_and_resumes(tmp_path):
+    sweep = tmp_path / "s.toml"
+    sweep.write_text('name = "s"\n[base]\nmodel = "short"\n[vary]\neps = [0.2, 0.8]\n')
+    r = run("sweep", str(sweep), "-o", str(tmp_path / "out"), "--workers", "1", "-q")
+    assert r.returncode == 0, r.stderr
+    assert "2 computed, 0 already done, 0 failed" in r.stdout
+    r = run("sweep", str(sweep), "-o", str(tmp_path / "out"), "--workers", "1", "-q")
+    assert "0 computed, 2 already done" in r.stdout

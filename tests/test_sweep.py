@@ -1,0 +1,86 @@
+"""Sweeps: case expansion, validation, and a real 2-worker Dask LocalCluster run that
+writes one file per case, resumes after an interruption and gathers a table."""
+import csv
+import json
+
+import numpy as np
+import pytest
+
+from bearingfem import Bearing, JournalState, solve_reynolds
+from studies.sweep import (case_id, gather, parse_sweep, run_case, run_sweep, sweep_cases)
+
+SWEEP = {"name": "t", "kind": "film",
+         "base": {"n_theta": 24, "n_z": 4, "omega": 250.0},
+         "vary": {"eps": [0.3, 0.6, 0.9], "model": ["fem", "short"]}}
+
+
+def test_cases_are_the_product_with_stable_ids():
+    sw = parse_sweep(SWEEP)
+    cases = sweep_cases(sw)
+    assert len(cases) == 6 and {c["model"] for c in cases} == {"fem", "short"}
+    assert all(c["n_theta"] == 24 for c in cases)
+    ids = [case_id("film", c) for c in cases]
+    assert len(set(ids)) == 6
+    assert ids == [case_id("film", dict(reversed(list(c.items())))) for c in cases]
+
+
+@pytest.mark.parametrize("patch, match", [
+    ({"kind": "rotor"}, "sweep.kind must be one of"),
+    ({"vary": {"eps": []}}, r"sweep.vary.eps must be a non-empty list"),
+    ({"vary": {"speed": [1.0]}}, r"sweep.vary.speed is not a film sweep parameter"),
+    ({"vary": {"model": ["fem", "magic"]}}, r"sweep.vary.model must be one of"),
+    ({"base": {"n_theta": 12.5}}, r"sweep.base.n_theta must be an integer"),
+    ({"vary": {}}, "must list at least one parameter"),
+    ({"cases": 3}, "unknown key"),
+])
+def test_bad_sweeps_are_named(patch, match):
+    with pytest.raises(ValueError, match=match):
+        parse_sweep({**SWEEP, **patch})
+
+
+def test_film_case_matches_a_direct_solve():
+    row = run_case("film", {"eps": 0.6, "n_theta": 24, "n_z": 4, "length_ratio": 0.5,
+                            "model": "fem", "cavitation": "reynolds"})
+    b = Bearing(radius=0.01, length=0.01, clearance=20e-6, viscosity=0.0117)
+    sol = solve_reynolds(b, JournalState(0.6, 0.0, 0.0, 0.0, 250.0), 24, 4, "P1", "reynolds")
+    assert row["load"] == pytest.approx(np.hypot(*sol.force_local), rel=1e-12)
+    # Sommerfeld number S = mu N L D / W (R/c)^2 with N in rev/s
+    assert row["sommerfeld"] == pytest.approx(
+        0.0117 * 250 / (2 * np.pi) * 0.01 * 0.02 / row["load"] * 500 ** 2, rel=1e-12)
+
+
+def test_two_worker_sweep_writes_each_case_and_resumes(tmp_path):
+    sw = parse_sweep(SWEEP)
+    first = run_sweep(sw, tmp_path, workers=2, progress=False)
+    assert (first.computed, first.skipped, first.failed) == (6, 0, {})
+    files = sorted((tmp_path / "cases").glob("case-*.json"))
+    assert len(files) == 6 and not list((tmp_path / "cases").glob(".*tmp"))
+    # an interrupted sweep: one case lost; the rerun computes that one only
+    lost = files[2]
+    kept = json.loads(lost.read_text())
+    lost.unlink()
+    second = run_sweep(sw, tmp_path, workers=2, progress=False)
+    assert (second.computed, second.skipped) == (1, 5)
+    assert json.loads(lost.read_text())["load"] == pytest.approx(kept["load"], rel=1e-12)
+    with open(tmp_path / "results.csv") as fh:
+        rows = list(csv.DictReader(fh))
+    assert len(rows) == 6 and (tmp_path / "summary.png").stat().st_size > 10_000
+    # the FE film carries less load than the short-bearing formula overestimates at L/D 1
+    by = {(float(r["eps"]), r["model"]): float(r["load"]) for r in rows}
+    assert all(by[(e, "fem")] < by[(e, "short")] for e in (0.3, 0.6, 0.9))
+
+
+def test_out_of_range_parameters_stop_the_sweep_before_it_starts(tmp_path):
+    sw = parse_sweep({**SWEEP, "vary": {"eps": [0.5, 1.5]}})
+    with pytest.raises(ValueError, match=r"eps must lie in \[0, 1\), got 1.5"):
+        run_sweep(sw, tmp_path, workers=1, progress=False)
+    assert not (tmp_path / "cases").exists() or not any((tmp_path / "cases").iterdir())
+
+
+def test_a_failing_case_is_reported_and_the_others_kept(tmp_path):
+    sw = parse_sweep({**SWEEP, "vary": {"n_theta": [4, 24]}, "base": {"model": "fem"}})
+    res = run_sweep(sw, tmp_path, workers=1, progress=False)
+    assert res.computed == 1 and len(res.failed) == 1
+    assert "n_theta must be an integer >= 8" in next(iter(res.failed.values()))
+    assert len(gather(tmp_path)) == 1
+    assert len(list((tmp_path / "cases").glob("*.error.json"))) == 1
