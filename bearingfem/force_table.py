@@ -7,7 +7,11 @@ w = omega - 2 gamma_dot. With v = (eps_dot, eps w / 2) = |v| (cos phi, sin phi),
 
 so the pressure, and with it the force, is |v| times a function of (eps, phi) alone for
 one L/D: linear for a full film, positively homogeneous for the clipped (Gumbel) and the
-complementarity (Reynolds) film. That function is tabulated from FE solves on a grid in
+complementarity (Reynolds) film. Near contact the squeeze part outgrows the wedge part by
+about (1 - eps^2)^-1/2, so the force turns sharply with phi around the pure-wedge
+direction; the table therefore uses the balanced velocity v' = (r eps_dot, eps w / 2),
+r = (1 - eps^2)^-1/2, and its angle phi' (the same homogeneity holds in v'). That
+function is tabulated from FE solves on a grid in
 
     u = -ln(1 - eps)   (nodes clustered toward eps = 1)  x  phi (periodic),
 
@@ -35,8 +39,9 @@ from .validation import check_choice, check_int
 
 __all__ = ["ForceTable", "build_force_table", "force_table", "table_force", "cache_dir"]
 
-FORMAT = 1
+FORMAT = 2          # bump when the tabulated quantity changes: old files go stale
 _PAD = 3          # phi nodes wrapped onto each side so the spline sees the periodicity
+SCALE_EXPONENT = 2.0   # g = (1 - eps)^k F / |v| stays bounded as eps -> 1
 
 
 def cache_dir() -> Path:
@@ -49,8 +54,8 @@ def cache_dir() -> Path:
 class ForceTable:
     """Dimensionless film force on an (eps, phi) grid for one L/D and mesh.
 
-    ``g_r``, ``g_t`` have shape (n_eps, n_phi): (1 - eps)^2 times the force over
-    force_scale |v| (half-domain symmetry already doubled).
+    ``g_r``, ``g_t`` have shape (n_eps, n_phi): (1 - eps)^k times the force over
+    force_scale |v'| (half-domain symmetry already doubled), phi being the angle of v'.
     """
 
     key: dict                  # what the table was built from (JSON-able)
@@ -76,16 +81,22 @@ class ForceTable:
         return float(self.eps[-1])
 
     def evaluate(self, eps, phi):
-        """Dimensionless (F_r, F_t) / |v| at (eps, phi), arrays broadcast together.
+        """Dimensionless (F_r, F_t) / |v'| at (eps, phi'), arrays broadcast together.
 
         Beyond the last tabulated eps, g is held at its edge value: the force keeps
-        growing as (1 - eps)^-2 (the table is only verified up to its eps_max).
+        growing as (1 - eps)^-2 but is not accurate there (keep eps_max at the film
+        model's cap, 0.999 by default).
         """
         eps, phi = np.broadcast_arrays(np.asarray(eps, float), np.asarray(phi, float))
         u = -np.log1p(-np.minimum(eps, self.eps_max))
         ph = np.mod(phi, 2 * np.pi)
-        scale = 1.0 / (1.0 - eps) ** 2
+        scale = 1.0 / (1.0 - eps) ** SCALE_EXPONENT
         return tuple(s(u, ph, grid=False) * scale for s in self._splines)
+
+
+def squeeze_weight(eps):
+    """r = (1 - eps^2)^-1/2: squeeze over wedge sensitivity of the force near contact."""
+    return 1.0 / np.sqrt(1.0 - np.minimum(eps, 0.999999) ** 2)
 
 
 def _eps_nodes(n_eps: int, eps_max: float) -> np.ndarray:
@@ -93,25 +104,26 @@ def _eps_nodes(n_eps: int, eps_max: float) -> np.ndarray:
 
 
 def build_force_table(slenderness: float, n_theta=96, n_z=16, element="P1",
-                      cavitation="gumbel", n_eps=40, n_phi=64, eps_max=0.99) -> ForceTable:
+                      cavitation="gumbel", n_eps=60, n_phi=96, eps_max=0.999) -> ForceTable:
     """Tabulate the dimensionless force from FE solves (see the module docstring)."""
     op = film_operator(n_theta, n_z, element, float(slenderness), None, True)
     free = op.mesh.free
     eps = _eps_nodes(n_eps, eps_max)
     phi = np.linspace(0.0, 2 * np.pi, n_phi, endpoint=False)
     mult = 2.0 if op.mesh.half else 1.0
-    cq, sq = np.cos(op.qp_theta), np.sin(op.qp_theta)
+    cq, snq = np.cos(op.qp_theta), np.sin(op.qp_theta)
     w = op.qp_weight
     g = np.zeros((2, n_eps, n_phi))
     # f = 12 (sin phi * sin(theta) - cos phi * cos(theta)) on the unit-|v| film.
     b_s, b_c = 12.0 * op.b_sin[free], -12.0 * op.b_cos[free]
     for i, e in enumerate(eps):
         K = op.free_stiffness(e)
+        sq = 1.0 / squeeze_weight(e)      # eps_dot per unit of the balanced v' component
         if cavitation == "reynolds":
             P = np.zeros((n_phi, op.mesh.ndofs))
             prev = None
             for j, ph in enumerate(phi):   # neighbours in phi warm-start each other
-                res = active_set(K, np.sin(ph) * b_s + np.cos(ph) * b_c,
+                res = active_set(K, np.sin(ph) * b_s + sq * np.cos(ph) * b_c,
                                  active0=None if prev is None else prev.active,
                                  factor=None if prev is None else prev.factor)
                 P[j, free] = res.pressure
@@ -122,12 +134,12 @@ def build_force_table(slenderness: float, n_theta=96, n_z=16, element="P1",
             Ps, Pc = np.zeros(op.mesh.ndofs), np.zeros(op.mesh.ndofs)
             Ps[free], Pc[free] = lu.solve(b_s), lu.solve(b_c)
             Pq = (np.sin(phi)[:, None, None] * op.at_quadrature(Ps)
-                  + np.cos(phi)[:, None, None] * op.at_quadrature(Pc))
+                  + sq * np.cos(phi)[:, None, None] * op.at_quadrature(Pc))
             if cavitation == "gumbel":
                 Pq = np.maximum(Pq, 0.0)
         g[0, i] = mult * np.einsum("pij,ij->p", Pq, w * cq)
-        g[1, i] = mult * np.einsum("pij,ij->p", Pq, w * sq)
-    g *= ((1.0 - eps) ** 2)[None, :, None]
+        g[1, i] = mult * np.einsum("pij,ij->p", Pq, w * snq)
+    g *= ((1.0 - eps) ** SCALE_EXPONENT)[None, :, None]
     key = _key(slenderness, n_theta, n_z, element, cavitation, n_eps, n_phi, eps_max)
     return ForceTable(key, eps, phi, g[0], g[1])
 
@@ -160,7 +172,7 @@ def _save(path: Path, table: ForceTable) -> None:
 
 @lru_cache(maxsize=16)
 def force_table(slenderness: float, n_theta=96, n_z=16, element="P1", cavitation="gumbel",
-                n_eps=40, n_phi=64, eps_max=0.99) -> ForceTable:
+                n_eps=60, n_phi=96, eps_max=0.999) -> ForceTable:
     """The table for these inputs: from memory, else from disk, else built and saved."""
     check_int("n_theta", n_theta, 8)
     check_int("n_z", n_z, 2)
@@ -185,9 +197,10 @@ def force_table(slenderness: float, n_theta=96, n_z=16, element="P1", cavitation
 
 
 def table_force(bearing, state, n_theta=96, n_z=16, element="P1", cavitation="gumbel",
-                n_eps=40, n_phi=64, eps_max=0.99):
+                n_eps=60, n_phi=96, eps_max=0.999):
     """(F_r, F_t) [N] on the journal from the cached table (the "fem-table" model)."""
-    vx, vy = state.eps_dot, 0.5 * state.eps * state.wedge_speed
+    vx = squeeze_weight(state.eps) * state.eps_dot
+    vy = 0.5 * state.eps * state.wedge_speed
     speed = float(np.hypot(vx, vy))
     if speed == 0.0:
         return 0.0, 0.0

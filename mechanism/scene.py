@@ -193,7 +193,7 @@ def _lubrication(t: _Table) -> Lubrication:
         # 0 is the sharp switch of the literal model, which integrators chatter on
         opts["switch_speed"] = t.number("switch_speed", 1.0, lo=0.0)
     if "n_eps" in allowed:
-        opts["n_eps"] = int(t.number("n_eps", 40, lo=6, hi=400))
+        opts["n_eps"] = int(t.number("n_eps", 60, lo=6, hi=400))
         opts["n_phi"] = int(t.number("n_phi", 96, lo=16, hi=1000))
     if "element" in allowed:
         opts["element"] = t.choice("element", tuple(ELEMENTS), "P1")

@@ -50,7 +50,7 @@ def mechanism_models(bearing: str, quick=False):
                                                      cavitation="gumbel")))
     models.append((f"FE table ({m[0]}x{2 * m[1]})", "fem-table",
                    dict(n_theta=m[0], n_z=2 * m[1], element="P1", cavitation="gumbel",
-                        n_eps=40, n_phi=96)))
+                        n_eps=60, n_phi=96)))
     models.append((f"FE P2 {meshes[0][0]}x{meshes[0][1]}", "fem",
                    dict(n_theta=meshes[0][0], n_z=meshes[0][1], element="P2",
                         cavitation="gumbel")))

@@ -1,15 +1,17 @@
 """The "fem-table" model against direct FE solves of the same film.
 
-Interpolation error on random states, eps <= 0.95, measured with the default grid
-(40 eps x 96 phi nodes, FE 96x16 P1): Gumbel L/D 0.2 0.33 %, L/D 2 0.20 %, Reynolds L/D 1
-0.34 % (see studies/accuracy_cost.py). The error does not fall further with a finer table:
-it is the direct FE force's own roughness (the cavitation front moves by whole elements).
+Interpolation error on 200 random states, eps <= 0.95, FE 96x16 P1: Gumbel L/D 0.2
+0.29 %, L/D 2 0.16 % (default grid, 60 eps nodes to 0.999 x 96 phi'), Reynolds L/D 1
+0.40 % (40 eps nodes to 0.99); medians 0.003-0.008 %. Beyond a grid of ~40 x 64 the error does not fall with a finer table: it is the
+direct FE force's own roughness (the cavitation front moves by whole elements); with the
+FE mesh refined in theta it falls (Reynolds L/D 0.2: 0.94 % at 96x16, 0.33 % at 192x16).
 """
 import numpy as np
 import pytest
 
 from bearingfem import JournalState
-from bearingfem.force_table import build_force_table, cache_dir, force_table, table_force
+from bearingfem.force_table import (build_force_table, cache_dir, force_table,
+                                    squeeze_weight, table_force)
 from bearingfem.reynolds import fe_force
 from conftest import table1_bearing
 
@@ -22,42 +24,52 @@ def _random_states(n, seed=1, eps_max=0.95):
                          250.0) for _ in range(n)]
 
 
-def _errors(bearing, cavitation, states):
+def _errors(bearing, cavitation, states, **grid):
     out = []
     for s in states:
         ref = np.array(fe_force(bearing, s, cavitation=cavitation, **MESH)[0])
-        got = np.array(table_force(bearing, s, cavitation=cavitation, **MESH))
+        got = np.array(table_force(bearing, s, cavitation=cavitation, **MESH, **grid))
         out.append(np.linalg.norm(got - ref) / np.linalg.norm(ref))
     return np.array(out)
 
 
 def test_nodes_reproduce_direct_solves():
-    """At a grid node the table is the FE force of the state with that (eps, phi), built
+    """At a grid node the table is the FE force of the state with that (eps, phi'), built
     through JournalState and the load - a second path through the code."""
     b = table1_bearing(0.5)
     t = force_table(b.slenderness, 48, 8, "P1", "gumbel", 12, 32)
     for i, j in [(0, 3), (5, 17), (11, 30)]:
         eps, phi = t.eps[i], t.phi[j]
-        w = 2.0 * np.sin(phi) / eps if eps > 0 else 0.0
-        s = JournalState(eps, np.cos(phi), 0.0, 0.0, w)
-        if eps == 0.0:   # no wedge at eps = 0: only the squeeze part of the direction
-            s = JournalState(0.0, np.cos(phi), 0.0, 0.0, 0.0)
-            g = np.array(fe_force(b, s, 48, 8)[0]) / b.force_scale
-            assert np.allclose(np.array(t.evaluate(0.0, 0.0 if np.cos(phi) > 0 else np.pi))
-                               * abs(np.cos(phi)), g, rtol=1e-9, atol=1e-12)
-            continue
-        ref = np.array(fe_force(b, s, 48, 8)[0]) / b.force_scale
-        assert np.allclose(t.evaluate(eps, phi), ref, rtol=1e-9, atol=1e-9 * abs(ref).max())
+        eps_dot = np.cos(phi) / squeeze_weight(eps)
+        w = 2.0 * np.sin(phi) / eps if eps > 0 else 0.0   # no wedge at eps = 0
+        ref = np.array(fe_force(b, JournalState(eps, eps_dot, 0.0, 0.0, w), 48, 8)[0])
+        speed = np.hypot(np.cos(phi), np.sin(phi) if eps > 0 else 0.0)
+        got = np.array(t.evaluate(eps, phi if eps > 0 else np.arctan2(0.0, np.cos(phi))))
+        assert np.allclose(got * speed * b.force_scale, ref, rtol=1e-9,
+                           atol=1e-9 * abs(ref).max())
 
 
-@pytest.mark.parametrize("ld, cavitation, tol", [(0.2, "gumbel", 5e-3), (2.0, "gumbel", 5e-3),
-                                                 (1.0, "reynolds", 5e-3)])
-def test_interpolation_error_on_random_states(ld, cavitation, tol):
-    err = _errors(table1_bearing(ld), cavitation, _random_states(60 if cavitation == "reynolds"
-                                                                 else 150))
-    assert err.max() < tol
+# Reynolds tables cost a complementarity solve per node: a 40-node table to eps 0.99 here.
+@pytest.mark.parametrize("ld, cavitation, grid", [
+    (0.2, "gumbel", {}), (2.0, "gumbel", {}),
+    (1.0, "reynolds", dict(n_eps=40, eps_max=0.99))])
+def test_interpolation_error_on_random_states(ld, cavitation, grid):
+    n = 60 if cavitation == "reynolds" else 150
+    err = _errors(table1_bearing(ld), cavitation, _random_states(n), **grid)
+    assert err.max() < 5e-3                    # the issue's target, eps <= 0.95
     # and the table is not trivially exact: the test would see a wrong interpolation
     assert err.max() > 1e-6
+
+
+def test_error_near_contact_stays_at_the_fe_roughness_level():
+    """0.95 < eps < 0.998: 0.65 % worst of 200 states (median 0.03 %). Tabulating in the
+    plain velocity angle phi instead of the balanced one gave 128 % here: the force turns
+    by a factor of 2 per 0.025 rad around the pure-wedge direction at eps = 0.998."""
+    rng = np.random.default_rng(3)
+    states = [JournalState(0.95 + 0.048 * rng.random(), 50 * rng.normal(), 0.0,
+                           50 * rng.normal(), 250.0) for _ in range(80)]
+    err = _errors(table1_bearing(0.2), "gumbel", states)
+    assert err.max() < 0.01
 
 
 def test_coarser_tables_converge_toward_the_fe_force():
