@@ -11,6 +11,7 @@ EXAMPLES = """examples:
   bearingfem render --ld 1.0 --eps 0.6 --cavitation reynolds -o film.png
   bearingfem convergence --ld 1.0 --eps 0.6 -o results/convergence
   bearingfem sweep sweeps/capacity.toml -o results/capacity --workers 2
+  bearingfem frames scenes/paper-long-fem.toml results/long-fem -o results/long-frames --gif
 """
 
 
@@ -100,6 +101,33 @@ def _sweep(args):
     return 1 if res.failed or res.interrupted else 0
 
 
+def _frames(args):
+    from mechanism import load_scene
+    from mechanism.film_history import film_history, render_history, write_history
+    from mechanism.result import load_result
+    scene = load_scene(args.scene)
+    if not (Path(args.result) / "result.npz").is_file():
+        raise ValueError(f"no run result in {args.result!r} (expected result.npz from "
+                         "'bearingfem simulate')")
+    result = load_result(args.result)
+    angles = None
+    if args.angles:
+        try:
+            angles = [float(a) for a in args.angles.split(",")]
+        except ValueError:
+            raise ValueError(f"--angles must be comma-separated degrees, got {args.angles!r}") \
+                from None
+    frames = film_history(result, scene, angles, args.frames,
+                          progress=lambda k, n: print(f"  film {k}/{n}", flush=True))
+    out = Path(args.output)
+    pvd = write_history(frames, out, args.surface)
+    print(f"wrote {pvd} ({len(frames)} VTU files, time = run time [s])")
+    if not args.no_render:
+        paths = render_history(frames, out, args.field, args.surface, gif=args.gif)
+        print(f"wrote {len(paths)} images to {out}" + (" incl. film.gif" if args.gif else ""))
+    return 0
+
+
 def _film_args(p):
     p.add_argument("--ld", type=float, default=1.0, help="L/D (default 1.0)")
     p.add_argument("--eps", type=float, default=0.6, help="eccentricity ratio in [0, 1)")
@@ -157,6 +185,20 @@ def build_parser():
     w.add_argument("--workers", type=int, default=2, help="local cluster processes (default 2)")
     w.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
     w.set_defaults(func=_sweep)
+    fr = sub.add_parser("frames", help="the film along a saved run: VTU series (.pvd), PNG "
+                        "frames, GIF", epilog="example: bearingfem frames "
+                        "scenes/paper-long-fem.toml results/long-fem -o frames --angles 0,90")
+    fr.add_argument("scene", help="the scene TOML the run was made from")
+    fr.add_argument("result", help="directory written by 'bearingfem simulate'")
+    fr.add_argument("-o", "--output", required=True, help="output directory")
+    fr.add_argument("--angles", help="crank angles [deg], comma-separated (default: evenly "
+                    "spaced --frames)")
+    fr.add_argument("--frames", type=int, default=12, help="number of evenly spaced frames")
+    fr.add_argument("--field", default="pressure", help="pressure | film_thickness")
+    fr.add_argument("--surface", default="journal", help="journal | unwrapped")
+    fr.add_argument("--gif", action="store_true", help="also write an animated film.gif")
+    fr.add_argument("--no-render", action="store_true", help="VTU series only, no PNG")
+    fr.set_defaults(func=_frames)
     return p
 
 

@@ -26,9 +26,9 @@ def _quiet_vtk():
 
 
 def render_film(sol: FilmSolution, path, *, field: str = "pressure", surface: str = "journal",
-                window_size=(900, 650)):
+                window_size=(900, 650), title: str | None = None):
     """Write a PNG of ``field`` ("pressure" or "film_thickness") on ``surface``
-    ("journal": 3-D cylinder, or "unwrapped")."""
+    ("journal": 3-D cylinder, or "unwrapped"); ``title`` is added above the summary line."""
     if field not in FIELDS:
         raise ValueError(f"field must be one of {', '.join(FIELDS)}, got {field!r}")
     import pyvista as pv
@@ -60,8 +60,8 @@ def render_film(sol: FilmSolution, path, *, field: str = "pressure", surface: st
     else:
         p.view_xy()
         p.camera.zoom(1.3)
-    p.add_text(f"{sol.method}, {sol.cavitation}: F = ({sol.force[0]:.4g}, {sol.force[1]:.4g}) N",
-               font_size=9, color="black")
+    text = f"{sol.method}, {sol.cavitation}: F = ({sol.force[0]:.4g}, {sol.force[1]:.4g}) N"
+    p.add_text(text if title is None else f"{title}\n{text}", font_size=9, color="black")
     p.screenshot(str(path))
     p.close()
     return path

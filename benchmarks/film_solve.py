@@ -10,7 +10,6 @@ mesh and excluded); every row is the same P1 film, L/D = 1, omega = 100 rad/s.
 from __future__ import annotations
 
 import argparse
-import resource
 import subprocess
 import sys
 import time
