@@ -1,5 +1,4 @@
 """Finite elements and finite volumes converge to the same film as meshes refine."""
-import numpy as np
 import pytest
 
 from bearingfem import JournalState, fvm_reynolds, solve_reynolds

@@ -2,13 +2,12 @@
 the film, and clean stops."""
 import numpy as np
 import pytest
-from dataclasses import replace
 
 from mechanism import parse_scene, simulate
 from mechanism.rigid import simulate_rigid
 from mechanism.parameters import Mechanism
 from mechanism.simulate import build_effects
-from mechanism.effects import FilmEffect, HertzContact, LinearSpring
+from mechanism.effects import FilmEffect, HertzContact
 
 
 def scene(effects, turns=1.0, ld=0.2, viscosity=0.0117, **run):
