@@ -91,8 +91,11 @@ class FilmOperator:
         return sp.csr_matrix((v[self.ff_select], self.ff_indices, self.ff_indptr), shape=(n, n))
 
     def at_quadrature(self, P: np.ndarray) -> np.ndarray:
-        """Values of the nodal field P at the quadrature points (elements x points)."""
-        return (self.qp_interp @ P).reshape(self.qp_theta.shape)
+        """Values of nodal fields P (..., ndofs) at the quadrature points
+        (..., elements, points)."""
+        P = np.asarray(P)
+        Q = self.qp_interp @ P.reshape(-1, P.shape[-1]).T
+        return Q.T.reshape(P.shape[:-1] + self.qp_theta.shape)
 
     def load(self, eps: float, eps_dot: float, wedge_speed: float) -> np.ndarray:
         """Load vector of f = 6 w eps sin(theta) - 12 eps_dot cos(theta), all dofs."""

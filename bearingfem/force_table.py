@@ -13,10 +13,10 @@ direction; the table therefore uses the balanced velocity v' = (r eps_dot, eps w
 r = (1 - eps^2)^-1/2, and its angle phi' (the same homogeneity holds in v'). That
 function is tabulated from FE solves on a grid in
 
-    u = -ln(1 - eps)   (nodes clustered toward eps = 1)  x  phi (periodic),
+    u = -ln(1 - eps)   (nodes clustered toward eps = 1)  x  phi' (periodic),
 
-as g = (1 - eps)^2 F / |v|, which stays bounded as eps -> 1, and interpolated by bicubic
-splines. A table is built once per (L/D, mesh, cavitation, grid), kept on disk with its
+as g = (1 - eps)^k F / |v'| (k = SCALE_EXPONENT), which stays bounded as eps -> 1, and
+interpolated by bicubic splines. A table is built once per (L/D, mesh, cavitation, grid), kept on disk with its
 inputs and the toolkit version, and rebuilt when either differs.
 """
 from __future__ import annotations
@@ -34,14 +34,14 @@ from scipy.interpolate import RectBivariateSpline
 from .assembly import film_operator
 from .cavitation import active_set
 from .linsolve import factorise
-from .mesh import ELEMENTS
-from .validation import check_choice, check_int
+from .mesh import ELEMENTS, MIN_N_THETA, MIN_N_Z
+from .validation import CAVITATION, check_choice, check_int
 
 __all__ = ["ForceTable", "build_force_table", "force_table", "table_force", "cache_dir"]
 
 FORMAT = 2          # bump when the tabulated quantity changes: old files go stale
 _PAD = 3          # phi nodes wrapped onto each side so the spline sees the periodicity
-SCALE_EXPONENT = 2.0   # g = (1 - eps)^k F / |v| stays bounded as eps -> 1
+SCALE_EXPONENT = 2.0   # k in g = (1 - eps)^k F / |v'|
 
 
 def cache_dir() -> Path:
@@ -128,7 +128,7 @@ def build_force_table(slenderness: float, n_theta=96, n_z=16, element="P1",
                                  factor=None if prev is None else prev.factor)
                 P[j, free] = res.pressure
                 prev = res
-            Pq = (op.qp_interp @ P.T).T.reshape((n_phi,) + w.shape)
+            Pq = op.at_quadrature(P)
         else:   # linear film: two solves give every direction
             lu = factorise(K)
             Ps, Pc = np.zeros(op.mesh.ndofs), np.zeros(op.mesh.ndofs)
@@ -174,10 +174,10 @@ def _save(path: Path, table: ForceTable) -> None:
 def force_table(slenderness: float, n_theta=96, n_z=16, element="P1", cavitation="gumbel",
                 n_eps=60, n_phi=96, eps_max=0.999) -> ForceTable:
     """The table for these inputs: from memory, else from disk, else built and saved."""
-    check_int("n_theta", n_theta, 8)
-    check_int("n_z", n_z, 2)
+    check_int("n_theta", n_theta, MIN_N_THETA)
+    check_int("n_z", n_z, MIN_N_Z)
     check_choice("element", element, tuple(ELEMENTS))
-    check_choice("cavitation", cavitation, ("none", "gumbel", "reynolds"))
+    check_choice("cavitation", cavitation, CAVITATION)
     check_int("n_eps", n_eps, 6)
     check_int("n_phi", n_phi, 16)
     if not 0.5 <= eps_max <= 0.999:
