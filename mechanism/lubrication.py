@@ -51,7 +51,9 @@ MODEL_OPTIONS = {
     "fvm": {"n_theta", "n_z", "cavitation"},
     "fem-table": {"n_theta", "n_z", "element", "cavitation", "n_eps", "n_phi"},
 }
-NUMERIC_MODELS = {"fem", "fvm"}
+#: Film models solved numerically: their force stays finite up to the wall only when eps is
+#: capped (scene default eps_max 0.999); the closed forms are evaluated to 1 - 1e-6.
+NUMERIC_MODELS = {"fem", "fvm", "fem-table"}
 
 
 def film_force_function(model: str):

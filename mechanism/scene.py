@@ -18,7 +18,7 @@ from bearingfem import Bearing
 from bearingfem.mesh import ELEMENTS, MIN_N_THETA, MIN_N_Z
 from bearingfem.validation import CAVITATION
 
-from .lubrication import MODEL_OPTIONS, film_force_function
+from .lubrication import MODEL_OPTIONS, NUMERIC_MODELS, film_force_function
 from .parameters import Mechanism
 
 __all__ = ["Scene", "load_scene", "parse_scene", "INTEGRATORS"]
@@ -174,7 +174,7 @@ def _lubrication(t: _Table) -> Lubrication:
         film_force_function(model)
     except ValueError as err:
         raise ValueError(f"{t.where}.model: {err}") from None
-    eps_max = t.number("eps_max", 0.999 if model in ("fem", "fvm", "fem-table") else 1.0 - 1e-6,
+    eps_max = t.number("eps_max", 0.999 if model in NUMERIC_MODELS else 1.0 - 1e-6,
                        lo=0.5, hi=1.0, hi_open=True)
     opts = {}
     allowed = MODEL_OPTIONS[model]

@@ -30,6 +30,7 @@ from bearingfem.reynolds import fe_force
 from bearingfem import long_bearing_exact_force, long_bearing_force
 from bearingfem import short_bearing_exact_force, short_bearing_force
 from mechanism import load_scene, simulate
+from mechanism.lubrication import NUMERIC_MODELS
 from mechanism.scene import Lubrication
 
 SCENES = Path(__file__).resolve().parent.parent / "scenes"
@@ -81,8 +82,7 @@ def run_mechanism(turns=2.0, quick=False, rtol=1e-8):
         c = base.bearing.clearance
         runs = []
         for label, model, opts in mechanism_models(bearing, quick):
-            eps_max = base.lubrication.eps_max if model in ("fem", "fvm", "fem-table") \
-                else 1.0 - 1e-6
+            eps_max = base.lubrication.eps_max if model in NUMERIC_MODELS else 1.0 - 1e-6
             scene = replace(base, lubrication=Lubrication(model, opts, eps_max))
             t0 = time.perf_counter()
             r = simulate(scene, progress=False)

@@ -29,6 +29,8 @@ import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from mechanism.lubrication import FILM_MODELS
+
 __all__ = ["Sweep", "load_sweep", "parse_sweep", "sweep_cases", "case_id", "run_case",
            "run_sweep", "gather"]
 
@@ -45,7 +47,6 @@ MECHANISM_PARAMS = {
     "crank_speed": (None, float), "model": (None, str), "n_theta": (None, int),
     "n_z": (None, int), "element": (None, str), "cavitation": (None, str),
 }
-FILM_MODELS = ("fem", "fvm", "short", "long", "short-exact", "long-exact", "fem-table")
 KINDS = {"film": FILM_PARAMS, "mechanism": MECHANISM_PARAMS}
 
 
@@ -67,7 +68,7 @@ def _checked(kind, key, value, where):
         if not isinstance(value, str):
             raise ValueError(f"{where}.{key} must be a string, got {value!r}")
         if key == "model" and kind == "film" and value not in FILM_MODELS:
-            raise ValueError(f"{where}.model must be one of {', '.join(FILM_MODELS)}, "
+            raise ValueError(f"{where}.model must be one of {', '.join(sorted(FILM_MODELS))}, "
                              f"got {value!r}")
         return value
     if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
