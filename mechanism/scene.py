@@ -272,13 +272,17 @@ def parse_scene(data: dict, name: str = "scene") -> Scene:
                  contact=contact, friction=friction, spring=spring, description=description)
 
 
-def load_scene(path) -> Scene:
-    """Read and validate a scene TOML file."""
+def read_toml(path, what: str = "scene") -> dict:
+    """The parsed TOML file; a missing or malformed file is one error naming ``what``."""
     p = Path(path)
     if not p.is_file():
-        raise ValueError(f"scene file not found: {p}")
+        raise ValueError(f"{what} file not found: {p}")
     try:
-        data = tomllib.loads(p.read_text())
+        return tomllib.loads(p.read_text())
     except tomllib.TOMLDecodeError as err:
-        raise ValueError(f"scene file {p} is not valid TOML: {err}") from None
-    return parse_scene(data, name=p.stem)
+        raise ValueError(f"{what} file {p} is not valid TOML: {err}") from None
+
+
+def load_scene(path) -> Scene:
+    """Read and validate a scene TOML file."""
+    return parse_scene(read_toml(path, "scene"), name=Path(path).stem)

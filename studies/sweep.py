@@ -30,6 +30,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from mechanism.lubrication import FILM_MODELS
+from mechanism.scene import read_toml
 
 __all__ = ["Sweep", "load_sweep", "parse_sweep", "sweep_cases", "case_id", "run_case",
            "run_sweep", "gather"]
@@ -99,18 +100,7 @@ def parse_sweep(data: dict, name="sweep") -> Sweep:
 
 
 def load_sweep(path) -> Sweep:
-    try:
-        import tomllib
-    except ModuleNotFoundError:      # Python 3.10
-        import tomli as tomllib
-    p = Path(path)
-    if not p.is_file():
-        raise ValueError(f"sweep file {str(p)!r} not found")
-    try:
-        data = tomllib.loads(p.read_text())
-    except tomllib.TOMLDecodeError as err:
-        raise ValueError(f"sweep file {str(p)!r} is not valid TOML: {err}") from None
-    return parse_sweep(data, p.stem)
+    return parse_sweep(read_toml(path, "sweep"), Path(path).stem)
 
 
 def sweep_cases(sweep: Sweep) -> list[dict]:
@@ -231,17 +221,18 @@ def run_sweep(sweep: Sweep, out, scheduler: str | None = None, workers: int = 2,
     if scheduler is None and (isinstance(workers, bool) or not isinstance(workers, int)
                               or workers < 1):
         raise ValueError(f"workers must be an integer >= 1, got {workers!r}")
-    for params in sweep_cases(sweep):     # physical ranges, before any work starts
+    cases = sweep_cases(sweep)
+    for params in cases:                  # physical ranges, before any work starts
         _precheck(sweep.kind, params)
     out = Path(out)
     cases_dir = out / "cases"
     cases_dir.mkdir(parents=True, exist_ok=True)
     todo = {}
-    for params in sweep_cases(sweep):
+    for params in cases:
         cid = case_id(sweep.kind, params)
         if not (cases_dir / f"{cid}.json").exists():
             todo[cid] = params
-    skipped = len(sweep_cases(sweep)) - len(todo)
+    skipped = len(cases) - len(todo)
     failed, computed, interrupted = {}, 0, False
     t0 = time.perf_counter()
     bar = Progress(max(len(todo), 1), f"{sweep.name}: {len(todo)} cases", progress)

@@ -26,7 +26,7 @@ def test_help_lists_commands():
     (("solve", "--cavitation", "swift"), "cavitation must be one of"),
     (("solve", "--ld", "-1"), "length must be positive"),
     (("simulate", "no/such/scene.toml", "-o", "x"), "scene file not found"),
-    (("sweep", "no/such/sweep.toml", "-o", "x"), "sweep file 'no/such/sweep.toml' not found"),
+    (("sweep", "no/such/sweep.toml", "-o", "x"), "sweep file not found: no/such/sweep.toml"),
 ])
 def test_bad_input_is_one_line_and_exit_2(args, needle):
     r = run(*args)
