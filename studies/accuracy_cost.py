@@ -16,7 +16,6 @@ Writes mechanism.csv, static.csv, accuracy-cost.png and static-cost.png.
 from __future__ import annotations
 
 import argparse
-import csv
 import time
 from dataclasses import replace
 from pathlib import Path
@@ -32,6 +31,7 @@ from bearingfem import short_bearing_exact_force, short_bearing_force
 from mechanism import load_scene, simulate
 from mechanism.lubrication import NUMERIC_MODELS
 from mechanism.scene import Lubrication
+from studies.tables import write_csv
 
 SCENES = Path(__file__).resolve().parent.parent / "scenes"
 
@@ -198,15 +198,6 @@ def _colour(name):
     return "k"
 
 
-def _write(rows, path):
-    if rows:
-        keys = list(dict.fromkeys(k for r in rows for k in r))
-        with open(path, "w", newline="") as fh:
-            w = csv.DictWriter(fh, fieldnames=keys)
-            w.writeheader()
-            w.writerows(rows)
-
-
 def _print(rows):
     keys = list(dict.fromkeys(k for r in rows for k in r))
     print("| " + " | ".join(keys) + " |\n|" + "---|" * len(keys))
@@ -229,13 +220,13 @@ def main(argv=None):
     mech = static = []
     if a.part in ("all", "static"):
         static = run_static(a.quick)
-        _write(static, out / "static.csv")
+        write_csv(static, out / "static.csv")
         _print(static)
         print("fitted cost exponents (time ~ N^k):",
               ", ".join(f"{n} {k:.2f}" for n, k in cost_exponents(static).items()))
     if a.part in ("all", "mechanism"):
         mech = run_mechanism(1.0 if a.quick else a.turns, a.quick, a.rtol)
-        _write(mech, out / "mechanism.csv")
+        write_csv(mech, out / "mechanism.csv")
         _print(mech)
     plot(mech, static, out)
     print(f"wrote {out}")

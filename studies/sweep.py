@@ -19,7 +19,6 @@ interrupted sweep loses nothing and a rerun skips what is done. ``DIR/results.cs
 """
 from __future__ import annotations
 
-import csv
 import hashlib
 import itertools
 import json
@@ -31,6 +30,7 @@ from pathlib import Path
 
 from mechanism.lubrication import FILM_MODELS
 from mechanism.scene import read_toml
+from studies.tables import write_csv
 
 __all__ = ["Sweep", "load_sweep", "parse_sweep", "sweep_cases", "case_id", "run_case",
            "run_sweep", "gather"]
@@ -273,11 +273,7 @@ def gather(out, sweep: Sweep | None = None) -> list[dict]:
     rows = [json.loads(p.read_text()) for p in sorted((out / "cases").glob("case-*.json"))
             if not p.name.endswith(".error.json")]
     if rows:
-        keys = list(dict.fromkeys(k for r in rows for k in r))
-        with open(out / "results.csv", "w", newline="") as fh:
-            w = csv.DictWriter(fh, fieldnames=keys)
-            w.writeheader()
-            w.writerows(rows)
+        write_csv(rows, out / "results.csv")
         if sweep is not None:
             plot_summary(rows, sweep, out / "summary.png")
     return rows
