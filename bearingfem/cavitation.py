@@ -18,7 +18,9 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.sparse as sp
 
-from .linsolve import solve_spd
+from .blocksolve import (BORDERED_MAX_CHANGES, DENSE_DOFS, PinnedFactor, bordered_solve,
+                         dense_block_solve, pinned)
+from .linsolve import factorise, pcg, solve_spd
 
 __all__ = ["LCPResult", "active_set", "psor", "complementarity_residual", "graph_colouring"]
 
@@ -44,64 +46,85 @@ def complementarity_residual(K: sp.spmatrix, b: np.ndarray, P: np.ndarray) -> fl
     return float(np.max(np.abs(np.minimum(P, r / d)))) / scale
 
 
-def _pinned(K: sp.csr_matrix, inactive: np.ndarray) -> sp.csc_matrix:
-    """K with the rows and columns of the cavitated dofs replaced by the identity.
-
-    Solving it with the load zeroed on those dofs is the inactive-block solve, but the
-    matrix keeps the size of K: one factorisation can precondition the next active set.
-    """
-    rows = np.repeat(np.arange(K.shape[0]), np.diff(K.indptr))
-    keep = inactive[rows] & inactive[K.indices]
-    data = np.where(keep, K.data, 0.0)
-    data[(rows == K.indices) & ~inactive[rows]] = 1.0
-    A = sp.csr_matrix((data, K.indices.copy(), K.indptr.copy()), shape=K.shape)
-    A.eliminate_zeros()   # in place: hence the copies, K shares nothing with A
-    return A.tocsc()
-
-
 def active_set(K: sp.csr_matrix, b: np.ndarray, *, active0: np.ndarray | None = None,
-               tol: float = 1e-10, max_iter: int = 100, factor=None,
-               few_changes: int = 8) -> LCPResult:
+               P0: np.ndarray | None = None, tol: float = 1e-10, max_iter: int = 100,
+               factor=None, few_changes: int = 8) -> LCPResult:
     """Primal-dual active-set solve of the complementarity problem.
 
     Parameters
     ----------
     K, b : free-dof stiffness and load
-    active0 : initial cavitated set (boolean); by default the set where the unconstrained
-        (full-Sommerfeld) solution is negative, which is usually a few dofs from the answer.
-    factor : factors returned by an earlier call (``LCPResult.factor``) for a matrix of the
-        same size, e.g. the previous time step's: they precondition the first solve.
-    few_changes : when the set moves by at most this many dofs, the next solve is CG
-        preconditioned by the last factors (a rank <= 2 x few_changes change) instead of
-        a new factorisation.
+    active0 : initial cavitated set (boolean).
+    P0 : an approximate pressure (e.g. a coarser mesh's, interpolated), used when
+        ``active0`` is not given: the first set is the semismooth Newton step from it,
+        {P0 < r0 / diag K} with r0 = K P0 - b, which weighs the pressure against the
+        multiplier estimate and so misplaces far fewer dofs near the front than {P0 <= 0}.
+        Without either, the first set is where the unconstrained (full-Sommerfeld)
+        solution is negative.
+    factor : ``LCPResult.factor`` of an earlier call on a matrix of the same size (a
+        :class:`~bearingfem.blocksolve.PinnedFactor`, or LU factors of an unconstrained
+        K), e.g. the previous time step's. Its K differs from this one, so it only
+        preconditions CG, and only while the set is within ``few_changes`` dofs of its own.
+
+    Once this call has factorised a pinned matrix of its K, a set that moved by k <=
+    ``BORDERED_MAX_CHANGES`` dofs from it is solved exactly with those factors
+    (:func:`~bearingfem.blocksolve.bordered_solve`, k + 1 triangular solves) instead of
+    a new factorisation. Systems of at most ``DENSE_DOFS`` dofs are solved densely.
     """
     K = sp.csr_matrix(K)
     n = b.shape[0]
     r_scale = max(float(np.abs(b).max(initial=0.0)), np.finfo(float).tiny)
+    dense = K.toarray() if n <= DENSE_DOFS else None
+    lu = getattr(factor, "lu", factor)
+    if lu is not None and (lu.shape != (n, n) or dense is not None):
+        lu = factor = None
     factorisations = 0
-    if active0 is None:
-        P, factor, fresh = solve_spd(K, b, factor)
-        factorisations += fresh
-        active = P < 0.0
-        iterations = 1
-    else:
+    own = False     # whether ``lu`` factorises a pinned matrix of this very K
+    if active0 is not None:
         active = np.asarray(active0, bool).copy()
         P = np.zeros(n)
         iterations = 0
-    factored = None if factor is None or factor.shape != (n, n) else active
+    elif P0 is not None:
+        P = np.maximum(np.asarray(P0, float), 0.0)
+        active = P < (K @ P - b) / K.diagonal()
+        iterations = 0
+    else:
+        if dense is not None:
+            P = np.linalg.solve(dense, b)
+        else:
+            P, lu, fresh = solve_spd(K, b, lu)
+            if fresh:   # factors of K itself
+                factor, own = None, True
+                factorisations += 1
+        active = P < 0.0
+        iterations = 1
+    # the cavitated set whose pinned matrix ``lu`` factorises (K itself pins none)
+    factored = getattr(factor, "active", None)
+    if factored is None:
+        factored = active if iterations == 0 else np.zeros(n, bool)
     converged = False
     while iterations < max_iter:
         inactive = ~active
-        A = _pinned(K, inactive)
-        rhs = np.where(inactive, b, 0.0)
-        near = factored is not None and np.count_nonzero(factored != active) <= few_changes
-        P, factor, fresh = solve_spd(A, rhs, factor if near else None,
-                                     np.where(inactive, P, 0.0))
-        if fresh:
-            factored = active
-            factorisations += 1
+        if dense is not None:
+            x = dense_block_solve(dense, b, inactive)
+        else:
+            rhs = np.where(inactive, b, 0.0)
+            k = n if lu is None else np.count_nonzero(factored != active)
+            x = None
+            if own and k <= BORDERED_MAX_CHANGES:
+                x = bordered_solve(lu, K, b, ~factored, inactive)
+            elif lu is not None and not own and k <= few_changes:   # another K's
+                x, ok, _ = pcg(pinned(K, inactive), rhs, np.where(inactive, P, 0.0),
+                               lu.solve)
+                x = x if ok else None
+            if x is None:
+                lu = factorise(pinned(K, inactive))
+                x = lu.solve(rhs)
+                factored, own = active, True
+                factorisations += 1
+        P = x
         iterations += 1
-        r = K @ P - b
+        r = (K if dense is None else dense) @ P - b
         # Semismooth Newton step on min(P, r / diag K) = 0: an active dof stays while its
         # multiplier r is non-negative (to round-off), an inactive one joins when P < 0.
         new = np.where(active, r > -tol * r_scale, P < 0.0)
@@ -112,7 +135,8 @@ def active_set(K: sp.csr_matrix, b: np.ndarray, *, active0: np.ndarray | None = 
     P = np.maximum(P, 0.0)
     res = complementarity_residual(K, b, P) if P.any() else 0.0
     return LCPResult(pressure=P, iterations=iterations, residual=res, converged=converged,
-                     active=P <= 0.0, factor=factor, factorisations=factorisations)
+                     active=P <= 0.0, factorisations=factorisations,
+                     factor=None if lu is None else PinnedFactor(lu, factored))
 
 
 def graph_colouring(K: sp.spmatrix, seed: int = 0) -> list[np.ndarray]:

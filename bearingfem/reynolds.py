@@ -4,7 +4,7 @@ from __future__ import annotations
 import numpy as np
 
 from .assembly import FilmOperator, film_operator
-from .multilevel import COARSEST_FREE_DOFS, grid_interpolator
+from .multilevel import coarse_guess
 from .bearing import Bearing, JournalState
 from .cavitation import LCPResult, active_set, psor
 from .linsolve import solve_spd
@@ -48,10 +48,9 @@ def fe_pressure(op: FilmOperator, state: JournalState, cavitation="reynolds",
         if method == "psor":
             res = psor(K, b, tol=tol, colours=colours)
         else:
-            if active0 is None and len(free) > COARSEST_FREE_DOFS:
-                active0 = _coarse_active_set(op, state, tol)
+            P0 = None if active0 is not None else coarse_guess(op, state, tol)
             a0 = None if active0 is None else np.asarray(active0, bool)[free]
-            res = active_set(K, b, active0=a0, tol=tol, factor=factor)
+            res = active_set(K, b, active0=a0, P0=P0, tol=tol, factor=factor)
         P[free] = res.pressure
         active = np.zeros(op.mesh.ndofs, bool)
         active[free] = res.active
@@ -59,17 +58,6 @@ def fe_pressure(op: FilmOperator, state: JournalState, cavitation="reynolds",
                          res.factorisations)
     P[free], factor, fresh = solve_spd(K, b, factor)
     return LCPResult(P, 1, 0.0, True, np.zeros(op.mesh.ndofs, bool), factor, int(fresh))
-
-
-def _coarse_active_set(op: FilmOperator, state: JournalState, tol: float) -> np.ndarray:
-    """First active set for ``op`` from the solution on a mesh half as fine (P1)."""
-    m = op.mesh
-    n_theta = max(MIN_N_THETA, m.n_theta // 2)
-    n_z = max(MIN_N_Z, m.n_z // 2)
-    coarse = film_operator(n_theta, n_z, "P1", m.slenderness, m.theta0, m.half)
-    Pc = fe_pressure(coarse, state, "reynolds", "active-set", tol).pressure
-    P = grid_interpolator(coarse.mesh, Pc)(m.theta, m.zeta)
-    return P <= 0.0
 
 
 def _qp_fields(op: FilmOperator, P: np.ndarray):

@@ -71,13 +71,17 @@ def test_nested_start_gives_the_cold_start_answer_in_fewer_iterations(supply):
 
 
 @pytest.mark.parametrize("periodic", [True, False])
-def test_grid_interpolator_is_exact_for_bilinear_data(periodic):
+def test_prolongation_is_exact_for_bilinear_data(periodic):
     from bearingfem.mesh import film_mesh
-    from bearingfem.multilevel import grid_interpolator
+    from bearingfem.multilevel import prolongation
     coarse = film_mesh(16, 4, "P1", 0.5, None if periodic else 0.0, True)
     fine = film_mesh(64, 16, "P1", 0.5, None if periodic else 0.0, True)
     # cos(theta) is not bilinear, but 1 + zeta is, and a periodic hat is piecewise linear
     f = lambda th, ze: (1.0 + ze) * (2.0 + np.interp(np.mod(th, 2 * np.pi),
                                                       [0, np.pi, 2 * np.pi], [0.0, 1.0, 0.0]))
-    at = grid_interpolator(coarse, f(coarse.theta, coarse.zeta))
-    np.testing.assert_allclose(at(fine.theta, fine.zeta), f(fine.theta, fine.zeta), atol=1e-12)
+    interp = prolongation(coarse, fine.theta, fine.zeta)
+    np.testing.assert_allclose(interp @ f(coarse.theta, coarse.zeta), f(fine.theta, fine.zeta),
+                               atol=1e-12)
+    # rows are partitions of unity, at most 4 entries: bilinear weights
+    np.testing.assert_allclose(interp.sum(axis=1).A.ravel(), 1.0, atol=1e-14)
+    assert np.diff(interp.indptr).max() <= 4 and interp.data.min() >= 0.0
