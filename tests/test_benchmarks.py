@@ -8,4 +8,6 @@ def test_film_solve_benchmark_smoke(capsys):
     assert len(rows) == 2 and "psor/nested" in capsys.readouterr().out
     for r in rows:
         assert r["psor_gap"] < 1e-6          # PSOR and the active set solved the same film
+        assert r["psor_res"] <= 1e-10 and r["as_res"] <= 1e-10   # to the same tolerance
         assert r["warm_it"] <= r["nested_it"]
+        assert r["nested_fact"] == 1         # the bordered solves did the rest
