@@ -17,7 +17,8 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
-__all__ = ["PinnedFactor", "pinned", "bordered_solve", "dense_block_solve", "DENSE_DOFS", "BORDERED_MAX_CHANGES"]
+__all__ = ["PinnedFactor", "pinned", "bordered_solve", "dense_block_solve", "DENSE_DOFS",
+           "BORDERED_MAX_CHANGES"]
 
 #: Up to this many dofs, dense LAPACK solves of the inactive block beat sparse factors.
 DENSE_DOFS = 128
@@ -49,8 +50,8 @@ def pinned(K: sp.csr_matrix, inactive: np.ndarray) -> sp.csc_matrix:
     """K with the rows and columns of the cavitated dofs replaced by the identity.
 
     Solving it with the load zeroed on those dofs is the inactive-block solve, but the
-    matrix keeps the size of K: one factorisation can precondition the next active set.
-    K is symmetric, so its CSR arrays are also the CSC arrays of the result.
+    matrix keeps the size of K: its factors serve later sets, exactly through
+    :func:`bordered_solve` or as a CG preconditioner. K is symmetric, so its CSR arrays are also the CSC arrays of the result.
     """
     n = K.shape[0]
     rows = np.repeat(np.arange(n), np.diff(K.indptr))
