@@ -65,7 +65,7 @@ def measure(n_theta, n_z, eps, repeat=3, psor=True):
         runs = {}
         for omega in PSOR_OMEGAS if psor == "all" else PSOR_OMEGAS[:1]:
             runs[omega] = best_time(lambda: psor_solve(K, b, omega=omega, colours=colours), 1)
-        t_psor, ps = runs[1.8]
+        t_psor, ps = runs[PSOR_OMEGAS[0]]
         best = min(runs, key=lambda om: runs[om][0])
         row.update(psor_ms=1e3 * t_psor, psor_it=ps.iterations, psor_res=ps.residual,
                    psor_gap=float(np.max(np.abs(ps.pressure - nest.pressure[op.mesh.free]))
