@@ -13,10 +13,12 @@ import math
 import numpy as np
 
 from .bearing import Bearing, JournalState
+from .differentiate import complex_step
 from .quadrature import theta_nodes
 from .validation import check_inputs
 
-__all__ = ["long_bearing_force", "long_bearing_exact_force", "long_bearing_pressure"]
+__all__ = ["long_bearing_force", "long_bearing_derivatives", "long_bearing_exact_force",
+           "long_bearing_pressure"]
 
 
 def _dimensionless_pressure(theta, eps, eps_dot, w):
@@ -44,11 +46,28 @@ def long_bearing_force(bearing: Bearing, state: JournalState):
     one (NOTES item 2), and F_t carries the contract's sign (positive for omega > 0).
     """
     check_inputs(bearing, state)
-    e, s, w = state.eps, 2.0 * state.eps_dot, state.wedge_speed
-    root = math.sqrt(1.0 - e * e)
-    v = math.hypot(e * w, s)            # = |s| eps k / sqrt(1 - eps^2)
-    inv_k = abs(s) * e / (root * v) if v > 0.0 else 0.0
-    ratio = (1.0 + 3.0 * inv_k) / (1.0 + 1.5 * inv_k) if s >= 0.0 else 1.0 / (1.0 + 1.5 * inv_k)
+    return tuple(float(np.real(f)) for f in _long_force(
+        bearing, state.eps, state.eps_dot, state.wedge_speed))
+
+
+def long_bearing_derivatives(bearing: Bearing, state: JournalState):
+    """:class:`~bearingfem.solution.ForceDerivatives` of :func:`long_bearing_force`,
+    exact (complex step on the same closed form)."""
+    check_inputs(bearing, state)
+    return complex_step(lambda e, ed, w: _long_force(bearing, e, ed, w),
+                        state.eps, state.eps_dot, state.wedge_speed)
+
+
+def _long_force(bearing: Bearing, e, eps_dot, w):
+    """Seed Eq. 11-13 (corrected) in complex-safe arithmetic: |s| and hypot are written
+    out, signs read off real parts."""
+    s = 2.0 * eps_dot
+    root = np.sqrt(1.0 - e * e)
+    v = np.sqrt((e * w) ** 2 + s * s)            # = |s| eps k / sqrt(1 - eps^2)
+    s_abs = -s if np.real(s) < 0.0 else s
+    inv_k = s_abs * e / (root * v) if np.real(v) > 0.0 else 0.0
+    ratio = ((1.0 + 3.0 * inv_k) / (1.0 + 1.5 * inv_k) if np.real(s) >= 0.0
+             else 1.0 / (1.0 + 1.5 * inv_k))
     k0 = bearing.viscosity * bearing.radius ** 3 * bearing.length / bearing.clearance ** 2
     d = 2.0 + e * e
     f_r = -3.0 * k0 / (d * root ** 3) * (4.0 * e * root * v + math.pi * s * d * ratio)

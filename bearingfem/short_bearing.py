@@ -14,10 +14,12 @@ import math
 import numpy as np
 
 from .bearing import Bearing, JournalState
+from .differentiate import complex_step
 from .quadrature import theta_nodes
 from .validation import check_inputs
 
-__all__ = ["short_bearing_force", "short_bearing_exact_force", "short_bearing_pressure"]
+__all__ = ["short_bearing_force", "short_bearing_derivatives", "short_bearing_exact_force",
+           "short_bearing_pressure"]
 
 
 def short_bearing_pressure(bearing: Bearing, state: JournalState, theta, z):
@@ -46,25 +48,45 @@ def short_bearing_force(bearing: Bearing, state: JournalState, *, half_film: str
     tanh((omega - 2 gamma_dot) / switch_speed), which a time integrator can follow.
     """
     check_inputs(bearing, state)
+    _check_options(half_film, switch_speed)
+    return tuple(float(np.real(f)) for f in _short_force(
+        bearing, state.eps, state.eps_dot, state.wedge_speed, half_film, switch_speed))
+
+
+def short_bearing_derivatives(bearing: Bearing, state: JournalState, *,
+                              half_film: str = "wedge", switch_speed: float = 0.0):
+    """:class:`~bearingfem.solution.ForceDerivatives` of :func:`short_bearing_force`,
+    exact (complex step on the same closed form)."""
+    check_inputs(bearing, state)
+    _check_options(half_film, switch_speed)
+    return complex_step(lambda e, ed, w: _short_force(bearing, e, ed, w, half_film,
+                                                      switch_speed),
+                        state.eps, state.eps_dot, state.wedge_speed)
+
+
+def _check_options(half_film, switch_speed):
     if half_film not in ("wedge", "fixed"):
         raise ValueError(f"half_film must be 'wedge' or 'fixed', got {half_film!r}")
     if not (math.isfinite(switch_speed) and switch_speed >= 0.0):
         raise ValueError(f"switch_speed must be a finite number >= 0 [rad/s], got {switch_speed!r}")
+
+
+def _short_force(bearing: Bearing, e, ed, w, half_film, switch_speed):
+    """Seed Eq. 9 in complex-safe arithmetic (the sign of w is read off its real part)."""
     mu, R, L, c = bearing.viscosity, bearing.radius, bearing.length, bearing.clearance
-    e, ed, w = state.eps, state.eps_dot, state.wedge_speed
     if half_film == "fixed":
         sign, w_abs = 1.0, w
     else:
-        w_abs = abs(w)
+        w_abs = -w if np.real(w) < 0.0 else w
         if switch_speed > 0.0:
-            sign = math.tanh(w / switch_speed)
+            sign = np.tanh(w / switch_speed)
         else:
-            sign = -1.0 if w < 0.0 else 1.0
+            sign = -1.0 if np.real(w) < 0.0 else 1.0
     s2 = 1.0 - e * e
     k = mu * L ** 3 * R / (2.0 * c * c * s2 * s2)
-    f_r = -k * (math.pi * ed * (1.0 + 2.0 * e * e) / math.sqrt(s2) + 2.0 * e * e * w_abs)
+    f_r = -k * (math.pi * ed * (1.0 + 2.0 * e * e) / np.sqrt(s2) + 2.0 * e * e * w_abs)
     # sign(w) (4 eps_dot + pi/2 sqrt(1-eps^2) |w|): only the squeeze part switches
-    f_t = k * e * (4.0 * ed * sign + 0.5 * math.pi * math.sqrt(s2) * w)
+    f_t = k * e * (4.0 * ed * sign + 0.5 * math.pi * np.sqrt(s2) * w)
     return f_r, f_t
 
 

@@ -5,7 +5,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-__all__ = ["FilmSolution"]
+__all__ = ["FilmSolution", "ForceDerivatives"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -64,3 +64,28 @@ class FilmSolution:
         return (f"{self.method}/{self.cavitation}: F_r={fr:.6g} N F_t={ft:.6g} N "
                 f"p_max={self.pressure_max:.6g} Pa h_min={self.film_min:.3g} m "
                 f"cav={self.cavitated_fraction:.3f} it={self.iterations} res={self.residual:.1e}")
+
+
+@dataclass(frozen=True)
+class ForceDerivatives:
+    """A film force in the local frame and its first derivatives at one journal state.
+
+    The film force depends on the state through eps, eps_dot and the wedge speed
+    w = omega - 2 gamma_dot only (gamma just turns the frame), so these three partials
+    are all a linearisation needs (see :mod:`bearingfem.design.coefficients`).
+
+    Attributes
+    ----------
+    force : (F_r, F_t) [N]
+    d_eps : d(F_r, F_t)/d eps [N]
+    d_eps_dot : d(F_r, F_t)/d eps_dot [N s]
+    d_wedge : d(F_r, F_t)/d w [N s]
+    method : how the partials were found ("analytic", "exact-sensitivity",
+        "central-differences")
+    """
+
+    force: tuple
+    d_eps: tuple
+    d_eps_dot: tuple
+    d_wedge: tuple
+    method: str
