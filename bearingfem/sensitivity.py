@@ -53,7 +53,7 @@ def fe_force_derivatives(bearing: Bearing, state: JournalState, n_theta: int = 1
         Pq = op.at_quadrature(P)
         wq = np.where(Pq > 0.0, op.qp_weight, 0.0)
         cos_w, sin_w = wq * np.cos(op.qp_theta), wq * np.sin(op.qp_theta)
-        fields = np.concatenate([np.maximum(P, 0.0)[None], dP.T])
+        fields = np.concatenate([P[None], dP.T])   # clipped by the mask, as fe_force does
         Q = op.at_quadrature(fields)
         F = k * np.stack([np.sum(Q * cos_w, axis=(1, 2)), np.sum(Q * sin_w, axis=(1, 2))])
     else:

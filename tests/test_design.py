@@ -1,0 +1,288 @@
+"""Designer's numbers: equilibrium, dynamic coefficients, stability (bearingfem.design)."""
+import math
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from bearingfem import Bearing, JournalState, solve_reynolds
+from bearingfem.design import (coefficients, equilibrium, journal_orbit, lund_stability,
+                               sommerfeld_number, threshold_speed)
+from bearingfem.differentiate import central_differences
+from bearingfem.long_bearing import long_bearing_derivatives, long_bearing_force
+from bearingfem.models import FILM_MODELS
+from bearingfem.reynolds import fe_force
+from bearingfem.sensitivity import fe_force_derivatives
+from bearingfem.short_bearing import short_bearing_derivatives, short_bearing_force
+
+# Friswell, Penny, Garvey & Lees, Dynamics of Rotating Machines (2010), Example 5.5.1:
+# short bearing D 0.1 m, c 0.1 mm, L 0.03 m, mu 0.1 Pa s, 1500 rpm (157.1 rad/s), 525 N.
+# Their x is horizontal, y vertical up, the load the journal's weight (0, -525) N and the
+# shaft turning counter-clockwise: the contract's inertial frame.
+FRISWELL = Bearing(radius=0.05, length=0.03, clearance=0.1e-3, viscosity=0.1)
+FRISWELL_EPS = 0.2663
+FRISWELL_K = np.array([[12.81, 16.39], [-25.06, 8.815]]) * 1e6     # N/m
+FRISWELL_C = np.array([[232.9, -81.92], [-81.92, 294.9]]) * 1e3    # N s/m
+
+
+def test_friswell_example_5_5_1():
+    eq = equilibrium(FRISWELL, (0.0, -525.0), 157.1, "short")
+    assert eq.eps == pytest.approx(FRISWELL_EPS, rel=1e-3)
+    kc = coefficients(FRISWELL, eq.state, "short", frame="inertial")
+    # the book prints four digits: 0.1 % holds every entry
+    np.testing.assert_allclose(kc.K, FRISWELL_K, rtol=1e-3)
+    np.testing.assert_allclose(kc.C, FRISWELL_C, rtol=1e-3)
+    assert kc.method == "analytic"
+
+
+def test_equilibrium_balances_the_load_and_reports_the_film():
+    b = Bearing(radius=0.01, length=0.02, clearance=20e-6, viscosity=0.0117)
+    opts = dict(n_theta=48, n_z=8, element="P2", cavitation="reynolds")
+    eq = equilibrium(b, 300.0, 250.0, "fem", direction=-0.5 * math.pi, **opts)
+    np.testing.assert_allclose(np.add(eq.film_force, eq.load), 0.0, atol=1e-9 * 300.0)
+    assert 0.0 < eq.eps < 1.0 and 0.0 < eq.attitude < 0.5 * math.pi
+    assert eq.sommerfeld == pytest.approx(sommerfeld_number(b, 300.0, 250.0))
+    sol = eq.solution
+    np.testing.assert_allclose(sol.force, eq.film_force, rtol=1e-9)
+    # the friction identity (Couette + c eps F_t / 2R) against the FE shear integral
+    assert eq.friction_force == pytest.approx(sol.friction_force, rel=1e-4)
+    assert eq.power_loss == pytest.approx(eq.friction_force * b.radius * 250.0)
+    assert eq.film_min == pytest.approx(b.clearance * (1 - eq.eps))
+    assert eq.flow_in == eq.side_leakage > 0.0
+
+
+@pytest.mark.parametrize("load", [1e-3, 1.0, 100.0, 2000.0, 8000.0])
+def test_equilibrium_from_light_to_heavy_load(load):
+    b = Bearing(radius=0.01, length=0.02, clearance=20e-6, viscosity=0.0117)
+    for model in ("short", "long", "fem"):
+        eq = equilibrium(b, (load, 0.0), 250.0, model)
+        f = math.hypot(*eq.film_force)
+        assert f == pytest.approx(load, rel=1e-8)
+        assert np.all(np.isfinite([eq.eps, eq.attitude, eq.friction_force]))
+
+
+def test_equilibrium_refuses_what_it_cannot_do():
+    b = Bearing(radius=0.01, length=0.02, clearance=20e-6, viscosity=0.0117)
+    with pytest.raises(ValueError, match="load .* exceeds what the film carries"):
+        equilibrium(b, (0.0, -1e7), 250.0, "short")
+    with pytest.raises(ValueError, match="omega must be non-zero"):
+        equilibrium(b, (0.0, -10.0), 0.0, "short")
+    with pytest.raises(ValueError, match="load must be non-zero"):
+        equilibrium(b, (0.0, 0.0), 250.0, "short")
+    with pytest.raises(ValueError, match="model must be one of"):
+        equilibrium(b, (0.0, -10.0), 250.0, "fe")
+    with pytest.raises(ValueError, match="n_thta is not an option of film model 'fem'"):
+        equilibrium(b, (0.0, -10.0), 250.0, "fem", n_thta=10)
+
+
+STATES = [JournalState(0.6, 0.0, 0.3, 0.0, 250.0), JournalState(0.8, 20.0, -1.0, 5.0, 250.0),
+          JournalState(0.3, -15.0, 2.0, 40.0, -120.0), JournalState(0.95, 0.0, 0.0, 0.0, 250.0)]
+
+
+def _rel_gap(a, b):
+    gaps = [np.max(np.abs(np.subtract(getattr(a, k), getattr(b, k))))
+            / max(np.max(np.abs(getattr(b, k))), 1e-300)
+            for k in ("force", "d_eps", "d_eps_dot", "d_wedge")]
+    return max(gaps)
+
+
+@pytest.mark.parametrize("state", STATES)
+def test_closed_form_partials_against_central_differences(state):
+    """Complex-step partials against central differences (steps 1e-6 relative). At
+    eps_dot = 0 the long bearing's two branches of Eq. 13 meet with a jump in the second
+    derivative, so differences there are first order (measured 2.3e-6 and 2.9e-6):
+    those states get 1e-5, the others 1e-7."""
+    b = Bearing(radius=0.01, length=0.004, clearance=20e-6, viscosity=0.0117)
+    for exact, force, tol in (
+            (short_bearing_derivatives, short_bearing_force, 1e-7),
+            (long_bearing_derivatives, long_bearing_force, 1e-5 if state.eps_dot == 0 else 1e-7)):
+        cd = central_differences(lambda s: force(b, s), state)
+        assert _rel_gap(exact(b, state), cd) < tol
+
+
+@pytest.mark.parametrize("cavitation", ["none", "gumbel", "reynolds"])
+@pytest.mark.parametrize("element", ["P1", "P2"])
+@pytest.mark.parametrize("state", STATES[:3])
+def test_fe_exact_sensitivity_against_central_differences(state, element, cavitation):
+    """Exact sensitivity with the cavitated set fixed equals the derivative of the discrete
+    film; central differences with relative steps 1e-6 come within 1e-6 of it (at 1e-4
+    steps a set change inside the step leaves them up to 5e-4 off)."""
+    b = Bearing(radius=0.01, length=0.02, clearance=20e-6, viscosity=0.0117)
+    exact = fe_force_derivatives(b, state, 40, 8, element, cavitation)
+    cd = central_differences(lambda s: fe_force(b, s, 40, 8, element, cavitation)[0], state)
+    assert exact.method == "exact-sensitivity"
+    assert _rel_gap(exact, cd) < 1e-6
+
+
+def _inertial_force(model, b, omega, **opts):
+    """F(x, y, vx, vy) in the inertial frame through the mechanism's own state map."""
+    m = FILM_MODELS[model]
+
+    def force(q):
+        s = JournalState.from_eccentricity(*q, b.clearance, omega)
+        f_r, f_t = m.film_force(b, s, **opts)
+        return np.array([f_r * math.cos(s.gamma) - f_t * math.sin(s.gamma),
+                         f_r * math.sin(s.gamma) + f_t * math.cos(s.gamma)])
+    return force
+
+
+@pytest.mark.parametrize("model,opts", [("short", {}), ("long", {}),
+                                        ("fem", dict(n_theta=40, n_z=8, cavitation="reynolds"))])
+@pytest.mark.parametrize("state", STATES[:3])
+def test_coefficients_are_the_inertial_jacobian(model, opts, state):
+    """K and C from the local partials against central differences of the inertial force
+    in (x, y, vx, vy): checks the frame algebra, moving base states included."""
+    b = Bearing(radius=0.01, length=0.02, clearance=20e-6, viscosity=0.0117)
+    kc = coefficients(b, state, model, frame="inertial", **opts)
+    c, g = b.clearance, state.gamma
+    e, ed, gd = state.eps * c, state.eps_dot * c, state.gamma_dot
+    q0 = np.array([e * math.cos(g), e * math.sin(g),
+                   ed * math.cos(g) - e * gd * math.sin(g),
+                   ed * math.sin(g) + e * gd * math.cos(g)])
+    force = _inertial_force(model, b, state.omega, **opts)
+    h = np.array([1e-6 * c, 1e-6 * c, 1e-6 * c * abs(state.omega), 1e-6 * c * abs(state.omega)])
+    J = np.column_stack([(force(q0 + h[j] * np.eye(4)[j]) - force(q0 - h[j] * np.eye(4)[j]))
+                         / (2 * h[j]) for j in range(4)])
+    np.testing.assert_allclose(kc.K, -J[:, :2], rtol=1e-5, atol=1e-6 * np.abs(kc.K).max())
+    np.testing.assert_allclose(kc.C, -J[:, 2:], rtol=1e-5, atol=1e-6 * np.abs(kc.C).max())
+
+
+def test_frames_are_rotations_of_one_another():
+    b = FRISWELL
+    s = JournalState(0.5, omega=157.1, gamma=0.7)
+    kc = coefficients(b, s, "short", frame="local")
+    for frame in ("inertial", "load"):
+        other = kc.in_frame(frame)
+        back = other.in_frame("local")
+        np.testing.assert_allclose(back.K, kc.K, rtol=1e-12, atol=1e-6)
+        # invariants of a rotation: trace and determinant
+        assert np.trace(other.K) == pytest.approx(np.trace(kc.K))
+        assert np.linalg.det(other.C) == pytest.approx(np.linalg.det(kc.C))
+    load = kc.in_frame("load")
+    np.testing.assert_allclose(load.axes[0], -np.array(kc.force) / kc.load)
+
+
+def test_centred_journal_has_finite_coefficients():
+    """eps = 0 is a normal input: linearised at EPS_FLOOR, it matches a nearly centred one."""
+    b = FRISWELL
+    for model in ("short", "long", "fem"):
+        k0 = coefficients(b, JournalState(0.0, omega=157.1), model, frame="local")
+        k1 = coefficients(b, JournalState(1e-4, omega=157.1), model, frame="local")
+        assert np.all(np.isfinite(k0.K)) and np.all(np.isfinite(k0.C))
+        np.testing.assert_allclose(k0.K, k1.K, rtol=1e-3, atol=1e-3 * np.abs(k1.K).max())
+        np.testing.assert_allclose(k0.C, k1.C, rtol=1e-3, atol=1e-3 * np.abs(k1.C).max())
+
+
+def _coef_vector(kc, drop=()):
+    k, c = kc.dimensionless()
+    v = np.concatenate([k.ravel(), c.ravel()])
+    return np.delete(v, list(drop))
+
+
+def test_fe_coefficients_tend_to_the_short_bearing():
+    """L/D -> 0: the FE (Gumbel) coefficients approach the short bearing's at rate 2, as
+    the forces do. Measured at eps 0.6 (240x16 P2): 5.96 %, 1.81 %, 0.48 %."""
+    errors = []
+    for ld in (1 / 4, 1 / 8, 1 / 16):
+        b = Bearing(radius=0.01, length=0.02 * ld, clearance=20e-6, viscosity=0.0117)
+        s = JournalState(0.6, omega=250.0)
+        fe = _coef_vector(coefficients(b, s, "fem", frame="local", n_theta=240, n_z=16,
+                                       element="P2", cavitation="gumbel"))
+        sh = _coef_vector(coefficients(b, s, "short", frame="local"))
+        errors.append(np.max(np.abs(fe - sh)) / np.max(np.abs(sh)))
+    rates = np.log2(np.array(errors[:-1]) / np.array(errors[1:]))
+    assert errors[-1] < 0.006
+    assert np.all(rates > 1.7)
+
+
+def test_fe_coefficients_tend_to_the_long_bearing():
+    """L/D -> infinity: K and C_rr, C_rt, C_tt approach the long bearing's at rate 1, as
+    the forces do (measured 29.9, 15.2, 7.6 % for K at L/D 2, 4, 8). C_tr = -dF_t/dv_r
+    has no such limit: Eq. 10 fixes the squeeze pressure's level at the maximum film,
+    a film with ambient ends fixes it through the ends, and the level times the clipped
+    half film's integral of sin(theta) enters F_t (C_tr stays 22 % off at L/D = 16)."""
+    errors = []
+    for ld in (2, 4, 8):
+        b = Bearing(radius=0.01, length=0.02 * ld, clearance=20e-6, viscosity=0.0117)
+        s = JournalState(0.6, omega=250.0)
+        fe = coefficients(b, s, "fem", frame="local", n_theta=120, n_z=32, element="P2",
+                          cavitation="gumbel")
+        lo = coefficients(b, s, "long", frame="local")
+        errors.append(np.concatenate([np.abs(fe.K - lo.K).ravel() / np.abs(lo.K).max(),
+                                      np.abs(fe.C - lo.C).ravel() / np.abs(lo.C).max()]))
+    rates = np.log2(errors[0] / errors[1]), np.log2(errors[1] / errors[2])
+    converging = np.delete(np.arange(8), 6)          # every entry but C_tr
+    # measured 0.97-1.02 for each entry, both halvings
+    assert np.all(np.abs(np.array(rates)[:, converging] - 1.0) < 0.05)
+    assert np.all(np.array(rates)[:, 6] < 0.6)       # C_tr: no long-bearing limit
+
+
+def test_fe_and_fv_coefficients_converge_together():
+    """FE (P2, exact sensitivity) and FV (central differences), Reynolds condition, L/D 1,
+    eps 0.6: their dimensionless coefficients close in on each other with the mesh
+    (measured 1.4 %, 0.66 %, 0.21 % at 60x12, 120x24, 240x48)."""
+    b = Bearing(radius=0.01, length=0.02, clearance=20e-6, viscosity=0.0117)
+    s = JournalState(0.6, omega=250.0)
+    gaps = []
+    for n_theta, n_z in ((60, 12), (120, 24)):
+        fe = coefficients(b, s, "fem", frame="local", n_theta=n_theta, n_z=n_z,
+                          element="P2", cavitation="reynolds")
+        fv = coefficients(b, s, "fvm", frame="local", n_theta=n_theta, n_z=n_z,
+                          cavitation="reynolds")
+        a, c = _coef_vector(fe), _coef_vector(fv)
+        gaps.append(np.max(np.abs(a - c)) / np.max(np.abs(a)))
+    assert gaps[1] < 0.6 * gaps[0] and gaps[1] < 0.01
+
+
+def test_lund_threshold_puts_eigenvalues_on_the_imaginary_axis():
+    eq = equilibrium(FRISWELL, (0.0, -525.0), 157.1, "short")
+    st = lund_stability(coefficients(FRISWELL, eq.state, "short"))
+    K, C, M = st.coefficients.K, st.coefficients.C, st.critical_mass
+    A = np.block([[np.zeros((2, 2)), np.eye(2)], [-K / M, -C / M]])
+    lam = np.linalg.eigvals(A)
+    crossing = lam[np.argmax(lam.real)]
+    assert abs(crossing.real) < 1e-9 * abs(crossing.imag)
+    assert abs(crossing.imag) == pytest.approx(st.whirl_frequency, rel=1e-9)
+    # a plain bearing at light load whirls at about half speed
+    assert 0.4 < st.whirl_ratio < 0.55
+    for f, stable in ((0.99, True), (1.01, False)):
+        lam = np.linalg.eigvals(np.block([[np.zeros((2, 2)), np.eye(2)],
+                                          [-K / (f * M), -C / (f * M)]]))
+        assert (lam.real.max() < 0) == stable == st.stable(f * M)
+
+
+def test_linear_threshold_agrees_with_the_nonlinear_orbit():
+    """Below the critical mass a kicked journal returns, above it the orbit grows (short
+    bearing; its half-film switch smoothed over 1 rad/s, identical at equilibrium)."""
+    eq = equilibrium(FRISWELL, (0.0, -525.0), 157.1, "short")
+    st = lund_stability(coefficients(FRISWELL, eq.state, "short"))
+    below = journal_orbit(FRISWELL, eq, 0.9 * st.critical_mass, "short", turns=40,
+                          kick=0.01, switch_speed=1.0)
+    above = journal_orbit(FRISWELL, eq, 1.1 * st.critical_mass, "short", turns=40,
+                          kick=0.01, switch_speed=1.0)
+    assert below.growth() < 0.2
+    assert above.growth() > 3.0
+
+
+def test_threshold_speed_is_where_the_critical_mass_is_the_journal_mass():
+    mass = 50.0
+    th = threshold_speed(FRISWELL, (0.0, -525.0), mass, "short", omega_range=(10.0, 1e4))
+    assert th.stability.critical_mass == pytest.approx(mass, rel=1e-6)
+    slower = equilibrium(FRISWELL, (0.0, -525.0), 0.9 * th.omega, "short")
+    assert lund_stability(coefficients(FRISWELL, slower.state, "short")).stable(mass)
+
+
+def test_equilibrium_with_fe_reproduces_raimondi_boyd_sommerfeld():
+    """Periodic FE film, Reynolds condition: the Sommerfeld number at eps 0.6, L/D 1 within
+    2 % of Raimondi & Boyd's 0.121 (their film starts at the maximum film; at eps 0.6 the
+    two agree to 0.5 %, see tests/test_raimondi_boyd.py)."""
+    b = Bearing(radius=0.01, length=0.02, clearance=20e-6, viscosity=0.0117)
+    s = JournalState(0.6, omega=250.0)
+    sol = solve_reynolds(b, s, 60, 12, "P2", "reynolds")
+    W = math.hypot(*sol.force_local)
+    eq = equilibrium(b, (0.0, -W), 250.0, "fem", n_theta=60, n_z=12, element="P2",
+                     cavitation="reynolds")
+    assert eq.eps == pytest.approx(0.6, abs=1e-9)
+    assert eq.sommerfeld == pytest.approx(0.121, rel=0.02)
+    state_again = replace(eq.state, gamma=0.0)
+    assert state_again.eps == pytest.approx(0.6)
