@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import argparse
+import math
 import sys
 from pathlib import Path
 
@@ -12,6 +13,8 @@ EXAMPLES = """examples:
   bearingfem convergence --ld 1.0 --eps 0.6 -o results/convergence
   bearingfem sweep sweeps/capacity.toml -o results/capacity --workers 2
   bearingfem frames scenes/paper-long-fem.toml results/long-fem -o results/long-frames --gif
+  bearingfem equilibrium --ld 1 --load 1000 --model fem --element P2
+  bearingfem coefficients --ld 0.5 --load 500 --frame load -o kc.csv
 """
 
 
@@ -29,13 +32,115 @@ def _simulate(args):
     return 1 if res.partial else 0
 
 
+def _bearing(args):
+    from bearingfem import Bearing
+    return Bearing(radius=args.diameter / 2, length=args.ld * args.diameter,
+                   clearance=args.clearance, viscosity=args.viscosity)
+
+
 def _table1(args):
-    from bearingfem import Bearing, JournalState
-    b = Bearing(radius=args.diameter / 2, length=args.ld * args.diameter,
-                clearance=args.clearance, viscosity=args.viscosity)
+    from bearingfem import JournalState
     s = JournalState(eps=args.eps, eps_dot=args.eps_dot, gamma=0.0, gamma_dot=0.0,
                      omega=args.omega)
-    return b, s
+    return _bearing(args), s
+
+
+def _model_options(args):
+    """The film model named on the command line and the options of it given there."""
+    from bearingfem.models import film_model
+    m = film_model(args.model, "--model")
+    given = dict(n_theta=args.n_theta, n_z=args.n_z, element=args.element,
+                 cavitation=args.cavitation)
+    return args.model, {k: v for k, v in given.items() if k in m.defaults}
+
+
+def _check_output(path, suffixes):
+    """Refuse an output file of an unknown kind before any work; make its folder."""
+    if path is None:
+        return None
+    out = Path(path)
+    if out.suffix.lower() not in suffixes:
+        raise ValueError(f"-o/--output must end in {' or '.join(suffixes)}, got {path!r}")
+    out.parent.mkdir(parents=True, exist_ok=True)
+    return out
+
+
+def _write_numbers(out, rows):
+    """rows: (name, value, unit) -> JSON object or a CSV table."""
+    if out is None:
+        return
+    if out.suffix.lower() == ".json":
+        import json
+        out.write_text(json.dumps({n: {"value": v, "unit": u} for n, v, u in rows}, indent=1))
+    else:
+        import csv
+        with open(out, "w", newline="") as f:
+            w = csv.writer(f)
+            w.writerow(["quantity", "value", "unit"])
+            w.writerows(rows)
+    print(f"wrote {out}")
+
+
+def _print_rows(rows):
+    for name, value, unit in rows:
+        v = "-" if value is None else f"{value:.6g}"
+        print(f"  {name:24s} {v:>14s} {unit}")
+
+
+def _equilibrium(args):
+    from bearingfem.design import equilibrium
+    out = _check_output(args.output, (".json", ".csv"))
+    model, opts = _model_options(args)
+    b = _bearing(args)
+    eq = equilibrium(b, args.load, args.omega, model, direction=math.radians(args.direction),
+                     **opts)
+    rows = [("eccentricity ratio", eq.eps, "-"),
+            ("attitude angle", math.degrees(eq.attitude), "deg"),
+            ("Sommerfeld number", eq.sommerfeld, "-"),
+            ("minimum film", eq.film_min, "m"),
+            ("minimum film angle", math.degrees(eq.film_min_angle), "deg (inertial)"),
+            ("journal x", eq.eps * b.clearance * math.cos(eq.state.gamma), "m"),
+            ("journal y", eq.eps * b.clearance * math.sin(eq.state.gamma), "m"),
+            ("peak pressure", eq.pressure_max, "Pa"),
+            ("friction force", eq.friction_force, "N"),
+            ("friction coefficient", eq.friction_coefficient, "-"),
+            ("power loss", eq.power_loss, "W"),
+            ("side leakage", eq.side_leakage, "m^3/s"),
+            ("inflow", eq.flow_in, "m^3/s")]
+    print(f"equilibrium, {model} {opts or ''}: load {args.load:g} N at "
+          f"{args.direction:g} deg, {args.omega:g} rad/s, L/D {args.ld:g}")
+    _print_rows(rows)
+    _write_numbers(out, rows)
+    return 0
+
+
+def _coefficients(args):
+    from bearingfem import JournalState
+    from bearingfem.design import coefficients, equilibrium, lund_stability
+    out = _check_output(args.output, (".json", ".csv"))
+    model, opts = _model_options(args)
+    b = _bearing(args)
+    if (args.eps is None) == (args.load is None):
+        raise ValueError("give exactly one of --eps (a steady state) or --load "
+                         "(the equilibrium under that load)")
+    if args.load is not None:
+        state = equilibrium(b, args.load, args.omega, model,
+                            direction=math.radians(args.direction), **opts).state
+    else:
+        state = JournalState(args.eps, omega=args.omega, gamma=math.radians(args.gamma))
+    kc = coefficients(b, state, model, frame=args.frame, **opts)
+    st = lund_stability(kc)
+    names = ("xx", "xy", "yx", "yy") if args.frame == "inertial" else (
+        ("rr", "rt", "tr", "tt") if args.frame == "local" else ("11", "12", "21", "22"))
+    rows = ([(f"K_{n}", float(v), "N/m") for n, v in zip(names, kc.K.ravel())]
+            + [(f"C_{n}", float(v), "N s/m") for n, v in zip(names, kc.C.ravel())]
+            + [("eccentricity ratio", state.eps, "-"), ("load carried", kc.load, "N"),
+               ("critical mass", st.critical_mass, "kg"),
+               ("whirl frequency ratio", st.whirl_ratio, "-")])
+    print(f"coefficients, {model} {opts or ''}, {args.frame} frame ({kc.method}):")
+    _print_rows(rows)
+    _write_numbers(out, rows)
+    return 0
 
 
 def _solve(args):
@@ -46,6 +151,12 @@ def _solve(args):
     else:
         sol = solve_reynolds(b, s, args.n_theta, args.n_z, args.element, args.cavitation)
     print(sol.summary())
+    from bearingfem.design import sommerfeld_number
+    f_r, f_t = sol.force_local
+    load = math.hypot(f_r, f_t)
+    print(f"|F| {load:.6g} N, attitude angle {math.degrees(math.atan2(f_t, -f_r)):.4g} deg, "
+          f"Sommerfeld number "
+          + (f"{sommerfeld_number(b, load, s.omega):.6g}" if load > 0 and s.omega else "-"))
     print(f"friction {sol.friction_force:.6g} N, side leakage {sol.side_leakage:.6g} m^3/s, "
           f"p_max at theta={sol.pressure_max_theta:.4f} rad")
     if args.output:
@@ -128,10 +239,8 @@ def _frames(args):
     return 0
 
 
-def _film_args(p):
+def _bearing_args(p):
     p.add_argument("--ld", type=float, default=1.0, help="L/D (default 1.0)")
-    p.add_argument("--eps", type=float, default=0.6, help="eccentricity ratio in [0, 1)")
-    p.add_argument("--eps-dot", type=float, default=0.0, help="d(eps)/dt [1/s]")
     p.add_argument("--omega", type=float, default=250.0, help="journal speed [rad/s]")
     p.add_argument("--diameter", type=float, default=0.020, help="[m] (seed Table 1)")
     p.add_argument("--clearance", type=float, default=20e-6, help="[m] (seed Table 1)")
@@ -140,6 +249,20 @@ def _film_args(p):
     p.add_argument("--n-theta", type=int, default=120)
     p.add_argument("--n-z", type=int, default=20)
     p.add_argument("--element", default="P1", help="P1 | P2")
+
+
+def _film_args(p):
+    _bearing_args(p)
+    p.add_argument("--eps", type=float, default=0.6, help="eccentricity ratio in [0, 1)")
+    p.add_argument("--eps-dot", type=float, default=0.0, help="d(eps)/dt [1/s]")
+
+
+def _design_args(p):
+    """Film model and mesh for the designer's commands (closed forms ignore the mesh)."""
+    _bearing_args(p)
+    p.add_argument("--model", default="fem", help="film model: short | long | short-exact "
+                   "| long-exact | fem | fvm | fem-table")
+    p.add_argument("-o", "--output", help="also write the numbers (.json or .csv)")
 
 
 def build_parser():
@@ -199,6 +322,27 @@ def build_parser():
     fr.add_argument("--gif", action="store_true", help="also write an animated film.gif")
     fr.add_argument("--no-render", action="store_true", help="VTU series only, no PNG")
     fr.set_defaults(func=_frames)
+    e = sub.add_parser("equilibrium", help="where the journal sits under a load: eps, "
+                       "attitude, Sommerfeld number, film, friction, flow",
+                       epilog="example: bearingfem equilibrium --ld 1 --load 1000 "
+                              "--model fem --element P2")
+    _design_args(e)
+    e.add_argument("--load", type=float, required=True, help="load magnitude [N]")
+    e.add_argument("--direction", type=float, default=-90.0,
+                   help="load direction [deg], inertial (default -90: downward)")
+    e.set_defaults(func=_equilibrium)
+    k = sub.add_parser("coefficients", help="stiffness and damping (K, C) and Lund's "
+                       "critical mass, at an eccentricity or under a load",
+                       epilog="example: bearingfem coefficients --ld 0.5 --load 500 "
+                              "--frame load")
+    _design_args(k)
+    k.add_argument("--eps", type=float, help="steady state at this eccentricity ratio")
+    k.add_argument("--gamma", type=float, default=0.0, help="its attitude [deg] (with --eps)")
+    k.add_argument("--load", type=float, help="or: at the equilibrium under this load [N]")
+    k.add_argument("--direction", type=float, default=-90.0, help="load direction [deg]")
+    k.add_argument("--frame", default="inertial", choices=["inertial", "local", "load"],
+                   help="axes of K and C")
+    k.set_defaults(func=_coefficients)
     return p
 
 

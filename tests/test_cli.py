@@ -76,3 +76,37 @@ def test_sweep_command_runs_and_resumes(tmp_path):
     assert "2 computed, 0 already done, 0 failed" in r.stdout
     r = run("sweep", str(sweep), "-o", str(tmp_path / "out"), "--workers", "1", "-q")
     assert "0 computed, 2 already done" in r.stdout
+
+
+@pytest.mark.parametrize("args,needle", [
+    (("equilibrium", "--load", "1e8"), "exceeds what the film carries before contact"),
+    (("equilibrium", "--load", "100", "--model", "fe"), "--model must be one of"),
+    (("equilibrium", "--load", "100", "-o", "eq.txt"), "-o/--output must end in .json or .csv"),
+    (("coefficients", "--ld", "1"), "give exactly one of --eps"),
+])
+def test_designer_commands_refuse_bad_input(args, needle):
+    r = run(*args)
+    assert r.returncode == 2, r.stderr
+    assert needle in r.stderr.strip().splitlines()[-1]
+
+
+def test_equilibrium_and_coefficients_print_and_write(tmp_path):
+    r = run("equilibrium", "--ld", "1", "--load", "381.439", "--element", "P2",
+            "--n-theta", "48", "--n-z", "8", "-o", str(tmp_path / "eq.json"))
+    assert r.returncode == 0, r.stderr
+    assert "Sommerfeld number" in r.stdout and "deg" in r.stdout
+    eq = json.loads((tmp_path / "eq.json").read_text())
+    # `solve --eps 0.6` carries 381.4 N on this bearing (Table 1, L/D 1, 250 rad/s)
+    assert eq["eccentricity ratio"]["value"] == pytest.approx(0.6, abs=2e-3)
+    assert eq["friction force"]["unit"] == "N"
+    r = run("coefficients", "--model", "short", "--eps", "0.5", "--frame", "load",
+            "-o", str(tmp_path / "kc.csv"))
+    assert r.returncode == 0, r.stderr
+    text = (tmp_path / "kc.csv").read_text()
+    assert "K_11" in text and "N s/m" in text and "critical mass" in text
+
+
+def test_solve_prints_load_attitude_and_sommerfeld():
+    r = run("solve", "--eps", "0.6", "--n-theta", "48", "--n-z", "8")
+    assert r.returncode == 0
+    assert "|F|" in r.stdout and "attitude angle" in r.stdout and "Sommerfeld number" in r.stdout
