@@ -28,6 +28,8 @@ import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
+import numpy as np
+
 from mechanism.lubrication import FILM_MODELS
 from mechanism.scene import read_toml
 from studies.tables import write_csv
@@ -48,7 +50,10 @@ MECHANISM_PARAMS = {
     "crank_speed": (None, float), "model": (None, str), "n_theta": (None, int),
     "n_z": (None, int), "element": (None, str), "cavitation": (None, str),
 }
-KINDS = {"film": FILM_PARAMS, "mechanism": MECHANISM_PARAMS}
+#: "design": the steady film at eps, its Raimondi & Boyd groups and its dimensionless
+#: stiffness and damping in the load frame (bearingfem.design) - a design chart's points
+DESIGN_PARAMS = {k: v for k, v in FILM_PARAMS.items() if k != "eps_dot"}
+KINDS = {"film": FILM_PARAMS, "mechanism": MECHANISM_PARAMS, "design": DESIGN_PARAMS}
 
 
 @dataclass(frozen=True)
@@ -68,7 +73,7 @@ def _checked(kind, key, value, where):
     if typ is str:
         if not isinstance(value, str):
             raise ValueError(f"{where}.{key} must be a string, got {value!r}")
-        if key == "model" and kind == "film" and value not in FILM_MODELS:
+        if key == "model" and kind != "mechanism" and value not in FILM_MODELS:
             raise ValueError(f"{where}.model must be one of {', '.join(sorted(FILM_MODELS))}, "
                              f"got {value!r}")
         return value
@@ -119,7 +124,7 @@ def case_id(kind: str, params: dict) -> str:
 def run_case(kind: str, params: dict) -> dict:
     """Compute one case (runs on a worker); returns its parameters and outputs."""
     t0 = time.perf_counter()
-    out = _film_case(params) if kind == "film" else _mechanism_case(params)
+    out = {"film": _film_case, "design": _design_case, "mechanism": _mechanism_case}[kind](params)
     return {**params, **out, "wall_s": time.perf_counter() - t0}
 
 
@@ -152,8 +157,40 @@ def _film_case(params: dict) -> dict:
     return out
 
 
+def _design_case(params: dict) -> dict:
+    from bearingfem import Bearing, JournalState, fvm_reynolds, solve_reynolds
+    from bearingfem.design import (coefficients, flow_variable, friction_variable,
+                                   petroff_friction, sommerfeld_number)
+    from bearingfem.models import FILM_MODELS
+    p = {k: params.get(k, d) for k, (d, _) in DESIGN_PARAMS.items()}
+    D = p["diameter"]
+    b = Bearing(radius=D / 2, length=p["length_ratio"] * D, clearance=p["clearance"],
+                viscosity=p["viscosity"])
+    s = JournalState(p["eps"], 0.0, 0.0, 0.0, p["omega"])
+    model = FILM_MODELS[p["model"]]
+    opts = {k: p[k] for k in ("n_theta", "n_z", "element", "cavitation") if k in model.defaults}
+    kc = coefficients(b, s, p["model"], frame="load", **opts)
+    k, c = kc.dimensionless()
+    f_r, f_t = model.film_force(b, s, **opts)
+    load = math.hypot(f_r, f_t)
+    out = dict(load=load, sommerfeld=sommerfeld_number(b, load, p["omega"]),
+               attitude_deg=math.degrees(math.atan2(f_t, -f_r)),
+               friction_variable=friction_variable(
+                   b, petroff_friction(b, p["eps"], p["omega"], f_t), load),
+               coefficient_method=kc.method)
+    if p["model"] in ("fem", "fvm"):
+        sol = (solve_reynolds(b, s, p["n_theta"], p["n_z"], p["element"], p["cavitation"])
+               if p["model"] == "fem" else
+               fvm_reynolds(b, s, p["n_theta"], p["n_z"], p["cavitation"]))
+        out["flow_variable"] = flow_variable(b, sol.side_leakage, p["omega"])
+    for name, m in (("K", k), ("C", c)):
+        for (i, j), v in np.ndenumerate(m):
+            out[f"{name}{i + 1}{j + 1}"] = float(v)
+    return out
+
+
 def _precheck(kind: str, params: dict) -> None:
-    if kind != "film":
+    if kind == "mechanism":
         return
     from bearingfem import Bearing, JournalState
     p = {k: params.get(k, d) for k, (d, _) in FILM_PARAMS.items()}
@@ -285,7 +322,7 @@ def plot_summary(rows, sweep: Sweep, path) -> None:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     x_key = next(iter(sweep.vary))
-    y_key = "load" if sweep.kind == "film" else "min_film_um"
+    y_key = {"film": "load", "design": "sommerfeld", "mechanism": "min_film_um"}[sweep.kind]
     others = [k for k in sweep.vary if k != x_key]
     groups = {}
     for r in rows:
@@ -297,8 +334,9 @@ def plot_summary(rows, sweep: Sweep, path) -> None:
         label = ", ".join(f"{k}={v}" for k, v in zip(others, g)) or None
         ax.plot([r[x_key] for r in rs], [r[y_key] for r in rs], "o-", label=label)
     ax.set_xlabel(x_key)
-    ax.set_ylabel({"load": "load capacity |F| [N]", "min_film_um": "min film [um]"}[y_key])
-    if sweep.kind == "film":
+    ax.set_ylabel({"load": "load capacity |F| [N]", "min_film_um": "min film [um]",
+                   "sommerfeld": "Sommerfeld number S"}[y_key])
+    if sweep.kind != "mechanism":
         ax.set_yscale("log")
     ax.set_title(f"sweep {sweep.name}: {len(rows)} cases")
     ax.grid(True, alpha=0.3)
