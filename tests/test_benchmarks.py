@@ -11,3 +11,12 @@ def test_film_solve_benchmark_smoke(capsys):
         assert r["psor_res"] <= 1e-10 and r["as_res"] <= 1e-10   # to the same tolerance
         assert r["warm_it"] <= r["nested_it"]
         assert r["nested_fact"] == 1         # the bordered solves did the rest
+
+
+def test_design_benchmark_smoke(capsys):
+    from benchmarks import design
+    rows = design.main(["--quick", "--repeat", "1"])
+    assert [r["model"] for r in rows] == ["fem", "fem"]
+    # P2 24x4 is within 0.5 % of the 96x12 reference: the accuracy the README quotes
+    assert rows[1]["error"] < 5e-3 and rows[0]["error"] > rows[1]["error"]
+    assert "reference" in capsys.readouterr().out
