@@ -132,7 +132,7 @@ def _interpolation_matrix(basis) -> sp.csr_matrix:
     for i in range(basis.Nbfun):   # loop over the few local shape functions only
         r.append(rows.ravel())
         c.append(np.repeat(basis.element_dofs[i], n_qp))
-        v.append(np.asarray(basis.basis[i][0].value).ravel())
+        v.append(np.asarray(basis.basis[i][0]).ravel())
     return sp.csr_matrix((np.concatenate(v), (np.concatenate(r), np.concatenate(c))),
                          shape=(n_el * n_qp, basis.N))
 

@@ -20,8 +20,10 @@ def test_study_orders_and_files(tmp_path):
     s = convergence_study(table1_bearing(1.0), JournalState(0.6, omega=250.0), levels=4,
                           n_theta=24, n_z=4, cavitation="gumbel", methods=("P1", "fvm"))
     orders = {(r["method"], r["quantity"]): r["order"] for r in s.summary}
-    assert orders[("P1", "force")] == pytest.approx(2.0, abs=0.3)
-    assert orders[("fvm", "force")] == pytest.approx(2.0, abs=0.3)
+    # measured 1.974 / 1.960 (force), 1.977 / 1.957 (friction): the README's +-0.15 holds
+    for method in ("P1", "fvm"):
+        for quantity in ("force", "friction_force"):
+            assert orders[(method, quantity)] == pytest.approx(2.0, abs=0.15)
     s.write_csv(tmp_path / "c.csv")
     s.plot(tmp_path / "c.png")
     assert (tmp_path / "c_summary.csv").read_text().count("\n") == 1 + 2 * 7

@@ -61,14 +61,19 @@ def test_equations_match_symbolic_lagrange(symbolic, seed):
 
 def test_printed_velocity_term_sign_is_wrong(symbolic):
     """Seed Eq. 1 prints +M_B R (V cos(A+q) - U sin(A+q)) [A'^2, q'^2]; the derivation
-    gives the opposite sign. With it flipped, the accelerations would differ."""
+    gives the opposite sign. The accelerations are linear in that term, so the printed
+    equations give a_printed = 2 a(velocities 0) - a: evaluated here, they miss the
+    Lagrange accelerations, which ours match."""
     m = Mechanism()
-    q, A, qd, Ad = 0.7, 0.1, 250.0, 60.0
-    ours = accelerations(m, q, A, qd, Ad, 0.0, 0.0)
+    q, A, qd, Ad, Fx, Fy, g = 0.7, 0.1, 250.0, 60.0, 300.0, -200.0, 9.81
+    ours = np.array(accelerations(m, q, A, qd, Ad, Fx, Fy, g=g))
+    still = np.array(accelerations(m, q, A, 0.0, 0.0, Fx, Fy, g=g))
+    printed = 2.0 * still - ours
     args = (q, A, qd, Ad, m.crank_length, m.rod_length, m.crank_inertia, m.rod_inertia,
-            m.crank_mass, m.rod_mass, m.slider_mass, *m.crank_cm, *m.rod_cm, 0, 0, 0, 0, 0)
-    assert np.allclose(ours, [f(*args) for f in symbolic][:3], rtol=1e-10)
-    assert abs(ours[0]) > 1.0   # the velocity term matters at this state
+            m.crank_mass, m.rod_mass, m.slider_mass, *m.crank_cm, *m.rod_cm, g, Fx, Fy, 0, 0)
+    ref = np.array([f(*args) for f in symbolic])
+    assert np.allclose(ours, ref, rtol=1e-10)
+    assert np.abs(printed - ref)[:2].max() > 1e3 * np.abs(ours - ref)[:2].max() + 1.0
 
 
 @pytest.mark.parametrize("g", [0.0, 9.81])
