@@ -8,7 +8,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-__all__ = ["Bearing", "JournalState", "check_positive", "check_finite"]
+__all__ = ["Bearing", "JournalState", "seed_bearing", "SEED_TABLE1", "check_positive",
+           "check_finite"]
 
 
 def check_finite(name: str, value) -> float:
@@ -73,6 +74,19 @@ class Bearing:
     def force_scale(self) -> float:
         """mu R^4 / c^2 [N s]: force = force_scale * (integral of P over (theta, z/R))."""
         return self.viscosity * self.radius ** 4 / self.clearance ** 2
+
+
+#: The seed paper's Table 1 piston-pin bearing: diameter [m], radial clearance [m],
+#: viscosity [Pa s]. Its length is set through L/D.
+SEED_TABLE1 = dict(diameter=0.020, clearance=20e-6, viscosity=0.0117)
+
+
+def seed_bearing(length_ratio: float = 1.0) -> Bearing:
+    """The seed paper's Table-1 bearing (D = 20 mm, c = 20 um, mu = 0.0117 Pa s) at L/D
+    ``length_ratio``: the default bearing of the command line, sweeps and studies."""
+    D = SEED_TABLE1["diameter"]
+    return Bearing(radius=D / 2, length=check_positive("length_ratio", length_ratio) * D,
+                   clearance=SEED_TABLE1["clearance"], viscosity=SEED_TABLE1["viscosity"])
 
 
 @dataclass(frozen=True)

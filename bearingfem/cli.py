@@ -73,11 +73,8 @@ def _write_numbers(out, rows):
         import json
         out.write_text(json.dumps({n: {"value": v, "unit": u} for n, v, u in rows}, indent=1))
     else:
-        import csv
-        with open(out, "w", newline="") as f:
-            w = csv.writer(f)
-            w.writerow(["quantity", "value", "unit"])
-            w.writerows(rows)
+        from bearingfem.tables import write_csv
+        write_csv([dict(quantity=n, value=v, unit=u) for n, v, u in rows], out)
     print(f"wrote {out}")
 
 

@@ -8,7 +8,6 @@ For three meshes refined by a constant ratio r (fine f1, medium f2, coarse f3):
 """
 from __future__ import annotations
 
-import csv
 import time
 from dataclasses import dataclass
 from pathlib import Path
@@ -18,6 +17,7 @@ import numpy as np
 from .bearing import Bearing, JournalState
 from .fvm import fvm_reynolds
 from .reynolds import solve_reynolds
+from .tables import write_csv
 from .validation import check_int
 
 __all__ = ["convergence_study", "richardson", "ConvergenceStudy", "QUANTITIES"]
@@ -48,14 +48,8 @@ class ConvergenceStudy:
 
     def write_csv(self, path):
         path = Path(path)
-        with open(path, "w", newline="") as fh:
-            w = csv.DictWriter(fh, fieldnames=list(self.rows[0]))
-            w.writeheader()
-            w.writerows(self.rows)
-        with open(path.with_name(path.stem + "_summary.csv"), "w", newline="") as fh:
-            w = csv.DictWriter(fh, fieldnames=list(self.summary[0]))
-            w.writeheader()
-            w.writerows(self.summary)
+        write_csv(self.rows, path)
+        write_csv(self.summary, path.with_name(path.stem + "_summary.csv"))
 
     def plot(self, path, quantity="force"):
         import matplotlib

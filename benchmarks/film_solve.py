@@ -25,11 +25,12 @@ import time
 
 import numpy as np
 
-from bearingfem import Bearing, JournalState
+from bearingfem import JournalState
+from bearingfem.bearing import seed_bearing
 from bearingfem.cavitation import active_set, graph_colouring, psor as psor_solve
 from bearingfem.reynolds import fe_operator, fe_pressure
 
-BEARING = Bearing(radius=0.01, length=0.02, clearance=20e-6, viscosity=0.0117)
+BEARING = seed_bearing(1.0)
 
 
 def best_time(f, repeat):

@@ -22,7 +22,8 @@ from pathlib import Path
 
 import numpy as np
 
-from bearingfem import Bearing, JournalState
+from bearingfem import JournalState
+from bearingfem.bearing import seed_bearing
 from bearingfem.force_table import table_force
 from bearingfem.fvm import fvm_force
 from bearingfem.reynolds import fe_force
@@ -31,7 +32,7 @@ from bearingfem import short_bearing_exact_force, short_bearing_force
 from mechanism import load_scene, simulate
 from mechanism.lubrication import NUMERIC_MODELS
 from mechanism.scene import Lubrication
-from studies.tables import write_csv
+from bearingfem.tables import write_csv
 
 SCENES = Path(__file__).resolve().parent.parent / "scenes"
 
@@ -117,7 +118,7 @@ def _static_models(bearing, state, quick):
 
 
 def run_static(quick=False, ld=1.0, eps=0.8):
-    bearing = Bearing(radius=0.01, length=0.02 * ld, clearance=20e-6, viscosity=0.0117)
+    bearing = seed_bearing(ld)
     state = JournalState(eps, 20.0, 0.0, 0.0, 250.0)
     ref = np.array(fe_force(bearing, state, 192 if quick else 384, 32 if quick else 64, "P2",
                             "gumbel")[0])

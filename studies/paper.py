@@ -7,13 +7,13 @@ summary table.
 from __future__ import annotations
 
 import argparse
-import csv
 import sys
 from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
 
+from bearingfem.tables import write_csv
 from mechanism import load_scene, simulate
 from mechanism.figures import plot_comparison
 from mechanism.parameters import GRAVITY
@@ -71,10 +71,7 @@ def run(out: Path, names=PAPER, turns=None, progress=None):
         plot_comparison([results[n][1] for n in chosen], [n.split("-")[-1] for n in chosen], c,
                         title=f"{bearing} bearing (L/D = {results[chosen[0]][0].bearing.slenderness:g})"
                               f" - seed {figs}", path=out / f"paper-{bearing}.png")
-    with open(out / "summary.csv", "w", newline="") as fh:
-        w = csv.DictWriter(fh, fieldnames=COLUMNS)
-        w.writeheader()
-        w.writerows(rows)
+    write_csv(rows, out / "summary.csv", COLUMNS)
     print("\n" + markdown_table(rows))
     return results, rows
 

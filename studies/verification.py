@@ -8,22 +8,21 @@ Prints a markdown table (reference, quantity, tolerance, worst error) and writes
 from __future__ import annotations
 
 import argparse
-import csv
-import sys
 import time
 from pathlib import Path
 
 import numpy as np
 
-from bearingfem import (Bearing, JournalState, fvm_reynolds, long_bearing_force,
+from bearingfem.bearing import seed_bearing
+from bearingfem import (JournalState, fvm_reynolds, long_bearing_force,
                         short_bearing_exact_force, short_bearing_force, solve_reynolds)
 
-sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
-from test_raimondi_boyd import TABLE, bearing_numbers  # noqa: E402  (the test's own data)
+from bearingfem.tables import write_csv
+from studies.raimondi_boyd import TABLE, bearing_numbers
 
 
 def table1(ld):
-    return Bearing(radius=0.01, length=0.02 * ld, clearance=20e-6, viscosity=0.0117)
+    return seed_bearing(ld)
 
 
 def rel(a, b):
@@ -129,10 +128,8 @@ def main(argv=None):
     out = Path(p.parse_args(argv).output)
     out.mkdir(parents=True, exist_ok=True)
     rows = raimondi_boyd(out) + limits() + fe_vs_fvm() + psor_vs_active_set()
-    with open(out / "verification.csv", "w", newline="") as fh:
-        w = csv.writer(fh)
-        w.writerow(("reference", "quantity", "tolerance", "achieved"))
-        w.writerows(rows)
+    header = ("reference", "quantity", "tolerance", "achieved")
+    write_csv([dict(zip(header, r)) for r in rows], out / "verification.csv")
     print("| reference | quantity | tolerance | achieved |\n|---|---|---|---|")
     for r in rows:
         print("| " + " | ".join(r) + " |")
@@ -140,4 +137,4 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    raise SystemExit(main())

@@ -1,11 +1,7 @@
 import numpy as np
 import pytest
 
-from bearingfem import Bearing
-
-#: The seed's Table 1 bearing (D = 20 mm, c = 20 um, mu = 0.0117 Pa s) at a given L/D.
-def table1_bearing(ld: float) -> Bearing:
-    return Bearing(radius=0.01, length=0.02 * ld, clearance=20e-6, viscosity=0.0117)
+from bearingfem.bearing import seed_bearing as table1_bearing  # noqa: F401 (the tests' name)
 
 
 @pytest.fixture

@@ -54,6 +54,7 @@ def test_simulate_writes_result_and_figure(tmp_path):
     assert (tmp_path / "out" / "run.png").stat().st_size > 10_000
 
 
+@pytest.mark.slow   # 5 s; convergence and render are tested directly by default
 def test_convergence_and_render_commands(tmp_path):
     r = run("convergence", "--ld", "1.0", "--eps", "0.6", "--levels", "3", "--methods", "P1,fvm",
             "-o", str(tmp_path / "conv"))
@@ -68,6 +69,7 @@ def test_convergence_and_render_commands(tmp_path):
     assert r.returncode == 2 and "field must be one of" in r.stderr
 
 
+@pytest.mark.slow   # 5 s; the sweep runner is tested on a real cluster in test_sweep.py
 def test_sweep_command_runs_and_resumes(tmp_path):
     sweep = tmp_path / "s.toml"
     sweep.write_text('name = "s"\n[base]\nmodel = "short"\n[vary]\neps = [0.2, 0.8]\n')

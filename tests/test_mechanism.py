@@ -51,7 +51,7 @@ def test_stiff_spring_joint_tends_to_ideal_joint():
 
 
 @pytest.mark.parametrize("model,ld", [("short", 0.2), ("short-exact", 0.2), ("long", 2.0),
-                                      ("long-exact", 2.0)])
+                                      pytest.param("long-exact", 2.0, marks=pytest.mark.slow)])
 def test_lubricated_paper_cases_stay_in_the_film(model, ld):
     """The paper: no contact in any lubricated case; the crank speed follows the ideal
     mechanism's. It trails slightly because the film dissipates energy (the ideal mechanism

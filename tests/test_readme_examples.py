@@ -1,6 +1,5 @@
 """The README's Python snippets run as written (from the repository root), as scikit-fem
 runs its documentation examples: a snippet that drifts from the API fails here."""
-import os
 import re
 from pathlib import Path
 

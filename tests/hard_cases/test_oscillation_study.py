@@ -1,8 +1,11 @@
 """The oscillation study runs, and its answer holds on a short run: the Eq. 9 force spikes
 appear with both integrators at both tolerances, the exact model has none."""
+import pytest
+
 from studies.hard_cases import run
 
 
+@pytest.mark.slow   # 7 s: runs the oscillation study with two integrators
 def test_spikes_belong_to_the_model(tmp_path):
     rows = run(tmp_path, turns=2.0)
     spikes = {(m, i, r): s for m, i, r, *_, s in rows}
