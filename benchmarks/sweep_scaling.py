@@ -9,7 +9,7 @@ import argparse
 import tempfile
 from pathlib import Path
 
-from studies.sweep import load_sweep, run_sweep
+from bearingfem_app.sweep import load_sweep, run_sweep
 
 ROOT = Path(__file__).resolve().parent.parent
 

@@ -283,6 +283,32 @@ def read_toml(path, what: str = "scene") -> dict:
         raise ValueError(f"{what} file {p} is not valid TOML: {err}") from None
 
 
+#: Scenes shipped with the toolkit (the seed's Section 3), found by name from anywhere.
+SCENES = Path(__file__).resolve().parent / "scenes"
+
+
+def shipped_scenes() -> list[str]:
+    """Names of the shipped scenes (``load_scene(name)`` reads them)."""
+    return sorted(p.stem for p in SCENES.glob("*.toml"))
+
+
+def scene_path(path) -> Path:
+    """The scene file ``path`` if it exists; else the shipped scene of that name, given as
+    ``paper-short-fem``, ``paper-short-fem.toml`` or ``scenes/paper-short-fem.toml`` (the
+    checkout's path, so the same command works outside it)."""
+    p = Path(path)
+    if p.is_file():
+        return p
+    shipped = SCENES / f"{p.stem}.toml"
+    if p.suffix in ("", ".toml") and p.parent in (Path("."), Path("scenes")) and shipped.is_file():
+        return shipped
+    return p
+
+
 def load_scene(path) -> Scene:
-    """Read and validate a scene TOML file."""
-    return parse_scene(read_toml(path, "scene"), name=Path(path).stem)
+    """Read and validate a scene TOML file, or a shipped scene by name."""
+    p = scene_path(path)
+    if not p.is_file():
+        raise ValueError(f"scene file not found: {path} (shipped scenes: "
+                         f"{', '.join(shipped_scenes())})")
+    return parse_scene(read_toml(p, "scene"), name=p.stem)

@@ -31,10 +31,9 @@ from bearingfem import long_bearing_exact_force, long_bearing_force
 from bearingfem import short_bearing_exact_force, short_bearing_force
 from mechanism import load_scene, simulate
 from mechanism.lubrication import NUMERIC_MODELS
-from mechanism.scene import Lubrication
+from mechanism.scene import SCENES, Lubrication
 from bearingfem.tables import write_csv
 
-SCENES = Path(__file__).resolve().parent.parent / "scenes"
 
 # (label, model, options); the last FE entry of each list is the reference.
 _ANALYTIC = {"short": [("Eq. 9 (short)", "short", dict(half_film="wedge", switch_speed=1.0)),

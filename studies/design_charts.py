@@ -14,7 +14,7 @@ from pathlib import Path
 
 import numpy as np
 
-from studies.sweep import load_sweep, run_sweep
+from bearingfem_app.sweep import load_sweep, run_sweep
 
 DEFAULT_SWEEP = Path(__file__).resolve().parent.parent / "sweeps" / "design-chart.toml"
 

@@ -22,8 +22,9 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from mechanism import load_scene, simulate  # noqa: E402
+from mechanism.scene import SCENES  # noqa: E402
 
-SCENE = Path(__file__).resolve().parent.parent / "scenes" / "paper-short-analytic.toml"
+SCENE = SCENES / "paper-short-analytic.toml"
 CASES = [(model, integ, rtol) for model in ("short", "short-exact")
          for integ in ("lsoda", "bdf") for rtol in (1e-4, 1e-8)]
 

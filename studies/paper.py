@@ -18,8 +18,8 @@ from mechanism import load_scene, simulate
 from mechanism.figures import plot_comparison
 from mechanism.parameters import GRAVITY
 from mechanism.rigid import simulate_rigid
+from mechanism.scene import SCENES
 
-SCENES = Path(__file__).resolve().parent.parent / "scenes"
 PAPER = [f"paper-{b}-{m}" for b in ("short", "long") for m in ("analytic", "fem", "fvm")]
 COLUMNS = ("scene", "status", "wall_time_s", "steps", "rhs_evals", "film_solves", "peak_eps",
            "min_film_um", "crank_speed_min", "crank_speed_max", "max_dspeed_vs_ideal",
@@ -35,19 +35,10 @@ def ideal_crank_speed(scene, crank_angle):
 
 
 def summarise(name, r, scene=None):
-    if len(r.t) == 0:
-        return {"scene": name, "status": r.message}
-    s = r.stats
-    return {"scene": name, "status": "partial: " + r.message if r.partial else "completed",
-            "wall_time_s": round(s["wall_time"], 2), "steps": s["steps"],
-            "rhs_evals": s["rhs_evals"], "film_solves": s["film_solves"],
-            "peak_eps": round(float(np.max(r.eps)), 5),
-            "min_film_um": round(float(np.min(r.film_min)) * 1e6, 4),
-            "crank_speed_min": round(float(np.min(r.crank_speed)), 2),
-            "crank_speed_max": round(float(np.max(r.crank_speed)), 2),
-            "max_dspeed_vs_ideal": "" if scene is None else round(float(np.max(np.abs(
-                r.crank_speed - ideal_crank_speed(scene, r.crank_angle)))), 3),
-            "peak_slider_acc": round(float(np.max(np.abs(r.slider_acceleration))), 1)}
+    """The run's summary row, with its departure from the ideal mechanism when the scene
+    is given."""
+    ideal = None if scene is None or len(r.t) == 0 else ideal_crank_speed(scene, r.crank_angle)
+    return {**r.summary_row(ideal), "scene": name}
 
 
 def run(out: Path, names=PAPER, turns=None, progress=None):

@@ -10,7 +10,7 @@ ROOT = Path(__file__).resolve().parent.parent
 
 
 def run(*args):
-    return subprocess.run([sys.executable, "-m", "bearingfem", *args], cwd=ROOT,
+    return subprocess.run([sys.executable, "-m", "bearingfem_app", *args], cwd=ROOT,
                           capture_output=True, text=True, timeout=300)
 
 

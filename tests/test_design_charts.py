@@ -5,7 +5,7 @@ import pytest
 
 from bearingfem import Bearing, JournalState, solve_reynolds
 from studies.design_charts import plot_design_charts
-from studies.sweep import parse_sweep, run_case, sweep_cases
+from bearingfem_app.sweep import parse_sweep, run_case, sweep_cases
 
 
 def test_design_case_matches_the_film_and_raimondi_boyd():

@@ -60,7 +60,7 @@ def test_frames_command(long_run, tmp_path):
     import sys
     sc, r = long_run
     r.save(tmp_path / "run")
-    cmd = [sys.executable, "-m", "bearingfem", "frames", str(SCENES / "paper-long-fem.toml"),
+    cmd = [sys.executable, "-m", "bearingfem_app", "frames", str(SCENES / "paper-long-fem.toml"),
            str(tmp_path / "run"), "-o", str(tmp_path / "fr"), "--angles", "30,150",
            "--no-render"]
     out = subprocess.run(cmd, capture_output=True, text=True, timeout=300)

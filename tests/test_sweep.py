@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from bearingfem import Bearing, JournalState, solve_reynolds
-from studies.sweep import (case_id, gather, parse_sweep, run_case, run_sweep, sweep_cases)
+from bearingfem_app.sweep import (case_id, gather, parse_sweep, run_case, run_sweep, sweep_cases)
 
 SWEEP = {"name": "t", "kind": "film",
          "base": {"n_theta": 24, "n_z": 4, "omega": 250.0},

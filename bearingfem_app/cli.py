@@ -194,7 +194,7 @@ def _render(args):
 
 
 def _sweep(args):
-    from studies.sweep import load_sweep, run_sweep
+    from bearingfem_app.sweep import load_sweep, run_sweep
     sweep = load_sweep(args.sweep)
     res = run_sweep(sweep, args.output, scheduler=args.scheduler, workers=args.workers,
                     progress=None if not args.quiet else False)

@@ -207,7 +207,6 @@ def _mechanism_case(params: dict) -> dict:
     from dataclasses import replace
     from mechanism import load_scene, simulate
     from mechanism.scene import Lubrication
-    from studies.paper import summarise
     sc = load_scene(params.get("scene", MECHANISM_PARAMS["scene"][0]))
     turns = params.get("turns", MECHANISM_PARAMS["turns"][0])
     sc = replace(sc, run=replace(sc.run, turns=turns, record_from_turn=max(0.0, turns - 1)))
@@ -223,7 +222,7 @@ def _mechanism_case(params: dict) -> dict:
         keep = {} if model != lub.model else lub.options
         sc = replace(sc, lubrication=Lubrication(model, {**keep, **opts}, lub.eps_max))
     r = simulate(sc, progress=False)
-    row = summarise(sc.name, r)
+    row = r.summary_row()
     return {k: v for k, v in row.items() if k != "scene"}
 
 

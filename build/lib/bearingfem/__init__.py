@@ -1,0 +1,19 @@
+"""bearingfem: verified hydrodynamic journal-bearing films.
+
+film -> mesh -> assembly -> cavitation solve -> forces, with a finite-volume reference and
+the closed-form short (Frene) and long (Pinkus-Sternlicht) bearing models; every model
+registered by name in :mod:`bearingfem.models`; the designer's numbers (equilibrium,
+stiffness and damping, stability) in :mod:`bearingfem.design`.
+"""
+from .bearing import Bearing, JournalState
+from .fvm import fvm_reynolds
+from .long_bearing import long_bearing_exact_force, long_bearing_force
+from .short_bearing import short_bearing_exact_force, short_bearing_force
+from .reynolds import solve_reynolds
+from .solution import FilmSolution
+from .design import coefficients, equilibrium
+
+__all__ = ["Bearing", "JournalState", "solve_reynolds", "fvm_reynolds", "FilmSolution",
+           "short_bearing_force", "long_bearing_force", "short_bearing_exact_force",
+           "long_bearing_exact_force", "equilibrium", "coefficients"]
+__version__ = "0.1.0"

@@ -1,0 +1,144 @@
+"""Film operator: everything a state needs, assembled once per mesh.
+
+With H = 1 + eps cos(theta), H^3 = sum_k C(3,k) eps^k cos^k(theta), so the stiffness of
+-div(H^3 grad P) is K(eps) = sum_k C(3,k) eps^k K_k with four matrices K_k that do not
+depend on the state. They share one sparsity pattern; a state only forms a linear
+combination of their value arrays (no re-assembly, no loop over elements). The load is
+likewise b = 6 (omega - 2 gamma_dot) eps b_sin - 12 eps_dot b_cos.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import lru_cache
+
+import numpy as np
+import scipy.sparse as sp
+from skfem import BilinearForm, LinearForm
+from skfem.helpers import dot, grad
+
+from .mesh import FilmMesh, film_mesh
+
+__all__ = ["FilmOperator", "film_operator"]
+
+_BINOM3 = (1.0, 3.0, 3.0, 1.0)
+
+
+def _stiffness_form(k: int) -> BilinearForm:
+    @BilinearForm
+    def form(u, v, w):
+        return np.cos(w.x[0]) ** k * dot(grad(u), grad(v))
+    return form
+
+
+@LinearForm
+def _load_sin(v, w):
+    return np.sin(w.x[0]) * v
+
+
+@LinearForm
+def _load_cos(v, w):
+    return np.cos(w.x[0]) * v
+
+
+def _aligned_data(mats, pos: sp.csr_matrix) -> np.ndarray:
+    """Value arrays of ``mats`` laid out on the pattern whose entries ``pos`` numbers 1..nnz
+    (rows k of the result)."""
+    out = np.zeros((len(mats), pos.nnz))
+    for k, m in enumerate(mats):
+        m = m.tocoo()
+        idx = np.asarray(pos[m.row, m.col]).ravel().astype(np.int64) - 1
+        np.add.at(out[k], idx, m.data)
+    return out
+
+
+@dataclass(frozen=True, eq=False)
+class FilmOperator:
+    """Assembled film: stiffness terms on a fixed pattern, loads, and selections.
+
+    ``stiffness(eps)`` returns the full matrix; ``free_stiffness(eps)`` its free-free block.
+    Both are new CSR wrappers around freshly combined value arrays on a shared pattern.
+    """
+
+    mesh: FilmMesh
+    indptr: np.ndarray
+    indices: np.ndarray
+    terms: np.ndarray          # (4, nnz): values of K_0..K_3 on the pattern
+    ff_indptr: np.ndarray
+    ff_indices: np.ndarray
+    ff_select: np.ndarray      # positions of the free-free block in the value arrays
+    b_sin: np.ndarray
+    b_cos: np.ndarray
+    qp_theta: np.ndarray       # theta at the quadrature points (elements x points)
+    qp_weight: np.ndarray      # quadrature weight times Jacobian at the same points
+    qp_interp: sp.csr_matrix   # nodal values -> values at those points (flattened)
+
+    @property
+    def shape(self):
+        n = self.mesh.ndofs
+        return (n, n)
+
+    def values(self, eps: float) -> np.ndarray:
+        e = float(eps)
+        t = self.terms
+        return t[0] + (3.0 * e) * t[1] + (3.0 * e * e) * t[2] + (e ** 3) * t[3]
+
+    def stiffness(self, eps: float) -> sp.csr_matrix:
+        return sp.csr_matrix((self.values(eps), self.indices, self.indptr), shape=self.shape)
+
+    def free_stiffness(self, eps: float, values: np.ndarray | None = None) -> sp.csr_matrix:
+        v = self.values(eps) if values is None else values
+        n = len(self.mesh.free)
+        return sp.csr_matrix((v[self.ff_select], self.ff_indices, self.ff_indptr), shape=(n, n))
+
+    def at_quadrature(self, P: np.ndarray) -> np.ndarray:
+        """Values of nodal fields P (..., ndofs) at the quadrature points
+        (..., elements, points)."""
+        P = np.asarray(P)
+        Q = self.qp_interp @ P.reshape(-1, P.shape[-1]).T
+        return Q.T.reshape(P.shape[:-1] + self.qp_theta.shape)
+
+    def load(self, eps: float, eps_dot: float, wedge_speed: float) -> np.ndarray:
+        """Load vector of f = 6 w eps sin(theta) - 12 eps_dot cos(theta), all dofs."""
+        return (6.0 * wedge_speed * eps) * self.b_sin - (12.0 * eps_dot) * self.b_cos
+
+
+def build_operator(mesh: FilmMesh) -> FilmOperator:
+    basis = mesh.basis
+    mats = [_stiffness_form(k).assemble(basis) for k in range(4)]
+    pattern = sum(abs(m) for m in mats).tocsr()
+    pattern.sort_indices()
+    # Number the pattern's entries 1..nnz: slicing this matrix tells where entries go.
+    pos = sp.csr_matrix((np.arange(1, pattern.nnz + 1, dtype=float), pattern.indices,
+                         pattern.indptr), shape=pattern.shape)
+    terms = _aligned_data(mats, pos)
+    free = mesh.free
+    ff = pos[free][:, free].tocsr()
+    ff.sort_indices()
+    return FilmOperator(
+        mesh=mesh, indptr=pattern.indptr, indices=pattern.indices, terms=terms,
+        ff_indptr=ff.indptr, ff_indices=ff.indices,
+        ff_select=ff.data.astype(np.int64) - 1,
+        b_sin=_load_sin.assemble(basis), b_cos=_load_cos.assemble(basis),
+        qp_theta=np.array(basis.global_coordinates()[0]), qp_weight=np.array(basis.dx),
+        qp_interp=_interpolation_matrix(basis))
+
+
+def _interpolation_matrix(basis) -> sp.csr_matrix:
+    """Sparse map from nodal values to values at quadrature points: one mat-vec replaces
+    the basis's interpolation inside time integration."""
+    n_el, n_qp = basis.dx.shape
+    rows = np.arange(n_el * n_qp).reshape(n_el, n_qp)
+    r, c, v = [], [], []
+    for i in range(basis.Nbfun):   # loop over the few local shape functions only
+        r.append(rows.ravel())
+        c.append(np.repeat(basis.element_dofs[i], n_qp))
+        v.append(np.asarray(basis.basis[i][0]).ravel())
+    return sp.csr_matrix((np.concatenate(v), (np.concatenate(r), np.concatenate(c))),
+                         shape=(n_el * n_qp, basis.N))
+
+
+@lru_cache(maxsize=32)
+def film_operator(n_theta: int, n_z: int, element: str, slenderness: float,
+                  theta0: float | None = None, half: bool = True) -> FilmOperator:
+    """Cached operator for a mesh (see :func:`bearingfem.mesh.film_mesh`)."""
+    return build_operator(film_mesh(n_theta, n_z, element, slenderness, theta0, half))

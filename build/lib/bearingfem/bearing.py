@@ -1,0 +1,147 @@
+"""Inputs of a film solve: the bearing geometry and the journal's kinematic state.
+
+Both are small frozen dataclasses validated on construction, so that bad input fails
+before any work starts with a message naming the parameter and its allowed range.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+__all__ = ["Bearing", "JournalState", "seed_bearing", "SEED_TABLE1", "check_positive",
+           "check_finite"]
+
+
+def check_finite(name: str, value) -> float:
+    """Return ``value`` as float or raise ``ValueError`` naming ``name``."""
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a real number, got {value!r}") from None
+    if not math.isfinite(v):
+        raise ValueError(f"{name} must be finite, got {value!r}")
+    return v
+
+
+def check_positive(name: str, value) -> float:
+    """Return ``value`` as float if finite and > 0, else raise ``ValueError``."""
+    v = check_finite(name, value)
+    if v <= 0.0:
+        raise ValueError(f"{name} must be positive (> 0), got {value!r}")
+    return v
+
+
+@dataclass(frozen=True)
+class Bearing:
+    """A plain cylindrical journal bearing.
+
+    Parameters
+    ----------
+    radius : journal radius R [m]
+    length : axial length L [m]
+    clearance : radial clearance c [m]
+    viscosity : dynamic viscosity mu [Pa s]
+    """
+
+    radius: float
+    length: float
+    clearance: float
+    viscosity: float
+
+    def __post_init__(self):
+        for name in ("radius", "length", "clearance", "viscosity"):
+            object.__setattr__(self, name, check_positive(name, getattr(self, name)))
+        if self.clearance >= self.radius:
+            raise ValueError(
+                f"clearance must be smaller than radius (thin film), got "
+                f"clearance={self.clearance!r} >= radius={self.radius!r}")
+
+    @property
+    def diameter(self) -> float:
+        return 2.0 * self.radius
+
+    @property
+    def slenderness(self) -> float:
+        """L/D, which is also the half length measured in journal radii (z/R)."""
+        return self.length / (2.0 * self.radius)
+
+    @property
+    def pressure_scale(self) -> float:
+        """mu (R/c)^2 [Pa s]: dimensional pressure = pressure_scale * P, P in 1/s."""
+        return self.viscosity * (self.radius / self.clearance) ** 2
+
+    @property
+    def force_scale(self) -> float:
+        """mu R^4 / c^2 [N s]: force = force_scale * (integral of P over (theta, z/R))."""
+        return self.viscosity * self.radius ** 4 / self.clearance ** 2
+
+
+#: The seed paper's Table 1 piston-pin bearing: diameter [m], radial clearance [m],
+#: viscosity [Pa s]. Its length is set through L/D.
+SEED_TABLE1 = dict(diameter=0.020, clearance=20e-6, viscosity=0.0117)
+
+
+def seed_bearing(length_ratio: float = 1.0) -> Bearing:
+    """The seed paper's Table-1 bearing (D = 20 mm, c = 20 um, mu = 0.0117 Pa s) at L/D
+    ``length_ratio``: the default bearing of the command line, sweeps and studies."""
+    D = SEED_TABLE1["diameter"]
+    return Bearing(radius=D / 2, length=check_positive("length_ratio", length_ratio) * D,
+                   clearance=SEED_TABLE1["clearance"], viscosity=SEED_TABLE1["viscosity"])
+
+
+@dataclass(frozen=True)
+class JournalState:
+    """Kinematic state of the journal centre relative to the bearing.
+
+    Parameters
+    ----------
+    eps : eccentricity ratio e/c, in [0, 1)
+    eps_dot : d(eps)/dt [1/s]
+    gamma : attitude angle of the eccentricity vector, inertial frame,
+        counter-clockwise [rad]
+    gamma_dot : d(gamma)/dt [rad/s]
+    omega : angular speed of the journal relative to the bearing [rad/s]
+    """
+
+    eps: float
+    eps_dot: float = 0.0
+    gamma: float = 0.0
+    gamma_dot: float = 0.0
+    omega: float = 0.0
+
+    def __post_init__(self):
+        eps = check_finite("eps", self.eps)
+        if not 0.0 <= eps < 1.0:
+            raise ValueError(f"eps must lie in [0, 1), got {self.eps!r}")
+        object.__setattr__(self, "eps", eps)
+        for name in ("eps_dot", "gamma", "gamma_dot", "omega"):
+            object.__setattr__(self, name, check_finite(name, getattr(self, name)))
+
+    @property
+    def wedge_speed(self) -> float:
+        """omega - 2 gamma_dot [rad/s]: the speed that drives the wedge term."""
+        return self.omega - 2.0 * self.gamma_dot
+
+    @classmethod
+    def from_eccentricity(cls, e_x, e_y, de_x, de_y, clearance, omega, eps_max=None):
+        """State from the eccentricity vector (seed Eq. 2-5) and its rate [m, m/s].
+
+        ``eps_max`` caps eps (same direction and rates), for callers that must evaluate a
+        film at or beyond the wall.
+
+        At e = 0 the attitude angle is undefined: gamma is then taken along the
+        velocity (or 0) and gamma_dot = 0, which gives the correct forces because
+        every model's force vanishes with eps and its squeeze part acts along r-hat.
+        """
+        e = math.hypot(e_x, e_y)
+        if e > 0.0:
+            gamma = math.atan2(e_y, e_x)
+            e_dot = (e_x * de_x + e_y * de_y) / e
+            gamma_dot = (e_x * de_y - e_y * de_x) / (e * e)
+        else:
+            gamma = math.atan2(de_y, de_x) if (de_x or de_y) else 0.0
+            e_dot = math.hypot(de_x, de_y)
+            gamma_dot = 0.0
+        eps = e / clearance if eps_max is None else min(e / clearance, eps_max)
+        return cls(eps=eps, eps_dot=e_dot / clearance, gamma=gamma, gamma_dot=gamma_dot,
+                   omega=omega)

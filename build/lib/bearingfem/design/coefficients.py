@@ -1,0 +1,122 @@
+"""Linearised film: stiffness K and damping C at a journal state, from the force partials.
+
+The film force depends on the journal's position x and velocity v through eps = |x|/c,
+gamma, eps_dot = (x.v)/(c|x|) and w = omega - 2 gamma_dot, gamma_dot = (x cross v)/|x|^2,
+and turns with gamma. Differentiating F = R(gamma) F_loc(eps, eps_dot, w) in the local
+frame (r = along the eccentricity, t = r turned +90 deg), with A, B, W the partials of
+F_loc in eps, eps_dot and w:
+
+    -c K[:, r] = A + 2 gamma_dot W / eps
+    -c K[:, t] = J F / eps + gamma_dot B + 2 eps_dot W / eps^2,   J F = (-F_t, F_r)
+    -c C[:, r] = B
+    -c C[:, t] = -2 W / eps
+
+K_ij = -dF_i/dx_j, C_ij = -dF_i/dv_j. Every term stays finite as eps -> 0 (F, W ~ eps);
+eps below ``EPS_FLOOR`` is linearised at EPS_FLOOR along the same gamma.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from ..bearing import Bearing, JournalState
+from ..models import film_model
+from ..validation import check_choice, check_inputs
+
+__all__ = ["DynamicCoefficients", "coefficients", "FRAMES", "EPS_FLOOR"]
+
+FRAMES = ("inertial", "local", "load")
+#: Smallest eccentricity ratio linearised as such (the polar frame is singular at 0).
+EPS_FLOOR = 1e-6
+
+
+@dataclass(frozen=True)
+class DynamicCoefficients:
+    """Stiffness and damping of the film at ``state``.
+
+    Attributes
+    ----------
+    K : 2x2 [N/m], K_ij = -dF_i/dx_j;  C : 2x2 [N s/m], C_ij = -dF_i/dv_j
+    frame : "inertial" (x, y), "local" (r along the eccentricity, t), or "load" (axis 1
+        along the load the film carries, i.e. opposite the film force; axis 2 turned +90 deg)
+    axes : the two axes of ``frame`` as unit vectors in the inertial frame (rows)
+    state : the journal state; force : film force (F_x, F_y) there [N], inertial
+    model, method : the film model and how its partials were found
+    clearance : radial clearance c [m] of the bearing
+    """
+
+    K: np.ndarray
+    C: np.ndarray
+    frame: str
+    axes: np.ndarray
+    state: JournalState
+    force: tuple
+    model: str
+    method: str
+    clearance: float
+
+    @property
+    def load(self) -> float:
+        """|F| [N]: the load the film carries at this state."""
+        return float(math.hypot(*self.force))
+
+    def dimensionless(self):
+        """(K c / W, C c omega / W) with W = |F|, the usual non-dimensional coefficients."""
+        c = self.clearance
+        W = self.load
+        if W == 0.0:
+            raise ValueError("the film carries no load at this state: no dimensionless "
+                             "coefficients")
+        return self.K * c / W, self.C * c * abs(self.state.omega) / W
+
+    def in_frame(self, frame: str) -> "DynamicCoefficients":
+        """The same coefficients in another frame."""
+        check_choice("frame", frame, FRAMES)
+        Q = _axes(frame, self.state.gamma, self.force)
+        T = Q @ self.axes.T          # new components from old ones
+        return replace(self, K=T @ self.K @ T.T, C=T @ self.C @ T.T, frame=frame, axes=Q)
+
+
+def _axes(frame: str, gamma: float, force) -> np.ndarray:
+    if frame == "inertial":
+        return np.eye(2)
+    if frame == "local":
+        angle = gamma
+    else:
+        if force[0] == 0.0 and force[1] == 0.0:
+            raise ValueError("frame='load' needs a film that carries a load (|F| > 0)")
+        angle = math.atan2(-force[1], -force[0])
+    c, s = math.cos(angle), math.sin(angle)
+    return np.array([[c, s], [-s, c]])
+
+
+def coefficients(bearing: Bearing, state: JournalState, model: str = "fem",
+                 frame: str = "inertial", **options) -> DynamicCoefficients:
+    """Stiffness K [N/m] and damping C [N s/m] of the film at ``state``.
+
+    ``model`` is a name of :data:`bearingfem.models.FILM_MODELS` and ``options`` its
+    options (mesh, element, cavitation...). The partials are exact for the closed forms
+    ("short", "long": complex step) and the FE film ("fem": discrete sensitivity with the
+    cavitated set fixed, on the solve's own factors); other models use central
+    differences.
+    """
+    check_inputs(bearing, state)
+    m = film_model(model)
+    check_choice("frame", frame, FRAMES)
+    if state.eps < EPS_FLOOR:
+        state = replace(state, eps=EPS_FLOOR)
+    d = m.force_derivatives(bearing, state, **options)
+    e, ed, gd = state.eps, state.eps_dot, state.gamma_dot
+    A, B, W, F = (np.asarray(v, float) for v in (d.d_eps, d.d_eps_dot, d.d_wedge, d.force))
+    JF = np.array([-F[1], F[0]])
+    c = bearing.clearance
+    K = -np.column_stack([A + 2.0 * gd * W / e, JF / e + gd * B + 2.0 * ed * W / e ** 2]) / c
+    C = -np.column_stack([B, -2.0 * W / e]) / c
+    g = state.gamma
+    force = (float(F[0] * math.cos(g) - F[1] * math.sin(g)),
+             float(F[0] * math.sin(g) + F[1] * math.cos(g)))
+    local = DynamicCoefficients(K, C, "local", _axes("local", g, force), state, force, model,
+                                d.method, c)
+    return local if frame == "local" else local.in_frame(frame)

@@ -1,0 +1,152 @@
+"""Static equilibrium of a journal under a steady load, for any film model.
+
+A periodic film's steady force in the local frame depends on eps alone (gamma only turns
+it), and its magnitude grows monotonically from 0 at eps = 0 to the wall. So equilibrium
+is one bracketed root, |F(eps)| = W (Brent's method), followed by the turn gamma that puts
+the film force opposite the load. The attitude angle phi = atan2(F_t, -F_r) is the angle
+from the load line to the line of centres, in the sense of rotation.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import brentq
+
+from ..bearing import Bearing, JournalState, check_finite
+from ..fvm import fvm_reynolds
+from ..models import film_model
+from ..reynolds import solve_reynolds
+from ..solution import FilmSolution
+from .groups import petroff_friction, sommerfeld_number
+
+__all__ = ["Equilibrium", "equilibrium", "EPS_MAX"]
+
+#: Default largest eccentricity ratio searched: past it the film is thinner than 1 % of c,
+#: below the roughness of real bearings; a load that needs more is refused.
+EPS_MAX = 0.99
+
+
+@dataclass(frozen=True)
+class Equilibrium:
+    """A journal at rest under ``load``: where it sits and what the film does there.
+
+    Attributes
+    ----------
+    eps : eccentricity ratio; attitude : angle from load line to line of centres [rad]
+    state : the :class:`JournalState` (eps_dot = gamma_dot = 0)
+    load : (W_x, W_y) [N] the external load carried (inertial frame); film_force the film's
+    sommerfeld : S = (R/c)^2 mu N / P
+    film_min : c (1 - eps) [m]; film_min_angle : its inertial angle [rad]
+    friction_force : on the journal, opposing rotation [N] (full Couette shear in cavitated
+        zones); friction_coefficient : friction_force / W; power_loss : F_f R |omega| [W]
+    pressure_max [Pa], side_leakage [m^3/s], flow_in [m^3/s] (= side leakage, steady):
+        from the film solution for the mesh models, None for the closed forms and the table
+    solution : the :class:`FilmSolution` at equilibrium (mesh models) or None
+    model, iterations : the film model and the number of force evaluations
+    """
+
+    eps: float
+    attitude: float
+    state: JournalState
+    load: tuple
+    film_force: tuple
+    sommerfeld: float
+    film_min: float
+    film_min_angle: float
+    friction_force: float
+    friction_coefficient: float
+    power_loss: float
+    pressure_max: float | None
+    side_leakage: float | None
+    flow_in: float | None
+    solution: FilmSolution | None
+    model: str
+    iterations: int
+
+
+def _load_vector(load, direction):
+    if direction is None:
+        try:
+            wx, wy = (check_finite("load", v) for v in load)
+        except TypeError:
+            raise ValueError(f"load must be a vector (W_x, W_y) [N], or a magnitude with "
+                             f"direction=angle [rad], got {load!r}") from None
+    else:
+        W = check_finite("load", load)
+        a = check_finite("direction", direction)
+        wx, wy = W * math.cos(a), W * math.sin(a)
+    if wx == 0.0 and wy == 0.0:
+        raise ValueError("load must be non-zero: an unloaded journal sits at the centre")
+    return wx, wy
+
+
+def equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
+                direction: float | None = None, eps_max: float = EPS_MAX,
+                rtol: float = 1e-13, **options) -> Equilibrium:
+    """Where the journal sits under a steady ``load`` at speed ``omega``.
+
+    Parameters
+    ----------
+    bearing : :class:`Bearing`
+    load : (W_x, W_y) [N], the external force on the journal the film carries (inertial
+        frame); or its magnitude [N] with ``direction`` [rad]
+    omega : journal speed relative to the bearing [rad/s], non-zero
+    model : film model name (:data:`bearingfem.models.FILM_MODELS`); ``options`` its
+        options, e.g. ``n_theta=120, n_z=20, element="P2", cavitation="reynolds"``
+    eps_max : largest eccentricity ratio searched, in (0, 1)
+    rtol : relative tolerance on eps (relative, so light loads, eps ~ 1e-8, stay exact)
+    """
+    m = film_model(model)
+    opts = m.options(options)
+    wx, wy = _load_vector(load, direction)
+    W = math.hypot(wx, wy)
+    omega = check_finite("omega", omega)
+    if omega == 0.0:
+        raise ValueError("omega must be non-zero [rad/s]: without rotation a film carries "
+                         "no steady load")
+    eps_max = check_finite("eps_max", eps_max)
+    if not 0.0 < eps_max < 1.0:
+        raise ValueError(f"eps_max must lie in (0, 1), got {eps_max!r}")
+    calls = [0]
+
+    def force(eps):
+        calls[0] += 1
+        return m.force(bearing, JournalState(eps, omega=omega), **opts)
+
+    f_max = math.hypot(*force(eps_max))
+    if not f_max >= W:
+        raise ValueError(f"load {W:.6g} N exceeds what the film carries before contact: "
+                         f"{f_max:.6g} N at eps_max = {eps_max:g} ({model} model)")
+    eps = brentq(lambda e: math.hypot(*force(e)) - W, 0.0, eps_max, xtol=1e-300, rtol=rtol)
+    f_r, f_t = force(eps)
+    # turn the eccentricity so that the film force points opposite the load
+    gamma = math.atan2(-wy, -wx) - math.atan2(f_t, f_r)
+    gamma = math.atan2(math.sin(gamma), math.cos(gamma))
+    state = JournalState(eps, omega=omega, gamma=gamma)
+    c, s = math.cos(gamma), math.sin(gamma)
+    film_force = (f_r * c - f_t * s, f_r * s + f_t * c)
+    sol = _film_solution(model, bearing, state, opts)
+    friction = petroff_friction(bearing, eps, omega, f_t)
+    return Equilibrium(
+        eps=eps, attitude=math.atan2(f_t, -f_r), state=state, load=(wx, wy),
+        film_force=film_force, sommerfeld=sommerfeld_number(bearing, W, omega),
+        film_min=bearing.clearance * (1.0 - eps),
+        film_min_angle=float(np.mod(gamma, 2.0 * math.pi)),
+        friction_force=friction, friction_coefficient=friction / W,
+        power_loss=abs(friction * bearing.radius * omega),
+        pressure_max=None if sol is None else sol.pressure_max,
+        side_leakage=None if sol is None else sol.side_leakage,
+        flow_in=None if sol is None else sol.side_leakage,
+        solution=sol, model=model, iterations=calls[0])
+
+
+def _film_solution(model, bearing, state, opts):
+    """The film at equilibrium, for the models that have one (same mesh and cavitation)."""
+    if model == "fem":
+        return solve_reynolds(bearing, state, opts["n_theta"], opts["n_z"], opts["element"],
+                              opts["cavitation"])
+    if model == "fvm":
+        return fvm_reynolds(bearing, state, opts["n_theta"], opts["n_z"], opts["cavitation"])
+    return None

@@ -1,0 +1,75 @@
+"""Export a film solution to meshio (VTU, XDMF, ...) for ParaView.
+
+Points lie on the 3-D journal surface (x = R cos alpha, y = R sin alpha, z) or, with
+``surface="unwrapped"``, on the plane (R theta, z, 0). Point data: pressure [Pa] and
+film_thickness [m]. A half-domain solve is mirrored to the whole length.
+"""
+from __future__ import annotations
+
+import meshio
+import numpy as np
+
+from .fvm import FVMGrid
+from .mesh import FilmMesh
+from .solution import FilmSolution
+
+__all__ = ["to_meshio", "write_solution"]
+
+
+def _cells_fe(mesh: FilmMesh):
+    dofs = mesh.basis.element_dofs
+    if mesh.basis.elem.__class__.__name__.endswith("P2"):
+        return "triangle6", dofs[:6].T.copy()
+    return "triangle", dofs[:3].T.copy()
+
+
+def _cells_fv(g: FVMGrid):
+    nt, nz = g.n_theta, g.n_z
+    i, j = np.meshgrid(np.arange(nt), np.arange(nz - 1), indexing="ij")
+    i1 = (i + 1) % nt if g.theta0 is None else i + 1
+    keep = np.ones_like(i, bool) if g.theta0 is None else (i < nt - 1)
+    quads = np.stack([i * nz + j, i1 * nz + j, i1 * nz + j + 1, i * nz + j + 1], -1)[keep]
+    return "quad", quads.reshape(-1, 4)
+
+
+def to_meshio(sol: FilmSolution, surface: str = "journal") -> meshio.Mesh:
+    """The film as a meshio mesh (3-D journal surface or the unwrapped plane)."""
+    if surface not in ("journal", "unwrapped"):
+        raise ValueError(f"surface must be 'journal' or 'unwrapped', got {surface!r}")
+    if isinstance(sol.mesh, FilmMesh):
+        ctype, cells = _cells_fe(sol.mesh)
+    elif isinstance(sol.mesh, FVMGrid):
+        ctype, cells = _cells_fv(sol.mesh)
+    else:
+        raise ValueError("sol.mesh must be the FilmMesh or FVMGrid of the solve")
+    theta, z = np.asarray(sol.theta), np.asarray(sol.z)
+    p, h = np.asarray(sol.pressure), np.asarray(sol.film_thickness)
+    if sol.half:
+        n = len(theta)
+        theta, z = np.concatenate([theta, theta]), np.concatenate([z, -z])
+        p, h = np.concatenate([p, p]), np.concatenate([h, h])
+        mirrored = cells + n
+        if ctype == "triangle":
+            mirrored = mirrored[:, [0, 2, 1]]
+        cells = np.vstack([cells, mirrored])
+    R = sol.radius
+    if surface == "journal":
+        alpha = theta + sol.gamma + np.pi
+        pts = np.column_stack([R * np.cos(alpha), R * np.sin(alpha), z])
+        return meshio.Mesh(pts, [(ctype, cells)],
+                           point_data={"pressure": p, "film_thickness": h})
+    # Unwrapped: cells across the periodic seam would span the whole plane, so every cell
+    # gets its own vertices and seam cells are unwrapped by 2 pi.
+    th = theta[cells]
+    th = np.where((th.max(axis=1, keepdims=True) - th.min(axis=1, keepdims=True) > np.pi)
+                  & (th < np.pi), th + 2 * np.pi, th)
+    flat = cells.ravel()
+    pts = np.column_stack([R * th.ravel(), z[flat], np.zeros(flat.size)])
+    own = np.arange(flat.size).reshape(cells.shape)
+    return meshio.Mesh(pts, [(ctype, own)],
+                       point_data={"pressure": p[flat], "film_thickness": h[flat]})
+
+
+def write_solution(sol: FilmSolution, path, surface: str = "journal"):
+    """Write the film to ``path``; the format follows the suffix (.vtu, .xdmf, ...)."""
+    to_meshio(sol, surface).write(str(path))

@@ -1,0 +1,39 @@
+"""Film physics shared by every model, in the line-of-centres frame.
+
+theta is measured from the maximum film, in the sense of positive omega; z along the axis.
+The journal centre sits at e (cos gamma, sin gamma), so theta = alpha - gamma - pi for an
+inertial position angle alpha.
+
+Reynolds equation (seed Eq. 6) in dimensionless form, with H = h/c, zeta = z/R and the
+dimensional pressure p = mu (R/c)^2 P:
+
+    -div(H^3 grad P) = f,   f = 6 (omega - 2 gamma_dot) eps sin(theta) - 12 eps_dot cos(theta)
+
+P carries units of 1/s and is linear in (omega - 2 gamma_dot, eps_dot).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["film_thickness", "reynolds_source", "theta_from_inertial", "local_to_inertial"]
+
+
+def film_thickness(theta, eps, clearance=1.0):
+    """h = c (1 + eps cos theta) [m] (seed Eq. 7); dimensionless H when clearance=1."""
+    return clearance * (1.0 + eps * np.cos(theta))
+
+
+def reynolds_source(theta, eps, eps_dot, wedge_speed):
+    """Right-hand side f of -div(H^3 grad P) = f [1/s]."""
+    return 6.0 * wedge_speed * eps * np.sin(theta) - 12.0 * eps_dot * np.cos(theta)
+
+
+def theta_from_inertial(alpha, gamma):
+    """Film angle theta in [0, 2 pi) of the inertial position angle alpha."""
+    return np.mod(alpha - gamma - np.pi, 2.0 * np.pi)
+
+
+def local_to_inertial(f_r, f_t, gamma):
+    """F = F_r r_hat + F_t t_hat with r_hat = (cos g, sin g), t_hat = (-sin g, cos g)."""
+    c, s = np.cos(gamma), np.sin(gamma)
+    return f_r * c - f_t * s, f_r * s + f_t * c

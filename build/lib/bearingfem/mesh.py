@@ -1,0 +1,117 @@
+"""The unwrapped film as a finite-element mesh in (theta, zeta = z/R).
+
+theta spans one turn from ``theta0``: periodic when there is no supply line, otherwise the
+supply line sits at both theta ends and holds ambient pressure. zeta spans the whole length
+[-L/D, L/D] or, exploiting the symmetry of an aligned journal, the half [0, L/D] with a
+natural (zero-flux) condition on the mid-plane.
+"""
+from __future__ import annotations
+
+import logging
+from contextlib import contextmanager
+from dataclasses import dataclass
+from functools import lru_cache
+
+import numpy as np
+from skfem import Basis, ElementTriP1, ElementTriP2, MeshTri1, MeshTri1DG
+
+__all__ = ["FilmMesh", "film_mesh", "ELEMENTS", "MIN_N_THETA", "MIN_N_Z"]
+
+ELEMENTS = {"P1": ElementTriP1, "P2": ElementTriP2}
+#: Coarsest meshes accepted: a periodic scikit-fem mesh needs >= 3 cells around, and a
+#: film resolved by fewer than 8 cells around cannot place its pressure peak.
+MIN_N_THETA = 8
+MIN_N_Z = 2
+
+
+@dataclass(frozen=True, eq=False)
+class FilmMesh:
+    """A scikit-fem basis on the unwrapped film with its boundary dof sets.
+
+    Attributes
+    ----------
+    basis : scikit-fem ``CellBasis``
+    fixed : indices of dofs held at ambient pressure (axial ends, supply line)
+    free : the remaining dofs
+    end : dofs on the axial end(s), where side leakage leaves
+    theta, zeta : dof coordinates (theta in [theta0, theta0 + 2 pi], zeta = z/R)
+    half : True when only zeta >= 0 is meshed (results are doubled)
+    n_theta, n_z, slenderness, theta0 : the arguments the mesh was built from
+    """
+
+    basis: object
+    fixed: np.ndarray
+    free: np.ndarray
+    end: np.ndarray
+    theta: np.ndarray
+    zeta: np.ndarray
+    half: bool
+    periodic: bool
+    n_theta: int
+    n_z: int
+    slenderness: float
+    theta0: float | None
+
+    @property
+    def ndofs(self) -> int:
+        return self.basis.N
+
+
+@contextmanager
+def _quiet_skfem():
+    """scikit-fem logs that it copies large coordinate arrays to C order: harmless here."""
+    log = logging.getLogger("skfem")
+    level = log.level
+    log.setLevel(logging.ERROR)
+    try:
+        yield
+    finally:
+        log.setLevel(level)
+
+
+def _axis(n: int, lo: float, hi: float) -> np.ndarray:
+    return np.linspace(lo, hi, n + 1)
+
+
+@lru_cache(maxsize=32)
+def film_mesh(n_theta: int, n_z: int, element: str, slenderness: float,
+              theta0: float | None = None, half: bool = True) -> FilmMesh:
+    """Build (and cache) the film mesh.
+
+    Parameters
+    ----------
+    n_theta : cells around the circumference
+    n_z : cells along the whole length L (the half domain gets ceil(n_z / 2))
+    element : "P1" or "P2"
+    slenderness : L/D, the half length in units of R
+    theta0 : None for a fully periodic film; otherwise the film angle of a supply line
+    half : mesh only zeta >= 0
+    """
+    lam = float(slenderness)
+    t_lo = 0.0 if theta0 is None else float(theta0)
+    th = _axis(n_theta, t_lo, t_lo + 2.0 * np.pi)
+    if half:
+        ze = _axis(max(1, -(-n_z // 2)), 0.0, lam)
+    else:
+        ze = _axis(n_z, -lam, lam)
+    with _quiet_skfem():
+        if theta0 is None:
+            mesh = MeshTri1DG.init_tensor(th, ze, periodic=[0])
+        else:
+            mesh = MeshTri1.init_tensor(th, ze)
+        basis = Basis(mesh, ELEMENTS[element](), intorder=4 if element == "P1" else 6)
+    x = basis.doflocs
+    # Select boundary dofs by their coordinates: get_dofs(lambda) misses dofs on periodic
+    # meshes (scikit-fem 12), so the count is tested in tests/test_mesh.py.
+    tol = 1e-9 * max(1.0, lam)
+    end = np.flatnonzero(np.isclose(np.abs(x[1]), lam, rtol=0.0, atol=tol))
+    fixed = end
+    if theta0 is not None:
+        supply = np.flatnonzero(np.isclose(x[0], th[0], atol=1e-9)
+                                | np.isclose(x[0], th[-1], atol=1e-9))
+        fixed = np.union1d(end, supply)
+    free = np.setdiff1d(np.arange(basis.N), fixed)
+    return FilmMesh(basis=basis, fixed=fixed, free=free, end=end,
+                    theta=np.array(x[0]), zeta=np.array(x[1]), half=half,
+                    periodic=theta0 is None, n_theta=n_theta, n_z=n_z, slenderness=lam,
+                    theta0=theta0)

@@ -1,0 +1,99 @@
+"""Film models by name: one contract for the closed forms, the FE and FV films and the table.
+
+Every model maps (bearing, JournalState, **options) to the film force (F_r, F_t) [N] on the
+journal, declares its options with their defaults, and gives the partials of that force in
+(eps, eps_dot, w): exactly where it can (closed forms by complex step, the FE film by its
+discrete sensitivity), by central differences otherwise. The mechanism, the sweeps and the
+designer functions (:mod:`bearingfem.design`) all read models from :data:`FILM_MODELS`.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Callable, Mapping
+
+from .bearing import Bearing, JournalState
+from .differentiate import central_differences
+from .force_table import table_force
+from .fvm import fvm_force
+from .long_bearing import long_bearing_derivatives, long_bearing_exact_force, long_bearing_force
+from .reynolds import fe_force
+from .sensitivity import fe_force_derivatives
+from .short_bearing import short_bearing_derivatives, short_bearing_exact_force, short_bearing_force
+from .solution import ForceDerivatives
+
+__all__ = ["FilmModel", "FILM_MODELS", "NUMERIC_MODELS", "film_model"]
+
+
+@dataclass(frozen=True)
+class FilmModel:
+    """A film model: its force, its options with their defaults, its derivatives.
+
+    Attributes
+    ----------
+    name : the name scenes, sweeps, the command line and :mod:`bearingfem.design` use
+    force : (bearing, state, **options) -> (F_r, F_t) [N]
+    defaults : every option the model takes, with its default
+    derivatives : (bearing, state, **options) -> :class:`ForceDerivatives`, exact; None
+        means central differences of ``force``
+    numeric : solved on a mesh (its force is finite at the wall only with eps capped)
+    """
+
+    name: str
+    force: Callable
+    defaults: Mapping = field(default_factory=dict)
+    derivatives: Callable | None = None
+    numeric: bool = False
+
+    def options(self, options: Mapping | None = None) -> dict:
+        """The model's defaults updated by ``options``; unknown names raise ValueError."""
+        options = dict(options or {})
+        unknown = sorted(set(options) - set(self.defaults))
+        if unknown:
+            raise ValueError(f"{', '.join(unknown)} {'is not an option' if len(unknown) == 1 else 'are not options'} "
+                             f"of film model {self.name!r} (options: "
+                             f"{', '.join(sorted(self.defaults)) or 'none'})")
+        return {**self.defaults, **options}
+
+    def film_force(self, bearing: Bearing, state: JournalState, **options):
+        """(F_r, F_t) [N] with the model's defaults for options not given."""
+        return self.force(bearing, state, **self.options(options))
+
+    def force_derivatives(self, bearing: Bearing, state: JournalState,
+                          **options) -> ForceDerivatives:
+        """Force and its partials in (eps, eps_dot, w) (see :class:`ForceDerivatives`)."""
+        opts = self.options(options)
+        if self.derivatives is not None:
+            return self.derivatives(bearing, state, **opts)
+        return central_differences(lambda s: self.force(bearing, s, **opts), state)
+
+
+def _fem(bearing, state, n_theta=48, n_z=8, element="P1", cavitation="gumbel"):
+    return fe_force(bearing, state, n_theta, n_z, element, cavitation)[0]
+
+
+_MESH = dict(n_theta=48, n_z=8)
+FILM_MODELS = {m.name: m for m in (
+    FilmModel("short", short_bearing_force, dict(half_film="wedge", switch_speed=0.0),
+              short_bearing_derivatives),
+    FilmModel("long", long_bearing_force, {}, long_bearing_derivatives),
+    FilmModel("short-exact", short_bearing_exact_force),
+    FilmModel("long-exact", long_bearing_exact_force),
+    FilmModel("fem", _fem, dict(_MESH, element="P1", cavitation="gumbel"),
+              fe_force_derivatives, numeric=True),
+    FilmModel("fvm", fvm_force, dict(_MESH, cavitation="gumbel"), numeric=True),
+    # a table is built once, so its default mesh can be finer than a per-step solve's
+    FilmModel("fem-table", table_force, dict(n_theta=96, n_z=16, element="P1",
+                                             cavitation="gumbel", n_eps=60, n_phi=96),
+              numeric=True),
+)}
+#: Film models solved numerically: their force stays finite up to the wall only when eps is
+#: capped (scene default eps_max 0.999); the closed forms are evaluated to 1 - 1e-6.
+NUMERIC_MODELS = frozenset(name for name, m in FILM_MODELS.items() if m.numeric)
+
+
+def film_model(name: str, what: str = "model") -> FilmModel:
+    """The registered model ``name``; an unknown name raises ValueError naming ``what``."""
+    if name not in FILM_MODELS:
+        raise ValueError(f"{what} must be one of {', '.join(sorted(FILM_MODELS))}, "
+                         f"got {name!r}")
+    return FILM_MODELS[name]

@@ -1,0 +1,109 @@
+"""Nested iteration for the cavitated film: a good first active set from a coarser mesh.
+
+From a cold start, the active-set method moves the cavitation front by about one node
+layer per iteration, so its iteration count grows with the mesh. Solving first on a mesh
+half as fine in each direction (recursively, down to a few dozen dofs) and interpolating
+that pressure to the fine dofs puts the front within a layer of its place: the fine solve
+then takes two or three iterations whatever the mesh, the later ones bordered solves on
+the first factors (see :mod:`bearingfem.blocksolve`).
+
+The coarse pressures only place the next level's first set, so each coarse level does one
+solve (``COARSE_SOLVES``), started from the level below it; only the coarsest, a dense
+system, iterates to convergence.
+"""
+from __future__ import annotations
+
+from functools import lru_cache
+
+import numpy as np
+import scipy.sparse as sp
+
+from .assembly import FilmOperator, film_operator
+from .cavitation import active_set
+from .mesh import MIN_N_THETA, MIN_N_Z
+
+__all__ = ["prolongation", "coarse_level", "coarse_guess", "COARSEST_FREE_DOFS",
+           "COARSE_SOLVES"]
+
+#: Below this many free dofs a cold start is cheaper than another level.
+COARSEST_FREE_DOFS = 40
+
+#: Solves per coarse level: enough to place the next level's first cavitated set.
+COARSE_SOLVES = 1
+
+
+def _grid(mesh):
+    """The (theta, zeta) tensor grid of a P1 mesh and the dof at each grid node."""
+    theta, zeta = mesh.theta, mesh.zeta
+    if mesh.periodic:
+        # the seam's dofs may sit at theta = 2 pi: wrap them to 0
+        tkey = np.mod(theta, 2 * np.pi)
+        tkey[np.isclose(tkey, 2 * np.pi)] = 0.0
+    else:
+        tkey = theta
+    th_u = np.unique(np.round(tkey, 12))
+    ze_u = np.unique(np.round(zeta, 12))
+    i = np.searchsorted(th_u, np.round(tkey, 12))
+    j = np.searchsorted(ze_u, np.round(zeta, 12))
+    dof_at = np.full((len(th_u), len(ze_u)), -1)
+    dof_at[i, j] = np.arange(len(theta))
+    if (dof_at < 0).any():
+        raise ValueError("prolongation needs the vertex dofs of a tensor-product P1 mesh")
+    if mesh.periodic:   # close the loop for interpolation across the seam
+        th_u = np.append(th_u, th_u[0] + 2 * np.pi)
+        dof_at = np.vstack([dof_at, dof_at[:1]])
+    return th_u, ze_u, dof_at
+
+
+def _cell(nodes, x):
+    """Index of the grid interval holding x and the local coordinate in it (clipped)."""
+    k = np.clip(np.searchsorted(nodes, x, side="right") - 1, 0, len(nodes) - 2)
+    s = np.clip((x - nodes[k]) / (nodes[k + 1] - nodes[k]), 0.0, 1.0)
+    return k, s
+
+
+def prolongation(mesh, theta: np.ndarray, zeta: np.ndarray) -> sp.csr_matrix:
+    """Sparse bilinear interpolation from the dofs of a P1 ``mesh`` to points (theta, zeta)."""
+    th_u, ze_u, dof_at = _grid(mesh)
+    t = np.asarray(theta, float)
+    if mesh.periodic:
+        t = np.mod(t - th_u[0], 2 * np.pi) + th_u[0]
+    i, s = _cell(th_u, t)
+    j, u = _cell(ze_u, np.asarray(zeta, float))
+    rows = np.repeat(np.arange(len(t)), 4)
+    cols = np.column_stack([dof_at[i, j], dof_at[i + 1, j], dof_at[i, j + 1],
+                            dof_at[i + 1, j + 1]]).ravel()
+    vals = np.column_stack([(1 - s) * (1 - u), s * (1 - u), (1 - s) * u, s * u]).ravel()
+    return sp.csr_matrix((vals, (rows, cols)), shape=(len(t), len(mesh.theta)))
+
+
+@lru_cache(maxsize=32)
+def coarse_level(op: FilmOperator) -> tuple[FilmOperator, sp.csr_matrix] | None:
+    """The P1 operator on a mesh half as fine as ``op``'s and the interpolation from its
+    dofs to ``op``'s free dofs; None when ``op`` is coarse enough for a cold start."""
+    m = op.mesh
+    if len(m.free) <= COARSEST_FREE_DOFS:
+        return None
+    n_theta = max(MIN_N_THETA, m.n_theta // 2)
+    n_z = max(MIN_N_Z, m.n_z // 2)
+    coarse = film_operator(n_theta, n_z, "P1", m.slenderness, m.theta0, m.half)
+    if coarse.mesh.ndofs >= m.ndofs:   # already at the coarsest mesh
+        return None
+    return coarse, prolongation(coarse.mesh, m.theta[m.free], m.zeta[m.free])
+
+
+def coarse_guess(op: FilmOperator, state, tol: float = 1e-10) -> np.ndarray | None:
+    """Cavitated pressure from the coarser levels, interpolated to ``op``'s free dofs
+    (None when ``op`` is itself the coarsest level). ``state``: a JournalState."""
+    level = coarse_level(op)
+    if level is None:
+        return None
+    coarse, prolong = level
+    free = coarse.mesh.free
+    b = coarse.load(state.eps, state.eps_dot, state.wedge_speed)[free]
+    P0 = coarse_guess(coarse, state, tol)
+    res = active_set(coarse.free_stiffness(state.eps), b, P0=P0, tol=tol,
+                     max_iter=100 if P0 is None else COARSE_SOLVES)
+    P = np.zeros(coarse.mesh.ndofs)
+    P[free] = res.pressure
+    return prolong @ P

@@ -1,0 +1,181 @@
+"""Finite-element Reynolds solve: film -> mesh -> assembly -> cavitation solve -> forces."""
+from __future__ import annotations
+
+import numpy as np
+
+from .assembly import FilmOperator, film_operator
+from .multilevel import coarse_guess
+from .bearing import Bearing, JournalState
+from .cavitation import LCPResult, active_set, psor
+from .linsolve import solve_spd
+from .film import local_to_inertial, theta_from_inertial
+from .mesh import ELEMENTS, MIN_N_THETA, MIN_N_Z
+from .solution import FilmSolution
+from .validation import (CAVITATION, METHODS, check_choice, check_inputs, check_int,
+                         check_supply_angle)
+
+__all__ = ["solve_reynolds", "fe_operator", "fe_pressure", "fe_force"]
+
+SHEAR = ("full", "none")
+
+
+def fe_operator(bearing: Bearing, state: JournalState, n_theta=120, n_z=20, element="P1",
+                supply_angle=None, half=True) -> FilmOperator:
+    """The cached film operator for this bearing and mesh (supply line in the film frame)."""
+    theta0 = None
+    if supply_angle is not None:   # rounded: it is part of the operator cache key
+        theta0 = float(np.round(theta_from_inertial(supply_angle, state.gamma), 12))
+    return film_operator(int(n_theta), int(n_z), element, bearing.slenderness, theta0, bool(half))
+
+
+def fe_pressure(op: FilmOperator, state: JournalState, cavitation="reynolds",
+                method="active-set", tol=1e-10, active0=None, colours=None,
+                factor=None) -> LCPResult:
+    """Dimensionless nodal pressure P (p = mu (R/c)^2 P) on all dofs, ambient on fixed ones.
+
+    For "gumbel" the returned field is the unconstrained (full-Sommerfeld) solution; the
+    half-Sommerfeld clip is applied where pressure is used. ``active0`` and ``factor``
+    (from the result of a nearby state on the same operator) warm-start the solve.
+    """
+    free = op.mesh.free
+    b = op.load(state.eps, state.eps_dot, state.wedge_speed)[free]
+    K = op.free_stiffness(state.eps)
+    P = np.zeros(op.mesh.ndofs)
+    if not np.any(b):
+        # No wedge and no squeeze: ambient everywhere (avoids 0/0 in residuals).
+        return LCPResult(P, 0, 0.0, True, np.zeros(op.mesh.ndofs, bool), factor)
+    if cavitation == "reynolds":
+        if method == "psor":
+            res = psor(K, b, tol=tol, colours=colours)
+        else:
+            P0 = None if active0 is not None else coarse_guess(op, state, tol)
+            a0 = None if active0 is None else np.asarray(active0, bool)[free]
+            res = active_set(K, b, active0=a0, P0=P0, tol=tol, factor=factor)
+        P[free] = res.pressure
+        active = np.zeros(op.mesh.ndofs, bool)
+        active[free] = res.active
+        return LCPResult(P, res.iterations, res.residual, res.converged, active, res.factor,
+                         res.factorisations)
+    P[free], factor, fresh = solve_spd(K, b, factor)
+    return LCPResult(P, 1, 0.0, True, np.zeros(op.mesh.ndofs, bool), factor, int(fresh))
+
+
+def _qp_fields(op: FilmOperator, P: np.ndarray):
+    """Pressure and its theta-derivative at the quadrature points (elements x points)."""
+    f = op.mesh.basis.interpolate(P)
+    return np.asarray(f), np.asarray(f.grad[0])
+
+
+def _integrated_force(op: FilmOperator, P: np.ndarray, clip: bool):
+    """(integral of P cos theta, integral of P sin theta) over the meshed film."""
+    if not clip:
+        return float(op.b_cos @ P), float(op.b_sin @ P)
+    Pq = np.maximum(op.at_quadrature(P), 0.0) * op.qp_weight
+    return float(np.sum(Pq * np.cos(op.qp_theta))), float(np.sum(Pq * np.sin(op.qp_theta)))
+
+
+def fe_force(bearing: Bearing, state: JournalState, n_theta=60, n_z=10, element="P1",
+             cavitation="gumbel", method="active-set", half=True, warm: LCPResult | None = None):
+    """(F_r, F_t) [N] and the :class:`LCPResult`: the light path used in time integration.
+
+    Pass the previous call's result as ``warm`` (same mesh, nearby state): its cavitated
+    set and factorisation start this solve.
+    """
+    op = fe_operator(bearing, state, n_theta, n_z, element, None, half)
+    a0, factor = (None, None) if warm is None else (warm.active, warm.factor)
+    if a0 is not None and (a0.shape != (op.mesh.ndofs,) or not a0.any()):
+        a0 = None
+    res = fe_pressure(op, state, cavitation, method, active0=a0, factor=factor)
+    ic, is_ = _integrated_force(op, res.pressure, cavitation == "gumbel")
+    k = bearing.force_scale * (2.0 if op.mesh.half else 1.0)
+    return (k * ic, k * is_), res
+
+
+def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z: int = 20,
+                   element: str = "P1", cavitation: str = "reynolds", *,
+                   method: str = "active-set", supply_angle=None, half: bool = True,
+                   tol: float = 1e-10, cavitated_shear: str = "full") -> FilmSolution:
+    """Solve the Reynolds equation on a finite-element mesh of the unwrapped film.
+
+    Parameters
+    ----------
+    bearing, state : :class:`Bearing`, :class:`JournalState`
+    n_theta : cells around the circumference (>= 8)
+    n_z : cells along the length (>= 2); with ``half=True`` only z >= 0 is meshed,
+        with ceil(n_z/2) cells, which the symmetry of an aligned journal allows
+    element : "P1" or "P2" triangles
+    cavitation : "none" (full Sommerfeld), "gumbel" (negative pressure set to ambient after
+        the solve), "reynolds" (Swift-Stieber complementarity, projected iteration)
+    method : "active-set" (default) or "psor" for ``cavitation="reynolds"``
+    supply_angle : inertial angle [rad] of an axial supply line at ambient pressure, or None
+        for a fully periodic film
+    tol : tolerance of the projected iteration
+    cavitated_shear : "full" - Couette shear mu omega R / h acts over the whole cavitated
+        area (a full film of oil that carries no pressure); "none" - no shear there
+
+    Returns
+    -------
+    FilmSolution
+    """
+    check_inputs(bearing, state)
+    n_theta = check_int("n_theta", n_theta, MIN_N_THETA)
+    n_z = check_int("n_z", n_z, MIN_N_Z)
+    check_choice("element", element, tuple(ELEMENTS))
+    check_choice("cavitation", cavitation, CAVITATION)
+    check_choice("method", method, METHODS)
+    check_choice("cavitated_shear", cavitated_shear, SHEAR)
+    supply_angle = check_supply_angle(supply_angle)
+    if not (tol > 0.0 and np.isfinite(tol)):
+        raise ValueError(f"tol must be a positive finite number, got {tol!r}")
+
+    op = fe_operator(bearing, state, n_theta, n_z, element, supply_angle, half)
+    res = fe_pressure(op, state, cavitation, method, tol)
+    P = res.pressure
+    clip = cavitation != "none"
+    Pn = np.maximum(P, 0.0) if clip else P
+    mult = 2.0 if op.mesh.half else 1.0
+    ic, is_ = _integrated_force(op, P, cavitation == "gumbel")
+    f_r, f_t = bearing.force_scale * mult * ic, bearing.force_scale * mult * is_
+
+    # Diagnostics at quadrature points of the film.
+    Pq, dPq = _qp_fields(op, Pn)
+    wq, th = op.qp_weight, op.qp_theta
+    Hq = 1.0 + state.eps * np.cos(th)
+    pmax = float(np.max(np.abs(Pn), initial=0.0))
+    wet = Pq > 1e-12 * pmax if clip else np.ones_like(Pq, bool)
+    area = float(np.sum(wq))
+    cav_fraction = float(np.sum(wq[~wet]) / area) if clip else 0.0
+    shear_cav = 1.0 if cavitated_shear == "full" else 0.0
+    couette = state.omega / Hq * np.where(wet, 1.0, shear_cav)
+    poiseuille = np.where(wet, 0.5 * Hq * dPq, 0.0)
+    mu, R, c = bearing.viscosity, bearing.radius, bearing.clearance
+    friction = mu * R ** 3 / c * mult * float(np.sum(wq * (couette + poiseuille)))
+    # Side leakage: the consistent boundary flux is the residual at the end dofs. With
+    # cavitation, positive residuals there are complementarity multipliers of the
+    # cavitated zone, not flow, so only outflow (negative residual) counts.
+    r = op.stiffness(state.eps) @ Pn - op.load(state.eps, state.eps_dot, state.wedge_speed)
+    r_end = r[op.mesh.end]
+    if clip:
+        r_end = np.minimum(r_end, 0.0)
+    leakage = -c * R ** 2 / 12.0 * mult * float(np.sum(r_end))
+
+    i = int(np.argmax(Pn))
+    theta_i = float(op.mesh.theta[i])
+    return FilmSolution(
+        force_local=(f_r, f_t),
+        force=local_to_inertial(f_r, f_t, state.gamma),
+        pressure=bearing.pressure_scale * Pn,
+        theta=op.mesh.theta, z=R * op.mesh.zeta,
+        film_thickness=c * (1.0 + state.eps * np.cos(op.mesh.theta)),
+        pressure_max=bearing.pressure_scale * float(Pn[i]),
+        pressure_max_theta=float(np.mod(theta_i, 2 * np.pi)),
+        pressure_max_z=float(R * op.mesh.zeta[i]),
+        pressure_max_angle=float(np.mod(theta_i + state.gamma + np.pi, 2 * np.pi)),
+        film_min=c * (1.0 - state.eps),
+        cavitated_fraction=cav_fraction,
+        friction_force=friction, friction_torque=friction * R,
+        side_leakage=leakage,
+        iterations=res.iterations, residual=res.residual, converged=res.converged,
+        method=f"fem-{element}" + (f"/{method}" if cavitation == "reynolds" else ""),
+        cavitation=cavitation, n_dofs=op.mesh.ndofs, half=op.mesh.half,
+        radius=R, gamma=state.gamma, mesh=op.mesh)

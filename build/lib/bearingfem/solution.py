@@ -1,0 +1,91 @@
+"""The result of a film solve: forces, fields and diagnostics, cheap to keep."""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+__all__ = ["FilmSolution", "ForceDerivatives"]
+
+
+@dataclass(frozen=True, eq=False)
+class FilmSolution:
+    """A solved film (finite element or finite volume).
+
+    Forces act on the journal. Fields are given at the solver's nodes (FE dofs or FV cell
+    centres): ``theta`` from the maximum film, ``z`` axial [m]. A half-domain solve stores
+    the half z >= 0 only; integrals already cover the whole bearing.
+
+    Attributes
+    ----------
+    force_local : (F_r, F_t) [N] along r_hat (eccentricity) and t_hat
+    force : (F_x, F_y) [N] inertial frame
+    pressure : gauge pressure [Pa] at the nodes
+    film_thickness : h [m] at the nodes
+    pressure_max : [Pa]; pressure_max_theta, pressure_max_z its location
+    pressure_max_angle : its inertial angle [rad]
+    film_min : minimum film thickness c (1 - eps) [m]
+    cavitated_fraction : share of the film area at ambient (zero gauge) pressure
+    friction_force : shear force on the journal surface opposing positive omega [N]
+    friction_torque : friction_force * R [N m]
+    side_leakage : volume flow out of both axial ends [m^3/s]
+    iterations, residual, converged : record of the (cavitation) solve
+    radius, gamma : journal radius [m] and attitude angle [rad] of the solved state
+    """
+
+    force_local: tuple
+    force: tuple
+    pressure: np.ndarray
+    theta: np.ndarray
+    z: np.ndarray
+    film_thickness: np.ndarray
+    pressure_max: float
+    pressure_max_theta: float
+    pressure_max_z: float
+    pressure_max_angle: float
+    film_min: float
+    cavitated_fraction: float
+    friction_force: float
+    friction_torque: float
+    side_leakage: float
+    iterations: int
+    residual: float
+    converged: bool
+    method: str
+    cavitation: str
+    n_dofs: int
+    half: bool
+    radius: float             # journal radius R [m]
+    gamma: float              # attitude angle of the solved state [rad]
+    mesh: object = field(default=None, repr=False)   # FilmMesh (FE) or grid shape (FV)
+
+    def summary(self) -> str:
+        fr, ft = self.force_local
+        return (f"{self.method}/{self.cavitation}: F_r={fr:.6g} N F_t={ft:.6g} N "
+                f"p_max={self.pressure_max:.6g} Pa h_min={self.film_min:.3g} m "
+                f"cav={self.cavitated_fraction:.3f} it={self.iterations} res={self.residual:.1e}")
+
+
+@dataclass(frozen=True)
+class ForceDerivatives:
+    """A film force in the local frame and its first derivatives at one journal state.
+
+    The film force depends on the state through eps, eps_dot and the wedge speed
+    w = omega - 2 gamma_dot only (gamma just turns the frame), so these three partials
+    are all a linearisation needs (see :mod:`bearingfem.design.coefficients`).
+
+    Attributes
+    ----------
+    force : (F_r, F_t) [N]
+    d_eps : d(F_r, F_t)/d eps [N]
+    d_eps_dot : d(F_r, F_t)/d eps_dot [N s]
+    d_wedge : d(F_r, F_t)/d w [N s]
+    method : how the partials were found ("analytic", "exact-sensitivity",
+        "central-differences")
+    """
+
+    force: tuple
+    d_eps: tuple
+    d_eps_dot: tuple
+    d_wedge: tuple
+    method: str

@@ -1,0 +1,345 @@
+"""Parameter sweeps on Dask: the product of parameter lists, one atomic file per case.
+
+A sweep file (TOML)::
+
+    name = "capacity"
+    kind = "film"                 # "film": one film solve per case; "mechanism": one run
+    [base]                        # fixed parameters
+    eps = 0.6
+    model = "fem"
+    [vary]                        # every combination of these lists is a case
+    length_ratio = [0.25, 0.5, 1.0]
+    eps = [0.3, 0.6, 0.9]
+
+Cases run on a Dask cluster: a local one (``workers`` processes) by default, or an
+existing one given its scheduler address. The client writes each finished case at once
+to ``DIR/cases/case-<hash>.json`` (atomically: written beside, then renamed), so an
+interrupted sweep loses nothing and a rerun skips what is done. ``DIR/results.csv`` and
+``DIR/summary.png`` gather every finished case.
+"""
+from __future__ import annotations
+
+import hashlib
+import itertools
+import json
+import math
+import os
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from mechanism.lubrication import FILM_MODELS
+from mechanism.scene import read_toml
+from bearingfem.tables import write_csv
+
+__all__ = ["Sweep", "load_sweep", "parse_sweep", "sweep_cases", "case_id", "run_case",
+           "run_sweep", "gather"]
+
+# parameter -> (default, kind of value); units: m, Pa s, rad/s, 1/s
+FILM_PARAMS = {
+    "diameter": (0.020, float), "length_ratio": (1.0, float), "clearance": (20e-6, float),
+    "viscosity": (0.0117, float), "omega": (250.0, float), "eps": (0.6, float),
+    "eps_dot": (0.0, float), "model": ("fem", str), "n_theta": (96, int), "n_z": (16, int),
+    "element": ("P1", str), "cavitation": ("gumbel", str),
+}
+MECHANISM_PARAMS = {
+    "scene": ("scenes/paper-short-fem.toml", str), "turns": (2.0, float),
+    "length_ratio": (None, float), "clearance": (None, float), "viscosity": (None, float),
+    "crank_speed": (None, float), "model": (None, str), "n_theta": (None, int),
+    "n_z": (None, int), "element": (None, str), "cavitation": (None, str),
+}
+#: "design": the steady film at eps, its Raimondi & Boyd groups and its dimensionless
+#: stiffness and damping in the load frame (bearingfem.design) - a design chart's points
+DESIGN_PARAMS = {k: v for k, v in FILM_PARAMS.items() if k != "eps_dot"}
+KINDS = {"film": FILM_PARAMS, "mechanism": MECHANISM_PARAMS, "design": DESIGN_PARAMS}
+
+
+@dataclass(frozen=True)
+class Sweep:
+    name: str
+    kind: str
+    base: dict = field(default_factory=dict)
+    vary: dict = field(default_factory=dict)
+
+
+def _checked(kind, key, value, where):
+    params = KINDS[kind]
+    if key not in params:
+        raise ValueError(f"{where}.{key} is not a {kind} sweep parameter "
+                         f"(parameters: {', '.join(sorted(params))})")
+    typ = params[key][1]
+    if typ is str:
+        if not isinstance(value, str):
+            raise ValueError(f"{where}.{key} must be a string, got {value!r}")
+        if key == "model" and kind != "mechanism" and value not in FILM_MODELS:
+            raise ValueError(f"{where}.model must be one of {', '.join(sorted(FILM_MODELS))}, "
+                             f"got {value!r}")
+        return value
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+        raise ValueError(f"{where}.{key} must be a finite number, got {value!r}")
+    if typ is int and float(value) != int(value):
+        raise ValueError(f"{where}.{key} must be an integer, got {value!r}")
+    return typ(value)
+
+
+def parse_sweep(data: dict, name="sweep") -> Sweep:
+    """Validate a sweep given as a dict (the parsed TOML); errors name the key."""
+    unknown = set(data) - {"name", "kind", "base", "vary"}
+    if unknown:
+        raise ValueError(f"sweep: unknown key(s) {', '.join(sorted(unknown))} "
+                         "(keys: name, kind, base, vary)")
+    kind = data.get("kind", "film")
+    if kind not in KINDS:
+        raise ValueError(f"sweep.kind must be one of {', '.join(KINDS)}, got {kind!r}")
+    base = {k: _checked(kind, k, v, "sweep.base") for k, v in data.get("base", {}).items()}
+    vary = {}
+    for k, v in data.get("vary", {}).items():
+        if not isinstance(v, list) or not v:
+            raise ValueError(f"sweep.vary.{k} must be a non-empty list, got {v!r}")
+        vary[k] = [_checked(kind, k, x, "sweep.vary") for x in v]
+    if not vary:
+        raise ValueError("sweep.vary must list at least one parameter")
+    return Sweep(str(data.get("name", name)), kind, base, vary)
+
+
+def load_sweep(path) -> Sweep:
+    return parse_sweep(read_toml(path, "sweep"), Path(path).stem)
+
+
+def sweep_cases(sweep: Sweep) -> list[dict]:
+    """Every case: the base parameters updated by one combination of the varied lists."""
+    keys = list(sweep.vary)
+    return [{**sweep.base, **dict(zip(keys, combo))}
+            for combo in itertools.product(*(sweep.vary[k] for k in keys))]
+
+
+def case_id(kind: str, params: dict) -> str:
+    """Stable name of a case: the same parameters give the same file on every rerun."""
+    text = json.dumps({"kind": kind, **params}, sort_keys=True)
+    return "case-" + hashlib.sha1(text.encode()).hexdigest()[:12]
+
+
+def run_case(kind: str, params: dict) -> dict:
+    """Compute one case (runs on a worker); returns its parameters and outputs."""
+    t0 = time.perf_counter()
+    out = {"film": _film_case, "design": _design_case, "mechanism": _mechanism_case}[kind](params)
+    return {**params, **out, "wall_s": time.perf_counter() - t0}
+
+
+def _film_case(params: dict) -> dict:
+    from bearingfem import Bearing, JournalState, fvm_reynolds, solve_reynolds
+    from mechanism.lubrication import film_force_function
+    p = {k: params.get(k, d) for k, (d, _) in FILM_PARAMS.items()}
+    D = p["diameter"]
+    b = Bearing(radius=D / 2, length=p["length_ratio"] * D, clearance=p["clearance"],
+                viscosity=p["viscosity"])
+    s = JournalState(p["eps"], p["eps_dot"], 0.0, 0.0, p["omega"])
+    out = {}
+    if p["model"] in ("fem", "fvm"):
+        sol = (solve_reynolds(b, s, p["n_theta"], p["n_z"], p["element"], p["cavitation"])
+               if p["model"] == "fem" else
+               fvm_reynolds(b, s, p["n_theta"], p["n_z"], p["cavitation"]))
+        f_r, f_t = sol.force_local
+        out.update(pressure_max=sol.pressure_max, friction_force=sol.friction_force,
+                   side_leakage=sol.side_leakage, cavitated_fraction=sol.cavitated_fraction)
+    else:
+        opts = dict(n_theta=p["n_theta"], n_z=p["n_z"], element=p["element"],
+                    cavitation=p["cavitation"]) if p["model"] == "fem-table" else {}
+        f_r, f_t = film_force_function(p["model"])(b, s, **opts)
+    load = math.hypot(f_r, f_t)
+    n_rev = p["omega"] / (2 * math.pi)
+    out.update(force_r=f_r, force_t=f_t, load=load,
+               attitude_deg=math.degrees(math.atan2(f_t, -f_r)) if load else 0.0,
+               sommerfeld=(b.viscosity * n_rev * b.length * D / load * (b.radius / b.clearance) ** 2
+                           if load else math.inf))
+    return out
+
+
+def _design_case(params: dict) -> dict:
+    from bearingfem import Bearing, JournalState, fvm_reynolds, solve_reynolds
+    from bearingfem.design import (coefficients, flow_variable, friction_variable,
+                                   petroff_friction, sommerfeld_number)
+    from bearingfem.models import FILM_MODELS
+    p = {k: params.get(k, d) for k, (d, _) in DESIGN_PARAMS.items()}
+    D = p["diameter"]
+    b = Bearing(radius=D / 2, length=p["length_ratio"] * D, clearance=p["clearance"],
+                viscosity=p["viscosity"])
+    s = JournalState(p["eps"], 0.0, 0.0, 0.0, p["omega"])
+    model = FILM_MODELS[p["model"]]
+    opts = {k: p[k] for k in ("n_theta", "n_z", "element", "cavitation") if k in model.defaults}
+    kc = coefficients(b, s, p["model"], frame="load", **opts)
+    k, c = kc.dimensionless()
+    f_r, f_t = model.film_force(b, s, **opts)
+    load = math.hypot(f_r, f_t)
+    out = dict(load=load, sommerfeld=sommerfeld_number(b, load, p["omega"]),
+               attitude_deg=math.degrees(math.atan2(f_t, -f_r)),
+               friction_variable=friction_variable(
+                   b, petroff_friction(b, p["eps"], p["omega"], f_t), load),
+               coefficient_method=kc.method)
+    if p["model"] in ("fem", "fvm"):
+        sol = (solve_reynolds(b, s, p["n_theta"], p["n_z"], p["element"], p["cavitation"])
+               if p["model"] == "fem" else
+               fvm_reynolds(b, s, p["n_theta"], p["n_z"], p["cavitation"]))
+        out["flow_variable"] = flow_variable(b, sol.side_leakage, p["omega"])
+    for name, m in (("K", k), ("C", c)):
+        for (i, j), v in np.ndenumerate(m):
+            out[f"{name}{i + 1}{j + 1}"] = float(v)
+    return out
+
+
+def _precheck(kind: str, params: dict) -> None:
+    if kind == "mechanism":
+        return
+    from bearingfem import Bearing, JournalState
+    p = {k: params.get(k, d) for k, (d, _) in FILM_PARAMS.items()}
+    try:
+        D = p["diameter"]
+        Bearing(radius=D / 2, length=p["length_ratio"] * D, clearance=p["clearance"],
+                viscosity=p["viscosity"])
+        JournalState(p["eps"], p["eps_dot"], 0.0, 0.0, p["omega"])
+    except ValueError as err:
+        raise ValueError(f"sweep case {params}: {err}") from None
+
+
+def _mechanism_case(params: dict) -> dict:
+    from dataclasses import replace
+    from mechanism import load_scene, simulate
+    from mechanism.scene import Lubrication
+    sc = load_scene(params.get("scene", MECHANISM_PARAMS["scene"][0]))
+    turns = params.get("turns", MECHANISM_PARAMS["turns"][0])
+    sc = replace(sc, run=replace(sc.run, turns=turns, record_from_turn=max(0.0, turns - 1)))
+    b = sc.bearing
+    if "length_ratio" in params:
+        b = replace(b, length=params["length_ratio"] * 2 * b.radius)
+    b = replace(b, **{k: params[k] for k in ("clearance", "viscosity") if k in params})
+    sc = replace(sc, bearing=b, crank_speed=params.get("crank_speed", sc.crank_speed))
+    opts = {k: params[k] for k in ("n_theta", "n_z", "element", "cavitation") if k in params}
+    if sc.lubrication is not None and ("model" in params or opts):
+        lub = sc.lubrication
+        model = params.get("model", lub.model)
+        keep = {} if model != lub.model else lub.options
+        sc = replace(sc, lubrication=Lubrication(model, {**keep, **opts}, lub.eps_max))
+    r = simulate(sc, progress=False)
+    row = r.summary_row()
+    return {k: v for k, v in row.items() if k != "scene"}
+
+
+@dataclass(frozen=True)
+class SweepResult:
+    """What a call of :func:`run_sweep` did; ``rows`` are all finished cases on disk."""
+
+    rows: list
+    computed: int
+    skipped: int
+    failed: dict              # case id -> error message
+    interrupted: bool
+    wall_time: float
+
+
+def _write_atomic(path: Path, data: dict) -> None:
+    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+    tmp.write_text(json.dumps(data, indent=1, default=float))
+    os.replace(tmp, path)     # atomic: a reader sees the old file or the whole new one
+
+
+def run_sweep(sweep: Sweep, out, scheduler: str | None = None, workers: int = 2,
+              progress: bool | None = None) -> SweepResult:
+    """Run the cases not yet on disk on Dask; write each as it finishes; gather.
+
+    ``scheduler``: address of a running Dask scheduler (``tcp://host:8786``); without it a
+    local cluster of ``workers`` single-threaded processes is started and closed.
+    """
+    from dask.distributed import Client, LocalCluster, as_completed
+    from mechanism.progress import Progress
+
+    if scheduler is None and (isinstance(workers, bool) or not isinstance(workers, int)
+                              or workers < 1):
+        raise ValueError(f"workers must be an integer >= 1, got {workers!r}")
+    cases = sweep_cases(sweep)
+    for params in cases:                  # physical ranges, before any work starts
+        _precheck(sweep.kind, params)
+    out = Path(out)
+    cases_dir = out / "cases"
+    cases_dir.mkdir(parents=True, exist_ok=True)
+    todo = {}
+    for params in cases:
+        cid = case_id(sweep.kind, params)
+        if not (cases_dir / f"{cid}.json").exists():
+            todo[cid] = params
+    skipped = len(cases) - len(todo)
+    failed, computed, interrupted = {}, 0, False
+    t0 = time.perf_counter()
+    bar = Progress(max(len(todo), 1), f"{sweep.name}: {len(todo)} cases", progress)
+    if todo:
+        cluster = None
+        if scheduler is None:
+            cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                                   dashboard_address=None)
+        client = Client(scheduler if scheduler is not None else cluster)
+        try:
+            futures = {client.submit(run_case, sweep.kind, params, key=cid, pure=False): cid
+                       for cid, params in todo.items()}
+            for fut in as_completed(futures):
+                cid = futures[fut]
+                try:
+                    _write_atomic(cases_dir / f"{cid}.json", fut.result())
+                    computed += 1
+                except Exception as err:          # one bad case must not lose the others
+                    failed[cid] = f"{type(err).__name__}: {err}"
+                    _write_atomic(cases_dir / f"{cid}.error.json",
+                                  {**todo[cid], "error": failed[cid]})
+                bar.update(computed + len(failed))
+        except KeyboardInterrupt:
+            interrupted = True
+        finally:
+            client.close()
+            if cluster is not None:
+                cluster.close()
+    bar.close(f"{computed} computed, {skipped} already done, {len(failed)} failed"
+              + (", interrupted" if interrupted else ""))
+    rows = gather(out, sweep)
+    return SweepResult(rows, computed, skipped, failed, interrupted, time.perf_counter() - t0)
+
+
+def gather(out, sweep: Sweep | None = None) -> list[dict]:
+    """Collect every finished case of ``out`` into ``results.csv`` (+ ``summary.png``)."""
+    out = Path(out)
+    rows = [json.loads(p.read_text()) for p in sorted((out / "cases").glob("case-*.json"))
+            if not p.name.endswith(".error.json")]
+    if rows:
+        write_csv(rows, out / "results.csv")
+        if sweep is not None:
+            plot_summary(rows, sweep, out / "summary.png")
+    return rows
+
+
+def plot_summary(rows, sweep: Sweep, path) -> None:
+    """First varied parameter on x; the main output on y; one line per other combination."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    x_key = next(iter(sweep.vary))
+    y_key = {"film": "load", "design": "sommerfeld", "mechanism": "min_film_um"}[sweep.kind]
+    others = [k for k in sweep.vary if k != x_key]
+    groups = {}
+    for r in rows:
+        if y_key in r and r[y_key] != "":
+            groups.setdefault(tuple(r.get(k) for k in others), []).append(r)
+    fig, ax = plt.subplots(figsize=(7, 4.5), constrained_layout=True)
+    for g, rs in sorted(groups.items(), key=lambda kv: str(kv[0])):
+        rs = sorted(rs, key=lambda r: r[x_key])
+        label = ", ".join(f"{k}={v}" for k, v in zip(others, g)) or None
+        ax.plot([r[x_key] for r in rs], [r[y_key] for r in rs], "o-", label=label)
+    ax.set_xlabel(x_key)
+    ax.set_ylabel({"load": "load capacity |F| [N]", "min_film_um": "min film [um]",
+                   "sommerfeld": "Sommerfeld number S"}[y_key])
+    if sweep.kind != "mechanism":
+        ax.set_yscale("log")
+    ax.set_title(f"sweep {sweep.name}: {len(rows)} cases")
+    ax.grid(True, alpha=0.3)
+    if len(groups) > 1:
+        ax.legend(fontsize=7)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)

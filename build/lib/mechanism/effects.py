@@ -1,0 +1,141 @@
+"""Joint effects: each turns the joint's kinematic state into a force on the pin.
+
+One interface, ``effect.force(k) -> (F_x, F_y)`` [N] in the inertial frame, for a
+:class:`JointKinematics` ``k``. The simulator sums the effects a scene lists and nothing
+else, so an effect the scene does not call for costs nothing.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+from bearingfem import Bearing, JournalState
+from bearingfem.film import local_to_inertial
+
+from .lubrication import film_force_function
+
+__all__ = ["JointKinematics", "FilmEffect", "HertzContact", "CoulombFriction", "LinearSpring",
+           "hertz_stiffness"]
+
+
+@dataclass(frozen=True)
+class JointKinematics:
+    """Pin relative to the bearing (slider): eccentricity vector, its rate, and the
+    journal's angular speed relative to the bearing (the rod's, counter-clockwise)."""
+
+    e_x: float
+    e_y: float
+    de_x: float
+    de_y: float
+    omega: float
+
+    @property
+    def e(self) -> float:
+        return math.hypot(self.e_x, self.e_y)
+
+
+@dataclass
+class FilmEffect:
+    """Hydrodynamic film force from a bearingfem model (see :mod:`mechanism.lubrication`).
+
+    Beyond ``eps_max`` the film is evaluated at eps_max along the same direction: the force
+    stays finite and continuous when an integrator's trial step crosses eps = 1 (the
+    contact effect, or the simulator's stop at eps = 1, takes over there).
+    """
+
+    bearing: Bearing
+    model: str
+    options: dict = field(default_factory=dict)
+    eps_max: float = 0.999
+    solves: int = 0
+
+    def __post_init__(self):
+        self._f = film_force_function(self.model)
+
+    def force(self, k: JointKinematics):
+        s = JournalState.from_eccentricity(k.e_x, k.e_y, k.de_x, k.de_y,
+                                           self.bearing.clearance, k.omega, self.eps_max)
+        self.solves += 1
+        f_r, f_t = self._f(self.bearing, s, **self.options)
+        return local_to_inertial(f_r, f_t, s.gamma)
+
+
+def hertz_stiffness(radius, clearance, young_modulus, poisson):
+    """Generalised stiffness [N/m^1.5] of a journal (R) in a bush (R + c), both steel-like:
+    K = 4 / (3 (s_i + s_j)) sqrt(R_i R_j / (R_i - R_j)), s = (1 - nu^2) / E."""
+    s = (1.0 - poisson ** 2) / young_modulus
+    Ri, Rj = radius + clearance, radius
+    return 4.0 / (3.0 * 2.0 * s) * math.sqrt(Ri * Rj / (Ri - Rj))
+
+
+@dataclass
+class HertzContact:
+    """Hertz contact with Lankarani-Nikravesh hysteresis damping when e > c.
+
+    F_n = K d^n (1 + 3 (1 - c_e^2) / 4 * d_dot / v_impact), d = e - c, acting along -r_hat
+    on the pin. ``v_impact`` is the approach speed at contact onset, set by the simulator's
+    contact event; ``min_impact_speed`` guards a start in contact.
+    """
+
+    clearance: float
+    stiffness: float
+    restitution: float = 0.9
+    exponent: float = 1.5
+    min_impact_speed: float = 1e-4
+    v_impact: float = 1e-4
+    evaluations: int = 0
+
+    def normal_force(self, k: JointKinematics) -> float:
+        e = k.e
+        d = e - self.clearance
+        if d <= 0.0:
+            return 0.0
+        self.evaluations += 1
+        d_dot = (k.e_x * k.de_x + k.e_y * k.de_y) / e
+        v0 = max(self.v_impact, self.min_impact_speed)
+        damp = 1.0 + 0.75 * (1.0 - self.restitution ** 2) * d_dot / v0
+        return max(self.stiffness * d ** self.exponent * damp, 0.0)
+
+    def force(self, k: JointKinematics):
+        fn = self.normal_force(k)
+        if fn == 0.0:
+            return 0.0, 0.0
+        e = k.e
+        return -fn * k.e_x / e, -fn * k.e_y / e
+
+
+@dataclass
+class CoulombFriction:
+    """Coulomb friction at the contact, regularised: F_t = -mu_f F_n tanh(v_t / v_reg).
+
+    v_t = e gamma_dot + omega R is the sliding speed of the pin surface over the bush at the
+    contact point, along t_hat.
+    """
+
+    contact: HertzContact
+    coefficient: float
+    radius: float
+    v_reg: float = 1e-4
+
+    def force(self, k: JointKinematics):
+        fn = self.contact.normal_force(k)
+        if fn == 0.0:
+            return 0.0, 0.0
+        e = k.e
+        tx, ty = -k.e_y / e, k.e_x / e
+        v_t = k.de_x * tx + k.de_y * ty + k.omega * self.radius
+        ft = -self.coefficient * fn * math.tanh(v_t / self.v_reg)
+        return ft * tx, ft * ty
+
+
+@dataclass
+class LinearSpring:
+    """A linear spring-damper joint, F = -k e - d e_dot: as k grows the clearance joint
+    tends to the ideal joint (a verification device, not a bearing model)."""
+
+    stiffness: float
+    damping: float = 0.0
+
+    def force(self, k: JointKinematics):
+        return (-self.stiffness * k.e_x - self.damping * k.de_x,
+                -self.stiffness * k.e_y - self.damping * k.de_y)

@@ -1,0 +1,62 @@
+"""Figures of mechanism runs (matplotlib, Agg: no display needed)."""
+from __future__ import annotations
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+from .result import SimulationResult  # noqa: E402
+
+__all__ = ["plot_run", "plot_comparison"]
+
+
+def _crank_deg(r: SimulationResult):
+    """Crank angle [deg] from the start of the first recorded turn (round-off safe)."""
+    base = np.floor(r.crank_angle[0] / (2 * np.pi) + 1e-9)
+    return np.degrees(r.crank_angle - 2 * np.pi * base)
+
+
+def plot_comparison(results, labels, clearance, title="", path=None):
+    """Seed Figs. 2-7 style: film thickness, orbit, forces X/Y, crank speed, slider
+    acceleration, one curve per result, against crank angle over the recorded turn."""
+    fig, ax = plt.subplots(2, 3, figsize=(15, 8.5))
+    styles = ["-", "--", ":", "-."]
+    for i, (r, lab) in enumerate(zip(results, labels)):
+        if len(r.t) == 0:
+            continue
+        ls = styles[i % len(styles)]
+        deg = _crank_deg(r)
+        lab = lab + (" (partial)" if r.partial else "")
+        ax[0, 0].plot(deg, r.film_min * 1e6, ls, label=lab)
+        ax[0, 1].plot(r.e_x / clearance, r.e_y / clearance, ls, label=lab)
+        ax[0, 2].plot(deg, r.force_x, ls, label=lab)
+        ax[1, 0].plot(deg, r.force_y, ls, label=lab)
+        ax[1, 1].plot(deg, r.crank_speed, ls, label=lab)
+        ax[1, 2].plot(deg, r.slider_acceleration, ls, label=lab)
+    circle = np.linspace(0, 2 * np.pi, 361)
+    ax[0, 1].plot(np.cos(circle), np.sin(circle), "k", lw=0.8)
+    ax[0, 1].set_aspect("equal")
+    ax[0, 1].set(xlabel="e_x / c (slider axis)", ylabel="e_y / c", title="pin orbit in the clearance")
+    ax[0, 0].set(ylabel="minimum film thickness [um]", title="film thickness")
+    ax[0, 2].set(ylabel="joint force on pin F_x [N]", title="force, X (slider axis)")
+    ax[1, 0].set(ylabel="joint force on pin F_y [N]", title="force, Y")
+    ax[1, 1].set(ylabel="crank speed [rad/s]", title="crank angular speed")
+    ax[1, 2].set(ylabel="slider acceleration [m/s^2]", title="slider acceleration")
+    for a in (ax[0, 0], ax[0, 2], ax[1, 0], ax[1, 1], ax[1, 2]):
+        a.set_xlabel("crank angle in the recorded turn [deg]")
+        a.set_xlim(0, 360)
+        a.grid(alpha=0.3)
+    ax[0, 1].grid(alpha=0.3)
+    ax[0, 0].legend(fontsize=8)
+    fig.suptitle(title)
+    fig.tight_layout()
+    if path is not None:
+        fig.savefig(path, dpi=110)
+        plt.close(fig)
+    return fig
+
+
+def plot_run(r: SimulationResult, clearance, path=None):
+    return plot_comparison([r], [r.scene], clearance or 1.0, title=r.scene, path=path)

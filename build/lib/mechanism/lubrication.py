@@ -1,0 +1,37 @@
+"""Where the mechanism takes its film models: bearingfem's registry, plus memory for "fem".
+
+Every model is a function (bearing, JournalState, **options) -> (F_r, F_t) on the journal
+(:data:`bearingfem.models.FILM_MODELS`). The mechanism also uses bearingfem's input types
+(``Bearing``, ``JournalState``) in ``parameters``, ``scene`` and ``film_history``; only the
+film forces come through here.
+"""
+from __future__ import annotations
+
+from bearingfem.models import FILM_MODELS, NUMERIC_MODELS, film_model
+from bearingfem.reynolds import fe_force
+
+__all__ = ["FILM_MODELS", "NUMERIC_MODELS", "MODEL_OPTIONS", "film_force_function"]
+
+#: Options each model accepts in a scene's lubrication table (besides "model", "eps_max").
+MODEL_OPTIONS = {name: set(m.defaults) for name, m in FILM_MODELS.items()}
+
+
+def _warm_fem():
+    """The "fem" model with memory: each solve starts from the previous one's cavitated set
+    and factorisation (consecutive states of an integration are close). The answer is the
+    same as a cold solve to the solver tolerance; only the cost changes."""
+    last = {}
+
+    def fem(bearing, state, n_theta=48, n_z=8, element="P1", cavitation="gumbel"):
+        key = (bearing.slenderness, n_theta, n_z, element, cavitation)
+        force, last[key] = fe_force(bearing, state, n_theta, n_z, element, cavitation,
+                                    warm=last.get(key))
+        return force
+    return fem
+
+
+def film_force_function(model: str):
+    """The force function of ``model``; "fem" gets a fresh warm-started solver per caller,
+    since its memory belongs to one integration."""
+    m = film_model(model, "lubrication.model")
+    return _warm_fem() if model == "fem" else m.force

@@ -1,0 +1,92 @@
+"""Simulation results: arrays over the saved time points, run statistics, saving."""
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+__all__ = ["SimulationResult", "load_result", "FIELDS"]
+
+FIELDS = ("t", "crank_angle", "crank_speed", "rod_angle", "slider_position",
+          "slider_acceleration", "eps", "e_x", "e_y", "film_min", "force_x", "force_y")
+UNITS = {"t": "s", "crank_angle": "rad", "crank_speed": "rad/s", "rod_angle": "rad",
+         "slider_position": "m", "slider_acceleration": "m/s^2", "eps": "1", "e_x": "m",
+         "e_y": "m", "film_min": "m", "force_x": "N", "force_y": "N"}
+
+
+@dataclass(frozen=True, eq=False)
+class SimulationResult:
+    """One run. Arrays (SI, rad) over the saved time points; ``force_x``/``force_y`` are the
+    joint's total force on the pin (inertial frame); ``film_min`` = c (1 - eps), clipped at 0
+    in contact (where eps > 1 measures the penetration). ``partial`` is True when the run
+    stopped early; ``message`` says why and when."""
+
+    t: np.ndarray
+    crank_angle: np.ndarray
+    crank_speed: np.ndarray
+    rod_angle: np.ndarray
+    slider_position: np.ndarray
+    slider_acceleration: np.ndarray
+    eps: np.ndarray
+    e_x: np.ndarray
+    e_y: np.ndarray
+    film_min: np.ndarray
+    force_x: np.ndarray
+    force_y: np.ndarray
+    scene: str = ""
+    partial: bool = False
+    message: str = "completed"
+    stats: dict = field(default_factory=dict)
+
+    def summary(self) -> str:
+        s = self.stats
+        lines = [f"scene {self.scene}: {self.message}" + (" (PARTIAL)" if self.partial else "")]
+        if len(self.t):
+            lines.append(
+                f"  wall {s.get('wall_time', 0):.2f} s, steps {s.get('steps', 0)}, rhs "
+                f"{s.get('rhs_evals', 0)}, film solves {s.get('film_solves', 0)}, "
+                f"contact evals {s.get('contact_evals', 0)}")
+            lines.append(
+                f"  peak eps {np.max(self.eps):.4f}, min film {np.min(self.film_min) * 1e6:.3f} um, "
+                f"crank speed {np.min(self.crank_speed):.2f}-{np.max(self.crank_speed):.2f} rad/s, "
+                f"peak |slider acc| {np.max(np.abs(self.slider_acceleration)):.1f} m/s^2")
+        return "\n".join(lines)
+
+    def summary_row(self, ideal_speed=None) -> dict:
+        """The run in one table row (units in the names); ``ideal_speed`` (the ideal
+        mechanism's crank speed at ``crank_angle``, rad/s) adds the largest departure."""
+        if len(self.t) == 0:
+            return {"scene": self.scene, "status": self.message}
+        s = self.stats
+        return {"scene": self.scene,
+                "status": "partial: " + self.message if self.partial else "completed",
+                "wall_time_s": round(s["wall_time"], 2), "steps": s["steps"],
+                "rhs_evals": s["rhs_evals"], "film_solves": s["film_solves"],
+                "peak_eps": round(float(np.max(self.eps)), 5),
+                "min_film_um": round(float(np.min(self.film_min)) * 1e6, 4),
+                "crank_speed_min": round(float(np.min(self.crank_speed)), 2),
+                "crank_speed_max": round(float(np.max(self.crank_speed)), 2),
+                "max_dspeed_vs_ideal": "" if ideal_speed is None else round(float(np.max(
+                    np.abs(self.crank_speed - ideal_speed))), 3),
+                "peak_slider_acc": round(float(np.max(np.abs(self.slider_acceleration))), 1)}
+
+    def save(self, directory) -> Path:
+        """Write ``result.npz`` (arrays) and ``result.json`` (units, stats, message)."""
+        d = Path(directory)
+        d.mkdir(parents=True, exist_ok=True)
+        np.savez_compressed(d / "result.npz", **{k: getattr(self, k) for k in FIELDS})
+        meta = {"scene": self.scene, "partial": self.partial, "message": self.message,
+                "units": UNITS, "stats": self.stats}
+        (d / "result.json").write_text(json.dumps(meta, indent=2, default=float))
+        return d
+
+
+def load_result(directory) -> SimulationResult:
+    d = Path(directory)
+    arr = np.load(d / "result.npz")
+    meta = json.loads((d / "result.json").read_text())
+    return SimulationResult(**{k: arr[k] for k in FIELDS}, scene=meta["scene"],
+                            partial=meta["partial"], message=meta["message"],
+                            stats=meta["stats"])
