@@ -7,7 +7,7 @@ Cell-centred grid in (theta, zeta = z/R) over the whole length. Integrating
     C_E = H_e^3 dzeta/dtheta,  C_N = H_n^3 dtheta/dzeta (likewise W, S),
     B   = -6 (omega - 2 gamma_dot) (H_e - H_w) dzeta - 12 eps_dot (sin th_e - sin th_w) dzeta,
 
-which is seed Eq. 15 with mu and the wedge term's dz made consistent (NOTES item 5). The
+which is seed Eq. 15 with mu and the wedge term's dz made consistent (seed-corrections §5). The
 axial ends and a supply line hold P = 0 on the face, half a cell from the centre.
 The matrix is assembled by vectorised index arithmetic; cavitation reuses
 :mod:`bearingfem.cavitation` on the same complementarity problem.

@@ -1,7 +1,7 @@
 """Long-bearing (Pinkus-Sternlicht) model: closed form (seed Eq. 11-13) and exact quadrature.
 
 Dropping the axial flow, d/dtheta(H^3 dP/dtheta) = -f with P = 0 at the maximum film gives
-the corrected seed Eq. 10 (NOTES item 1: its last term is 1/(1+eps)^2):
+the corrected seed Eq. 10 (seed-corrections §1: its last term is 1/(1+eps)^2):
 
     P = 6 w eps sin(theta) (2 + eps cos theta) / ((2 + eps^2) H^2)
         + 6 (eps_dot / eps) [1/H^2 - 1/(1 + eps)^2],      w = omega - 2 gamma_dot.
@@ -43,7 +43,7 @@ def long_bearing_force(bearing: Bearing, state: JournalState):
     Written with s = 2 eps_dot (= E omega) and w = omega - 2 gamma_dot (= (1 - G) omega) so
     that omega = 0 (pure squeeze), eps_dot = 0 (E = 0, k -> infinity) and eps = 0 are
     ordinary inputs. The prefactor is mu omega R^3 L / c^2, the dimensionally consistent
-    one (NOTES item 2), and F_t carries the contract's sign (positive for omega > 0).
+    one (seed-corrections §2), and F_t carries the contract's sign (positive for omega > 0).
     """
     check_inputs(bearing, state)
     return tuple(float(np.real(f)) for f in _long_force(

@@ -12,7 +12,7 @@ GRAVITY = 9.81  # [m/s^2]
 
 @dataclass(frozen=True)
 class Mechanism:
-    """Slider-crank geometry and inertia (seed Section 2.1, Table 1; NOTES item 6).
+    """Slider-crank geometry and inertia (seed Section 2.1, Table 1; seed-corrections §6).
 
     Frame: X along the slider axis pointing up (gravity along -X), Y across it; crank
     angle q counter-clockwise from X; rod angle A clockwise, so the pin sits at

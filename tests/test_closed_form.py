@@ -1,5 +1,5 @@
 """Closed-form short and long bearings against their own pressures and an independent
-1-D finite-difference solution; finite limits (NOTES items 3, 4, 9)."""
+1-D finite-difference solution; finite limits (seed-corrections §3, §4, §9)."""
 import numpy as np
 import pytest
 from scipy.integrate import quad
@@ -83,7 +83,7 @@ def test_corrected_eq10_solves_the_long_bearing_equation(eps, eps_dot, w):
 
 
 def test_printed_eq10_is_wrong():
-    """NOTES item 1: as printed (1/(1+eps^2)^2) the pressure is not zero at theta = 0."""
+    """seed-corrections §1: as printed (1/(1+eps^2)^2) the pressure is not zero at theta = 0."""
     eps, ed = 0.5, 10.0
     printed = 6 * ed / eps * (1 / (1 + eps) ** 2 - 1 / (1 + eps ** 2) ** 2)
     assert abs(printed) > 1.0
@@ -96,7 +96,7 @@ def test_long_closed_form_equals_exact_in_steady_state(eps):
     b = table1_bearing(2.0)
     s = JournalState(eps, 0.0, 0.0, 0.0, 250.0)
     assert long_bearing_force(b, s) == pytest.approx(long_bearing_exact_force(b, s), rel=1e-9)
-    # and the classical half-Sommerfeld long-bearing load (NOTES item 2)
+    # and the classical half-Sommerfeld long-bearing load (seed-corrections §2)
     mu, R, L, c, w = b.viscosity, b.radius, b.length, b.clearance, 250.0
     fr = -12 * mu * w * R ** 3 * L * eps ** 2 / (c ** 2 * (2 + eps ** 2) * (1 - eps ** 2))
     ft = 6 * np.pi * mu * w * R ** 3 * L * eps / (c ** 2 * (2 + eps ** 2) * np.sqrt(1 - eps ** 2))
@@ -104,7 +104,7 @@ def test_long_closed_form_equals_exact_in_steady_state(eps):
 
 
 def test_long_exact_matches_one_dimensional_gumbel_solution():
-    """NOTES item 1: integrating max(p, 0) reproduces the 1-D Gumbel solution."""
+    """seed-corrections §1: integrating max(p, 0) reproduces the 1-D Gumbel solution."""
     b = table1_bearing(2.0)
     for s in (JournalState(0.6, 0.0, 0.0, 0.0, 250.0), JournalState(0.5, 20.0, 0.0, 10.0, 250.0)):
         th, P = _long_fd(s.eps, s.eps_dot, s.wedge_speed, n=20000)
@@ -132,7 +132,7 @@ def test_closed_forms_are_finite(eps, eps_dot, w):
 
 
 def test_long_closed_form_continuous_across_zero_squeeze():
-    """E = 2 eps_dot / omega changes sign: Eq. 11 and Eq. 12 must meet (NOTES item 3)."""
+    """E = 2 eps_dot / omega changes sign: Eq. 11 and Eq. 12 must meet (seed-corrections §3)."""
     b = table1_bearing(2.0)
     at = long_bearing_force(b, JournalState(0.6, 0.0, 0.0, 0.0, 250.0))
     for d in (1e-9, -1e-9):
@@ -141,7 +141,7 @@ def test_long_closed_form_continuous_across_zero_squeeze():
 
 
 def test_squeeze_separates_fixed_half_film_from_exact():
-    """NOTES item 4: radial force off by 10-60 % at |eps_dot| ~ 0.1 omega."""
+    """seed-corrections §4: radial force off by 10-60 % at |eps_dot| ~ 0.1 omega."""
     b = table1_bearing(0.2)
     for ed in (25.0, -25.0):
         s = JournalState(0.5, ed, 0.0, 0.0, 250.0)

@@ -1,5 +1,5 @@
 """Equations of motion against an independent symbolic Lagrange derivation, and the
-ideal mechanism against energy conservation and the crank-speed swing (NOTES item 11)."""
+ideal mechanism against energy conservation and the crank-speed swing (seed-corrections §11)."""
 import numpy as np
 import pytest
 import sympy as sy
@@ -86,7 +86,7 @@ def test_ideal_mechanism_conserves_energy(g):
 
 
 def test_ideal_crank_speed_swing():
-    """NOTES item 11: from TDC at 250 rad/s the crank speed swings 211-251 rad/s."""
+    """seed-corrections §11: from TDC at 250 rad/s the crank speed swings 211-251 rad/s."""
     _, _, qd = simulate_rigid(Mechanism(), 250.0, 2.0, 9.81)
     assert qd.min() == pytest.approx(211.5, abs=0.5)
     assert qd.max() == pytest.approx(251.0, abs=0.5)

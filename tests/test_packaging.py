@@ -2,6 +2,7 @@
 shipped scenes (not studies/ or benchmarks/), and its ``bearingfem`` command runs a shipped
 scene from a directory outside the checkout."""
 import os
+import shutil
 import subprocess
 import sys
 import zipfile
@@ -15,8 +16,12 @@ ROOT = Path(__file__).resolve().parent.parent
 @pytest.fixture(scope="module")
 def wheel(tmp_path_factory):
     out = tmp_path_factory.mktemp("wheel")
+    # build from a copy: an in-tree build would leave build/ in the checkout
+    src = out / "src"
+    shutil.copytree(ROOT, src, symlinks=True, ignore=shutil.ignore_patterns(
+        ".git", ".venv*", "results", "build", "*.egg-info", "__pycache__", ".pytest_cache"))
     r = subprocess.run([sys.executable, "-m", "pip", "wheel", "--no-deps", "--quiet", "-w",
-                        str(out), str(ROOT)], capture_output=True, text=True, timeout=600)
+                        str(out), str(src)], capture_output=True, text=True, timeout=600)
     assert r.returncode == 0, r.stderr[-2000:]
     return next(out.glob("bearingfem-*.whl"))
 

@@ -15,7 +15,7 @@ def test_raimondi_boyd(ld, eps, S0, phi0, f0, Q0, ratio0):
 
 
 def test_periodic_film_departs_at_low_eccentricity():
-    """NOTES item 10: a fully periodic film has a larger attitude angle at eps = 0.1-0.2
+    """seed-corrections §10: a fully periodic film has a larger attitude angle at eps = 0.1-0.2
     (L/D = 1), by up to ~4 deg, and agrees with the supplied film at high eps."""
     gaps = {}
     for eps in (0.1, 0.2, 0.9):
