@@ -61,7 +61,7 @@ class Bearing:
         return 2.0 * self.radius
 
     @property
-    def slenderness(self) -> float:
+    def length_ratio(self) -> float:
         """L/D, which is also the half length measured in journal radii (z/R)."""
         return self.length / (2.0 * self.radius)
 

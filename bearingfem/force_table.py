@@ -103,10 +103,10 @@ def _eps_nodes(n_eps: int, eps_max: float) -> np.ndarray:
     return -np.expm1(-np.linspace(0.0, -np.log1p(-eps_max), n_eps))
 
 
-def build_force_table(slenderness: float, n_theta=96, n_z=16, element="P1",
+def build_force_table(length_ratio: float, n_theta=96, n_z=16, element="P1",
                       cavitation="gumbel", n_eps=60, n_phi=96, eps_max=0.999) -> ForceTable:
     """Tabulate the dimensionless force from FE solves (see the module docstring)."""
-    op = film_operator(n_theta, n_z, element, float(slenderness), None, True)
+    op = film_operator(n_theta, n_z, element, float(length_ratio), None, True)
     free = op.mesh.free
     eps = _eps_nodes(n_eps, eps_max)
     phi = np.linspace(0.0, 2 * np.pi, n_phi, endpoint=False)
@@ -140,13 +140,13 @@ def build_force_table(slenderness: float, n_theta=96, n_z=16, element="P1",
         g[0, i] = mult * np.einsum("pij,ij->p", Pq, w * cq)
         g[1, i] = mult * np.einsum("pij,ij->p", Pq, w * snq)
     g *= ((1.0 - eps) ** SCALE_EXPONENT)[None, :, None]
-    key = _key(slenderness, n_theta, n_z, element, cavitation, n_eps, n_phi, eps_max)
+    key = _key(length_ratio, n_theta, n_z, element, cavitation, n_eps, n_phi, eps_max)
     return ForceTable(key, eps, phi, g[0], g[1])
 
 
-def _key(slenderness, n_theta, n_z, element, cavitation, n_eps, n_phi, eps_max) -> dict:
+def _key(length_ratio, n_theta, n_z, element, cavitation, n_eps, n_phi, eps_max) -> dict:
     from . import __version__
-    return dict(format=FORMAT, version=__version__, slenderness=float(slenderness),
+    return dict(format=FORMAT, version=__version__, length_ratio=float(length_ratio),
                 n_theta=int(n_theta), n_z=int(n_z), element=str(element),
                 cavitation=str(cavitation), n_eps=int(n_eps), n_phi=int(n_phi),
                 eps_max=float(eps_max))
@@ -171,7 +171,7 @@ def _save(path: Path, table: ForceTable) -> None:
 
 
 @lru_cache(maxsize=16)
-def force_table(slenderness: float, n_theta=96, n_z=16, element="P1", cavitation="gumbel",
+def force_table(length_ratio: float, n_theta=96, n_z=16, element="P1", cavitation="gumbel",
                 n_eps=60, n_phi=96, eps_max=0.999) -> ForceTable:
     """The table for these inputs: from memory, else from disk, else built and saved."""
     check_int("n_theta", n_theta, MIN_N_THETA)
@@ -182,12 +182,12 @@ def force_table(slenderness: float, n_theta=96, n_z=16, element="P1", cavitation
     check_int("n_phi", n_phi, 16)
     if not 0.5 <= eps_max <= 0.999:
         raise ValueError(f"eps_max of the table must lie in [0.5, 0.999], got {eps_max!r}")
-    key = _key(slenderness, n_theta, n_z, element, cavitation, n_eps, n_phi, eps_max)
+    key = _key(length_ratio, n_theta, n_z, element, cavitation, n_eps, n_phi, eps_max)
     name = hashlib.sha1(json.dumps(key, sort_keys=True).encode()).hexdigest()[:16]
     path = cache_dir() / f"force-table-{name}.npz"
     table = _load(path, key)
     if table is None:
-        table = build_force_table(slenderness, n_theta, n_z, element, cavitation,
+        table = build_force_table(length_ratio, n_theta, n_z, element, cavitation,
                                   n_eps, n_phi, eps_max)
         try:
             _save(path, table)
@@ -204,7 +204,7 @@ def table_force(bearing, state, n_theta=96, n_z=16, element="P1", cavitation="gu
     speed = float(np.hypot(vx, vy))
     if speed == 0.0:
         return 0.0, 0.0
-    table = force_table(bearing.slenderness, n_theta, n_z, element, cavitation,
+    table = force_table(bearing.length_ratio, n_theta, n_z, element, cavitation,
                         n_eps, n_phi, eps_max)
     g_r, g_t = table.evaluate(state.eps, np.arctan2(vy, vx))
     k = bearing.force_scale * speed

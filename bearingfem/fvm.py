@@ -38,7 +38,7 @@ class FVMGrid:
 
     n_theta: int
     n_z: int
-    slenderness: float
+    length_ratio: float
     theta0: float | None
     theta_c: np.ndarray   # (n_theta,)
     theta_f: np.ndarray   # (n_theta + 1,) faces
@@ -60,8 +60,8 @@ class FVMGrid:
 
 
 @lru_cache(maxsize=32)
-def fvm_grid(n_theta: int, n_z: int, slenderness: float, theta0: float | None) -> FVMGrid:
-    lam = float(slenderness)
+def fvm_grid(n_theta: int, n_z: int, length_ratio: float, theta0: float | None) -> FVMGrid:
+    lam = float(length_ratio)
     t0 = 0.0 if theta0 is None else float(theta0)
     dth = 2 * np.pi / n_theta
     dze = 2 * lam / n_z
@@ -135,7 +135,7 @@ def _pressure(g: FVMGrid, state: JournalState, cavitation: str, method="active-s
 def fvm_force(bearing: Bearing, state: JournalState, n_theta: int = 48, n_z: int = 8,
               cavitation: str = "gumbel"):
     """(F_r, F_t) [N] only: the light path used inside time integration."""
-    g = fvm_grid(n_theta, n_z, bearing.slenderness, None)
+    g = fvm_grid(n_theta, n_z, bearing.length_ratio, None)
     P = _pressure(g, state, cavitation).pressure
     if cavitation != "none":
         P = np.maximum(P, 0.0)
@@ -165,7 +165,7 @@ def fvm_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z:
     supply_angle = check_supply_angle(supply_angle)
     theta0 = None if supply_angle is None else float(theta_from_inertial(supply_angle,
                                                                          state.gamma))
-    g = fvm_grid(n_theta, n_z, bearing.slenderness, theta0)
+    g = fvm_grid(n_theta, n_z, bearing.length_ratio, theta0)
     res = _pressure(g, state, cavitation, method, tol)
     P = res.pressure if cavitation == "none" else np.maximum(res.pressure, 0.0)
 

@@ -36,7 +36,7 @@ class FilmMesh:
     end : dofs on the axial end(s), where side leakage leaves
     theta, zeta : dof coordinates (theta in [theta0, theta0 + 2 pi], zeta = z/R)
     half : True when only zeta >= 0 is meshed (results are doubled)
-    n_theta, n_z, slenderness, theta0 : the arguments the mesh was built from
+    n_theta, n_z, length_ratio, theta0 : the arguments the mesh was built from
     """
 
     basis: object
@@ -49,7 +49,7 @@ class FilmMesh:
     periodic: bool
     n_theta: int
     n_z: int
-    slenderness: float
+    length_ratio: float
     theta0: float | None
 
     @property
@@ -74,7 +74,7 @@ def _axis(n: int, lo: float, hi: float) -> np.ndarray:
 
 
 @lru_cache(maxsize=32)
-def film_mesh(n_theta: int, n_z: int, element: str, slenderness: float,
+def film_mesh(n_theta: int, n_z: int, element: str, length_ratio: float,
               theta0: float | None = None, half: bool = True) -> FilmMesh:
     """Build (and cache) the film mesh.
 
@@ -83,11 +83,11 @@ def film_mesh(n_theta: int, n_z: int, element: str, slenderness: float,
     n_theta : cells around the circumference
     n_z : cells along the whole length L (the half domain gets ceil(n_z / 2))
     element : "P1" or "P2"
-    slenderness : L/D, the half length in units of R
+    length_ratio : L/D, the half length in units of R
     theta0 : None for a fully periodic film; otherwise the film angle of a supply line
     half : mesh only zeta >= 0
     """
-    lam = float(slenderness)
+    lam = float(length_ratio)
     t_lo = 0.0 if theta0 is None else float(theta0)
     th = _axis(n_theta, t_lo, t_lo + 2.0 * np.pi)
     if half:
@@ -113,5 +113,5 @@ def film_mesh(n_theta: int, n_z: int, element: str, slenderness: float,
     free = np.setdiff1d(np.arange(basis.N), fixed)
     return FilmMesh(basis=basis, fixed=fixed, free=free, end=end,
                     theta=np.array(x[0]), zeta=np.array(x[1]), half=half,
-                    periodic=theta0 is None, n_theta=n_theta, n_z=n_z, slenderness=lam,
+                    periodic=theta0 is None, n_theta=n_theta, n_z=n_z, length_ratio=lam,
                     theta0=theta0)

@@ -86,7 +86,7 @@ def coarse_level(op: FilmOperator) -> tuple[FilmOperator, sp.csr_matrix] | None:
         return None
     n_theta = max(MIN_N_THETA, m.n_theta // 2)
     n_z = max(MIN_N_Z, m.n_z // 2)
-    coarse = film_operator(n_theta, n_z, "P1", m.slenderness, m.theta0, m.half)
+    coarse = film_operator(n_theta, n_z, "P1", m.length_ratio, m.theta0, m.half)
     if coarse.mesh.ndofs >= m.ndofs:   # already at the coarsest mesh
         return None
     return coarse, prolongation(coarse.mesh, m.theta[m.free], m.zeta[m.free])

@@ -25,7 +25,7 @@ def fe_operator(bearing: Bearing, state: JournalState, n_theta=120, n_z=20, elem
     theta0 = None
     if supply_angle is not None:   # rounded: it is part of the operator cache key
         theta0 = float(np.round(theta_from_inertial(supply_angle, state.gamma), 12))
-    return film_operator(int(n_theta), int(n_z), element, bearing.slenderness, theta0, bool(half))
+    return film_operator(int(n_theta), int(n_z), element, bearing.length_ratio, theta0, bool(half))
 
 
 def fe_pressure(op: FilmOperator, state: JournalState, cavitation="reynolds",

@@ -28,7 +28,7 @@ def short_bearing_pressure(bearing: Bearing, state: JournalState, theta, z):
     f = 6.0 * state.wedge_speed * state.eps * np.sin(th) - 12.0 * state.eps_dot * np.cos(th)
     H = 1.0 + state.eps * np.cos(th)
     zeta = np.asarray(z, float) / bearing.radius
-    return bearing.pressure_scale * f * (bearing.slenderness ** 2 - zeta ** 2) / (2 * H ** 3)
+    return bearing.pressure_scale * f * (bearing.length_ratio ** 2 - zeta ** 2) / (2 * H ** 3)
 
 
 def short_bearing_force(bearing: Bearing, state: JournalState, *, half_film: str = "wedge",

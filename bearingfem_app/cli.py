@@ -34,7 +34,9 @@ def _simulate(args):
 
 def _bearing(args):
     from bearingfem import Bearing
-    return Bearing(radius=args.diameter / 2, length=args.ld * args.diameter,
+    from bearingfem.bearing import check_positive
+    check_positive("--length-ratio/--ld (L/D)", args.length_ratio)   # name what was typed
+    return Bearing(radius=args.diameter / 2, length=args.length_ratio * args.diameter,
                    clearance=args.clearance, viscosity=args.viscosity)
 
 
@@ -105,7 +107,7 @@ def _equilibrium(args):
             ("side leakage", eq.side_leakage, "m^3/s"),
             ("inflow", eq.flow_in, "m^3/s")]
     print(f"equilibrium, {model} {opts or ''}: load {args.load:g} N at "
-          f"{args.direction:g} deg, {args.omega:g} rad/s, L/D {args.ld:g}")
+          f"{args.direction:g} deg, {args.omega:g} rad/s, L/D {args.length_ratio:g}")
     _print_rows(rows)
     _write_numbers(out, rows)
     return 0
@@ -237,7 +239,8 @@ def _frames(args):
 
 
 def _bearing_args(p):
-    p.add_argument("--ld", type=float, default=1.0, help="L/D (default 1.0)")
+    p.add_argument("--length-ratio", "--ld", dest="length_ratio", type=float, default=1.0,
+                   help="L/D, the bearing's length over its diameter")
     p.add_argument("--omega", type=float, default=250.0, help="journal speed [rad/s]")
     p.add_argument("--diameter", type=float, default=0.020, help="[m] (seed Table 1)")
     p.add_argument("--clearance", type=float, default=20e-6, help="[m] (seed Table 1)")

@@ -23,7 +23,7 @@ def _warm_fem():
     last = {}
 
     def fem(bearing, state, n_theta=48, n_z=8, element="P1", cavitation="gumbel"):
-        key = (bearing.slenderness, n_theta, n_z, element, cavitation)
+        key = (bearing.length_ratio, n_theta, n_z, element, cavitation)
         force, last[key] = fe_force(bearing, state, n_theta, n_z, element, cavitation,
                                     warm=last.get(key))
         return force

@@ -60,7 +60,7 @@ def run(out: Path, names=PAPER, turns=None, progress=None):
             continue
         c = results[chosen[0]][0].bearing.clearance
         plot_comparison([results[n][1] for n in chosen], [n.split("-")[-1] for n in chosen], c,
-                        title=f"{bearing} bearing (L/D = {results[chosen[0]][0].bearing.slenderness:g})"
+                        title=f"{bearing} bearing (L/D = {results[chosen[0]][0].bearing.length_ratio:g})"
                               f" - seed {figs}", path=out / f"paper-{bearing}.png")
     write_csv(rows, out / "summary.csv", COLUMNS)
     print("\n" + markdown_table(rows))

@@ -24,7 +24,7 @@ def test_help_lists_commands():
 @pytest.mark.parametrize("args,needle", [
     (("solve", "--eps", "1.5"), "eps must lie in [0, 1)"),
     (("solve", "--cavitation", "swift"), "cavitation must be one of"),
-    (("solve", "--ld", "-1"), "length must be positive"),
+    (("solve", "--ld", "-1"), "--length-ratio/--ld (L/D) must be positive"),
     (("simulate", "no/such/scene.toml", "-o", "x"), "scene file not found"),
     (("sweep", "no/such/sweep.toml", "-o", "x"), "sweep file not found: no/such/sweep.toml"),
 ])

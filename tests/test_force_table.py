@@ -37,7 +37,7 @@ def test_nodes_reproduce_direct_solves():
     """At a grid node the table is the FE force of the state with that (eps, phi'), built
     through JournalState and the load - a second path through the code."""
     b = table1_bearing(0.5)
-    t = force_table(b.slenderness, 48, 8, "P1", "gumbel", 12, 32)
+    t = force_table(b.length_ratio, 48, 8, "P1", "gumbel", 12, 32)
     for i, j in [(0, 3), (5, 17), (11, 30)]:
         eps, phi = t.eps[i], t.phi[j]
         eps_dot = np.cos(phi) / squeeze_weight(eps)
@@ -122,7 +122,7 @@ def test_disk_cache_reuses_and_rebuilds_when_stale(monkeypatch, tmp_path):
                                        (dict(cavitation="elrod"), "cavitation must be one of"),
                                        (dict(eps_max=0.999999), r"eps_max of the table")])
 def test_bad_table_inputs_are_named(kw, match):
-    args = dict(slenderness=0.5, n_theta=24, n_z=4)
+    args = dict(length_ratio=0.5, n_theta=24, n_z=4)
     args.update(kw)
     with pytest.raises(ValueError, match=match):
         force_table(**args)
