@@ -20,8 +20,6 @@ from .mesh import FilmMesh, film_mesh
 
 __all__ = ["FilmOperator", "film_operator"]
 
-_BINOM3 = (1.0, 3.0, 3.0, 1.0)
-
 
 def _stiffness_form(k: int) -> BilinearForm:
     @BilinearForm

@@ -12,7 +12,7 @@ from scipy.integrate import solve_ivp
 from .dynamics import _gravity_terms, _mass_terms
 from .parameters import Mechanism
 
-__all__ = ["rigid_kinematics", "rigid_rhs", "simulate_rigid"]
+__all__ = ["rigid_kinematics", "rigid_rhs", "integrate_rigid", "simulate_rigid"]
 
 
 def rigid_kinematics(m: Mechanism, q):
@@ -46,15 +46,25 @@ def rigid_rhs(m: Mechanism, g=0.0, torque=0.0, slider_force=0.0):
     return rhs
 
 
+def integrate_rigid(m: Mechanism, crank_angle: float, crank_speed: float, turns: float,
+                    g=0.0, torque=0.0, slider_force=0.0, method="DOP853", rtol=1e-10,
+                    atol=1e-10):
+    """solve_ivp's dense solution of the ideal mechanism from (crank_angle, crank_speed)
+    until the crank has turned ``turns`` times (a terminal event, whatever the speed)."""
+    q_end = crank_angle + 2 * np.pi * turns
+    ev = lambda t, y: y[0] - q_end
+    ev.terminal, ev.direction = True, 1
+    # the event ends the run; the span only bounds it (6x the time at the initial speed)
+    t_max = 6.0 * 2 * np.pi * turns / crank_speed
+    return solve_ivp(rigid_rhs(m, g, torque, slider_force), (0.0, t_max),
+                     [crank_angle, crank_speed], method=method, rtol=rtol, atol=atol,
+                     dense_output=True, events=ev)
+
+
 def simulate_rigid(m: Mechanism, crank_speed=250.0, turns=5.0, g=0.0, rtol=1e-10,
                    atol=1e-10, samples_per_turn=720):
     """Integrate the ideal mechanism from top dead centre (q = 0) for ``turns`` turns."""
-    q_end = 2 * np.pi * turns
-    T_est = q_end / crank_speed * 1.5
-    ev = lambda t, y: y[0] - q_end
-    ev.terminal, ev.direction = True, 1
-    sol = solve_ivp(rigid_rhs(m, g), (0.0, T_est * 4), [0.0, crank_speed], method="DOP853",
-                    rtol=rtol, atol=atol, dense_output=True, events=ev)
+    sol = integrate_rigid(m, 0.0, crank_speed, turns, g, rtol=rtol, atol=atol)
     t = np.linspace(0.0, sol.t[-1], int(samples_per_turn * turns) + 1)
     q, qd = sol.sol(t)
     return t, q, qd

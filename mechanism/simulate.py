@@ -23,7 +23,7 @@ from .effects import (CoulombFriction, FilmEffect, HertzContact, JointKinematics
 from .parameters import GRAVITY
 from .progress import Progress
 from .result import FIELDS, SimulationResult
-from .rigid import rigid_kinematics, rigid_rhs
+from .rigid import integrate_rigid, rigid_kinematics, rigid_rhs
 from .scene import Scene
 
 __all__ = ["simulate", "build_effects"]
@@ -247,15 +247,11 @@ def _simulate_ideal(scene: Scene, progress=None) -> SimulationResult:
     m = scene.mechanism
     g = GRAVITY if scene.gravity else 0.0
     run = scene.run
-    q_end = scene.crank_angle + 2 * math.pi * run.turns
     f = rigid_rhs(m, g, scene.crank_torque, scene.slider_force)
-    ev = lambda t, y: y[0] - q_end
-    ev.terminal, ev.direction = True, 1
     start = time.perf_counter()
-    turn = 2 * math.pi / scene.crank_speed
-    sol = solve_ivp(f, (0.0, 4 * run.turns * turn), [scene.crank_angle, scene.crank_speed],
-                    method=_METHODS[run.integrator], rtol=min(run.rtol, 1e-8), atol=1e-10,
-                    dense_output=True, events=ev)
+    sol = integrate_rigid(m, scene.crank_angle, scene.crank_speed, run.turns, g,
+                          scene.crank_torque, scene.slider_force, _METHODS[run.integrator],
+                          rtol=min(run.rtol, 1e-8), atol=1e-10)
     wall = time.perf_counter() - start
     t = _output_times(scene, lambda tt: sol.sol(tt)[0], 0.0, sol.t[-1])
     q, qd = sol.sol(t)
