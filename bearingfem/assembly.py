@@ -1,10 +1,10 @@
 """Film operator: everything a state needs, assembled once per mesh.
 
-With H = 1 + eps cos(theta), H^3 = sum_k C(3,k) eps^k cos^k(theta), so the stiffness of
--div(H^3 grad P) is K(eps) = sum_k C(3,k) eps^k K_k with four matrices K_k that do not
-depend on the state. They share one sparsity pattern; a state only forms a linear
-combination of their value arrays (no re-assembly, no loop over elements). The load is
-likewise b = 6 (omega - 2 gamma_dot) eps b_sin - 12 eps_dot b_cos.
+With H = 1 + eps cos(theta), H^3 = sum_k a_k(eps) cos^k(theta) (:mod:`bearingfem.film`),
+so the stiffness of -div(H^3 grad P) is K(eps) = sum_k a_k(eps) K_k with four matrices K_k
+that do not depend on the state. They share one sparsity pattern; a state only forms a
+linear combination of their value arrays (no re-assembly, no loop over elements). The load
+is likewise b = a_sin b_sin + a_cos b_cos with the film's source coefficients.
 """
 from __future__ import annotations
 
@@ -16,6 +16,7 @@ import scipy.sparse as sp
 from skfem import BilinearForm, LinearForm
 from skfem.helpers import dot, grad
 
+from .film import cubed_thickness_coefficients, source_coefficients
 from .mesh import FilmMesh, film_mesh
 
 __all__ = ["FilmOperator", "film_operator"]
@@ -75,10 +76,11 @@ class FilmOperator:
         n = self.mesh.ndofs
         return (n, n)
 
-    def values(self, eps: float) -> np.ndarray:
-        e = float(eps)
+    def values(self, eps: float, derivative: bool = False) -> np.ndarray:
+        """Values of K(eps) on the pattern (of dK/deps with ``derivative``)."""
+        a = cubed_thickness_coefficients(eps, derivative)
         t = self.terms
-        return t[0] + (3.0 * e) * t[1] + (3.0 * e * e) * t[2] + (e ** 3) * t[3]
+        return a[0] * t[0] + a[1] * t[1] + a[2] * t[2] + a[3] * t[3]
 
     def stiffness(self, eps: float) -> sp.csr_matrix:
         return sp.csr_matrix((self.values(eps), self.indices, self.indptr), shape=self.shape)
@@ -96,8 +98,9 @@ class FilmOperator:
         return Q.T.reshape(P.shape[:-1] + self.qp_theta.shape)
 
     def load(self, eps: float, eps_dot: float, wedge_speed: float) -> np.ndarray:
-        """Load vector of f = 6 w eps sin(theta) - 12 eps_dot cos(theta), all dofs."""
-        return (6.0 * wedge_speed * eps) * self.b_sin - (12.0 * eps_dot) * self.b_cos
+        """Load vector of the Reynolds source f = a_sin sin(theta) + a_cos cos(theta)."""
+        a_sin, a_cos = source_coefficients(eps, eps_dot, wedge_speed)
+        return a_sin * self.b_sin + a_cos * self.b_cos
 
 
 def build_operator(mesh: FilmMesh) -> FilmOperator:

@@ -15,7 +15,9 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["film_thickness", "reynolds_source", "theta_from_inertial", "local_to_inertial"]
+__all__ = ["film_thickness", "cubed_thickness_coefficients", "reynolds_source",
+           "source_coefficients", "reynolds_source_integral", "theta_from_inertial",
+           "local_to_inertial"]
 
 
 def film_thickness(theta, eps, clearance=1.0):
@@ -23,9 +25,33 @@ def film_thickness(theta, eps, clearance=1.0):
     return clearance * (1.0 + eps * np.cos(theta))
 
 
+def cubed_thickness_coefficients(eps, derivative: bool = False):
+    """(a_0..a_3) with H^3 = sum_k a_k cos^k(theta): (1, 3 eps, 3 eps^2, eps^3); with
+    ``derivative`` their d/d(eps), (0, 3, 6 eps, 3 eps^2). Discretisations assemble one
+    matrix per cos^k and combine them with these."""
+    e = float(eps)
+    if derivative:
+        return (0.0, 3.0, 6.0 * e, 3.0 * e * e)
+    return (1.0, 3.0 * e, 3.0 * e * e, e ** 3)
+
+
+def source_coefficients(eps, eps_dot, wedge_speed):
+    """(a_sin, a_cos) [1/s] with f = a_sin sin(theta) + a_cos cos(theta):
+    the wedge 6 w eps and the squeeze -12 eps_dot. f is linear in each of them."""
+    return 6.0 * wedge_speed * eps, -12.0 * eps_dot
+
+
 def reynolds_source(theta, eps, eps_dot, wedge_speed):
     """Right-hand side f of -div(H^3 grad P) = f [1/s]."""
-    return 6.0 * wedge_speed * eps * np.sin(theta) - 12.0 * eps_dot * np.cos(theta)
+    a_sin, a_cos = source_coefficients(eps, eps_dot, wedge_speed)
+    return a_sin * np.sin(theta) + a_cos * np.cos(theta)
+
+
+def reynolds_source_integral(theta_lo, theta_hi, eps, eps_dot, wedge_speed):
+    """Exact integral of f over theta in [theta_lo, theta_hi] [rad/s] (finite volumes)."""
+    a_sin, a_cos = source_coefficients(eps, eps_dot, wedge_speed)
+    return (a_sin * (np.cos(theta_lo) - np.cos(theta_hi))
+            + a_cos * (np.sin(theta_hi) - np.sin(theta_lo)))
 
 
 def theta_from_inertial(alpha, gamma):

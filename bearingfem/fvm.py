@@ -23,7 +23,8 @@ import scipy.sparse.linalg as spla
 
 from .bearing import Bearing, JournalState
 from .cavitation import LCPResult, active_set, psor
-from .film import local_to_inertial, theta_from_inertial
+from .film import (film_thickness, local_to_inertial, reynolds_source_integral,
+                   theta_from_inertial)
 from .mesh import MIN_N_THETA, MIN_N_Z
 from .solution import FilmSolution
 from .validation import (CAVITATION, METHODS, check_choice, check_inputs, check_int,
@@ -99,9 +100,9 @@ def _structure(nt: int, nz: int, periodic: bool):
 def _assemble(g: FVMGrid, eps: float, eps_dot: float, w: float):
     """Matrix (CSR, on the grid's fixed layout) and right-hand side of the balance."""
     nz = g.n_z
-    He = 1.0 + eps * np.cos(g.theta_f[1:])          # east face of each theta column
-    Hw = 1.0 + eps * np.cos(g.theta_f[:-1])
-    Hc = 1.0 + eps * np.cos(g.theta_c)
+    He = film_thickness(g.theta_f[1:], eps)          # east face of each theta column
+    Hw = film_thickness(g.theta_f[:-1], eps)
+    Hc = film_thickness(g.theta_c, eps)
     ones = np.ones((1, nz))
     cE = (He ** 3 * g.dzeta / g.dtheta)[:, None] * ones
     cW = (Hw ** 3 * g.dzeta / g.dtheta)[:, None] * ones
@@ -116,8 +117,7 @@ def _assemble(g: FVMGrid, eps: float, eps_dot: float, w: float):
         diag[0, :] += cW[0, :]
     vals = np.concatenate([diag.ravel()] + [-c[m] for c, m in zip((cE, cW, cN, cS), g.masks)])
     A = sp.csr_matrix((vals[g.order], g.indices, g.indptr), shape=(g.n, g.n))
-    B = (-6.0 * w * (He - Hw) * g.dzeta
-         - 12.0 * eps_dot * (np.sin(g.theta_f[1:]) - np.sin(g.theta_f[:-1])) * g.dzeta)
+    B = reynolds_source_integral(g.theta_f[:-1], g.theta_f[1:], eps, eps_dot, w) * g.dzeta
     rhs = np.repeat(B[:, None], nz, axis=1).ravel()
     return A, rhs
 
@@ -173,7 +173,7 @@ def fvm_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z:
     ze = np.tile(g.zeta_c, n_theta)
     dA = g.dtheta * g.dzeta
     f_r, f_t = _force(bearing, g, P)
-    H = 1.0 + state.eps * np.cos(th)
+    H = film_thickness(th, state.eps)
     mu, R, c = bearing.viscosity, bearing.radius, bearing.clearance
     wet = P > 0 if cavitation != "none" else np.ones(g.n, bool)
     # Friction: Couette everywhere (full oil in cavitated cells, no pressure) plus the
@@ -186,7 +186,7 @@ def fvm_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z:
                          g.dtheta, axis=0)[1:-1]
     friction = mu * R ** 3 / c * dA * float(np.sum(state.omega / H + 0.5 * H * dP.ravel()))
     # Side leakage through the end faces: flux H^3 (P_face=0 - P_c) / (dzeta/2) per face.
-    Hc3 = (1.0 + state.eps * np.cos(g.theta_c)) ** 3
+    Hc3 = film_thickness(g.theta_c, state.eps) ** 3
     q = np.sum(Hc3 * (Pg[:, -1] + Pg[:, 0])) * 2.0 / g.dzeta * g.dtheta
     leakage = c * R ** 2 / 12.0 * float(q)
     i = int(np.argmax(P))

@@ -14,6 +14,7 @@ import numpy as np
 
 from .bearing import Bearing, JournalState
 from .differentiate import complex_step
+from .film import film_thickness
 from .quadrature import theta_nodes
 from .validation import check_inputs
 
@@ -23,7 +24,7 @@ __all__ = ["long_bearing_force", "long_bearing_derivatives", "long_bearing_exact
 
 def _dimensionless_pressure(theta, eps, eps_dot, w):
     th = np.asarray(theta, float)
-    H = 1.0 + eps * np.cos(th)
+    H = film_thickness(th, eps)
     wedge = 6.0 * w * eps * np.sin(th) * (2.0 + eps * np.cos(th)) / ((2.0 + eps * eps) * H * H)
     # (1/H^2 - 1/(1+eps)^2)/eps without cancellation, finite as eps -> 0.
     squeeze = (6.0 * eps_dot * (1.0 - np.cos(th)) * (2.0 + eps * (1.0 + np.cos(th)))

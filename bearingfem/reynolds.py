@@ -8,7 +8,7 @@ from .multilevel import coarse_guess
 from .bearing import Bearing, JournalState
 from .cavitation import LCPResult, active_set, psor
 from .linsolve import solve_spd
-from .film import local_to_inertial, theta_from_inertial
+from .film import film_thickness, local_to_inertial, theta_from_inertial
 from .mesh import ELEMENTS, MIN_N_THETA, MIN_N_Z
 from .solution import FilmSolution
 from .validation import (CAVITATION, METHODS, check_choice, check_inputs, check_int,
@@ -140,7 +140,7 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
     # Diagnostics at quadrature points of the film.
     Pq, dPq = _qp_fields(op, Pn)
     wq, th = op.qp_weight, op.qp_theta
-    Hq = 1.0 + state.eps * np.cos(th)
+    Hq = film_thickness(th, state.eps)
     pmax = float(np.max(np.abs(Pn), initial=0.0))
     wet = Pq > 1e-12 * pmax if clip else np.ones_like(Pq, bool)
     area = float(np.sum(wq))
@@ -166,7 +166,7 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
         force=local_to_inertial(f_r, f_t, state.gamma),
         pressure=bearing.pressure_scale * Pn,
         theta=op.mesh.theta, z=R * op.mesh.zeta,
-        film_thickness=c * (1.0 + state.eps * np.cos(op.mesh.theta)),
+        film_thickness=film_thickness(op.mesh.theta, state.eps, c),
         pressure_max=bearing.pressure_scale * float(Pn[i]),
         pressure_max_theta=float(np.mod(theta_i, 2 * np.pi)),
         pressure_max_z=float(R * op.mesh.zeta[i]),

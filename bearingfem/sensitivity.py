@@ -39,11 +39,10 @@ def fe_force_derivatives(bearing: Bearing, state: JournalState, n_theta: int = 1
     P = res.pressure
     free = op.mesh.free
     e, w = state.eps, state.wedge_speed
-    t = op.terms
-    dK = sp.csr_matrix((3.0 * t[1] + (6.0 * e) * t[2] + (3.0 * e * e) * t[3], op.indices,
-                        op.indptr), shape=op.shape)
-    rhs = np.column_stack([6.0 * w * op.b_sin - dK @ P, -12.0 * op.b_cos,
-                           6.0 * e * op.b_sin])[free]
+    dK = sp.csr_matrix((op.values(e, derivative=True), op.indices, op.indptr), shape=op.shape)
+    # the source is linear in eps (wedge part), eps_dot and w: unit values give its partials
+    rhs = np.column_stack([op.load(1.0, 0.0, w) - dK @ P, op.load(e, 1.0, 0.0),
+                           op.load(e, 0.0, 1.0)])[free]
     inactive = ~res.active[free] if cavitation == "reynolds" else np.ones(len(free), bool)
     dP = np.zeros((op.mesh.ndofs, 3))
     dP[free] = _inactive_solve(op.free_stiffness(e), res.factor, inactive, rhs)

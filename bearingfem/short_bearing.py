@@ -15,6 +15,7 @@ import numpy as np
 
 from .bearing import Bearing, JournalState
 from .differentiate import complex_step
+from .film import film_thickness, reynolds_source, source_coefficients
 from .quadrature import theta_nodes
 from .validation import check_inputs
 
@@ -25,8 +26,8 @@ __all__ = ["short_bearing_force", "short_bearing_derivatives", "short_bearing_ex
 def short_bearing_pressure(bearing: Bearing, state: JournalState, theta, z):
     """Uncavitated short-bearing pressure [Pa] at film angle theta and axial z [m]."""
     th = np.asarray(theta, float)
-    f = 6.0 * state.wedge_speed * state.eps * np.sin(th) - 12.0 * state.eps_dot * np.cos(th)
-    H = 1.0 + state.eps * np.cos(th)
+    f = reynolds_source(th, state.eps, state.eps_dot, state.wedge_speed)
+    H = film_thickness(th, state.eps)
     zeta = np.asarray(z, float) / bearing.radius
     return bearing.pressure_scale * f * (bearing.length_ratio ** 2 - zeta ** 2) / (2 * H ** 3)
 
@@ -101,8 +102,7 @@ def short_bearing_exact_force(bearing: Bearing, state: JournalState, *, fixed_ha
     """
     check_inputs(bearing, state)
     e = state.eps
-    A = 6.0 * state.wedge_speed * e
-    B = -12.0 * state.eps_dot
+    A, B = source_coefficients(e, state.eps_dot, state.wedge_speed)
     if A == 0.0 and B == 0.0:
         return 0.0, 0.0
     if fixed_half_film:
@@ -115,7 +115,7 @@ def short_bearing_exact_force(bearing: Bearing, state: JournalState, *, fixed_ha
             parts.append((0.0, hi - 2 * math.pi))
     th = np.concatenate([theta_nodes(a, b, e)[0] for a, b in parts])
     wq = np.concatenate([theta_nodes(a, b, e)[1] for a, b in parts])
-    g = (A * np.sin(th) + B * np.cos(th)) / (1.0 + e * np.cos(th)) ** 3
+    g = reynolds_source(th, e, state.eps_dot, state.wedge_speed) / film_thickness(th, e) ** 3
     # Axial integral: R^2 * int (lam^2 - zeta^2)/2 dzeta = L^3 / (12 R) ... times mu R^2/c^2.
     k = bearing.viscosity * bearing.length ** 3 * bearing.radius / (12.0 * bearing.clearance ** 2)
     return k * float(np.sum(wq * g * np.cos(th))), k * float(np.sum(wq * g * np.sin(th)))
