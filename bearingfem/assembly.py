@@ -97,6 +97,22 @@ class FilmOperator:
         Q = self.qp_interp @ P.reshape(-1, P.shape[-1]).T
         return Q.T.reshape(P.shape[:-1] + self.qp_theta.shape)
 
+    def force_integrals(self, P: np.ndarray, clip: bool = False, where=None) -> np.ndarray:
+        """(integral of P cos theta, integral of P sin theta) over the meshed film, for
+        nodal fields P (..., ndofs): shape (2, ...). ``clip`` integrates max(P, 0) at the
+        quadrature points (Gumbel's film); ``where`` (a boolean array over the quadrature
+        points) integrates there only. Unclipped, it is one mat-vec with the assembled
+        cos/sin loads (the same quadrature)."""
+        P = np.asarray(P)
+        if not clip and where is None:
+            return np.stack([P @ self.b_cos, P @ self.b_sin])
+        Q = self.at_quadrature(P)
+        if clip:
+            Q = np.maximum(Q, 0.0)
+        w = self.qp_weight if where is None else np.where(where, self.qp_weight, 0.0)
+        return np.stack([np.sum(Q * (w * np.cos(self.qp_theta)), axis=(-2, -1)),
+                         np.sum(Q * (w * np.sin(self.qp_theta)), axis=(-2, -1))])
+
     def load(self, eps: float, eps_dot: float, wedge_speed: float) -> np.ndarray:
         """Load vector of the Reynolds source f = a_sin sin(theta) + a_cos cos(theta)."""
         a_sin, a_cos = source_coefficients(eps, eps_dot, wedge_speed)

@@ -111,8 +111,6 @@ def build_force_table(length_ratio: float, n_theta=96, n_z=16, element="P1",
     eps = _eps_nodes(n_eps, eps_max)
     phi = np.linspace(0.0, 2 * np.pi, n_phi, endpoint=False)
     mult = 2.0 if op.mesh.half else 1.0
-    cq, snq = np.cos(op.qp_theta), np.sin(op.qp_theta)
-    w = op.qp_weight
     g = np.zeros((2, n_eps, n_phi))
     # f = 12 (sin phi * sin(theta) - cos phi * cos(theta)) on the unit-|v| film.
     b_s, b_c = 12.0 * op.b_sin[free], -12.0 * op.b_cos[free]
@@ -128,17 +126,12 @@ def build_force_table(length_ratio: float, n_theta=96, n_z=16, element="P1",
                                  factor=None if prev is None else prev.factor)
                 P[j, free] = res.pressure
                 prev = res
-            Pq = op.at_quadrature(P)
         else:   # linear film: two solves give every direction
             lu = factorise(K)
             Ps, Pc = np.zeros(op.mesh.ndofs), np.zeros(op.mesh.ndofs)
             Ps[free], Pc[free] = lu.solve(b_s), lu.solve(b_c)
-            Pq = (np.sin(phi)[:, None, None] * op.at_quadrature(Ps)
-                  + sq * np.cos(phi)[:, None, None] * op.at_quadrature(Pc))
-            if cavitation == "gumbel":
-                Pq = np.maximum(Pq, 0.0)
-        g[0, i] = mult * np.einsum("pij,ij->p", Pq, w * cq)
-        g[1, i] = mult * np.einsum("pij,ij->p", Pq, w * snq)
+            P = np.sin(phi)[:, None] * Ps + sq * np.cos(phi)[:, None] * Pc
+        g[:, i] = mult * op.force_integrals(P, clip=cavitation == "gumbel")
     g *= ((1.0 - eps) ** SCALE_EXPONENT)[None, :, None]
     key = _key(length_ratio, n_theta, n_z, element, cavitation, n_eps, n_phi, eps_max)
     return ForceTable(key, eps, phi, g[0], g[1])

@@ -68,10 +68,8 @@ def _qp_fields(op: FilmOperator, P: np.ndarray):
 
 def _integrated_force(op: FilmOperator, P: np.ndarray, clip: bool):
     """(integral of P cos theta, integral of P sin theta) over the meshed film."""
-    if not clip:
-        return float(op.b_cos @ P), float(op.b_sin @ P)
-    Pq = np.maximum(op.at_quadrature(P), 0.0) * op.qp_weight
-    return float(np.sum(Pq * np.cos(op.qp_theta))), float(np.sum(Pq * np.sin(op.qp_theta)))
+    ic, is_ = op.force_integrals(P, clip)
+    return float(ic), float(is_)
 
 
 def fe_force(bearing: Bearing, state: JournalState, n_theta=60, n_z=10, element="P1",

@@ -48,16 +48,10 @@ def fe_force_derivatives(bearing: Bearing, state: JournalState, n_theta: int = 1
     dP[free] = _inactive_solve(op.free_stiffness(e), res.factor, inactive, rhs)
 
     k = bearing.force_scale * (2.0 if op.mesh.half else 1.0)
-    if cavitation == "gumbel":
-        Pq = op.at_quadrature(P)
-        wq = np.where(Pq > 0.0, op.qp_weight, 0.0)
-        cos_w, sin_w = wq * np.cos(op.qp_theta), wq * np.sin(op.qp_theta)
-        fields = np.concatenate([P[None], dP.T])   # clipped by the mask, as fe_force does
-        Q = op.at_quadrature(fields)
-        F = k * np.stack([np.sum(Q * cos_w, axis=(1, 2)), np.sum(Q * sin_w, axis=(1, 2))])
-    else:
-        F = k * np.stack([op.b_cos @ np.column_stack([P, dP]),
-                          op.b_sin @ np.column_stack([P, dP])])
+    fields = np.concatenate([P[None], dP.T])
+    # Gumbel: P and its partials where the clipped film is positive, as fe_force integrates
+    where = op.at_quadrature(P) > 0.0 if cavitation == "gumbel" else None
+    F = k * op.force_integrals(fields, where=where)
     col = [tuple(float(x) for x in F[:, j]) for j in range(4)]
     return ForceDerivatives(col[0], col[1], col[2], col[3], "exact-sensitivity")
 
