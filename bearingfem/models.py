@@ -11,17 +11,46 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Callable, Mapping
 
-from .bearing import Bearing, JournalState
+from .bearing import Bearing, JournalState, check_finite
 from .differentiate import central_differences
 from .force_table import table_force
 from .fvm import fvm_force
+from .mesh import ELEMENTS, MIN_N_THETA, MIN_N_Z
 from .long_bearing import long_bearing_derivatives, long_bearing_exact_force, long_bearing_force
 from .reynolds import fe_force
 from .sensitivity import fe_force_derivatives
 from .short_bearing import short_bearing_derivatives, short_bearing_exact_force, short_bearing_force
 from .solution import ForceDerivatives
+from .validation import CAVITATION, check_choice
 
-__all__ = ["FilmModel", "FILM_MODELS", "NUMERIC_MODELS", "film_model"]
+__all__ = ["FilmModel", "FILM_MODELS", "NUMERIC_MODELS", "OPTION_RULES", "film_model"]
+
+#: How each film option is checked, whichever model takes it: ("int" | "number", (lo, hi))
+#: with None for an open end, or ("choice", names).
+OPTION_RULES = {
+    "n_theta": ("int", (MIN_N_THETA, None)), "n_z": ("int", (MIN_N_Z, None)),
+    "element": ("choice", tuple(ELEMENTS)), "cavitation": ("choice", CAVITATION),
+    "half_film": ("choice", ("wedge", "fixed")), "switch_speed": ("number", (0.0, None)),
+    "n_eps": ("int", (6, 400)), "n_phi": ("int", (16, 1000)),
+}
+
+
+def _check_option(name: str, value, where: str):
+    kind, allowed = OPTION_RULES[name]
+    label = f"{where}.{name}" if where else name
+    if kind == "choice":
+        return check_choice(label, value, allowed)
+    lo, hi = allowed
+    span = f"[{lo}, inf)" if hi is None else f"[{lo}, {hi}]"
+    if kind == "int":
+        if isinstance(value, bool) or not isinstance(value, (int, float)) or value != int(value):
+            raise ValueError(f"{label} must be an integer in {span}, got {value!r}")
+        value = int(value)
+    else:
+        value = check_finite(label, value)
+    if value < lo or (hi is not None and value > hi):
+        raise ValueError(f"{label} must lie in {span}, got {value!r}")
+    return value
 
 
 @dataclass(frozen=True)
@@ -44,15 +73,17 @@ class FilmModel:
     derivatives: Callable | None = None
     numeric: bool = False
 
-    def options(self, options: Mapping | None = None) -> dict:
-        """The model's defaults updated by ``options``; unknown names raise ValueError."""
+    def options(self, options: Mapping | None = None, where: str = "") -> dict:
+        """The model's defaults updated by ``options``, each checked (OPTION_RULES);
+        an unknown or out-of-range option raises ValueError naming it (after ``where``)."""
         options = dict(options or {})
         unknown = sorted(set(options) - set(self.defaults))
         if unknown:
-            raise ValueError(f"{', '.join(unknown)} {'is not an option' if len(unknown) == 1 else 'are not options'} "
+            names = ", ".join(f"{where}.{k}" if where else k for k in unknown)
+            raise ValueError(f"{names} {'is not an option' if len(unknown) == 1 else 'are not options'} "
                              f"of film model {self.name!r} (options: "
                              f"{', '.join(sorted(self.defaults)) or 'none'})")
-        return {**self.defaults, **options}
+        return {k: _check_option(k, options.get(k, d), where) for k, d in self.defaults.items()}
 
     def film_force(self, bearing: Bearing, state: JournalState, **options):
         """(F_r, F_t) [N] with the model's defaults for options not given."""
@@ -73,7 +104,9 @@ def _fem(bearing, state, n_theta=48, n_z=8, element="P1", cavitation="gumbel"):
 
 _MESH = dict(n_theta=48, n_z=8)
 FILM_MODELS = {m.name: m for m in (
-    FilmModel("short", short_bearing_force, dict(half_film="wedge", switch_speed=0.0),
+    # switch 1 rad/s: the literal sharp switch of Eq. 9's half film makes integrators chatter
+    # (a steady film, w >> 1 rad/s, is the same to round-off)
+    FilmModel("short", short_bearing_force, dict(half_film="wedge", switch_speed=1.0),
               short_bearing_derivatives),
     FilmModel("long", long_bearing_force, {}, long_bearing_derivatives),
     FilmModel("short-exact", short_bearing_exact_force),

@@ -10,10 +10,7 @@ from __future__ import annotations
 from bearingfem.models import FILM_MODELS, NUMERIC_MODELS, film_model
 from bearingfem.reynolds import fe_force
 
-__all__ = ["FILM_MODELS", "NUMERIC_MODELS", "MODEL_OPTIONS", "film_force_function"]
-
-#: Options each model accepts in a scene's lubrication table (besides "model", "eps_max").
-MODEL_OPTIONS = {name: set(m.defaults) for name, m in FILM_MODELS.items()}
+__all__ = ["FILM_MODELS", "NUMERIC_MODELS", "film_force_function"]
 
 
 def _warm_fem():

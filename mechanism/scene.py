@@ -15,10 +15,7 @@ except ModuleNotFoundError:  # Python < 3.11
     import tomli as tomllib
 
 from bearingfem import Bearing
-from bearingfem.mesh import ELEMENTS, MIN_N_THETA, MIN_N_Z
-from bearingfem.validation import CAVITATION
-
-from .lubrication import MODEL_OPTIONS, NUMERIC_MODELS, film_force_function
+from bearingfem.models import film_model
 from .parameters import Mechanism
 
 __all__ = ["Scene", "load_scene", "parse_scene", "INTEGRATORS"]
@@ -169,34 +166,17 @@ def _bearing(t: _Table) -> Bearing:
 
 
 def _lubrication(t: _Table) -> Lubrication:
+    """The film model and its options: names, defaults and ranges are the model's own
+    (:data:`bearingfem.models.FILM_MODELS`)."""
     model = t.get("model", required=True)
     try:
-        film_force_function(model)
+        m = film_model(model, f"{t.where}.model")
     except ValueError as err:
-        raise ValueError(f"{t.where}.model: {err}") from None
-    eps_max = t.number("eps_max", 0.999 if model in NUMERIC_MODELS else 1.0 - 1e-6,
+        raise ValueError(str(err)) from None
+    eps_max = t.number("eps_max", 0.999 if m.numeric else 1.0 - 1e-6,
                        lo=0.5, hi=1.0, hi_open=True)
-    opts = {}
-    allowed = MODEL_OPTIONS[model]
-    for key in sorted(set(t.data) - {"model", "eps_max"}):
-        if key not in allowed:
-            raise ValueError(f"{t.where}.{key} is not an option of model {model!r} "
-                             f"(options: {', '.join(sorted(allowed)) or 'none'})")
-    if "n_theta" in allowed:
-        # a table is built once, so its default mesh can be finer than a per-step solve's
-        fine = model == "fem-table"
-        opts["n_theta"] = int(t.number("n_theta", 96 if fine else 48, lo=MIN_N_THETA))
-        opts["n_z"] = int(t.number("n_z", 16 if fine else 8, lo=MIN_N_Z))
-        opts["cavitation"] = t.choice("cavitation", CAVITATION, "gumbel")
-    if "switch_speed" in allowed:
-        opts["half_film"] = t.choice("half_film", ("wedge", "fixed"), "wedge")
-        # 0 is the sharp switch of the literal model, which integrators chatter on
-        opts["switch_speed"] = t.number("switch_speed", 1.0, lo=0.0)
-    if "n_eps" in allowed:
-        opts["n_eps"] = int(t.number("n_eps", 60, lo=6, hi=400))
-        opts["n_phi"] = int(t.number("n_phi", 96, lo=16, hi=1000))
-    if "element" in allowed:
-        opts["element"] = t.choice("element", tuple(ELEMENTS), "P1")
+    given = {k: t.get(k) for k in sorted(set(t.data) - {"model", "eps_max"})}
+    opts = m.options(given, where=t.where)
     t.done()
     return Lubrication(model=model, options=opts, eps_max=eps_max)
 
