@@ -23,12 +23,9 @@ import scipy.sparse.linalg as spla
 
 from .bearing import Bearing, JournalState
 from .cavitation import LCPResult, active_set, psor
-from .film import (film_thickness, local_to_inertial, reynolds_source_integral,
-                   theta_from_inertial)
-from .mesh import MIN_N_THETA, MIN_N_Z
-from .solution import FilmSolution
-from .validation import (CAVITATION, METHODS, check_choice, check_inputs, check_int,
-                         check_supply_angle)
+from .film import film_thickness, reynolds_source_integral, theta_from_inertial
+from .solution import FilmSolution, film_solution
+from .validation import check_film_solve
 
 __all__ = ["fvm_reynolds", "FVMGrid", "fvm_grid"]
 
@@ -157,12 +154,8 @@ def fvm_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z:
     Forces are the midpoint sums of seed Eq. 16 (second order): F_r = sum p cos(theta) dA,
     F_t = sum p sin(theta) dA in the contract's local frame.
     """
-    check_inputs(bearing, state)
-    n_theta = check_int("n_theta", n_theta, MIN_N_THETA)
-    n_z = check_int("n_z", n_z, MIN_N_Z)
-    check_choice("cavitation", cavitation, CAVITATION)
-    check_choice("method", method, METHODS)
-    supply_angle = check_supply_angle(supply_angle)
+    n_theta, n_z, supply_angle = check_film_solve(bearing, state, n_theta, n_z, cavitation,
+                                                  method, supply_angle, tol)
     theta0 = None if supply_angle is None else float(theta_from_inertial(supply_angle,
                                                                          state.gamma))
     g = fvm_grid(n_theta, n_z, bearing.length_ratio, theta0)
@@ -189,18 +182,8 @@ def fvm_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z:
     Hc3 = film_thickness(g.theta_c, state.eps) ** 3
     q = np.sum(Hc3 * (Pg[:, -1] + Pg[:, 0])) * 2.0 / g.dzeta * g.dtheta
     leakage = c * R ** 2 / 12.0 * float(q)
-    i = int(np.argmax(P))
-    return FilmSolution(
-        force_local=(f_r, f_t), force=local_to_inertial(f_r, f_t, state.gamma),
-        pressure=bearing.pressure_scale * P, theta=th, z=R * ze,
-        film_thickness=c * H,
-        pressure_max=bearing.pressure_scale * float(P[i]),
-        pressure_max_theta=float(np.mod(th[i], 2 * np.pi)), pressure_max_z=float(R * ze[i]),
-        pressure_max_angle=float(np.mod(th[i] + state.gamma + np.pi, 2 * np.pi)),
-        film_min=c * (1.0 - state.eps),
-        cavitated_fraction=float(np.mean(~wet)),
-        friction_force=friction, friction_torque=friction * R, side_leakage=leakage,
-        iterations=res.iterations, residual=res.residual, converged=res.converged,
+    return film_solution(
+        bearing, state, P, th, ze, (f_r, f_t), friction=friction, leakage=leakage,
+        cavitated_fraction=float(np.mean(~wet)), record=res,
         method="fvm" + (f"/{method}" if cavitation == "reynolds" else ""),
-        cavitation=cavitation, n_dofs=g.n, half=False, radius=R,
-        gamma=state.gamma, mesh=g)
+        cavitation=cavitation, half=False, mesh=g)

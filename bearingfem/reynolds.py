@@ -8,11 +8,10 @@ from .multilevel import coarse_guess
 from .bearing import Bearing, JournalState
 from .cavitation import LCPResult, active_set, psor
 from .linsolve import solve_spd
-from .film import film_thickness, local_to_inertial, theta_from_inertial
-from .mesh import ELEMENTS, MIN_N_THETA, MIN_N_Z
-from .solution import FilmSolution
-from .validation import (CAVITATION, METHODS, check_choice, check_inputs, check_int,
-                         check_supply_angle)
+from .film import film_thickness, theta_from_inertial
+from .mesh import ELEMENTS
+from .solution import FilmSolution, film_solution
+from .validation import check_film_solve
 
 __all__ = ["solve_reynolds", "fe_operator", "fe_pressure", "fe_force"]
 
@@ -115,16 +114,9 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
     -------
     FilmSolution
     """
-    check_inputs(bearing, state)
-    n_theta = check_int("n_theta", n_theta, MIN_N_THETA)
-    n_z = check_int("n_z", n_z, MIN_N_Z)
-    check_choice("element", element, tuple(ELEMENTS))
-    check_choice("cavitation", cavitation, CAVITATION)
-    check_choice("method", method, METHODS)
-    check_choice("cavitated_shear", cavitated_shear, SHEAR)
-    supply_angle = check_supply_angle(supply_angle)
-    if not (tol > 0.0 and np.isfinite(tol)):
-        raise ValueError(f"tol must be a positive finite number, got {tol!r}")
+    n_theta, n_z, supply_angle = check_film_solve(
+        bearing, state, n_theta, n_z, cavitation, method, supply_angle, tol,
+        element=(element, tuple(ELEMENTS)), cavitated_shear=(cavitated_shear, SHEAR))
 
     op = fe_operator(bearing, state, n_theta, n_z, element, supply_angle, half)
     res = fe_pressure(op, state, cavitation, method, tol)
@@ -157,23 +149,8 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
         r_end = np.minimum(r_end, 0.0)
     leakage = -c * R ** 2 / 12.0 * mult * float(np.sum(r_end))
 
-    i = int(np.argmax(Pn))
-    theta_i = float(op.mesh.theta[i])
-    return FilmSolution(
-        force_local=(f_r, f_t),
-        force=local_to_inertial(f_r, f_t, state.gamma),
-        pressure=bearing.pressure_scale * Pn,
-        theta=op.mesh.theta, z=R * op.mesh.zeta,
-        film_thickness=film_thickness(op.mesh.theta, state.eps, c),
-        pressure_max=bearing.pressure_scale * float(Pn[i]),
-        pressure_max_theta=float(np.mod(theta_i, 2 * np.pi)),
-        pressure_max_z=float(R * op.mesh.zeta[i]),
-        pressure_max_angle=float(np.mod(theta_i + state.gamma + np.pi, 2 * np.pi)),
-        film_min=c * (1.0 - state.eps),
-        cavitated_fraction=cav_fraction,
-        friction_force=friction, friction_torque=friction * R,
-        side_leakage=leakage,
-        iterations=res.iterations, residual=res.residual, converged=res.converged,
+    return film_solution(
+        bearing, state, Pn, op.mesh.theta, op.mesh.zeta, (f_r, f_t), friction=friction,
+        leakage=leakage, cavitated_fraction=cav_fraction, record=res,
         method=f"fem-{element}" + (f"/{method}" if cavitation == "reynolds" else ""),
-        cavitation=cavitation, n_dofs=op.mesh.ndofs, half=op.mesh.half,
-        radius=R, gamma=state.gamma, mesh=op.mesh)
+        cavitation=cavitation, half=op.mesh.half, mesh=op.mesh)

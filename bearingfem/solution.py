@@ -5,7 +5,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-__all__ = ["FilmSolution", "ForceDerivatives"]
+from .film import film_thickness, local_to_inertial
+
+__all__ = ["FilmSolution", "ForceDerivatives", "film_solution"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -64,6 +66,32 @@ class FilmSolution:
         return (f"{self.method}/{self.cavitation}: F_r={fr:.6g} N F_t={ft:.6g} N "
                 f"p_max={self.pressure_max:.6g} Pa h_min={self.film_min:.3g} m "
                 f"cav={self.cavitated_fraction:.3f} it={self.iterations} res={self.residual:.1e}")
+
+
+def film_solution(bearing, state, P, theta, zeta, force_local, *, friction, leakage,
+                  cavitated_fraction, record, method, cavitation, half, mesh) -> FilmSolution:
+    """The one builder of :class:`FilmSolution` for every mesh solver: derives the
+    inertial force, pressures [Pa], film, peak and its place from the dimensionless nodal
+    pressure ``P`` (p = mu (R/c)^2 P, clipped as the cavitation model says) at (theta,
+    zeta = z/R), given the solver's own force, friction [N] and leakage [m^3/s]; ``record``
+    carries iterations, residual, converged."""
+    R, c = bearing.radius, bearing.clearance
+    f_r, f_t = force_local
+    i = int(np.argmax(P))
+    theta_i = float(theta[i])
+    return FilmSolution(
+        force_local=(f_r, f_t), force=local_to_inertial(f_r, f_t, state.gamma),
+        pressure=bearing.pressure_scale * P, theta=theta, z=R * zeta,
+        film_thickness=film_thickness(theta, state.eps, c),
+        pressure_max=bearing.pressure_scale * float(P[i]),
+        pressure_max_theta=float(np.mod(theta_i, 2 * np.pi)),
+        pressure_max_z=float(R * zeta[i]),
+        pressure_max_angle=float(np.mod(theta_i + state.gamma + np.pi, 2 * np.pi)),
+        film_min=c * (1.0 - state.eps), cavitated_fraction=cavitated_fraction,
+        friction_force=friction, friction_torque=friction * R, side_leakage=leakage,
+        iterations=record.iterations, residual=record.residual, converged=record.converged,
+        method=method, cavitation=cavitation, n_dofs=len(P), half=half, radius=R,
+        gamma=state.gamma, mesh=mesh)
 
 
 @dataclass(frozen=True)

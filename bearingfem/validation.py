@@ -1,7 +1,10 @@
 """Argument checks shared by the solvers: fail before any work, naming the parameter."""
 from __future__ import annotations
 
+import math
+
 from .bearing import Bearing, JournalState, check_finite
+from .mesh import MIN_N_THETA, MIN_N_Z
 
 CAVITATION = ("none", "gumbel", "reynolds")
 METHODS = ("active-set", "psor")
@@ -33,3 +36,28 @@ def check_inputs(bearing, state):
 def check_supply_angle(value):
     """None (fully periodic film) or a finite angle [rad]."""
     return None if value is None else check_finite("supply_angle", value)
+
+
+def check_film_solve(bearing, state, n_theta, n_z, cavitation, method, supply_angle,
+                     tol=1e-10, **choices):
+    """What every mesh film solver checks before any work, all at once (one message per
+    bad parameter, joined): returns (n_theta, n_z, supply_angle). ``choices`` maps further
+    parameter names to (value, allowed)."""
+    errors, out = [], {}
+    checks = [("inputs", lambda: check_inputs(bearing, state)),
+              ("n_theta", lambda: check_int("n_theta", n_theta, MIN_N_THETA)),
+              ("n_z", lambda: check_int("n_z", n_z, MIN_N_Z)),
+              ("cavitation", lambda: check_choice("cavitation", cavitation, CAVITATION)),
+              ("method", lambda: check_choice("method", method, METHODS)),
+              ("supply_angle", lambda: check_supply_angle(supply_angle))]
+    checks += [(k, lambda k=k, v=v: check_choice(k, *v)) for k, v in choices.items()]
+    for name, check in checks:
+        try:
+            out[name] = check()
+        except ValueError as err:
+            errors.append(str(err))
+    if not (isinstance(tol, (int, float)) and tol > 0.0 and math.isfinite(tol)):
+        errors.append(f"tol must be a positive finite number, got {tol!r}")
+    if errors:
+        raise ValueError("; ".join(errors))
+    return out["n_theta"], out["n_z"], out["supply_angle"]

@@ -49,3 +49,16 @@ def test_closed_forms_reject_wrong_types():
         short_bearing_force(None, s)
     with pytest.raises(ValueError, match="state"):
         long_bearing_force(Bearing(0.01, 0.04, 20e-6, 0.01), (0.5, 0, 0, 0, 100))
+
+
+@pytest.mark.parametrize("solver", ["fem", "fvm"])
+def test_every_bad_parameter_is_named_at_once(solver):
+    from bearingfem import Bearing, JournalState, fvm_reynolds, solve_reynolds
+    b = Bearing(radius=0.01, length=0.004, clearance=20e-6, viscosity=0.0117)
+    call = solve_reynolds if solver == "fem" else fvm_reynolds
+    with pytest.raises(ValueError) as err:
+        call(b, JournalState(0.5), 2, 1, cavitation="swift")
+    msg = str(err.value)
+    for name in ("n_theta must be an integer >= 8", "n_z must be an integer >= 2",
+                 "cavitation must be one of"):
+        assert name in msg
