@@ -109,9 +109,10 @@ class FilmOperator:
         Q = self.at_quadrature(P)
         if clip:
             Q = np.maximum(Q, 0.0)
-        w = self.qp_weight if where is None else np.where(where, self.qp_weight, 0.0)
-        return np.stack([np.sum(Q * (w * np.cos(self.qp_theta)), axis=(-2, -1)),
-                         np.sum(Q * (w * np.sin(self.qp_theta)), axis=(-2, -1))])
+        # (Q w) cos, in this order: time integrations stay bit-identical across versions
+        Qw = Q * (self.qp_weight if where is None else np.where(where, self.qp_weight, 0.0))
+        return np.stack([np.sum(Qw * np.cos(self.qp_theta), axis=(-2, -1)),
+                         np.sum(Qw * np.sin(self.qp_theta), axis=(-2, -1))])
 
     def load(self, eps: float, eps_dot: float, wedge_speed: float) -> np.ndarray:
         """Load vector of the Reynolds source f = a_sin sin(theta) + a_cos cos(theta)."""

@@ -17,8 +17,10 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
-__all__ = ["PinnedFactor", "pinned", "bordered_solve", "dense_block_solve", "DENSE_DOFS",
-           "BORDERED_MAX_CHANGES"]
+from .linsolve import factorise, pcg, solve_spd
+
+__all__ = ["BlockSolver", "PinnedFactor", "pinned", "bordered_solve", "dense_block_solve",
+           "DENSE_DOFS", "BORDERED_MAX_CHANGES"]
 
 #: Up to this many dofs, dense LAPACK solves of the inactive block beat sparse factors.
 DENSE_DOFS = 128
@@ -111,3 +113,75 @@ def dense_block_solve(K_dense: np.ndarray, b: np.ndarray, inactive: np.ndarray) 
     i = np.flatnonzero(inactive)
     x[i] = np.linalg.solve(K_dense[i][:, i], b[i])
     return x
+
+
+class BlockSolver:
+    """Inactive-block solves of one K and b for a sequence of cavitated sets, reusing
+    factors; it keeps its own state (factors, the set they belong to, their count).
+
+    For each set it takes the cheapest exact route it has:
+
+    1. dense LAPACK, for systems of at most ``DENSE_DOFS`` dofs;
+    2. :func:`bordered_solve` on its own factors of an earlier set of this K, while that
+       set is within ``BORDERED_MAX_CHANGES`` dofs;
+    3. CG preconditioned by ``factor``, factors of another K (the previous time step's),
+       while the set is within ``few_changes`` dofs of theirs;
+    4. a new factorisation of the set's :func:`pinned` matrix.
+
+    ``factor``: a :class:`PinnedFactor` or LU factors of an unconstrained K, or None.
+    """
+
+    def __init__(self, K: sp.csr_matrix, b: np.ndarray, factor=None, few_changes: int = 8):
+        self.K, self.b = K, b
+        n = b.shape[0]
+        self.dense = K.toarray() if n <= DENSE_DOFS else None
+        lu = getattr(factor, "lu", factor)
+        if lu is not None and (lu.shape != (n, n) or self.dense is not None):
+            lu = factor = None
+        self.lu = lu
+        self.own = False        # whether ``lu`` factorises a pinned matrix of this very K
+        self.factored = getattr(factor, "active", None)   # the set ``lu`` pins
+        self.few_changes = few_changes
+        self.factorisations = 0
+
+    def unconstrained(self) -> np.ndarray:
+        """The full-film solution of K P = b (no cavitated dof)."""
+        if self.dense is not None:
+            return np.linalg.solve(self.dense, self.b)
+        P, self.lu, fresh = solve_spd(self.K, self.b, self.lu)
+        if fresh:                       # factors of K itself, which pins no dof
+            self.own, self.factored = True, None
+            self.factorisations += 1
+        if self.factored is None:
+            self.factored = np.zeros(len(self.b), bool)
+        return P
+
+    def start(self, active: np.ndarray) -> None:
+        """Take ``active`` as the set of factors that came without one."""
+        if self.factored is None:
+            self.factored = active.copy()
+
+    def solve(self, active: np.ndarray, guess: np.ndarray) -> np.ndarray:
+        """x with K_II x_I = b_I on the inactive dofs and x = 0 on ``active``; ``guess``
+        starts CG."""
+        inactive = ~active
+        if self.dense is not None:
+            return dense_block_solve(self.dense, self.b, inactive)
+        k = len(self.b) if self.lu is None else np.count_nonzero(self.factored != active)
+        if self.own and k <= BORDERED_MAX_CHANGES:
+            return bordered_solve(self.lu, self.K, self.b, ~self.factored, inactive)
+        rhs = np.where(inactive, self.b, 0.0)
+        if self.lu is not None and not self.own and k <= self.few_changes:
+            x, ok, _ = pcg(pinned(self.K, inactive), rhs, np.where(inactive, guess, 0.0),
+                           self.lu.solve)
+            if ok:
+                return x
+        self.lu = factorise(pinned(self.K, inactive))
+        self.factored, self.own = active.copy(), True
+        self.factorisations += 1
+        return self.lu.solve(rhs)
+
+    @property
+    def factor(self):
+        """The factors to hand to a later solve (with the set they pin), or None."""
+        return None if self.lu is None else PinnedFactor(self.lu, self.factored)

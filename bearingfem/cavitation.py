@@ -18,9 +18,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.sparse as sp
 
-from .blocksolve import (BORDERED_MAX_CHANGES, DENSE_DOFS, PinnedFactor, bordered_solve,
-                         dense_block_solve, pinned)
-from .linsolve import factorise, pcg, solve_spd
+from .blocksolve import BlockSolver
 
 __all__ = ["LCPResult", "active_set", "psor", "complementarity_residual", "graph_colouring"]
 
@@ -72,59 +70,27 @@ def active_set(K: sp.csr_matrix, b: np.ndarray, *, active0: np.ndarray | None = 
     a new factorisation. Systems of at most ``DENSE_DOFS`` dofs are solved densely.
     """
     K = sp.csr_matrix(K)
-    n = b.shape[0]
     r_scale = max(float(np.abs(b).max(initial=0.0)), np.finfo(float).tiny)
-    dense = K.toarray() if n <= DENSE_DOFS else None
-    lu = getattr(factor, "lu", factor)
-    if lu is not None and (lu.shape != (n, n) or dense is not None):
-        lu = factor = None
-    factorisations = 0
-    own = False     # whether ``lu`` factorises a pinned matrix of this very K
+    block = BlockSolver(K, b, factor, few_changes)
     if active0 is not None:
         active = np.asarray(active0, bool).copy()
-        P = np.zeros(n)
+        P = np.zeros(b.shape[0])
         iterations = 0
+        block.start(active)
     elif P0 is not None:
         P = np.maximum(np.asarray(P0, float), 0.0)
         active = P < (K @ P - b) / K.diagonal()
         iterations = 0
+        block.start(active)
     else:
-        if dense is not None:
-            P = np.linalg.solve(dense, b)
-        else:
-            P, lu, fresh = solve_spd(K, b, lu)
-            if fresh:   # factors of K itself
-                factor, own = None, True
-                factorisations += 1
+        P = block.unconstrained()
         active = P < 0.0
         iterations = 1
-    # the cavitated set whose pinned matrix ``lu`` factorises (K itself pins none)
-    factored = getattr(factor, "active", None)
-    if factored is None:
-        factored = active if iterations == 0 else np.zeros(n, bool)
     converged = False
     while iterations < max_iter:
-        inactive = ~active
-        if dense is not None:
-            x = dense_block_solve(dense, b, inactive)
-        else:
-            rhs = np.where(inactive, b, 0.0)
-            k = n if lu is None else np.count_nonzero(factored != active)
-            x = None
-            if own and k <= BORDERED_MAX_CHANGES:
-                x = bordered_solve(lu, K, b, ~factored, inactive)
-            elif lu is not None and not own and k <= few_changes:   # another K's
-                x, ok, _ = pcg(pinned(K, inactive), rhs, np.where(inactive, P, 0.0),
-                               lu.solve)
-                x = x if ok else None
-            if x is None:
-                lu = factorise(pinned(K, inactive))
-                x = lu.solve(rhs)
-                factored, own = active, True
-                factorisations += 1
-        P = x
+        P = block.solve(active, P)
         iterations += 1
-        r = (K if dense is None else dense) @ P - b
+        r = (K if block.dense is None else block.dense) @ P - b
         # Semismooth Newton step on min(P, r / diag K) = 0: an active dof stays while its
         # multiplier r is non-negative (to round-off), an inactive one joins when P < 0.
         new = np.where(active, r > -tol * r_scale, P < 0.0)
@@ -135,8 +101,8 @@ def active_set(K: sp.csr_matrix, b: np.ndarray, *, active0: np.ndarray | None = 
     P = np.maximum(P, 0.0)
     res = complementarity_residual(K, b, P) if P.any() else 0.0
     return LCPResult(pressure=P, iterations=iterations, residual=res, converged=converged,
-                     active=P <= 0.0, factorisations=factorisations,
-                     factor=None if lu is None else PinnedFactor(lu, factored))
+                     active=P <= 0.0, factorisations=block.factorisations,
+                     factor=block.factor)
 
 
 def graph_colouring(K: sp.spmatrix, seed: int = 0) -> list[np.ndarray]:
