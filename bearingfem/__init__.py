@@ -6,12 +6,12 @@ registered by name in :mod:`bearingfem.models`; the designer's numbers (equilibr
 stiffness and damping, stability) in :mod:`bearingfem.design`.
 """
 from .bearing import Bearing, JournalState
-from .fvm import fvm_reynolds
-from .long_bearing import long_bearing_exact_force, long_bearing_force
-from .short_bearing import short_bearing_exact_force, short_bearing_force
-from .reynolds import solve_reynolds
-from .solution import FilmSolution
+from .closed.long_bearing import long_bearing_exact_force, long_bearing_force
+from .closed.short_bearing import short_bearing_exact_force, short_bearing_force
 from .design import coefficients, equilibrium
+from .fe.reynolds import solve_reynolds
+from .fv.fvm import fvm_reynolds
+from .solution import FilmSolution
 
 __all__ = ["Bearing", "JournalState", "solve_reynolds", "fvm_reynolds", "FilmSolution",
            "short_bearing_force", "long_bearing_force", "short_bearing_exact_force",

@@ -12,14 +12,14 @@ from dataclasses import dataclass, field
 from typing import Callable, Mapping
 
 from .bearing import Bearing, JournalState, check_finite
+from .closed.long_bearing import long_bearing_derivatives, long_bearing_exact_force, long_bearing_force
+from .closed.short_bearing import short_bearing_derivatives, short_bearing_exact_force, short_bearing_force
 from .differentiate import central_differences
-from .force_table import table_force
-from .fvm import fvm_force
-from .mesh import ELEMENTS, MIN_N_THETA, MIN_N_Z
-from .long_bearing import long_bearing_derivatives, long_bearing_exact_force, long_bearing_force
-from .reynolds import fe_force
-from .sensitivity import fe_force_derivatives
-from .short_bearing import short_bearing_derivatives, short_bearing_exact_force, short_bearing_force
+from .fe.force_table import table_force
+from .fe.mesh import ELEMENTS, MIN_N_THETA, MIN_N_Z
+from .fe.reynolds import fe_force
+from .fe.sensitivity import fe_force_derivatives
+from .fv.fvm import fvm_force
 from .solution import ForceDerivatives
 from .validation import CAVITATION, check_choice
 

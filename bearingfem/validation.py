@@ -4,9 +4,12 @@ from __future__ import annotations
 import math
 
 from .bearing import Bearing, JournalState, check_finite
-from .mesh import MIN_N_THETA, MIN_N_Z
 
 CAVITATION = ("none", "gumbel", "reynolds")
+#: Coarsest meshes accepted (FE and FV): a periodic scikit-fem mesh needs >= 3 cells around,
+#: and a film resolved by fewer than 8 cells around cannot place its pressure peak.
+MIN_N_THETA = 8
+MIN_N_Z = 2
 METHODS = ("active-set", "psor")
 
 

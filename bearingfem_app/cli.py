@@ -75,7 +75,7 @@ def _write_numbers(out, rows):
         import json
         out.write_text(json.dumps({n: {"value": v, "unit": u} for n, v, u in rows}, indent=1))
     else:
-        from bearingfem.tables import write_csv
+        from bearingfem.outputs.tables import write_csv
         write_csv([dict(quantity=n, value=v, unit=u) for n, v, u in rows], out)
     print(f"wrote {out}")
 
@@ -159,14 +159,14 @@ def _solve(args):
     print(f"friction {sol.friction_force:.6g} N, side leakage {sol.side_leakage:.6g} m^3/s, "
           f"p_max at theta={sol.pressure_max_theta:.4f} rad")
     if args.output:
-        from bearingfem.export import write_solution
+        from bearingfem.outputs.export import write_solution
         write_solution(sol, args.output)
         print(f"wrote {args.output}")
     return 0
 
 
 def _convergence(args):
-    from bearingfem.convergence import convergence_study
+    from bearingfem.outputs.convergence import convergence_study
     b, s = _table1(args)
     methods = tuple(args.methods.split(","))
     st = convergence_study(b, s, levels=args.levels, n_theta=args.n_theta, n_z=args.n_z,
@@ -186,7 +186,7 @@ def _convergence(args):
 
 def _render(args):
     from bearingfem import solve_reynolds
-    from bearingfem.render import render_film
+    from bearingfem.outputs.render import render_film
     b, s = _table1(args)
     sol = solve_reynolds(b, s, args.n_theta, args.n_z, args.element, args.cavitation)
     render_film(sol, args.output, field=args.field, surface=args.surface)

@@ -32,7 +32,7 @@ import numpy as np
 
 from mechanism.lubrication import FILM_MODELS
 from mechanism.scene import read_toml
-from bearingfem.tables import write_csv
+from bearingfem.outputs.tables import write_csv
 
 __all__ = ["Sweep", "load_sweep", "parse_sweep", "sweep_cases", "case_id", "run_case",
            "run_sweep", "gather"]

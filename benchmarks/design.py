@@ -27,9 +27,9 @@ from pathlib import Path
 import numpy as np
 
 from bearingfem import Bearing
-from bearingfem.assembly import film_operator
+from bearingfem.fe.assembly import film_operator
 from bearingfem.design import coefficients, equilibrium
-from bearingfem.mesh import film_mesh
+from bearingfem.fe.mesh import film_mesh
 
 BEARING = Bearing(radius=0.05, length=0.03, clearance=0.1e-3, viscosity=0.1)
 LOAD, OMEGA = (0.0, -525.0), 157.1

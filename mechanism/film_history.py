@@ -73,7 +73,7 @@ def film_history(result, scene, crank_angles_deg=None, n_frames=12, n_theta=None
 
 def write_history(frames, directory, surface="journal") -> Path:
     """One VTU per frame and a ParaView collection ``film.pvd`` (time = run time [s])."""
-    from bearingfem.export import write_solution
+    from bearingfem.outputs.export import write_solution
     d = Path(directory)
     d.mkdir(parents=True, exist_ok=True)
     root = ET.Element("VTKFile", type="Collection", version="0.1")
@@ -89,7 +89,7 @@ def write_history(frames, directory, surface="journal") -> Path:
 def render_history(frames, directory, field="pressure", surface="journal", gif=True,
                    frame_seconds=0.4):
     """PNG per frame (off screen) and, with ``gif``, an animated GIF of them (Pillow)."""
-    from bearingfem.render import render_film
+    from bearingfem.outputs.render import render_film
     d = Path(directory)
     d.mkdir(parents=True, exist_ok=True)
     paths = []

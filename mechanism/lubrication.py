@@ -8,7 +8,7 @@ film forces come through here.
 from __future__ import annotations
 
 from bearingfem.models import FILM_MODELS, NUMERIC_MODELS, film_model
-from bearingfem.reynolds import fe_force
+from bearingfem.fe.reynolds import fe_force
 
 __all__ = ["FILM_MODELS", "NUMERIC_MODELS", "film_force_function"]
 

@@ -24,15 +24,15 @@ import numpy as np
 
 from bearingfem import JournalState
 from bearingfem.bearing import seed_bearing
-from bearingfem.force_table import table_force
-from bearingfem.fvm import fvm_force
-from bearingfem.reynolds import fe_force
+from bearingfem.fe.force_table import table_force
+from bearingfem.fv.fvm import fvm_force
+from bearingfem.fe.reynolds import fe_force
 from bearingfem import long_bearing_exact_force, long_bearing_force
 from bearingfem import short_bearing_exact_force, short_bearing_force
 from mechanism import load_scene, simulate
 from mechanism.lubrication import NUMERIC_MODELS
 from mechanism.scene import SCENES, Lubrication
-from bearingfem.tables import write_csv
+from bearingfem.outputs.tables import write_csv
 
 
 # (label, model, options); the last FE entry of each list is the reference.

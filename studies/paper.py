@@ -13,7 +13,7 @@ from pathlib import Path
 
 import numpy as np
 
-from bearingfem.tables import write_csv
+from bearingfem.outputs.tables import write_csv
 from mechanism import load_scene, simulate
 from mechanism.figures import plot_comparison
 from mechanism.parameters import GRAVITY

@@ -17,7 +17,7 @@ from bearingfem.bearing import seed_bearing
 from bearingfem import (JournalState, fvm_reynolds, long_bearing_force,
                         short_bearing_exact_force, short_bearing_force, solve_reynolds)
 
-from bearingfem.tables import write_csv
+from bearingfem.outputs.tables import write_csv
 from studies.raimondi_boyd import TABLE, bearing_numbers
 
 

@@ -4,12 +4,12 @@ import pytest
 import scipy.sparse as sp
 
 from bearingfem import JournalState
-from bearingfem.blocksolve import (BORDERED_MAX_CHANGES, _dense_rows, bordered_solve,
+from bearingfem.solvers.blocksolve import (BORDERED_MAX_CHANGES, _dense_rows, bordered_solve,
                                    dense_block_solve, pinned)
-from bearingfem.cavitation import active_set
-from bearingfem.linsolve import factorise
-from bearingfem.multilevel import coarse_guess
-from bearingfem.reynolds import fe_operator, fe_pressure
+from bearingfem.solvers.cavitation import active_set
+from bearingfem.solvers.linsolve import factorise
+from bearingfem.fe.multilevel import coarse_guess
+from bearingfem.fe.reynolds import fe_operator, fe_pressure
 from conftest import table1_bearing
 
 

@@ -3,8 +3,8 @@ import numpy as np
 import pytest
 
 from bearingfem import JournalState, solve_reynolds, fvm_reynolds
-from bearingfem.cavitation import graph_colouring
-from bearingfem.assembly import film_operator
+from bearingfem.solvers.cavitation import graph_colouring
+from bearingfem.fe.assembly import film_operator
 from conftest import rel, table1_bearing
 
 STATES = [JournalState(0.6, 0.0, 0.0, 0.0, 250.0), JournalState(0.95, 0.0, 0.0, 0.0, 250.0),
@@ -57,8 +57,8 @@ def test_reynolds_pressure_is_complementary(state):
 
 @pytest.mark.parametrize("supply", [None, 0.0])
 def test_nested_start_gives_the_cold_start_answer_in_fewer_iterations(supply):
-    from bearingfem.cavitation import active_set
-    from bearingfem.reynolds import fe_operator, fe_pressure
+    from bearingfem.solvers.cavitation import active_set
+    from bearingfem.fe.reynolds import fe_operator, fe_pressure
     b = table1_bearing(1.0)
     s = JournalState(0.9, 5.0, 0.0, 0.0, 250.0)
     op = fe_operator(b, s, 240, 40, "P1", supply)
@@ -72,8 +72,8 @@ def test_nested_start_gives_the_cold_start_answer_in_fewer_iterations(supply):
 
 @pytest.mark.parametrize("periodic", [True, False])
 def test_prolongation_is_exact_for_bilinear_data(periodic):
-    from bearingfem.mesh import film_mesh
-    from bearingfem.multilevel import prolongation
+    from bearingfem.fe.mesh import film_mesh
+    from bearingfem.fe.multilevel import prolongation
     coarse = film_mesh(16, 4, "P1", 0.5, None if periodic else 0.0, True)
     fine = film_mesh(64, 16, "P1", 0.5, None if periodic else 0.0, True)
     # cos(theta) is not bilinear, but 1 + zeta is, and a periodic hat is piecewise linear

@@ -8,8 +8,8 @@ from scipy.sparse.linalg import spsolve
 
 from bearingfem import (JournalState, long_bearing_exact_force, long_bearing_force,
                         short_bearing_exact_force, short_bearing_force)
-from bearingfem.long_bearing import long_bearing_pressure
-from bearingfem.short_bearing import short_bearing_pressure
+from bearingfem.closed.long_bearing import long_bearing_pressure
+from bearingfem.closed.short_bearing import short_bearing_pressure
 from conftest import rel, table1_bearing
 
 STATES = [JournalState(0.6, 0.0, 0.3, 0.0, 250.0), JournalState(0.3, 40.0, 0.0, 30.0, 250.0),

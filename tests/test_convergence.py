@@ -3,7 +3,7 @@ import numpy as np
 import pytest
 
 from bearingfem import JournalState
-from bearingfem.convergence import convergence_study, richardson
+from bearingfem.outputs.convergence import convergence_study, richardson
 from conftest import table1_bearing
 
 

@@ -9,11 +9,11 @@ from bearingfem import Bearing, JournalState, solve_reynolds
 from bearingfem.design import (coefficients, equilibrium, journal_orbit, lund_stability,
                                sommerfeld_number, threshold_speed)
 from bearingfem.differentiate import central_differences
-from bearingfem.long_bearing import long_bearing_derivatives, long_bearing_force
+from bearingfem.closed.long_bearing import long_bearing_derivatives, long_bearing_force
 from bearingfem.models import FILM_MODELS
-from bearingfem.reynolds import fe_force
-from bearingfem.sensitivity import fe_force_derivatives
-from bearingfem.short_bearing import short_bearing_derivatives, short_bearing_force
+from bearingfem.fe.reynolds import fe_force
+from bearingfem.fe.sensitivity import fe_force_derivatives
+from bearingfem.closed.short_bearing import short_bearing_derivatives, short_bearing_force
 
 # Friswell, Penny, Garvey & Lees, Dynamics of Rotating Machines (2010), Example 5.5.1:
 # short bearing D 0.1 m, c 0.1 mm, L 0.03 m, mu 0.1 Pa s, 1500 rpm (157.1 rad/s), 525 N.

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from bearingfem import JournalState, fvm_reynolds, solve_reynolds
-from bearingfem.export import to_meshio, write_solution
+from bearingfem.outputs.export import to_meshio, write_solution
 from conftest import table1_bearing
 
 

@@ -10,9 +10,9 @@ import numpy as np
 import pytest
 
 from bearingfem import JournalState
-from bearingfem.force_table import (build_force_table, cache_dir, force_table,
+from bearingfem.fe.force_table import (build_force_table, cache_dir, force_table,
                                     squeeze_weight, table_force)
-from bearingfem.reynolds import fe_force
+from bearingfem.fe.reynolds import fe_force
 from conftest import table1_bearing
 
 MESH = dict(n_theta=96, n_z=16, element="P1")
@@ -98,7 +98,7 @@ def test_limits_are_finite():
 
 
 def test_disk_cache_reuses_and_rebuilds_when_stale(monkeypatch, tmp_path):
-    import bearingfem.force_table as ft
+    import bearingfem.fe.force_table as ft
     monkeypatch.setenv("BEARINGFEM_CACHE", str(tmp_path))
     args = (0.37, 24, 4, "P1", "gumbel", 8, 16, 0.9)
     ft.force_table.cache_clear()

@@ -4,9 +4,9 @@ import numpy as np
 import pytest
 
 from bearingfem import JournalState
-from bearingfem.cavitation import active_set
-from bearingfem.linsolve import factorise, pcg, solve_spd
-from bearingfem.reynolds import fe_force, fe_operator, fe_pressure
+from bearingfem.solvers.cavitation import active_set
+from bearingfem.solvers.linsolve import factorise, pcg, solve_spd
+from bearingfem.fe.reynolds import fe_force, fe_operator, fe_pressure
 from conftest import table1_bearing
 
 

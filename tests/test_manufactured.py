@@ -10,8 +10,8 @@ import scipy.sparse.linalg as spla
 import sympy as sy
 from skfem import Functional, LinearForm
 
-from bearingfem.assembly import film_operator
-from bearingfem.fvm import _assemble, fvm_grid
+from bearingfem.fe.assembly import film_operator
+from bearingfem.fv.fvm import _assemble, fvm_grid
 
 LAM, EPS = 0.5, 0.7
 _t, _z = sy.symbols("theta zeta")

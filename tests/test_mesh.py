@@ -3,7 +3,7 @@ import numpy as np
 import pytest
 from skfem import Functional
 
-from bearingfem.mesh import film_mesh
+from bearingfem.fe.mesh import film_mesh
 
 
 @Functional

@@ -12,7 +12,7 @@ import pytest
 pv = pytest.importorskip("pyvista")
 
 from bearingfem import JournalState, solve_reynolds  # noqa: E402
-from bearingfem.render import render_film  # noqa: E402
+from bearingfem.outputs.render import render_film  # noqa: E402
 from conftest import table1_bearing  # noqa: E402
 
 BASE = Path(__file__).parent / "baseline"

@@ -15,9 +15,9 @@ import numpy as np
 from scipy.optimize import brentq
 
 from ..bearing import Bearing, JournalState, check_finite
-from ..fvm import fvm_reynolds
+from ..fe.reynolds import solve_reynolds
+from ..fv.fvm import fvm_reynolds
 from ..models import film_model
-from ..reynolds import solve_reynolds
 from ..solution import FilmSolution
 from .groups import petroff_friction, sommerfeld_number
 

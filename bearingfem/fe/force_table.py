@@ -31,11 +31,11 @@ from pathlib import Path
 import numpy as np
 from scipy.interpolate import RectBivariateSpline
 
+from ..solvers.cavitation import active_set
+from ..solvers.linsolve import factorise
+from ..validation import CAVITATION, check_choice, check_int
 from .assembly import film_operator
-from .cavitation import active_set
-from .linsolve import factorise
 from .mesh import ELEMENTS, MIN_N_THETA, MIN_N_Z
-from .validation import CAVITATION, check_choice, check_int
 
 __all__ = ["ForceTable", "build_force_table", "force_table", "table_force", "cache_dir"]
 
@@ -138,7 +138,7 @@ def build_force_table(length_ratio: float, n_theta=96, n_z=16, element="P1",
 
 
 def _key(length_ratio, n_theta, n_z, element, cavitation, n_eps, n_phi, eps_max) -> dict:
-    from . import __version__
+    from .. import __version__
     return dict(format=FORMAT, version=__version__, length_ratio=float(length_ratio),
                 n_theta=int(n_theta), n_z=int(n_z), element=str(element),
                 cavitation=str(cavitation), n_eps=int(n_eps), n_phi=int(n_phi),

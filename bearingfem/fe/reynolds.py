@@ -3,15 +3,15 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..bearing import Bearing, JournalState
+from ..film import film_thickness, theta_from_inertial
+from ..solution import FilmSolution, film_solution
+from ..solvers.cavitation import LCPResult, active_set, psor
+from ..solvers.linsolve import solve_spd
+from ..validation import check_film_solve
 from .assembly import FilmOperator, film_operator
-from .multilevel import coarse_guess
-from .bearing import Bearing, JournalState
-from .cavitation import LCPResult, active_set, psor
-from .linsolve import solve_spd
-from .film import film_thickness, theta_from_inertial
 from .mesh import ELEMENTS
-from .solution import FilmSolution, film_solution
-from .validation import check_film_solve
+from .multilevel import coarse_guess
 
 __all__ = ["solve_reynolds", "fe_operator", "fe_pressure", "fe_force"]
 

@@ -7,8 +7,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..solution import FilmSolution
 from .export import to_meshio
-from .solution import FilmSolution
 
 __all__ = ["render_film"]
 

@@ -12,11 +12,11 @@ import math
 
 import numpy as np
 
-from .bearing import Bearing, JournalState
-from .differentiate import complex_step
-from .film import film_thickness
+from ..bearing import Bearing, JournalState
+from ..differentiate import complex_step
+from ..film import film_thickness
+from ..validation import check_inputs
 from .quadrature import theta_nodes
-from .validation import check_inputs
 
 __all__ = ["long_bearing_force", "long_bearing_derivatives", "long_bearing_exact_force",
            "long_bearing_pressure"]

@@ -15,13 +15,11 @@ from functools import lru_cache
 import numpy as np
 from skfem import Basis, ElementTriP1, ElementTriP2, MeshTri1, MeshTri1DG
 
+from ..validation import MIN_N_THETA, MIN_N_Z
+
 __all__ = ["FilmMesh", "film_mesh", "ELEMENTS", "MIN_N_THETA", "MIN_N_Z"]
 
 ELEMENTS = {"P1": ElementTriP1, "P2": ElementTriP2}
-#: Coarsest meshes accepted: a periodic scikit-fem mesh needs >= 3 cells around, and a
-#: film resolved by fewer than 8 cells around cannot place its pressure peak.
-MIN_N_THETA = 8
-MIN_N_Z = 2
 
 
 @dataclass(frozen=True, eq=False)

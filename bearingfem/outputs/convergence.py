@@ -14,11 +14,11 @@ from pathlib import Path
 
 import numpy as np
 
-from .bearing import Bearing, JournalState
-from .fvm import fvm_reynolds
-from .reynolds import solve_reynolds
+from ..bearing import Bearing, JournalState
+from ..fe.reynolds import solve_reynolds
+from ..fv.fvm import fvm_reynolds
+from ..validation import check_int
 from .tables import write_csv
-from .validation import check_int
 
 __all__ = ["convergence_study", "richardson", "ConvergenceStudy", "QUANTITIES"]
 

@@ -9,9 +9,9 @@ from __future__ import annotations
 import meshio
 import numpy as np
 
-from .fvm import FVMGrid
-from .mesh import FilmMesh
-from .solution import FilmSolution
+from ..fe.mesh import FilmMesh
+from ..fv.fvm import FVMGrid
+from ..solution import FilmSolution
 
 __all__ = ["to_meshio", "write_solution"]
 

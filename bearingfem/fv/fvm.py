@@ -21,11 +21,11 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from .bearing import Bearing, JournalState
-from .cavitation import LCPResult, active_set, psor
-from .film import film_thickness, reynolds_source_integral, theta_from_inertial
-from .solution import FilmSolution, film_solution
-from .validation import check_film_solve
+from ..bearing import Bearing, JournalState
+from ..film import film_thickness, reynolds_source_integral, theta_from_inertial
+from ..solution import FilmSolution, film_solution
+from ..solvers.cavitation import LCPResult, active_set, psor
+from ..validation import check_film_solve
 
 __all__ = ["fvm_reynolds", "FVMGrid", "fvm_grid"]
 

@@ -16,7 +16,7 @@ import scipy.sparse as sp
 from skfem import BilinearForm, LinearForm
 from skfem.helpers import dot, grad
 
-from .film import cubed_thickness_coefficients, source_coefficients
+from ..film import cubed_thickness_coefficients, source_coefficients
 from .mesh import FilmMesh, film_mesh
 
 __all__ = ["FilmOperator", "film_operator"]
@@ -158,5 +158,5 @@ def _interpolation_matrix(basis) -> sp.csr_matrix:
 @lru_cache(maxsize=32)
 def film_operator(n_theta: int, n_z: int, element: str, length_ratio: float,
                   theta0: float | None = None, half: bool = True) -> FilmOperator:
-    """Cached operator for a mesh (see :func:`bearingfem.mesh.film_mesh`)."""
+    """Cached operator for a mesh (see :func:`bearingfem.fe.mesh.film_mesh`)."""
     return build_operator(film_mesh(n_theta, n_z, element, length_ratio, theta0, half))

@@ -60,13 +60,13 @@ def active_set(K: sp.csr_matrix, b: np.ndarray, *, active0: np.ndarray | None = 
         Without either, the first set is where the unconstrained (full-Sommerfeld)
         solution is negative.
     factor : ``LCPResult.factor`` of an earlier call on a matrix of the same size (a
-        :class:`~bearingfem.blocksolve.PinnedFactor`, or LU factors of an unconstrained
+        :class:`~bearingfem.solvers.blocksolve.PinnedFactor`, or LU factors of an unconstrained
         K), e.g. the previous time step's. Its K differs from this one, so it only
         preconditions CG, and only while the set is within ``few_changes`` dofs of its own.
 
     Once this call has factorised a pinned matrix of its K, a set that moved by k <=
     ``BORDERED_MAX_CHANGES`` dofs from it is solved exactly with those factors
-    (:func:`~bearingfem.blocksolve.bordered_solve`, k + 1 triangular solves) instead of
+    (:func:`~bearingfem.solvers.blocksolve.bordered_solve`, k + 1 triangular solves) instead of
     a new factorisation. Systems of at most ``DENSE_DOFS`` dofs are solved densely.
     """
     K = sp.csr_matrix(K)

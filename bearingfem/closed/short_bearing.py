@@ -13,11 +13,11 @@ import math
 
 import numpy as np
 
-from .bearing import Bearing, JournalState
-from .differentiate import complex_step
-from .film import film_thickness, reynolds_source, source_coefficients
+from ..bearing import Bearing, JournalState
+from ..differentiate import complex_step
+from ..film import film_thickness, reynolds_source, source_coefficients
+from ..validation import check_inputs
 from .quadrature import theta_nodes
-from .validation import check_inputs
 
 __all__ = ["short_bearing_force", "short_bearing_derivatives", "short_bearing_exact_force",
            "short_bearing_pressure"]

@@ -18,11 +18,11 @@ from __future__ import annotations
 import numpy as np
 import scipy.sparse as sp
 
-from .bearing import Bearing, JournalState
-from .blocksolve import PinnedFactor, bordered_solve, pinned
-from .linsolve import factorise
+from ..bearing import Bearing, JournalState
+from ..solution import ForceDerivatives
+from ..solvers.blocksolve import PinnedFactor, bordered_solve, pinned
+from ..solvers.linsolve import factorise
 from .reynolds import fe_operator, fe_pressure
-from .solution import ForceDerivatives
 
 __all__ = ["fe_force_derivatives"]
 
@@ -32,7 +32,7 @@ def fe_force_derivatives(bearing: Bearing, state: JournalState, n_theta: int = 1
                          cavitation: str = "reynolds") -> ForceDerivatives:
     """(F_r, F_t) [N] of the FE film and its exact partials in (eps, eps_dot, w).
 
-    Same film as :func:`~bearingfem.reynolds.solve_reynolds` (periodic, half domain).
+    Same film as :func:`~bearingfem.fe.reynolds.solve_reynolds` (periodic, half domain).
     """
     op = fe_operator(bearing, state, n_theta, n_z, element, None, True)
     res = fe_pressure(op, state, cavitation)

@@ -18,8 +18,8 @@ from functools import lru_cache
 import numpy as np
 import scipy.sparse as sp
 
+from ..solvers.cavitation import active_set
 from .assembly import FilmOperator, film_operator
-from .cavitation import active_set
 from .mesh import MIN_N_THETA, MIN_N_Z
 
 __all__ = ["prolongation", "coarse_level", "coarse_guess", "COARSEST_FREE_DOFS",
