@@ -257,6 +257,14 @@ def _film_args(p):
     p.add_argument("--eps-dot", type=float, default=0.0, help="d(eps)/dt [1/s]")
 
 
+def _load_args(p, required):
+    p.add_argument("--load", type=float, required=required,
+                   help="load magnitude [N]" + ("" if required else
+                                                ": K, C at the equilibrium under it"))
+    p.add_argument("--direction", type=float, default=-90.0,
+                   help="load direction [deg], inertial (default -90: downward)")
+
+
 def _design_args(p):
     """Film model and mesh for the designer's commands (closed forms ignore the mesh)."""
     _bearing_args(p)
@@ -327,9 +335,7 @@ def build_parser():
                        epilog="example: bearingfem equilibrium --ld 1 --load 1000 "
                               "--model fem --element P2")
     _design_args(e)
-    e.add_argument("--load", type=float, required=True, help="load magnitude [N]")
-    e.add_argument("--direction", type=float, default=-90.0,
-                   help="load direction [deg], inertial (default -90: downward)")
+    _load_args(e, required=True)
     e.set_defaults(func=_equilibrium)
     k = sub.add_parser("coefficients", help="stiffness and damping (K, C) and Lund's "
                        "critical mass, at an eccentricity or under a load",
@@ -338,8 +344,7 @@ def build_parser():
     _design_args(k)
     k.add_argument("--eps", type=float, help="steady state at this eccentricity ratio")
     k.add_argument("--gamma", type=float, default=0.0, help="its attitude [deg] (with --eps)")
-    k.add_argument("--load", type=float, help="or: at the equilibrium under this load [N]")
-    k.add_argument("--direction", type=float, default=-90.0, help="load direction [deg]")
+    _load_args(k, required=False)
     k.add_argument("--frame", default="inertial", choices=["inertial", "local", "load"],
                    help="axes of K and C")
     k.set_defaults(func=_coefficients)
