@@ -6,6 +6,8 @@ import math
 import sys
 from pathlib import Path
 
+from bearingfem.bearing import SEED_TABLE1
+
 EXAMPLES = """examples:
   bearingfem simulate scenes/paper-short-fem.toml -o results/short-fem
   bearingfem solve --ld 1.0 --eps 0.6 --cavitation reynolds
@@ -242,9 +244,12 @@ def _bearing_args(p):
     p.add_argument("--length-ratio", "--ld", dest="length_ratio", type=float, default=1.0,
                    help="L/D, the bearing's length over its diameter")
     p.add_argument("--omega", type=float, default=250.0, help="journal speed [rad/s]")
-    p.add_argument("--diameter", type=float, default=0.020, help="[m] (seed Table 1)")
-    p.add_argument("--clearance", type=float, default=20e-6, help="[m] (seed Table 1)")
-    p.add_argument("--viscosity", type=float, default=0.0117, help="[Pa s] (seed Table 1)")
+    p.add_argument("--diameter", type=float, default=SEED_TABLE1["diameter"],
+                   help="[m] (seed Table 1)")
+    p.add_argument("--clearance", type=float, default=SEED_TABLE1["clearance"],
+                   help="[m] (seed Table 1)")
+    p.add_argument("--viscosity", type=float, default=SEED_TABLE1["viscosity"],
+                   help="[Pa s] (seed Table 1)")
     p.add_argument("--cavitation", default="reynolds", help="none | gumbel | reynolds")
     p.add_argument("--n-theta", type=int, default=120)
     p.add_argument("--n-z", type=int, default=20)

@@ -30,6 +30,7 @@ from pathlib import Path
 
 import numpy as np
 
+from bearingfem.bearing import SEED_TABLE1
 from mechanism.lubrication import FILM_MODELS
 from mechanism.scene import read_toml
 from bearingfem.outputs.tables import write_csv
@@ -39,8 +40,9 @@ __all__ = ["Sweep", "load_sweep", "parse_sweep", "sweep_cases", "case_id", "run_
 
 # parameter -> (default, kind of value); units: m, Pa s, rad/s, 1/s
 FILM_PARAMS = {
-    "diameter": (0.020, float), "length_ratio": (1.0, float), "clearance": (20e-6, float),
-    "viscosity": (0.0117, float), "omega": (250.0, float), "eps": (0.6, float),
+    "diameter": (SEED_TABLE1["diameter"], float), "length_ratio": (1.0, float),
+    "clearance": (SEED_TABLE1["clearance"], float),
+    "viscosity": (SEED_TABLE1["viscosity"], float), "omega": (250.0, float), "eps": (0.6, float),
     "eps_dot": (0.0, float), "model": ("fem", str), "n_theta": (96, int), "n_z": (16, int),
     "element": ("P1", str), "cavitation": ("gumbel", str),
 }
