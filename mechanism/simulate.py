@@ -176,7 +176,7 @@ def simulate(scene: Scene, progress: bool | None = None) -> SimulationResult:
     except (ValueError, ArithmeticError, np.linalg.LinAlgError) as err:
         partial, message = True, f"stopped at t = {t:.6g} s: {type(err).__name__}: {err}"
     wall = time.perf_counter() - start
-    bar.close(message if partial else "done")
+    bar.close(message if partial else "done", complete=not partial)
     stats = {"wall_time": wall, "steps": steps, "rhs_evals": n_rhs[0],
              "film_solves": film.solves if film else 0,
              "contact_evals": contact.evaluations if contact else 0,

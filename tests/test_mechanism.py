@@ -130,5 +130,27 @@ def test_progress_bar_reports_on_a_stream():
     buf = io.StringIO()
     p = Progress(2.0, "run", enabled=True, stream=buf)
     p.update(1.0)
-    p.close()
-    assert "50.0%" in buf.getvalue() and "100.0%" in buf.getvalue()
+    p.close("done")
+    last = buf.getvalue().split("\r")[-1]
+    assert "50.0%" in buf.getvalue() and "100.0%" in last and last.rstrip().endswith("done")
+    # a run that stops early ends where it stopped, not at 0 % (or 100 %)
+    buf = io.StringIO()
+    p = Progress(2.0, "run", enabled=True, stream=buf)
+    p.update(1.0)
+    p.close("stopped at t = 1 s", complete=False)
+    last = buf.getvalue().split("\r")[-1]
+    assert "50.0%" in last and "stopped" in last and "0.0%" not in last.replace("50.0%", "")
+
+
+def test_progress_prints_lines_when_not_a_terminal():
+    import io
+    from mechanism.progress import Progress
+    buf = io.StringIO()                      # not a terminal
+    p = Progress(4.0, "sweep", stream=buf, every=0.0)
+    for v in (1.0, 2.0, 3.0):
+        p.update(v)
+    p.close("done")
+    lines = buf.getvalue().splitlines()
+    assert len(lines) == 4 and "\r" not in buf.getvalue()
+    assert "25.0%" in lines[0] and lines[-1].startswith("sweep: 100.0%") and lines[-1].endswith("done")
+    assert Progress(1.0, stream=io.StringIO(), enabled=False).mode == "off"
