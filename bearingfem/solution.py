@@ -62,10 +62,22 @@ class FilmSolution:
     mesh: object = field(default=None, repr=False)   # FilmMesh (FE) or grid shape (FV)
 
     def summary(self) -> str:
+        """The solve in a few named lines with units (what ``bearingfem solve`` prints)."""
         fr, ft = self.force_local
-        return (f"{self.method}/{self.cavitation}: F_r={fr:.6g} N F_t={ft:.6g} N "
-                f"p_max={self.pressure_max:.6g} Pa h_min={self.film_min:.3g} m "
-                f"cav={self.cavitated_fraction:.3f} it={self.iterations} res={self.residual:.1e}")
+        load = float(np.hypot(fr, ft))
+        attitude = float(np.degrees(np.arctan2(ft, -fr))) if load else 0.0
+        return "\n".join([
+            f"film {self.method}, cavitation {self.cavitation}, {self.n_dofs} unknowns",
+            f"  force on the journal |F| {load:.6g} N, attitude angle {attitude:.4g} deg; "
+            f"local (F_r, F_t) ({fr:.6g}, {ft:.6g}) N; inertial (F_x, F_y) "
+            f"({self.force[0]:.6g}, {self.force[1]:.6g}) N",
+            f"  peak pressure {self.pressure_max:.6g} Pa at theta "
+            f"{np.degrees(self.pressure_max_theta):.1f} deg from the maximum film; "
+            f"minimum film {self.film_min * 1e6:.4g} um",
+            f"  cavitated area {100 * self.cavitated_fraction:.1f} % of the film; friction "
+            f"{self.friction_force:.6g} N; side leakage {self.side_leakage:.6g} m^3/s",
+            f"  solver: {self.iterations} iterations, complementarity residual "
+            f"{self.residual:.1e}" + ("" if self.converged else " (NOT converged)")])
 
 
 def film_solution(bearing, state, P, theta, zeta, force_local, *, friction, leakage,

@@ -2,7 +2,9 @@
 from __future__ import annotations
 
 import argparse
+import functools
 import math
+import re
 import sys
 from pathlib import Path
 
@@ -65,8 +67,18 @@ def _check_output(path, suffixes):
     out = Path(path)
     if out.suffix.lower() not in suffixes:
         raise ValueError(f"-o/--output must end in {' or '.join(suffixes)}, got {path!r}")
-    out.parent.mkdir(parents=True, exist_ok=True)
+    _make_dir(out.parent, "-o/--output")
     return out
+
+
+def _make_dir(path, option):
+    """Create an output folder before any work, or say in one line why it cannot be."""
+    try:
+        Path(path).mkdir(parents=True, exist_ok=True)
+    except OSError as err:
+        raise ValueError(f"{option}: cannot create folder {str(path)!r} ({err.strerror})") \
+            from None
+    return Path(path)
 
 
 def _write_numbers(out, rows):
@@ -144,22 +156,34 @@ def _coefficients(args):
     return 0
 
 
+#: What meshio writes from a film (checked before the solve, not after it).
+FILM_FORMATS = (".vtu", ".xdmf", ".vtk")
+#: What the off-screen renderer writes.
+IMAGE_FORMATS = (".png", ".jpg", ".jpeg", ".bmp", ".tif", ".tiff")
+
+
+def _element(args, method="fem"):
+    """--element belongs to the finite elements: refused when given with --method fvm."""
+    if method == "fvm" and args.element_given:
+        raise ValueError("--element applies to --method fem only (finite volumes have no "
+                         f"element), got --element {args.element} with --method fvm")
+    return args.element
+
+
 def _solve(args):
     from bearingfem import fvm_reynolds, solve_reynolds
+    element = _element(args, args.method)
+    _check_output(args.output, FILM_FORMATS)
     b, s = _table1(args)
     if args.method == "fvm":
         sol = fvm_reynolds(b, s, args.n_theta, args.n_z, args.cavitation)
     else:
-        sol = solve_reynolds(b, s, args.n_theta, args.n_z, args.element, args.cavitation)
+        sol = solve_reynolds(b, s, args.n_theta, args.n_z, element, args.cavitation)
     print(sol.summary())
     from bearingfem.design import sommerfeld_number
-    f_r, f_t = sol.force_local
-    load = math.hypot(f_r, f_t)
-    print(f"|F| {load:.6g} N, attitude angle {math.degrees(math.atan2(f_t, -f_r)):.4g} deg, "
-          f"Sommerfeld number "
+    load = math.hypot(*sol.force_local)
+    print("  Sommerfeld number "
           + (f"{sommerfeld_number(b, load, s.omega):.6g}" if load > 0 and s.omega else "-"))
-    print(f"friction {sol.friction_force:.6g} N, side leakage {sol.side_leakage:.6g} m^3/s, "
-          f"p_max at theta={sol.pressure_max_theta:.4f} rad")
     if args.output:
         from bearingfem.outputs.export import write_solution
         write_solution(sol, args.output)
@@ -168,13 +192,19 @@ def _solve(args):
 
 
 def _convergence(args):
-    from bearingfem.outputs.convergence import convergence_study
-    b, s = _table1(args)
+    from bearingfem.outputs.convergence import QUANTITIES, convergence_study
+    from bearingfem.validation import check_choice
+    if args.element_given:
+        raise ValueError("--element does not apply to convergence: --methods names the "
+                         "discretisations (P1, P2, fvm)")
+    check_choice("--quantity", args.quantity, QUANTITIES)
     methods = tuple(args.methods.split(","))
+    for m in methods:
+        check_choice("--methods entry", m, ("P1", "P2", "fvm"))
+    b, s = _table1(args)
+    out = _make_dir(args.output, "-o/--output")
     st = convergence_study(b, s, levels=args.levels, n_theta=args.n_theta, n_z=args.n_z,
                            cavitation=args.cavitation, methods=methods, progress=print)
-    out = Path(args.output)
-    out.mkdir(parents=True, exist_ok=True)
     st.write_csv(out / "convergence.csv")
     st.plot(out / "convergence.png", args.quantity)
     print(f"{'method':6s} {'quantity':18s} {'finest':>14s} {'order':>7s} {'extrapolated':>14s} {'GCI':>9s}")
@@ -188,9 +218,13 @@ def _convergence(args):
 
 def _render(args):
     from bearingfem import solve_reynolds
-    from bearingfem.outputs.render import render_film
+    from bearingfem.outputs.render import FIELDS, SURFACES, render_film
+    from bearingfem.validation import check_choice
+    check_choice("--field", args.field, tuple(FIELDS))
+    check_choice("--surface", args.surface, SURFACES)
+    _check_output(args.output, IMAGE_FORMATS)
     b, s = _table1(args)
-    sol = solve_reynolds(b, s, args.n_theta, args.n_z, args.element, args.cavitation)
+    sol = solve_reynolds(b, s, args.n_theta, args.n_z, _element(args), args.cavitation)
     render_film(sol, args.output, field=args.field, surface=args.surface)
     print(sol.summary())
     print(f"wrote {args.output}")
@@ -222,6 +256,9 @@ def _frames(args):
         raise ValueError(f"no run result in {args.result!r} (expected result.npz from "
                          "'bearingfem simulate')")
     result = load_result(args.result)
+    if result.scene != scene.name:
+        raise ValueError(f"the run in {args.result!r} was made from scene {result.scene!r}, "
+                         f"not from {scene.name!r} ({args.scene}): give the scene of the run")
     angles = None
     if args.angles:
         try:
@@ -251,9 +288,9 @@ def _bearing_args(p):
     p.add_argument("--viscosity", type=float, default=SEED_TABLE1["viscosity"],
                    help="[Pa s] (seed Table 1)")
     p.add_argument("--cavitation", default="reynolds", help="none | gumbel | reynolds")
-    p.add_argument("--n-theta", type=int, default=120)
-    p.add_argument("--n-z", type=int, default=20)
-    p.add_argument("--element", default="P1", help="P1 | P2")
+    p.add_argument("--n-theta", type=int, default=120, help="cells around the film")
+    p.add_argument("--n-z", type=int, default=20, help="cells along the length")
+    p.add_argument("--element", default="P1", help="P1 | P2 (finite elements only)")
 
 
 def _film_args(p):
@@ -267,7 +304,7 @@ def _load_args(p, required):
                    help="load magnitude [N]" + ("" if required else
                                                 ": K, C at the equilibrium under it"))
     p.add_argument("--direction", type=float, default=-90.0,
-                   help="load direction [deg], inertial (default -90: downward)")
+                   help="load direction [deg], inertial (-90: downward)")
 
 
 def _design_args(p):
@@ -283,19 +320,22 @@ def build_parser():
                                 "and the slider-crank that carries them.", epilog=EXAMPLES,
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = p.add_subparsers(dest="command", required=True)
-    s = sub.add_parser("simulate", help="integrate a scene; write result and figure",
+    add = functools.partial(sub.add_parser,   # every option shows its default in --help
+                            formatter_class=argparse.ArgumentDefaultsHelpFormatter)
+    s = add("simulate", help="integrate a scene; write result and figure",
                        epilog="example: bearingfem simulate scenes/paper-long-fem.toml -o out")
     s.add_argument("scene", help="scene TOML file")
     s.add_argument("-o", "--output", required=True, help="output directory")
     s.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
     s.set_defaults(func=_simulate)
-    f = sub.add_parser("solve", help="one film solve; print forces, optionally export VTU",
+    f = add("solve", help="one film solve; print forces, optionally export VTU",
                        epilog="example: bearingfem solve --ld 0.5 --eps 0.8 -o film.vtu")
     _film_args(f)
-    f.add_argument("--method", default="fem", choices=["fem", "fvm"])
+    f.add_argument("--method", default="fem", choices=["fem", "fvm"],
+                   help="finite elements or finite volumes")
     f.add_argument("-o", "--output", help="write the film (.vtu, .xdmf)")
     f.set_defaults(func=_solve)
-    c = sub.add_parser("convergence", help="mesh-convergence study: CSV table + log-log PNG",
+    c = add("convergence", help="mesh-convergence study: CSV table + log-log PNG",
                        epilog="example: bearingfem convergence --ld 1.0 --eps 0.6 -o conv")
     _film_args(c)
     c.set_defaults(n_theta=24, n_z=4)
@@ -304,24 +344,24 @@ def build_parser():
     c.add_argument("--quantity", default="force", help="quantity for the figure")
     c.add_argument("-o", "--output", required=True, help="output directory")
     c.set_defaults(func=_convergence)
-    r = sub.add_parser("render", help="off-screen PNG of the film pressure or thickness",
+    r = add("render", help="off-screen PNG of the film pressure or thickness",
                        epilog="example: bearingfem render --ld 1.0 --eps 0.6 -o film.png")
     _film_args(r)
     r.add_argument("--field", default="pressure", help="pressure | film_thickness")
     r.add_argument("--surface", default="journal", help="journal | unwrapped")
     r.add_argument("-o", "--output", required=True, help="PNG file")
     r.set_defaults(func=_render)
-    w = sub.add_parser("sweep", help="parameter sweep on Dask: one file per case, resumable",
+    w = add("sweep", help="parameter sweep on Dask: one file per case, resumable",
                        epilog="example: bearingfem sweep sweeps/capacity.toml -o out "
                               "--scheduler tcp://10.0.0.5:8786")
     w.add_argument("sweep", help="sweep TOML file (see sweeps/)")
     w.add_argument("-o", "--output", required=True, help="output directory (rerun to resume)")
     w.add_argument("--scheduler", help="address of a running Dask scheduler; default: a "
                    "local cluster")
-    w.add_argument("--workers", type=int, default=2, help="local cluster processes (default 2)")
+    w.add_argument("--workers", type=int, default=2, help="local cluster processes")
     w.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
     w.set_defaults(func=_sweep)
-    fr = sub.add_parser("frames", help="the film along a saved run: VTU series (.pvd), PNG "
+    fr = add("frames", help="the film along a saved run: VTU series (.pvd), PNG "
                         "frames, GIF", epilog="example: bearingfem frames "
                         "scenes/paper-long-fem.toml results/long-fem -o frames --angles 0,90")
     fr.add_argument("scene", help="the scene TOML the run was made from")
@@ -335,14 +375,14 @@ def build_parser():
     fr.add_argument("--gif", action="store_true", help="also write an animated film.gif")
     fr.add_argument("--no-render", action="store_true", help="VTU series only, no PNG")
     fr.set_defaults(func=_frames)
-    e = sub.add_parser("equilibrium", help="where the journal sits under a load: eps, "
+    e = add("equilibrium", help="where the journal sits under a load: eps, "
                        "attitude, Sommerfeld number, film, friction, flow",
                        epilog="example: bearingfem equilibrium --ld 1 --load 1000 "
                               "--model fem --element P2")
     _design_args(e)
     _load_args(e, required=True)
     e.set_defaults(func=_equilibrium)
-    k = sub.add_parser("coefficients", help="stiffness and damping (K, C) and Lund's "
+    k = add("coefficients", help="stiffness and damping (K, C) and Lund's "
                        "critical mass, at an eccentricity or under a load",
                        epilog="example: bearingfem coefficients --ld 0.5 --load 500 "
                               "--frame load")
@@ -356,8 +396,29 @@ def build_parser():
     return p
 
 
+_NEGATIVE = re.compile(r"^-(\d+\.?\d*|\.\d+)(e[-+]?\d+)?$", re.IGNORECASE)
+
+
+def _negative_values(argv):
+    """``--opt -20e-6`` -> ``--opt=-20e-6``: argparse would read the value as an option,
+    so that the range check could not speak."""
+    out, i = [], 0
+    while i < len(argv):
+        a = argv[i]
+        if a.startswith("--") and "=" not in a and i + 1 < len(argv) and _NEGATIVE.match(argv[i + 1]):
+            out.append(f"{a}={argv[i + 1]}")
+            i += 2
+        else:
+            out.append(a)
+            i += 1
+    return out
+
+
 def main(argv=None):
-    args = build_parser().parse_args(argv)
+    argv = sys.argv[1:] if argv is None else list(argv)
+    args = build_parser().parse_args(_negative_values(argv))
+    # options whose meaning depends on others: was it typed, or is it the default?
+    args.element_given = any(a == "--element" or a.startswith("--element=") for a in argv)
     try:
         return args.func(args)
     except ValueError as err:

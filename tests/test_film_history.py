@@ -70,3 +70,7 @@ def test_frames_command(long_run, tmp_path):
                          capture_output=True, text=True, timeout=300)
     assert bad.returncode == 2 and "no run result in" in bad.stderr
     assert len(bad.stderr.strip().splitlines()) == 1
+    # a run of another scene is refused by name, before any film is solved
+    other = subprocess.run(cmd[:4] + [str(SCENES / "paper-short-fem.toml")] + cmd[5:],
+                           capture_output=True, text=True, timeout=300)
+    assert other.returncode == 2 and "was made from scene 'paper-long-fem'" in other.stderr

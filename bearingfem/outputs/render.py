@@ -10,8 +10,9 @@ import numpy as np
 from ..solution import FilmSolution
 from .export import to_meshio
 
-__all__ = ["render_film"]
+__all__ = ["render_film", "FIELDS", "SURFACES"]
 
+SURFACES = ("journal", "unwrapped")
 FIELDS = {"pressure": ("pressure", 1e-6, "pressure [MPa]"),
           "film_thickness": ("film_thickness", 1e6, "film thickness [um]")}
 
