@@ -5,6 +5,7 @@ naming it (``scene.effects.contact.poisson must lie in [0, 0.5), got 0.7``).
 """
 from __future__ import annotations
 
+import difflib
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -94,7 +95,10 @@ class _Table:
         self.used.add(key)
         if key not in self.data:
             if required:
-                raise ValueError(f"{self.where}.{key} is required but missing")
+                typo = [k for k in self.data if k not in self.used
+                        and difflib.get_close_matches(k, [key], n=1, cutoff=0.7)]
+                hint = "".join(f" (unknown key {k}: did you mean {key}?)" for k in typo)
+                raise ValueError(f"{self.where}.{key} is required but missing{hint}")
             return default
         return self.data[key]
 
@@ -129,7 +133,10 @@ class _Table:
     def done(self):
         extra = sorted(set(self.data) - self.used)
         if extra:
-            raise ValueError(f"{self.where} has unknown key(s): {', '.join(extra)}")
+            def named(k):
+                near = difflib.get_close_matches(k, sorted(self.used), n=1, cutoff=0.7)
+                return f"{k} (did you mean {near[0]}?)" if near else k
+            raise ValueError(f"{self.where} has unknown key(s): {', '.join(map(named, extra))}")
 
 
 def _mechanism(t: _Table | None) -> Mechanism:

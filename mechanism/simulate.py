@@ -200,11 +200,12 @@ def _dense(pieces):
 
 def _output_times(scene, crank_angle_at, t0, t1):
     """Saved time points: every 1/samples_per_turn of a nominal turn, from where the crank
-    passes q0 + 2 pi record_from_turn (or t1 if it never does) to t1."""
+    passes q0 + 2 pi record_from_turn to t1. A run that stopped before that window keeps
+    its whole computed trajectory, from t0."""
     tt = np.linspace(t0, t1, 20001)
     q = crank_angle_at(tt)
     q_rec = scene.crank_angle + 2 * math.pi * scene.run.record_from_turn
-    t_rec = float(np.interp(q_rec, q, tt)) if q[-1] >= q_rec else t1
+    t_rec = float(np.interp(q_rec, q, tt)) if q[-1] >= q_rec else t0
     dt = 2 * math.pi / scene.crank_speed / scene.run.samples_per_turn
     t = np.arange(t_rec, t1 + 0.5 * dt, dt)
     return t[t <= t1]

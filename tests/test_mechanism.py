@@ -124,6 +124,27 @@ def test_interrupted_run_keeps_results(monkeypatch):
     assert len(r.t) > 10 and np.all(np.isfinite(r.eps))
 
 
+def test_run_stopped_before_its_recorded_window_keeps_what_it_computed(monkeypatch):
+    """Interrupted during the settling turns: the whole computed trajectory comes back
+    (720 samples a turn from t = 0), not the one sample at the stop."""
+    calls = {"n": 0}
+    original = FilmEffect.force
+
+    def force(self, k):
+        calls["n"] += 1
+        if calls["n"] == 1500:
+            raise KeyboardInterrupt
+        return original(self, k)
+
+    monkeypatch.setattr(FilmEffect, "force", force)
+    sc = scene({"lubrication": {"model": "long"}}, turns=3.0, ld=2.0, record_from_turn=2.0)
+    r = simulate(sc, progress=False)
+    assert r.partial and r.t[0] == 0.0
+    turns_done = (r.crank_angle[-1] - r.crank_angle[0]) / (2 * np.pi)
+    assert 0.05 < turns_done < 2.0
+    assert len(r.t) >= int(0.9 * 720 * turns_done)
+
+
 def test_progress_bar_reports_on_a_stream():
     import io
     from mechanism.progress import Progress

@@ -83,3 +83,15 @@ def test_missing_file_and_bad_toml(tmp_path):
     p.write_text("name = \n")
     with pytest.raises(ValueError, match="not valid TOML"):
         load_scene(p)
+
+
+def test_misspelt_keys_are_named_with_the_likely_intent():
+    d = _with(("bearing", "viscosty"), 0.0117)
+    del d["bearing"]["viscosity"]
+    with pytest.raises(ValueError, match=r"scene.bearing.viscosity is required but missing "
+                                         r"\(unknown key viscosty: did you mean viscosity\?\)"):
+        parse_scene(d)
+    d = _with(("run", "rtoll"), 1e-6)
+    with pytest.raises(ValueError, match=r"scene.run has unknown key\(s\): rtoll "
+                                         r"\(did you mean rtol\?\)"):
+        parse_scene(d)
