@@ -247,6 +247,14 @@ def _sweep(args):
     return 1 if res.failed or res.interrupted else 0
 
 
+def _differences(a, b, where="scene"):
+    """Dotted names of the entries where two nested dicts differ."""
+    if isinstance(a, dict) and isinstance(b, dict):
+        return [d for k in sorted(set(a) | set(b))
+                for d in _differences(a.get(k), b.get(k), f"{where}.{k}")]
+    return [] if a == b else [where]
+
+
 def _frames(args):
     from mechanism import load_scene
     from mechanism.film_history import film_history, render_history, write_history
@@ -259,6 +267,17 @@ def _frames(args):
     if result.scene != scene.name:
         raise ValueError(f"the run in {args.result!r} was made from scene {result.scene!r}, "
                          f"not from {scene.name!r} ({args.scene}): give the scene of the run")
+    stored = result.provenance.get("scene")
+    if stored is not None:   # the physics must match; run settings (turns, output) need not
+        import dataclasses
+        import json
+        now = json.loads(json.dumps(dataclasses.asdict(scene), default=float))
+        stored = json.loads(json.dumps(stored, default=float))
+        differ = _differences({k: v for k, v in stored.items() if k != "run"},
+                              {k: v for k, v in now.items() if k != "run"})
+        if differ:
+            raise ValueError(f"scene {args.scene} differs from the one the run in "
+                             f"{args.result!r} was made from ({', '.join(differ[:4])})")
     angles = None
     if args.angles:
         try:

@@ -7,6 +7,7 @@ be re-solved at any saved instant without re-running the mechanism.
 """
 from __future__ import annotations
 
+import math
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass
 from pathlib import Path
@@ -80,7 +81,8 @@ def write_history(frames, directory, surface="journal") -> Path:
     coll = ET.SubElement(root, "Collection")
     for k, f in enumerate(frames):
         name = f"film-{k:03d}.vtu"
-        write_solution(f.solution, d / name, surface)
+        write_solution(f.solution, d / name, surface,
+                       constants={"time": f.t, "crank_angle": math.radians(f.crank_angle_deg)})
         ET.SubElement(coll, "DataSet", timestep=repr(f.t), part="0", file=name)
     ET.ElementTree(root).write(d / "film.pvd", xml_declaration=True)
     return d / "film.pvd"

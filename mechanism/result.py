@@ -7,7 +7,9 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["SimulationResult", "load_result", "FIELDS"]
+from bearingfem.outputs.tables import write_csv
+
+__all__ = ["SimulationResult", "load_result", "provenance", "FIELDS"]
 
 FIELDS = ("t", "crank_angle", "crank_speed", "rod_angle", "slider_position",
           "slider_acceleration", "eps", "e_x", "e_y", "film_min", "force_x", "force_y")
@@ -39,6 +41,7 @@ class SimulationResult:
     partial: bool = False
     message: str = "completed"
     stats: dict = field(default_factory=dict)
+    provenance: dict = field(default_factory=dict)   # resolved scene, versions, date
 
     def summary(self) -> str:
         s = self.stats
@@ -73,12 +76,18 @@ class SimulationResult:
                 "peak_slider_acc": round(float(np.max(np.abs(self.slider_acceleration))), 1)}
 
     def save(self, directory) -> Path:
-        """Write ``result.npz`` (arrays) and ``result.json`` (units, stats, message)."""
+        """Write ``result.npz`` (arrays), ``result.csv`` (the same histories, units in the
+        header) and ``result.json`` (units, statistics, message, and the provenance: the
+        resolved scene, the toolkit and library versions, the date - enough to re-run it)."""
         d = Path(directory)
         d.mkdir(parents=True, exist_ok=True)
         np.savez_compressed(d / "result.npz", **{k: getattr(self, k) for k in FIELDS})
+        columns = [f"{k} [{UNITS[k]}]" for k in FIELDS]
+        write_csv([dict(zip(columns, row)) for row in
+                   np.column_stack([getattr(self, k) for k in FIELDS]).tolist()],
+                  d / "result.csv", columns)
         meta = {"scene": self.scene, "partial": self.partial, "message": self.message,
-                "units": UNITS, "stats": self.stats}
+                "units": UNITS, "stats": self.stats, "provenance": self.provenance}
         (d / "result.json").write_text(json.dumps(meta, indent=2, default=float))
         return d
 
@@ -89,4 +98,22 @@ def load_result(directory) -> SimulationResult:
     meta = json.loads((d / "result.json").read_text())
     return SimulationResult(**{k: arr[k] for k in FIELDS}, scene=meta["scene"],
                             partial=meta["partial"], message=meta["message"],
-                            stats=meta["stats"])
+                            stats=meta["stats"], provenance=meta.get("provenance", {}))
+
+
+def provenance(scene) -> dict:
+    """What a run was made from: the resolved scene (every default filled in), the toolkit
+    and library versions and the date (UTC)."""
+    import dataclasses
+    import datetime
+    import platform
+
+    import scipy
+    import skfem
+
+    import bearingfem
+    return {"scene": dataclasses.asdict(scene), "bearingfem": bearingfem.__version__,
+            "numpy": np.__version__, "scipy": scipy.__version__,
+            "scikit-fem": getattr(skfem, "__version__", "?"),
+            "python": platform.python_version(),
+            "created": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds")}

@@ -22,7 +22,7 @@ from .effects import (CoulombFriction, FilmEffect, HertzContact, JointKinematics
                       hertz_stiffness)
 from .parameters import GRAVITY
 from .progress import Progress
-from .result import FIELDS, SimulationResult
+from .result import FIELDS, SimulationResult, provenance
 from .rigid import integrate_rigid, rigid_kinematics, rigid_rhs
 from .scene import Scene
 
@@ -215,7 +215,8 @@ def _sample(scene, pieces, effects, g, stats, partial, message):
     m = scene.mechanism
     if not pieces:
         return SimulationResult(**{k: np.empty(0) for k in FIELDS}, scene=scene.name,
-                                partial=partial, message=message, stats=stats)
+                                partial=partial, message=message, stats=stats,
+                                provenance=provenance(scene))
     at, t0, t1 = _dense(pieces)
     t = _output_times(scene, lambda tt: at(tt)[0], t0, t1)
     Y = at(t)
@@ -240,7 +241,7 @@ def _sample(scene, pieces, effects, g, stats, partial, message):
         slider_acceleration=out["slider_acceleration"], eps=eps, e_x=Y[1],
         e_y=Y[2], film_min=np.maximum(c * (1.0 - eps), 0.0), force_x=out["force_x"],
         force_y=out["force_y"], scene=scene.name, partial=partial, message=message,
-        stats=stats)
+        stats=stats, provenance=provenance(scene))
 
 
 def _simulate_ideal(scene: Scene, progress=None) -> SimulationResult:
@@ -272,4 +273,5 @@ def _simulate_ideal(scene: Scene, progress=None) -> SimulationResult:
              "effects": []}
     return SimulationResult(t=t, crank_angle=q, crank_speed=qd, rod_angle=A, slider_position=X,
                             slider_acceleration=Xdd, eps=z, e_x=z, e_y=z, film_min=z + 0.0,
-                            force_x=Fx, force_y=Fy, scene=scene.name, stats=stats)
+                            force_x=Fx, force_y=Fy, scene=scene.name, stats=stats,
+                            provenance=provenance(scene))

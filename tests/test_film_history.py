@@ -74,3 +74,48 @@ def test_frames_command(long_run, tmp_path):
     other = subprocess.run(cmd[:4] + [str(SCENES / "paper-short-fem.toml")] + cmd[5:],
                            capture_output=True, text=True, timeout=300)
     assert other.returncode == 2 and "was made from scene 'paper-long-fem'" in other.stderr
+
+
+def test_series_carry_coordinates_and_time(long_run, tmp_path):
+    sc, r = long_run
+    frames = film_history(r, sc, [60, 120], n_theta=24, n_z=4)
+    write_history(frames, tmp_path, "unwrapped")
+    m = meshio.read(tmp_path / "film-001.vtu")
+    assert {"pressure", "film_thickness", "theta", "z", "time", "crank_angle"} <= set(m.point_data)
+    assert np.allclose(m.point_data["time"], frames[1].t)
+    assert np.allclose(np.degrees(m.point_data["crank_angle"]), frames[1].crank_angle_deg)
+    assert np.ptp(m.point_data["theta"]) > 6.0 and np.ptp(m.point_data["z"]) > 0
+
+
+def test_saved_run_carries_its_provenance_and_a_csv(long_run, tmp_path):
+    import csv
+    import json
+    import bearingfem
+    from mechanism import load_result
+    sc, r = long_run
+    r.save(tmp_path / "run")
+    meta = json.loads((tmp_path / "run" / "result.json").read_text())
+    prov = meta["provenance"]
+    assert prov["bearingfem"] == bearingfem.__version__ and prov["created"].endswith("+00:00")
+    assert prov["scene"]["lubrication"]["model"] == "fem"
+    assert prov["scene"]["lubrication"]["options"]["n_theta"] == 48
+    assert prov["scene"]["bearing"]["clearance"] == sc.bearing.clearance
+    rows = list(csv.reader(open(tmp_path / "run" / "result.csv")))
+    assert rows[0][:3] == ["t [s]", "crank_angle [rad]", "crank_speed [rad/s]"]
+    assert len(rows) == len(r.t) + 1 and float(rows[-1][0]) == pytest.approx(r.t[-1])
+    assert load_result(tmp_path / "run").provenance == prov
+
+
+def test_frames_refuses_a_scene_whose_physics_differ(long_run, tmp_path):
+    import subprocess
+    import sys
+    sc, r = long_run
+    r.save(tmp_path / "run")
+    text = (SCENES / "paper-long-fem.toml").read_text().replace("clearance = 20e-6",
+                                                                "clearance = 30e-6")
+    (tmp_path / "paper-long-fem.toml").write_text(text)
+    out = subprocess.run([sys.executable, "-m", "bearingfem_app", "frames",
+                          str(tmp_path / "paper-long-fem.toml"), str(tmp_path / "run"), "-o",
+                          str(tmp_path / "fr"), "--no-render"], capture_output=True, text=True,
+                         timeout=300)
+    assert out.returncode == 2 and "scene.bearing.clearance" in out.stderr

@@ -1,8 +1,9 @@
 """Export a film solution to meshio (VTU, XDMF, ...) for ParaView.
 
 Points lie on the 3-D journal surface (x = R cos alpha, y = R sin alpha, z) or, with
-``surface="unwrapped"``, on the plane (R theta, z, 0). Point data: pressure [Pa] and
-film_thickness [m]. A half-domain solve is mirrored to the whole length.
+``surface="unwrapped"``, on the plane (R theta, z, 0). Point data: pressure [Pa],
+film_thickness [m], theta [rad] (from the maximum film) and z [m]. A half-domain solve is
+mirrored to the whole length.
 """
 from __future__ import annotations
 
@@ -57,7 +58,8 @@ def to_meshio(sol: FilmSolution, surface: str = "journal") -> meshio.Mesh:
         alpha = theta + sol.gamma + np.pi
         pts = np.column_stack([R * np.cos(alpha), R * np.sin(alpha), z])
         return meshio.Mesh(pts, [(ctype, cells)],
-                           point_data={"pressure": p, "film_thickness": h})
+                           point_data={"pressure": p, "film_thickness": h, "theta": theta,
+                                       "z": z})
     # Unwrapped: cells across the periodic seam would span the whole plane, so every cell
     # gets its own vertices and seam cells are unwrapped by 2 pi.
     th = theta[cells]
@@ -67,9 +69,15 @@ def to_meshio(sol: FilmSolution, surface: str = "journal") -> meshio.Mesh:
     pts = np.column_stack([R * th.ravel(), z[flat], np.zeros(flat.size)])
     own = np.arange(flat.size).reshape(cells.shape)
     return meshio.Mesh(pts, [(ctype, own)],
-                       point_data={"pressure": p[flat], "film_thickness": h[flat]})
+                       point_data={"pressure": p[flat], "film_thickness": h[flat],
+                                   "theta": theta[flat], "z": z[flat]})
 
 
-def write_solution(sol: FilmSolution, path, surface: str = "journal"):
-    """Write the film to ``path``; the format follows the suffix (.vtu, .xdmf, ...)."""
-    to_meshio(sol, surface).write(str(path))
+def write_solution(sol: FilmSolution, path, surface: str = "journal", constants=None):
+    """Write the film to ``path``; the format follows the suffix (.vtu, .xdmf, ...).
+    ``constants``: name -> number written as a uniform point field (e.g. the run's time
+    [s]; meshio's VTU writer drops field data, ParaView reads point fields)."""
+    m = to_meshio(sol, surface)
+    for k, v in (constants or {}).items():
+        m.point_data[k] = np.full(len(m.points), float(v))
+    m.write(str(path))
