@@ -123,11 +123,31 @@ def case_id(kind: str, params: dict) -> str:
     return "case-" + hashlib.sha1(text.encode()).hexdigest()[:12]
 
 
-def run_case(kind: str, params: dict) -> dict:
-    """Compute one case (runs on a worker); returns its parameters and outputs."""
+def run_case(kind: str, params: dict, scene: dict | None = None) -> dict:
+    """Compute one case (runs on a worker); returns its parameters and outputs.
+
+    ``scene``: for mechanism cases, the scene's parsed TOML as the client read it - workers
+    of a remote cluster do not have the client's files (without it the worker reads
+    ``params["scene"]`` itself)."""
     t0 = time.perf_counter()
-    out = {"film": _film_case, "design": _design_case, "mechanism": _mechanism_case}[kind](params)
+    if kind == "mechanism":
+        out = _mechanism_case(params, scene)
+    else:
+        out = {"film": _film_case, "design": _design_case}[kind](params)
     return {**params, **out, "wall_s": time.perf_counter() - t0}
+
+
+def _scene_data(params: dict) -> dict:
+    """The scene of a mechanism case, read and validated on the client (before any work)."""
+    from mechanism.scene import parse_scene, scene_path
+    path = scene_path(params.get("scene", MECHANISM_PARAMS["scene"][0]))
+    data = read_toml(path, "scene")
+    data.setdefault("name", path.stem)
+    try:
+        parse_scene(data, path.stem)
+    except ValueError as err:
+        raise ValueError(f"sweep case {params}: {err}") from None
+    return data
 
 
 def _film_case(params: dict) -> dict:
@@ -205,11 +225,12 @@ def _precheck(kind: str, params: dict) -> None:
         raise ValueError(f"sweep case {params}: {err}") from None
 
 
-def _mechanism_case(params: dict) -> dict:
+def _mechanism_case(params: dict, scene: dict | None = None) -> dict:
     from dataclasses import replace
     from mechanism import load_scene, simulate
-    from mechanism.scene import Lubrication
-    sc = load_scene(params.get("scene", MECHANISM_PARAMS["scene"][0]))
+    from mechanism.scene import Lubrication, parse_scene
+    sc = (parse_scene(scene, scene.get("name", "scene")) if scene is not None else
+          load_scene(params.get("scene", MECHANISM_PARAMS["scene"][0])))
     turns = params.get("turns", MECHANISM_PARAMS["turns"][0])
     sc = replace(sc, run=replace(sc.run, turns=turns, record_from_turn=max(0.0, turns - 1)))
     b = sc.bearing
@@ -262,6 +283,13 @@ def run_sweep(sweep: Sweep, out, scheduler: str | None = None, workers: int = 2,
     cases = sweep_cases(sweep)
     for params in cases:                  # physical ranges, before any work starts
         _precheck(sweep.kind, params)
+    # mechanism cases travel with their scene: remote workers do not have our files
+    scenes = {}
+    if sweep.kind == "mechanism":
+        for params in cases:
+            key = params.get("scene", MECHANISM_PARAMS["scene"][0])
+            if key not in scenes:
+                scenes[key] = _scene_data(params)
     out = Path(out)
     cases_dir = out / "cases"
     cases_dir.mkdir(parents=True, exist_ok=True)
@@ -281,7 +309,9 @@ def run_sweep(sweep: Sweep, out, scheduler: str | None = None, workers: int = 2,
                                    dashboard_address=None)
         client = Client(scheduler if scheduler is not None else cluster)
         try:
-            futures = {client.submit(run_case, sweep.kind, params, key=cid, pure=False): cid
+            futures = {client.submit(run_case, sweep.kind, params,
+                                     scenes.get(params.get("scene", MECHANISM_PARAMS["scene"][0])),
+                                     key=cid, pure=False): cid
                        for cid, params in todo.items()}
             for fut in as_completed(futures):
                 cid = futures[fut]

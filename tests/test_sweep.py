@@ -84,3 +84,102 @@ def test_a_failing_case_is_reported_and_the_others_kept(tmp_path):
     assert "n_theta must be an integer >= 8" in next(iter(res.failed.values()))
     assert len(gather(tmp_path)) == 1
     assert len(list((tmp_path / "cases").glob("*.error.json"))) == 1
+
+
+def _start(cmd, cwd):
+    import subprocess
+    return subprocess.Popen(cmd, cwd=cwd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+
+
+def test_mechanism_sweep_on_a_cluster_of_separate_processes_elsewhere(tmp_path, monkeypatch):
+    """Scheduler and worker are processes of their own, started in a directory that has
+    none of the client's files (as on any remote cluster), on loopback. The client's scene
+    exists only in the client's directory: each case must carry it."""
+    import subprocess
+    import sys
+    import time
+    from pathlib import Path
+    root = Path(__file__).resolve().parent.parent
+    client_dir, cluster_dir = tmp_path / "client", tmp_path / "cluster"
+    client_dir.mkdir()
+    cluster_dir.mkdir()
+    (client_dir / "quick.toml").write_text(
+        (root / "scenes" / "paper-long-analytic.toml").read_text()
+        .replace("name = \"paper-long-analytic\"", "name = \"quick\""))
+    sfile = cluster_dir / "scheduler.json"
+    procs = [_start([sys.executable, "-m", "distributed.cli.dask_scheduler", "--host",
+                     "127.0.0.1", "--port", "0", "--no-dashboard", "--scheduler-file",
+                     str(sfile)], cluster_dir)]
+    try:
+        for _ in range(300):
+            if sfile.exists() and sfile.stat().st_size:
+                break
+            time.sleep(0.1)
+        address = json.loads(sfile.read_text())["address"]
+        procs.append(_start([sys.executable, "-m", "distributed.cli.dask_worker", address,
+                             "--nworkers", "1", "--nthreads", "1", "--no-dashboard"],
+                            cluster_dir))
+        monkeypatch.chdir(client_dir)
+        sw = parse_sweep({"name": "remote", "kind": "mechanism",
+                          "base": {"scene": "quick.toml", "turns": 0.25},
+                          "vary": {"clearance": [20e-6, 30e-6]}})
+        res = run_sweep(sw, client_dir / "out", scheduler=address, progress=False)
+        assert res.failed == {} and res.computed == 2, res.failed
+        assert {r["clearance"] for r in res.rows} == {20e-6, 30e-6}
+        assert all(r["status"] == "completed" for r in res.rows)
+    finally:
+        for p in procs:
+            p.terminate()
+        for p in procs:
+            try:
+                p.wait(timeout=10)
+            except subprocess.TimeoutExpired:
+                p.kill()
+
+
+def test_killing_a_worker_mid_sweep_loses_no_case(tmp_path):
+    """Two workers as processes of their own; one is killed (SIGKILL) once the first case
+    is on disk. The scheduler hands its work to the other: every case is computed."""
+    import subprocess
+    import sys
+    import threading
+    import time
+    sfile = tmp_path / "scheduler.json"
+    procs = [_start([sys.executable, "-m", "distributed.cli.dask_scheduler", "--host",
+                     "127.0.0.1", "--port", "0", "--no-dashboard", "--scheduler-file",
+                     str(sfile)], tmp_path)]
+    try:
+        for _ in range(300):
+            if sfile.exists() and sfile.stat().st_size:
+                break
+            time.sleep(0.1)
+        address = json.loads(sfile.read_text())["address"]
+        for _ in range(2):
+            procs.append(_start([sys.executable, "-m", "distributed.cli.dask_worker", address,
+                                 "--nworkers", "1", "--nthreads", "1", "--no-dashboard"],
+                                tmp_path))
+        sw = parse_sweep({"name": "kill", "kind": "film",
+                          "base": {"model": "fvm", "n_theta": 240, "n_z": 40,
+                                   "cavitation": "reynolds"},
+                          "vary": {"eps": [0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9]}})
+        out = tmp_path / "out"
+        done = {}
+        t = threading.Thread(target=lambda: done.update(
+            res=run_sweep(sw, out, scheduler=address, progress=False)))
+        t.start()
+        for _ in range(600):
+            if list((out / "cases").glob("case-*.json")) if (out / "cases").exists() else []:
+                break
+            time.sleep(0.05)
+        procs[1].kill()
+        t.join(timeout=240)
+        res = done["res"]
+        assert res.failed == {} and res.computed == 8 and len(res.rows) == 8
+    finally:
+        for p in procs:
+            p.terminate()
+        for p in procs:
+            try:
+                p.wait(timeout=10)
+            except subprocess.TimeoutExpired:
+                p.kill()
