@@ -291,7 +291,8 @@ def _frames(args):
     pvd = write_history(frames, out, args.surface)
     print(f"wrote {pvd} ({len(frames)} VTU files, time = run time [s])")
     if not args.no_render:
-        paths = render_history(frames, out, args.field, args.surface, gif=args.gif)
+        paths = render_history(frames, out, args.field, args.surface, gif=args.gif,
+                               fixed_camera=args.fixed_camera)
         print(f"wrote {len(paths)} images to {out}" + (" incl. film.gif" if args.gif else ""))
     return 0
 
@@ -392,6 +393,9 @@ def build_parser():
     fr.add_argument("--field", default="pressure", help="pressure | film_thickness")
     fr.add_argument("--surface", default="journal", help="journal | unwrapped")
     fr.add_argument("--gif", action="store_true", help="also write an animated film.gif")
+    fr.add_argument("--fixed-camera", action="store_true",
+                    help="journal view from one place for every frame (default: each "
+                         "frame's loaded side)")
     fr.add_argument("--no-render", action="store_true", help="VTU series only, no PNG")
     fr.set_defaults(func=_frames)
     e = add("equilibrium", help="where the journal sits under a load: eps, "

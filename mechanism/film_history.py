@@ -89,15 +89,25 @@ def write_history(frames, directory, surface="journal") -> Path:
 
 
 def render_history(frames, directory, field="pressure", surface="journal", gif=True,
-                   frame_seconds=0.4):
-    """PNG per frame (off screen) and, with ``gif``, an animated GIF of them (Pillow)."""
-    from bearingfem.outputs.render import render_film
+                   frame_seconds=0.4, fixed_camera: bool = False):
+    """PNG per frame (off screen) and, with ``gif``, an animated GIF of them (Pillow).
+
+    Every frame shares one colour scale (0 to the series' peak), so frames compare. The
+    journal view looks at each frame's loaded side, or from one place with ``fixed_camera``
+    (that of the frame with the series' peak)."""
+    from bearingfem.outputs.render import FIELDS, render_film
     d = Path(directory)
     d.mkdir(parents=True, exist_ok=True)
+    _, scale, _ = FIELDS[field]
+    values = [np.asarray(getattr(f.solution, field)) * scale for f in frames]
+    clim = ((0.0 if field == "pressure" else min(float(v.min()) for v in values)),
+            max(float(v.max()) for v in values)) if frames else None
+    peak = max(frames, key=lambda f: f.solution.pressure_max) if frames else None
+    camera = peak.solution.pressure_max_angle if fixed_camera and peak else None
     paths = []
     for k, f in enumerate(frames):
         paths.append(render_film(f.solution, d / f"frame-{k:03d}.png", field=field,
-                                 surface=surface,
+                                 surface=surface, clim=clim, camera_angle=camera,
                                  title=f"crank {f.crank_angle_deg:.0f} deg, t = {f.t:.5f} s"))
     if gif and paths:
         from PIL import Image

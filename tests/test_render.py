@@ -1,18 +1,21 @@
-"""Off-screen renders, checked against stored baselines with a tolerance for renderer noise.
+"""Off-screen renders: stored baselines (renderer noise tolerated), and checks a test can
+see - orientation marks, a smooth cavitation boundary, a colour bar from 0, the whole body
+in view, one colour scale for a series.
 
 pyvista.compare_images gives the mean absolute pixel difference; re-rendering the same
-film gives 0, a different film (eps 0.6 -> 0.8) ~3000-3500: the threshold of 300 (within
-pyvista's own 200-500 defaults) leaves room for other VTK builds' noise. Baselines:
+film gives 0, a different film (eps 0.6 -> 0.8) several thousand: the threshold of 300
+(within pyvista's own 200-500 defaults) leaves room for other VTK builds' noise. Baselines:
 tests/baseline/film-*.png, made by this test's _render (review them when they change).
 """
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 pv = pytest.importorskip("pyvista")
 
 from bearingfem import JournalState, solve_reynolds  # noqa: E402
-from bearingfem.outputs.render import render_film  # noqa: E402
+from bearingfem.outputs.render import _boundary_lines, render_film, unwrapped_figure  # noqa: E402
 from conftest import table1_bearing  # noqa: E402
 
 BASE = Path(__file__).parent / "baseline"
@@ -38,3 +41,56 @@ def test_render_rejects_unknown_field(tmp_path):
     sol = solve_reynolds(table1_bearing(1.0), JournalState(0.6, omega=250.0), 24, 4)
     with pytest.raises(ValueError, match="field"):
         render_film(sol, tmp_path / "x.png", field="temperature")
+
+
+def test_unwrapped_map_is_oriented_and_its_cavity_boundary_is_smooth():
+    sol = solve_reynolds(table1_bearing(1.0), JournalState(0.6, omega=250.0), 48, 8)
+    fig = unwrapped_figure(sol)
+    ax, cax = fig.axes
+    assert "theta from the maximum film [deg]" in ax.get_xlabel() and ax.get_ylabel() == "z [mm]"
+    assert ax.get_xlim() == (0.0, 360.0)
+    names = [t.get_text() for t in ax.get_legend().get_texts()]
+    for name in ("maximum film", "minimum film (eccentricity)", "load line",
+                 "cavitation boundary (p = 0)", "cavitated", "peak pressure"):
+        assert name in names
+    assert "inertial" in ax.get_title() and "attitude" in ax.get_title()
+    ticks = [t.get_text() for t in cax.get_yticklabels()]
+    assert ticks[0] == "0" and "e-0" not in "".join(ticks)      # no 2.32e-06 crowding 0
+    # the free boundary is an isoline, not the element staircase: few of its segments run
+    # along the mesh lines (the staircase of the old render had nothing else)
+    lines = _boundary_lines(sol)
+    seg = np.concatenate([np.diff(line, axis=0) for line in lines])
+    seg = seg[np.hypot(*seg.T) > 1e-9]
+    aligned = (np.abs(seg[:, 0]) < 1e-6) | (np.abs(seg[:, 1]) < 1e-6)
+    assert len(seg) > 50 and aligned.mean() < 0.2
+
+
+def test_long_journal_fits_in_view_beside_its_colour_bar(tmp_path):
+    from PIL import Image
+    sol = solve_reynolds(table1_bearing(2.0), JournalState(0.6, omega=250.0), 48, 16)
+    path = render_film(sol, tmp_path / "long.png", window_size=(600, 450))
+    img = np.asarray(Image.open(path).convert("L"), float)
+    h, w = img.shape
+    body = img[int(0.08 * h):, : int(0.80 * w)]          # below the title, left of the bar
+    assert (body[-3:] > 250).all(), "the body is cut off at the bottom"
+    gap = img[int(0.2 * h):, int(0.80 * w): int(0.84 * w)]     # below the bar's title
+    assert (gap > 250).all(), "body and colour bar touch"
+    assert (body < 200).mean() > 0.1                      # and there is a body
+
+
+def test_a_series_shares_one_colour_scale(monkeypatch, tmp_path):
+    from mechanism import film_history as fh
+
+    class Frame:
+        def __init__(self, sol, t):
+            self.solution, self.t, self.crank_angle_deg = sol, t, 10.0 * t
+    sols = [solve_reynolds(table1_bearing(1.0), JournalState(e, omega=250.0), 24, 4)
+            for e in (0.3, 0.8)]
+    seen = []
+    monkeypatch.setattr("bearingfem.outputs.render.render_film",
+                        lambda sol, path, **kw: seen.append(kw) or path)
+    fh.render_history([Frame(s, k) for k, s in enumerate(sols)], tmp_path, gif=False,
+                      fixed_camera=True)
+    top = max(s.pressure_max for s in sols) * 1e-6
+    assert [kw["clim"] for kw in seen] == [(0.0, pytest.approx(top))] * 2
+    assert seen[0]["camera_angle"] == seen[1]["camera_angle"] is not None
