@@ -11,6 +11,9 @@ from .result import SimulationResult  # noqa: E402
 
 __all__ = ["plot_run", "plot_comparison"]
 
+#: Films thinner than this [um] (contact) are drawn at it on the log axis.
+FILM_FLOOR_UM = 1e-3
+
 
 def _crank_deg(r: SimulationResult):
     """Crank angle [deg] from the start of the first recorded turn (round-off safe)."""
@@ -29,8 +32,11 @@ def plot_comparison(results, labels, clearance, title="", path=None):
         ls = styles[i % len(styles)]
         deg = _crank_deg(r)
         lab = lab + (" (partial)" if r.partial else "")
-        ax[0, 0].plot(deg, r.film_min * 1e6, ls, label=lab)
-        ax[0, 1].plot(r.e_x / clearance, r.e_y / clearance, ls, label=lab)
+        # log scale: 0.1-0.25 um near the wall must stay readable beside 10 um
+        ax[0, 0].plot(deg, np.maximum(r.film_min * 1e6, FILM_FLOOR_UM), ls, label=lab)
+        dense = len(r.dense_t) > len(r.t)      # the integrator's own interpolant
+        ex, ey = (r.dense_e_x, r.dense_e_y) if dense else (r.e_x, r.e_y)
+        ax[0, 1].plot(ex / clearance, ey / clearance, ls, label=lab)
         ax[0, 2].plot(deg, r.force_x, ls, label=lab)
         ax[1, 0].plot(deg, r.force_y, ls, label=lab)
         ax[1, 1].plot(deg, r.crank_speed, ls, label=lab)
@@ -39,7 +45,8 @@ def plot_comparison(results, labels, clearance, title="", path=None):
     ax[0, 1].plot(np.cos(circle), np.sin(circle), "k", lw=0.8)
     ax[0, 1].set_aspect("equal")
     ax[0, 1].set(xlabel="e_x / c (slider axis)", ylabel="e_y / c", title="pin orbit in the clearance")
-    ax[0, 0].set(ylabel="minimum film thickness [um]", title="film thickness")
+    ax[0, 0].set(ylabel="minimum film thickness [um] (log)", title="film thickness",
+                 yscale="log")
     ax[0, 2].set(ylabel="joint force on pin F_x [N]", title="force, X (slider axis)")
     ax[1, 0].set(ylabel="joint force on pin F_y [N]", title="force, Y")
     ax[1, 1].set(ylabel="crank speed [rad/s]", title="crank angular speed")
@@ -49,9 +56,12 @@ def plot_comparison(results, labels, clearance, title="", path=None):
         a.set_xlim(0, 360)
         a.grid(alpha=0.3)
     ax[0, 1].grid(alpha=0.3)
-    ax[0, 0].legend(fontsize=8)
+    handles, names = ax[0, 0].get_legend_handles_labels()
+    # one legend for all six panels, below them
+    fig.legend(handles, names, loc="lower center", ncol=max(len(names), 1), fontsize=9,
+               frameon=False)
     fig.suptitle(title)
-    fig.tight_layout()
+    fig.tight_layout(rect=(0, 0.05, 1, 1))
     if path is not None:
         fig.savefig(path, dpi=110)
         plt.close(fig)

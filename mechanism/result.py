@@ -13,6 +13,7 @@ __all__ = ["SimulationResult", "load_result", "provenance", "FIELDS"]
 
 FIELDS = ("t", "crank_angle", "crank_speed", "rod_angle", "slider_position",
           "slider_acceleration", "eps", "e_x", "e_y", "film_min", "force_x", "force_y")
+DENSE = ("dense_t", "dense_e_x", "dense_e_y")
 UNITS = {"t": "s", "crank_angle": "rad", "crank_speed": "rad/s", "rod_angle": "rad",
          "slider_position": "m", "slider_acceleration": "m/s^2", "eps": "1", "e_x": "m",
          "e_y": "m", "film_min": "m", "force_x": "N", "force_y": "N"}
@@ -42,6 +43,11 @@ class SimulationResult:
     message: str = "completed"
     stats: dict = field(default_factory=dict)
     provenance: dict = field(default_factory=dict)   # resolved scene, versions, date
+    #: the orbit from the integrator's dense output, 10x finer than the saved points
+    #: (no film solves are needed for it): time [s], e_x, e_y [m]
+    dense_t: np.ndarray = field(default_factory=lambda: np.empty(0))
+    dense_e_x: np.ndarray = field(default_factory=lambda: np.empty(0))
+    dense_e_y: np.ndarray = field(default_factory=lambda: np.empty(0))
 
     def summary(self) -> str:
         s = self.stats
@@ -81,7 +87,7 @@ class SimulationResult:
         resolved scene, the toolkit and library versions, the date - enough to re-run it)."""
         d = Path(directory)
         d.mkdir(parents=True, exist_ok=True)
-        np.savez_compressed(d / "result.npz", **{k: getattr(self, k) for k in FIELDS})
+        np.savez_compressed(d / "result.npz", **{k: getattr(self, k) for k in FIELDS + DENSE})
         columns = [f"{k} [{UNITS[k]}]" for k in FIELDS]
         write_csv([dict(zip(columns, row)) for row in
                    np.column_stack([getattr(self, k) for k in FIELDS]).tolist()],
@@ -96,7 +102,8 @@ def load_result(directory) -> SimulationResult:
     d = Path(directory)
     arr = np.load(d / "result.npz")
     meta = json.loads((d / "result.json").read_text())
-    return SimulationResult(**{k: arr[k] for k in FIELDS}, scene=meta["scene"],
+    return SimulationResult(**{k: arr[k] for k in FIELDS},
+                            **{k: arr[k] for k in DENSE if k in arr}, scene=meta["scene"],
                             partial=meta["partial"], message=meta["message"],
                             stats=meta["stats"], provenance=meta.get("provenance", {}))
 

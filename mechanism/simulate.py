@@ -235,13 +235,16 @@ def _sample(scene, pieces, effects, g, stats, partial, message):
     stats["output_film_solves"] = int(sum(getattr(e, "solves", 0) for e in effects)
                                       - sum(solves_before))
     eps = np.hypot(Y[1], Y[2]) / c
+    td = np.linspace(t[0], t[-1], 10 * (len(t) - 1) + 1) if len(t) > 1 else t
+    Yd = at(td)
     return SimulationResult(
         t=t, crank_angle=Y[0], crank_speed=Y[3], rod_angle=out["rod_angle"],
         slider_position=out["slider_position"],
         slider_acceleration=out["slider_acceleration"], eps=eps, e_x=Y[1],
         e_y=Y[2], film_min=np.maximum(c * (1.0 - eps), 0.0), force_x=out["force_x"],
         force_y=out["force_y"], scene=scene.name, partial=partial, message=message,
-        stats=stats, provenance=provenance(scene))
+        stats=stats, provenance=provenance(scene), dense_t=td, dense_e_x=Yd[1],
+        dense_e_y=Yd[2])
 
 
 def _simulate_ideal(scene: Scene, progress=None) -> SimulationResult:
