@@ -335,43 +335,82 @@ def run_sweep(sweep: Sweep, out, scheduler: str | None = None, workers: int = 2,
     return SweepResult(rows, computed, skipped, failed, interrupted, time.perf_counter() - t0)
 
 
+def _sort_key(value):
+    """Numbers in numeric order, then names in alphabetical order."""
+    if isinstance(value, (int, float)) and not isinstance(value, bool):
+        return (0, float(value), "")
+    return (1, 0.0, str(value))
+
+
 def gather(out, sweep: Sweep | None = None) -> list[dict]:
     """Collect every finished case of ``out`` into ``results.csv`` (+ ``summary.png``)."""
     out = Path(out)
     rows = [json.loads(p.read_text()) for p in sorted((out / "cases").glob("case-*.json"))
             if not p.name.endswith(".error.json")]
     if rows:
-        write_csv(rows, out / "results.csv")
+        # sorted by the varied parameters; columns no case filled left out
+        order = list(sweep.vary) if sweep is not None else []
+        rows = sorted(rows, key=lambda r: tuple(_sort_key(r.get(k)) for k in order))
+        keys = [k for k in dict.fromkeys(k for r in rows for k in r)
+                if any(r.get(k, "") != "" for r in rows)]
+        write_csv(rows, out / "results.csv", keys)
         if sweep is not None:
             plot_summary(rows, sweep, out / "summary.png")
     return rows
 
 
+#: How each sweep parameter is shown: (display scale, label with units).
+DISPLAY = {"diameter": (1e3, "diameter [mm]"), "length_ratio": (1.0, "L/D [-]"),
+           "clearance": (1e6, "clearance [um]"), "viscosity": (1.0, "viscosity [Pa s]"),
+           "omega": (1.0, "omega [rad/s]"), "eps": (1.0, "eccentricity ratio [-]"),
+           "eps_dot": (1.0, "eps_dot [1/s]"), "crank_speed": (1.0, "crank speed [rad/s]"),
+           "turns": (1.0, "turns [-]"), "n_theta": (1.0, "n_theta [-]"), "n_z": (1.0, "n_z [-]")}
+#: What each kind of sweep plots: (result column, label with units, log scale).
+OUTPUTS = {"film": [("load", "load capacity |F| [N]", True)],
+           "design": [("sommerfeld", "Sommerfeld number S [-]", True)],
+           "mechanism": [("min_film_um", "minimum film [um]", True),
+                         ("peak_eps", "peak eccentricity ratio [-]", False)]}
+
+
+def _shown(key, value):
+    scale, label = DISPLAY.get(key, (1.0, key))
+    if isinstance(value, (int, float)):
+        return f"{label.split(' [')[0]} {value * scale:g}" + (
+            f" {label.split('[')[1][:-1]}" if "[" in label and label.split("[")[1][:-1] != "-"
+            else "")
+    return f"{key} {value}"
+
+
 def plot_summary(rows, sweep: Sweep, path) -> None:
-    """First varied parameter on x; the main output on y; one line per other combination."""
+    """First varied parameter on x (with units); each output the kind promises on its own
+    panel; one line per combination of the other varied parameters."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     x_key = next(iter(sweep.vary))
-    y_key = {"film": "load", "design": "sommerfeld", "mechanism": "min_film_um"}[sweep.kind]
     others = [k for k in sweep.vary if k != x_key]
-    groups = {}
-    for r in rows:
-        if y_key in r and r[y_key] != "":
-            groups.setdefault(tuple(r.get(k) for k in others), []).append(r)
-    fig, ax = plt.subplots(figsize=(7, 4.5), constrained_layout=True)
-    for g, rs in sorted(groups.items(), key=lambda kv: str(kv[0])):
-        rs = sorted(rs, key=lambda r: r[x_key])
-        label = ", ".join(f"{k}={v}" for k, v in zip(others, g)) or None
-        ax.plot([r[x_key] for r in rs], [r[y_key] for r in rs], "o-", label=label)
-    ax.set_xlabel(x_key)
-    ax.set_ylabel({"load": "load capacity |F| [N]", "min_film_um": "min film [um]",
-                   "sommerfeld": "Sommerfeld number S"}[y_key])
-    if sweep.kind != "mechanism":
-        ax.set_yscale("log")
-    ax.set_title(f"sweep {sweep.name}: {len(rows)} cases")
-    ax.grid(True, alpha=0.3)
-    if len(groups) > 1:
-        ax.legend(fontsize=7)
+    outputs = OUTPUTS[sweep.kind]
+    xscale, xlabel = DISPLAY.get(x_key, (1.0, x_key))
+    fig, axes = plt.subplots(1, len(outputs), figsize=(7 * len(outputs), 4.5),
+                             constrained_layout=True, squeeze=False)
+    for ax, (y_key, ylabel, log) in zip(axes[0], outputs):
+        groups = {}
+        for r in rows:
+            if r.get(y_key, "") != "":
+                groups.setdefault(tuple(r.get(k) for k in others), []).append(r)
+        for g, rs in sorted(groups.items(), key=lambda kv: str(kv[0])):
+            rs = sorted(rs, key=lambda r: r[x_key])
+            label = ", ".join(_shown(k, v) for k, v in zip(others, g)) or None
+            xs = [r[x_key] * xscale if isinstance(r[x_key], (int, float)) else r[x_key]
+                  for r in rs]
+            ax.plot(xs, [r[y_key] for r in rs], "o-", label=label)
+        ax.set(xlabel=xlabel, ylabel=ylabel, yscale="log" if log else "linear")
+        ax.grid(True, alpha=0.3)
+        if len(groups) > 1:
+            ax.legend(fontsize=7)
+    fixed = ", ".join(_shown(k, v) for k, v in sorted(sweep.base.items())
+                      if k not in ("scene", "model", "element", "cavitation"))
+    fig.suptitle(f"sweep {sweep.name} ({sweep.kind}): {len(rows)} cases"
+                 + (f"; {fixed}" if fixed else ""), fontsize=9)
     fig.savefig(path, dpi=110)
     plt.close(fig)

@@ -33,3 +33,23 @@ def test_study_orders_and_files(tmp_path):
 def test_study_rejects_bad_levels():
     with pytest.raises(ValueError, match="levels"):
         convergence_study(table1_bearing(1.0), JournalState(0.6, omega=250.0), levels=2)
+
+
+def test_plot_shows_every_method_with_units_and_the_case(tmp_path, monkeypatch):
+    import matplotlib.figure
+    from bearingfem.outputs.convergence import ConvergenceStudy
+    saved = []
+    monkeypatch.setattr(matplotlib.figure.Figure, "savefig",
+                        lambda self, *a, **k: saved.append(self))
+    rows = ([{"method": "P1", "dofs": d, "force": 1.0 + 1.0 / d} for d in (100, 400, 1600)]
+            + [{"method": "P2", "dofs": d, "force": f}
+               for d, f in ((100, 1.01), (400, 0.995), (1600, 1.002))])
+    summary = [{"method": "P1", "quantity": "force", "order": 2.0, "extrapolated": 1.0,
+                "gci": 1e-3},
+               {"method": "P2", "quantity": "force", "order": np.nan, "extrapolated": np.nan,
+                "gci": np.nan}]
+    ConvergenceStudy(rows, summary, "L/D 1, eps 0.6").plot(tmp_path / "c.png")
+    ax = saved[0].axes[0]
+    names = [t.get_text() for t in ax.get_legend().get_texts()]
+    assert names[0].startswith("P1: observed order 2.00") and names[1].startswith("P2: no order")
+    assert "L/D 1, eps 0.6" in ax.get_title() and ax.get_xlabel().endswith("[-]")

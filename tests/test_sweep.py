@@ -183,3 +183,39 @@ def test_killing_a_worker_mid_sweep_loses_no_case(tmp_path):
                 p.wait(timeout=10)
             except subprocess.TimeoutExpired:
                 p.kill()
+
+
+def test_gathered_table_is_sorted_without_empty_columns_and_plots_with_units(tmp_path):
+    sw = parse_sweep({"name": "t", "kind": "film", "base": {"n_theta": 24, "n_z": 4},
+                      "vary": {"clearance": [30e-6, 10e-6, 20e-6], "model": ["short", "fem"]}})
+    (tmp_path / "cases").mkdir()
+    for p in sweep_cases(sw):
+        (tmp_path / "cases" / f"{case_id('film', p)}.json").write_text(
+            json.dumps(run_case("film", p)))
+    rows = gather(tmp_path, sw)
+    with open(tmp_path / "results.csv") as fh:
+        table = list(csv.DictReader(fh))
+    assert [(float(r["clearance"]), r["model"]) for r in table] == sorted(
+        (float(r["clearance"]), r["model"]) for r in table)
+    for column in table[0]:            # the closed forms leave pressure_max etc. empty
+        assert any(r[column] != "" for r in table), column
+    assert "pressure_max" in table[0] and len(rows) == 6
+
+
+def test_summary_plots_what_the_sweep_promises_with_units(tmp_path, monkeypatch):
+    import matplotlib.figure
+    from bearingfem_app.sweep import plot_summary
+    saved = []
+    monkeypatch.setattr(matplotlib.figure.Figure, "savefig", lambda self, *a, **k: saved.append(self))
+    sw = parse_sweep({"name": "m", "kind": "mechanism", "base": {"turns": 1.0},
+                      "vary": {"clearance": [15e-6, 20e-6], "viscosity": [0.0117, 0.03]}})
+    rows = [{"clearance": c, "viscosity": v, "min_film_um": 1.0 + c * 1e5, "peak_eps": 0.5}
+            for c in (15e-6, 20e-6) for v in (0.0117, 0.03)]
+    plot_summary(rows, sw, tmp_path / "s.png")
+    fig = saved[0]
+    assert [a.get_ylabel() for a in fig.axes] == ["minimum film [um]",
+                                                  "peak eccentricity ratio [-]"]
+    assert fig.axes[0].get_xlabel() == "clearance [um]"
+    assert fig.axes[0].lines[0].get_xdata()[0] == pytest.approx(15.0)
+    legend = [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
+    assert legend == ["viscosity 0.0117 Pa s", "viscosity 0.03 Pa s"]

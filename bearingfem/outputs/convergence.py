@@ -45,6 +45,7 @@ class ConvergenceStudy:
 
     rows: list
     summary: list
+    case: str = ""            # what was solved, for titles: "L/D 1, eps 0.6, reynolds"
 
     def write_csv(self, path):
         path = Path(path)
@@ -55,19 +56,25 @@ class ConvergenceStudy:
         import matplotlib
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
-        fig, ax = plt.subplots(figsize=(6.5, 4.5))
+        fig, ax = plt.subplots(figsize=(7, 4.8))
         for m in METHODS:
             rows = [r for r in self.rows if r["method"] == m]
             s = [x for x in self.summary if x["method"] == m and x["quantity"] == quantity]
-            if not rows or not s or not np.isfinite(s[0]["extrapolated"]):
+            if not rows or not s:
                 continue
-            ref = s[0]["extrapolated"]
             n = np.array([r["dofs"] for r in rows], float)
-            err = np.array([abs(r[quantity] / ref - 1.0) for r in rows])
-            ax.loglog(n, err, "o-", label=f"{m}: observed order {s[0]['order']:.2f} "
-                      f"(in h), GCI {100 * s[0]['gci']:.2g} %")
-        ax.set(xlabel="degrees of freedom", ylabel=f"relative error of {quantity} "
-               "vs Richardson extrapolation", title="mesh convergence")
+            if np.isfinite(s[0]["extrapolated"]):
+                ref, label = s[0]["extrapolated"], (
+                    f"{m}: observed order {s[0]['order']:.2f} (in h), "
+                    f"GCI {100 * s[0]['gci']:.2g} %")
+            else:   # an oscillating sequence has no order: measure against the finest mesh
+                ref, label = rows[-1][quantity], f"{m}: no order (oscillating); vs its finest"
+                n, rows = n[:-1], rows[:-1]
+            err = np.array([abs(r[quantity] / ref - 1.0) for r in rows]) if ref else n * 0
+            ax.loglog(n, np.maximum(err, 1e-16), "o-", label=label)
+        ax.set(xlabel="unknowns (degrees of freedom) [-]",
+               ylabel=f"relative error of {quantity} [-]",
+               title=f"mesh convergence of {quantity}" + (f": {self.case}" if self.case else ""))
         ax.grid(alpha=0.3, which="both")
         ax.legend(fontsize=8)
         fig.tight_layout()
@@ -112,4 +119,6 @@ def convergence_study(bearing: Bearing, state: JournalState, *, levels: int = 4,
             p, ext, gci = richardson(f1, f2, f3)
             summary.append({"method": m, "quantity": q, "finest": f1, "order": p,
                             "extrapolated": ext, "gci": gci})
-    return ConvergenceStudy(rows, summary)
+    case = (f"L/D {bearing.length_ratio:g}, eps {state.eps:g}, eps_dot {state.eps_dot:g} 1/s, "
+            f"omega {state.omega:g} rad/s, {cavitation}")
+    return ConvergenceStudy(rows, summary, case)
