@@ -353,7 +353,7 @@ def gather(out, sweep: Sweep | None = None) -> list[dict]:
         rows = sorted(rows, key=lambda r: tuple(_sort_key(r.get(k)) for k in order))
         keys = [k for k in dict.fromkeys(k for r in rows for k in r)
                 if any(r.get(k, "") != "" for r in rows)]
-        write_csv(rows, out / "results.csv", keys)
+        write_csv([{k: r.get(k, "") for k in keys} for r in rows], out / "results.csv", keys)
         if sweep is not None:
             plot_summary(rows, sweep, out / "summary.png")
     return rows

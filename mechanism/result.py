@@ -61,6 +61,10 @@ class SimulationResult:
                 f"  peak eps {np.max(self.eps):.4f}, min film {np.min(self.film_min) * 1e6:.3f} um, "
                 f"crank speed {np.min(self.crank_speed):.2f}-{np.max(self.crank_speed):.2f} rad/s, "
                 f"peak |slider acc| {np.max(np.abs(self.slider_acceleration)):.1f} m/s^2")
+        if "fem_table_mesh_error" in s:
+            lines.append(f"  fem-table: its mesh's forces are within "
+                         f"{100 * s['fem_table_mesh_error']:.2g} % of a mesh twice as fine "
+                         "(measured when the table was built)")
         return "\n".join(lines)
 
     def summary_row(self, ideal_speed=None) -> dict:

@@ -182,6 +182,10 @@ def simulate(scene: Scene, progress: bool | None = None) -> SimulationResult:
              "contact_evals": contact.evaluations if contact else 0,
              "integrator": run.integrator, "rtol": run.rtol, "atol_length": a_len,
              "effects": [type(e).__name__ for e in effects]}
+    if film is not None and film.model == "fem-table":
+        from bearingfem.fe.force_table import force_table   # the one the run used (cached)
+        stats["fem_table_mesh_error"] = force_table(scene.bearing.length_ratio,
+                                                    **film.options).mesh_error
     return _sample(scene, pieces, effects, g, stats, partial, message)
 
 

@@ -109,7 +109,8 @@ def _static_models(bearing, state, quick):
                 bearing, state, nt, nz, "P2", "gumbel")[0]
         yield "FVM", m, nt * nz, lambda nt=nt, nz=nz: fvm_force(bearing, state, nt, nz, "gumbel")
     for nt, nz in levels[1:4]:
-        yield "FE table", f"{nt}x{nz}", 0, lambda nt=nt, nz=nz: table_force(bearing, state, nt, nz)
+        yield "FE table", f"{nt}x{nz}", 0, lambda nt=nt, nz=nz: table_force(bearing, state, nt, nz,
+                                                                             element="P1")
     yield "Eq. 9 (short)", "-", 0, lambda: short_bearing_force(bearing, state)
     yield "short exact", "-", 0, lambda: short_bearing_exact_force(bearing, state)
     yield "Eq. 10 (long)", "-", 0, lambda: long_bearing_force(bearing, state)

@@ -63,8 +63,8 @@ def test_fem_options_validated():
 
 def test_fem_table_options_parse_with_their_defaults_and_ranges():
     sc = parse_scene(_with(("effects", "lubrication"), {"model": "fem-table", "n_phi": 48}))
-    assert sc.lubrication.options == dict(n_theta=96, n_z=16, cavitation="gumbel", n_eps=60, n_phi=48,
-                               element="P1")
+    assert sc.lubrication.options == dict(n_theta=64, n_z=16, cavitation="gumbel", n_eps=60,
+                                          n_phi=48, element="P2")
     with pytest.raises(ValueError, match=r"n_eps must lie in \[6"):
         parse_scene(_with(("effects", "lubrication"), {"model": "fem-table", "n_eps": 2}))
     with pytest.raises(ValueError, match="half_film is not an option of film model 'fem-table'"):

@@ -39,7 +39,7 @@ from .mesh import ELEMENTS, MIN_N_THETA, MIN_N_Z
 
 __all__ = ["ForceTable", "build_force_table", "force_table", "table_force", "cache_dir"]
 
-FORMAT = 2          # bump when the tabulated quantity changes: old files go stale
+FORMAT = 3          # bump when the tabulated quantity changes: old files go stale
 _PAD = 3          # phi nodes wrapped onto each side so the spline sees the periodicity
 SCALE_EXPONENT = 2.0   # k in g = (1 - eps)^k F / |v'|
 
@@ -63,6 +63,9 @@ class ForceTable:
     phi: np.ndarray
     g_r: np.ndarray
     g_t: np.ndarray
+    #: the table mesh's force error: largest relative gap to a mesh twice as fine over a
+    #: few states, measured when the table was built (its interpolation error is apart)
+    mesh_error: float = 0.0
     _splines: tuple = field(init=False, repr=False)
 
     def __post_init__(self):
@@ -103,7 +106,7 @@ def _eps_nodes(n_eps: int, eps_max: float) -> np.ndarray:
     return -np.expm1(-np.linspace(0.0, -np.log1p(-eps_max), n_eps))
 
 
-def build_force_table(length_ratio: float, n_theta=96, n_z=16, element="P1",
+def build_force_table(length_ratio: float, n_theta=64, n_z=16, element="P2",
                       cavitation="gumbel", n_eps=60, n_phi=96, eps_max=0.999) -> ForceTable:
     """Tabulate the dimensionless force from FE solves (see the module docstring)."""
     op = film_operator(n_theta, n_z, element, float(length_ratio), None, True)
@@ -134,7 +137,24 @@ def build_force_table(length_ratio: float, n_theta=96, n_z=16, element="P1",
         g[:, i] = mult * op.force_integrals(P, clip=cavitation == "gumbel")
     g *= ((1.0 - eps) ** SCALE_EXPONENT)[None, :, None]
     key = _key(length_ratio, n_theta, n_z, element, cavitation, n_eps, n_phi, eps_max)
-    return ForceTable(key, eps, phi, g[0], g[1])
+    error = _mesh_error(length_ratio, n_theta, n_z, element, cavitation, eps_max)
+    return ForceTable(key, eps, phi, g[0], g[1], error)
+
+
+def _mesh_error(length_ratio, n_theta, n_z, element, cavitation, eps_max) -> float:
+    """Largest relative force gap between the table's mesh and one twice as fine, over
+    wedge, squeeze and mixed states at eps 0.3 to 0.9 (a dozen solves)."""
+    from ..bearing import Bearing, JournalState
+    from .reynolds import fe_force
+    b = Bearing(radius=1.0, length=2.0 * length_ratio, clearance=1e-3, viscosity=1.0)
+    gaps = []
+    for e in (0.3, 0.6, min(0.9, eps_max)):
+        for ed, w in ((0.0, 1.0), (1.0, 0.0), (0.5, 1.0), (-0.5, 1.0)):
+            s = JournalState(e, ed, 0.0, 0.0, w)
+            coarse = np.array(fe_force(b, s, n_theta, n_z, element, cavitation)[0])
+            fine = np.array(fe_force(b, s, 2 * n_theta, 2 * n_z, element, cavitation)[0])
+            gaps.append(np.linalg.norm(coarse - fine) / max(np.linalg.norm(fine), 1e-300))
+    return float(max(gaps))
 
 
 def _key(length_ratio, n_theta, n_z, element, cavitation, n_eps, n_phi, eps_max) -> dict:
@@ -150,7 +170,8 @@ def _load(path: Path, key: dict) -> ForceTable | None:
         with np.load(path) as z:
             if json.loads(str(z["key"])) != key:
                 return None                      # stale: other version or inputs
-            return ForceTable(key, z["eps"], z["phi"], z["g_r"], z["g_t"])
+            return ForceTable(key, z["eps"], z["phi"], z["g_r"], z["g_t"],
+                              float(z["mesh_error"]))
     except (OSError, KeyError, ValueError):
         return None
 
@@ -159,12 +180,12 @@ def _save(path: Path, table: ForceTable) -> None:
     path.parent.mkdir(parents=True, exist_ok=True)
     tmp = path.with_suffix(f".{os.getpid()}.tmp.npz")
     np.savez(tmp, key=json.dumps(table.key), eps=table.eps, phi=table.phi,
-             g_r=table.g_r, g_t=table.g_t)
+             g_r=table.g_r, g_t=table.g_t, mesh_error=table.mesh_error)
     os.replace(tmp, path)                        # atomic: readers never see half a file
 
 
 @lru_cache(maxsize=16)
-def force_table(length_ratio: float, n_theta=96, n_z=16, element="P1", cavitation="gumbel",
+def force_table(length_ratio: float, n_theta=64, n_z=16, element="P2", cavitation="gumbel",
                 n_eps=60, n_phi=96, eps_max=0.999) -> ForceTable:
     """The table for these inputs: from memory, else from disk, else built and saved."""
     check_int("n_theta", n_theta, MIN_N_THETA)
@@ -189,7 +210,7 @@ def force_table(length_ratio: float, n_theta=96, n_z=16, element="P1", cavitatio
     return table
 
 
-def table_force(bearing, state, n_theta=96, n_z=16, element="P1", cavitation="gumbel",
+def table_force(bearing, state, n_theta=64, n_z=16, element="P2", cavitation="gumbel",
                 n_eps=60, n_phi=96, eps_max=0.999):
     """(F_r, F_t) [N] on the journal from the cached table (the "fem-table" model)."""
     vx = squeeze_weight(state.eps) * state.eps_dot
