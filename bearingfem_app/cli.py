@@ -27,8 +27,8 @@ def _simulate(args):
     from mechanism.figures import plot_run
 
     scene = load_scene(args.scene)
+    out = _make_dir(args.output, "-o/--output")
     res = simulate(scene, progress=None if not args.quiet else False)
-    out = Path(args.output)
     res.save(out)
     plot_run(res, scene.bearing.clearance if scene.bearing else 1.0, out / "run.png")
     print(res.summary())
@@ -234,6 +234,7 @@ def _render(args):
 def _sweep(args):
     from bearingfem_app.sweep import load_sweep, run_sweep
     sweep = load_sweep(args.sweep)
+    _make_dir(args.output, "-o/--output")
     res = run_sweep(sweep, args.output, scheduler=args.scheduler, workers=args.workers,
                     progress=None if not args.quiet else False)
     out = Path(args.output)
@@ -285,9 +286,9 @@ def _frames(args):
         except ValueError:
             raise ValueError(f"--angles must be comma-separated degrees, got {args.angles!r}") \
                 from None
+    out = _make_dir(args.output, "-o/--output")
     frames = film_history(result, scene, angles, args.frames,
                           progress=lambda k, n: print(f"  film {k}/{n}", flush=True))
-    out = Path(args.output)
     pvd = write_history(frames, out, args.surface)
     print(f"wrote {pvd} ({len(frames)} VTU files, time = run time [s])")
     if not args.no_render:

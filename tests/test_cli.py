@@ -88,6 +88,7 @@ def test_sweep_command_runs_and_resumes(tmp_path):
     (("solve", "-o", "film.csv"), "-o/--output must end in .vtu or .xdmf or .vtk"),
     (("render", "-o", "film.pdf"), "-o/--output must end in .png"),
     (("render", "-o", "/proc/no/film.png"), "-o/--output: cannot create folder"),
+    (("simulate", "paper-long-analytic", "-o", "/proc/no/run"), "-o/--output: cannot create"),
     (("render", "--surface", "flat", "-o", "x.png"), "--surface must be one of"),
     (("convergence", "--quantity", "foo", "-o", "c"), "--quantity must be one of"),
     (("convergence", "--element", "P2", "-o", "c"), "--element does not apply to convergence"),
