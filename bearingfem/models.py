@@ -15,7 +15,7 @@ from .bearing import Bearing, JournalState, check_finite
 from .closed.long_bearing import long_bearing_derivatives, long_bearing_exact_force, long_bearing_force
 from .closed.short_bearing import short_bearing_derivatives, short_bearing_exact_force, short_bearing_force
 from .differentiate import central_differences
-from .fe.force_table import table_force
+from .fe.force_table import TABLE_DEFAULTS, table_force
 from .fe.mesh import ELEMENTS, MIN_N_THETA, MIN_N_Z
 from .fe.reynolds import fe_force
 from .fe.sensitivity import fe_force_derivatives
@@ -98,7 +98,8 @@ class FilmModel:
         return central_differences(lambda s: self.force(bearing, s, **opts), state)
 
 
-def _fem(bearing, state, n_theta=48, n_z=8, element="P1", cavitation="gumbel"):
+def _fem(bearing, state, n_theta, n_z, element, cavitation):
+    """The "fem" model's force (a cold solve; options always come from the registry)."""
     return fe_force(bearing, state, n_theta, n_z, element, cavitation)[0]
 
 
@@ -114,10 +115,7 @@ FILM_MODELS = {m.name: m for m in (
     FilmModel("fem", _fem, dict(_MESH, element="P1", cavitation="gumbel"),
               fe_force_derivatives, numeric=True),
     FilmModel("fvm", fvm_force, dict(_MESH, cavitation="gumbel"), numeric=True),
-    # a table is built once, so its default mesh can be finer than a per-step solve's:
-    # P2 64x16 is within 0.06 % of converged forces at L/D 0.2-2 (96x16 P1: 1.8-2.5 %)
-    FilmModel("fem-table", table_force, dict(n_theta=64, n_z=16, element="P2",
-                                             cavitation="gumbel", n_eps=60, n_phi=96),
+    FilmModel("fem-table", table_force, dict(TABLE_DEFAULTS),
               numeric=True),
 )}
 #: Film models solved numerically: their force stays finite up to the wall only when eps is

@@ -19,7 +19,7 @@ def _warm_fem():
     same as a cold solve to the solver tolerance; only the cost changes."""
     last = {}
 
-    def fem(bearing, state, n_theta=48, n_z=8, element="P1", cavitation="gumbel"):
+    def fem(bearing, state, n_theta, n_z, element, cavitation):   # the scene's options
         key = (bearing.length_ratio, n_theta, n_z, element, cavitation)
         force, last[key] = fe_force(bearing, state, n_theta, n_z, element, cavitation,
                                     warm=last.get(key))
