@@ -1,5 +1,6 @@
 """Sweeps: case expansion, validation, and a real 2-worker Dask LocalCluster run that
 writes one file per case, resumes after an interruption and gathers a table."""
+import contextlib
 import csv
 import json
 
@@ -86,18 +87,44 @@ def test_a_failing_case_is_reported_and_the_others_kept(tmp_path):
     assert len(list((tmp_path / "cases").glob("*.error.json"))) == 1
 
 
-def _start(cmd, cwd):
+@contextlib.contextmanager
+def _cluster(directory, workers=1):
+    """A Dask scheduler and ``workers`` workers, each a process of its own started in
+    ``directory``, on loopback; yields the scheduler's address and the processes."""
     import subprocess
-    return subprocess.Popen(cmd, cwd=cwd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    import sys
+    import time
+
+    def start(args):
+        return subprocess.Popen([sys.executable, "-m", *args], cwd=directory,
+                                stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    sfile = directory / "scheduler.json"
+    procs = [start(["distributed.cli.dask_scheduler", "--host", "127.0.0.1", "--port", "0",
+                    "--no-dashboard", "--scheduler-file", str(sfile)])]
+    try:
+        for _ in range(300):
+            if sfile.exists() and sfile.stat().st_size:
+                break
+            time.sleep(0.1)
+        address = json.loads(sfile.read_text())["address"]
+        for _ in range(workers):
+            procs.append(start(["distributed.cli.dask_worker", address, "--nworkers", "1",
+                                "--nthreads", "1", "--no-dashboard"]))
+        yield address, procs
+    finally:
+        for p in procs:
+            p.terminate()
+        for p in procs:
+            try:
+                p.wait(timeout=10)
+            except subprocess.TimeoutExpired:
+                p.kill()
 
 
 def test_mechanism_sweep_on_a_cluster_of_separate_processes_elsewhere(tmp_path, monkeypatch):
     """Scheduler and worker are processes of their own, started in a directory that has
     none of the client's files (as on any remote cluster), on loopback. The client's scene
     exists only in the client's directory: each case must carry it."""
-    import subprocess
-    import sys
-    import time
     from pathlib import Path
     root = Path(__file__).resolve().parent.parent
     client_dir, cluster_dir = tmp_path / "client", tmp_path / "cluster"
@@ -106,83 +133,40 @@ def test_mechanism_sweep_on_a_cluster_of_separate_processes_elsewhere(tmp_path, 
     (client_dir / "quick.toml").write_text(
         (root / "scenes" / "paper-long-analytic.toml").read_text()
         .replace("name = \"paper-long-analytic\"", "name = \"quick\""))
-    sfile = cluster_dir / "scheduler.json"
-    procs = [_start([sys.executable, "-m", "distributed.cli.dask_scheduler", "--host",
-                     "127.0.0.1", "--port", "0", "--no-dashboard", "--scheduler-file",
-                     str(sfile)], cluster_dir)]
-    try:
-        for _ in range(300):
-            if sfile.exists() and sfile.stat().st_size:
-                break
-            time.sleep(0.1)
-        address = json.loads(sfile.read_text())["address"]
-        procs.append(_start([sys.executable, "-m", "distributed.cli.dask_worker", address,
-                             "--nworkers", "1", "--nthreads", "1", "--no-dashboard"],
-                            cluster_dir))
+    with _cluster(cluster_dir) as (address, _):
         monkeypatch.chdir(client_dir)
         sw = parse_sweep({"name": "remote", "kind": "mechanism",
                           "base": {"scene": "quick.toml", "turns": 0.25},
                           "vary": {"clearance": [20e-6, 30e-6]}})
         res = run_sweep(sw, client_dir / "out", scheduler=address, progress=False)
-        assert res.failed == {} and res.computed == 2, res.failed
-        assert {r["clearance"] for r in res.rows} == {20e-6, 30e-6}
-        assert all(r["status"] == "completed" for r in res.rows)
-    finally:
-        for p in procs:
-            p.terminate()
-        for p in procs:
-            try:
-                p.wait(timeout=10)
-            except subprocess.TimeoutExpired:
-                p.kill()
+    assert res.failed == {} and res.computed == 2, res.failed
+    assert {r["clearance"] for r in res.rows} == {20e-6, 30e-6}
+    assert all(r["status"] == "completed" for r in res.rows)
 
 
 def test_killing_a_worker_mid_sweep_loses_no_case(tmp_path):
     """Two workers as processes of their own; one is killed (SIGKILL) once the first case
     is on disk. The scheduler hands its work to the other: every case is computed."""
-    import subprocess
-    import sys
     import threading
     import time
-    sfile = tmp_path / "scheduler.json"
-    procs = [_start([sys.executable, "-m", "distributed.cli.dask_scheduler", "--host",
-                     "127.0.0.1", "--port", "0", "--no-dashboard", "--scheduler-file",
-                     str(sfile)], tmp_path)]
-    try:
-        for _ in range(300):
-            if sfile.exists() and sfile.stat().st_size:
-                break
-            time.sleep(0.1)
-        address = json.loads(sfile.read_text())["address"]
-        for _ in range(2):
-            procs.append(_start([sys.executable, "-m", "distributed.cli.dask_worker", address,
-                                 "--nworkers", "1", "--nthreads", "1", "--no-dashboard"],
-                                tmp_path))
-        sw = parse_sweep({"name": "kill", "kind": "film",
-                          "base": {"model": "fvm", "n_theta": 240, "n_z": 40,
-                                   "cavitation": "reynolds"},
-                          "vary": {"eps": [0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9]}})
-        out = tmp_path / "out"
+    sw = parse_sweep({"name": "kill", "kind": "film",
+                      "base": {"model": "fvm", "n_theta": 240, "n_z": 40,
+                               "cavitation": "reynolds"},
+                      "vary": {"eps": [0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9]}})
+    out = tmp_path / "out"
+    with _cluster(tmp_path, workers=2) as (address, procs):
         done = {}
         t = threading.Thread(target=lambda: done.update(
             res=run_sweep(sw, out, scheduler=address, progress=False)))
         t.start()
         for _ in range(600):
-            if list((out / "cases").glob("case-*.json")) if (out / "cases").exists() else []:
+            if (out / "cases").exists() and list((out / "cases").glob("case-*.json")):
                 break
             time.sleep(0.05)
         procs[1].kill()
         t.join(timeout=240)
-        res = done["res"]
-        assert res.failed == {} and res.computed == 8 and len(res.rows) == 8
-    finally:
-        for p in procs:
-            p.terminate()
-        for p in procs:
-            try:
-                p.wait(timeout=10)
-            except subprocess.TimeoutExpired:
-                p.kill()
+    res = done["res"]
+    assert res.failed == {} and res.computed == 8 and len(res.rows) == 8
 
 
 def test_gathered_table_is_sorted_without_empty_columns_and_plots_with_units(tmp_path):
