@@ -43,8 +43,9 @@ FILM_PARAMS = {
     "diameter": (SEED_TABLE1["diameter"], float), "length_ratio": (1.0, float),
     "clearance": (SEED_TABLE1["clearance"], float),
     "viscosity": (SEED_TABLE1["viscosity"], float), "omega": (250.0, float), "eps": (0.6, float),
-    "eps_dot": (0.0, float), "model": ("fem", str), "n_theta": (96, int), "n_z": (16, int),
-    "element": ("P1", str), "cavitation": ("gumbel", str),
+    "eps_dot": (0.0, float), "model": ("fem", str),
+    # None: the film model's own default (bearingfem.models)
+    "n_theta": (None, int), "n_z": (None, int), "element": (None, str), "cavitation": (None, str),
 }
 MECHANISM_PARAMS = {
     "scene": ("scenes/paper-short-fem.toml", str), "turns": (2.0, float),
@@ -150,26 +151,36 @@ def _scene_data(params: dict) -> dict:
     return data
 
 
+MESH_KEYS = ("n_theta", "n_z", "element", "cavitation")
+
+
+def _film_options(p: dict) -> dict:
+    """The film model's options: the case's mesh settings where it gives them, the model's
+    own defaults elsewhere (one home for them: bearingfem.models)."""
+    from bearingfem.models import film_model
+    m = film_model(p["model"])
+    return m.options({k: p[k] for k in MESH_KEYS if p.get(k) is not None and k in m.defaults})
+
+
 def _film_case(params: dict) -> dict:
     from bearingfem import Bearing, JournalState, fvm_reynolds, solve_reynolds
     from mechanism.lubrication import film_force_function
     p = {k: params.get(k, d) for k, (d, _) in FILM_PARAMS.items()}
+    o = _film_options(p)
     D = p["diameter"]
     b = Bearing(radius=D / 2, length=p["length_ratio"] * D, clearance=p["clearance"],
                 viscosity=p["viscosity"])
     s = JournalState(p["eps"], p["eps_dot"], 0.0, 0.0, p["omega"])
     out = {}
     if p["model"] in ("fem", "fvm"):
-        sol = (solve_reynolds(b, s, p["n_theta"], p["n_z"], p["element"], p["cavitation"])
+        sol = (solve_reynolds(b, s, o["n_theta"], o["n_z"], o["element"], o["cavitation"])
                if p["model"] == "fem" else
-               fvm_reynolds(b, s, p["n_theta"], p["n_z"], p["cavitation"]))
+               fvm_reynolds(b, s, o["n_theta"], o["n_z"], o["cavitation"]))
         f_r, f_t = sol.force_local
         out.update(pressure_max=sol.pressure_max, friction_force=sol.friction_force,
                    side_leakage=sol.side_leakage, cavitated_fraction=sol.cavitated_fraction)
     else:
-        opts = dict(n_theta=p["n_theta"], n_z=p["n_z"], element=p["element"],
-                    cavitation=p["cavitation"]) if p["model"] == "fem-table" else {}
-        f_r, f_t = film_force_function(p["model"])(b, s, **opts)
+        f_r, f_t = film_force_function(p["model"])(b, s, **o)
     load = math.hypot(f_r, f_t)
     n_rev = p["omega"] / (2 * math.pi)
     out.update(force_r=f_r, force_t=f_t, load=load,
@@ -190,7 +201,7 @@ def _design_case(params: dict) -> dict:
                 viscosity=p["viscosity"])
     s = JournalState(p["eps"], 0.0, 0.0, 0.0, p["omega"])
     model = FILM_MODELS[p["model"]]
-    opts = {k: p[k] for k in ("n_theta", "n_z", "element", "cavitation") if k in model.defaults}
+    opts = _film_options(p)
     kc = coefficients(b, s, p["model"], frame="load", **opts)
     k, c = kc.dimensionless()
     f_r, f_t = model.film_force(b, s, **opts)
@@ -201,9 +212,9 @@ def _design_case(params: dict) -> dict:
                    b, petroff_friction(b, p["eps"], p["omega"], f_t), load),
                coefficient_method=kc.method)
     if p["model"] in ("fem", "fvm"):
-        sol = (solve_reynolds(b, s, p["n_theta"], p["n_z"], p["element"], p["cavitation"])
-               if p["model"] == "fem" else
-               fvm_reynolds(b, s, p["n_theta"], p["n_z"], p["cavitation"]))
+        sol = (solve_reynolds(b, s, opts["n_theta"], opts["n_z"], opts["element"],
+                              opts["cavitation"]) if p["model"] == "fem" else
+               fvm_reynolds(b, s, opts["n_theta"], opts["n_z"], opts["cavitation"]))
         out["flow_variable"] = flow_variable(b, sol.side_leakage, p["omega"])
     for name, m in (("K", k), ("C", c)):
         for (i, j), v in np.ndenumerate(m):
