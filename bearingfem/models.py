@@ -21,7 +21,7 @@ from .fe.reynolds import fe_force
 from .fe.sensitivity import fe_force_derivatives
 from .fv.fvm import fvm_force
 from .solution import ForceDerivatives
-from .validation import CAVITATION, check_choice
+from .validation import CAVITATION, check_choice, check_int
 
 __all__ = ["FilmModel", "FILM_MODELS", "NUMERIC_MODELS", "OPTION_RULES", "film_model"]
 
@@ -41,15 +41,15 @@ def _check_option(name: str, value, where: str):
     if kind == "choice":
         return check_choice(label, value, allowed)
     lo, hi = allowed
-    span = f"[{lo}, inf)" if hi is None else f"[{lo}, {hi}]"
-    if kind == "int":
-        if isinstance(value, bool) or not isinstance(value, (int, float)) or value != int(value):
-            raise ValueError(f"{label} must be an integer in {span}, got {value!r}")
-        value = int(value)
-    else:
-        value = check_finite(label, value)
+    if kind == "int":    # the solvers' own wording: one message for one check
+        value = check_int(label, value, lo)
+        if hi is not None and value > hi:
+            raise ValueError(f"{label} must be an integer in [{lo}, {hi}], got {value!r}")
+        return value
+    value = check_finite(label, value)
     if value < lo or (hi is not None and value > hi):
-        raise ValueError(f"{label} must lie in {span}, got {value!r}")
+        raise ValueError(f"{label} must lie in [{lo}, {'inf)' if hi is None else f'{hi}]'}, "
+                         f"got {value!r}")
     return value
 
 

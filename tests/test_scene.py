@@ -54,7 +54,7 @@ def test_bad_scene_is_rejected_naming_the_field(path, value, message):
 
 def test_fem_options_validated():
     d = _with(("effects", "lubrication"), {"model": "fem", "n_theta": 4})
-    with pytest.raises(ValueError, match=r"n_theta must lie in \[8"):
+    with pytest.raises(ValueError, match=r"n_theta must be an integer >= 8"):
         parse_scene(d)
     d = _with(("effects", "lubrication"), {"model": "fem", "element": "Q9"})
     with pytest.raises(ValueError, match="element must be one of"):
@@ -65,7 +65,7 @@ def test_fem_table_options_parse_with_their_defaults_and_ranges():
     sc = parse_scene(_with(("effects", "lubrication"), {"model": "fem-table", "n_phi": 48}))
     assert sc.lubrication.options == dict(n_theta=64, n_z=16, cavitation="gumbel", n_eps=60,
                                           n_phi=48, element="P2")
-    with pytest.raises(ValueError, match=r"n_eps must lie in \[6"):
+    with pytest.raises(ValueError, match=r"n_eps must be an integer >= 6"):
         parse_scene(_with(("effects", "lubrication"), {"model": "fem-table", "n_eps": 2}))
     with pytest.raises(ValueError, match="half_film is not an option of film model 'fem-table'"):
         parse_scene(_with(("effects", "lubrication"), {"model": "fem-table", "half_film": "x"}))
