@@ -5,7 +5,7 @@ the closed-form short (Frene) and long (Pinkus-Sternlicht) bearing models; every
 registered by name in :mod:`bearingfem.models`; the designer's numbers (equilibrium,
 stiffness and damping, stability) in :mod:`bearingfem.design`.
 """
-from .bearing import Bearing, JournalState
+from .bearing import Bearing, Groove, JournalState
 from .closed.long_bearing import long_bearing_exact_force, long_bearing_force
 from .closed.short_bearing import short_bearing_exact_force, short_bearing_force
 from .design import coefficients, equilibrium
@@ -13,7 +13,7 @@ from .fe.reynolds import solve_reynolds
 from .fv.fvm import fvm_reynolds
 from .solution import FilmSolution
 
-__all__ = ["Bearing", "JournalState", "solve_reynolds", "fvm_reynolds", "FilmSolution",
+__all__ = ["Bearing", "JournalState", "Groove", "solve_reynolds", "fvm_reynolds", "FilmSolution",
            "short_bearing_force", "long_bearing_force", "short_bearing_exact_force",
            "long_bearing_exact_force", "equilibrium", "coefficients"]
 __version__ = "0.1.0"

@@ -8,8 +8,10 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-__all__ = ["Bearing", "JournalState", "seed_bearing", "SEED_TABLE1", "check_positive",
-           "check_finite"]
+import numpy as np
+
+__all__ = ["Bearing", "JournalState", "Groove", "seed_bearing", "SEED_TABLE1",
+           "check_positive", "check_finite"]
 
 
 def check_finite(name: str, value) -> float:
@@ -145,3 +147,49 @@ class JournalState:
         eps = e / clearance if eps_max is None else min(e / clearance, eps_max)
         return cls(eps=eps, eps_dot=e_dot / clearance, gamma=gamma, gamma_dot=gamma_dot,
                    omega=omega)
+
+
+@dataclass(frozen=True)
+class Groove:
+    """An axial supply groove over the whole length of the bearing.
+
+    Parameters
+    ----------
+    angle : centre of the groove, inertial frame, counter-clockwise [rad]
+    width : its angular width [rad], in (0, pi)
+    pressure : supply pressure [Pa], >= 0; the film holds it over the groove (flooded)
+    fraction : film fraction supplied, in [0, 1]; 1 is a flooded groove. A starved groove
+        (fraction < 1) needs a mass-conserving film, which the Reynolds-condition films
+        refuse.
+
+    A pressurised groove over the full length meets the ambient ends: the pressure jumps
+    there, and the flow it sends straight out of its ends grows without bound as the mesh
+    is refined (a corner singularity of the model, not of the solver); forces and
+    pressures converge.
+    """
+
+    angle: float
+    width: float
+    pressure: float = 0.0
+    fraction: float = 1.0
+
+    def __post_init__(self):
+        object.__setattr__(self, "angle", check_finite("groove angle", self.angle))
+        w = check_finite("groove width", self.width)
+        if not 0.0 < w < math.pi:
+            raise ValueError(f"groove width must lie in (0, pi) [rad], got {self.width!r}")
+        object.__setattr__(self, "width", w)
+        p = check_finite("groove pressure", self.pressure)
+        if p < 0.0:
+            raise ValueError(f"groove pressure must be >= 0 [Pa], got {self.pressure!r}")
+        object.__setattr__(self, "pressure", p)
+        f = check_finite("groove fraction", self.fraction)
+        if not 0.0 <= f <= 1.0:
+            raise ValueError(f"groove fraction must lie in [0, 1], got {self.fraction!r}")
+        object.__setattr__(self, "fraction", f)
+
+    def arc(self, gamma: float):
+        """(start, end) of the groove in the film angle theta of a journal at attitude
+        ``gamma`` [rad], start in [0, 2 pi)."""
+        lo = float(np.mod(self.angle - 0.5 * self.width - gamma - math.pi, 2 * math.pi))
+        return lo, lo + self.width

@@ -60,6 +60,7 @@ class FilmSolution:
     radius: float             # journal radius R [m]
     gamma: float              # attitude angle of the solved state [rad]
     mesh: object = field(default=None, repr=False)   # FilmMesh (FE) or grid shape (FV)
+    flow_in: float | None = None   # flow the supply grooves feed [m^3/s] (None: no groove)
 
     def summary(self) -> str:
         """The solve in a few named lines with units (what ``bearingfem solve`` prints)."""
@@ -81,7 +82,8 @@ class FilmSolution:
 
 
 def film_solution(bearing, state, P, theta, zeta, force_local, *, friction, leakage,
-                  cavitated_fraction, record, method, cavitation, half, mesh) -> FilmSolution:
+                  cavitated_fraction, record, method, cavitation, half, mesh,
+                  flow_in=None) -> FilmSolution:
     """The one builder of :class:`FilmSolution` for every mesh solver: derives the
     inertial force, pressures [Pa], film, peak and its place from the dimensionless nodal
     pressure ``P`` (p = mu (R/c)^2 P, clipped as the cavitation model says) at (theta,
@@ -103,7 +105,7 @@ def film_solution(bearing, state, P, theta, zeta, force_local, *, friction, leak
         friction_force=friction, friction_torque=friction * R, side_leakage=leakage,
         iterations=record.iterations, residual=record.residual, converged=record.converged,
         method=method, cavitation=cavitation, n_dofs=len(P), half=half, radius=R,
-        gamma=state.gamma, mesh=mesh)
+        gamma=state.gamma, mesh=mesh, flow_in=flow_in)
 
 
 @dataclass(frozen=True)

@@ -41,6 +41,21 @@ def check_supply_angle(value):
     return None if value is None else check_finite("supply_angle", value)
 
 
+def check_grooves(grooves, supply_angle=None) -> tuple:
+    """A tuple of :class:`Groove`; refuses what the Reynolds-condition films cannot do."""
+    from .bearing import Groove
+    grooves = tuple(grooves or ())
+    for g in grooves:
+        if not isinstance(g, Groove):
+            raise ValueError(f"grooves must be bearingfem.Groove objects, got {type(g).__name__}")
+        if g.fraction < 1.0:
+            raise ValueError(f"a starved groove (fraction {g.fraction:g} < 1) needs a "
+                             "mass-conserving film; these films hold the groove flooded")
+    if grooves and supply_angle is not None:
+        raise ValueError("give grooves or supply_angle (a supply line), not both")
+    return grooves
+
+
 def check_film_solve(bearing, state, n_theta, n_z, cavitation, method, supply_angle,
                      tol=1e-10, **choices):
     """What every mesh film solver checks before any work, all at once (one message per

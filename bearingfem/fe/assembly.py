@@ -157,6 +157,7 @@ def _interpolation_matrix(basis) -> sp.csr_matrix:
 
 @lru_cache(maxsize=32)
 def film_operator(n_theta: int, n_z: int, element: str, length_ratio: float,
-                  theta0: float | None = None, half: bool = True) -> FilmOperator:
+                  theta0: float | None = None, half: bool = True,
+                  arcs: tuple = ()) -> FilmOperator:
     """Cached operator for a mesh (see :func:`bearingfem.fe.mesh.film_mesh`)."""
-    return build_operator(film_mesh(n_theta, n_z, element, length_ratio, theta0, half))
+    return build_operator(film_mesh(n_theta, n_z, element, length_ratio, theta0, half, arcs))

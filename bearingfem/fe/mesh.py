@@ -49,6 +49,7 @@ class FilmMesh:
     n_z: int
     length_ratio: float
     theta0: float | None
+    grooves: tuple = ()        # dof indices held at each groove's pressure, one array each
 
     @property
     def ndofs(self) -> int:
@@ -73,7 +74,7 @@ def _axis(n: int, lo: float, hi: float) -> np.ndarray:
 
 @lru_cache(maxsize=32)
 def film_mesh(n_theta: int, n_z: int, element: str, length_ratio: float,
-              theta0: float | None = None, half: bool = True) -> FilmMesh:
+              theta0: float | None = None, half: bool = True, arcs: tuple = ()) -> FilmMesh:
     """Build (and cache) the film mesh.
 
     Parameters
@@ -83,7 +84,10 @@ def film_mesh(n_theta: int, n_z: int, element: str, length_ratio: float,
     element : "P1" or "P2"
     length_ratio : L/D, the half length in units of R
     theta0 : None for a fully periodic film; otherwise the film angle of a supply line
+        (with grooves: the first groove's start, so that its edge is a mesh line)
     half : mesh only zeta >= 0
+    arcs : ((start, end), ...) film angles of axial grooves; their dofs are fixed (the
+        ends of later arcs snap to the nearest mesh line, within half a cell)
     """
     lam = float(length_ratio)
     t_lo = 0.0 if theta0 is None else float(theta0)
@@ -108,8 +112,15 @@ def film_mesh(n_theta: int, n_z: int, element: str, length_ratio: float,
         supply = np.flatnonzero(np.isclose(x[0], th[0], atol=1e-9)
                                 | np.isclose(x[0], th[-1], atol=1e-9))
         fixed = np.union1d(end, supply)
+    grooves = []
+    h = 2.0 * np.pi / n_theta
+    for lo, hi in arcs:        # dofs inside [lo, hi] (to half a cell), in the mesh's turn
+        rel = np.mod(x[0] - lo, 2.0 * np.pi)
+        rel = np.where(rel > 2.0 * np.pi - 1e-9, 0.0, rel)
+        grooves.append(np.flatnonzero(rel <= (hi - lo) + 0.5 * h * (1 - 1e-9)))
+        fixed = np.union1d(fixed, grooves[-1])
     free = np.setdiff1d(np.arange(basis.N), fixed)
     return FilmMesh(basis=basis, fixed=fixed, free=free, end=end,
                     theta=np.array(x[0]), zeta=np.array(x[1]), half=half,
                     periodic=theta0 is None, n_theta=n_theta, n_z=n_z, length_ratio=lam,
-                    theta0=theta0)
+                    theta0=theta0, grooves=tuple(grooves))

@@ -8,7 +8,7 @@ from ..film import film_thickness, theta_from_inertial
 from ..solution import FilmSolution, film_solution
 from ..solvers.cavitation import LCPResult, active_set, psor
 from ..solvers.linsolve import solve_spd
-from ..validation import check_film_solve
+from ..validation import check_film_solve, check_grooves
 from .assembly import FilmOperator, film_operator
 from .mesh import ELEMENTS
 from .multilevel import coarse_guess
@@ -19,17 +19,33 @@ SHEAR = ("full", "none")
 
 
 def fe_operator(bearing: Bearing, state: JournalState, n_theta=120, n_z=20, element="P1",
-                supply_angle=None, half=True) -> FilmOperator:
-    """The cached film operator for this bearing and mesh (supply line in the film frame)."""
-    theta0 = None
+                supply_angle=None, half=True, grooves=()) -> FilmOperator:
+    """The cached film operator for this bearing and mesh (supply line and grooves in the
+    film frame; the mesh starts at the first groove's edge)."""
+    theta0, arcs = None, ()
     if supply_angle is not None:   # rounded: it is part of the operator cache key
         theta0 = float(np.round(theta_from_inertial(supply_angle, state.gamma), 12))
-    return film_operator(int(n_theta), int(n_z), element, bearing.length_ratio, theta0, bool(half))
+    if grooves:
+        arcs = tuple((float(np.round(lo, 12)), float(np.round(hi, 12)))
+                     for lo, hi in (g.arc(state.gamma) for g in grooves))
+        theta0 = arcs[0][0]
+    return film_operator(int(n_theta), int(n_z), element, bearing.length_ratio, theta0,
+                         bool(half), arcs)
+
+
+def groove_pressures(bearing: Bearing, op: FilmOperator, grooves) -> np.ndarray | None:
+    """Dimensionless pressure held on the fixed dofs (the grooves'), or None without any."""
+    if not grooves:
+        return None
+    G = np.zeros(op.mesh.ndofs)
+    for g, dofs in zip(grooves, op.mesh.grooves):
+        G[dofs] = g.pressure / bearing.pressure_scale
+    return G
 
 
 def fe_pressure(op: FilmOperator, state: JournalState, cavitation="reynolds",
                 method="active-set", tol=1e-10, active0=None, colours=None,
-                factor=None) -> LCPResult:
+                factor=None, dirichlet: np.ndarray | None = None) -> LCPResult:
     """Dimensionless nodal pressure P (p = mu (R/c)^2 P) on all dofs, ambient on fixed ones.
 
     For "gumbel" the returned field is the unconstrained (full-Sommerfeld) solution; the
@@ -37,9 +53,12 @@ def fe_pressure(op: FilmOperator, state: JournalState, cavitation="reynolds",
     (from the result of a nearby state on the same operator) warm-start the solve.
     """
     free = op.mesh.free
-    b = op.load(state.eps, state.eps_dot, state.wedge_speed)[free]
+    load = op.load(state.eps, state.eps_dot, state.wedge_speed)
+    if dirichlet is not None:      # pressures held on fixed dofs (grooves) enter the load
+        load = load - op.stiffness(state.eps) @ dirichlet
+    b = load[free]
     K = op.free_stiffness(state.eps)
-    P = np.zeros(op.mesh.ndofs)
+    P = np.zeros(op.mesh.ndofs) if dirichlet is None else dirichlet.copy()
     if not np.any(b):
         # No wedge and no squeeze: ambient everywhere (avoids 0/0 in residuals).
         return LCPResult(P, 0, 0.0, True, np.zeros(op.mesh.ndofs, bool), factor)
@@ -47,7 +66,9 @@ def fe_pressure(op: FilmOperator, state: JournalState, cavitation="reynolds",
         if method == "psor":
             res = psor(K, b, tol=tol, colours=colours)
         else:
-            P0 = None if active0 is not None else coarse_guess(op, state, tol)
+            # coarse levels know no grooves: a grooved film starts from its own full film
+            P0 = (None if active0 is not None or dirichlet is not None
+                  else coarse_guess(op, state, tol))
             a0 = None if active0 is None else np.asarray(active0, bool)[free]
             res = active_set(K, b, active0=a0, P0=P0, tol=tol, factor=factor)
         P[free] = res.pressure
@@ -91,7 +112,8 @@ def fe_force(bearing: Bearing, state: JournalState, n_theta=60, n_z=10, element=
 def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z: int = 20,
                    element: str = "P1", cavitation: str = "reynolds", *,
                    method: str = "active-set", supply_angle=None, half: bool = True,
-                   tol: float = 1e-10, cavitated_shear: str = "full") -> FilmSolution:
+                   tol: float = 1e-10, cavitated_shear: str = "full",
+                   grooves=()) -> FilmSolution:
     """Solve the Reynolds equation on a finite-element mesh of the unwrapped film.
 
     Parameters
@@ -109,6 +131,9 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
     tol : tolerance of the projected iteration
     cavitated_shear : "full" - Couette shear mu omega R / h acts over the whole cavitated
         area (a full film of oil that carries no pressure); "none" - no shear there
+    grooves : axial supply grooves (:class:`~bearingfem.bearing.Groove`), fixed in the
+        inertial frame and flooded at their pressure; with ``cavitation="none"``
+        ``flow_in`` is the flow they feed [m^3/s] (equal to the side leakage)
 
     Returns
     -------
@@ -117,9 +142,11 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
     n_theta, n_z, supply_angle = check_film_solve(
         bearing, state, n_theta, n_z, cavitation, method, supply_angle, tol,
         element=(element, tuple(ELEMENTS)), cavitated_shear=(cavitated_shear, SHEAR))
+    grooves = check_grooves(grooves, supply_angle)
 
-    op = fe_operator(bearing, state, n_theta, n_z, element, supply_angle, half)
-    res = fe_pressure(op, state, cavitation, method, tol)
+    op = fe_operator(bearing, state, n_theta, n_z, element, supply_angle, half, grooves)
+    dirichlet = groove_pressures(bearing, op, grooves)
+    res = fe_pressure(op, state, cavitation, method, tol, dirichlet=dirichlet)
     P = res.pressure
     clip = cavitation != "none"
     Pn = np.maximum(P, 0.0) if clip else P
@@ -148,9 +175,17 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
     if clip:
         r_end = np.minimum(r_end, 0.0)
     leakage = -c * R ** 2 / 12.0 * mult * float(np.sum(r_end))
+    # What the grooves feed: the same consistent flux at their dofs (into the film > 0;
+    # groove dofs on the axial ends carry leakage, counted above). The Reynolds-condition
+    # films do not conserve mass (their multipliers create and destroy oil), so a feed is
+    # defined for the full film only.
+    flow_in = None
+    if grooves and not clip:
+        r_in = r[np.setdiff1d(np.concatenate(op.mesh.grooves), op.mesh.end)]
+        flow_in = c * R ** 2 / 12.0 * mult * float(np.sum(r_in))
 
     return film_solution(
         bearing, state, Pn, op.mesh.theta, op.mesh.zeta, (f_r, f_t), friction=friction,
-        leakage=leakage, cavitated_fraction=cav_fraction, record=res,
+        leakage=leakage, flow_in=flow_in, cavitated_fraction=cav_fraction, record=res,
         method=f"fem-{element}" + (f"/{method}" if cavitation == "reynolds" else ""),
         cavitation=cavitation, half=op.mesh.half, mesh=op.mesh)

@@ -25,7 +25,7 @@ from ..bearing import Bearing, JournalState
 from ..film import film_thickness, reynolds_source_integral, theta_from_inertial
 from ..solution import FilmSolution, film_solution
 from ..solvers.cavitation import LCPResult, active_set, psor
-from ..validation import check_film_solve
+from ..validation import check_film_solve, check_grooves
 
 __all__ = ["fvm_reynolds", "FVMGrid", "fvm_grid"]
 
@@ -120,13 +120,27 @@ def _assemble(g: FVMGrid, eps: float, eps_dot: float, w: float):
 
 
 def _pressure(g: FVMGrid, state: JournalState, cavitation: str, method="active-set",
-              tol=1e-10) -> LCPResult:
+              tol=1e-10, held=None) -> LCPResult:
+    """Cell pressures; ``held`` = (mask, values): cells held at given pressures (grooves),
+    the others solved with those values moved to the right-hand side."""
     A, rhs = _assemble(g, state.eps, state.eps_dot, state.wedge_speed)
+    if held is not None:
+        fixed, values = held
+        free = ~fixed
+        Af = A[free]
+        rhs = rhs[free] - Af[:, fixed] @ values[fixed]
+        A = Af[:, free].tocsr()
     if not np.any(rhs):
-        return LCPResult(np.zeros(g.n), 0, 0.0, True, np.zeros(g.n, bool))
-    if cavitation == "reynolds":
-        return psor(A, rhs, tol=tol) if method == "psor" else active_set(A, rhs, tol=tol)
-    return LCPResult(spla.spsolve(A.tocsc(), rhs), 1, 0.0, True, np.zeros(g.n, bool))
+        res = LCPResult(np.zeros(A.shape[0]), 0, 0.0, True, np.zeros(A.shape[0], bool))
+    elif cavitation == "reynolds":
+        res = psor(A, rhs, tol=tol) if method == "psor" else active_set(A, rhs, tol=tol)
+    else:
+        res = LCPResult(spla.spsolve(A.tocsc(), rhs), 1, 0.0, True, np.zeros(len(rhs), bool))
+    if held is None:
+        return res
+    P = values.copy()
+    P[free] = res.pressure
+    return LCPResult(P, res.iterations, res.residual, res.converged, np.zeros(g.n, bool))
 
 
 def fvm_force(bearing: Bearing, state: JournalState, n_theta: int = 48, n_z: int = 8,
@@ -148,7 +162,7 @@ def _force(bearing: Bearing, g: FVMGrid, P: np.ndarray):
 
 def fvm_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z: int = 20,
                  cavitation: str = "reynolds", *, method: str = "active-set",
-                 supply_angle=None, tol: float = 1e-10) -> FilmSolution:
+                 supply_angle=None, tol: float = 1e-10, grooves=()) -> FilmSolution:
     """Finite-volume Reynolds solution; same inputs and result type as ``solve_reynolds``.
 
     Forces are the midpoint sums of seed Eq. 16 (second order): F_r = sum p cos(theta) dA,
@@ -158,8 +172,21 @@ def fvm_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z:
                                                   method, supply_angle, tol)
     theta0 = None if supply_angle is None else float(theta_from_inertial(supply_angle,
                                                                          state.gamma))
+    grooves = check_grooves(grooves, supply_angle)
     g = fvm_grid(n_theta, n_z, bearing.length_ratio, theta0)
-    res = _pressure(g, state, cavitation, method, tol)
+    held = None
+    if grooves:     # cells whose centres lie in a groove hold its pressure
+        fixed, values = np.zeros(g.n, bool), np.zeros(g.n)
+        columns = []
+        for gr in grooves:
+            lo, hi = gr.arc(state.gamma)
+            col = np.mod(g.theta_c - lo, 2 * np.pi) <= hi - lo
+            columns.append(col)
+            cells = np.repeat(col, n_z)
+            fixed |= cells
+            values[cells] = gr.pressure / bearing.pressure_scale
+        held = (fixed, values)
+    res = _pressure(g, state, cavitation, method, tol, held)
     P = res.pressure if cavitation == "none" else np.maximum(res.pressure, 0.0)
 
     th = np.repeat(g.theta_c, n_z)
@@ -182,8 +209,16 @@ def fvm_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z:
     Hc3 = film_thickness(g.theta_c, state.eps) ** 3
     q = np.sum(Hc3 * (Pg[:, -1] + Pg[:, 0])) * 2.0 / g.dzeta * g.dtheta
     leakage = c * R ** 2 / 12.0 * float(q)
+    flow_in = None
+    if held is not None and cavitation == "none":
+        # what the grooves feed: their cells' net outflow, the balance's residual there
+        # (the Reynolds-condition films do not conserve mass: no feed is defined for them)
+        A, rhs = _assemble(g, state.eps, state.eps_dot, state.wedge_speed)
+        r = (A @ P - rhs).reshape(n_theta, n_z)
+        flow_in = c * R ** 2 / 12.0 * float(np.sum(r[np.any(np.stack(columns), axis=0)]))
     return film_solution(
         bearing, state, P, th, ze, (f_r, f_t), friction=friction, leakage=leakage,
+        flow_in=flow_in,
         cavitated_fraction=float(np.mean(~wet)), record=res,
         method="fvm" + (f"/{method}" if cavitation == "reynolds" else ""),
         cavitation=cavitation, half=False, mesh=g)
