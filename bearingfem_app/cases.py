@@ -1,0 +1,170 @@
+"""One sweep case: what a worker computes for a film, design or mechanism case.
+
+Parameters and their defaults per kind of sweep (``None``: the film model's own default,
+:mod:`bearingfem.models`); :func:`run_case` is what the runner sends to a worker.
+"""
+from __future__ import annotations
+
+import math
+import time
+
+import numpy as np
+
+from bearingfem.bearing import SEED_TABLE1
+from mechanism.scene import read_toml
+
+# parameter -> (default, kind of value); units: m, Pa s, rad/s, 1/s
+FILM_PARAMS = {
+    "diameter": (SEED_TABLE1["diameter"], float), "length_ratio": (1.0, float),
+    "clearance": (SEED_TABLE1["clearance"], float),
+    "viscosity": (SEED_TABLE1["viscosity"], float), "omega": (250.0, float), "eps": (0.6, float),
+    "eps_dot": (0.0, float), "model": ("fem", str),
+    # None: the film model's own default (bearingfem.models)
+    "n_theta": (None, int), "n_z": (None, int), "element": (None, str), "cavitation": (None, str),
+}
+MECHANISM_PARAMS = {
+    "scene": ("scenes/paper-short-fem.toml", str), "turns": (2.0, float),
+    "length_ratio": (None, float), "clearance": (None, float), "viscosity": (None, float),
+    "crank_speed": (None, float), "model": (None, str), "n_theta": (None, int),
+    "n_z": (None, int), "element": (None, str), "cavitation": (None, str),
+}
+#: "design": the steady film at eps, its Raimondi & Boyd groups and its dimensionless
+#: stiffness and damping in the load frame (bearingfem.design) - a design chart's points
+DESIGN_PARAMS = {k: v for k, v in FILM_PARAMS.items() if k != "eps_dot"}
+KINDS = {"film": FILM_PARAMS, "mechanism": MECHANISM_PARAMS, "design": DESIGN_PARAMS}
+
+
+def run_case(kind: str, params: dict, scene: dict | None = None) -> dict:
+    """Compute one case (runs on a worker); returns its parameters and outputs.
+
+    ``scene``: for mechanism cases, the scene's parsed TOML as the client read it - workers
+    of a remote cluster do not have the client's files (without it the worker reads
+    ``params["scene"]`` itself)."""
+    t0 = time.perf_counter()
+    if kind == "mechanism":
+        out = _mechanism_case(params, scene)
+    else:
+        out = {"film": _film_case, "design": _design_case}[kind](params)
+    return {**params, **out, "wall_s": time.perf_counter() - t0}
+
+
+def _scene_data(params: dict) -> dict:
+    """The scene of a mechanism case, read and validated on the client (before any work)."""
+    from mechanism.scene import parse_scene, scene_path
+    path = scene_path(params.get("scene", MECHANISM_PARAMS["scene"][0]))
+    data = read_toml(path, "scene")
+    data.setdefault("name", path.stem)
+    try:
+        parse_scene(data, path.stem)
+    except ValueError as err:
+        raise ValueError(f"sweep case {params}: {err}") from None
+    return data
+
+
+MESH_KEYS = ("n_theta", "n_z", "element", "cavitation")
+
+
+def _film_options(p: dict) -> dict:
+    """The film model's options: the case's mesh settings where it gives them, the model's
+    own defaults elsewhere (one home for them: bearingfem.models)."""
+    from bearingfem.models import film_model
+    m = film_model(p["model"])
+    return m.options({k: p[k] for k in MESH_KEYS if p.get(k) is not None and k in m.defaults})
+
+
+def _film_case(params: dict) -> dict:
+    from bearingfem import Bearing, JournalState, fvm_reynolds, solve_reynolds
+    from mechanism.lubrication import film_force_function
+    p = {k: params.get(k, d) for k, (d, _) in FILM_PARAMS.items()}
+    o = _film_options(p)
+    D = p["diameter"]
+    b = Bearing(radius=D / 2, length=p["length_ratio"] * D, clearance=p["clearance"],
+                viscosity=p["viscosity"])
+    s = JournalState(p["eps"], p["eps_dot"], 0.0, 0.0, p["omega"])
+    out = {}
+    if p["model"] in ("fem", "fvm"):
+        sol = (solve_reynolds(b, s, o["n_theta"], o["n_z"], o["element"], o["cavitation"])
+               if p["model"] == "fem" else
+               fvm_reynolds(b, s, o["n_theta"], o["n_z"], o["cavitation"]))
+        f_r, f_t = sol.force_local
+        out.update(pressure_max=sol.pressure_max, friction_force=sol.friction_force,
+                   side_leakage=sol.side_leakage, cavitated_fraction=sol.cavitated_fraction)
+    else:
+        f_r, f_t = film_force_function(p["model"])(b, s, **o)
+    load = math.hypot(f_r, f_t)
+    n_rev = p["omega"] / (2 * math.pi)
+    out.update(force_r=f_r, force_t=f_t, load=load,
+               attitude_deg=math.degrees(math.atan2(f_t, -f_r)) if load else 0.0,
+               sommerfeld=(b.viscosity * n_rev * b.length * D / load * (b.radius / b.clearance) ** 2
+                           if load else math.inf))
+    return out
+
+
+def _design_case(params: dict) -> dict:
+    from bearingfem import Bearing, JournalState, fvm_reynolds, solve_reynolds
+    from bearingfem.design import (coefficients, flow_variable, friction_variable,
+                                   petroff_friction, sommerfeld_number)
+    from bearingfem.models import FILM_MODELS
+    p = {k: params.get(k, d) for k, (d, _) in DESIGN_PARAMS.items()}
+    D = p["diameter"]
+    b = Bearing(radius=D / 2, length=p["length_ratio"] * D, clearance=p["clearance"],
+                viscosity=p["viscosity"])
+    s = JournalState(p["eps"], 0.0, 0.0, 0.0, p["omega"])
+    model = FILM_MODELS[p["model"]]
+    opts = _film_options(p)
+    kc = coefficients(b, s, p["model"], frame="load", **opts)
+    k, c = kc.dimensionless()
+    f_r, f_t = model.film_force(b, s, **opts)
+    load = math.hypot(f_r, f_t)
+    out = dict(load=load, sommerfeld=sommerfeld_number(b, load, p["omega"]),
+               attitude_deg=math.degrees(math.atan2(f_t, -f_r)),
+               friction_variable=friction_variable(
+                   b, petroff_friction(b, p["eps"], p["omega"], f_t), load),
+               coefficient_method=kc.method)
+    if p["model"] in ("fem", "fvm"):
+        sol = (solve_reynolds(b, s, opts["n_theta"], opts["n_z"], opts["element"],
+                              opts["cavitation"]) if p["model"] == "fem" else
+               fvm_reynolds(b, s, opts["n_theta"], opts["n_z"], opts["cavitation"]))
+        out["flow_variable"] = flow_variable(b, sol.side_leakage, p["omega"])
+    for name, m in (("K", k), ("C", c)):
+        for (i, j), v in np.ndenumerate(m):
+            out[f"{name}{i + 1}{j + 1}"] = float(v)
+    return out
+
+
+def _precheck(kind: str, params: dict) -> None:
+    if kind == "mechanism":
+        return
+    from bearingfem import Bearing, JournalState
+    p = {k: params.get(k, d) for k, (d, _) in FILM_PARAMS.items()}
+    try:
+        D = p["diameter"]
+        Bearing(radius=D / 2, length=p["length_ratio"] * D, clearance=p["clearance"],
+                viscosity=p["viscosity"])
+        JournalState(p["eps"], p["eps_dot"], 0.0, 0.0, p["omega"])
+    except ValueError as err:
+        raise ValueError(f"sweep case {params}: {err}") from None
+
+
+def _mechanism_case(params: dict, scene: dict | None = None) -> dict:
+    from dataclasses import replace
+    from mechanism import load_scene, simulate
+    from mechanism.scene import Lubrication, parse_scene
+    sc = (parse_scene(scene, scene.get("name", "scene")) if scene is not None else
+          load_scene(params.get("scene", MECHANISM_PARAMS["scene"][0])))
+    turns = params.get("turns", MECHANISM_PARAMS["turns"][0])
+    sc = replace(sc, run=replace(sc.run, turns=turns, record_from_turn=max(0.0, turns - 1)))
+    b = sc.bearing
+    if "length_ratio" in params:
+        b = replace(b, length=params["length_ratio"] * 2 * b.radius)
+    b = replace(b, **{k: params[k] for k in ("clearance", "viscosity") if k in params})
+    sc = replace(sc, bearing=b, crank_speed=params.get("crank_speed", sc.crank_speed))
+    opts = {k: params[k] for k in ("n_theta", "n_z", "element", "cavitation") if k in params}
+    if sc.lubrication is not None and ("model" in params or opts):
+        lub = sc.lubrication
+        model = params.get("model", lub.model)
+        keep = {} if model != lub.model else lub.options
+        sc = replace(sc, lubrication=Lubrication(model, {**keep, **opts}, lub.eps_max))
+    r = simulate(sc, progress=False)
+    row = r.summary_row()
+    return {k: v for k, v in row.items() if k != "scene"}

@@ -1,0 +1,284 @@
+"""What each ``bearingfem`` command does (the parser is in :mod:`bearingfem_app.cli`).
+
+Every command checks what it can before any work - options that contradict each other,
+output kinds and folders - and raises ValueError with one line naming the option.
+"""
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+def _simulate(args):
+    from mechanism import load_scene, simulate
+    from mechanism.figures import plot_run
+
+    scene = load_scene(args.scene)
+    out = _make_dir(args.output, "-o/--output")
+    res = simulate(scene, progress=None if not args.quiet else False)
+    res.save(out)
+    plot_run(res, scene.bearing.clearance if scene.bearing else 1.0, out / "run.png")
+    print(res.summary())
+    print(f"wrote {out / 'result.npz'}, {out / 'result.json'}, {out / 'run.png'}")
+    return 1 if res.partial else 0
+
+
+def _bearing(args):
+    from bearingfem import Bearing
+    from bearingfem.bearing import check_positive
+    check_positive("--length-ratio/--ld (L/D)", args.length_ratio)   # name what was typed
+    return Bearing(radius=args.diameter / 2, length=args.length_ratio * args.diameter,
+                   clearance=args.clearance, viscosity=args.viscosity)
+
+
+def _table1(args):
+    from bearingfem import JournalState
+    s = JournalState(eps=args.eps, eps_dot=args.eps_dot, gamma=0.0, gamma_dot=0.0,
+                     omega=args.omega)
+    return _bearing(args), s
+
+
+def _model_options(args):
+    """The film model named on the command line and the options of it given there."""
+    from bearingfem.models import film_model
+    m = film_model(args.model, "--model")
+    given = dict(n_theta=args.n_theta, n_z=args.n_z, element=args.element,
+                 cavitation=args.cavitation)
+    return args.model, {k: v for k, v in given.items() if k in m.defaults}
+
+
+def _check_output(path, suffixes):
+    """Refuse an output file of an unknown kind before any work; make its folder."""
+    if path is None:
+        return None
+    out = Path(path)
+    if out.suffix.lower() not in suffixes:
+        raise ValueError(f"-o/--output must end in {' or '.join(suffixes)}, got {path!r}")
+    _make_dir(out.parent, "-o/--output")
+    return out
+
+
+def _make_dir(path, option):
+    """Create an output folder before any work, or say in one line why it cannot be."""
+    try:
+        Path(path).mkdir(parents=True, exist_ok=True)
+    except OSError as err:
+        raise ValueError(f"{option}: cannot create folder {str(path)!r} ({err.strerror})") \
+            from None
+    return Path(path)
+
+
+def _write_numbers(out, rows):
+    """rows: (name, value, unit) -> JSON object or a CSV table."""
+    if out is None:
+        return
+    if out.suffix.lower() == ".json":
+        import json
+        out.write_text(json.dumps({n: {"value": v, "unit": u} for n, v, u in rows}, indent=1))
+    else:
+        from bearingfem.outputs.tables import write_csv
+        write_csv([dict(quantity=n, value=v, unit=u) for n, v, u in rows], out)
+    print(f"wrote {out}")
+
+
+def _print_rows(rows):
+    for name, value, unit in rows:
+        v = "-" if value is None else f"{value:.6g}"
+        print(f"  {name:24s} {v:>14s} {unit}")
+
+
+def _equilibrium(args):
+    from bearingfem.design import equilibrium
+    out = _check_output(args.output, (".json", ".csv"))
+    model, opts = _model_options(args)
+    b = _bearing(args)
+    eq = equilibrium(b, args.load, args.omega, model, direction=math.radians(args.direction),
+                     **opts)
+    rows = [("eccentricity ratio", eq.eps, "-"),
+            ("attitude angle", math.degrees(eq.attitude), "deg"),
+            ("Sommerfeld number", eq.sommerfeld, "-"),
+            ("minimum film", eq.film_min, "m"),
+            ("minimum film angle", math.degrees(eq.film_min_angle), "deg (inertial)"),
+            ("journal x", eq.eps * b.clearance * math.cos(eq.state.gamma), "m"),
+            ("journal y", eq.eps * b.clearance * math.sin(eq.state.gamma), "m"),
+            ("peak pressure", eq.pressure_max, "Pa"),
+            ("friction force", eq.friction_force, "N"),
+            ("friction coefficient", eq.friction_coefficient, "-"),
+            ("power loss", eq.power_loss, "W"),
+            ("side leakage", eq.side_leakage, "m^3/s"),
+            ("inflow", eq.flow_in, "m^3/s")]
+    print(f"equilibrium, {model} {opts or ''}: load {args.load:g} N at "
+          f"{args.direction:g} deg, {args.omega:g} rad/s, L/D {args.length_ratio:g}")
+    _print_rows(rows)
+    _write_numbers(out, rows)
+    return 0
+
+
+def _coefficients(args):
+    from bearingfem import JournalState
+    from bearingfem.design import coefficients, equilibrium, lund_stability
+    out = _check_output(args.output, (".json", ".csv"))
+    model, opts = _model_options(args)
+    b = _bearing(args)
+    if (args.eps is None) == (args.load is None):
+        raise ValueError("give exactly one of --eps (a steady state) or --load "
+                         "(the equilibrium under that load)")
+    if args.load is not None:
+        state = equilibrium(b, args.load, args.omega, model,
+                            direction=math.radians(args.direction), **opts).state
+    else:
+        state = JournalState(args.eps, omega=args.omega, gamma=math.radians(args.gamma))
+    kc = coefficients(b, state, model, frame=args.frame, **opts)
+    st = lund_stability(kc)
+    names = ("xx", "xy", "yx", "yy") if args.frame == "inertial" else (
+        ("rr", "rt", "tr", "tt") if args.frame == "local" else ("11", "12", "21", "22"))
+    rows = ([(f"K_{n}", float(v), "N/m") for n, v in zip(names, kc.K.ravel())]
+            + [(f"C_{n}", float(v), "N s/m") for n, v in zip(names, kc.C.ravel())]
+            + [("eccentricity ratio", state.eps, "-"), ("load carried", kc.load, "N"),
+               ("critical mass", st.critical_mass, "kg"),
+               ("whirl frequency ratio", st.whirl_ratio, "-")])
+    print(f"coefficients, {model} {opts or ''}, {args.frame} frame ({kc.method}):")
+    _print_rows(rows)
+    _write_numbers(out, rows)
+    return 0
+
+
+#: What meshio writes from a film (checked before the solve, not after it).
+FILM_FORMATS = (".vtu", ".xdmf", ".vtk")
+#: What the off-screen renderer writes.
+IMAGE_FORMATS = (".png", ".jpg", ".jpeg", ".bmp", ".tif", ".tiff")
+
+
+def _element(args, method="fem"):
+    """--element belongs to the finite elements: refused when given with --method fvm."""
+    if method == "fvm" and args.element_given:
+        raise ValueError("--element applies to --method fem only (finite volumes have no "
+                         f"element), got --element {args.element} with --method fvm")
+    return args.element
+
+
+def _solve(args):
+    from bearingfem import fvm_reynolds, solve_reynolds
+    element = _element(args, args.method)
+    _check_output(args.output, FILM_FORMATS)
+    b, s = _table1(args)
+    if args.method == "fvm":
+        sol = fvm_reynolds(b, s, args.n_theta, args.n_z, args.cavitation)
+    else:
+        sol = solve_reynolds(b, s, args.n_theta, args.n_z, element, args.cavitation)
+    print(sol.summary())
+    from bearingfem.design import sommerfeld_number
+    load = math.hypot(*sol.force_local)
+    print("  Sommerfeld number "
+          + (f"{sommerfeld_number(b, load, s.omega):.6g}" if load > 0 and s.omega else "-"))
+    if args.output:
+        from bearingfem.outputs.export import write_solution
+        write_solution(sol, args.output)
+        print(f"wrote {args.output}")
+    return 0
+
+
+def _convergence(args):
+    from bearingfem.outputs.convergence import QUANTITIES, convergence_study
+    from bearingfem.validation import check_choice
+    if args.element_given:
+        raise ValueError("--element does not apply to convergence: --methods names the "
+                         "discretisations (P1, P2, fvm)")
+    check_choice("--quantity", args.quantity, QUANTITIES)
+    methods = tuple(args.methods.split(","))
+    for m in methods:
+        check_choice("--methods entry", m, ("P1", "P2", "fvm"))
+    b, s = _table1(args)
+    out = _make_dir(args.output, "-o/--output")
+    st = convergence_study(b, s, levels=args.levels, n_theta=args.n_theta, n_z=args.n_z,
+                           cavitation=args.cavitation, methods=methods, progress=print)
+    st.write_csv(out / "convergence.csv")
+    st.plot(out / "convergence.png", args.quantity)
+    print(f"{'method':6s} {'quantity':18s} {'finest':>14s} {'order':>7s} {'extrapolated':>14s} {'GCI':>9s}")
+    for r in st.summary:
+        print(f"{r['method']:6s} {r['quantity']:18s} {r['finest']:14.6g} {r['order']:7.3f} "
+              f"{r['extrapolated']:14.6g} {r['gci']:9.2e}")
+    print(f"wrote {out / 'convergence.csv'}, {out / 'convergence_summary.csv'}, "
+          f"{out / 'convergence.png'}")
+    return 0
+
+
+def _render(args):
+    from bearingfem import solve_reynolds
+    from bearingfem.outputs.render import FIELDS, SURFACES, render_film
+    from bearingfem.validation import check_choice
+    check_choice("--field", args.field, tuple(FIELDS))
+    check_choice("--surface", args.surface, SURFACES)
+    _check_output(args.output, IMAGE_FORMATS)
+    b, s = _table1(args)
+    sol = solve_reynolds(b, s, args.n_theta, args.n_z, _element(args), args.cavitation)
+    render_film(sol, args.output, field=args.field, surface=args.surface)
+    print(sol.summary())
+    print(f"wrote {args.output}")
+    return 0
+
+
+def _sweep(args):
+    from bearingfem_app.sweep import load_sweep, run_sweep
+    sweep = load_sweep(args.sweep)
+    _make_dir(args.output, "-o/--output")
+    res = run_sweep(sweep, args.output, scheduler=args.scheduler, workers=args.workers,
+                    progress=None if not args.quiet else False)
+    out = Path(args.output)
+    print(f"sweep {sweep.name}: {res.computed} computed, {res.skipped} already done, "
+          f"{len(res.failed)} failed in {res.wall_time:.1f} s"
+          + (" - interrupted, rerun to continue" if res.interrupted else ""))
+    for cid, msg in res.failed.items():
+        print(f"  {cid}: {msg}")
+    if res.rows:
+        print(f"wrote {out / 'results.csv'}, {out / 'summary.png'} ({len(res.rows)} cases)")
+    return 1 if res.failed or res.interrupted else 0
+
+
+def _differences(a, b, where="scene"):
+    """Dotted names of the entries where two nested dicts differ."""
+    if isinstance(a, dict) and isinstance(b, dict):
+        return [d for k in sorted(set(a) | set(b))
+                for d in _differences(a.get(k), b.get(k), f"{where}.{k}")]
+    return [] if a == b else [where]
+
+
+def _frames(args):
+    from mechanism import load_scene
+    from mechanism.film_history import film_history, render_history, write_history
+    from mechanism.result import load_result
+    scene = load_scene(args.scene)
+    if not (Path(args.result) / "result.npz").is_file():
+        raise ValueError(f"no run result in {args.result!r} (expected result.npz from "
+                         "'bearingfem simulate')")
+    result = load_result(args.result)
+    if result.scene != scene.name:
+        raise ValueError(f"the run in {args.result!r} was made from scene {result.scene!r}, "
+                         f"not from {scene.name!r} ({args.scene}): give the scene of the run")
+    stored = result.provenance.get("scene")
+    if stored is not None:   # the physics must match; run settings (turns, output) need not
+        import dataclasses
+        import json
+        now = json.loads(json.dumps(dataclasses.asdict(scene), default=float))
+        stored = json.loads(json.dumps(stored, default=float))
+        differ = _differences({k: v for k, v in stored.items() if k != "run"},
+                              {k: v for k, v in now.items() if k != "run"})
+        if differ:
+            raise ValueError(f"scene {args.scene} differs from the one the run in "
+                             f"{args.result!r} was made from ({', '.join(differ[:4])})")
+    angles = None
+    if args.angles:
+        try:
+            angles = [float(a) for a in args.angles.split(",")]
+        except ValueError:
+            raise ValueError(f"--angles must be comma-separated degrees, got {args.angles!r}") \
+                from None
+    out = _make_dir(args.output, "-o/--output")
+    frames = film_history(result, scene, angles, args.frames,
+                          progress=lambda k, n: print(f"  film {k}/{n}", flush=True))
+    pvd = write_history(frames, out, args.surface)
+    print(f"wrote {pvd} ({len(frames)} VTU files, time = run time [s])")
+    if not args.no_render:
+        paths = render_history(frames, out, args.field, args.surface, gif=args.gif,
+                               fixed_camera=args.fixed_camera)
+        print(f"wrote {len(paths)} images to {out}" + (" incl. film.gif" if args.gif else ""))
+    return 0
