@@ -1,7 +1,7 @@
 """Slider-crank mechanism with a clearance joint (seed Eq. 1-5), driven by scene files.
 
-The mechanism meets bearingfem only through :mod:`mechanism.lubrication` (film models by
-name) and the joint-effect interface of :mod:`mechanism.effects`.
+Film forces come from bearingfem's registry through :mod:`mechanism.lubrication`; the
+joint effects (:mod:`mechanism.effects`) apply them, with contact and friction.
 """
 from .parameters import Mechanism
 from .result import SimulationResult, load_result

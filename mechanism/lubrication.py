@@ -1,9 +1,11 @@
-"""Where the mechanism takes its film models: bearingfem's registry, plus memory for "fem".
+"""Where the mechanism takes its film forces: bearingfem's registry, plus memory for "fem".
 
 Every model is a function (bearing, JournalState, **options) -> (F_r, F_t) on the journal
-(:data:`bearingfem.models.FILM_MODELS`). The mechanism also uses bearingfem's input types
-(``Bearing``, ``JournalState``) in ``parameters``, ``scene`` and ``film_history``; only the
-film forces come through here.
+(:data:`bearingfem.models.FILM_MODELS`); the integration gets its force functions here.
+The rest of the mechanism meets bearingfem only through its inputs and outputs: the input
+types and checks (``parameters``, ``effects``, ``scene``, which also reads each model's
+options from the registry), the film solve and its pictures along a saved run
+(``film_history``), and the CSV writer (``result``).
 """
 from __future__ import annotations
 
