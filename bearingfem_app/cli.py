@@ -8,8 +8,9 @@ import sys
 
 from bearingfem.bearing import SEED_TABLE1
 
-from .commands import (_coefficients, _convergence, _equilibrium, _frames, _render, _simulate,
-                       _solve, _sweep)
+from .commands import (command_coefficients, command_convergence, command_equilibrium,
+                       command_frames, command_render, command_simulate, command_solve,
+                       command_sweep)
 
 EXAMPLES = """examples:
   bearingfem simulate scenes/paper-short-fem.toml -o results/short-fem
@@ -73,14 +74,14 @@ def build_parser():
     s.add_argument("scene", help="scene TOML file")
     s.add_argument("-o", "--output", required=True, help="output directory")
     s.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
-    s.set_defaults(func=_simulate)
+    s.set_defaults(func=command_simulate)
     f = add("solve", help="one film solve; print forces, optionally export VTU",
                        epilog="example: bearingfem solve --ld 0.5 --eps 0.8 -o film.vtu")
     _film_args(f)
     f.add_argument("--method", default="fem", choices=["fem", "fvm"],
                    help="finite elements or finite volumes")
     f.add_argument("-o", "--output", help="write the film (.vtu, .xdmf)")
-    f.set_defaults(func=_solve)
+    f.set_defaults(func=command_solve)
     c = add("convergence", help="mesh-convergence study: CSV table + log-log PNG",
                        epilog="example: bearingfem convergence --ld 1.0 --eps 0.6 -o conv")
     _film_args(c)
@@ -89,14 +90,14 @@ def build_parser():
     c.add_argument("--methods", default="P1,P2,fvm", help="comma list of P1, P2, fvm")
     c.add_argument("--quantity", default="force", help="quantity for the figure")
     c.add_argument("-o", "--output", required=True, help="output directory")
-    c.set_defaults(func=_convergence)
+    c.set_defaults(func=command_convergence)
     r = add("render", help="off-screen PNG of the film pressure or thickness",
                        epilog="example: bearingfem render --ld 1.0 --eps 0.6 -o film.png")
     _film_args(r)
     r.add_argument("--field", default="pressure", help="pressure | film_thickness")
     r.add_argument("--surface", default="journal", help="journal | unwrapped")
     r.add_argument("-o", "--output", required=True, help="PNG file")
-    r.set_defaults(func=_render)
+    r.set_defaults(func=command_render)
     w = add("sweep", help="parameter sweep on Dask: one file per case, resumable",
                        epilog="example: bearingfem sweep sweeps/capacity.toml -o out "
                               "--scheduler tcp://10.0.0.5:8786")
@@ -106,7 +107,7 @@ def build_parser():
                    "local cluster")
     w.add_argument("--workers", type=int, default=2, help="local cluster processes")
     w.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
-    w.set_defaults(func=_sweep)
+    w.set_defaults(func=command_sweep)
     fr = add("frames", help="the film along a saved run: VTU series (.pvd), PNG "
                         "frames, GIF", epilog="example: bearingfem frames "
                         "scenes/paper-long-fem.toml results/long-fem -o frames --angles 0,90")
@@ -123,14 +124,14 @@ def build_parser():
                     help="journal view from one place for every frame (default: each "
                          "frame's loaded side)")
     fr.add_argument("--no-render", action="store_true", help="VTU series only, no PNG")
-    fr.set_defaults(func=_frames)
+    fr.set_defaults(func=command_frames)
     e = add("equilibrium", help="where the journal sits under a load: eps, "
                        "attitude, Sommerfeld number, film, friction, flow",
                        epilog="example: bearingfem equilibrium --ld 1 --load 1000 "
                               "--model fem --element P2")
     _design_args(e)
     _load_args(e, required=True)
-    e.set_defaults(func=_equilibrium)
+    e.set_defaults(func=command_equilibrium)
     k = add("coefficients", help="stiffness and damping (K, C) and Lund's "
                        "critical mass, at an eccentricity or under a load",
                        epilog="example: bearingfem coefficients --ld 0.5 --load 500 "
@@ -141,7 +142,7 @@ def build_parser():
     _load_args(k, required=False)
     k.add_argument("--frame", default="inertial", choices=["inertial", "local", "load"],
                    help="axes of K and C")
-    k.set_defaults(func=_coefficients)
+    k.set_defaults(func=command_coefficients)
     return p
 
 

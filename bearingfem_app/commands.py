@@ -8,7 +8,11 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
-def _simulate(args):
+__all__ = ["command_simulate", "command_solve", "command_render", "command_convergence",
+           "command_sweep", "command_frames", "command_equilibrium", "command_coefficients"]
+
+
+def command_simulate(args):
     from mechanism import load_scene, simulate
     from mechanism.figures import plot_run
 
@@ -86,7 +90,7 @@ def _print_rows(rows):
         print(f"  {name:24s} {v:>14s} {unit}")
 
 
-def _equilibrium(args):
+def command_equilibrium(args):
     from bearingfem.design import equilibrium
     out = _check_output(args.output, (".json", ".csv"))
     model, opts = _model_options(args)
@@ -113,7 +117,7 @@ def _equilibrium(args):
     return 0
 
 
-def _coefficients(args):
+def command_coefficients(args):
     from bearingfem import JournalState
     from bearingfem.design import coefficients, equilibrium, lund_stability
     out = _check_output(args.output, (".json", ".csv"))
@@ -156,7 +160,7 @@ def _element(args, method="fem"):
     return args.element
 
 
-def _solve(args):
+def command_solve(args):
     from bearingfem import fvm_reynolds, solve_reynolds
     element = _element(args, args.method)
     _check_output(args.output, FILM_FORMATS)
@@ -177,7 +181,7 @@ def _solve(args):
     return 0
 
 
-def _convergence(args):
+def command_convergence(args):
     from bearingfem.outputs.convergence import QUANTITIES, convergence_study
     from bearingfem.validation import check_choice
     if args.element_given:
@@ -202,7 +206,7 @@ def _convergence(args):
     return 0
 
 
-def _render(args):
+def command_render(args):
     from bearingfem import solve_reynolds
     from bearingfem.outputs.render import FIELDS, SURFACES, render_film
     from bearingfem.validation import check_choice
@@ -217,7 +221,7 @@ def _render(args):
     return 0
 
 
-def _sweep(args):
+def command_sweep(args):
     from bearingfem_app.sweep import load_sweep, run_sweep
     sweep = load_sweep(args.sweep)
     _make_dir(args.output, "-o/--output")
@@ -242,7 +246,7 @@ def _differences(a, b, where="scene"):
     return [] if a == b else [where]
 
 
-def _frames(args):
+def command_frames(args):
     from mechanism import load_scene
     from mechanism.film_history import film_history, render_history, write_history
     from mechanism.result import load_result
