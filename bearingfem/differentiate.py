@@ -65,5 +65,6 @@ def central_differences(force, state: JournalState) -> ForceDerivatives:
     d_ed = diff(eps_dot=h_ed)
     # w = omega - 2 gamma_dot, so dF/dw = -dF/d(gamma_dot) / 2
     d_w = tuple(-0.5 * np.asarray(diff(gamma_dot=0.5 * h_w)))
-    return ForceDerivatives(f0, d_eps, d_ed, d_w, "central-differences")
+    d_g = diff(gamma=1e-6)    # nonzero only for films with something fixed in space
+    return ForceDerivatives(f0, d_eps, d_ed, d_w, "central-differences", d_g)
 

@@ -21,7 +21,7 @@ from .fe.reynolds import fe_force
 from .fe.sensitivity import fe_force_derivatives
 from .fv.fvm import fvm_force
 from .solution import ForceDerivatives
-from .validation import CAVITATION, check_choice, check_int
+from .validation import CAVITATION, check_choice, check_grooves, check_int
 
 __all__ = ["FilmModel", "FILM_MODELS", "NUMERIC_MODELS", "OPTION_RULES", "film_model"]
 
@@ -32,12 +32,15 @@ OPTION_RULES = {
     "element": ("choice", tuple(ELEMENTS)), "cavitation": ("choice", CAVITATION),
     "half_film": ("choice", ("wedge", "fixed")), "switch_speed": ("number", (0.0, None)),
     "n_eps": ("int", (6, 400)), "n_phi": ("int", (16, 1000)),
+    "grooves": ("grooves", None),
 }
 
 
 def _check_option(name: str, value, where: str):
     kind, allowed = OPTION_RULES[name]
     label = f"{where}.{name}" if where else name
+    if kind == "grooves":
+        return check_grooves(value)
     if kind == "choice":
         return check_choice(label, value, allowed)
     lo, hi = allowed
@@ -98,9 +101,9 @@ class FilmModel:
         return central_differences(lambda s: self.force(bearing, s, **opts), state)
 
 
-def _fem(bearing, state, n_theta, n_z, element, cavitation):
+def _fem(bearing, state, n_theta, n_z, element, cavitation, grooves):
     """The "fem" model's force (a cold solve; options always come from the registry)."""
-    return fe_force(bearing, state, n_theta, n_z, element, cavitation)[0]
+    return fe_force(bearing, state, n_theta, n_z, element, cavitation, grooves=grooves)[0]
 
 
 _MESH = dict(n_theta=48, n_z=8)
@@ -112,7 +115,7 @@ FILM_MODELS = {m.name: m for m in (
     FilmModel("long", long_bearing_force, {}, long_bearing_derivatives),
     FilmModel("short-exact", short_bearing_exact_force),
     FilmModel("long-exact", long_bearing_exact_force),
-    FilmModel("fem", _fem, dict(_MESH, element="P1", cavitation="gumbel"),
+    FilmModel("fem", _fem, dict(_MESH, element="P1", cavitation="gumbel", grooves=()),
               fe_force_derivatives, numeric=True),
     FilmModel("fvm", fvm_force, dict(_MESH, cavitation="gumbel"), numeric=True),
     FilmModel("fem-table", table_force, dict(TABLE_DEFAULTS),

@@ -124,6 +124,8 @@ class ForceDerivatives:
     d_wedge : d(F_r, F_t)/d w [N s]
     method : how the partials were found ("analytic", "exact-sensitivity",
         "central-differences")
+    d_gamma : d(F_r, F_t)/d gamma at fixed (eps, eps_dot, w) [N/rad]: zero for a film that
+        turns with the line of centres, not when grooves stay fixed in the inertial frame
     """
 
     force: tuple
@@ -131,3 +133,4 @@ class ForceDerivatives:
     d_eps_dot: tuple
     d_wedge: tuple
     method: str
+    d_gamma: tuple = (0.0, 0.0)

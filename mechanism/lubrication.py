@@ -21,10 +21,10 @@ def _warm_fem():
     same as a cold solve to the solver tolerance; only the cost changes."""
     last = {}
 
-    def fem(bearing, state, n_theta, n_z, element, cavitation):   # the scene's options
-        key = (bearing.length_ratio, n_theta, n_z, element, cavitation)
+    def fem(bearing, state, n_theta, n_z, element, cavitation, grooves=()):  # scene options
+        key = (bearing.length_ratio, n_theta, n_z, element, cavitation, grooves)
         force, last[key] = fe_force(bearing, state, n_theta, n_z, element, cavitation,
-                                    warm=last.get(key))
+                                    warm=last.get(key), grooves=grooves)
         return force
     return fem
 

@@ -5,7 +5,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from bearingfem import Bearing, JournalState, solve_reynolds
+from bearingfem import Bearing, Groove, JournalState, solve_reynolds
 from bearingfem.design import (coefficients, equilibrium, journal_orbit, lund_stability,
                                sommerfeld_number, threshold_speed)
 from bearingfem.differentiate import central_differences
@@ -286,3 +286,48 @@ def test_equilibrium_with_fe_reproduces_raimondi_boyd_sommerfeld():
     assert eq.sommerfeld == pytest.approx(0.121, rel=0.02)
     state_again = replace(eq.state, gamma=0.0)
     assert state_again.eps == pytest.approx(0.6)
+
+
+GROOVED = dict(n_theta=40, n_z=8, element="P2", cavitation="reynolds",
+               grooves=(Groove(angle=0.0, width=0.35, pressure=1e5),
+                        Groove(angle=np.pi, width=0.35, pressure=1e5)))
+
+
+@pytest.mark.parametrize("state", STATES[:3])
+def test_grooved_coefficients_are_the_inertial_jacobian(state):
+    """Grooves stay in place while the film turns with the eccentricity: the partial in
+    gamma enters K[:, t]. Against central differences of the inertial force (the grooves'
+    positions follow from the inertial frame there, independently)."""
+    b = Bearing(radius=0.01, length=0.02, clearance=20e-6, viscosity=0.0117)
+    kc = coefficients(b, state, "fem", frame="inertial", **GROOVED)
+    c, g = b.clearance, state.gamma
+    e, ed, gd = state.eps * c, state.eps_dot * c, state.gamma_dot
+    q0 = np.array([e * math.cos(g), e * math.sin(g),
+                   ed * math.cos(g) - e * gd * math.sin(g),
+                   ed * math.sin(g) + e * gd * math.cos(g)])
+    force = _inertial_force("fem", b, state.omega, **GROOVED)
+    h = np.array([1e-6 * c, 1e-6 * c, 1e-6 * c * abs(state.omega), 1e-6 * c * abs(state.omega)])
+    J = np.column_stack([(force(q0 + h[j] * np.eye(4)[j]) - force(q0 - h[j] * np.eye(4)[j]))
+                         / (2 * h[j]) for j in range(4)])
+    np.testing.assert_allclose(kc.K, -J[:, :2], rtol=1e-5, atol=1e-6 * np.abs(kc.K).max())
+    np.testing.assert_allclose(kc.C, -J[:, 2:], rtol=1e-5, atol=1e-6 * np.abs(kc.C).max())
+
+
+def test_grooved_equilibrium_balances_and_turns_with_load_and_grooves():
+    b = Bearing(radius=0.01, length=0.02, clearance=20e-6, viscosity=0.0117)
+    eq = equilibrium(b, 500.0, 250.0, "fem", direction=-0.5 * math.pi, **GROOVED)
+    np.testing.assert_allclose(np.add(eq.film_force, eq.load), 0.0, atol=1e-8 * 500.0)
+    # turning load and grooves by the same angle turns the equilibrium, nothing else
+    turn = 0.7
+    turned = {**GROOVED, "grooves": tuple(Groove(angle=gr.angle + turn, width=gr.width,
+                                                 pressure=gr.pressure)
+                                          for gr in GROOVED["grooves"])}
+    eq2 = equilibrium(b, 500.0, 250.0, "fem", direction=-0.5 * math.pi + turn, **turned)
+    assert eq2.eps == pytest.approx(eq.eps, rel=1e-7)
+    assert np.mod(eq2.state.gamma - eq.state.gamma - turn + np.pi, 2 * np.pi) - np.pi == \
+        pytest.approx(0.0, abs=1e-7)
+    # a load toward a pressurised groove is carried at another eccentricity than across them
+    eq3 = equilibrium(b, 500.0, 250.0, "fem", direction=-0.25 * math.pi, **GROOVED)
+    assert abs(eq3.eps - eq.eps) > 0.05
+    with pytest.raises(ValueError, match="grooves is not an option of film model 'fvm'"):
+        equilibrium(b, 500.0, 250.0, "fvm", grooves=GROOVED["grooves"])

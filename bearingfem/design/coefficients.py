@@ -7,7 +7,9 @@ frame (r = along the eccentricity, t = r turned +90 deg), with A, B, W the parti
 F_loc in eps, eps_dot and w:
 
     -c K[:, r] = A + 2 gamma_dot W / eps
-    -c K[:, t] = J F / eps + gamma_dot B + 2 eps_dot W / eps^2,   J F = (-F_t, F_r)
+    -c K[:, t] = (J F + G) / eps + gamma_dot B + 2 eps_dot W / eps^2,   J F = (-F_t, F_r)
+
+with G = dF_loc/dgamma, zero unless grooves stay fixed while the film turns.
     -c C[:, r] = B
     -c C[:, t] = -2 W / eps
 
@@ -109,8 +111,11 @@ def coefficients(bearing: Bearing, state: JournalState, model: str = "fem",
         state = replace(state, eps=EPS_FLOOR)
     d = m.force_derivatives(bearing, state, **options)
     e, ed, gd = state.eps, state.eps_dot, state.gamma_dot
-    A, B, W, F = (np.asarray(v, float) for v in (d.d_eps, d.d_eps_dot, d.d_wedge, d.force))
-    JF = np.array([-F[1], F[0]])
+    A, B, W, F, G = (np.asarray(v, float) for v in (d.d_eps, d.d_eps_dot, d.d_wedge, d.force,
+                                                     d.d_gamma))
+    # turning the eccentricity turns the film (J F) and, with grooves fixed in space,
+    # moves them against it (G = dF_loc/dgamma)
+    JF = np.array([-F[1], F[0]]) + G
     c = bearing.clearance
     K = -np.column_stack([A + 2.0 * gd * W / e, JF / e + gd * B + 2.0 * ed * W / e ** 2]) / c
     C = -np.column_stack([B, -2.0 * W / e]) / c

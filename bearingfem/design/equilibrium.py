@@ -3,7 +3,8 @@
 A periodic film's steady force in the local frame depends on eps alone (gamma only turns
 it), and its magnitude grows monotonically from 0 at eps = 0 to the wall. So equilibrium
 is one bracketed root, |F(eps)| = W (Brent's method), followed by the turn gamma that puts
-the film force opposite the load. The attitude angle phi = atan2(F_t, -F_r) is the angle
+the film force opposite the load. Grooves fixed in space make the force depend on gamma
+too: from that periodic equilibrium a 2-D root in the journal position finishes the job. The attitude angle phi = atan2(F_t, -F_r) is the angle
 from the load line to the line of centres, in the sense of rotation.
 """
 from __future__ import annotations
@@ -12,7 +13,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import brentq
+from scipy.optimize import brentq, root
 
 from ..bearing import Bearing, JournalState, check_finite
 from ..fe.reynolds import solve_reynolds
@@ -110,10 +111,12 @@ def equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
     if not 0.0 < eps_max < 1.0:
         raise ValueError(f"eps_max must lie in (0, 1), got {eps_max!r}")
     calls = [0]
+    grooves = opts.get("grooves", ())
+    periodic = {**opts, "grooves": ()} if grooves else opts
 
-    def force(eps):
+    def force(eps, gamma=0.0, o=periodic):
         calls[0] += 1
-        return m.force(bearing, JournalState(eps, omega=omega), **opts)
+        return m.force(bearing, JournalState(eps, omega=omega, gamma=gamma), **o)
 
     f_max = math.hypot(*force(eps_max))
     if not f_max >= W:
@@ -124,6 +127,10 @@ def equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
     # turn the eccentricity so that the film force points opposite the load
     gamma = math.atan2(-wy, -wx) - math.atan2(f_t, f_r)
     gamma = math.atan2(math.sin(gamma), math.cos(gamma))
+    if grooves:   # grooves fixed in space: the force depends on gamma too - a 2-D root
+        eps, gamma = _grooved_equilibrium(lambda e, g: force(e, g, opts), (wx, wy), eps,
+                                          gamma, eps_max, model)
+        f_r, f_t = force(eps, gamma, opts)
     state = JournalState(eps, omega=omega, gamma=gamma)
     c, s = math.cos(gamma), math.sin(gamma)
     film_force = (f_r * c - f_t * s, f_r * s + f_t * c)
@@ -142,11 +149,32 @@ def equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
         solution=sol, model=model, iterations=calls[0])
 
 
+def _grooved_equilibrium(force, load, eps0, gamma0, eps_max, model):
+    """(eps, gamma) where the film force balances ``load``, the journal position found by
+    Powell's hybrid method from the periodic film's equilibrium (eps0, gamma0)."""
+    W = math.hypot(*load)
+
+    def residual(q):
+        eps = min(math.hypot(*q), eps_max)
+        gamma = math.atan2(q[1], q[0])
+        f_r, f_t = force(eps, gamma)
+        c, s = math.cos(gamma), math.sin(gamma)
+        return [(f_r * c - f_t * s + load[0]) / W, (f_r * s + f_t * c + load[1]) / W]
+
+    q0 = [eps0 * math.cos(gamma0), eps0 * math.sin(gamma0)]
+    sol = root(residual, q0, method="hybr", options=dict(xtol=1e-12))
+    eps = math.hypot(*sol.x)
+    if not sol.success or np.max(np.abs(residual(sol.x))) > 1e-8 or eps >= eps_max:
+        raise ValueError(f"no equilibrium with these grooves below eps_max = {eps_max:g} "
+                         f"({model} model): {sol.message}")
+    return eps, math.atan2(sol.x[1], sol.x[0])
+
+
 def _film_solution(model, bearing, state, opts):
     """The film at equilibrium, for the models that have one (same mesh and cavitation)."""
     if model == "fem":
         return solve_reynolds(bearing, state, opts["n_theta"], opts["n_z"], opts["element"],
-                              opts["cavitation"])
+                              opts["cavitation"], grooves=opts["grooves"])
     if model == "fvm":
         return fvm_reynolds(bearing, state, opts["n_theta"], opts["n_z"], opts["cavitation"])
     return None

@@ -93,17 +93,20 @@ def _integrated_force(op: FilmOperator, P: np.ndarray, clip: bool):
 
 
 def fe_force(bearing: Bearing, state: JournalState, n_theta=60, n_z=10, element="P1",
-             cavitation="gumbel", method="active-set", half=True, warm: LCPResult | None = None):
+             cavitation="gumbel", method="active-set", half=True, warm: LCPResult | None = None,
+             grooves=()):
     """(F_r, F_t) [N] and the :class:`LCPResult`: the light path used in time integration.
 
     Pass the previous call's result as ``warm`` (same mesh, nearby state): its cavitated
-    set and factorisation start this solve.
+    set and factorisation start this solve. ``grooves`` (fixed in the inertial frame) move
+    the mesh with the attitude angle, so the force stays smooth in it.
     """
-    op = fe_operator(bearing, state, n_theta, n_z, element, None, half)
+    op = fe_operator(bearing, state, n_theta, n_z, element, None, half, grooves)
     a0, factor = (None, None) if warm is None else (warm.active, warm.factor)
     if a0 is not None and (a0.shape != (op.mesh.ndofs,) or not a0.any()):
         a0 = None
-    res = fe_pressure(op, state, cavitation, method, active0=a0, factor=factor)
+    res = fe_pressure(op, state, cavitation, method, active0=a0, factor=factor,
+                      dirichlet=groove_pressures(bearing, op, grooves))
     ic, is_ = _integrated_force(op, res.pressure, cavitation == "gumbel")
     k = bearing.force_scale * (2.0 if op.mesh.half else 1.0)
     return (k * ic, k * is_), res

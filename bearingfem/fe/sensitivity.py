@@ -15,6 +15,8 @@ integrand is zero there, so it adds nothing to first order).
 """
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 import scipy.sparse as sp
 
@@ -22,20 +24,23 @@ from ..bearing import Bearing, JournalState
 from ..solution import ForceDerivatives
 from ..solvers.blocksolve import PinnedFactor, bordered_solve, pinned
 from ..solvers.linsolve import factorise
-from .reynolds import fe_operator, fe_pressure
+from .reynolds import fe_force, fe_operator, fe_pressure, groove_pressures
 
 __all__ = ["fe_force_derivatives"]
 
 
 def fe_force_derivatives(bearing: Bearing, state: JournalState, n_theta: int = 120,
-                         n_z: int = 20, element: str = "P1",
-                         cavitation: str = "reynolds") -> ForceDerivatives:
+                         n_z: int = 20, element: str = "P1", cavitation: str = "reynolds",
+                         grooves=()) -> ForceDerivatives:
     """(F_r, F_t) [N] of the FE film and its exact partials in (eps, eps_dot, w).
 
-    Same film as :func:`~bearingfem.fe.reynolds.solve_reynolds` (periodic, half domain).
+    Same film as :func:`~bearingfem.fe.reynolds.solve_reynolds` (half domain). With
+    ``grooves`` (held pressures enter through P, which carries them on the fixed dofs) the
+    partial in gamma, the grooves moving against the film, is a central difference: the
+    mesh moves with the grooves, so the force is smooth in gamma.
     """
-    op = fe_operator(bearing, state, n_theta, n_z, element, None, True)
-    res = fe_pressure(op, state, cavitation)
+    op = fe_operator(bearing, state, n_theta, n_z, element, None, True, grooves)
+    res = fe_pressure(op, state, cavitation, dirichlet=groove_pressures(bearing, op, grooves))
     P = res.pressure
     free = op.mesh.free
     e, w = state.eps, state.wedge_speed
@@ -53,7 +58,14 @@ def fe_force_derivatives(bearing: Bearing, state: JournalState, n_theta: int = 1
     where = op.at_quadrature(P) > 0.0 if cavitation == "gumbel" else None
     F = k * op.force_integrals(fields, where=where)
     col = [tuple(float(x) for x in F[:, j]) for j in range(4)]
-    return ForceDerivatives(col[0], col[1], col[2], col[3], "exact-sensitivity")
+    d_gamma = (0.0, 0.0)
+    if grooves:
+        h = 1e-6
+        plus, minus = (np.array(fe_force(bearing, replace(state, gamma=state.gamma + d), n_theta,
+                                         n_z, element, cavitation, grooves=grooves)[0])
+                       for d in (h, -h))
+        d_gamma = tuple(float(v) for v in (plus - minus) / (2 * h))
+    return ForceDerivatives(col[0], col[1], col[2], col[3], "exact-sensitivity", d_gamma)
 
 
 def _inactive_solve(K: sp.csr_matrix, factor, inactive: np.ndarray, rhs: np.ndarray):
