@@ -126,6 +126,20 @@ def _inertial_force(model, b, omega, **opts):
     return force
 
 
+def _inertial_jacobian(model, b, state, **opts):
+    """d(F_x, F_y)/d(x, y, vx, vy) at ``state`` by central differences (steps 1e-6 c and
+    1e-6 c |omega|) of the inertial force."""
+    c, g = b.clearance, state.gamma
+    e, ed, gd = state.eps * c, state.eps_dot * c, state.gamma_dot
+    q0 = np.array([e * math.cos(g), e * math.sin(g),
+                   ed * math.cos(g) - e * gd * math.sin(g),
+                   ed * math.sin(g) + e * gd * math.cos(g)])
+    force = _inertial_force(model, b, state.omega, **opts)
+    h = np.array([1e-6 * c, 1e-6 * c, 1e-6 * c * abs(state.omega), 1e-6 * c * abs(state.omega)])
+    return np.column_stack([(force(q0 + h[j] * np.eye(4)[j]) - force(q0 - h[j] * np.eye(4)[j]))
+                            / (2 * h[j]) for j in range(4)])
+
+
 @pytest.mark.parametrize("model,opts", [("short", {}), ("long", {}),
                                         ("fem", dict(n_theta=40, n_z=8, cavitation="reynolds"))])
 @pytest.mark.parametrize("state", STATES[:3])
@@ -134,15 +148,7 @@ def test_coefficients_are_the_inertial_jacobian(model, opts, state):
     in (x, y, vx, vy): checks the frame algebra, moving base states included."""
     b = Bearing(radius=0.01, length=0.02, clearance=20e-6, viscosity=0.0117)
     kc = coefficients(b, state, model, frame="inertial", **opts)
-    c, g = b.clearance, state.gamma
-    e, ed, gd = state.eps * c, state.eps_dot * c, state.gamma_dot
-    q0 = np.array([e * math.cos(g), e * math.sin(g),
-                   ed * math.cos(g) - e * gd * math.sin(g),
-                   ed * math.sin(g) + e * gd * math.cos(g)])
-    force = _inertial_force(model, b, state.omega, **opts)
-    h = np.array([1e-6 * c, 1e-6 * c, 1e-6 * c * abs(state.omega), 1e-6 * c * abs(state.omega)])
-    J = np.column_stack([(force(q0 + h[j] * np.eye(4)[j]) - force(q0 - h[j] * np.eye(4)[j]))
-                         / (2 * h[j]) for j in range(4)])
+    J = _inertial_jacobian(model, b, state, **opts)
     np.testing.assert_allclose(kc.K, -J[:, :2], rtol=1e-5, atol=1e-6 * np.abs(kc.K).max())
     np.testing.assert_allclose(kc.C, -J[:, 2:], rtol=1e-5, atol=1e-6 * np.abs(kc.C).max())
 
@@ -300,15 +306,7 @@ def test_grooved_coefficients_are_the_inertial_jacobian(state):
     positions follow from the inertial frame there, independently)."""
     b = Bearing(radius=0.01, length=0.02, clearance=20e-6, viscosity=0.0117)
     kc = coefficients(b, state, "fem", frame="inertial", **GROOVED)
-    c, g = b.clearance, state.gamma
-    e, ed, gd = state.eps * c, state.eps_dot * c, state.gamma_dot
-    q0 = np.array([e * math.cos(g), e * math.sin(g),
-                   ed * math.cos(g) - e * gd * math.sin(g),
-                   ed * math.sin(g) + e * gd * math.cos(g)])
-    force = _inertial_force("fem", b, state.omega, **GROOVED)
-    h = np.array([1e-6 * c, 1e-6 * c, 1e-6 * c * abs(state.omega), 1e-6 * c * abs(state.omega)])
-    J = np.column_stack([(force(q0 + h[j] * np.eye(4)[j]) - force(q0 - h[j] * np.eye(4)[j]))
-                         / (2 * h[j]) for j in range(4)])
+    J = _inertial_jacobian("fem", b, state, **GROOVED)
     np.testing.assert_allclose(kc.K, -J[:, :2], rtol=1e-5, atol=1e-6 * np.abs(kc.K).max())
     np.testing.assert_allclose(kc.C, -J[:, 2:], rtol=1e-5, atol=1e-6 * np.abs(kc.C).max())
 
