@@ -107,18 +107,23 @@ def test_ideal_joint_scene_matches_rigid_reference():
     assert np.allclose(r.force_x, -(0.91 * r.slider_acceleration + 0.91 * 9.81))
 
 
-def test_interrupted_run_keeps_results(monkeypatch):
-    """Ctrl-C in the middle of a run: the finished segments come back, marked partial."""
+def _interrupt_at(monkeypatch, n_calls):
+    """Press Ctrl-C at the ``n_calls``-th film force evaluation."""
     calls = {"n": 0}
     original = FilmEffect.force
 
     def force(self, k):
         calls["n"] += 1
-        if calls["n"] == 800:
+        if calls["n"] == n_calls:
             raise KeyboardInterrupt
         return original(self, k)
 
     monkeypatch.setattr(FilmEffect, "force", force)
+
+
+def test_interrupted_run_keeps_results(monkeypatch):
+    """Ctrl-C in the middle of a run: the finished segments come back, marked partial."""
+    _interrupt_at(monkeypatch, 800)
     r = simulate(scene({"lubrication": {"model": "long"}}, ld=2.0), progress=False)
     assert r.partial and r.message.startswith("interrupted at t = ")
     assert len(r.t) > 10 and np.all(np.isfinite(r.eps))
@@ -127,16 +132,7 @@ def test_interrupted_run_keeps_results(monkeypatch):
 def test_run_stopped_before_its_recorded_window_keeps_what_it_computed(monkeypatch):
     """Interrupted during the settling turns: the whole computed trajectory comes back
     (720 samples a turn from t = 0), not the one sample at the stop."""
-    calls = {"n": 0}
-    original = FilmEffect.force
-
-    def force(self, k):
-        calls["n"] += 1
-        if calls["n"] == 1500:
-            raise KeyboardInterrupt
-        return original(self, k)
-
-    monkeypatch.setattr(FilmEffect, "force", force)
+    _interrupt_at(monkeypatch, 1500)
     sc = scene({"lubrication": {"model": "long"}}, turns=3.0, ld=2.0, record_from_turn=2.0)
     r = simulate(sc, progress=False)
     assert r.partial and r.t[0] == 0.0
