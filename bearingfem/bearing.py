@@ -8,7 +8,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-import numpy as np
+from .film import theta_from_inertial
 
 __all__ = ["Bearing", "JournalState", "Groove", "seed_bearing", "SEED_TABLE1",
            "check_positive", "check_finite"]
@@ -191,5 +191,5 @@ class Groove:
     def arc(self, gamma: float):
         """(start, end) of the groove in the film angle theta of a journal at attitude
         ``gamma`` [rad], start in [0, 2 pi)."""
-        lo = float(np.mod(self.angle - 0.5 * self.width - gamma - math.pi, 2 * math.pi))
+        lo = float(theta_from_inertial(self.angle - 0.5 * self.width, gamma))
         return lo, lo + self.width

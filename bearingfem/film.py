@@ -17,7 +17,7 @@ import numpy as np
 
 __all__ = ["film_thickness", "cubed_thickness_coefficients", "reynolds_source",
            "source_coefficients", "reynolds_source_integral", "theta_from_inertial",
-           "local_to_inertial"]
+           "inertial_from_theta", "local_to_inertial"]
 
 
 def film_thickness(theta, eps, clearance=1.0):
@@ -57,6 +57,11 @@ def reynolds_source_integral(theta_lo, theta_hi, eps, eps_dot, wedge_speed):
 def theta_from_inertial(alpha, gamma):
     """Film angle theta in [0, 2 pi) of the inertial position angle alpha."""
     return np.mod(alpha - gamma - np.pi, 2.0 * np.pi)
+
+
+def inertial_from_theta(theta, gamma):
+    """Inertial position angle alpha [rad] of the film angle theta (not wrapped)."""
+    return theta + gamma + np.pi
 
 
 def local_to_inertial(f_r, f_t, gamma):

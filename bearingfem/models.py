@@ -12,21 +12,25 @@ from dataclasses import dataclass, field
 from typing import Callable, Mapping
 
 from .bearing import Bearing, JournalState, check_finite
-from .closed.long_bearing import long_bearing_derivatives, long_bearing_exact_force, long_bearing_force
-from .closed.short_bearing import short_bearing_derivatives, short_bearing_exact_force, short_bearing_force
+from .closed.long_bearing import (long_bearing_derivatives, long_bearing_exact_force,
+                                  long_bearing_force)
+from .closed.short_bearing import (short_bearing_derivatives, short_bearing_exact_force,
+                                   short_bearing_force)
 from .differentiate import central_differences
 from .fe.force_table import TABLE_DEFAULTS, table_force
-from .fe.mesh import ELEMENTS, MIN_N_THETA, MIN_N_Z
-from .fe.reynolds import fe_force
+from .fe.mesh import ELEMENTS
+from .fe.reynolds import fe_force, solve_reynolds
 from .fe.sensitivity import fe_force_derivatives
-from .fv.fvm import fvm_force
-from .solution import ForceDerivatives
-from .validation import CAVITATION, check_choice, check_grooves, check_int
+from .fv.fvm import fvm_force, fvm_reynolds
+from .solution import FilmSolution, ForceDerivatives
+from .validation import (CAVITATION, MIN_N_THETA, MIN_N_Z, check_choice, check_grooves,
+                         check_int)
 
-__all__ = ["FilmModel", "FILM_MODELS", "NUMERIC_MODELS", "OPTION_RULES", "film_model"]
+__all__ = ["FilmModel", "FILM_MODELS", "NUMERIC_MODELS", "OPTION_RULES", "film_model",
+           "solve_film"]
 
 #: How each film option is checked, whichever model takes it: ("int" | "number", (lo, hi))
-#: with None for an open end, or ("choice", names).
+#: with None for an open end, ("choice", names), or ("grooves", None) for Groove tuples.
 OPTION_RULES = {
     "n_theta": ("int", (MIN_N_THETA, None)), "n_z": ("int", (MIN_N_Z, None)),
     "element": ("choice", tuple(ELEMENTS)), "cavitation": ("choice", CAVITATION),
@@ -132,3 +136,16 @@ def film_model(name: str, what: str = "model") -> FilmModel:
         raise ValueError(f"{what} must be one of {', '.join(sorted(FILM_MODELS))}, "
                          f"got {name!r}")
     return FILM_MODELS[name]
+
+
+def solve_film(model: str, bearing: Bearing, state: JournalState,
+               options: Mapping | None = None) -> FilmSolution | None:
+    """The whole film (pressures, friction, flows) of a mesh model with its options
+    (defaults filled in), or None for the models without one (closed forms, the table)."""
+    o = film_model(model).options(options)
+    if model == "fem":
+        return solve_reynolds(bearing, state, o["n_theta"], o["n_z"], o["element"],
+                              o["cavitation"], grooves=o["grooves"])
+    if model == "fvm":
+        return fvm_reynolds(bearing, state, o["n_theta"], o["n_z"], o["cavitation"])
+    return None

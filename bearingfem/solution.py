@@ -5,7 +5,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .film import film_thickness, local_to_inertial
+from .film import film_thickness, inertial_from_theta, local_to_inertial
 
 __all__ = ["FilmSolution", "ForceDerivatives", "film_solution"]
 
@@ -100,7 +100,7 @@ def film_solution(bearing, state, P, theta, zeta, force_local, *, friction, leak
         pressure_max=bearing.pressure_scale * float(P[i]),
         pressure_max_theta=float(np.mod(theta_i, 2 * np.pi)),
         pressure_max_z=float(R * zeta[i]),
-        pressure_max_angle=float(np.mod(theta_i + state.gamma + np.pi, 2 * np.pi)),
+        pressure_max_angle=float(np.mod(inertial_from_theta(theta_i, state.gamma), 2 * np.pi)),
         film_min=c * (1.0 - state.eps), cavitated_fraction=cavitated_fraction,
         friction_force=friction, friction_torque=friction * R, side_leakage=leakage,
         iterations=record.iterations, residual=record.residual, converged=record.converged,

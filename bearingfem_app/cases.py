@@ -72,44 +72,44 @@ def _film_options(p: dict) -> dict:
     return m.options({k: p[k] for k in MESH_KEYS if p.get(k) is not None and k in m.defaults})
 
 
-def _film_case(params: dict) -> dict:
-    from bearingfem import Bearing, JournalState, fvm_reynolds, solve_reynolds
-    from mechanism.lubrication import film_force_function
-    p = {k: params.get(k, d) for k, (d, _) in FILM_PARAMS.items()}
-    o = _film_options(p)
+def _film_inputs(p: dict):
+    """The case's bearing and steady-or-squeezing journal state."""
+    from bearingfem import Bearing, JournalState
     D = p["diameter"]
     b = Bearing(radius=D / 2, length=p["length_ratio"] * D, clearance=p["clearance"],
                 viscosity=p["viscosity"])
-    s = JournalState(p["eps"], p["eps_dot"], 0.0, 0.0, p["omega"])
+    return b, JournalState(p["eps"], p.get("eps_dot", 0.0), 0.0, 0.0, p["omega"])
+
+
+def _film_case(params: dict) -> dict:
+    from bearingfem.design import sommerfeld_number
+    from bearingfem.models import solve_film
+    from mechanism.lubrication import film_force_function
+    p = {k: params.get(k, d) for k, (d, _) in FILM_PARAMS.items()}
+    o = _film_options(p)
+    b, s = _film_inputs(p)
     out = {}
-    if p["model"] in ("fem", "fvm"):
-        sol = (solve_reynolds(b, s, o["n_theta"], o["n_z"], o["element"], o["cavitation"])
-               if p["model"] == "fem" else
-               fvm_reynolds(b, s, o["n_theta"], o["n_z"], o["cavitation"]))
+    sol = solve_film(p["model"], b, s, o)
+    if sol is not None:
         f_r, f_t = sol.force_local
         out.update(pressure_max=sol.pressure_max, friction_force=sol.friction_force,
                    side_leakage=sol.side_leakage, cavitated_fraction=sol.cavitated_fraction)
     else:
         f_r, f_t = film_force_function(p["model"])(b, s, **o)
     load = math.hypot(f_r, f_t)
-    n_rev = p["omega"] / (2 * math.pi)
     out.update(force_r=f_r, force_t=f_t, load=load,
                attitude_deg=math.degrees(math.atan2(f_t, -f_r)) if load else 0.0,
-               sommerfeld=(b.viscosity * n_rev * b.length * D / load * (b.radius / b.clearance) ** 2
-                           if load else math.inf))
+               sommerfeld=(sommerfeld_number(b, load, p["omega"]) if load and p["omega"]
+                           else math.inf))
     return out
 
 
 def _design_case(params: dict) -> dict:
-    from bearingfem import Bearing, JournalState, fvm_reynolds, solve_reynolds
     from bearingfem.design import (coefficients, flow_variable, friction_variable,
                                    petroff_friction, sommerfeld_number)
-    from bearingfem.models import FILM_MODELS
+    from bearingfem.models import FILM_MODELS, solve_film
     p = {k: params.get(k, d) for k, (d, _) in DESIGN_PARAMS.items()}
-    D = p["diameter"]
-    b = Bearing(radius=D / 2, length=p["length_ratio"] * D, clearance=p["clearance"],
-                viscosity=p["viscosity"])
-    s = JournalState(p["eps"], 0.0, 0.0, 0.0, p["omega"])
+    b, s = _film_inputs(p)
     model = FILM_MODELS[p["model"]]
     opts = _film_options(p)
     kc = coefficients(b, s, p["model"], frame="load", **opts)
@@ -121,10 +121,8 @@ def _design_case(params: dict) -> dict:
                friction_variable=friction_variable(
                    b, petroff_friction(b, p["eps"], p["omega"], f_t), load),
                coefficient_method=kc.method)
-    if p["model"] in ("fem", "fvm"):
-        sol = (solve_reynolds(b, s, opts["n_theta"], opts["n_z"], opts["element"],
-                              opts["cavitation"]) if p["model"] == "fem" else
-               fvm_reynolds(b, s, opts["n_theta"], opts["n_z"], opts["cavitation"]))
+    sol = solve_film(p["model"], b, s, opts)
+    if sol is not None:
         out["flow_variable"] = flow_variable(b, sol.side_leakage, p["omega"])
     for name, m in (("K", k), ("C", c)):
         for (i, j), v in np.ndenumerate(m):
@@ -135,13 +133,9 @@ def _design_case(params: dict) -> dict:
 def _precheck(kind: str, params: dict) -> None:
     if kind == "mechanism":
         return
-    from bearingfem import Bearing, JournalState
     p = {k: params.get(k, d) for k, (d, _) in FILM_PARAMS.items()}
     try:
-        D = p["diameter"]
-        Bearing(radius=D / 2, length=p["length_ratio"] * D, clearance=p["clearance"],
-                viscosity=p["viscosity"])
-        JournalState(p["eps"], p["eps_dot"], 0.0, 0.0, p["omega"])
+        _film_inputs(p)
     except ValueError as err:
         raise ValueError(f"sweep case {params}: {err}") from None
 

@@ -70,20 +70,20 @@ def build_parser():
     add = functools.partial(sub.add_parser,   # every option shows its default in --help
                             formatter_class=argparse.ArgumentDefaultsHelpFormatter)
     s = add("simulate", help="integrate a scene; write result and figure",
-                       epilog="example: bearingfem simulate scenes/paper-long-fem.toml -o out")
+            epilog="example: bearingfem simulate scenes/paper-long-fem.toml -o out")
     s.add_argument("scene", help="scene TOML file")
     s.add_argument("-o", "--output", required=True, help="output directory")
     s.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
     s.set_defaults(func=command_simulate)
     f = add("solve", help="one film solve; print forces, optionally export VTU",
-                       epilog="example: bearingfem solve --ld 0.5 --eps 0.8 -o film.vtu")
+            epilog="example: bearingfem solve --ld 0.5 --eps 0.8 -o film.vtu")
     _film_args(f)
     f.add_argument("--method", default="fem", choices=["fem", "fvm"],
                    help="finite elements or finite volumes")
     f.add_argument("-o", "--output", help="write the film (.vtu, .xdmf)")
     f.set_defaults(func=command_solve)
     c = add("convergence", help="mesh-convergence study: CSV table + log-log PNG",
-                       epilog="example: bearingfem convergence --ld 1.0 --eps 0.6 -o conv")
+            epilog="example: bearingfem convergence --ld 1.0 --eps 0.6 -o conv")
     _film_args(c)
     c.set_defaults(n_theta=24, n_z=4)
     c.add_argument("--levels", type=int, default=4, help="meshes, each twice as fine (>= 3)")
@@ -92,15 +92,15 @@ def build_parser():
     c.add_argument("-o", "--output", required=True, help="output directory")
     c.set_defaults(func=command_convergence)
     r = add("render", help="off-screen PNG of the film pressure or thickness",
-                       epilog="example: bearingfem render --ld 1.0 --eps 0.6 -o film.png")
+            epilog="example: bearingfem render --ld 1.0 --eps 0.6 -o film.png")
     _film_args(r)
     r.add_argument("--field", default="pressure", help="pressure | film_thickness")
     r.add_argument("--surface", default="journal", help="journal | unwrapped")
     r.add_argument("-o", "--output", required=True, help="PNG file")
     r.set_defaults(func=command_render)
     w = add("sweep", help="parameter sweep on Dask: one file per case, resumable",
-                       epilog="example: bearingfem sweep sweeps/capacity.toml -o out "
-                              "--scheduler tcp://10.0.0.5:8786")
+            epilog="example: bearingfem sweep sweeps/capacity.toml -o out "
+                   "--scheduler tcp://10.0.0.5:8786")
     w.add_argument("sweep", help="sweep TOML file (see sweeps/)")
     w.add_argument("-o", "--output", required=True, help="output directory (rerun to resume)")
     w.add_argument("--scheduler", help="address of a running Dask scheduler; default: a "
@@ -108,9 +108,9 @@ def build_parser():
     w.add_argument("--workers", type=int, default=2, help="local cluster processes")
     w.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
     w.set_defaults(func=command_sweep)
-    fr = add("frames", help="the film along a saved run: VTU series (.pvd), PNG "
-                        "frames, GIF", epilog="example: bearingfem frames "
-                        "scenes/paper-long-fem.toml results/long-fem -o frames --angles 0,90")
+    fr = add("frames", help="the film along a saved run: VTU series (.pvd), PNG frames, GIF",
+             epilog="example: bearingfem frames scenes/paper-long-fem.toml "
+                    "results/long-fem -o frames --angles 0,90")
     fr.add_argument("scene", help="the scene TOML the run was made from")
     fr.add_argument("result", help="directory written by 'bearingfem simulate'")
     fr.add_argument("-o", "--output", required=True, help="output directory")
@@ -126,16 +126,16 @@ def build_parser():
     fr.add_argument("--no-render", action="store_true", help="VTU series only, no PNG")
     fr.set_defaults(func=command_frames)
     e = add("equilibrium", help="where the journal sits under a load: eps, "
-                       "attitude, Sommerfeld number, film, friction, flow",
-                       epilog="example: bearingfem equilibrium --ld 1 --load 1000 "
-                              "--model fem --element P2")
+                                "attitude, Sommerfeld number, film, friction, flow",
+            epilog="example: bearingfem equilibrium --ld 1 --load 1000 "
+                   "--model fem --element P2")
     _design_args(e)
     _load_args(e, required=True)
     e.set_defaults(func=command_equilibrium)
     k = add("coefficients", help="stiffness and damping (K, C) and Lund's "
-                       "critical mass, at an eccentricity or under a load",
-                       epilog="example: bearingfem coefficients --ld 0.5 --load 500 "
-                              "--frame load")
+                                 "critical mass, at an eccentricity or under a load",
+            epilog="example: bearingfem coefficients --ld 0.5 --load 500 "
+                   "--frame load")
     _design_args(k)
     k.add_argument("--eps", type=float, help="steady state at this eccentricity ratio")
     k.add_argument("--gamma", type=float, default=0.0, help="its attitude [deg] (with --eps)")

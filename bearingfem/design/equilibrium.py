@@ -16,9 +16,7 @@ import numpy as np
 from scipy.optimize import brentq, root
 
 from ..bearing import Bearing, JournalState, check_finite
-from ..fe.reynolds import solve_reynolds
-from ..fv.fvm import fvm_reynolds
-from ..models import film_model
+from ..models import film_model, solve_film
 from ..solution import FilmSolution
 from .groups import petroff_friction, sommerfeld_number
 
@@ -134,7 +132,7 @@ def equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
     state = JournalState(eps, omega=omega, gamma=gamma)
     c, s = math.cos(gamma), math.sin(gamma)
     film_force = (f_r * c - f_t * s, f_r * s + f_t * c)
-    sol = _film_solution(model, bearing, state, opts)
+    sol = solve_film(model, bearing, state, opts)
     friction = petroff_friction(bearing, eps, omega, f_t)
     return Equilibrium(
         eps=eps, attitude=math.atan2(f_t, -f_r), state=state, load=(wx, wy),
@@ -169,12 +167,3 @@ def _grooved_equilibrium(force, load, eps0, gamma0, eps_max, model):
                          f"({model} model): {sol.message}")
     return eps, math.atan2(sol.x[1], sol.x[0])
 
-
-def _film_solution(model, bearing, state, opts):
-    """The film at equilibrium, for the models that have one (same mesh and cavitation)."""
-    if model == "fem":
-        return solve_reynolds(bearing, state, opts["n_theta"], opts["n_z"], opts["element"],
-                              opts["cavitation"], grooves=opts["grooves"])
-    if model == "fvm":
-        return fvm_reynolds(bearing, state, opts["n_theta"], opts["n_z"], opts["cavitation"])
-    return None

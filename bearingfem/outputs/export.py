@@ -12,6 +12,7 @@ import numpy as np
 
 from ..fe.mesh import FilmMesh
 from ..fv.fvm import FVMGrid
+from ..film import inertial_from_theta
 from ..solution import FilmSolution
 
 __all__ = ["to_meshio", "write_solution"]
@@ -55,7 +56,7 @@ def to_meshio(sol: FilmSolution, surface: str = "journal") -> meshio.Mesh:
         cells = np.vstack([cells, mirrored])
     R = sol.radius
     if surface == "journal":
-        alpha = theta + sol.gamma + np.pi
+        alpha = inertial_from_theta(theta, sol.gamma)
         pts = np.column_stack([R * np.cos(alpha), R * np.sin(alpha), z])
         return meshio.Mesh(pts, [(ctype, cells)],
                            point_data={"pressure": p, "film_thickness": h, "theta": theta,

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..film import inertial_from_theta
 from ..solution import FilmSolution
 from .export import to_meshio
 
@@ -38,10 +39,11 @@ def _title(sol: FilmSolution, title):
 
 
 def _load_theta(sol: FilmSolution) -> float:
-    """Film angle [rad] the load points to: opposite the film force, which makes the angle
-    atan2(F_t, F_r) with the eccentricity (theta = pi, the minimum film)."""
+    """Film angle [rad] the load points to. The film force makes the angle
+    atan2(F_t, F_r) with the eccentricity, which points at theta = pi (the minimum film);
+    the load is opposite it: pi + atan2 + pi, i.e. theta = atan2(F_t, F_r)."""
     fr, ft = sol.force_local
-    return float(np.mod(np.pi + np.arctan2(ft, fr) + np.pi, 2 * np.pi))
+    return float(np.mod(np.arctan2(ft, fr), 2 * np.pi))
 
 
 def _check(field, surface):
@@ -210,18 +212,18 @@ def _render_journal(sol, path, field, window_size, title, clim, camera_angle):
     half = float(np.max(np.abs(grid.points[:, 2])))
     if field == "pressure":
         for seg in _boundary_lines(sol):   # smooth, drawn just off the surface
-            alpha = np.radians(seg[:, 0]) + sol.gamma + np.pi
+            alpha = inertial_from_theta(np.radians(seg[:, 0]), sol.gamma)
             pts = np.column_stack([1.003 * R * np.cos(alpha), 1.003 * R * np.sin(alpha),
                                    seg[:, 1]])
             p.add_mesh(pv.lines_from_points(pts), color="red", line_width=3)
     # the maximum film (theta = 0) along the journal, and arrows at the near end face
-    a0 = sol.gamma + np.pi
+    a0 = inertial_from_theta(0.0, sol.gamma)
     p.add_mesh(pv.Line((R * np.cos(a0), R * np.sin(a0), -half),
                        (R * np.cos(a0), R * np.sin(a0), half)), color="white", line_width=4)
     g = sol.gamma
     ecc = np.array([np.cos(g), np.sin(g), 0.0])
     fr, ft = sol.force_local
-    lt = _load_theta(sol) + g + np.pi
+    lt = inertial_from_theta(_load_theta(sol), g)
     load = np.array([np.cos(lt), np.sin(lt), 0.0])
     end = np.array([0.0, 0.0, 1.05 * half])
     p.add_mesh(pv.Arrow(start=end, direction=ecc, scale=0.9 * R), color="black")
