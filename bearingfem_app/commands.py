@@ -34,7 +34,8 @@ def _bearing(args):
                    clearance=args.clearance, viscosity=args.viscosity)
 
 
-def _table1(args):
+def _film_state(args):
+    """The bearing and the journal state the film options describe."""
     from bearingfem import JournalState
     s = JournalState(eps=args.eps, eps_dot=args.eps_dot, gamma=0.0, gamma_dot=0.0,
                      omega=args.omega)
@@ -164,7 +165,7 @@ def command_solve(args):
     from bearingfem import fvm_reynolds, solve_reynolds
     element = _element(args, args.method)
     _check_output(args.output, FILM_FORMATS)
-    b, s = _table1(args)
+    b, s = _film_state(args)
     if args.method == "fvm":
         sol = fvm_reynolds(b, s, args.n_theta, args.n_z, args.cavitation)
     else:
@@ -191,7 +192,7 @@ def command_convergence(args):
     methods = tuple(args.methods.split(","))
     for m in methods:
         check_choice("--methods entry", m, ("P1", "P2", "fvm"))
-    b, s = _table1(args)
+    b, s = _film_state(args)
     out = _make_dir(args.output, "-o/--output")
     st = convergence_study(b, s, levels=args.levels, n_theta=args.n_theta, n_z=args.n_z,
                            cavitation=args.cavitation, methods=methods, progress=print)
@@ -213,7 +214,7 @@ def command_render(args):
     check_choice("--field", args.field, tuple(FIELDS))
     check_choice("--surface", args.surface, SURFACES)
     _check_output(args.output, IMAGE_FORMATS)
-    b, s = _table1(args)
+    b, s = _film_state(args)
     sol = solve_reynolds(b, s, args.n_theta, args.n_z, _element(args), args.cavitation)
     render_film(sol, args.output, field=args.field, surface=args.surface)
     print(sol.summary())
