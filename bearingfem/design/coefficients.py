@@ -24,6 +24,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ..bearing import Bearing, JournalState
+from ..film import local_to_inertial
 from ..models import film_model
 from ..validation import check_choice, check_inputs
 
@@ -120,8 +121,7 @@ def coefficients(bearing: Bearing, state: JournalState, model: str = "fem",
     K = -np.column_stack([A + 2.0 * gd * W / e, JF / e + gd * B + 2.0 * ed * W / e ** 2]) / c
     C = -np.column_stack([B, -2.0 * W / e]) / c
     g = state.gamma
-    force = (float(F[0] * math.cos(g) - F[1] * math.sin(g)),
-             float(F[0] * math.sin(g) + F[1] * math.cos(g)))
+    force = tuple(float(f) for f in local_to_inertial(F[0], F[1], g))
     local = DynamicCoefficients(K, C, "local", _axes("local", g, force), state, force, model,
                                 d.method, c)
     return local if frame == "local" else local.in_frame(frame)

@@ -16,6 +16,7 @@ import numpy as np
 from scipy.optimize import brentq, root
 
 from ..bearing import Bearing, JournalState, check_finite
+from ..film import local_to_inertial
 from ..models import film_model, solve_film
 from ..solution import FilmSolution
 from .groups import petroff_friction, sommerfeld_number
@@ -130,8 +131,7 @@ def equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
                                           gamma, eps_max, model)
         f_r, f_t = force(eps, gamma, opts)
     state = JournalState(eps, omega=omega, gamma=gamma)
-    c, s = math.cos(gamma), math.sin(gamma)
-    film_force = (f_r * c - f_t * s, f_r * s + f_t * c)
+    film_force = local_to_inertial(f_r, f_t, gamma)
     sol = solve_film(model, bearing, state, opts)
     friction = petroff_friction(bearing, eps, omega, f_t)
     return Equilibrium(
@@ -156,8 +156,8 @@ def _grooved_equilibrium(force, load, eps0, gamma0, eps_max, model):
         eps = min(math.hypot(*q), eps_max)
         gamma = math.atan2(q[1], q[0])
         f_r, f_t = force(eps, gamma)
-        c, s = math.cos(gamma), math.sin(gamma)
-        return [(f_r * c - f_t * s + load[0]) / W, (f_r * s + f_t * c + load[1]) / W]
+        fx, fy = local_to_inertial(f_r, f_t, gamma)
+        return [(fx + load[0]) / W, (fy + load[1]) / W]
 
     q0 = [eps0 * math.cos(gamma0), eps0 * math.sin(gamma0)]
     sol = root(residual, q0, method="hybr", options=dict(xtol=1e-12))

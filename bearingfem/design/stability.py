@@ -22,6 +22,7 @@ from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
 from ..bearing import Bearing, JournalState, check_positive
+from ..film import local_to_inertial
 from ..models import film_model
 from .coefficients import DynamicCoefficients, coefficients
 from .equilibrium import Equilibrium, equilibrium
@@ -140,10 +141,7 @@ def journal_orbit(bearing: Bearing, eq: Equilibrium, mass: float, model: str = "
 
     def rhs(t, y):
         s = JournalState.from_eccentricity(y[0], y[1], y[2], y[3], c, omega, eps_max=0.999)
-        f_r, f_t = m.force(bearing, s, **opts)
-        g = s.gamma
-        fx = f_r * math.cos(g) - f_t * math.sin(g)
-        fy = f_r * math.sin(g) + f_t * math.cos(g)
+        fx, fy = local_to_inertial(*m.force(bearing, s, **opts), s.gamma)
         return [y[2], y[3], (fx + wx) / mass, (fy + wy) / mass]
 
     start = x0 + kick * c * np.array([wx, wy]) / W
