@@ -31,6 +31,10 @@ class FilmSolution:
     friction_force : shear force on the journal surface opposing positive omega [N]
     friction_torque : friction_force * R [N m]
     side_leakage : volume flow out of both axial ends [m^3/s]
+    flow_in : flow fed by grooves or a supply line [m^3/s] (None where not defined)
+    fraction : film fraction theta at the nodes (JFO films; 1 in the full film)
+    mass_balance : JFO films: flow_in - side_leakage - rate of change of the film content
+        [m^3/s], zero to the solver's round-off
     iterations, residual, converged : record of the (cavitation) solve
     radius, gamma : journal radius [m] and attitude angle [rad] of the solved state
     """
@@ -61,6 +65,8 @@ class FilmSolution:
     gamma: float              # attitude angle of the solved state [rad]
     mesh: object = field(default=None, repr=False)   # FilmMesh (FE) or grid shape (FV)
     flow_in: float | None = None   # flow the supply grooves feed [m^3/s] (None: no groove)
+    fraction: np.ndarray | None = field(default=None, repr=False)  # JFO film fraction, [0, 1]
+    mass_balance: float | None = None  # JFO: flow_in - side_leakage - d(content)/dt [m^3/s]
 
     def summary(self) -> str:
         """The solve in a few named lines with units (what ``bearingfem solve`` prints)."""
@@ -83,7 +89,7 @@ class FilmSolution:
 
 def film_solution(bearing, state, P, theta, zeta, force_local, *, friction, leakage,
                   cavitated_fraction, record, method, cavitation, half, mesh,
-                  flow_in=None) -> FilmSolution:
+                  flow_in=None, fraction=None, mass_balance=None) -> FilmSolution:
     """The one builder of :class:`FilmSolution` for every mesh solver: derives the
     inertial force, pressures [Pa], film, peak and its place from the dimensionless nodal
     pressure ``P`` (p = mu (R/c)^2 P, clipped as the cavitation model says) at (theta,
@@ -105,7 +111,8 @@ def film_solution(bearing, state, P, theta, zeta, force_local, *, friction, leak
         friction_force=friction, friction_torque=friction * R, side_leakage=leakage,
         iterations=record.iterations, residual=record.residual, converged=record.converged,
         method=method, cavitation=cavitation, n_dofs=len(P), half=half, radius=R,
-        gamma=state.gamma, mesh=mesh, flow_in=flow_in)
+        gamma=state.gamma, mesh=mesh, flow_in=flow_in, fraction=fraction,
+        mass_balance=mass_balance)
 
 
 @dataclass(frozen=True)

@@ -5,7 +5,7 @@ import math
 
 from .bearing import Bearing, JournalState, check_finite
 
-CAVITATION = ("none", "gumbel", "reynolds")
+CAVITATION = ("none", "gumbel", "reynolds", "jfo")
 #: Coarsest meshes accepted (FE and FV): a periodic scikit-fem mesh needs >= 3 cells around,
 #: and a film resolved by fewer than 8 cells around cannot place its pressure peak.
 MIN_N_THETA = 8
@@ -41,16 +41,18 @@ def check_supply_angle(value):
     return None if value is None else check_finite("supply_angle", value)
 
 
-def check_grooves(grooves, supply_angle=None) -> tuple:
-    """A tuple of :class:`Groove`; refuses what the Reynolds-condition films cannot do."""
+def check_grooves(grooves, supply_angle=None, mass_conserving: bool = False) -> tuple:
+    """A tuple of :class:`Groove`; refuses what the Reynolds-condition films cannot do
+    (a starved groove needs ``mass_conserving``, the JFO film)."""
     from .bearing import Groove
     grooves = tuple(grooves or ())
     for g in grooves:
         if not isinstance(g, Groove):
             raise ValueError(f"grooves must be bearingfem.Groove objects, got {type(g).__name__}")
-        if g.fraction < 1.0:
+        if g.fraction < 1.0 and not mass_conserving:
             raise ValueError(f"a starved groove (fraction {g.fraction:g} < 1) needs a "
-                             "mass-conserving film; these films hold the groove flooded")
+                             "mass-conserving film (cavitation='jfo'); the Reynolds-family "
+                             "films hold the groove flooded")
     if grooves and supply_angle is not None:
         raise ValueError("give grooves or supply_angle (a supply line), not both")
     return grooves
@@ -79,3 +81,25 @@ def check_film_solve(bearing, state, n_theta, n_z, cavitation, method, supply_an
     if errors:
         raise ValueError("; ".join(errors))
     return out["n_theta"], out["n_z"], out["supply_angle"]
+
+
+def check_jfo_supply(cavitation, grooves, supply_angle, ambient_pressure, element="P1"):
+    """What a JFO film needs before any work: P1 elements, ambient_pressure >= 0 [Pa] (only
+    with cavitation='jfo'), and a supply of oil. Without a groove, a supply line or
+    ambient_pressure > 0 nothing refills a steady film and its content is undetermined."""
+    p = check_finite("ambient_pressure", ambient_pressure)
+    if p < 0.0:
+        raise ValueError(f"ambient_pressure must be >= 0 [Pa], got {ambient_pressure!r}")
+    if cavitation != "jfo":
+        if p != 0.0:
+            raise ValueError("ambient_pressure (end pressure above the cavitation pressure) "
+                             "is a JFO-film option: use cavitation='jfo'")
+        return p
+    if element != "P1":
+        raise ValueError(f"cavitation='jfo' needs element 'P1' (its content is balanced on "
+                         f"the nodes' control volumes), got {element!r}")
+    if not grooves and supply_angle is None and p == 0.0:
+        raise ValueError("cavitation='jfo' needs a supply of oil: grooves, supply_angle or "
+                         "ambient_pressure > 0 [Pa] (without one nothing refills the film "
+                         "and a steady film's content is undetermined)")
+    return p

@@ -55,6 +55,11 @@ class FilmMesh:
     def ndofs(self) -> int:
         return self.basis.N
 
+    @property
+    def axes(self):
+        """(theta, zeta) grid lines of the tensor mesh the elements were built on."""
+        return _axes(self.n_theta, self.n_z, self.length_ratio, self.theta0, self.half)
+
 
 @contextmanager
 def _quiet_skfem():
@@ -70,6 +75,14 @@ def _quiet_skfem():
 
 def _axis(n: int, lo: float, hi: float) -> np.ndarray:
     return np.linspace(lo, hi, n + 1)
+
+
+def _axes(n_theta, n_z, length_ratio, theta0, half):
+    t_lo = 0.0 if theta0 is None else float(theta0)
+    th = _axis(n_theta, t_lo, t_lo + 2.0 * np.pi)
+    lam = float(length_ratio)
+    ze = _axis(max(1, -(-n_z // 2)), 0.0, lam) if half else _axis(n_z, -lam, lam)
+    return th, ze
 
 
 @lru_cache(maxsize=32)
@@ -90,12 +103,7 @@ def film_mesh(n_theta: int, n_z: int, element: str, length_ratio: float,
         ends of later arcs snap to the nearest mesh line, within half a cell)
     """
     lam = float(length_ratio)
-    t_lo = 0.0 if theta0 is None else float(theta0)
-    th = _axis(n_theta, t_lo, t_lo + 2.0 * np.pi)
-    if half:
-        ze = _axis(max(1, -(-n_z // 2)), 0.0, lam)
-    else:
-        ze = _axis(n_z, -lam, lam)
+    th, ze = _axes(n_theta, n_z, lam, theta0, half)
     with _quiet_skfem():
         if theta0 is None:
             mesh = MeshTri1DG.init_tensor(th, ze, periodic=[0])

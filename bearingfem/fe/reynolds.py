@@ -8,8 +8,9 @@ from ..film import film_thickness, theta_from_inertial
 from ..solution import FilmSolution, film_solution
 from ..solvers.cavitation import LCPResult, active_set, psor
 from ..solvers.linsolve import solve_spd
-from ..validation import check_film_solve, check_grooves
+from ..validation import check_film_solve, check_grooves, check_jfo_supply
 from .assembly import FilmOperator, film_operator
+from .jfo import jfo_force, solve_jfo
 from .mesh import ELEMENTS
 from .multilevel import coarse_guess
 
@@ -94,13 +95,19 @@ def _integrated_force(op: FilmOperator, P: np.ndarray, clip: bool):
 
 def fe_force(bearing: Bearing, state: JournalState, n_theta=60, n_z=10, element="P1",
              cavitation="gumbel", method="active-set", half=True, warm: LCPResult | None = None,
-             grooves=()):
+             grooves=(), ambient_pressure: float = 0.0):
     """(F_r, F_t) [N] and the :class:`LCPResult`: the light path used in time integration.
 
     Pass the previous call's result as ``warm`` (same mesh, nearby state): its cavitated
     set and factorisation start this solve. ``grooves`` (fixed in the inertial frame) move
     the mesh with the attitude angle, so the force stays smooth in it.
     """
+    if cavitation == "jfo":     # steady JFO film; warm = previous call's cavitated set
+        return jfo_force(bearing, state,
+                         lambda nt, nz: fe_operator(bearing, state, nt, nz, "P1", None, half,
+                                                    grooves),
+                         n_theta, n_z, grooves, ambient_pressure,
+                         None if warm is None else getattr(warm, "cavitated", None))
     op = fe_operator(bearing, state, n_theta, n_z, element, None, half, grooves)
     a0, factor = (None, None) if warm is None else (warm.active, warm.factor)
     if a0 is not None and (a0.shape != (op.mesh.ndofs,) or not a0.any()):
@@ -116,7 +123,7 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
                    element: str = "P1", cavitation: str = "reynolds", *,
                    method: str = "active-set", supply_angle=None, half: bool = True,
                    tol: float = 1e-10, cavitated_shear: str = "full",
-                   grooves=()) -> FilmSolution:
+                   grooves=(), ambient_pressure: float = 0.0) -> FilmSolution:
     """Solve the Reynolds equation on a finite-element mesh of the unwrapped film.
 
     Parameters
@@ -127,7 +134,9 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
         with ceil(n_z/2) cells, which the symmetry of an aligned journal allows
     element : "P1" or "P2" triangles
     cavitation : "none" (full Sommerfeld), "gumbel" (negative pressure set to ambient after
-        the solve), "reynolds" (Swift-Stieber complementarity, projected iteration)
+        the solve), "reynolds" (Swift-Stieber complementarity, projected iteration), "jfo"
+        (mass-conserving Jakobsson-Floberg-Olsson film, :mod:`bearingfem.fe.jfo`; P1 only;
+        needs a supply: grooves, supply_angle or ambient_pressure > 0)
     method : "active-set" (default) or "psor" for ``cavitation="reynolds"``
     supply_angle : inertial angle [rad] of an axial supply line at ambient pressure, or None
         for a fully periodic film
@@ -136,7 +145,10 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
         area (a full film of oil that carries no pressure); "none" - no shear there
     grooves : axial supply grooves (:class:`~bearingfem.bearing.Groove`), fixed in the
         inertial frame and flooded at their pressure; with ``cavitation="none"``
-        ``flow_in`` is the flow they feed [m^3/s] (equal to the side leakage)
+        ``flow_in`` is the flow they feed [m^3/s] (equal to the side leakage); with
+        ``cavitation="jfo"`` a groove may be starved (``fraction`` < 1)
+    ambient_pressure : JFO films: pressure at the axial ends and a supply line above the
+        cavitation pressure [Pa] (>= 0)
 
     Returns
     -------
@@ -145,8 +157,15 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
     n_theta, n_z, supply_angle = check_film_solve(
         bearing, state, n_theta, n_z, cavitation, method, supply_angle, tol,
         element=(element, tuple(ELEMENTS)), cavitated_shear=(cavitated_shear, SHEAR))
-    grooves = check_grooves(grooves, supply_angle)
+    grooves = check_grooves(grooves, supply_angle, mass_conserving=cavitation == "jfo")
+    ambient_pressure = check_jfo_supply(cavitation, grooves, supply_angle, ambient_pressure,
+                                        element)
 
+    if cavitation == "jfo":
+        return solve_jfo(bearing, state,
+                         lambda nt, nz: fe_operator(bearing, state, nt, nz, "P1", supply_angle,
+                                                    half, grooves),
+                         n_theta, n_z, grooves, ambient_pressure)
     op = fe_operator(bearing, state, n_theta, n_z, element, supply_angle, half, grooves)
     dirichlet = groove_pressures(bearing, op, grooves)
     res = fe_pressure(op, state, cavitation, method, tol, dirichlet=dirichlet)

@@ -1,0 +1,268 @@
+"""Mass-conserving (JFO) journal films on the finite-element film mesh, steady and transient.
+
+In the variables of :mod:`bearingfem.film` the Jakobsson-Floberg-Olsson film reads
+
+    div(H^3 grad P) = 6 w d(phi H)/d theta + 12 d(phi H)/dt,
+    P >= 0,  0 <= phi <= 1,  P (1 - phi) = 0,
+
+with phi the film fraction (1 in the full film). The Poiseuille term is the P1 operator of
+:mod:`bearingfem.fe.assembly`; transport and storage of the content phi H are balanced on
+the nodes' control volumes (:mod:`bearingfem.fe.volumes`), which conserves mass exactly;
+:func:`bearingfem.solvers.jfo.jfo_solve` finds (P, phi).
+
+* Steady (:func:`solve_jfo`): the film is steady in the frame of the line of centres,
+  where the content moves at w/2 = (omega - 2 gamma_dot)/2 and a squeeze eps_dot changes
+  the local film at the rate eps_dot cos(theta).
+* Transient (:class:`JFOFilm`): backward Euler on the content. The mesh follows the line
+  of centres, so between steps the previous content is carried to the new mesh position
+  (an exact rotation of the periodic rows, conservative linear interpolation); over the
+  step the content then moves at omega/2 relative to the bearing. With grooves the mesh
+  stays fixed in the bearing and nothing is carried.
+
+Flows (per solve): what the grooves (or a supply line) feed, what leaves the axial ends
+and the rate of change of the content of the free volumes; their balance is the residual
+of the solve, so it holds to round-off.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import lru_cache
+
+import numpy as np
+import scipy.sparse as sp
+
+from ..bearing import Bearing, JournalState, check_positive
+from ..film import film_thickness, inertial_from_theta
+from ..solution import FilmSolution, film_solution
+from ..solvers.jfo import JFOResult
+from .assembly import FilmOperator
+from .mesh import FilmMesh
+from .multilevel import prolongation
+from .volumes import (ControlVolumes, control_volumes, shift_rows, solve_balance,
+                      transport_matrix)
+
+__all__ = ["JFOFilm", "solve_jfo", "jfo_force", "film_volumes", "JFOFlows"]
+
+
+@lru_cache(maxsize=32)
+def film_volumes(mesh: FilmMesh) -> ControlVolumes:
+    """Control volumes of the nodes of a P1 film mesh (theta is the sliding direction)."""
+    th, ze = mesh.axes
+    return control_volumes(mesh.theta, mesh.zeta, th, ze, mesh.periodic)
+
+
+def _content(cv: ControlVolumes, eps: float) -> np.ndarray:
+    """Exact integral of H = 1 + eps cos(theta) over each volume."""
+    return cv.width * ((cv.x_hi - cv.x_lo) + eps * (np.sin(cv.x_hi) - np.sin(cv.x_lo)))
+
+
+def _cos_integral(cv: ControlVolumes) -> np.ndarray:
+    return cv.width * (np.sin(cv.x_hi) - np.sin(cv.x_lo))
+
+
+def _transport(cv: ControlVolumes, eps: float, speed: float) -> sp.csr_matrix:
+    """Upwind transport of 6 x speed x phi H across the volumes' theta faces."""
+    return transport_matrix(cv, 6.0 * speed * film_thickness(cv.face, eps) * cv.width)
+
+
+@dataclass(frozen=True)
+class JFOFlows:
+    """Volume flows of one solve [m^3/s]: fed by grooves / supply line, out of the axial
+    ends, and the rate of change of the film content; balance = feed - leakage - storage
+    (zero to round-off)."""
+
+    flow_in: float
+    side_leakage: float
+    storage: float
+
+    @property
+    def balance(self) -> float:
+        return self.flow_in - self.side_leakage - self.storage
+
+
+def _boundary_values(bearing: Bearing, mesh: FilmMesh, grooves, ambient: float):
+    """Pressure and film fraction held on the fixed nodes: the ends and a supply line at
+    ``ambient`` (flooded), each groove at its pressure and fraction."""
+    P = np.zeros(mesh.ndofs)
+    phi = np.ones(mesh.ndofs)
+    P[mesh.fixed] = ambient / bearing.pressure_scale
+    for g, dofs in zip(grooves, mesh.grooves):
+        P[dofs] = g.pressure / bearing.pressure_scale
+        phi[dofs] = g.fraction
+    P[mesh.end] = ambient / bearing.pressure_scale
+    phi[mesh.end] = 1.0
+    return P, phi
+
+
+def _solve(bearing: Bearing, op: FilmOperator, eps: float, T: sp.csr_matrix,
+           storage: np.ndarray, source: np.ndarray, grooves, ambient: float,
+           cavitated0=None, warm_iterations: int = 3):
+    """The balance on the film mesh with its ends, supply line and grooves held;
+    returns (P, phi, JFOResult, JFOFlows), P and phi on all nodes."""
+    mesh = op.mesh
+    P_fix, phi_fix = _boundary_values(bearing, mesh, grooves, ambient)
+    P, phi, res, inflow = solve_balance(op.stiffness(eps), T, storage, source, mesh.free,
+                                        P_fix, phi_fix, cavitated0, op.free_stiffness(eps),
+                                        warm_iterations)
+    feed_nodes = np.setdiff1d(mesh.fixed, mesh.end)
+    k = bearing.clearance * bearing.radius ** 2 / 12.0 * (2.0 if mesh.half else 1.0)
+    free = mesh.free
+    flows = JFOFlows(flow_in=-k * float(np.sum(inflow[feed_nodes])),
+                     side_leakage=k * float(np.sum(inflow[mesh.end])),
+                     storage=k * float(np.sum(storage[free] * phi[free] - source[free])))
+    return P, phi, res, flows
+
+
+def _film_solution(bearing, state, op: FilmOperator, P, phi, res: JFOResult,
+                   flows: JFOFlows, method: str) -> FilmSolution:
+    """Forces, friction and the rest of a JFO film (P >= 0 is the pressure everywhere)."""
+    mult = 2.0 if op.mesh.half else 1.0
+    ic, is_ = op.force_integrals(P)
+    f_r, f_t = bearing.force_scale * mult * float(ic), bearing.force_scale * mult * float(is_)
+    wq, th = op.qp_weight, op.qp_theta
+    Hq = film_thickness(th, state.eps)
+    Pq = op.at_quadrature(P)
+    dPq = np.asarray(op.mesh.basis.interpolate(P).grad[0])
+    phiq = op.at_quadrature(phi)
+    full = Pq > 0.0
+    # Couette shear acts on the oil present (the fraction phi of the gap, as streamers);
+    # the Poiseuille part where the film is full.
+    couette = state.omega / Hq * np.clip(phiq, 0.0, 1.0)
+    poiseuille = np.where(full, 0.5 * Hq * dPq, 0.0)
+    mu, R, c = bearing.viscosity, bearing.radius, bearing.clearance
+    friction = mu * R ** 3 / c * mult * float(np.sum(wq * (couette + poiseuille)))
+    cv = film_volumes(op.mesh)
+    area = cv.area
+    cav_fraction = float(np.sum(area * (1.0 - phi > 1e-12)) / np.sum(area))
+    return film_solution(
+        bearing, state, P, op.mesh.theta, op.mesh.zeta, (f_r, f_t), friction=friction,
+        leakage=flows.side_leakage, flow_in=flows.flow_in, cavitated_fraction=cav_fraction,
+        record=res, method=method, cavitation="jfo", half=op.mesh.half, mesh=op.mesh,
+        fraction=phi, mass_balance=flows.balance)
+
+
+#: Below this many free nodes a steady film starts cold instead of from a coarser mesh.
+COARSEST_FREE_NODES = 200
+
+
+def _steady(bearing: Bearing, state: JournalState, operator, n_theta, n_z, grooves,
+            ambient, cavitated0=None):
+    """Steady film on the mesh ``operator(n_theta, n_z)``. A cold start takes its first
+    cavitated set from the same film on a mesh half as fine (recursively): the fronts then
+    sit within a node of their place and one or two iterations finish."""
+    op = operator(n_theta, n_z)
+    cv = film_volumes(op.mesh)
+    T = _transport(cv, state.eps, state.wedge_speed)
+    storage = 12.0 * state.eps_dot * _cos_integral(cv)
+    warm = 3
+    if cavitated0 is None and len(op.mesh.free) > COARSEST_FREE_NODES:
+        Pc, phic, _, _, opc = _steady(bearing, state, operator, max(8, n_theta // 2),
+                                      max(2, n_z // 2), grooves, ambient)
+        u = Pc - (1.0 - phic)          # the universal variable: < 0 in the cavity
+        cavitated0 = (prolongation(opc.mesh, op.mesh.theta, op.mesh.zeta) @ u) < 0.0
+        warm = 12
+    P, phi, res, flows = _solve(bearing, op, state.eps, T, storage, np.zeros(op.mesh.ndofs),
+                                grooves, ambient, cavitated0, warm)
+    return P, phi, res, flows, op
+
+
+def solve_jfo(bearing: Bearing, state: JournalState, operator, n_theta: int, n_z: int,
+              grooves=(), ambient_pressure: float = 0.0) -> FilmSolution:
+    """Steady JFO film on the mesh ``operator(n_theta, n_z)`` (a callable that builds the
+    film operator of a mesh; arguments checked by ``solve_reynolds``)."""
+    P, phi, res, flows, op = _steady(bearing, state, operator, n_theta, n_z, grooves,
+                                     ambient_pressure)
+    return _film_solution(bearing, state, op, P, phi, res, flows, "fem-P1/jfo")
+
+
+def jfo_force(bearing: Bearing, state: JournalState, operator, n_theta: int, n_z: int,
+              grooves=(), ambient_pressure: float = 0.0, cavitated0=None):
+    """(F_r, F_t) [N] of the steady JFO film and its solve record (light path)."""
+    P, _, res, _, op = _steady(bearing, state, operator, n_theta, n_z, grooves,
+                               ambient_pressure, cavitated0)
+    ic, is_ = op.force_integrals(P)
+    k = bearing.force_scale * (2.0 if op.mesh.half else 1.0)
+    return (k * float(ic), k * float(is_)), res
+
+
+class JFOFilm:
+    """A transient JFO film on the FE film mesh: its state is the film fraction field.
+
+    Parameters
+    ----------
+    bearing, state : the bearing and the journal state at the start
+    n_theta, n_z, half, grooves, supply_angle : the film mesh and its supply, as in
+        :func:`bearingfem.solve_reynolds` (P1 elements)
+    fraction : the film fraction at the start, a number or one value per node (1: full)
+    ambient_pressure : pressure of the oil at the axial ends (and a supply line) above
+        the cavitation pressure [Pa]; > 0 lets a cavity draw oil in from the ends
+    operator : callable (state) -> :class:`FilmOperator` of the mesh at that state
+
+    ``step(state, dt)`` advances by dt [s] to the new journal state and keeps the result;
+    ``trial(state, dt)`` computes the same step from the kept state without keeping it
+    (what a time integrator's stages need). Both return a :class:`FilmSolution` with
+    ``fraction`` and the step's ``mass_balance``.
+    """
+
+    def __init__(self, bearing: Bearing, state: JournalState, operator, grooves=(),
+                 fraction=1.0, ambient_pressure: float = 0.0):
+        self.bearing = bearing
+        self.grooves = tuple(grooves)
+        self.ambient_pressure = float(ambient_pressure)
+        self._operator = operator
+        op = operator(state)
+        cv = film_volumes(op.mesh)
+        phi = np.broadcast_to(np.asarray(fraction, float), (op.mesh.ndofs,)).copy()
+        if np.any(phi < 0.0) or np.any(phi > 1.0):
+            raise ValueError("fraction must lie in [0, 1]")
+        self.time = 0.0
+        self.state = state
+        self.fraction = phi
+        self.content = phi * _content(cv, state.eps)     # dimensionless, per volume
+        self.cavitated = phi < 1.0
+        self.solution: FilmSolution | None = None
+        self.steps = 0
+
+    def _alpha0(self, op: FilmOperator, gamma: float) -> float:
+        return float(inertial_from_theta(op.mesh.axes[0][0], gamma))
+
+    def _advance(self, state: JournalState, dt: float):
+        dt = check_positive("dt", dt)
+        op = self._operator(state)
+        cv = film_volumes(op.mesh)
+        old = self.content
+        if cv.periodic:       # carry the content to where the rotated mesh now sits
+            op0 = self._operator(self.state)
+            dth = 2.0 * np.pi / cv.n_columns
+            turn = np.mod(self._alpha0(op, state.gamma) - self._alpha0(op0, self.state.gamma)
+                          + np.pi, 2.0 * np.pi) - np.pi
+            old = shift_rows(cv, old, turn / dth)
+        T = _transport(cv, state.eps, state.omega)
+        H = _content(cv, state.eps)
+        P, phi, res, flows = _solve(self.bearing, op, state.eps, T, 12.0 * H / dt,
+                                    12.0 * old / dt, self.grooves, self.ambient_pressure,
+                                    self.cavitated)
+        return op, P, phi, res, flows, phi * H
+
+    def trial(self, state: JournalState, dt: float) -> FilmSolution:
+        """The step to ``state`` after ``dt`` [s], not kept."""
+        op, P, phi, res, flows, _ = self._advance(state, dt)
+        return _film_solution(self.bearing, state, op, P, phi, res, flows, "fem-P1/jfo")
+
+    def step(self, state: JournalState, dt: float) -> FilmSolution:
+        """Advance to ``state`` after ``dt`` [s] and keep the new film."""
+        op, P, phi, res, flows, content = self._advance(state, dt)
+        sol = _film_solution(self.bearing, state, op, P, phi, res, flows, "fem-P1/jfo")
+        self.time += dt
+        self.state, self.fraction, self.content = state, phi, content
+        self.cavitated = res_cavitated(op, res)
+        self.solution = sol
+        self.steps += 1
+        return sol
+
+
+def res_cavitated(op: FilmOperator, res: JFOResult) -> np.ndarray:
+    """The cavitated set of a solve on all nodes (fixed nodes: not cavitated)."""
+    cav = np.zeros(op.mesh.ndofs, bool)
+    cav[op.mesh.free] = res.cavitated
+    return cav
