@@ -4,7 +4,6 @@ import pytest
 
 from bearingfem import Groove, JournalState, solve_reynolds
 from bearingfem.bearing import seed_bearing
-from bearingfem.closed.squeeze_film import oscillating_squeeze
 from bearingfem.fe.planar import PlanarJFO, solve_planar
 from bearingfem.planar import PlanarFilm
 from studies import squeeze_film as study
@@ -187,3 +186,41 @@ def test_planar_transient_reaches_the_steady_film():
     assert 0.05 < steady.cavitated_fraction < 0.9
     assert sol.load == pytest.approx(steady.load, rel=1e-6)
     assert np.allclose(sol.fraction, steady.fraction, atol=1e-6)
+
+
+def test_transient_journal_settles_on_the_steady_film(seed):
+    """The transient film at a fixed state (grooves hold the mesh in the bearing) marches
+    from a full film to the steady JFO film; every step balances to round-off."""
+    from bearingfem.fe.jfo import JFOFilm
+    s = JournalState(eps=0.6, omega=250.0, gamma=0.3)
+    g = [Groove(angle=0.3 + np.pi, width=0.1, fraction=0.6)]
+    steady = solve_reynolds(seed, s, 48, 8, cavitation="jfo", grooves=g)
+    film = JFOFilm(seed, s, 48, 8, grooves=g)
+    for _ in range(120):
+        sol = film.step(s, 2 * np.pi / 250.0 / 10)
+        assert abs(sol.mass_balance) <= 1e-10 * max(abs(sol.flow_in), abs(sol.side_leakage))
+    assert np.allclose(sol.force_local, steady.force_local, rtol=1e-6)
+    assert np.allclose(sol.fraction, steady.fraction, atol=1e-6)
+
+
+def test_transient_content_stays_with_the_line_of_centres(seed):
+    """A journal whirling at half the shaft speed (w = omega - 2 gamma_dot = 0) drags the
+    oil around with its line of centres: in the mesh that follows it the content does not
+    move. The rotating mesh carries the content by the turn of each step; without that the
+    content would lag by the whole turn (here pi/2)."""
+    from bearingfem.fe.jfo import JFOFilm
+    omega = 200.0
+    s0 = JournalState(eps=0.3, omega=omega, gamma_dot=omega / 2)
+    film = JFOFilm(seed, s0, 64, 4, ambient_pressure=1e4, fraction=1.0)
+    op = film._operator(s0)
+    th = np.mod(op.mesh.theta, 2 * np.pi)
+    phi0 = np.where((th > 2.0) & (th < 3.0), 0.5, 1.0)       # a band of thinner content
+    film = JFOFilm(seed, s0, 64, 4, ambient_pressure=1e4, fraction=phi0)
+    n, turn = 50, np.pi / 2
+    for k in range(1, n + 1):
+        gamma = turn * k / n
+        film.step(JournalState(eps=0.3, omega=omega, gamma=gamma, gamma_dot=omega / 2),
+                  turn / n / (omega / 2))
+    lack = 1.0 - film.fraction
+    centre = np.angle(np.sum(lack * np.exp(1j * th)))
+    assert abs(centre - 2.5) < 2 * np.pi / 64      # within a cell of where it started

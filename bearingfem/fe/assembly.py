@@ -16,10 +16,10 @@ import scipy.sparse as sp
 from skfem import BilinearForm, LinearForm
 from skfem.helpers import dot, grad
 
-from ..film import cubed_thickness_coefficients, source_coefficients
+from ..film import cubed_thickness_coefficients, source_coefficients, theta_from_inertial
 from .mesh import FilmMesh, film_mesh
 
-__all__ = ["FilmOperator", "film_operator"]
+__all__ = ["FilmOperator", "film_operator", "fe_operator"]
 
 
 def _stiffness_form(k: int) -> BilinearForm:
@@ -161,3 +161,18 @@ def film_operator(n_theta: int, n_z: int, element: str, length_ratio: float,
                   arcs: tuple = ()) -> FilmOperator:
     """Cached operator for a mesh (see :func:`bearingfem.fe.mesh.film_mesh`)."""
     return build_operator(film_mesh(n_theta, n_z, element, length_ratio, theta0, half, arcs))
+
+
+def fe_operator(bearing, state, n_theta=120, n_z=20, element="P1",
+                supply_angle=None, half=True, grooves=()) -> FilmOperator:
+    """The cached film operator for this bearing and mesh (supply line and grooves in the
+    film frame; the mesh starts at the first groove's edge)."""
+    theta0, arcs = None, ()
+    if supply_angle is not None:   # rounded: it is part of the operator cache key
+        theta0 = float(np.round(theta_from_inertial(supply_angle, state.gamma), 12))
+    if grooves:
+        arcs = tuple((float(np.round(lo, 12)), float(np.round(hi, 12)))
+                     for lo, hi in (g.arc(state.gamma) for g in grooves))
+        theta0 = arcs[0][0]
+    return film_operator(int(n_theta), int(n_z), element, bearing.length_ratio, theta0,
+                         bool(half), arcs)

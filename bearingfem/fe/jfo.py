@@ -32,10 +32,11 @@ import numpy as np
 import scipy.sparse as sp
 
 from ..bearing import Bearing, JournalState, check_positive
+from ..validation import check_film_solve, check_grooves, check_jfo_supply
 from ..film import film_thickness, inertial_from_theta
 from ..solution import FilmSolution, film_solution
 from ..solvers.jfo import JFOResult
-from .assembly import FilmOperator
+from .assembly import FilmOperator, fe_operator
 from .mesh import FilmMesh
 from .multilevel import prolongation
 from .volumes import (ControlVolumes, control_volumes, shift_rows, solve_balance,
@@ -191,30 +192,34 @@ class JFOFilm:
     Parameters
     ----------
     bearing, state : the bearing and the journal state at the start
-    n_theta, n_z, half, grooves, supply_angle : the film mesh and its supply, as in
-        :func:`bearingfem.solve_reynolds` (P1 elements)
+    n_theta, n_z, half : the P1 film mesh, as in :func:`bearingfem.solve_reynolds`
+    grooves, supply_angle : the supply (grooves fixed in the bearing, flooded or starved)
     fraction : the film fraction at the start, a number or one value per node (1: full)
     ambient_pressure : pressure of the oil at the axial ends (and a supply line) above
         the cavitation pressure [Pa]; > 0 lets a cavity draw oil in from the ends
-    operator : callable (state) -> :class:`FilmOperator` of the mesh at that state
 
     ``step(state, dt)`` advances by dt [s] to the new journal state and keeps the result;
     ``trial(state, dt)`` computes the same step from the kept state without keeping it
     (what a time integrator's stages need). Both return a :class:`FilmSolution` with
-    ``fraction`` and the step's ``mass_balance``.
+    ``fraction`` and the step's ``mass_balance`` (feed - leakage - change of content).
     """
 
-    def __init__(self, bearing: Bearing, state: JournalState, operator, grooves=(),
+    def __init__(self, bearing: Bearing, state: JournalState, n_theta: int = 96,
+                 n_z: int = 16, *, grooves=(), supply_angle=None, half: bool = True,
                  fraction=1.0, ambient_pressure: float = 0.0):
+        n_theta, n_z, supply_angle = check_film_solve(bearing, state, n_theta, n_z, "jfo",
+                                                      "active-set", supply_angle)
+        self.grooves = check_grooves(grooves, supply_angle, mass_conserving=True)
+        self.ambient_pressure = check_jfo_supply("jfo", self.grooves, supply_angle,
+                                                 ambient_pressure)
         self.bearing = bearing
-        self.grooves = tuple(grooves)
-        self.ambient_pressure = float(ambient_pressure)
-        self._operator = operator
-        op = operator(state)
+        self._operator = lambda s: fe_operator(bearing, s, n_theta, n_z, "P1", supply_angle,
+                                               half, self.grooves)
+        op = self._operator(state)
         cv = film_volumes(op.mesh)
         phi = np.broadcast_to(np.asarray(fraction, float), (op.mesh.ndofs,)).copy()
-        if np.any(phi < 0.0) or np.any(phi > 1.0):
-            raise ValueError("fraction must lie in [0, 1]")
+        if not np.all((phi >= 0.0) & (phi <= 1.0)):
+            raise ValueError("fraction must lie in [0, 1] (one number or one per node)")
         self.time = 0.0
         self.state = state
         self.fraction = phi

@@ -4,12 +4,12 @@ from __future__ import annotations
 import numpy as np
 
 from ..bearing import Bearing, JournalState
-from ..film import film_thickness, theta_from_inertial
+from ..film import film_thickness
 from ..solution import FilmSolution, film_solution
 from ..solvers.cavitation import LCPResult, active_set, psor
 from ..solvers.linsolve import solve_spd
 from ..validation import check_film_solve, check_grooves, check_jfo_supply
-from .assembly import FilmOperator, film_operator
+from .assembly import FilmOperator, fe_operator
 from .jfo import jfo_force, solve_jfo
 from .mesh import ELEMENTS
 from .multilevel import coarse_guess
@@ -17,21 +17,6 @@ from .multilevel import coarse_guess
 __all__ = ["solve_reynolds", "fe_operator", "fe_pressure", "fe_force"]
 
 SHEAR = ("full", "none")
-
-
-def fe_operator(bearing: Bearing, state: JournalState, n_theta=120, n_z=20, element="P1",
-                supply_angle=None, half=True, grooves=()) -> FilmOperator:
-    """The cached film operator for this bearing and mesh (supply line and grooves in the
-    film frame; the mesh starts at the first groove's edge)."""
-    theta0, arcs = None, ()
-    if supply_angle is not None:   # rounded: it is part of the operator cache key
-        theta0 = float(np.round(theta_from_inertial(supply_angle, state.gamma), 12))
-    if grooves:
-        arcs = tuple((float(np.round(lo, 12)), float(np.round(hi, 12)))
-                     for lo, hi in (g.arc(state.gamma) for g in grooves))
-        theta0 = arcs[0][0]
-    return film_operator(int(n_theta), int(n_z), element, bearing.length_ratio, theta0,
-                         bool(half), arcs)
 
 
 def groove_pressures(bearing: Bearing, op: FilmOperator, grooves) -> np.ndarray | None:

@@ -79,7 +79,6 @@ def _fischer_burmeister(K: sp.csc_matrix, A: sp.csc_matrix, b: np.ndarray, P: np
     the second set eliminated per volume (Schur complement) so each iteration is one
     sparse solve in one unknown per volume; Armijo line search on the squared residual.
     Smooth where the active set's jumps cycle (fronts where P and 1 - phi both vanish)."""
-    n = b.shape[0]
     s = max(float(np.abs(b).max(initial=0.0)) / max(float(K.diagonal().mean()), 1e-300),
             1e-300)
     b_scale = max(float(np.abs(b).max(initial=0.0)), np.finfo(float).tiny)
