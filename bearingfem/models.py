@@ -23,7 +23,7 @@ from .fe.reynolds import fe_force, solve_reynolds
 from .fe.sensitivity import fe_force_derivatives
 from .fv.fvm import fvm_force, fvm_reynolds
 from .solution import FilmSolution, ForceDerivatives
-from .validation import (CAVITATION, MIN_N_THETA, MIN_N_Z, check_choice, check_grooves,
+from .validation import (MIN_N_THETA, MIN_N_Z, REYNOLDS_FAMILY, check_choice, check_grooves,
                          check_int)
 
 __all__ = ["FilmModel", "FILM_MODELS", "NUMERIC_MODELS", "OPTION_RULES", "film_model",
@@ -33,18 +33,18 @@ __all__ = ["FilmModel", "FILM_MODELS", "NUMERIC_MODELS", "OPTION_RULES", "film_m
 #: with None for an open end, ("choice", names), or ("grooves", None) for Groove tuples.
 OPTION_RULES = {
     "n_theta": ("int", (MIN_N_THETA, None)), "n_z": ("int", (MIN_N_Z, None)),
-    "element": ("choice", tuple(ELEMENTS)), "cavitation": ("choice", CAVITATION),
+    "element": ("choice", tuple(ELEMENTS)), "cavitation": ("choice", REYNOLDS_FAMILY),
     "half_film": ("choice", ("wedge", "fixed")), "switch_speed": ("number", (0.0, None)),
     "n_eps": ("int", (6, 400)), "n_phi": ("int", (16, 1000)),
-    "grooves": ("grooves", None),
+    "grooves": ("grooves", None), "ambient_pressure": ("number", (0.0, None)),
 }
 
 
-def _check_option(name: str, value, where: str):
+def _check_option(name: str, value, where: str, mass_conserving: bool = False):
     kind, allowed = OPTION_RULES[name]
     label = f"{where}.{name}" if where else name
     if kind == "grooves":
-        return check_grooves(value)
+        return check_grooves(value, mass_conserving=mass_conserving)
     if kind == "choice":
         return check_choice(label, value, allowed)
     lo, hi = allowed
@@ -72,6 +72,9 @@ class FilmModel:
     derivatives : (bearing, state, **options) -> :class:`ForceDerivatives`, exact; None
         means central differences of ``force``
     numeric : solved on a mesh (its force is finite at the wall only with eps capped)
+    memory : the film has a state of its own (the JFO film fraction): ``force`` is its
+        steady film; a time integration advances it instead (:mod:`mechanism`), and a
+        linearisation about a state alone is not defined
     """
 
     name: str
@@ -79,6 +82,7 @@ class FilmModel:
     defaults: Mapping = field(default_factory=dict)
     derivatives: Callable | None = None
     numeric: bool = False
+    memory: bool = False
 
     def options(self, options: Mapping | None = None, where: str = "") -> dict:
         """The model's defaults updated by ``options``, each checked (OPTION_RULES);
@@ -90,7 +94,8 @@ class FilmModel:
             raise ValueError(f"{names} {'is not an option' if len(unknown) == 1 else 'are not options'} "
                              f"of film model {self.name!r} (options: "
                              f"{', '.join(sorted(self.defaults)) or 'none'})")
-        return {k: _check_option(k, options.get(k, d), where) for k, d in self.defaults.items()}
+        return {k: _check_option(k, options.get(k, d), where, self.memory)
+                for k, d in self.defaults.items()}
 
     def film_force(self, bearing: Bearing, state: JournalState, **options):
         """(F_r, F_t) [N] with the model's defaults for options not given."""
@@ -100,6 +105,12 @@ class FilmModel:
                           **options) -> ForceDerivatives:
         """Force and its partials in (eps, eps_dot, w) (see :class:`ForceDerivatives`)."""
         opts = self.options(options)
+        if self.memory:
+            raise ValueError(
+                f"film model {self.name!r} has memory (its film fraction is carried by the "
+                "flow from earlier states): force derivatives at a state alone are not "
+                "defined. Linearise about an orbit with the transient film, or use the "
+                "Reynolds-condition model 'fem' (identical where the film does not reform)")
         if self.derivatives is not None:
             return self.derivatives(bearing, state, **opts)
         return central_differences(lambda s: self.force(bearing, s, **opts), state)
@@ -110,7 +121,16 @@ def _fem(bearing, state, n_theta, n_z, element, cavitation, grooves):
     return fe_force(bearing, state, n_theta, n_z, element, cavitation, grooves=grooves)[0]
 
 
+def _fem_jfo(bearing, state, n_theta, n_z, grooves, ambient_pressure):
+    """The steady JFO film's force (steady in the frame of the line of centres)."""
+    return solve_reynolds(bearing, state, n_theta, n_z, "P1", "jfo", grooves=grooves,
+                          ambient_pressure=ambient_pressure).force_local
+
+
 _MESH = dict(n_theta=48, n_z=8)
+#: Oil around the film at atmospheric pressure, the cavity near zero absolute: the default
+#: supply of the JFO model (it needs one; grooves add to it).
+JFO_AMBIENT = 1e5
 FILM_MODELS = {m.name: m for m in (
     # switch 1 rad/s: the literal sharp switch of Eq. 9's half film makes integrators chatter
     # (a steady film, w >> 1 rad/s, is the same to round-off)
@@ -124,6 +144,8 @@ FILM_MODELS = {m.name: m for m in (
     FilmModel("fvm", fvm_force, dict(_MESH, cavitation="gumbel"), numeric=True),
     FilmModel("fem-table", table_force, dict(TABLE_DEFAULTS),
               numeric=True),
+    FilmModel("fem-jfo", _fem_jfo, dict(_MESH, grooves=(), ambient_pressure=JFO_AMBIENT),
+              numeric=True, memory=True),
 )}
 #: Film models solved numerically: their force stays finite up to the wall only when eps is
 #: capped (scene default eps_max 0.999); the closed forms are evaluated to 1 - 1e-6.
@@ -148,4 +170,7 @@ def solve_film(model: str, bearing: Bearing, state: JournalState,
                               o["cavitation"], grooves=o["grooves"])
     if model == "fvm":
         return fvm_reynolds(bearing, state, o["n_theta"], o["n_z"], o["cavitation"])
+    if model == "fem-jfo":
+        return solve_reynolds(bearing, state, o["n_theta"], o["n_z"], "P1", "jfo",
+                              grooves=o["grooves"], ambient_pressure=o["ambient_pressure"])
     return None

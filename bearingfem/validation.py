@@ -5,7 +5,9 @@ import math
 
 from .bearing import Bearing, JournalState, check_finite
 
-CAVITATION = ("none", "gumbel", "reynolds", "jfo")
+#: Cavitation models of the Reynolds family (pressure alone) and the mass-conserving one.
+REYNOLDS_FAMILY = ("none", "gumbel", "reynolds")
+CAVITATION = REYNOLDS_FAMILY + ("jfo",)
 #: Coarsest meshes accepted (FE and FV): a periodic scikit-fem mesh needs >= 3 cells around,
 #: and a film resolved by fewer than 8 cells around cannot place its pressure peak.
 MIN_N_THETA = 8

@@ -9,6 +9,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
+import numpy as np
+
 from bearingfem import Bearing, JournalState
 from bearingfem.film import local_to_inertial
 
@@ -20,14 +22,16 @@ __all__ = ["JointKinematics", "FilmEffect", "HertzContact", "CoulombFriction", "
 
 @dataclass(frozen=True)
 class JointKinematics:
-    """Pin relative to the bearing (slider): eccentricity vector, its rate, and the
-    journal's angular speed relative to the bearing (the rod's, counter-clockwise)."""
+    """Pin relative to the bearing (slider): eccentricity vector, its rate, the
+    journal's angular speed relative to the bearing (the rod's, counter-clockwise) and the
+    time [s] (which a film with memory needs)."""
 
     e_x: float
     e_y: float
     de_x: float
     de_y: float
     omega: float
+    t: float = 0.0
 
     @property
     def e(self) -> float:
@@ -41,6 +45,10 @@ class FilmEffect:
     Beyond ``eps_max`` the film is evaluated at eps_max along the same direction: the force
     stays finite and continuous when an integrator's trial step crosses eps = 1 (the
     contact effect, or the simulator's stop at eps = 1, takes over there).
+
+    A model with memory ("fem-jfo") advances its film at ``commit`` (each accepted step)
+    and keeps what it committed in ``history``: rows of (t, F_x, F_y, peak pressure [Pa],
+    cavitated share of the film, friction force [N], mass balance [m^3/s]).
     """
 
     bearing: Bearing
@@ -51,13 +59,37 @@ class FilmEffect:
 
     def __post_init__(self):
         self._f = film_force_function(self.model)
+        self.memory = hasattr(self._f, "commit")
+        self.history: list = []
+
+    def _state(self, k: JointKinematics) -> JournalState:
+        return JournalState.from_eccentricity(k.e_x, k.e_y, k.de_x, k.de_y,
+                                              self.bearing.clearance, k.omega, self.eps_max)
 
     def force(self, k: JointKinematics):
-        s = JournalState.from_eccentricity(k.e_x, k.e_y, k.de_x, k.de_y,
-                                           self.bearing.clearance, k.omega, self.eps_max)
+        s = self._state(k)
         self.solves += 1
-        f_r, f_t = self._f(self.bearing, s, **self.options)
+        if self.memory:
+            f_r, f_t = self._f.force(self.bearing, s, k.t, **self.options)
+        else:
+            f_r, f_t = self._f(self.bearing, s, **self.options)
         return local_to_inertial(f_r, f_t, s.gamma)
+
+    def commit(self, k: JointKinematics) -> None:
+        """Advance a film with memory to the accepted state ``k`` (at time k.t)."""
+        s = self._state(k)
+        while self.history and self.history[-1][0] > k.t:     # the integrator went back
+            self.history.pop()
+        sol = self._f.commit(self.bearing, s, k.t, **self.options)
+        if sol is not None:
+            fx, fy = sol.force
+            self.history.append((k.t, fx, fy, sol.pressure_max, sol.cavitated_fraction,
+                                 sol.friction_force, sol.mass_balance))
+
+    def recorded_force(self, t):
+        """(F_x, F_y) [N] at times ``t`` from the committed steps (linear in between)."""
+        h = np.array(self.history) if self.history else np.zeros((1, 7))
+        return np.interp(t, h[:, 0], h[:, 1]), np.interp(t, h[:, 0], h[:, 2])
 
 
 def hertz_stiffness(radius, clearance, young_modulus, poisson):

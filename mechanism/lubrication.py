@@ -10,9 +10,10 @@ options from the registry), the film solve and its pictures along a saved run
 from __future__ import annotations
 
 from bearingfem.models import FILM_MODELS, NUMERIC_MODELS, film_model
+from bearingfem.fe.jfo import JFOFilm
 from bearingfem.fe.reynolds import fe_force
 
-__all__ = ["FILM_MODELS", "NUMERIC_MODELS", "film_force_function"]
+__all__ = ["FILM_MODELS", "NUMERIC_MODELS", "film_force_function", "TransientJFO"]
 
 
 def _warm_fem():
@@ -29,8 +30,61 @@ def _warm_fem():
     return fem
 
 
+class TransientJFO:
+    """The "fem-jfo" model along one integration: a :class:`~bearingfem.fe.jfo.JFOFilm`
+    whose content advances only at the integrator's accepted steps.
+
+    ``force(bearing, state, t, **options)`` is the film at ``state`` with the content of
+    the last accepted step (:meth:`JFOFilm.instant`: a function of the state alone, as
+    the integrator's error control needs); ``commit(bearing, state, t, **options)``
+    advances the content to ``t`` by one backward-Euler step of the mass-conserving film.
+    A commit earlier than the last one (the integrator went back to an event inside its
+    step) first restores the film kept before it.
+    """
+
+    def __init__(self):
+        self.film: JFOFilm | None = None
+        self.t = 0.0
+        self._before = None             # (t, film snapshot) before the last commit
+        self._warm = None
+        self.steps = 0
+
+    def _start(self, bearing, state, t, n_theta, n_z, grooves, ambient_pressure):
+        self.film = JFOFilm(bearing, state, n_theta, n_z, grooves=grooves,
+                            ambient_pressure=ambient_pressure)
+        self.t = float(t)
+
+    def force(self, bearing, state, t, **options):
+        if self.film is None:
+            self._start(bearing, state, t, **options)
+        f, self._warm = self.film.instant(state, self._warm)
+        return f
+
+    def commit(self, bearing, state, t, **options):
+        """Advance the content to ``t``; returns the step's :class:`FilmSolution` (None
+        when there was nothing to advance)."""
+        if self.film is None:
+            self._start(bearing, state, t, **options)
+        t = float(t)
+        if t < self.t and self._before is not None:
+            self.t, snap = self._before
+            self.film.restore(snap)
+            self._before = None
+        dt = t - self.t
+        if dt <= 1e-12 * max(abs(self.t), 1e-3):
+            return None
+        self._before = (self.t, self.film.snapshot())
+        sol = self.film.step(state, dt)
+        self.t = t
+        self.steps += 1
+        return sol
+
+
 def film_force_function(model: str):
     """The force function of ``model``; "fem" gets a fresh warm-started solver per caller,
-    since its memory belongs to one integration."""
+    since its memory belongs to one integration, and a model with memory ("fem-jfo") its
+    own :class:`TransientJFO`."""
     m = film_model(model, "lubrication.model")
+    if m.memory:
+        return TransientJFO()
     return _warm_fem() if model == "fem" else m.force

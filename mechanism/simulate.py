@@ -104,7 +104,7 @@ def simulate(scene: Scene, progress: bool | None = None) -> SimulationResult:
     def rhs(t, y):
         n_rhs[0] += 1
         q, A, _, qd, Ad, _ = _coordinates(m, y)
-        fx, fy = _joint_force(effects, JointKinematics(y[1], y[2], y[4], y[5], -Ad))
+        fx, fy = _joint_force(effects, JointKinematics(y[1], y[2], y[4], y[5], -Ad, t))
         qdd, Add, Xdd = accelerations(m, q, A, qd, Ad, fx, fy, g,
                                       scene.crank_torque, scene.slider_force)
         exdd, eydd = eccentricity_accelerations(m, q, A, qd, Ad, qdd, Add, Xdd)
@@ -126,6 +126,16 @@ def simulate(scene: Scene, progress: bool | None = None) -> SimulationResult:
         return gap(t, y)
     ev_out.terminal, ev_out.direction = True, -1
 
+    events = [ev_end, None]
+    if film is not None and film.memory:
+        # A film with memory advances at each accepted step: solve_ivp evaluates every
+        # event function once at the end of each accepted step (this one never fires).
+        def ev_commit(t, y):
+            _, _, _, _, Ad, _ = _coordinates(m, y)
+            film.commit(JointKinematics(y[1], y[2], y[4], y[5], -Ad, t))
+            return 1.0
+        events.append(ev_commit)
+
     a_len = run.atol if run.atol is not None else 1e-4 * c
     w = scene.crank_speed
     atol = np.array([a_len / m.crank_length, a_len, a_len,
@@ -144,8 +154,8 @@ def simulate(scene: Scene, progress: bool | None = None) -> SimulationResult:
             t_stop = min(t + 0.25 * turn_time, t_limit)
             if first_step is not None and opts["method"] != "LSODA":
                 opts["first_step"] = min(first_step, t_stop - t)
-            wall = ev_out if in_contact else ev_in
-            sol = solve_ivp(rhs, (t, t_stop), y, events=[ev_end, wall], **opts)
+            events[1] = ev_out if in_contact else ev_in
+            sol = solve_ivp(rhs, (t, t_stop), y, events=events, **opts)
             if sol.status == -1:
                 raise RunStopped(f"integrator failed at t = {sol.t[-1]:.6g} s: {sol.message}")
             if len(sol.t) > 1:
@@ -179,6 +189,7 @@ def simulate(scene: Scene, progress: bool | None = None) -> SimulationResult:
     bar.close(message if partial else "done", complete=not partial)
     stats = {"wall_time": wall, "steps": steps, "rhs_evals": n_rhs[0],
              "film_solves": film.solves if film else 0,
+             "film_steps": film._f.steps if film is not None and film.memory else 0,
              "contact_evals": contact.evaluations if contact else 0,
              "integrator": run.integrator, "rtol": run.rtol, "atol_length": a_len,
              "effects": [type(e).__name__ for e in effects]}
@@ -229,9 +240,14 @@ def _sample(scene, pieces, effects, g, stats, partial, message):
     out = {k: np.empty(n) for k in ("slider_acceleration", "force_x", "force_y", "rod_angle",
                                     "slider_position")}
     solves_before = [getattr(e, "solves", 0) for e in effects]
+    # a film with memory cannot be re-solved at a sample: its committed steps give it
+    live = [e for e in effects if not getattr(e, "memory", False)]
+    recorded = [e.recorded_force(t) for e in effects if getattr(e, "memory", False)]
     for i in range(n):
         q, A, X, qd, Ad, _ = _coordinates(m, Y[:, i])
-        fx, fy = _joint_force(effects, _joint(m, Y[:, i]))
+        fx, fy = _joint_force(live, _joint(m, Y[:, i]))
+        for rx, ry in recorded:
+            fx, fy = fx + float(rx[i]), fy + float(ry[i])
         out["force_x"][i], out["force_y"][i] = fx, fy
         out["rod_angle"][i], out["slider_position"][i] = A, X
         out["slider_acceleration"][i] = accelerations(

@@ -35,6 +35,7 @@ from ..bearing import Bearing, JournalState, check_positive
 from ..validation import check_film_solve, check_grooves, check_jfo_supply
 from ..film import film_thickness, inertial_from_theta
 from ..solution import FilmSolution, film_solution
+from ..solvers.cavitation import active_set
 from ..solvers.jfo import JFOResult
 from .assembly import FilmOperator, fe_operator
 from .mesh import FilmMesh
@@ -228,20 +229,68 @@ class JFOFilm:
         self.solution: FilmSolution | None = None
         self.steps = 0
 
+    def snapshot(self) -> tuple:
+        """The kept state (to go back to with :meth:`restore`, e.g. when an integrator
+        steps back to an event inside its last step)."""
+        return (self.time, self.state, self.fraction, self.content, self.cavitated,
+                self.solution, self.steps)
+
+    def restore(self, snapshot: tuple) -> None:
+        (self.time, self.state, self.fraction, self.content, self.cavitated,
+         self.solution, self.steps) = snapshot
+
     def _alpha0(self, op: FilmOperator, gamma: float) -> float:
         return float(inertial_from_theta(op.mesh.axes[0][0], gamma))
+
+    def _carried(self, op: FilmOperator, cv: ControlVolumes, state: JournalState,
+                 values: np.ndarray | None = None):
+        """The kept content (or ``values`` per node) on the mesh of ``state`` (a periodic
+        mesh turned with the line of centres since the kept state)."""
+        values = self.content if values is None else values
+        if not cv.periodic:
+            return values
+        op0 = self._operator(self.state)
+        dth = 2.0 * np.pi / cv.n_columns
+        turn = np.mod(self._alpha0(op, state.gamma) - self._alpha0(op0, self.state.gamma)
+                      + np.pi, 2.0 * np.pi) - np.pi
+        return shift_rows(cv, values, turn / dth)
+
+    def instant(self, state: JournalState, warm: np.ndarray | None = None):
+        """The film at ``state`` with the kept content, before any content moves: volumes
+        full at the kept step, or filled since (phi H >= H), carry the Reynolds film of this
+        instant's motion (Reynolds' condition is exact at rupture), the others are cavities
+        at zero pressure. What a time integrator sees between accepted steps, where
+        :meth:`step` moves the content. Returns ((F_r, F_t) [N], cavitated set on all
+        nodes, for ``warm`` of the next call)."""
+        op = self._operator(state)
+        cv = film_volumes(op.mesh)
+        # full: not a cavity at the kept step, or a cavity the closing gap has filled
+        carried_cav = self._carried(op, cv, state, self.cavitated.astype(float)) > 0.5
+        full = ~carried_cav | (self._carried(op, cv, state)
+                               >= _content(cv, state.eps) * (1.0 - 1e-12))
+        mesh = op.mesh
+        P_fix, _ = _boundary_values(self.bearing, mesh, self.grooves, self.ambient_pressure)
+        P = np.zeros(mesh.ndofs)
+        P[mesh.fixed] = P_fix[mesh.fixed]
+        K = op.stiffness(state.eps)
+        load = op.load(state.eps, state.eps_dot, state.wedge_speed) - K @ P
+        keep = mesh.free[full[mesh.free]]
+        if len(keep) and np.any(load[keep]):
+            a0 = None if warm is None else warm[keep]
+            res = active_set(K[keep][:, keep], load[keep], active0=a0)
+            P[keep] = res.pressure
+        cav = ~full
+        cav[mesh.fixed] = False
+        cav[keep] |= P[keep] <= 0.0
+        ic, is_ = op.force_integrals(P)
+        k = self.bearing.force_scale * (2.0 if mesh.half else 1.0)
+        return (k * float(ic), k * float(is_)), cav
 
     def _advance(self, state: JournalState, dt: float):
         dt = check_positive("dt", dt)
         op = self._operator(state)
         cv = film_volumes(op.mesh)
-        old = self.content
-        if cv.periodic:       # carry the content to where the rotated mesh now sits
-            op0 = self._operator(self.state)
-            dth = 2.0 * np.pi / cv.n_columns
-            turn = np.mod(self._alpha0(op, state.gamma) - self._alpha0(op0, self.state.gamma)
-                          + np.pi, 2.0 * np.pi) - np.pi
-            old = shift_rows(cv, old, turn / dth)
+        old = self._carried(op, cv, state)
         T = _transport(cv, state.eps, state.omega)
         H = _content(cv, state.eps)
         P, phi, res, flows = _solve(self.bearing, op, state.eps, T, 12.0 * H / dt,

@@ -25,7 +25,8 @@ from ..bearing import Bearing, JournalState
 from ..film import film_thickness, reynolds_source_integral, theta_from_inertial
 from ..solution import FilmSolution, film_solution
 from ..solvers.cavitation import LCPResult, active_set, psor
-from ..validation import check_film_solve, check_grooves
+from ..fe.volumes import solve_balance
+from ..validation import check_film_solve, check_grooves, check_jfo_supply
 
 __all__ = ["fvm_reynolds", "FVMGrid", "fvm_grid"]
 
@@ -143,6 +144,61 @@ def _pressure(g: FVMGrid, state: JournalState, cavitation: str, method="active-s
     return LCPResult(P, res.iterations, res.residual, res.converged, np.zeros(g.n, bool))
 
 
+def _groove_cells(bearing, g: FVMGrid, state, grooves):
+    """Cells whose centres lie in a groove: mask, held pressure, held fraction, and each
+    groove's column mask."""
+    fixed, values, fraction = np.zeros(g.n, bool), np.zeros(g.n), np.ones(g.n)
+    columns = []
+    for gr in grooves:
+        lo, hi = gr.arc(state.gamma)
+        col = np.mod(g.theta_c - lo, 2 * np.pi) <= hi - lo
+        columns.append(col)
+        cells = np.repeat(col, g.n_z)
+        fixed |= cells
+        values[cells] = gr.pressure / bearing.pressure_scale
+        fraction[cells] = gr.fraction
+    return fixed, values, fraction, columns
+
+
+def _jfo(bearing, g: FVMGrid, state, grooves, ambient):
+    """Steady JFO film on the cells: the Poiseuille balance of :func:`_assemble` with the
+    content phi H carried across the theta faces from the upwind cell (6 w phi H dzeta)
+    and a squeeze eps_dot changing it at eps_dot cos(theta); returns P, phi, the solve
+    record and (feed, leakage, storage) in units of c R^2 / 12 [m^3/s]."""
+    A, _ = _assemble(g, state.eps, 0.0, 0.0)
+    nz = g.n_z
+    dz = g.dzeta
+    He = film_thickness(g.theta_f[1:], state.eps)
+    # upwind transport across each column's east face (periodic: the last one wraps)
+    f = 6.0 * state.wedge_speed * He * dz
+    I, J = np.meshgrid(np.arange(g.n_theta), np.arange(nz), indexing="ij")
+    k = (I * nz + J).ravel()
+    d = (((I + 1) % g.n_theta) * nz + J).ravel()
+    fk = np.repeat(f, nz)
+    up = np.where(fk >= 0.0, k, d)
+    out_c, in_c = np.where(fk >= 0.0, k, d), np.where(fk >= 0.0, d, k)
+    a = np.abs(fk)
+    T = sp.csr_matrix((np.concatenate([a, -a]), (np.concatenate([out_c, in_c]),
+                                                 np.concatenate([up, up]))), shape=(g.n, g.n))
+    storage = np.repeat(12.0 * state.eps_dot * (np.sin(g.theta_f[1:]) - np.sin(g.theta_f[:-1]))
+                        * dz, nz)
+    # the axial ends hold the ambient pressure on the face half a cell away
+    cend = np.zeros((g.n_theta, nz))
+    Hc3 = film_thickness(g.theta_c, state.eps) ** 3 * g.dtheta / g.dzeta
+    cend[:, 0] += 2.0 * Hc3
+    cend[:, -1] += 2.0 * Hc3
+    cend = cend.ravel()
+    pa = ambient / bearing.pressure_scale
+    fixed, values, fraction, _ = _groove_cells(bearing, g, state, grooves)
+    free = np.flatnonzero(~fixed)
+    P, phi, res, inflow = solve_balance(A, T, storage, cend * pa, free, values, fraction)
+    leak = float(np.sum(cend * (P - pa)))
+    # what the groove cells send out, to free cells and through their own end faces
+    feed = float(np.sum((-inflow - cend * pa)[fixed]))
+    store = float(np.sum(storage[free] * phi[free]))
+    return P, phi, res, (feed, leak, store)
+
+
 def fvm_force(bearing: Bearing, state: JournalState, n_theta: int = 48, n_z: int = 8,
               cavitation: str = "gumbel"):
     """(F_r, F_t) [N] only: the light path used inside time integration."""
@@ -162,8 +218,13 @@ def _force(bearing: Bearing, g: FVMGrid, P: np.ndarray):
 
 def fvm_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z: int = 20,
                  cavitation: str = "reynolds", *, method: str = "active-set",
-                 supply_angle=None, tol: float = 1e-10, grooves=()) -> FilmSolution:
+                 supply_angle=None, tol: float = 1e-10, grooves=(),
+                 ambient_pressure: float = 0.0) -> FilmSolution:
     """Finite-volume Reynolds solution; same inputs and result type as ``solve_reynolds``.
+
+    ``cavitation="jfo"`` is the mass-conserving film on the cells (upwind transport of
+    the content across the theta faces), with grooves or ``ambient_pressure`` > 0 as its
+    supply (a supply line is not offered here).
 
     Forces are the midpoint sums of seed Eq. 16 (second order): F_r = sum p cos(theta) dA,
     F_t = sum p sin(theta) dA in the contract's local frame.
@@ -172,22 +233,22 @@ def fvm_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z:
                                                   method, supply_angle, tol)
     theta0 = None if supply_angle is None else float(theta_from_inertial(supply_angle,
                                                                          state.gamma))
-    grooves = check_grooves(grooves, supply_angle)
+    grooves = check_grooves(grooves, supply_angle, mass_conserving=cavitation == "jfo")
+    ambient_pressure = check_jfo_supply(cavitation, grooves, supply_angle, ambient_pressure)
+    if cavitation == "jfo" and supply_angle is not None:
+        raise ValueError("the finite-volume JFO film takes grooves or ambient_pressure as "
+                         "its supply, not supply_angle")
     g = fvm_grid(n_theta, n_z, bearing.length_ratio, theta0)
     held = None
     if grooves:     # cells whose centres lie in a groove hold its pressure
-        fixed, values = np.zeros(g.n, bool), np.zeros(g.n)
-        columns = []
-        for gr in grooves:
-            lo, hi = gr.arc(state.gamma)
-            col = np.mod(g.theta_c - lo, 2 * np.pi) <= hi - lo
-            columns.append(col)
-            cells = np.repeat(col, n_z)
-            fixed |= cells
-            values[cells] = gr.pressure / bearing.pressure_scale
+        fixed, values, _, columns = _groove_cells(bearing, g, state, grooves)
         held = (fixed, values)
-    res = _pressure(g, state, cavitation, method, tol, held)
-    P = res.pressure if cavitation == "none" else np.maximum(res.pressure, 0.0)
+    phi = flows = None
+    if cavitation == "jfo":
+        P, phi, res, flows = _jfo(bearing, g, state, grooves, ambient_pressure)
+    else:
+        res = _pressure(g, state, cavitation, method, tol, held)
+        P = res.pressure if cavitation == "none" else np.maximum(res.pressure, 0.0)
 
     th = np.repeat(g.theta_c, n_z)
     ze = np.tile(g.zeta_c, n_theta)
@@ -196,6 +257,8 @@ def fvm_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z:
     H = film_thickness(th, state.eps)
     mu, R, c = bearing.viscosity, bearing.radius, bearing.clearance
     wet = P > 0 if cavitation != "none" else np.ones(g.n, bool)
+    # JFO: Couette shear on the oil present, Poiseuille shear in the full film
+    shear, full = (1.0, 1.0) if phi is None else (phi, phi >= 1.0 - 1e-12)
     # Friction: Couette everywhere (full oil in cavitated cells, no pressure) plus the
     # Poiseuille part from central differences of the pressure.
     Pg = P.reshape(n_theta, n_z)
@@ -204,13 +267,19 @@ def fvm_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z:
     else:
         dP = np.gradient(np.vstack([np.zeros((1, n_z)), Pg, np.zeros((1, n_z))]),
                          g.dtheta, axis=0)[1:-1]
-    friction = mu * R ** 3 / c * dA * float(np.sum(state.omega / H + 0.5 * H * dP.ravel()))
+    friction = mu * R ** 3 / c * dA * float(np.sum(state.omega / H * shear
+                                                   + 0.5 * H * dP.ravel() * full))
     # Side leakage through the end faces: flux H^3 (P_face=0 - P_c) / (dzeta/2) per face.
     Hc3 = film_thickness(g.theta_c, state.eps) ** 3
     q = np.sum(Hc3 * (Pg[:, -1] + Pg[:, 0])) * 2.0 / g.dzeta * g.dtheta
     leakage = c * R ** 2 / 12.0 * float(q)
-    flow_in = None
-    if held is not None and cavitation == "none":
+    flow_in = mass_balance = None
+    if flows is not None:
+        k = c * R ** 2 / 12.0
+        flow_in, leakage = k * flows[0], k * flows[1]
+        mass_balance = k * (flows[0] - flows[1] - flows[2])
+        wet = phi >= 1.0 - 1e-12
+    elif held is not None and cavitation == "none":
         # what the grooves feed: their cells' net outflow, the balance's residual there
         # (the Reynolds-condition films do not conserve mass: no feed is defined for them)
         A, rhs = _assemble(g, state.eps, state.eps_dot, state.wedge_speed)
@@ -218,7 +287,7 @@ def fvm_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z:
         flow_in = c * R ** 2 / 12.0 * float(np.sum(r[np.any(np.stack(columns), axis=0)]))
     return film_solution(
         bearing, state, P, th, ze, (f_r, f_t), friction=friction, leakage=leakage,
-        flow_in=flow_in,
+        flow_in=flow_in, fraction=phi, mass_balance=mass_balance,
         cavitated_fraction=float(np.mean(~wet)), record=res,
         method="fvm" + (f"/{method}" if cavitation == "reynolds" else ""),
         cavitation=cavitation, half=False, mesh=g)

@@ -1,0 +1,79 @@
+"""The mechanism on the mass-conserving film: the film advances at accepted steps only."""
+import numpy as np
+import pytest
+
+from bearingfem import JournalState
+from bearingfem.bearing import seed_bearing
+from mechanism import parse_scene, simulate
+from mechanism.lubrication import TransientJFO
+from mechanism.simulate import build_effects
+
+
+def scene(turns=0.25, **lub):
+    return parse_scene({"name": "jfo", "bearing": {"diameter": 0.02, "length_ratio": 0.5,
+                                                   "clearance": 20e-6, "viscosity": 0.0117},
+                        "run": {"turns": turns, "record_from_turn": 0},
+                        "effects": {"lubrication": {"model": "fem-jfo", "n_theta": 48,
+                                                    "n_z": 4, **lub}}})
+
+
+def test_jfo_film_is_built_only_when_named_and_carries_its_state():
+    effects, film, _ = build_effects(scene())
+    assert film.memory and isinstance(film._f, TransientJFO)
+    effects, film, _ = build_effects(parse_scene({
+        "name": "r", "bearing": {"diameter": 0.02, "length_ratio": 0.5, "clearance": 20e-6,
+                                 "viscosity": 0.0117},
+        "effects": {"lubrication": {"model": "fem"}}}))
+    assert not film.memory
+
+
+def test_jfo_run_commits_each_step_and_balances_mass():
+    """A quarter turn: one film step per accepted integrator step, finite forces, the
+    journal inside the clearance."""
+    r = simulate(scene(), progress=False)
+    assert not r.partial, r.message
+    assert r.stats["film_steps"] == r.stats["steps"] > 50
+    assert np.all(np.isfinite(r.force_x)) and np.all(np.isfinite(r.force_y))
+    assert r.eps.max() < 1.0
+
+
+def test_film_history_rows_balance():
+    from mechanism.effects import JointKinematics
+    effects, film, _ = build_effects(scene())
+    c = film.bearing.clearance
+    for k in range(1, 40):
+        t = 1e-4 * k
+        e = 0.5 * c * np.sin(2e3 * t)
+        film.force(JointKinematics(e, 0.3 * e, 1e3 * c * np.cos(2e3 * t), 0.0, 50.0, t))
+        film.commit(JointKinematics(e, 0.3 * e, 1e3 * c * np.cos(2e3 * t), 0.0, 50.0, t))
+    h = np.array(film.history)
+    assert len(h) == 38 and np.all(np.diff(h[:, 0]) > 0)   # the first call starts the film
+    # mass balance per step against the squeeze flow scale e_dot R L
+    scale = 1e3 * c * film.bearing.radius * film.bearing.length
+    assert np.max(np.abs(h[:, 6])) < 1e-10 * scale
+    assert np.any(h[:, 4] > 0.0)        # a cavity formed
+
+
+def test_commit_before_the_last_goes_back():
+    """An integrator that stops at an event inside its last step commits an earlier time:
+    the film is then what one step from the previous commit gives."""
+    b = seed_bearing(0.5)
+    opts = dict(n_theta=32, n_z=4, grooves=(), ambient_pressure=1e5)
+    s = [JournalState(eps=0.3 + 0.1 * k, eps_dot=40.0, omega=100.0) for k in range(3)]
+    a, ref = TransientJFO(), TransientJFO()
+    for f in (a, ref):
+        f.force(b, s[0], 0.0, **opts)
+        f.commit(b, s[0], 0.0, **opts)
+        f.commit(b, s[1], 1e-3, **opts)
+    a.commit(b, s[2], 2e-3, **opts)
+    a.commit(b, s[2], 1.5e-3, **opts)          # back inside the last step
+    ref.commit(b, s[2], 1.5e-3, **opts)
+    assert np.array_equal(a.film.fraction, ref.film.fraction)
+    assert a.film.solution.force_local == pytest.approx(ref.film.solution.force_local)
+
+
+def test_coefficients_refuse_a_film_with_memory():
+    from bearingfem import coefficients
+    b = seed_bearing(1.0)
+    with pytest.raises(ValueError, match="has memory"):
+        coefficients(b, JournalState(eps=0.5, omega=100.0), model="fem-jfo")
