@@ -13,7 +13,10 @@ __all__ = ["SimulationResult", "load_result", "provenance", "FIELDS"]
 
 FIELDS = ("t", "crank_angle", "crank_speed", "rod_angle", "slider_position",
           "slider_acceleration", "eps", "e_x", "e_y", "film_min", "force_x", "force_y")
-DENSE = ("dense_t", "dense_e_x", "dense_e_y")
+DENSE = ("dense_t", "dense_e_x", "dense_e_y", "film_record")
+#: Columns of ``film_record`` (a film with memory: one row per committed film step).
+FILM_RECORD = ("t [s]", "F_x [N]", "F_y [N]", "peak pressure [Pa]", "cavitated share [1]",
+               "friction [N]", "mass balance [m^3/s]")
 UNITS = {"t": "s", "crank_angle": "rad", "crank_speed": "rad/s", "rod_angle": "rad",
          "slider_position": "m", "slider_acceleration": "m/s^2", "eps": "1", "e_x": "m",
          "e_y": "m", "film_min": "m", "force_x": "N", "force_y": "N"}
@@ -48,6 +51,8 @@ class SimulationResult:
     dense_t: np.ndarray = field(default_factory=lambda: np.empty(0))
     dense_e_x: np.ndarray = field(default_factory=lambda: np.empty(0))
     dense_e_y: np.ndarray = field(default_factory=lambda: np.empty(0))
+    #: a film with memory ("fem-jfo"): one row per committed step, columns FILM_RECORD
+    film_record: np.ndarray = field(default_factory=lambda: np.empty((0, 7)))
 
     def summary(self) -> str:
         s = self.stats

@@ -254,6 +254,8 @@ def _sample(scene, pieces, effects, g, stats, partial, message):
             m, q, A, qd, Ad, fx, fy, g, scene.crank_torque, scene.slider_force)[2]
     stats["output_film_solves"] = int(sum(getattr(e, "solves", 0) for e in effects)
                                       - sum(solves_before))
+    record = next((np.array(e.history).reshape(-1, 7) for e in effects
+                   if getattr(e, "memory", False)), np.empty((0, 7)))
     eps = np.hypot(Y[1], Y[2]) / c
     td = np.linspace(t[0], t[-1], 10 * (len(t) - 1) + 1) if len(t) > 1 else t
     Yd = at(td)
@@ -264,7 +266,7 @@ def _sample(scene, pieces, effects, g, stats, partial, message):
         e_y=Y[2], film_min=np.maximum(c * (1.0 - eps), 0.0), force_x=out["force_x"],
         force_y=out["force_y"], scene=scene.name, partial=partial, message=message,
         stats=stats, provenance=provenance(scene), dense_t=td, dense_e_x=Yd[1],
-        dense_e_y=Yd[2])
+        dense_e_y=Yd[2], film_record=record)
 
 
 def _simulate_ideal(scene: Scene, progress=None) -> SimulationResult:

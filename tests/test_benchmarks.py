@@ -20,3 +20,10 @@ def test_design_benchmark_smoke(capsys):
     # P2 24x4 is within 0.5 % of the 96x12 reference: the accuracy the README quotes
     assert rows[1]["error"] < 5e-3 and rows[0]["error"] > rows[1]["error"]
     assert "reference" in capsys.readouterr().out
+
+
+def test_jfo_benchmark_smoke(tmp_path, capsys):
+    from benchmarks import jfo
+    rows = jfo.main(["--quick", "--repeat", "1", "-o", str(tmp_path)])
+    assert rows[0]["mesh"] == "120x20" and rows[0]["jfo_iterations"] >= 1
+    assert "JFO / linear" in capsys.readouterr().out

@@ -244,3 +244,23 @@ def test_fe_and_fv_jfo_converge_together(seed):
         assert fv.fraction.min() >= 0.0 and fv.fraction.max() <= 1.0
     assert diffs[2] < 0.006
     assert np.all(np.array(diffs[:-1]) / diffs[1:] > 3.0), diffs
+
+
+def test_fraction_is_exported_and_rendered(seed, tmp_path):
+    """JFO films carry the film fraction into VTU files and pictures; other films refuse
+    the field by name."""
+    import meshio
+    from bearingfem.outputs.export import write_solution
+    from bearingfem.outputs.render import render_film
+    s = JournalState(eps=0.6, omega=250.0)
+    sol = solve_reynolds(seed, s, 48, 8, cavitation="jfo",
+                         grooves=[Groove(np.pi, 0.1, fraction=0.5)])
+    write_solution(sol, tmp_path / "f.vtu")
+    m = meshio.read(tmp_path / "f.vtu")
+    assert np.isclose(m.point_data["fraction"].min(), sol.fraction.min())
+    assert len(m.point_data["fraction"]) == 2 * len(sol.fraction)      # mirrored half
+    render_film(sol, tmp_path / "f.png", field="fraction", surface="unwrapped")
+    assert (tmp_path / "f.png").stat().st_size > 1000
+    plain = solve_reynolds(seed, s, 48, 8)
+    with pytest.raises(ValueError, match="needs a JFO film"):
+        render_film(plain, tmp_path / "g.png", field="fraction")

@@ -144,7 +144,7 @@ def _film_solution(bearing, state, op: FilmOperator, P, phi, res: JFOResult,
 
 
 #: Below this many free nodes a steady film starts cold instead of from a coarser mesh.
-COARSEST_FREE_NODES = 200
+COARSEST_FREE_NODES = 500
 
 
 def _steady(bearing: Bearing, state: JournalState, operator, n_theta, n_z, grooves,

@@ -1,0 +1,148 @@
+"""Reynolds' condition against the mass-conserving (JFO) film for the seed's piston pin.
+
+    python -m studies.jfo_paper -o results/jfo_paper [--ld 0.2] [--turns 5]
+
+Runs the seed's scene (``paper-short-fem`` or ``paper-long-fem`` by L/D) with the FE film
+under Reynolds' condition, and the same scene with the JFO film (``paper-*-jfo``: same
+mesh, oil at atmospheric pressure around a cavity near zero absolute). Prints a table over
+the recorded turn (peak eccentricity, minimum film, peak joint force, peak film pressure,
+mean friction, wall time, steps) and where the JFO film's cavity forms and collapses
+(crank angles), and writes ``jfo_paper.csv`` and ``jfo_paper.png`` (orbits, minimum film,
+cavitated share and peak pressure against the crank angle).
+"""
+from __future__ import annotations
+
+import argparse
+import dataclasses
+from pathlib import Path
+
+import numpy as np
+
+from bearingfem.outputs.tables import write_csv
+from mechanism import load_scene, simulate
+from mechanism.film_history import film_history
+
+
+def scenes(ld: float, turns: float | None):
+    """The Reynolds-condition FE scene of the seed and its JFO twin."""
+    name = "short" if ld <= 0.5 else "long"
+    fem, jfo = load_scene(f"paper-{name}-fem"), load_scene(f"paper-{name}-jfo")
+    lub = dataclasses.replace(fem.lubrication,
+                              options=dict(fem.lubrication.options, cavitation="reynolds"))
+    fem = dataclasses.replace(fem, name=f"paper-{name}-reynolds", lubrication=lub)
+    if turns is not None:
+        for s in ("fem", "jfo"):
+            sc = locals()[s]
+            run = dataclasses.replace(sc.run, turns=turns,
+                                      record_from_turn=max(0.0, turns - 1.0))
+            if s == "fem":
+                fem = dataclasses.replace(sc, run=run)
+            else:
+                jfo = dataclasses.replace(sc, run=run)
+    return fem, jfo
+
+
+def cavity_events(record: np.ndarray, crank_at) -> tuple[list, list]:
+    """Crank angles [deg] where the JFO cavity forms (its share rises from below 1 % of
+    the film) and where it collapses (falls below 1 %)."""
+    share = record[:, 4]
+    on = share > 0.01
+    rise = np.flatnonzero(~on[:-1] & on[1:]) + 1
+    fall = np.flatnonzero(on[:-1] & ~on[1:]) + 1
+    deg = lambda i: float(np.mod(np.degrees(crank_at(record[i, 0])), 360.0))  # noqa: E731
+    return [deg(i) for i in rise], [deg(i) for i in fall]
+
+
+def row(name, r, friction):
+    force = np.hypot(r.force_x, r.force_y)
+    return dict(film=name, peak_eps=float(r.eps.max()), film_min_um=1e6 * float(r.film_min.min()),
+                peak_force_N=float(force.max()), peak_pressure_MPa=None,
+                mean_friction_N=friction, wall_time_s=r.stats["wall_time"],
+                steps=r.stats["steps"], film_solves=r.stats["film_solves"])
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("-o", "--output", default="results/jfo_paper")
+    ap.add_argument("--ld", type=float, default=0.2, help="0.2 (short) or 2 (long)")
+    ap.add_argument("--turns", type=float, default=None, help="shorter runs (default: "
+                    "the scene's five turns, the last recorded)")
+    ap.add_argument("--no-progress", action="store_true")
+    a = ap.parse_args(argv)
+    out = Path(a.output)
+    out.mkdir(parents=True, exist_ok=True)
+    fem, jfo = scenes(a.ld, a.turns)
+    progress = False if a.no_progress else None
+    r_fem = simulate(fem, progress=progress)
+    r_jfo = simulate(jfo, progress=progress)
+    for r in (r_fem, r_jfo):
+        if r.partial:
+            print(f"{r.scene}: {r.message}")
+    # the Reynolds film's pressure and friction at 72 instants of the recorded turn
+    frames = film_history(r_fem, fem, n_frames=72)
+    p_fem = max(f.solution.pressure_max for f in frames)
+    mu_fem = float(np.mean([f.solution.friction_force for f in frames]))
+    rec = r_jfo.film_record
+    rec = rec[rec[:, 0] >= r_jfo.t[0]] if len(r_jfo.t) else rec
+    crank_at = lambda t: np.interp(t, r_jfo.t, r_jfo.crank_angle)   # noqa: E731
+    rows = [row("FE, Reynolds' condition", r_fem, mu_fem), row("FE, JFO", r_jfo,
+                                                                float(np.mean(rec[:, 5])))]
+    rows[0]["peak_pressure_MPa"] = p_fem / 1e6
+    rows[1]["peak_pressure_MPa"] = float(rec[:, 3].max()) / 1e6
+    forms, collapses = cavity_events(rec, crank_at)
+    balance = float(np.max(np.abs(rec[:, 6]))) if len(rec) else 0.0
+    print(f"| film | peak eps | min film [um] | peak force [N] | peak pressure [MPa] | "
+          f"mean friction [N] | wall time [s] | steps |")
+    print("|---|---|---|---|---|---|---|---|")
+    for w in rows:
+        print(f"| {w['film']} | {w['peak_eps']:.4f} | {w['film_min_um']:.4f} | "
+              f"{w['peak_force_N']:.1f} | {w['peak_pressure_MPa']:.1f} | "
+              f"{w['mean_friction_N']:.3f} | {w['wall_time_s']:.1f} | {w['steps']} |")
+    print(f"JFO cavity forms at crank {', '.join(f'{x:.0f}' for x in forms) or '-'} deg and "
+          f"collapses at {', '.join(f'{x:.0f}' for x in collapses) or '-'} deg; largest "
+          f"step mass balance {balance:.1e} m^3/s; cost JFO / Reynolds "
+          f"{r_jfo.stats['wall_time'] / r_fem.stats['wall_time']:.2f}x")
+    write_csv(rows, out / "jfo_paper.csv")
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(2, 2, figsize=(11, 8))
+    c = fem.bearing.clearance
+    for r, lab in ((r_fem, "Reynolds' condition"), (r_jfo, "JFO")):
+        q = np.mod(np.degrees(r.crank_angle), 360.0)
+        o = np.argsort(q)
+        ax[0, 0].plot(r.e_x / c, r.e_y / c, label=lab)
+        ax[0, 1].semilogy(q[o], 1e6 * np.maximum(r.film_min[o], 1e-9), label=lab)
+    th = np.linspace(0, 2 * np.pi, 200)
+    ax[0, 0].plot(np.cos(th), np.sin(th), "k-", lw=0.8)
+    ax[0, 0].set(xlabel="e_x / c", ylabel="e_y / c", title="pin orbit (recorded turn)",
+                 aspect="equal")
+    ax[0, 1].set(xlabel="crank angle [deg]", ylabel="minimum film [um]",
+                 title="minimum film")
+    qr = np.mod(np.degrees(crank_at(rec[:, 0])), 360.0)
+    o = np.argsort(qr)
+    ax[1, 0].plot(qr[o], 100 * rec[o, 4], "C1.", ms=2)
+    for x in forms:
+        ax[1, 0].axvline(x, color="g", lw=0.8)
+    for x in collapses:
+        ax[1, 0].axvline(x, color="r", lw=0.8)
+    ax[1, 0].set(xlabel="crank angle [deg]", ylabel="cavitated share of the film [%]",
+                 title="JFO cavity (green: forms, red: collapses)")
+    qf = [f.crank_angle_deg for f in frames]
+    ax[1, 1].semilogy(qf, [f.solution.pressure_max / 1e6 for f in frames], "C0o", ms=3,
+                      label="Reynolds' condition")
+    ax[1, 1].semilogy(qr[o], rec[o, 3] / 1e6, "C1.", ms=2, label="JFO")
+    ax[1, 1].set(xlabel="crank angle [deg]", ylabel="peak film pressure [MPa]",
+                 title="peak pressure")
+    for a_ in (ax[0, 0], ax[0, 1], ax[1, 1]):
+        a_.legend(fontsize=8)
+    fig.suptitle(f"Seed piston pin, L/D = {fem.bearing.length_ratio:g}: Reynolds' "
+                 "condition vs mass-conserving film")
+    fig.tight_layout()
+    fig.savefig(out / "jfo_paper.png", dpi=130)
+    print(f"wrote {out / 'jfo_paper.csv'} and {out / 'jfo_paper.png'}")
+    return rows, forms, collapses
+
+
+if __name__ == "__main__":
+    main()
