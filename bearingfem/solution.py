@@ -84,7 +84,10 @@ class FilmSolution:
             f"  cavitated area {100 * self.cavitated_fraction:.1f} % of the film; friction "
             f"{self.friction_force:.6g} N; side leakage {self.side_leakage:.6g} m^3/s",
             f"  solver: {self.iterations} iterations, complementarity residual "
-            f"{self.residual:.1e}" + ("" if self.converged else " (NOT converged)")])
+            f"{self.residual:.1e}" + ("" if self.converged else " (NOT converged)")]
+            + ([] if self.fraction is None else [
+                f"  JFO film fraction {float(np.min(self.fraction)):.4g} .. 1; fed "
+                f"{self.flow_in or 0.0:.6g} m^3/s; mass balance {self.mass_balance:.1e} m^3/s"]))
 
 
 def film_solution(bearing, state, P, theta, zeta, force_local, *, friction, leakage,

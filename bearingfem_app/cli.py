@@ -34,7 +34,9 @@ def _bearing_args(p):
                    help="[m] (seed Table 1)")
     p.add_argument("--viscosity", type=float, default=SEED_TABLE1["viscosity"],
                    help="[Pa s] (seed Table 1)")
-    p.add_argument("--cavitation", default="reynolds", help="none | gumbel | reynolds")
+    p.add_argument("--cavitation", default="reynolds",
+                   help="none | gumbel | reynolds | jfo (mass-conserving; needs a supply: "
+                        "--ambient-pressure)")
     p.add_argument("--n-theta", type=int, default=120, help="cells around the film")
     p.add_argument("--n-z", type=int, default=20, help="cells along the length")
     p.add_argument("--element", default="P1", help="P1 | P2 (finite elements only)")
@@ -44,6 +46,8 @@ def _film_args(p):
     _bearing_args(p)
     p.add_argument("--eps", type=float, default=0.6, help="eccentricity ratio in [0, 1)")
     p.add_argument("--eps-dot", type=float, default=0.0, help="d(eps)/dt [1/s]")
+    p.add_argument("--ambient-pressure", type=float, default=0.0,
+                   help="jfo: oil pressure at the ends above the cavitation pressure [Pa]")
 
 
 def _load_args(p, required):

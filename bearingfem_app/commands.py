@@ -167,9 +167,11 @@ def command_solve(args):
     _check_output(args.output, FILM_FORMATS)
     b, s = _film_state(args)
     if args.method == "fvm":
-        sol = fvm_reynolds(b, s, args.n_theta, args.n_z, args.cavitation)
+        sol = fvm_reynolds(b, s, args.n_theta, args.n_z, args.cavitation,
+                           ambient_pressure=args.ambient_pressure)
     else:
-        sol = solve_reynolds(b, s, args.n_theta, args.n_z, element, args.cavitation)
+        sol = solve_reynolds(b, s, args.n_theta, args.n_z, element, args.cavitation,
+                             ambient_pressure=args.ambient_pressure)
     print(sol.summary())
     from bearingfem.design import sommerfeld_number
     load = math.hypot(*sol.force_local)
@@ -215,7 +217,8 @@ def command_render(args):
     check_choice("--surface", args.surface, SURFACES)
     _check_output(args.output, IMAGE_FORMATS)
     b, s = _film_state(args)
-    sol = solve_reynolds(b, s, args.n_theta, args.n_z, _element(args), args.cavitation)
+    sol = solve_reynolds(b, s, args.n_theta, args.n_z, _element(args), args.cavitation,
+                         ambient_pressure=args.ambient_pressure)
     render_film(sol, args.output, field=args.field, surface=args.surface)
     print(sol.summary())
     print(f"wrote {args.output}")

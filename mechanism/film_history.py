@@ -47,6 +47,10 @@ def film_history(result, scene, crank_angles_deg=None, n_frames=12, n_theta=None
         raise ValueError("the run has fewer than 3 saved samples: no film history")
     if scene.bearing is None:
         raise ValueError("the scene has no bearing (ideal joint): no film to show")
+    if scene.lubrication is not None and scene.lubrication.model == "fem-jfo":
+        raise ValueError("a fem-jfo film has memory: it cannot be re-solved at a saved "
+                         "instant; its run keeps film_record (per film step: force, peak "
+                         "pressure, cavitated share, friction, mass balance)")
     if crank_angles_deg is None:
         if not (isinstance(n_frames, int) and n_frames >= 1):
             raise ValueError(f"n_frames must be an integer >= 1, got {n_frames!r}")

@@ -91,7 +91,7 @@ def main(argv=None):
     rows[1]["peak_pressure_MPa"] = float(rec[:, 3].max()) / 1e6
     forms, collapses = cavity_events(rec, crank_at)
     balance = float(np.max(np.abs(rec[:, 6]))) if len(rec) else 0.0
-    print(f"| film | peak eps | min film [um] | peak force [N] | peak pressure [MPa] | "
+    print("| film | peak eps | min film [um] | peak force [N] | peak pressure [MPa] | "
           f"mean friction [N] | wall time [s] | steps |")
     print("|---|---|---|---|---|---|---|---|")
     for w in rows:

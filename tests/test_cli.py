@@ -27,6 +27,8 @@ def test_help_lists_commands():
     (("solve", "--ld", "-1"), "--length-ratio/--ld (L/D) must be positive"),
     (("simulate", "no/such/scene.toml", "-o", "x"), "scene file not found"),
     (("sweep", "no/such/sweep.toml", "-o", "x"), "sweep file not found: no/such/sweep.toml"),
+    (("solve", "--cavitation", "jfo"), "needs a supply of oil"),
+    (("solve", "--ambient-pressure", "1e5"), "JFO-film option"),
 ])
 def test_bad_input_is_one_line_and_exit_2(args, needle):
     r = run(*args)
@@ -125,3 +127,10 @@ def test_solve_prints_load_attitude_and_sommerfeld():
     r = run("solve", "--eps", "0.6", "--n-theta", "48", "--n-z", "8")
     assert r.returncode == 0
     assert "|F|" in r.stdout and "attitude angle" in r.stdout and "Sommerfeld number" in r.stdout
+
+
+def test_solve_jfo_prints_fraction_and_balance(tmp_path):
+    r = run("solve", "--cavitation", "jfo", "--ambient-pressure", "1e5", "--n-theta", "48",
+            "--n-z", "8", "-o", str(tmp_path / "film.vtu"))
+    assert r.returncode == 0, r.stderr
+    assert "JFO film fraction" in r.stdout and "mass balance" in r.stdout

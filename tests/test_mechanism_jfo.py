@@ -77,3 +77,11 @@ def test_coefficients_refuse_a_film_with_memory():
     b = seed_bearing(1.0)
     with pytest.raises(ValueError, match="has memory"):
         coefficients(b, JournalState(eps=0.5, omega=100.0), model="fem-jfo")
+
+
+def test_film_history_refuses_a_film_with_memory():
+    from mechanism.film_history import film_history
+    r = simulate(scene(turns=0.05), progress=False)
+    with pytest.raises(ValueError, match="has memory"):
+        film_history(r, scene(), n_frames=2)
+    assert r.film_record.shape[1] == 7 and len(r.film_record) == r.stats["film_steps"]
