@@ -86,6 +86,11 @@ class FilmEffect:
             self.history.append((k.t, fx, fy, sol.pressure_max, sol.cavitated_fraction,
                                  sol.friction_force, sol.mass_balance))
 
+    @property
+    def steps(self) -> int:
+        """Film steps committed (a film with memory; 0 otherwise)."""
+        return self._f.steps if self.memory else 0
+
     def recorded_force(self, t):
         """(F_x, F_y) [N] at times ``t`` from the committed steps (linear in between)."""
         h = np.array(self.history) if self.history else np.zeros((1, 7))

@@ -189,7 +189,7 @@ def simulate(scene: Scene, progress: bool | None = None) -> SimulationResult:
     bar.close(message if partial else "done", complete=not partial)
     stats = {"wall_time": wall, "steps": steps, "rhs_evals": n_rhs[0],
              "film_solves": film.solves if film else 0,
-             "film_steps": film._f.steps if film is not None and film.memory else 0,
+             "film_steps": film.steps if film is not None else 0,
              "contact_evals": contact.evaluations if contact else 0,
              "integrator": run.integrator, "rtol": run.rtol, "atol_length": a_len,
              "effects": [type(e).__name__ for e in effects]}

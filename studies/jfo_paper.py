@@ -24,22 +24,20 @@ from mechanism.film_history import film_history
 
 
 def scenes(ld: float, turns: float | None):
-    """The Reynolds-condition FE scene of the seed and its JFO twin."""
+    """The Reynolds-condition FE scene of the seed and its JFO twin (``turns``: shorter
+    runs, the last turn recorded)."""
     name = "short" if ld <= 0.5 else "long"
     fem, jfo = load_scene(f"paper-{name}-fem"), load_scene(f"paper-{name}-jfo")
     lub = dataclasses.replace(fem.lubrication,
                               options=dict(fem.lubrication.options, cavitation="reynolds"))
     fem = dataclasses.replace(fem, name=f"paper-{name}-reynolds", lubrication=lub)
-    if turns is not None:
-        for s in ("fem", "jfo"):
-            sc = locals()[s]
-            run = dataclasses.replace(sc.run, turns=turns,
-                                      record_from_turn=max(0.0, turns - 1.0))
-            if s == "fem":
-                fem = dataclasses.replace(sc, run=run)
-            else:
-                jfo = dataclasses.replace(sc, run=run)
-    return fem, jfo
+    if turns is None:
+        return fem, jfo
+
+    def shorter(sc):
+        return dataclasses.replace(sc, run=dataclasses.replace(
+            sc.run, turns=turns, record_from_turn=max(0.0, turns - 1.0)))
+    return shorter(fem), shorter(jfo)
 
 
 def cavity_events(record: np.ndarray, crank_at) -> tuple[list, list]:
@@ -92,7 +90,7 @@ def main(argv=None):
     forms, collapses = cavity_events(rec, crank_at)
     balance = float(np.max(np.abs(rec[:, 6]))) if len(rec) else 0.0
     print("| film | peak eps | min film [um] | peak force [N] | peak pressure [MPa] | "
-          f"mean friction [N] | wall time [s] | steps |")
+          "mean friction [N] | wall time [s] | steps |")
     print("|---|---|---|---|---|---|---|---|")
     for w in rows:
         print(f"| {w['film']} | {w['peak_eps']:.4f} | {w['film_min_um']:.4f} | "

@@ -36,12 +36,11 @@ from ..validation import check_film_solve, check_grooves, check_jfo_supply
 from ..film import film_thickness, inertial_from_theta
 from ..solution import FilmSolution, film_solution
 from ..solvers.cavitation import active_set
-from ..solvers.jfo import JFOResult
+from ..solvers.jfo import JFOResult, solve_balance
 from .assembly import FilmOperator, fe_operator
 from .mesh import FilmMesh
 from .multilevel import prolongation
-from .volumes import (ControlVolumes, control_volumes, shift_rows, solve_balance,
-                      transport_matrix)
+from .volumes import ControlVolumes, control_volumes, shift_rows, transport_matrix
 
 __all__ = ["JFOFilm", "solve_jfo", "jfo_force", "film_volumes", "JFOFlows"]
 
@@ -309,13 +308,13 @@ class JFOFilm:
         sol = _film_solution(self.bearing, state, op, P, phi, res, flows, "fem-P1/jfo")
         self.time += dt
         self.state, self.fraction, self.content = state, phi, content
-        self.cavitated = res_cavitated(op, res)
+        self.cavitated = _cavitated_nodes(op, res)
         self.solution = sol
         self.steps += 1
         return sol
 
 
-def res_cavitated(op: FilmOperator, res: JFOResult) -> np.ndarray:
+def _cavitated_nodes(op: FilmOperator, res: JFOResult) -> np.ndarray:
     """The cavitated set of a solve on all nodes (fixed nodes: not cavitated)."""
     cav = np.zeros(op.mesh.ndofs, bool)
     cav[op.mesh.free] = res.cavitated

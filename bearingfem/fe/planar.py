@@ -21,10 +21,10 @@ from skfem.helpers import dot, grad
 
 from ..bearing import check_positive
 from ..planar import PlanarFilm
-from ..solvers.jfo import JFOResult
+from ..solvers.jfo import JFOResult, solve_balance
 from ..validation import check_int
 from .mesh import _quiet_skfem
-from .volumes import ControlVolumes, control_volumes, solve_balance, transport_matrix
+from .volumes import ControlVolumes, control_volumes, transport_matrix
 
 __all__ = ["PlanarSolution", "PlanarJFO", "solve_planar", "planar_mesh"]
 
@@ -95,11 +95,11 @@ class PlanarSolution:
     def mass_balance(self) -> float:
         return self.flow_in - self.flow_out - self.storage
 
-    def cavity_start(self, row: int | None = None) -> float:
-        """x [m] where the first cavitated volume (phi < 1) of the film's first row along
-        x begins (its volume's upstream face), or the length when there is none."""
-        y0 = self.y.min() if row is None else row
-        sel = np.isclose(self.y, y0)
+    def cavity_start(self, y: float | None = None) -> float:
+        """x [m] where the first cavitated volume (phi < 1) along the node row at ``y``
+        [m] (default: the first row) begins (its volume's upstream face), or the end of
+        the row when there is none."""
+        sel = np.isclose(self.y, self.y.min() if y is None else y)
         xs, ph = self.x[sel], self.fraction[sel]
         o = np.argsort(xs)
         xs, ph = xs[o], ph[o]
@@ -134,7 +134,7 @@ def _held(film: PlanarFilm, m: PlanarMesh):
     return P, phi
 
 
-def _solution(film, m, d: _Discretisation, P, phi, res, inflow, storage, source, t):
+def _solution(m: PlanarMesh, P, phi, res, inflow, storage, source, t):
     free = m.free
     load = float(np.sum(m.basis.interpolate(P) * m.basis.dx))
     area = m.volumes.area
@@ -174,9 +174,9 @@ def solve_planar(film: PlanarFilm, n_x: int = 200, n_y: int = 4, t: float = 0.0,
         inflow = -(d.K @ P + d.T @ phi)
         n = len(m.free)
         res = JFOResult(P[m.free], phi[m.free], np.zeros(n, bool), 1, 0.0, True)
-        return _solution(film, m, d, P, phi, res, inflow, zero, zero, t)
+        return _solution(m, P, phi, res, inflow, zero, zero, t)
     P, phi, res, inflow = solve_balance(d.K, d.T, zero, zero, m.free, P_fix, phi_fix)
-    return _solution(film, m, d, P, phi, res, inflow, zero, zero, t)
+    return _solution(m, P, phi, res, inflow, zero, zero, t)
 
 
 class PlanarJFO:
@@ -211,7 +211,7 @@ class PlanarJFO:
         storage, source = d.content / dt, self.content / dt
         P, phi, res, inflow = solve_balance(d.K, d.T, storage, source, m.free, P_fix,
                                             phi_fix, self.cavitated)
-        sol = _solution(self.film, m, d, P, phi, res, inflow, storage, source, t)
+        sol = _solution(m, P, phi, res, inflow, storage, source, t)
         self.t, self.fraction, self.content = t, phi, phi * d.content
         cav = np.zeros(m.basis.N, bool)
         cav[m.free] = res.cavitated

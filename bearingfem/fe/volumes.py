@@ -15,10 +15,9 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
-from ..solvers.jfo import JFOResult, jfo_solve
+from ..solvers.jfo import upwind_transport
 
-__all__ = ["ControlVolumes", "control_volumes", "transport_matrix", "shift_rows",
-           "solve_balance"]
+__all__ = ["ControlVolumes", "control_volumes", "transport_matrix", "shift_rows"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -86,16 +85,7 @@ def transport_matrix(cv: ControlVolumes, face_flux: np.ndarray) -> sp.csr_matrix
     ``face_flux`` = (sliding transport speed) x (film at the face) x (face width) on each
     node's downstream face (positive along +x). The flux takes phi from the upwind node."""
     k = np.flatnonzero(cv.down >= 0)
-    d = cv.down[k]
-    f = face_flux[k]
-    up = np.where(f >= 0.0, k, d)
-    a = np.abs(f)
-    out_node = np.where(f >= 0.0, k, d)     # the volume the content leaves
-    in_node = np.where(f >= 0.0, d, k)      # the volume it enters
-    n = len(cv.down)
-    return sp.csr_matrix((np.concatenate([a, -a]),
-                          (np.concatenate([out_node, in_node]), np.concatenate([up, up]))),
-                         shape=(n, n))
+    return upwind_transport(k, cv.down[k], face_flux[k], len(cv.down))
 
 
 def shift_rows(cv: ControlVolumes, values: np.ndarray, cells: float) -> np.ndarray:
@@ -111,33 +101,3 @@ def shift_rows(cv: ControlVolumes, values: np.ndarray, cells: float) -> np.ndarr
     grid[cv.column, cv.row] = values
     shifted = (1.0 - s) * np.roll(grid, -m, axis=0) + s * np.roll(grid, -m - 1, axis=0)
     return shifted[cv.column, cv.row]
-
-
-def solve_balance(K: sp.csr_matrix, T: sp.csr_matrix, storage: np.ndarray,
-                  source: np.ndarray, free: np.ndarray, P_fixed: np.ndarray,
-                  phi_fixed: np.ndarray, cavitated0=None, K_free=None,
-                  warm_iterations: int = 3):
-    """Solve the JFO balance K P + T phi + storage phi = source on the ``free`` volumes,
-    the others holding (P_fixed, phi_fixed) (arrays over all nodes).
-
-    Returns (P, phi, result, inflow): P and phi on all nodes and the net flow each fixed
-    node receives from its neighbours, -(K P + T phi) (zero on free nodes to round-off).
-    The sum of ``inflow`` over the fixed nodes equals the storage of the free volumes,
-    sum(storage phi - source), exactly: that is the discrete mass balance.
-    """
-    fixed_only = np.ones(len(source), bool)
-    fixed_only[free] = False
-    Pb = np.where(fixed_only, P_fixed, 0.0)
-    phib = np.where(fixed_only, phi_fixed, 0.0)
-    b = source[free] - (K @ Pb)[free] - (T @ phib)[free]
-    A = (T[free][:, free] + sp.diags(storage[free])).tocsr()
-    Kf = K[free][:, free] if K_free is None else K_free
-    c0 = None if cavitated0 is None else np.asarray(cavitated0, bool)[free]
-    n = len(free)
-    if not np.any(b) and not np.any(A.diagonal()):
-        res = JFOResult(np.zeros(n), np.ones(n), np.zeros(n, bool), 0, 0.0, True)
-    else:
-        res = jfo_solve(Kf, A, b, cavitated0=c0, warm_iterations=warm_iterations)
-    P, phi = Pb, np.where(fixed_only, phi_fixed, 0.0)
-    P[free], phi[free] = res.pressure, res.fraction
-    return P, phi, res, -(K @ P + T @ phi)

@@ -25,7 +25,7 @@ from ..bearing import Bearing, JournalState
 from ..film import film_thickness, reynolds_source_integral, theta_from_inertial
 from ..solution import FilmSolution, film_solution
 from ..solvers.cavitation import LCPResult, active_set, psor
-from ..fe.volumes import solve_balance
+from ..solvers.jfo import solve_balance, upwind_transport
 from ..validation import check_film_solve, check_grooves, check_jfo_supply
 
 __all__ = ["fvm_reynolds", "FVMGrid", "fvm_grid"]
@@ -174,12 +174,7 @@ def _jfo(bearing, g: FVMGrid, state, grooves, ambient):
     I, J = np.meshgrid(np.arange(g.n_theta), np.arange(nz), indexing="ij")
     k = (I * nz + J).ravel()
     d = (((I + 1) % g.n_theta) * nz + J).ravel()
-    fk = np.repeat(f, nz)
-    up = np.where(fk >= 0.0, k, d)
-    out_c, in_c = np.where(fk >= 0.0, k, d), np.where(fk >= 0.0, d, k)
-    a = np.abs(fk)
-    T = sp.csr_matrix((np.concatenate([a, -a]), (np.concatenate([out_c, in_c]),
-                                                 np.concatenate([up, up]))), shape=(g.n, g.n))
+    T = upwind_transport(k, d, np.repeat(f, nz), g.n)
     storage = np.repeat(12.0 * state.eps_dot * (np.sin(g.theta_f[1:]) - np.sin(g.theta_f[:-1]))
                         * dz, nz)
     # the axial ends hold the ambient pressure on the face half a cell away

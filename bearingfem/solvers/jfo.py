@@ -11,8 +11,8 @@ volumes and the previous step give. One universal variable u per volume carries 
 R(u) is piecewise linear, so semismooth Newton on it is an active-set method: for a set
 C of cavitated volumes the unknowns are P off C and phi on C, one sparse solve gives the
 exact answer of that set, and the set changes where P < 0 or phi > 1. Each iteration
-costs one factorisation; from a good set (the previous time step's, or the one the full
-film's negative pressures mark) two or three iterations finish.
+costs one factorisation; from a good set (the previous time step's, a coarser mesh's, or
+that of the Reynolds-condition problem of the same balance) one to four iterations finish.
 """
 from __future__ import annotations
 
@@ -24,7 +24,7 @@ import scipy.sparse.linalg as spla
 
 from .cavitation import active_set
 
-__all__ = ["JFOResult", "jfo_solve"]
+__all__ = ["JFOResult", "jfo_solve", "solve_balance", "upwind_transport"]
 
 
 @dataclass(frozen=True)
@@ -33,7 +33,8 @@ class JFOResult:
 
     pressure, fraction : P >= 0 and phi in [0, 1] on the free volumes
     cavitated : the set C (phi solved, P = 0)
-    iterations : semismooth Newton iterations (= sparse factorisations)
+    iterations : sparse factorisations: the Newton iterations and those of the
+        Reynolds-condition problem that placed the first set
     residual : max |R| / max |b| at the returned (P, phi)
     converged : the set repeated and the residual is at round-off
     """
@@ -157,7 +158,8 @@ def jfo_solve(K: sp.spmatrix, A: sp.spmatrix, b: np.ndarray, *,
     converged = False
     for cav, limit in tries:
         if cav is None:
-            cav = _reynolds_set(K, A, b, phi, can_cavitate)
+            cav, k0 = _reynolds_set(K, A, b, phi, can_cavitate)
+            it += k0
         P, phi, cav, k, converged = _active_set(K, A, b, cav, can_cavitate, limit)
         it += k
         if converged:
@@ -181,12 +183,13 @@ def _reynolds_set(K, A, b, phi_guess, can_cavitate) -> np.ndarray:
     D (1 - phi) is the multiplier of P >= 0, a symmetric complementarity problem that
     :func:`~bearingfem.solvers.cavitation.active_set` solves robustly. It is exact where
     the content does not move between volumes (pure squeeze) and for rupture (where JFO
-    and Reynolds agree); the active set then moves the reformation fronts."""
+    and Reynolds agree); the active set then moves the reformation fronts. Returns the
+    set and the factorisations it took."""
     D = A.diagonal()
     q = b - (A @ phi_guess - D * phi_guess) - D
     res = active_set(sp.csr_matrix(K), q)
     w = K @ res.pressure - q
-    return (res.pressure <= 0.0) & (w > 0.0) & can_cavitate
+    return (res.pressure <= 0.0) & (w > 0.0) & can_cavitate, res.factorisations
 
 
 def _active_set(K, A, b, cav, can_cavitate, max_iter):
@@ -211,3 +214,46 @@ def _active_set(K, A, b, cav, can_cavitate, max_iter):
         seen.add(key)
         cav = new
     return P, phi, cav, max_iter, False
+
+
+def solve_balance(K: sp.csr_matrix, T: sp.csr_matrix, storage: np.ndarray,
+                  source: np.ndarray, free: np.ndarray, P_fixed: np.ndarray,
+                  phi_fixed: np.ndarray, cavitated0=None, K_free=None,
+                  warm_iterations: int = 3):
+    """Solve the JFO balance K P + T phi + storage phi = source on the ``free`` volumes,
+    the others holding (P_fixed, phi_fixed) (arrays over all nodes).
+
+    Returns (P, phi, result, inflow): P and phi on all nodes and the net flow each fixed
+    node receives from its neighbours, -(K P + T phi) (zero on free nodes to round-off).
+    The sum of ``inflow`` over the fixed nodes equals the storage of the free volumes,
+    sum(storage phi - source), exactly: that is the discrete mass balance.
+    """
+    fixed_only = np.ones(len(source), bool)
+    fixed_only[free] = False
+    Pb = np.where(fixed_only, P_fixed, 0.0)
+    phib = np.where(fixed_only, phi_fixed, 0.0)
+    b = source[free] - (K @ Pb)[free] - (T @ phib)[free]
+    A = (T[free][:, free] + sp.diags(storage[free])).tocsr()
+    Kf = K[free][:, free] if K_free is None else K_free
+    c0 = None if cavitated0 is None else np.asarray(cavitated0, bool)[free]
+    n = len(free)
+    if not np.any(b) and not np.any(A.diagonal()):
+        res = JFOResult(np.zeros(n), np.ones(n), np.zeros(n, bool), 0, 0.0, True)
+    else:
+        res = jfo_solve(Kf, A, b, cavitated0=c0, warm_iterations=warm_iterations)
+    P, phi = Pb, np.where(fixed_only, phi_fixed, 0.0)
+    P[free], phi[free] = res.pressure, res.fraction
+    return P, phi, res, -(K @ P + T @ phi)
+
+
+def upwind_transport(k: np.ndarray, d: np.ndarray, flux: np.ndarray, n: int) -> sp.csr_matrix:
+    """(T phi)_i = net outflow of volume i when ``flux`` (signed, along k -> d) crosses
+    the face from volume k to volume d carrying phi from the upwind one: every face flux
+    leaves one volume and enters the other, so T's columns sum to zero (mass is kept)."""
+    fwd = flux >= 0.0
+    up = np.where(fwd, k, d)
+    a = np.abs(flux)
+    out_v, in_v = np.where(fwd, k, d), np.where(fwd, d, k)
+    return sp.csr_matrix((np.concatenate([a, -a]),
+                          (np.concatenate([out_v, in_v]), np.concatenate([up, up]))),
+                         shape=(n, n))
