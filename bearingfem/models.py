@@ -37,6 +37,7 @@ OPTION_RULES = {
     "half_film": ("choice", ("wedge", "fixed")), "switch_speed": ("number", (0.0, None)),
     "n_eps": ("int", (6, 400)), "n_phi": ("int", (16, 1000)),
     "grooves": ("grooves", None), "ambient_pressure": ("number", (0.0, None)),
+    "film_step": ("number", (0.0, None)),
 }
 
 
@@ -121,8 +122,10 @@ def _fem(bearing, state, n_theta, n_z, element, cavitation, grooves):
     return fe_force(bearing, state, n_theta, n_z, element, cavitation, grooves=grooves)[0]
 
 
-def _fem_jfo(bearing, state, n_theta, n_z, grooves, ambient_pressure):
-    """The steady JFO film's force (steady in the frame of the line of centres)."""
+def _fem_jfo(bearing, state, n_theta, n_z, grooves, ambient_pressure, film_step=0.0):
+    """The steady JFO film's force (steady in the frame of the line of centres).
+    ``film_step`` [s] is for time integration (shortest time between film steps: 0, every
+    accepted step); the steady film has none."""
     return solve_reynolds(bearing, state, n_theta, n_z, "P1", "jfo", grooves=grooves,
                           ambient_pressure=ambient_pressure).force_local
 
@@ -144,7 +147,8 @@ FILM_MODELS = {m.name: m for m in (
     FilmModel("fvm", fvm_force, dict(_MESH, cavitation="gumbel"), numeric=True),
     FilmModel("fem-table", table_force, dict(TABLE_DEFAULTS),
               numeric=True),
-    FilmModel("fem-jfo", _fem_jfo, dict(_MESH, grooves=(), ambient_pressure=JFO_AMBIENT),
+    FilmModel("fem-jfo", _fem_jfo, dict(_MESH, grooves=(), ambient_pressure=JFO_AMBIENT,
+                                        film_step=0.0),
               numeric=True, memory=True),
 )}
 #: Film models solved numerically: their force stays finite up to the wall only when eps is

@@ -35,9 +35,10 @@ class TransientJFO:
     whose content advances only at the integrator's accepted steps.
 
     ``force(bearing, state, t, **options)`` is the film at ``state`` with the content of
-    the last accepted step (:meth:`JFOFilm.instant`: a function of the state alone, as
+    the last film step (:meth:`JFOFilm.instant`: a function of the state alone, as
     the integrator's error control needs); ``commit(bearing, state, t, **options)``
-    advances the content to ``t`` by one backward-Euler step of the mass-conserving film.
+    advances the content to ``t`` by one backward-Euler step of the mass-conserving film
+    (unless less than the option ``film_step`` [s] has passed since the last one).
     A commit earlier than the last one (the integrator went back to an event inside its
     step) first restores the film kept before it.
     """
@@ -49,10 +50,12 @@ class TransientJFO:
         self._warm = None
         self.steps = 0
 
-    def _start(self, bearing, state, t, n_theta, n_z, grooves, ambient_pressure):
+    def _start(self, bearing, state, t, n_theta, n_z, grooves, ambient_pressure,
+               film_step=0.0):
         self.film = JFOFilm(bearing, state, n_theta, n_z, grooves=grooves,
                             ambient_pressure=ambient_pressure)
         self.t = float(t)
+        self.film_step = float(film_step)
 
     def force(self, bearing, state, t, **options):
         if self.film is None:
@@ -71,7 +74,10 @@ class TransientJFO:
             self.film.restore(snap)
             self._before = None
         dt = t - self.t
-        if dt <= 1e-12 * max(abs(self.t), 1e-3):
+        # film_step: accepted steps closer than this to the last film step leave the
+        # content as it is (the next film step spans them: backward Euler is exact in mass
+        # whatever its step)
+        if dt <= max(self.film_step, 1e-12 * max(abs(self.t), 1e-3)):
             return None
         self._before = (self.t, self.film.snapshot())
         sol = self.film.step(state, dt)

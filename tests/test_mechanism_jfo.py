@@ -85,3 +85,14 @@ def test_film_history_refuses_a_film_with_memory():
     with pytest.raises(ValueError, match="has memory"):
         film_history(r, scene(), n_frames=2)
     assert r.film_record.shape[1] == 7 and len(r.film_record) == r.stats["film_steps"]
+
+
+def test_film_step_spaces_the_content_updates():
+    """With film_step, accepted steps closer than it to the last film step leave the
+    content alone; the orbit moves by far less than the film's own resolution (measured:
+    min film 0.17219 vs 0.17216 um over half a seed turn at 1/1000 turn)."""
+    every = simulate(scene(turns=0.1), progress=False)
+    spaced = simulate(scene(turns=0.1, film_step=2.5e-5), progress=False)
+    assert spaced.stats["film_steps"] < 0.6 * every.stats["film_steps"]
+    assert np.min(np.diff(spaced.film_record[:, 0])) > 2.5e-5
+    assert spaced.film_min.min() == pytest.approx(every.film_min.min(), rel=0.01)
