@@ -15,7 +15,8 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["film_thickness", "cubed_thickness_coefficients", "reynolds_source",
+__all__ = ["film_thickness", "film_thickness_integral", "cubed_thickness_coefficients",
+           "reynolds_source",
            "source_coefficients", "reynolds_source_integral", "theta_from_inertial",
            "inertial_from_theta", "local_to_inertial"]
 
@@ -23,6 +24,12 @@ __all__ = ["film_thickness", "cubed_thickness_coefficients", "reynolds_source",
 def film_thickness(theta, eps, clearance=1.0):
     """h = c (1 + eps cos theta) [m] (seed Eq. 7); dimensionless H when clearance=1."""
     return clearance * (1.0 + eps * np.cos(theta))
+
+
+def film_thickness_integral(theta_lo, theta_hi, eps):
+    """Exact integral of H = 1 + eps cos(theta) over [theta_lo, theta_hi] [rad]: the film
+    content of a control volume per unit width (JFO films)."""
+    return (theta_hi - theta_lo) + eps * (np.sin(theta_hi) - np.sin(theta_lo))
 
 
 def cubed_thickness_coefficients(eps, derivative: bool = False):

@@ -33,7 +33,7 @@ import scipy.sparse as sp
 
 from ..bearing import Bearing, JournalState, check_positive
 from ..validation import check_film_solve, check_grooves, check_jfo_supply
-from ..film import film_thickness, inertial_from_theta
+from ..film import film_thickness, film_thickness_integral, inertial_from_theta
 from ..solution import FilmSolution, film_solution
 from ..solvers.cavitation import active_set
 from ..solvers.jfo import JFOResult, solve_balance
@@ -53,12 +53,13 @@ def film_volumes(mesh: FilmMesh) -> ControlVolumes:
 
 
 def _content(cv: ControlVolumes, eps: float) -> np.ndarray:
-    """Exact integral of H = 1 + eps cos(theta) over each volume."""
-    return cv.width * ((cv.x_hi - cv.x_lo) + eps * (np.sin(cv.x_hi) - np.sin(cv.x_lo)))
+    """Exact integral of H over each volume (its content when full)."""
+    return cv.width * film_thickness_integral(cv.x_lo, cv.x_hi, eps)
 
 
 def _cos_integral(cv: ControlVolumes) -> np.ndarray:
-    return cv.width * (np.sin(cv.x_hi) - np.sin(cv.x_lo))
+    """Integral of cos(theta) = dH/d(eps) over each volume: a squeeze's storage rate."""
+    return cv.width * film_thickness_integral(cv.x_lo, cv.x_hi, 1.0) - cv.area
 
 
 def _transport(cv: ControlVolumes, eps: float, speed: float) -> sp.csr_matrix:
