@@ -96,3 +96,14 @@ def test_film_step_spaces_the_content_updates():
     assert spaced.stats["film_steps"] < 0.6 * every.stats["film_steps"]
     assert np.min(np.diff(spaced.film_record[:, 0])) > 2.5e-5
     assert spaced.film_min.min() == pytest.approx(every.film_min.min(), rel=0.01)
+
+
+def test_interrupted_jfo_run_keeps_results_and_film_record(monkeypatch):
+    """Ctrl-C in the middle of a fem-jfo run: the finished segments come back, marked
+    partial, with the film steps committed up to the stop."""
+    from tests.test_mechanism import _interrupt_at
+    _interrupt_at(monkeypatch, 2500)     # after the first quarter-turn segment
+    r = simulate(scene(turns=1.0), progress=False)
+    assert r.partial and r.message.startswith("interrupted at t = ")
+    assert len(r.t) > 10 and np.all(np.isfinite(r.eps)) and np.all(np.isfinite(r.force_x))
+    assert len(r.film_record) > 10 and r.film_record[-1, 0] >= r.t[-1]
