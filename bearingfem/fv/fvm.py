@@ -95,6 +95,12 @@ def _structure(nt: int, nz: int, periodic: bool):
     return np.concatenate(rows), np.concatenate(cols)
 
 
+def _end_conductance(g: FVMGrid, eps: float) -> np.ndarray:
+    """Conductance of each theta column's axial end faces, ambient half a cell away:
+    2 H^3 dtheta / dzeta (the cell's own north/south conductance, doubled)."""
+    return 2.0 * film_thickness(g.theta_c, eps) ** 3 * g.dtheta / g.dzeta
+
+
 def _assemble(g: FVMGrid, eps: float, eps_dot: float, w: float):
     """Matrix (CSR, on the grid's fixed layout) and right-hand side of the balance."""
     nz = g.n_z
@@ -179,9 +185,8 @@ def _jfo(bearing, g: FVMGrid, state, grooves, ambient):
                         * dz, nz)
     # the axial ends hold the ambient pressure on the face half a cell away
     cend = np.zeros((g.n_theta, nz))
-    Hc3 = film_thickness(g.theta_c, state.eps) ** 3 * g.dtheta / g.dzeta
-    cend[:, 0] += 2.0 * Hc3
-    cend[:, -1] += 2.0 * Hc3
+    cend[:, 0] += _end_conductance(g, state.eps)
+    cend[:, -1] += _end_conductance(g, state.eps)
     cend = cend.ravel()
     pa = ambient / bearing.pressure_scale
     fixed, values, fraction, _ = _groove_cells(bearing, g, state, grooves)
@@ -265,8 +270,7 @@ def fvm_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z:
     friction = mu * R ** 3 / c * dA * float(np.sum(state.omega / H * shear
                                                    + 0.5 * H * dP.ravel() * full))
     # Side leakage through the end faces: flux H^3 (P_face=0 - P_c) / (dzeta/2) per face.
-    Hc3 = film_thickness(g.theta_c, state.eps) ** 3
-    q = np.sum(Hc3 * (Pg[:, -1] + Pg[:, 0])) * 2.0 / g.dzeta * g.dtheta
+    q = np.sum(_end_conductance(g, state.eps) * (Pg[:, -1] + Pg[:, 0]))
     leakage = c * R ** 2 / 12.0 * float(q)
     flow_in = mass_balance = None
     if flows is not None:
