@@ -281,3 +281,35 @@ def test_planar_periodic_sides_match_closed_sides_for_a_gap_uniform_across():
         assert sols[1].cavitated_fraction == pytest.approx(sols[0].cavitated_fraction)
         gaps.append(abs(sols[1].load / sols[0].load - 1))
     assert gaps[0] < 1e-3 and gaps[0] / gaps[1] > 3.5
+
+
+def test_pocketed_pad_jfo_against_its_exact_film():
+    """The pocketed pad of Almqvist, Fabricius, Spencer and Wall (J. Tribol. 2014): L 20 mm,
+    a 3 mm pocket 10 um deep from x = 2 mm in a 1 um film, 1 m/s, mu 0.01 Pa s, oil 50 kPa
+    above the cavitation pressure at both ends (their 100 kPa and 50 kPa). Exact 1D JFO
+    film (derived here): the film ruptures at the pocket's edge, so the inlet carries
+    q = U h0/2 + h0^3 p_a / (12 mu a); the pocket holds that content (theta = 2 q / (U h1))
+    until its full part of length p_b h1^3 / (12 mu (U h1/2 - q)) rebuilds
+    p_b = p_a (1 + (L - a - b) / a) ahead of the outlet land. Load 3780 N/m; Reynolds'
+    condition, which keeps no content, lets the pocket sit at zero pressure and carries
+    p_a (L - b) / 2 = 425 N/m. Computed: load error 8.0e-5, 3.4e-5, 1.1e-5 at 200, 400,
+    800 cells; theta exact; the cavity's end within a cell."""
+    L, a, b, h0, h1, mu, U, pa = 20e-3, 2e-3, 3e-3, 1e-6, 10e-6, 0.01, 1.0, 5e4
+    q = U * h0 / 2 + h0 ** 3 * pa / (12 * mu * a)
+    pb = pa * (1 + (L - a - b) / a)
+    full = pb * h1 ** 3 / (12 * mu * (U * h1 / 2 - q))
+    exact = pa * a / 2 + pb * full / 2 + (pb + pa) * (L - a - b) / 2
+    reynolds = pa * (L - b) / 2
+    assert exact / reynolds > 8
+    gap = lambda x, y, t: np.where((x > a) & (x < a + b), h1, h0)   # noqa: E731
+    film = PlanarFilm(L, 1e-3, mu, gap, speed=U, inlet_pressure=pa, outlet_pressure=pa)
+    errs = []
+    for n in (200, 400):
+        s = solve_planar(film, n, 1)
+        errs.append(abs(s.load / 1e-3 / exact - 1))
+        cav = s.x[s.fraction < 1 - 1e-12]
+        assert cav.min() == pytest.approx(a, abs=1e-12)
+        assert abs(cav.max() - (a + b - full)) < L / n
+        assert s.fraction.min() == pytest.approx(2 * q / (U * h1), rel=1e-10)
+        assert abs(s.mass_balance) < 1e-10 * s.flow_in
+    assert errs[1] < 5e-5 and errs[0] / errs[1] > 2
