@@ -33,7 +33,7 @@ import scipy.sparse as sp
 
 from ..bearing import Bearing, JournalState, check_positive
 from ..validation import check_film_solve, check_grooves, check_jfo_supply
-from ..film import film_thickness, film_thickness_integral, inertial_from_theta
+from ..film import film_thickness, film_thickness_integral
 from ..solution import FilmSolution, film_solution
 from ..solvers.cavitation import active_set
 from ..solvers.jfo import JFOResult, solve_balance
@@ -239,21 +239,15 @@ class JFOFilm:
         (self.time, self.state, self.fraction, self.content, self.cavitated,
          self.solution, self.steps) = snapshot
 
-    def _alpha0(self, op: FilmOperator, gamma: float) -> float:
-        return float(inertial_from_theta(op.mesh.axes[0][0], gamma))
-
-    def _carried(self, op: FilmOperator, cv: ControlVolumes, state: JournalState,
-                 values: np.ndarray | None = None):
-        """The kept content (or ``values`` per node) on the mesh of ``state`` (a periodic
-        mesh turned with the line of centres since the kept state)."""
-        values = self.content if values is None else values
+    def _carried(self, cv: ControlVolumes, state: JournalState, *values: np.ndarray):
+        """Per-node arrays of the kept step on the mesh of ``state`` (a tuple): a periodic
+        mesh starts at the line of centres, so it has turned by the change of the attitude
+        angle since the kept state; a grooved or supply-line mesh stays in the bearing."""
         if not cv.periodic:
             return values
-        op0 = self._operator(self.state)
-        dth = 2.0 * np.pi / cv.n_columns
-        turn = np.mod(self._alpha0(op, state.gamma) - self._alpha0(op0, self.state.gamma)
-                      + np.pi, 2.0 * np.pi) - np.pi
-        return shift_rows(cv, values, turn / dth)
+        turn = np.mod(state.gamma - self.state.gamma + np.pi, 2.0 * np.pi) - np.pi
+        cells = turn / (2.0 * np.pi / cv.n_columns)
+        return tuple(shift_rows(cv, v, cells) for v in values)
 
     def instant(self, state: JournalState, warm: np.ndarray | None = None):
         """The film at ``state`` with the kept content, before any content moves: volumes
@@ -265,13 +259,12 @@ class JFOFilm:
         op = self._operator(state)
         cv = film_volumes(op.mesh)
         # full: not a cavity at the kept step, or a cavity the closing gap has filled
-        carried_cav = self._carried(op, cv, state, self.cavitated.astype(float)) > 0.5
-        full = ~carried_cav | (self._carried(op, cv, state)
-                               >= _content(cv, state.eps) * (1.0 - 1e-12))
+        was_cavity, content = self._carried(cv, state, self.cavitated.astype(float),
+                                            self.content)
+        full = (was_cavity <= 0.5) | (content >= _content(cv, state.eps) * (1.0 - 1e-12))
         mesh = op.mesh
-        P_fix, _ = _boundary_values(self.bearing, mesh, self.grooves, self.ambient_pressure)
-        P = np.zeros(mesh.ndofs)
-        P[mesh.fixed] = P_fix[mesh.fixed]
+        # held values on the fixed nodes, zero on the free ones
+        P, _ = _boundary_values(self.bearing, mesh, self.grooves, self.ambient_pressure)
         K = op.stiffness(state.eps)
         load = op.load(state.eps, state.eps_dot, state.wedge_speed) - K @ P
         keep = mesh.free[full[mesh.free]]
@@ -290,7 +283,7 @@ class JFOFilm:
         dt = check_positive("dt", dt)
         op = self._operator(state)
         cv = film_volumes(op.mesh)
-        old = self._carried(op, cv, state)
+        old, = self._carried(cv, state, self.content)
         T = _transport(cv, state.eps, state.omega)
         H = _content(cv, state.eps)
         P, phi, res, flows = _solve(self.bearing, op, state.eps, T, 12.0 * H / dt,
