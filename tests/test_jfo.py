@@ -313,3 +313,36 @@ def test_pocketed_pad_jfo_against_its_exact_film():
         assert s.fraction.min() == pytest.approx(2 * q / (U * h1), rel=1e-10)
         assert abs(s.mass_balance) < 1e-10 * s.flow_in
     assert errs[1] < 5e-5 and errs[0] / errs[1] > 2
+
+
+def test_set_changes_solved_by_low_rank_correction_equal_a_new_factorisation(seed):
+    """A set a few volumes away from the factorised one is solved by the Woodbury
+    correction of the old factors: same solution as factorising its own matrix, no new
+    factorisation; beyond BORDERED_MAX_CHANGES volumes it factorises again."""
+    import scipy.sparse.linalg as spla
+    from bearingfem.fe.jfo import _transport, film_volumes
+    from bearingfem.solvers.blocksolve import BORDERED_MAX_CHANGES
+    from bearingfem.solvers.jfo import _SetSolver, _principal, _set_matrix
+    from bearingfem.fe.assembly import fe_operator
+    state = JournalState(eps=0.6, omega=250.0)
+    op = fe_operator(seed, state, 48, 8, "P1", None, True, ())
+    free = op.mesh.free
+    K = op.free_stiffness(state.eps).tocsc()
+    A = _principal(_transport(film_volumes(op.mesh), state.eps, state.wedge_speed), free,
+                   np.full(len(free), 0.3))
+    rng = np.random.default_rng(1)
+    rhs = rng.standard_normal(len(free))
+    base = rng.random(len(free)) < 0.4
+    sets = _SetSolver(K, A)
+    sets.solve(base, rhs)
+    for k in (1, 5, BORDERED_MAX_CHANGES):
+        cav = base.copy()
+        cav[rng.choice(len(free), k, replace=False)] ^= True
+        x = sets.solve(cav, rhs)
+        exact = spla.spsolve(_set_matrix(K, A, cav), rhs)
+        assert np.max(np.abs(x - exact)) < 1e-10 * np.max(np.abs(exact))
+    assert sets.factorisations == 1
+    cav = base.copy()
+    cav[:BORDERED_MAX_CHANGES + 1] ^= True
+    sets.solve(cav, rhs)
+    assert sets.factorisations == 2

@@ -143,6 +143,11 @@ def _film_solution(bearing, state, op: FilmOperator, P, phi, res: JFOResult,
         fraction=phi, mass_balance=flows.balance)
 
 
+@lru_cache(maxsize=32)
+def _prolongation(coarse: FilmMesh, fine: FilmMesh) -> sp.csr_matrix:
+    return prolongation(coarse, fine.theta, fine.zeta)
+
+
 #: Below this many free nodes a steady film starts cold instead of from a coarser mesh.
 COARSEST_FREE_NODES = 500
 
@@ -161,7 +166,7 @@ def _steady(bearing: Bearing, state: JournalState, operator, n_theta, n_z, groov
         Pc, phic, _, _, opc = _steady(bearing, state, operator, max(8, n_theta // 2),
                                       max(2, n_z // 2), grooves, ambient)
         u = Pc - (1.0 - phic)          # the universal variable: < 0 in the cavity
-        cavitated0 = (prolongation(opc.mesh, op.mesh.theta, op.mesh.zeta) @ u) < 0.0
+        cavitated0 = (_prolongation(opc.mesh, op.mesh) @ u) < 0.0
         warm = 12
     P, phi, res, flows = _solve(bearing, op, state.eps, T, storage, np.zeros(op.mesh.ndofs),
                                 grooves, ambient, cavitated0, warm)

@@ -10,9 +10,11 @@ volumes and the previous step give. One universal variable u per volume carries 
 (Giacopini et al. 2010, Almqvist et al. 2014): P = max(u, 0), phi = 1 + min(u, 0).
 R(u) is piecewise linear, so semismooth Newton on it is an active-set method: for a set
 C of cavitated volumes the unknowns are P off C and phi on C, one sparse solve gives the
-exact answer of that set, and the set changes where P < 0 or phi > 1. Each iteration
-costs one factorisation; from a good set (the previous time step's, a coarser mesh's, or
-that of the Reynolds-condition problem of the same balance) one to four iterations finish.
+exact answer of that set, and the set changes where P < 0 or phi > 1. From a good set (the
+previous time step's, a coarser mesh's, or that of the Reynolds-condition problem of the
+same balance) one to four iterations finish. Sets differ only in the columns of the volumes
+that changed, so after the first factorisation a set a few volumes away is solved exactly
+by a low-rank (Woodbury) correction of it: a solve costs about one factorisation.
 """
 from __future__ import annotations
 
@@ -22,6 +24,7 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
+from .blocksolve import BORDERED_MAX_CHANGES
 from .cavitation import active_set
 
 __all__ = ["JFOResult", "jfo_solve", "solve_balance", "upwind_transport"]
@@ -33,10 +36,12 @@ class JFOResult:
 
     pressure, fraction : P >= 0 and phi in [0, 1] on the free volumes
     cavitated : the set C (phi solved, P = 0)
-    iterations : sparse factorisations: the Newton iterations and those of the
-        Reynolds-condition problem that placed the first set
+    iterations : the Newton iterations and those of the Reynolds-condition problem that
+        placed the first set
     residual : max |R| / max |b| at the returned (P, phi)
     converged : the set repeated and the residual is at round-off
+    factorisations : sparse LU factorisations among the iterations (the others were
+        low-rank corrections of one)
     """
 
     pressure: np.ndarray
@@ -45,10 +50,7 @@ class JFOResult:
     iterations: int
     residual: float
     converged: bool
-
-    @property
-    def factorisations(self) -> int:
-        return self.iterations
+    factorisations: int = 0
 
 
 def _lu(J: sp.csc_matrix):
@@ -60,17 +62,66 @@ def _lu(J: sp.csc_matrix):
                      options=dict(SymmetricMode=True, DiagPivotThresh=0.1))
 
 
-def _set_matrix(K: sp.csc_matrix, A: sp.csc_matrix, cavitated: np.ndarray) -> sp.csc_matrix:
-    """Columns of K off the set and of A on it: the Jacobian of R for that set. Column
-    selection works on the CSC arrays directly (no sparse products)."""
-    keep = ~cavitated
-    cols_k = np.repeat(keep, np.diff(K.indptr))
-    cols_a = np.repeat(cavitated, np.diff(A.indptr))
-    rows = np.concatenate([K.indices[cols_k], A.indices[cols_a]])
-    vals = np.concatenate([K.data[cols_k], A.data[cols_a]])
-    cols = np.concatenate([np.repeat(np.arange(K.shape[1]), np.diff(K.indptr))[cols_k],
-                           np.repeat(np.arange(A.shape[1]), np.diff(A.indptr))[cols_a]])
-    return sp.csc_matrix((vals, (rows, cols)), shape=K.shape)
+def _set_matrix(K: sp.csc_matrix, A: sp.csc_matrix, cavitated: np.ndarray,
+                stacked=None) -> sp.csc_matrix:
+    """Columns of K off the set and of A on it: the Jacobian of R for that set, gathered
+    from the CSC arrays directly (no sparse products or format conversions).
+    ``stacked``: (data, indices) of K and A concatenated, when the caller keeps them."""
+    data, indices = stacked if stacked is not None else _stacked(K, A)
+    count = np.where(cavitated, np.diff(A.indptr), np.diff(K.indptr))
+    indptr = np.zeros(len(count) + 1, dtype=K.indptr.dtype)
+    np.cumsum(count, out=indptr[1:])
+    start = np.where(cavitated, A.indptr[:-1] + K.nnz, K.indptr[:-1])
+    pos = np.repeat(start - indptr[:-1], count) + np.arange(indptr[-1])
+    return sp.csc_matrix((data[pos], indices[pos], indptr), shape=K.shape)
+
+
+def _stacked(K: sp.csc_matrix, A: sp.csc_matrix):
+    return np.concatenate([K.data, A.data]), np.concatenate([K.indices, A.indices])
+
+
+class _SetSolver:
+    """Solves J(C) x = r for the sets C of one balance. J(C) has the columns of K off C
+    and of A on C, so the matrices of two sets differ only in the k columns of the volumes
+    where the sets differ: J(C) = J(C0) + U E^T with U those columns' differences and E
+    their unit vectors. For k <= ``BORDERED_MAX_CHANGES`` (as for the Reynolds film's
+    bordered solves, a fixed count keeps every run reproducible) the Woodbury identity
+    solves it exactly with the factors of J(C0): one solve with k + 1 right-hand sides and
+    a k x k dense system, instead of a new factorisation."""
+
+    def __init__(self, K: sp.csc_matrix, A: sp.csc_matrix):
+        self.K, self.A = K, A
+        self.stacked = _stacked(K, A)
+        self.base: np.ndarray | None = None      # the set C0 of the factors
+        self.lu = None
+        self.factorisations = 0
+
+    def solve(self, cavitated: np.ndarray, rhs: np.ndarray) -> np.ndarray:
+        if self.base is not None:
+            changed = np.flatnonzero(cavitated != self.base)
+            if len(changed) <= BORDERED_MAX_CHANGES:
+                x = self._corrected(cavitated, changed, rhs)
+                if x is not None:
+                    return x
+        self.lu = _lu(_set_matrix(self.K, self.A, cavitated, self.stacked))
+        self.base = cavitated.copy()
+        self.factorisations += 1
+        return self.lu.solve(rhs)
+
+    def _corrected(self, cavitated, changed, rhs):
+        """The Woodbury solve, or None when its k x k system is near singular (then the
+        caller factorises)."""
+        if len(changed) == 0:
+            return self.lu.solve(rhs)
+        # new column minus old: A_j - K_j where j joined the set, K_j - A_j where it left
+        sign = np.where(cavitated[changed], 1.0, -1.0)
+        U = (self.A[:, changed] - self.K[:, changed]).toarray() * sign
+        Y = self.lu.solve(np.column_stack([rhs, U]))
+        y, Z = Y[:, 0], Y[:, 1:]
+        S = np.eye(len(changed)) + Z[changed]
+        if np.linalg.cond(S) > 1e10:
+            return None
+        return y - Z @ np.linalg.solve(S, y[changed])
 
 
 def _fischer_burmeister(K: sp.csc_matrix, A: sp.csc_matrix, b: np.ndarray, P: np.ndarray,
@@ -153,28 +204,31 @@ def jfo_solve(K: sp.spmatrix, A: sp.spmatrix, b: np.ndarray, *,
     if cavitated0 is not None:
         tries.append((np.asarray(cavitated0, bool) & can_cavitate, warm_iterations))
     tries.append((None, max_iter))
-    it = 0
+    it = lus = 0
     P, phi = np.zeros(n), np.ones(n)
     converged = False
+    sets = _SetSolver(K, A)
     for cav, limit in tries:
         if cav is None:
-            cav, k0 = _reynolds_set(K, A, b, phi, can_cavitate)
-            it += k0
-        P, phi, cav, k, converged = _active_set(K, A, b, cav, can_cavitate, limit)
+            cav, k0, lu0 = _reynolds_set(K, A, b, phi, can_cavitate)
+            it, lus = it + k0, lus + lu0
+        P, phi, cav, k, converged = _active_set(sets, A, b, cav, can_cavitate, limit)
         it += k
         if converged:
             break
+    lus += sets.factorisations
     if not converged:
         P, phi, fb_it, converged = _fischer_burmeister(
             K, A, b, np.maximum(P, 0.0), np.minimum(phi, 1.0), tol, 40)
-        it += fb_it
+        it, lus = it + fb_it, lus + fb_it
         cav = phi < 1.0
     P = np.maximum(P, 0.0)
     phi = np.clip(phi, 0.0, 1.0)
     r = K @ P + A @ phi - b
     residual = float(np.abs(r).max(initial=0.0)) / scale
     return JFOResult(pressure=P, fraction=phi, cavitated=cav, iterations=it,
-                     residual=residual, converged=converged and residual < 1e-8)
+                     residual=residual, converged=converged and residual < 1e-8,
+                     factorisations=lus)
 
 
 def _reynolds_set(K, A, b, phi_guess, can_cavitate) -> np.ndarray:
@@ -189,18 +243,18 @@ def _reynolds_set(K, A, b, phi_guess, can_cavitate) -> np.ndarray:
     q = b - (A @ phi_guess - D * phi_guess) - D
     res = active_set(sp.csr_matrix(K), q)
     w = K @ res.pressure - q
-    return (res.pressure <= 0.0) & (w > 0.0) & can_cavitate, res.factorisations
+    return ((res.pressure <= 0.0) & (w > 0.0) & can_cavitate, res.iterations,
+            res.factorisations)
 
 
-def _active_set(K, A, b, cav, can_cavitate, max_iter):
+def _active_set(sets: _SetSolver, A, b, cav, can_cavitate, max_iter):
     """Semismooth Newton on the universal variable from the set ``cav`` (module text)."""
     n = b.shape[0]
     P, phi = np.zeros(n), np.ones(n)
     seen = set()
     for it in range(1, max_iter + 1):
-        J = _set_matrix(K, A, cav)
         rhs = b - A @ np.where(cav, 0.0, 1.0)
-        x = _lu(J).solve(rhs)
+        x = sets.solve(cav, rhs)
         P = np.where(cav, 0.0, x)
         phi = np.where(cav, x, 1.0)
         # Newton step on min/max: pressurised volumes with P < 0 cavitate, cavities whose
@@ -233,8 +287,8 @@ def solve_balance(K: sp.csr_matrix, T: sp.csr_matrix, storage: np.ndarray,
     Pb = np.where(fixed_only, P_fixed, 0.0)
     phib = np.where(fixed_only, phi_fixed, 0.0)
     b = source[free] - (K @ Pb)[free] - (T @ phib)[free]
-    A = (T[free][:, free] + sp.diags(storage[free])).tocsr()
-    Kf = K[free][:, free] if K_free is None else K_free
+    A = _principal(T, free, storage[free])
+    Kf = _principal(K, free) if K_free is None else K_free
     c0 = None if cavitated0 is None else np.asarray(cavitated0, bool)[free]
     n = len(free)
     if not np.any(b) and not np.any(A.diagonal()):
@@ -244,6 +298,21 @@ def solve_balance(K: sp.csr_matrix, T: sp.csr_matrix, storage: np.ndarray,
     P, phi = Pb, np.where(fixed_only, phi_fixed, 0.0)
     P[free], phi[free] = res.pressure, res.fraction
     return P, phi, res, -(K @ P + T @ phi)
+
+
+def _principal(M: sp.spmatrix, rows: np.ndarray, diagonal=None) -> sp.csc_matrix:
+    """M[rows][:, rows] (+ diag(``diagonal``)) as CSC, by one mask over M's entries
+    (scipy's fancy indexing validates and copies twice: most of a small solve's set-up)."""
+    M = M.tocoo()
+    index = np.full(M.shape[0], -1)
+    index[rows] = np.arange(len(rows))
+    i, j = index[M.row], index[M.col]
+    keep = (i >= 0) & (j >= 0)
+    i, j, v = i[keep], j[keep], M.data[keep]
+    if diagonal is not None:
+        d = np.arange(len(rows))
+        i, j, v = np.concatenate([i, d]), np.concatenate([j, d]), np.concatenate([v, diagonal])
+    return sp.csc_matrix((v, (i, j)), shape=(len(rows), len(rows)))
 
 
 def upwind_transport(k: np.ndarray, d: np.ndarray, flux: np.ndarray, n: int) -> sp.csr_matrix:
