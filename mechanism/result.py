@@ -13,7 +13,7 @@ __all__ = ["SimulationResult", "load_result", "provenance", "FIELDS"]
 
 FIELDS = ("t", "crank_angle", "crank_speed", "rod_angle", "slider_position",
           "slider_acceleration", "eps", "e_x", "e_y", "film_min", "force_x", "force_y")
-DENSE = ("dense_t", "dense_e_x", "dense_e_y", "film_record")
+DENSE = ("dense_t", "dense_e_x", "dense_e_y", "film_record", "step_t")
 #: Columns of ``film_record`` (a film with memory: one row per committed film step).
 FILM_RECORD = ("t [s]", "F_x [N]", "F_y [N]", "peak pressure [Pa]", "cavitated share [1]",
                "friction [N]", "mass balance [m^3/s]")
@@ -53,6 +53,9 @@ class SimulationResult:
     dense_e_y: np.ndarray = field(default_factory=lambda: np.empty(0))
     #: a film with memory ("fem-jfo"): one row per committed step, columns FILM_RECORD
     film_record: np.ndarray = field(default_factory=lambda: np.empty((0, 7)))
+    #: where the integrator's accepted steps end [s] (the whole run, not only the
+    #: recorded turns): where a run spends its steps, e.g. per crank angle
+    step_t: np.ndarray = field(default_factory=lambda: np.empty(0))
 
     def summary(self) -> str:
         s = self.stats

@@ -266,7 +266,8 @@ def _sample(scene, pieces, effects, g, stats, partial, message):
         e_y=Y[2], film_min=np.maximum(c * (1.0 - eps), 0.0), force_x=out["force_x"],
         force_y=out["force_y"], scene=scene.name, partial=partial, message=message,
         stats=stats, provenance=provenance(scene), dense_t=td, dense_e_x=Yd[1],
-        dense_e_y=Yd[2], film_record=record)
+        dense_e_y=Yd[2], film_record=record,
+        step_t=np.concatenate([p.ts[1:] for p in pieces]))
 
 
 def _simulate_ideal(scene: Scene, progress=None) -> SimulationResult:

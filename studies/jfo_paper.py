@@ -6,9 +6,11 @@ Runs the seed's scene (``paper-short-fem`` or ``paper-long-fem`` by L/D) with th
 under Reynolds' condition, and the same scene with the JFO film (``paper-*-jfo``: same
 mesh, oil at atmospheric pressure around a cavity near zero absolute). Prints a table over
 the recorded turn (peak eccentricity, minimum film, peak joint force, peak film pressure,
-mean friction, wall time, steps) and where the JFO film's cavity forms and collapses
-(crank angles), and writes ``jfo_paper.csv`` and ``jfo_paper.png`` (orbits, minimum film,
-cavitated share and peak pressure against the crank angle).
+mean friction, wall time, steps), where the JFO film's cavity forms and collapses
+(crank angles) and where each run's integrator spent its steps (per 30 deg of crank over
+the recorded turn), and writes ``jfo_paper.csv``, ``jfo_paper_steps.csv`` and
+``jfo_paper.png`` (orbits, minimum film, cavitated share, peak pressure and steps against
+the crank angle).
 """
 from __future__ import annotations
 
@@ -49,6 +51,13 @@ def cavity_events(record: np.ndarray, crank_at) -> tuple[list, list]:
     fall = np.flatnonzero(on[:-1] & ~on[1:]) + 1
     deg = lambda i: float(np.mod(np.degrees(crank_at(record[i, 0])), 360.0))  # noqa: E731
     return [deg(i) for i in rise], [deg(i) for i in fall]
+
+
+def steps_by_crank_angle(r, bins: int = 12) -> np.ndarray:
+    """Accepted steps of the recorded turn in ``bins`` equal crank-angle intervals."""
+    t = r.step_t[(r.step_t >= r.t[0]) & (r.step_t <= r.t[-1])]
+    q = np.mod(np.degrees(np.interp(t, r.t, r.crank_angle)), 360.0)
+    return np.histogram(q, bins=bins, range=(0.0, 360.0))[0]
 
 
 def row(name, r, friction):
@@ -100,11 +109,19 @@ def main(argv=None):
           f"collapses at {', '.join(f'{x:.0f}' for x in collapses) or '-'} deg; largest "
           f"step mass balance {balance:.1e} m^3/s; cost JFO / Reynolds "
           f"{r_jfo.stats['wall_time'] / r_fem.stats['wall_time']:.2f}x")
+    per_bin = {"Reynolds' condition": steps_by_crank_angle(r_fem),
+               "JFO": steps_by_crank_angle(r_jfo)}
+    print("accepted steps of the recorded turn per 30 deg of crank, from TDC:")
+    for name, h in per_bin.items():
+        print(f"  {name:20s} " + " ".join(f"{k:5d}" for k in h))
     write_csv(rows, out / "jfo_paper.csv")
+    write_csv([dict(crank_from_deg=30 * i, reynolds_steps=int(per_bin["Reynolds' condition"][i]),
+                    jfo_steps=int(per_bin["JFO"][i])) for i in range(12)],
+              out / "jfo_paper_steps.csv")
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig, ax = plt.subplots(2, 2, figsize=(11, 8))
+    fig, ax = plt.subplots(2, 3, figsize=(15, 8))
     c = fem.bearing.clearance
     for r, lab in ((r_fem, "Reynolds' condition"), (r_jfo, "JFO")):
         q = np.mod(np.degrees(r.crank_angle), 360.0)
@@ -132,14 +149,21 @@ def main(argv=None):
     ax[1, 1].semilogy(qr[o], rec[o, 3] / 1e6, "C1.", ms=2, label="JFO")
     ax[1, 1].set(xlabel="crank angle [deg]", ylabel="peak film pressure [MPa]",
                  title="peak pressure")
-    for a_ in (ax[0, 0], ax[0, 1], ax[1, 1]):
+    edges = np.arange(0, 361, 30)
+    for k, (name, h) in enumerate(per_bin.items()):
+        ax[0, 2].bar(edges[:-1] + 15 + (k - 0.5) * 12, h, width=12, label=name)
+    ax[0, 2].set(xlabel="crank angle [deg]", ylabel="accepted steps per 30 deg",
+                 title="where the integrator's steps go", xticks=edges[::2])
+    ax[1, 2].axis("off")
+    for a_ in (ax[0, 0], ax[0, 1], ax[1, 1], ax[0, 2]):
         a_.legend(fontsize=8)
     fig.suptitle(f"Seed piston pin, L/D = {fem.bearing.length_ratio:g}: Reynolds' "
                  "condition vs mass-conserving film")
     fig.tight_layout()
     fig.savefig(out / "jfo_paper.png", dpi=130)
-    print(f"wrote {out / 'jfo_paper.csv'} and {out / 'jfo_paper.png'}")
-    return rows, forms, collapses
+    print(f"wrote {out / 'jfo_paper.csv'}, {out / 'jfo_paper_steps.csv'} and "
+          f"{out / 'jfo_paper.png'}")
+    return rows, forms, collapses, per_bin
 
 
 if __name__ == "__main__":

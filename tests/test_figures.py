@@ -25,3 +25,7 @@ def test_run_figure_reads_at_a_glance(tmp_path):
     from mechanism import load_result
     back = load_result(tmp_path / "run")
     np.testing.assert_array_equal(back.dense_e_y, r.dense_e_y)
+    # where the integrator's steps went: one time per accepted step, kept with the run
+    assert len(r.step_t) == r.stats["steps"] and np.all(np.diff(r.step_t) > 0)
+    assert r.t[-1] <= r.step_t[-1] < r.t[-1] + 2 * np.pi / sc.crank_speed / sc.run.samples_per_turn
+    np.testing.assert_array_equal(back.step_t, r.step_t)
