@@ -36,6 +36,7 @@ from ..validation import check_film_solve, check_grooves, check_jfo_supply
 from ..film import film_thickness, film_thickness_integral
 from ..solution import FilmSolution, film_solution
 from ..solvers.cavitation import active_set
+from ..solvers.linsolve import principal_block
 from ..solvers.jfo import JFOResult, solve_balance
 from .assembly import FilmOperator, fe_operator
 from .mesh import FilmMesh
@@ -252,7 +253,7 @@ class JFOFilm:
             return values
         turn = np.mod(state.gamma - self.state.gamma + np.pi, 2.0 * np.pi) - np.pi
         cells = turn / (2.0 * np.pi / cv.n_columns)
-        return tuple(shift_rows(cv, v, cells) for v in values)
+        return tuple(shift_rows(cv, np.stack(values), cells))
 
     def instant(self, state: JournalState, warm: np.ndarray | None = None):
         """The film at ``state`` with the kept content, before any content moves: volumes
@@ -275,7 +276,7 @@ class JFOFilm:
         keep = mesh.free[full[mesh.free]]
         if len(keep) and np.any(load[keep]):
             a0 = None if warm is None else warm[keep]
-            res = active_set(K[keep][:, keep], load[keep], active0=a0)
+            res = active_set(principal_block(K, keep), load[keep], active0=a0)
             P[keep] = res.pressure
         cav = ~full
         cav[mesh.fixed] = False

@@ -89,15 +89,16 @@ def transport_matrix(cv: ControlVolumes, face_flux: np.ndarray) -> sp.csr_matrix
 
 
 def shift_rows(cv: ControlVolumes, values: np.ndarray, cells: float) -> np.ndarray:
-    """Values per node moved ``cells`` columns towards -x along each periodic row (the new
-    node k takes what sat at k + cells), by linear interpolation, which keeps each row's
-    sum exactly: the content a rotating mesh carries from one time step to the next."""
+    """Values per node (last axis) moved ``cells`` columns towards -x along each periodic
+    row (the new node k takes what sat at k + cells), by linear interpolation, which keeps
+    each row's sum exactly: the content a rotating mesh carries from one time step to the
+    next."""
     if cells == 0.0 or not cv.periodic:
         return values
     m = int(np.floor(cells))
     s = cells - m
     n = cv.n_columns
-    grid = np.empty((n, cv.row.max() + 1))
-    grid[cv.column, cv.row] = values
-    shifted = (1.0 - s) * np.roll(grid, -m, axis=0) + s * np.roll(grid, -m - 1, axis=0)
-    return shifted[cv.column, cv.row]
+    node_at = np.empty((n, cv.row.max() + 1), dtype=np.intp)
+    node_at[cv.column, cv.row] = np.arange(len(cv.column))
+    return ((1.0 - s) * values[..., node_at[(cv.column + m) % n, cv.row]]
+            + s * values[..., node_at[(cv.column + m + 1) % n, cv.row]])

@@ -26,6 +26,7 @@ import scipy.sparse.linalg as spla
 
 from .blocksolve import BORDERED_MAX_CHANGES
 from .cavitation import active_set
+from .linsolve import principal_block
 
 __all__ = ["JFOResult", "jfo_solve", "solve_balance", "upwind_transport"]
 
@@ -89,8 +90,8 @@ class _SetSolver:
     solves it exactly with the factors of J(C0): one solve with k + 1 right-hand sides and
     a k x k dense system, instead of a new factorisation."""
 
-    def __init__(self, K: sp.csc_matrix, A: sp.csc_matrix):
-        self.K, self.A = K, A
+    def __init__(self, K: sp.spmatrix, A: sp.spmatrix):
+        self.K, self.A = sp.csc_matrix(K), sp.csc_matrix(A)
         self.stacked = _stacked(K, A)
         self.base: np.ndarray | None = None      # the set C0 of the factors
         self.lu = None
@@ -287,8 +288,8 @@ def solve_balance(K: sp.csr_matrix, T: sp.csr_matrix, storage: np.ndarray,
     Pb = np.where(fixed_only, P_fixed, 0.0)
     phib = np.where(fixed_only, phi_fixed, 0.0)
     b = source[free] - (K @ Pb)[free] - (T @ phib)[free]
-    A = _principal(T, free, storage[free])
-    Kf = _principal(K, free) if K_free is None else K_free
+    A = (principal_block(T, free) + sp.diags(storage[free])).tocsr()
+    Kf = principal_block(K, free) if K_free is None else K_free
     c0 = None if cavitated0 is None else np.asarray(cavitated0, bool)[free]
     n = len(free)
     if not np.any(b) and not np.any(A.diagonal()):
@@ -298,21 +299,6 @@ def solve_balance(K: sp.csr_matrix, T: sp.csr_matrix, storage: np.ndarray,
     P, phi = Pb, np.where(fixed_only, phi_fixed, 0.0)
     P[free], phi[free] = res.pressure, res.fraction
     return P, phi, res, -(K @ P + T @ phi)
-
-
-def _principal(M: sp.spmatrix, rows: np.ndarray, diagonal=None) -> sp.csc_matrix:
-    """M[rows][:, rows] (+ diag(``diagonal``)) as CSC, by one mask over M's entries
-    (scipy's fancy indexing validates and copies twice: most of a small solve's set-up)."""
-    M = M.tocoo()
-    index = np.full(M.shape[0], -1)
-    index[rows] = np.arange(len(rows))
-    i, j = index[M.row], index[M.col]
-    keep = (i >= 0) & (j >= 0)
-    i, j, v = i[keep], j[keep], M.data[keep]
-    if diagonal is not None:
-        d = np.arange(len(rows))
-        i, j, v = np.concatenate([i, d]), np.concatenate([j, d]), np.concatenate([v, diagonal])
-    return sp.csc_matrix((v, (i, j)), shape=(len(rows), len(rows)))
 
 
 def upwind_transport(k: np.ndarray, d: np.ndarray, flux: np.ndarray, n: int) -> sp.csr_matrix:
