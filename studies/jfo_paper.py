@@ -9,8 +9,8 @@ the recorded turn (peak eccentricity, minimum film, peak joint force, peak film 
 mean friction, wall time, steps), where the JFO film's cavity forms and collapses
 (crank angles) and where each run's integrator spent its steps (per 30 deg of crank over
 the recorded turn), and writes ``jfo_paper.csv``, ``jfo_paper_steps.csv`` and
-``jfo_paper.png`` (orbits, minimum film, cavitated share, peak pressure and steps against
-the crank angle).
+``jfo_paper.png`` (orbits, minimum film, cavitated share, peak pressure, steps and the
+mass balance against the crank angle).
 """
 from __future__ import annotations
 
@@ -154,7 +154,9 @@ def main(argv=None):
         ax[0, 2].bar(edges[:-1] + 15 + (k - 0.5) * 12, h, width=12, label=name)
     ax[0, 2].set(xlabel="crank angle [deg]", ylabel="accepted steps per 30 deg",
                  title="where the integrator's steps go", xticks=edges[::2])
-    ax[1, 2].axis("off")
+    ax[1, 2].semilogy(qr[o], np.maximum(np.abs(rec[o, 6]), 1e-30), "C1.", ms=2)
+    ax[1, 2].set(xlabel="crank angle [deg]", ylabel="|feed - leakage - storage| [m^3/s]",
+                 title="JFO mass balance of each film step")
     for a_ in (ax[0, 0], ax[0, 1], ax[1, 1], ax[0, 2]):
         a_.legend(fontsize=8)
     fig.suptitle(f"Seed piston pin, L/D = {fem.bearing.length_ratio:g}: Reynolds' "
