@@ -34,7 +34,7 @@ class FilmMesh:
     end : dofs on the axial end(s), where side leakage leaves
     theta, zeta : dof coordinates (theta in [theta0, theta0 + 2 pi], zeta = z/R)
     half : True when only zeta >= 0 is meshed (results are doubled)
-    n_theta, n_z, length_ratio, theta0 : the arguments the mesh was built from
+    n_theta, n_z, length_ratio, theta0, arcs : the arguments the mesh was built from
     """
 
     basis: object
@@ -50,6 +50,7 @@ class FilmMesh:
     length_ratio: float
     theta0: float | None
     grooves: tuple = ()        # dof indices held at each groove's pressure, one array each
+    arcs: tuple = ()           # the grooves' (start, end) film angles
 
     @property
     def ndofs(self) -> int:
@@ -131,4 +132,4 @@ def film_mesh(n_theta: int, n_z: int, element: str, length_ratio: float,
     return FilmMesh(basis=basis, fixed=fixed, free=free, end=end,
                     theta=np.array(x[0]), zeta=np.array(x[1]), half=half,
                     periodic=theta0 is None, n_theta=n_theta, n_z=n_z, length_ratio=lam,
-                    theta0=theta0, grooves=tuple(grooves))
+                    theta0=theta0, grooves=tuple(grooves), arcs=tuple(arcs))

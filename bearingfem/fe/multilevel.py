@@ -86,24 +86,31 @@ def coarse_level(op: FilmOperator) -> tuple[FilmOperator, sp.csr_matrix] | None:
         return None
     n_theta = max(MIN_N_THETA, m.n_theta // 2)
     n_z = max(MIN_N_Z, m.n_z // 2)
-    coarse = film_operator(n_theta, n_z, "P1", m.length_ratio, m.theta0, m.half)
+    coarse = film_operator(n_theta, n_z, "P1", m.length_ratio, m.theta0, m.half, m.arcs)
     if coarse.mesh.ndofs >= m.ndofs:   # already at the coarsest mesh
         return None
     return coarse, prolongation(coarse.mesh, m.theta[m.free], m.zeta[m.free])
 
 
-def coarse_guess(op: FilmOperator, state, tol: float = 1e-10) -> np.ndarray | None:
+def coarse_guess(op: FilmOperator, state, tol: float = 1e-10,
+                 held: tuple = ()) -> np.ndarray | None:
     """Cavitated pressure from the coarser levels, interpolated to ``op``'s free dofs
-    (None when ``op`` is itself the coarsest level). ``state``: a JournalState."""
+    (None when ``op`` is itself the coarsest level). ``state``: a JournalState; ``held``:
+    the dimensionless pressure of each groove of the mesh (held on its dofs at every
+    level)."""
     level = coarse_level(op)
     if level is None:
         return None
     coarse, prolong = level
     free = coarse.mesh.free
-    b = coarse.load(state.eps, state.eps_dot, state.wedge_speed)[free]
-    P0 = coarse_guess(coarse, state, tol)
-    res = active_set(coarse.free_stiffness(state.eps), b, P0=P0, tol=tol,
-                     max_iter=100 if P0 is None else COARSE_SOLVES)
     P = np.zeros(coarse.mesh.ndofs)
+    for dofs, p in zip(coarse.mesh.grooves, held):
+        P[dofs] = p
+    b = coarse.load(state.eps, state.eps_dot, state.wedge_speed)
+    if held:
+        b = b - coarse.stiffness(state.eps) @ P
+    P0 = coarse_guess(coarse, state, tol, held)
+    res = active_set(coarse.free_stiffness(state.eps), b[free], P0=P0, tol=tol,
+                     max_iter=100 if P0 is None else COARSE_SOLVES)
     P[free] = res.pressure
     return prolong @ P

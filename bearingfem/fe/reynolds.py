@@ -52,9 +52,10 @@ def fe_pressure(op: FilmOperator, state: JournalState, cavitation="reynolds",
         if method == "psor":
             res = psor(K, b, tol=tol, colours=colours)
         else:
-            # coarse levels know no grooves: a grooved film starts from its own full film
-            P0 = (None if active0 is not None or dirichlet is not None
-                  else coarse_guess(op, state, tol))
+            # the coarse levels hold the grooves at their pressures too
+            held = () if dirichlet is None else tuple(
+                float(dirichlet[dofs[0]]) for dofs in op.mesh.grooves)
+            P0 = None if active0 is not None else coarse_guess(op, state, tol, held)
             a0 = None if active0 is None else np.asarray(active0, bool)[free]
             res = active_set(K, b, active0=a0, P0=P0, tol=tol, factor=factor)
         P[free] = res.pressure
