@@ -92,7 +92,7 @@ class _SetSolver:
 
     def __init__(self, K: sp.spmatrix, A: sp.spmatrix):
         self.K, self.A = sp.csc_matrix(K), sp.csc_matrix(A)
-        self.stacked = _stacked(K, A)
+        self.stacked = _stacked(self.K, self.A)
         self.base: np.ndarray | None = None      # the set C0 of the factors
         self.lu = None
         self.factorisations = 0
@@ -232,7 +232,7 @@ def jfo_solve(K: sp.spmatrix, A: sp.spmatrix, b: np.ndarray, *,
                      factorisations=lus)
 
 
-def _reynolds_set(K, A, b, phi_guess, can_cavitate) -> np.ndarray:
+def _reynolds_set(K, A, b, phi_guess, can_cavitate) -> tuple[np.ndarray, int, int]:
     """A starting set from the Reynolds-condition problem of this balance: with the
     transport between volumes taken from ``phi_guess``, each volume's own storage term
     D (1 - phi) is the multiplier of P >= 0, a symmetric complementarity problem that
