@@ -246,26 +246,15 @@ class JFOFilm:
         (self.time, self.state, self.fraction, self.content, self.cavitated,
          self.solution, self.steps) = snapshot
 
-    def _carried(self, cv: ControlVolumes, state: JournalState):
-        """(cavitated flag, content) of the kept step on the mesh of ``state``, per node.
-
-        A periodic mesh starts at the line of centres, so it has turned by the change of
-        the attitude angle since the kept state (a grooved or supply-line mesh stays in the
-        bearing). The content is carried as the kept full film, integrated exactly over
-        each volume's place in the kept geometry, plus the kept shortfall from it
-        (phi - 1) H, interpolated: exact where the film was full (an interpolated full
-        film would leave an error of order (cell)^2 that the next step divides by its
-        dt), and each row's total is kept exactly."""
+    def _carried(self, cv: ControlVolumes, state: JournalState, *values: np.ndarray):
+        """Per-node arrays of the kept step on the mesh of ``state`` (a tuple): a periodic
+        mesh starts at the line of centres, so it has turned by the change of the attitude
+        angle since the kept state; a grooved or supply-line mesh stays in the bearing."""
         if not cv.periodic:
-            return self.cavitated.astype(float), self.content
+            return values
         turn = np.mod(state.gamma - self.state.gamma + np.pi, 2.0 * np.pi) - np.pi
         cells = turn / (2.0 * np.pi / cv.n_columns)
-        eps = self.state.eps
-        full_film = _content(cv, eps)
-        flag, shortfall = shift_rows(cv, np.stack([self.cavitated.astype(float),
-                                                   self.content - full_film]), cells)
-        moved = cv.width * film_thickness_integral(cv.x_lo + turn, cv.x_hi + turn, eps)
-        return flag, moved + shortfall
+        return tuple(shift_rows(cv, np.stack(values), cells))
 
     def instant(self, state: JournalState, warm: np.ndarray | None = None):
         """The film at ``state`` with the kept content, before any content moves: volumes
@@ -277,7 +266,8 @@ class JFOFilm:
         op = self._operator(state)
         cv = film_volumes(op.mesh)
         # full: not a cavity at the kept step, or a cavity the closing gap has filled
-        was_cavity, content = self._carried(cv, state)
+        was_cavity, content = self._carried(cv, state, self.cavitated.astype(float),
+                                            self.content)
         full = (was_cavity <= 0.5) | (content >= _content(cv, state.eps) * (1.0 - 1e-12))
         mesh = op.mesh
         # held values on the fixed nodes, zero on the free ones
@@ -300,7 +290,7 @@ class JFOFilm:
         dt = check_positive("dt", dt)
         op = self._operator(state)
         cv = film_volumes(op.mesh)
-        _, old = self._carried(cv, state)
+        old, = self._carried(cv, state, self.content)
         T = _transport(cv, state.eps, state.omega)
         H = _content(cv, state.eps)
         P, phi, res, flows = _solve(self.bearing, op, state.eps, T, 12.0 * H / dt,
