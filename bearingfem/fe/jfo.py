@@ -15,9 +15,10 @@ the nodes' control volumes (:mod:`bearingfem.fe.volumes`), which conserves mass 
   the local film at the rate eps_dot cos(theta).
 * Transient (:class:`JFOFilm`): backward Euler on the content. The mesh follows the line
   of centres, so between steps the previous content is carried to the new mesh position
-  (along the periodic rows: the previous full film integrated exactly over each volume's
-  new place, the shortfall of a cavity interpolated; each row's total kept exactly); over
-  the step the content then moves at omega/2 relative to the bearing. With grooves the mesh
+  (an exact rotation of the periodic rows by whole cells, linear interpolation for the
+  rest: each row's total is kept exactly, and the error is that of a donor-cell shift,
+  first order in the cell); over the step the content then moves at omega/2 relative to
+  the bearing. With grooves the mesh
   stays fixed in the bearing and nothing is carried.
 
 Flows (per solve): what the grooves (or a supply line) feed, what leaves the axial ends
