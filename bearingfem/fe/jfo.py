@@ -18,8 +18,7 @@ the nodes' control volumes (:mod:`bearingfem.fe.volumes`), which conserves mass 
   (an exact rotation of the periodic rows by whole cells, linear interpolation for the
   rest: each row's total is kept exactly, and the error is that of a donor-cell shift,
   first order in the cell); over the step the content then moves at omega/2 relative to
-  the bearing. With grooves the mesh
-  stays fixed in the bearing and nothing is carried.
+  the bearing. With grooves the mesh stays fixed in the bearing and nothing is carried.
 
 Flows (per solve): what the grooves (or a supply line) feed, what leaves the axial ends
 and the rate of change of the content of the free volumes; their balance is the residual
