@@ -54,7 +54,7 @@ def fe_pressure(op: FilmOperator, state: JournalState, cavitation="reynolds",
         else:
             # the coarse levels hold the grooves at their pressures too
             held = () if dirichlet is None else tuple(
-                float(dirichlet[dofs[0]]) for dofs in op.mesh.grooves)
+                float(dirichlet[dofs[0]]) if len(dofs) else 0.0 for dofs in op.mesh.grooves)
             P0 = None if active0 is not None else coarse_guess(op, state, tol, held)
             a0 = None if active0 is None else np.asarray(active0, bool)[free]
             res = active_set(K, b, active0=a0, P0=P0, tol=tol, factor=factor)
