@@ -5,11 +5,11 @@
 Runs the seed's scene (``paper-short-fem`` or ``paper-long-fem`` by L/D) with the FE film
 under Reynolds' condition, and the same scene with the JFO film (``paper-*-jfo``: same
 mesh, oil at atmospheric pressure around a cavity near zero absolute), both over the JFO
-scene's turns (the long bearing's JFO film settles only by the ninth turn). Prints a table over
-the recorded turn (peak eccentricity, minimum film, peak joint force, peak film pressure,
-mean friction, wall time, steps), where the JFO film's cavity forms and collapses
-(crank angles) and where each run's integrator spent its steps (per 30 deg of crank over
-the recorded turn), and writes ``jfo_paper.csv``, ``jfo_paper_steps.csv`` and
+scene's turns (the long bearing's JFO film settles only by the ninth turn). Prints a
+table over the recorded turn (peak eccentricity, minimum film, peak joint force, peak film
+pressure, mean friction, wall time, steps), where the JFO film's cavity forms and
+collapses (crank angles) and where each run's integrator spent its steps (per 30 deg of
+crank over the recorded turn), and writes ``jfo_paper.csv``, ``jfo_paper_steps.csv`` and
 ``jfo_paper.png`` (orbits, minimum film, cavitated share, peak pressure, steps and the
 mass balance against the crank angle).
 """
