@@ -11,7 +11,6 @@ same P1 mesh, each the best of ``repeat`` calls in one run. Prints the table and
 from __future__ import annotations
 
 import argparse
-import time
 from pathlib import Path
 
 import numpy as np
@@ -20,16 +19,9 @@ from bearingfem import Groove, JournalState, fvm_reynolds, solve_reynolds
 from bearingfem.bearing import seed_bearing
 from bearingfem.outputs.tables import write_csv
 
+from .film_solve import best_time
+
 MESHES = ((120, 20), (240, 40), (480, 80))
-
-
-def best(f, repeat):
-    times = []
-    for _ in range(repeat):
-        t = time.perf_counter()
-        out = f()
-        times.append(time.perf_counter() - t)
-    return min(times), out
 
 
 def main(argv=None):
@@ -48,10 +40,10 @@ def main(argv=None):
     for nt, nz in MESHES[:1] if a.quick else MESHES:
         solve = lambda cav: solve_reynolds(b, s, nt, nz, cavitation=cav, grooves=g)  # noqa
         solve("jfo")       # assemble the operators once (cached), for every method alike
-        t_lin, _ = best(lambda: solve("none"), a.repeat)
-        t_rey, _ = best(lambda: solve("reynolds"), a.repeat)
-        t_jfo, sol = best(lambda: solve("jfo"), a.repeat)
-        t_fv, _ = best(lambda: fvm_reynolds(b, s, nt, nz, "jfo", grooves=g), a.repeat)
+        t_lin, _ = best_time(lambda: solve("none"), a.repeat)
+        t_rey, _ = best_time(lambda: solve("reynolds"), a.repeat)
+        t_jfo, sol = best_time(lambda: solve("jfo"), a.repeat)
+        t_fv, _ = best_time(lambda: fvm_reynolds(b, s, nt, nz, "jfo", grooves=g), a.repeat)
         rows.append(dict(mesh=f"{nt}x{nz}", linear_ms=1e3 * t_lin, reynolds_ms=1e3 * t_rey,
                          jfo_ms=1e3 * t_jfo, jfo_over_linear=t_jfo / t_lin,
                          jfo_iterations=sol.iterations, fv_jfo_ms=1e3 * t_fv))
