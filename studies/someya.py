@@ -35,12 +35,10 @@ import math
 from dataclasses import replace
 from pathlib import Path
 
-import numpy as np
 
 from bearingfem import Bearing, Groove
 from bearingfem.design import coefficients, equilibrium
 from bearingfem.design.groups import load_from_sommerfeld
-from bearingfem.models import film_model
 
 #: L/D -> rows (S, eps, phi [deg], Kxx, Kxy, Kyx, Kyy, Bxx, Bxy, Byx, Byy)
 TABLE = {
@@ -95,13 +93,9 @@ def databook_case(ld: float, sommerfeld: float, n_theta: int = 144) -> dict:
     opts = mesh(ld, n_theta)
     eq = equilibrium(b, load_from_sommerfeld(b, sommerfeld, OMEGA), OMEGA, "fem",
                      direction=LOAD_DIRECTION, **opts)
-    kc = coefficients(b, eq.state, "fem", frame="local", **opts)
-    m = film_model("fem")
-    G = np.asarray(m.force_derivatives(b, eq.state, **m.options(opts)).d_gamma)
-    K_turning = kc.K.copy()
-    K_turning[:, 1] += G / (eq.eps * b.clearance)   # drop the grooves' shift: -c K_t has +G/eps
-    K, B = kc.in_frame("load").dimensionless()
-    K_t, _ = replace(kc, K=K_turning).in_frame("load").dimensionless()
+    kc = coefficients(b, eq.state, "fem", frame="load", **opts)
+    K, B = kc.dimensionless()
+    K_t, _ = replace(kc, K=kc.K - kc.K_groove_shift).dimensionless()
     return dict(eps=eq.eps, phi=math.degrees(eq.attitude), K=K.ravel(), K_turning=K_t.ravel(),
                 B=B.ravel())
 

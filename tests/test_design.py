@@ -311,6 +311,31 @@ def test_grooved_coefficients_are_the_inertial_jacobian(state):
     np.testing.assert_allclose(kc.C, -J[:, 2:], rtol=1e-5, atol=1e-6 * np.abs(kc.C).max())
 
 
+def test_groove_shift_is_what_grooves_turning_with_the_journal_take_away():
+    """K - K_groove_shift against central differences in (x, y) of the inertial force with
+    the grooves turned with the line of centres (the convention of Someya's data book,
+    studies/someya.py); zero without grooves."""
+    b = Bearing(radius=0.01, length=0.02, clearance=20e-6, viscosity=0.0117)
+    state = JournalState(0.5, omega=250.0, gamma=-1.0)
+    kc = coefficients(b, state, "fem", frame="inertial", **GROOVED)
+    assert np.abs(kc.K_groove_shift).max() > 0.05 * np.abs(kc.K).max()
+
+    def force(x, y):
+        gamma = math.atan2(y, x)
+        turned = tuple(replace(g, angle=g.angle + gamma - state.gamma)
+                       for g in GROOVED["grooves"])
+        s = JournalState(math.hypot(x, y) / b.clearance, omega=250.0, gamma=gamma)
+        return np.array(fe_force(b, s, 40, 8, "P2", "reynolds", grooves=turned)[0]) @ \
+            np.array([[math.cos(gamma), math.sin(gamma)], [-math.sin(gamma), math.cos(gamma)]])
+    x0, y0, h = 0.5 * b.clearance * math.cos(-1.0), 0.5 * b.clearance * math.sin(-1.0), 1e-9
+    J = np.column_stack([(force(x0 + h, y0) - force(x0 - h, y0)) / (2 * h),
+                         (force(x0, y0 + h) - force(x0, y0 - h)) / (2 * h)])
+    np.testing.assert_allclose(kc.K - kc.K_groove_shift, -J, rtol=1e-5,
+                               atol=1e-6 * np.abs(kc.K).max())
+    plain = coefficients(b, state, "fem", n_theta=40, n_z=8, cavitation="reynolds")
+    assert not np.any(plain.K_groove_shift)
+
+
 def test_grooved_equilibrium_balances_and_turns_with_load_and_grooves():
     b = Bearing(radius=0.01, length=0.02, clearance=20e-6, viscosity=0.0117)
     eq = equilibrium(b, 500.0, 250.0, "fem", direction=-0.5 * math.pi, **GROOVED)

@@ -48,6 +48,10 @@ class DynamicCoefficients:
     state : the journal state; force : film force (F_x, F_y) there [N], inertial
     model, method : the film model and how its partials were found
     clearance : radial clearance c [m] of the bearing
+    K_groove_shift : 2x2 [N/m], the part of K from grooves fixed in the bearing that the
+        film moves against as the journal turns (zero without grooves).
+        ``K - K_groove_shift`` is the stiffness of grooves turning with the line of centres:
+        what perturbation solutions on the film's own domain tabulate (Someya's data book).
     """
 
     K: np.ndarray
@@ -59,6 +63,7 @@ class DynamicCoefficients:
     model: str
     method: str
     clearance: float
+    K_groove_shift: np.ndarray = None
 
     @property
     def load(self) -> float:
@@ -79,7 +84,8 @@ class DynamicCoefficients:
         check_choice("frame", frame, FRAMES)
         Q = _axes(frame, self.state.gamma, self.force)
         T = Q @ self.axes.T          # new components from old ones
-        return replace(self, K=T @ self.K @ T.T, C=T @ self.C @ T.T, frame=frame, axes=Q)
+        return replace(self, K=T @ self.K @ T.T, C=T @ self.C @ T.T, frame=frame, axes=Q,
+                       K_groove_shift=T @ self.K_groove_shift @ T.T)
 
 
 def _axes(frame: str, gamma: float, force) -> np.ndarray:
@@ -120,8 +126,10 @@ def coefficients(bearing: Bearing, state: JournalState, model: str = "fem",
     c = bearing.clearance
     K = -np.column_stack([A + 2.0 * gd * W / e, JF / e + gd * B + 2.0 * ed * W / e ** 2]) / c
     C = -np.column_stack([B, -2.0 * W / e]) / c
+    K_shift = np.zeros((2, 2))
+    K_shift[:, 1] = -G / (e * c)
     g = state.gamma
     force = tuple(float(f) for f in local_to_inertial(F[0], F[1], g))
     local = DynamicCoefficients(K, C, "local", _axes("local", g, force), state, force, model,
-                                d.method, c)
+                                d.method, c, K_shift)
     return local if frame == "local" else local.in_frame(frame)
