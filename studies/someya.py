@@ -118,7 +118,8 @@ def _line(r) -> str:
                    for n in NAMES)
     fixed = " ".join(f"{100 * (r[n + '_fixed'] - r[n + '_book']) / abs(r[n + '_book']):+6.1f}"
                      for n in NAMES[:4])
-    return (f"L/D {r['ld']:<4g} eps {r['eps_book']:<6g} d_eps {100 * (r['eps'] / r['eps_book'] - 1):+6.2f} %"
+    d_eps = 100 * (r["eps"] / r["eps_book"] - 1)
+    return (f"L/D {r['ld']:<4g} eps {r['eps_book']:<6g} d_eps {d_eps:+6.2f} %"
             f"  d_phi {r['phi'] - r['phi_book']:+6.2f} deg | {err} | fixed {fixed}")
 
 
