@@ -34,21 +34,29 @@ class TransientJFO:
     """The "fem-jfo" model along one integration: a :class:`~bearingfem.fe.jfo.JFOFilm`
     whose content advances only at the integrator's accepted steps.
 
-    ``force(bearing, state, t, **options)`` is the film at ``state`` with the content of
-    the last film step (:meth:`JFOFilm.instant`: a function of the state alone, as
-    the integrator's error control needs); ``commit(bearing, state, t, **options)``
-    advances the content to ``t`` by one backward-Euler step of the mass-conserving film
-    (unless less than the option ``film_step`` [s] has passed since the last one).
-    A commit earlier than the last one (the integrator went back to an event inside its
-    step) first restores the film kept before it.
+    ``commit(bearing, state, t, **options)`` advances the content to ``t`` by one
+    backward-Euler step of the mass-conserving film, once the option ``film_step`` [s] has
+    passed since the last one, or sooner when the kept film no longer fits the journal: a
+    kept cavity refilled (:meth:`JFOFilm.refilled`) or the line of centres turned by half
+    a cell (:meth:`JFOFilm.turned`). ``force(bearing, state, t, **options)`` is the film at
+    ``state`` with the kept cavities (:meth:`JFOFilm.instant`, continuous in the state)
+    plus what is left of the last film step's change of force: a routine film step moves
+    the cavities at once, and the force it changes is faded in over the next film step
+    (smoothstep: continuous, with continuous slope, in time) instead of jumping under the
+    integrator's error control. A refill acts at once: the support it gives a closing gap
+    is not delayed (fading it in lets a fast pin sink: on a coarse film, 30 % off the
+    minimum film). A commit earlier than the last one (the integrator went back to an
+    event inside its step) first restores what it kept.
     """
 
     def __init__(self):
         self.film: JFOFilm | None = None
         self.t = 0.0
-        self._before = None             # (t, film snapshot) before the last commit
+        self._before = None             # (t, film snapshot, jump, fade) before the last commit
         self._warm = None
         self.steps = 0
+        self._jump = (0.0, 0.0)         # force before the last film step minus after [N]
+        self._fade = 1.0                # [s] over which that jump fades
 
     def _start(self, bearing, state, t, n_theta, n_z, grooves, ambient_pressure,
                film_step=0.0):
@@ -61,7 +69,9 @@ class TransientJFO:
         if self.film is None:
             self._start(bearing, state, t, **options)
         f, self._warm = self.film.instant(state, self._warm)
-        return f
+        x = min(max((float(t) - self.t) / self._fade, 0.0), 1.0)
+        left = 1.0 - x * x * (3.0 - 2.0 * x)
+        return (f[0] + left * self._jump[0], f[1] + left * self._jump[1])
 
     def commit(self, bearing, state, t, **options):
         """Advance the content to ``t``; returns the step's :class:`FilmSolution` (None
@@ -70,17 +80,23 @@ class TransientJFO:
             self._start(bearing, state, t, **options)
         t = float(t)
         if t < self.t and self._before is not None:
-            self.t, snap = self._before
+            self.t, snap, self._jump, self._fade = self._before
             self.film.restore(snap)
             self._before = None
         dt = t - self.t
         # film_step: accepted steps closer than this to the last film step leave the
         # content as it is (the next film step spans them: backward Euler is exact in mass
-        # whatever its step)
-        if dt <= max(self.film_step, 1e-12 * max(abs(self.t), 1e-3)):
+        # whatever its step), unless the kept film no longer fits the journal
+        refill = self.film.refilled(state)
+        due = dt > self.film_step or refill or self.film.turned(state)
+        if dt <= 1e-12 * max(abs(self.t), 1e-3) or not due:
             return None
-        self._before = (self.t, self.film.snapshot())
+        self._before = (self.t, self.film.snapshot(), self._jump, self._fade)
+        before = self.force(bearing, state, t)
         sol = self.film.step(state, dt)
+        after, _ = self.film.instant(state, None)
+        self._jump = (0.0, 0.0) if refill else (before[0] - after[0], before[1] - after[1])
+        self._fade = max(self.film_step, dt)
         self.t = t
         self.steps += 1
         return sol

@@ -121,3 +121,23 @@ def test_transient_journal_film_converges_at_first_order_along_a_load_reversing_
     f32, f128, f512 = forces
     ratio = np.abs(f32 - f128) / np.abs(f128 - f512)
     assert np.all((3.0 < ratio) & (ratio < 5.0)), ratio
+
+
+def test_instant_film_is_continuous_in_the_state(seed):
+    """Between film steps the film a time integrator sees has no jumps: kept cavities stay
+    cavities until the next step moves them. Along a closing, turning gap the largest
+    force change between neighbouring states halves when they are twice as close; a set
+    carried with the turning mesh switches volumes one by one there (jumps: it stays)."""
+    from bearingfem.fe.jfo import JFOFilm
+    s = JournalState(eps=0.5, omega=250.0)
+    film = JFOFilm(seed, s, 48, 8, ambient_pressure=1e5)
+    for _ in range(30):
+        film.step(s, 2 * np.pi / 250.0 / 20)
+    assert 0.2 < film.cavitated.mean() < 0.8
+
+    def largest_change(n):
+        f = np.array([film.instant(JournalState(eps=0.5 + 0.05 * x, omega=250.0,
+                                                gamma=0.4 * x))[0]
+                      for x in np.linspace(0.0, 1.0, n + 1)])
+        return np.max(np.hypot(*np.diff(f, axis=0).T))
+    assert largest_change(160) < 0.6 * largest_change(80)

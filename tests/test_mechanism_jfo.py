@@ -107,3 +107,55 @@ def test_interrupted_jfo_run_keeps_results_and_film_record(monkeypatch):
     assert r.partial and r.message.startswith("interrupted at t = ")
     assert len(r.t) > 10 and np.all(np.isfinite(r.eps)) and np.all(np.isfinite(r.force_x))
     assert len(r.film_record) > 10 and r.film_record[-1, 0] >= r.t[-1]
+
+
+def test_film_step_fades_its_change_of_force_in():
+    """A routine film step moves the cavities at once; the force the integrator sees does
+    not jump there (before and after the commit, same state and time: equal) and has taken
+    the whole change one film step (here the 2e-4 s since the last one) later. A refill
+    acts at once."""
+    b = seed_bearing(0.5)
+    opts = dict(n_theta=48, n_z=4, grooves=(), ambient_pressure=1e5, film_step=1e-4)
+    f = TransientJFO()
+    s0 = JournalState(eps=0.6, omega=250.0)
+    f.force(b, s0, 0.0, **opts)
+    for k in range(1, 21):                   # settle a cavity at s0
+        f.commit(b, s0, k * 2e-4, **opts)
+    s1 = JournalState(eps=0.6, omega=250.0, eps_dot=-20.0, gamma=0.1, gamma_dot=50.0)
+    t1 = 21 * 2e-4
+    assert not f.film.refilled(s1)           # turned and moving, no cavity refilled
+    before = np.array(f.force(b, s1, t1, **opts))
+    assert f.commit(b, s1, t1, **opts) is not None
+    after = np.array(f.force(b, s1, t1, **opts))
+    settled = np.array(f.film.instant(s1)[0])
+    assert np.linalg.norm(settled - before) > 0.05 * np.linalg.norm(before)
+    np.testing.assert_allclose(after, before, rtol=1e-9)
+    np.testing.assert_allclose(f.force(b, s1, t1 + 2e-4, **opts), settled, rtol=1e-12)
+    s2 = JournalState(eps=0.7, omega=250.0, gamma=0.1)
+    assert f.film.refilled(s2)
+    f.commit(b, s2, t1 + 2e-4, **opts)
+    np.testing.assert_allclose(f.force(b, s2, t1 + 2e-4, **opts), f.film.instant(s2)[0],
+                               rtol=1e-12)
+
+
+def test_film_step_comes_early_when_the_kept_film_no_longer_fits():
+    """Within film_step the content stays, unless the kept film no longer describes the
+    journal: a cavity the closing gap has refilled, or the line of centres turned by half
+    a cell (48 cells: 3.75 deg)."""
+    b = seed_bearing(0.5)
+    opts = dict(n_theta=48, n_z=4, grooves=(), ambient_pressure=1e5, film_step=1.0)
+    f = TransientJFO()
+    s0 = JournalState(eps=0.6, omega=250.0)
+    f.force(b, s0, 0.0, **opts)
+    f.film_step = 2e-4
+    for k in range(1, 21):
+        f.commit(b, s0, k * 3e-4, **opts)
+    assert f.film.cavitated.any()
+    f.film_step = 1.0
+    t = 21 * 3e-4
+    assert f.commit(b, JournalState(eps=0.6, omega=250.0, gamma=0.05), t, **opts) is None
+    assert f.commit(b, JournalState(eps=0.6, omega=250.0, gamma=0.07), t, **opts) is not None
+    s = JournalState(eps=0.6, omega=250.0, gamma=0.07)
+    assert f.commit(b, s, t + 1e-4, **opts) is None
+    assert f.commit(b, JournalState(eps=0.9, omega=250.0, gamma=0.07), t + 2e-4,
+                    **opts) is not None

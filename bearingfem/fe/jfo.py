@@ -256,19 +256,31 @@ class JFOFilm:
         cells = turn / (2.0 * np.pi / cv.n_columns)
         return tuple(shift_rows(cv, np.stack(values), cells))
 
+    def refilled(self, state: JournalState) -> bool:
+        """Whether the gap at ``state`` has closed on the content of a kept cavity (the
+        kept film would hold it at zero pressure where the oil now fills the gap)."""
+        cv = film_volumes(self._operator(state).mesh)
+        return bool(np.any(self.cavitated & (self.content >= _content(cv, state.eps))))
+
+    def turned(self, state: JournalState) -> bool:
+        """Whether a periodic mesh (it starts at the line of centres) has turned by more
+        than half a cell since the kept step, which :meth:`instant` does not follow."""
+        cv = film_volumes(self._operator(state).mesh)
+        turn = np.mod(state.gamma - self.state.gamma + np.pi, 2.0 * np.pi) - np.pi
+        return bool(cv.periodic and abs(turn) > np.pi / cv.n_columns)
+
     def instant(self, state: JournalState, warm: np.ndarray | None = None):
-        """The film at ``state`` with the kept content, before any content moves: volumes
-        full at the kept step, or filled since (phi H >= H), carry the Reynolds film of this
-        instant's motion (Reynolds' condition is exact at rupture), the others are cavities
-        at zero pressure. What a time integrator sees between accepted steps, where
-        :meth:`step` moves the content. Returns ((F_r, F_t) [N], cavitated set on all
-        nodes, for ``warm`` of the next call)."""
+        """The film at ``state`` with the kept film, before any content moves: the volumes
+        full at the kept step carry the Reynolds film of this instant's motion (Reynolds'
+        condition is exact at rupture), the others stay cavities at zero pressure, the set
+        attached to the mesh (the line of centres, or the bearing when grooved) until
+        :meth:`step` moves it. What a time integrator sees between accepted steps: a
+        function of the state with no jumps (a set that followed the carried content
+        between steps would switch volumes one by one as the journal moves, each a jump of
+        the force). Returns ((F_r, F_t) [N], cavitated set on all nodes, for ``warm`` of
+        the next call)."""
         op = self._operator(state)
-        cv = film_volumes(op.mesh)
-        # full: not a cavity at the kept step, or a cavity the closing gap has filled
-        was_cavity, content = self._carried(cv, state, self.cavitated.astype(float),
-                                            self.content)
-        full = (was_cavity <= 0.5) | (content >= _content(cv, state.eps) * (1.0 - 1e-12))
+        full = ~self.cavitated
         mesh = op.mesh
         # held values on the fixed nodes, zero on the free ones
         P, _ = _boundary_values(self.bearing, mesh, self.grooves, self.ambient_pressure)
