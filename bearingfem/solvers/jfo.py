@@ -262,7 +262,11 @@ def _active_set(sets: _SetSolver, A, b, cav, can_cavitate, max_iter):
         # content would exceed a full film (phi > 1) fill.
         new = np.where(cav, phi < 1.0, (P < 0.0) & can_cavitate)
         if np.array_equal(new, cav):
-            return P, phi, cav, it, True
+            # one refinement on the same factors: the balance of flows to round-off (a
+            # corrected solve of a changed set reaches ~1e-10 of |b|, and |b| grows as
+            # 1/dt with the storage of a short time step)
+            dx = sets.solve(cav, b - sets.K @ P - A @ phi)
+            return P + np.where(cav, 0.0, dx), phi + np.where(cav, dx, 0.0), cav, it, True
         key = new.tobytes()
         if key in seen:        # the sets cycle: let the caller take over
             return P, phi, cav, it, False
