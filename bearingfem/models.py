@@ -124,8 +124,8 @@ def _fem(bearing, state, n_theta, n_z, element, cavitation, grooves):
 
 def _fem_jfo(bearing, state, n_theta, n_z, grooves, ambient_pressure, film_step=0.0):
     """The steady JFO film's force (steady in the frame of the line of centres).
-    ``film_step`` [s] is for time integration (shortest time between film steps: 0, every
-    accepted step); the steady film has none."""
+    ``film_step`` [s] is for time integration (time between film steps, sooner on a
+    refill: 0, every accepted step); the steady film has none."""
     return solve_reynolds(bearing, state, n_theta, n_z, "P1", "jfo", grooves=grooves,
                           ambient_pressure=ambient_pressure).force_local
 

@@ -143,7 +143,7 @@ def test_film_step_comes_early_when_the_kept_film_no_longer_fits():
     journal: a cavity the closing gap has refilled, or the line of centres turned by half
     a cell (48 cells: 3.75 deg)."""
     b = seed_bearing(0.5)
-    opts = dict(n_theta=48, n_z=4, grooves=(), ambient_pressure=1e5, film_step=1.0)
+    opts = dict(n_theta=48, n_z=4, grooves=(), ambient_pressure=1e5, film_step=0.1)
     f = TransientJFO()
     s0 = JournalState(eps=0.6, omega=250.0)
     f.force(b, s0, 0.0, **opts)
@@ -151,7 +151,7 @@ def test_film_step_comes_early_when_the_kept_film_no_longer_fits():
     for k in range(1, 21):
         f.commit(b, s0, k * 3e-4, **opts)
     assert f.film.cavitated.any()
-    f.film_step = 1.0
+    f.film_step = 0.1
     t = 21 * 3e-4
     assert f.commit(b, JournalState(eps=0.6, omega=250.0, gamma=0.05), t, **opts) is None
     assert f.commit(b, JournalState(eps=0.6, omega=250.0, gamma=0.07), t, **opts) is not None
