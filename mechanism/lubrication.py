@@ -90,8 +90,8 @@ class TransientJFO:
         # film_step: accepted steps closer than this to the last film step leave the
         # content as it is (the next film step spans them: backward Euler is exact in mass
         # whatever its step), unless the kept film no longer fits the journal; not within
-        # film_step / 1000 either, where the storage term, ~1/dt, would swamp the solve's
-        # balance of flows (relative error ~1e-11 at 1e-8 s on the long seed bearing)
+        # film_step / 1000 either: an integrator crawling through an event would otherwise
+        # take a film step at each of its tiny steps
         refill = self.film.refilled(state)
         early = dt > EARLY * self.film_step and (refill or self.film.turned(state))
         if dt <= 1e-12 * max(abs(self.t), 1e-3) or not (dt > self.film_step or early):

@@ -63,7 +63,7 @@ class DynamicCoefficients:
     model: str
     method: str
     clearance: float
-    K_groove_shift: np.ndarray = None
+    K_groove_shift: np.ndarray
 
     @property
     def load(self) -> float:

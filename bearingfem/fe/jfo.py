@@ -252,9 +252,12 @@ class JFOFilm:
         angle since the kept state; a grooved or supply-line mesh stays in the bearing."""
         if not cv.periodic:
             return values
-        turn = np.mod(state.gamma - self.state.gamma + np.pi, 2.0 * np.pi) - np.pi
-        cells = turn / (2.0 * np.pi / cv.n_columns)
+        cells = self._turn(state) / (2.0 * np.pi / cv.n_columns)
         return tuple(shift_rows(cv, np.stack(values), cells))
+
+    def _turn(self, state: JournalState) -> float:
+        """How far the line of centres has turned since the kept step [rad], in [-pi, pi)."""
+        return float(np.mod(state.gamma - self.state.gamma + np.pi, 2.0 * np.pi) - np.pi)
 
     def refilled(self, state: JournalState) -> bool:
         """Whether the gap at ``state`` has closed on the content of a kept cavity (the
@@ -266,8 +269,7 @@ class JFOFilm:
         """Whether a periodic mesh (it starts at the line of centres) has turned by more
         than half a cell since the kept step, which :meth:`instant` does not follow."""
         cv = film_volumes(self._operator(state).mesh)
-        turn = np.mod(state.gamma - self.state.gamma + np.pi, 2.0 * np.pi) - np.pi
-        return bool(cv.periodic and abs(turn) > np.pi / cv.n_columns)
+        return bool(cv.periodic and abs(self._turn(state)) > np.pi / cv.n_columns)
 
     def instant(self, state: JournalState, warm: np.ndarray | None = None):
         """The film at ``state`` with the kept film, before any content moves: the volumes
