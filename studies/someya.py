@@ -30,15 +30,14 @@ What it shows (``python -m studies.someya -o out``, table + CSV + figure):
 from __future__ import annotations
 
 import argparse
-import csv
 import math
 from dataclasses import replace
 from pathlib import Path
 
-
 from bearingfem import Bearing, Groove
 from bearingfem.design import coefficients, equilibrium
 from bearingfem.design.groups import load_from_sommerfeld
+from bearingfem.outputs.tables import write_csv
 
 #: L/D -> rows (S, eps, phi [deg], Kxx, Kxy, Kyx, Kyy, Bxx, Bxy, Byx, Byy)
 TABLE = {
@@ -170,10 +169,7 @@ def main(argv=None):
     print("errors against the book [%]:", " ".join(f"{n:>6}" for n in NAMES),
           "| K with the grooves fixed:", " ".join(f"{n:>6}" for n in NAMES[:4]))
     rows = compare(0.5, a.n_theta) + compare(1.0, a.n_theta)
-    with open(a.out / "someya.csv", "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=list(rows[0]))
-        w.writeheader()
-        w.writerows(rows)
+    write_csv(rows, a.out / "someya.csv")
     print("\nmesh convergence (L/D 0.5): eps_book, n_theta, eps, phi, K (turning grooves), B")
     for c in convergence():
         print(" ".join(f"{v:9.4f}" if isinstance(v, float) else f"{v:>5}" for v in c))
