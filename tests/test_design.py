@@ -9,6 +9,7 @@ from bearingfem import Bearing, Groove, JournalState, solve_reynolds
 from bearingfem.design import (coefficients, equilibrium, journal_orbit, lund_stability,
                                sommerfeld_number, threshold_speed)
 from bearingfem.differentiate import central_differences
+from bearingfem.film import local_to_inertial
 from bearingfem.closed.long_bearing import long_bearing_derivatives, long_bearing_force
 from bearingfem.models import FILM_MODELS
 from bearingfem.fe.reynolds import fe_force
@@ -325,8 +326,8 @@ def test_groove_shift_is_what_grooves_turning_with_the_journal_take_away():
         turned = tuple(replace(g, angle=g.angle + gamma - state.gamma)
                        for g in GROOVED["grooves"])
         s = JournalState(math.hypot(x, y) / b.clearance, omega=250.0, gamma=gamma)
-        return np.array(fe_force(b, s, 40, 8, "P2", "reynolds", grooves=turned)[0]) @ \
-            np.array([[math.cos(gamma), math.sin(gamma)], [-math.sin(gamma), math.cos(gamma)]])
+        f_r, f_t = fe_force(b, s, 40, 8, "P2", "reynolds", grooves=turned)[0]
+        return np.array(local_to_inertial(f_r, f_t, gamma))
     x0, y0, h = 0.5 * b.clearance * math.cos(-1.0), 0.5 * b.clearance * math.sin(-1.0), 1e-9
     J = np.column_stack([(force(x0 + h, y0) - force(x0 - h, y0)) / (2 * h),
                          (force(x0, y0 + h) - force(x0, y0 - h)) / (2 * h)])
