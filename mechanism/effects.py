@@ -15,6 +15,7 @@ from bearingfem import Bearing, JournalState
 from bearingfem.film import local_to_inertial
 
 from .lubrication import film_force_function
+from .result import FILM_RECORD
 
 __all__ = ["JointKinematics", "FilmEffect", "HertzContact", "CoulombFriction", "LinearSpring",
            "hertz_stiffness"]
@@ -48,7 +49,9 @@ class FilmEffect:
 
     A model with memory ("fem-jfo") advances its film at ``commit`` (each accepted step)
     and keeps what it committed in ``history``: rows of (t, F_x, F_y, peak pressure [Pa],
-    cavitated share of the film, friction force [N], mass balance [m^3/s]).
+    cavitated share of the film, friction force [N], mass balance [m^3/s], and the state's
+    eps, eps_dot, gamma, gamma_dot, omega), the film's first state in ``start`` (t and the
+    same five): what :meth:`TransientJFO.replay` needs to take the same film steps again.
     """
 
     bearing: Bearing
@@ -61,6 +64,7 @@ class FilmEffect:
         self._f = film_force_function(self.model)
         self.memory = hasattr(self._f, "commit")
         self.history: list = []
+        self.start: tuple | None = None
 
     def _state(self, k: JointKinematics) -> JournalState:
         return JournalState.from_eccentricity(k.e_x, k.e_y, k.de_x, k.de_y,
@@ -70,6 +74,8 @@ class FilmEffect:
         s = self._state(k)
         self.solves += 1
         if self.memory:
+            if self.start is None:
+                self.start = (k.t,) + _state_row(s)
             f_r, f_t = self._f.force(self.bearing, s, k.t, **self.options)
         else:
             f_r, f_t = self._f(self.bearing, s, **self.options)
@@ -84,7 +90,7 @@ class FilmEffect:
         if sol is not None:
             fx, fy = sol.force
             self.history.append((k.t, fx, fy, sol.pressure_max, sol.cavitated_fraction,
-                                 sol.friction_force, sol.mass_balance))
+                                 sol.friction_force, sol.mass_balance) + _state_row(s))
 
     @property
     def steps(self) -> int:
@@ -93,8 +99,12 @@ class FilmEffect:
 
     def recorded_force(self, t):
         """(F_x, F_y) [N] at times ``t`` from the committed steps (linear in between)."""
-        h = np.array(self.history) if self.history else np.zeros((1, 7))
+        h = np.array(self.history) if self.history else np.zeros((1, len(FILM_RECORD)))
         return np.interp(t, h[:, 0], h[:, 1]), np.interp(t, h[:, 0], h[:, 2])
+
+
+def _state_row(s: JournalState) -> tuple:
+    return (s.eps, s.eps_dot, s.gamma, s.gamma_dot, s.omega)
 
 
 def hertz_stiffness(radius, clearance, young_modulus, poisson):

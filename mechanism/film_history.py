@@ -4,6 +4,11 @@ A run saves the pin's eccentricity and the rod angle at every sample; the joint'
 at a sample (eccentricity rate, the journal's speed relative to the bearing = minus the
 rod's angular velocity) follows by differentiating those records in time, so a film can
 be re-solved at any saved instant without re-running the mechanism.
+
+A film with memory ("fem-jfo") depends on its whole past, not on the instant: its run
+records the state of every film step (``film_record``), and the film is replayed through
+them (the same solves as in the run, checked against the recorded forces); each frame is
+the film step nearest its crank angle in the saved turns.
 """
 from __future__ import annotations
 
@@ -47,14 +52,17 @@ def film_history(result, scene, crank_angles_deg=None, n_frames=12, n_theta=None
         raise ValueError("the run has fewer than 3 saved samples: no film history")
     if scene.bearing is None:
         raise ValueError("the scene has no bearing (ideal joint): no film to show")
-    if scene.lubrication is not None and scene.lubrication.model == "fem-jfo":
-        raise ValueError("a fem-jfo film has memory: it cannot be re-solved at a saved "
-                         "instant; its run keeps film_record (per film step: force, peak "
-                         "pressure, cavitated share, friction, mass balance)")
     if crank_angles_deg is None:
         if not (isinstance(n_frames, int) and n_frames >= 1):
             raise ValueError(f"n_frames must be an integer >= 1, got {n_frames!r}")
         crank_angles_deg = np.arange(n_frames) * 360.0 / n_frames
+    if scene.lubrication is not None and scene.lubrication.model == "fem-jfo":
+        given = dict(n_theta=n_theta, n_z=n_z, element=element, cavitation=cavitation)
+        if any(v is not None for v in given.values()):
+            raise ValueError("a fem-jfo film is replayed on its run's own mesh: leave "
+                             f"{', '.join(k for k, v in given.items() if v is not None)} "
+                             "unset")
+        return _replayed(result, scene, crank_angles_deg, progress)
     opts = scene.lubrication.options if scene.lubrication is not None else {}
     n_theta = n_theta or opts.get("n_theta", 96)
     n_z = n_z or opts.get("n_z", 16)
@@ -74,6 +82,46 @@ def film_history(result, scene, crank_angles_deg=None, n_frames=12, n_theta=None
         if progress:
             progress(k + 1, len(crank_angles_deg))
     return frames
+
+
+#: Largest departure of a replayed film step's force from the run's record, relative to
+#: the record's largest force (the same solves on the same data: round-off only).
+REPLAY_TOLERANCE = 1e-9
+
+
+def _replayed(result, scene, crank_angles_deg, progress=None):
+    """Frames of a film with memory: its run's film steps replayed (see the module)."""
+    from .lubrication import TransientJFO
+    rec, start = result.film_record, result.stats.get("film_start")
+    if start is None or rec.ndim != 2 or rec.shape[1] < 12 or not len(rec):
+        raise ValueError("the run has no film record with its journal states (runs of "
+                         "fem-jfo record them from this version on): run the scene again")
+    inside = np.flatnonzero((rec[:, 0] >= result.t[0]) & (rec[:, 0] <= result.t[-1]))
+    if not len(inside):
+        raise ValueError("no film step of the run falls in its saved turns")
+    crank = lambda t: np.mod(np.degrees(np.interp(t, result.t, result.crank_angle)),  # noqa
+                             360.0)
+    q_rec = crank(rec[inside, 0])
+    wanted = set()
+    for a in np.mod(np.asarray(crank_angles_deg, float), 360.0):
+        wanted.add(int(inside[np.argmin(np.abs((q_rec - a + 180.0) % 360.0 - 180.0))]))
+    last = max(wanted)
+    peak = float(np.max(np.hypot(rec[:, 1], rec[:, 2]))) or 1.0
+    frames, film = {}, TransientJFO()
+    steps = film.replay(scene.bearing, start, rec[:last + 1, [0, 7, 8, 9, 10, 11]],
+                        **scene.lubrication.options)
+    for i, (t, sol) in enumerate(steps):
+        miss = float(np.hypot(*np.subtract(sol.force, rec[i, 1:3]))) / peak
+        if miss > REPLAY_TOLERANCE:
+            raise ValueError(f"the replayed film departs from the run's record at film step "
+                             f"{i} (t = {t:.6g} s) by {miss:.2g} of the peak force: the scene's "
+                             "film options differ from the run's")
+        if i in wanted:
+            frames[i] = sol
+            if progress:
+                progress(len(frames), len(wanted))
+    return [FilmFrame(float(crank(rec[i, 0])), float(rec[i, 0]), frames[i])
+            for i in sorted(frames)]
 
 
 def write_history(frames, directory, surface="journal") -> Path:

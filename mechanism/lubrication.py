@@ -9,6 +9,7 @@ options from the registry), the film solve and its pictures along a saved run
 """
 from __future__ import annotations
 
+from bearingfem import JournalState
 from bearingfem.models import FILM_MODELS, NUMERIC_MODELS, film_model
 from bearingfem.fe.jfo import JFOFilm
 from bearingfem.fe.reynolds import fe_force
@@ -105,6 +106,19 @@ class TransientJFO:
         self.t = t
         self.steps += 1
         return sol
+
+    def replay(self, bearing, start, steps, **options):
+        """The film steps of a run taken again: ``start`` = (t, eps, eps_dot, gamma,
+        gamma_dot, omega) where the film began, ``steps`` rows (t, eps, eps_dot, gamma,
+        gamma_dot, omega) of its committed steps in order. Yields (t, FilmSolution) per
+        step: the same solves on the same data as the run, so the same films."""
+        state = lambda row: JournalState(*(float(v) for v in row[1:6]))   # noqa: E731
+        self._start(bearing, state(start), start[0], **options)
+        for row in steps:
+            sol = self.film.step(state(row), float(row[0]) - self.t)
+            self.t = float(row[0])
+            self.steps += 1
+            yield self.t, sol
 
 
 def film_force_function(model: str):

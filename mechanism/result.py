@@ -14,9 +14,11 @@ __all__ = ["SimulationResult", "load_result", "provenance", "FIELDS"]
 FIELDS = ("t", "crank_angle", "crank_speed", "rod_angle", "slider_position",
           "slider_acceleration", "eps", "e_x", "e_y", "film_min", "force_x", "force_y")
 DENSE = ("dense_t", "dense_e_x", "dense_e_y", "film_record", "step_t")
-#: Columns of ``film_record`` (a film with memory: one row per committed film step).
+#: Columns of ``film_record`` (a film with memory: one row per committed film step): what
+#: the step gave, then the journal state it was taken at (enough to replay the film).
 FILM_RECORD = ("t [s]", "F_x [N]", "F_y [N]", "peak pressure [Pa]", "cavitated share [1]",
-               "friction [N]", "mass balance [m^3/s]")
+               "friction [N]", "mass balance [m^3/s]", "eps [1]", "eps_dot [1/s]",
+               "gamma [rad]", "gamma_dot [rad/s]", "omega [rad/s]")
 UNITS = {"t": "s", "crank_angle": "rad", "crank_speed": "rad/s", "rod_angle": "rad",
          "slider_position": "m", "slider_acceleration": "m/s^2", "eps": "1", "e_x": "m",
          "e_y": "m", "film_min": "m", "force_x": "N", "force_y": "N"}
@@ -52,7 +54,7 @@ class SimulationResult:
     dense_e_x: np.ndarray = field(default_factory=lambda: np.empty(0))
     dense_e_y: np.ndarray = field(default_factory=lambda: np.empty(0))
     #: a film with memory ("fem-jfo"): one row per committed step, columns FILM_RECORD
-    film_record: np.ndarray = field(default_factory=lambda: np.empty((0, 7)))
+    film_record: np.ndarray = field(default_factory=lambda: np.empty((0, len(FILM_RECORD))))
     #: where the integrator's accepted steps end [s] (the whole run, not only the
     #: recorded turns): where a run spends its steps, e.g. per crank angle
     step_t: np.ndarray = field(default_factory=lambda: np.empty(0))

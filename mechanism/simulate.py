@@ -22,7 +22,7 @@ from .effects import (CoulombFriction, FilmEffect, HertzContact, JointKinematics
                       hertz_stiffness)
 from .parameters import GRAVITY
 from .progress import Progress
-from .result import FIELDS, SimulationResult, provenance
+from .result import FIELDS, FILM_RECORD, SimulationResult, provenance
 from .rigid import integrate_rigid, rigid_kinematics, rigid_rhs
 from .scene import Scene
 
@@ -193,6 +193,8 @@ def simulate(scene: Scene, progress: bool | None = None) -> SimulationResult:
              "contact_evals": contact.evaluations if contact else 0,
              "integrator": run.integrator, "rtol": run.rtol, "atol_length": a_len,
              "effects": [type(e).__name__ for e in effects]}
+    if film is not None and film.start is not None:   # where a film with memory began
+        stats["film_start"] = [float(v) for v in film.start]
     if film is not None and film.model == "fem-table":
         from bearingfem.fe.force_table import force_table   # the one the run used (cached)
         stats["fem_table_mesh_error"] = force_table(scene.bearing.length_ratio,
@@ -254,8 +256,8 @@ def _sample(scene, pieces, effects, g, stats, partial, message):
             m, q, A, qd, Ad, fx, fy, g, scene.crank_torque, scene.slider_force)[2]
     stats["output_film_solves"] = int(sum(getattr(e, "solves", 0) for e in effects)
                                       - sum(solves_before))
-    record = next((np.array(e.history).reshape(-1, 7) for e in effects
-                   if getattr(e, "memory", False)), np.empty((0, 7)))
+    record = next((np.array(e.history).reshape(-1, len(FILM_RECORD)) for e in effects
+                   if getattr(e, "memory", False)), np.empty((0, len(FILM_RECORD))))
     eps = np.hypot(Y[1], Y[2]) / c
     td = np.linspace(t[0], t[-1], 10 * (len(t) - 1) + 1) if len(t) > 1 else t
     Yd = at(td)

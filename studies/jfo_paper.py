@@ -166,9 +166,39 @@ def main(argv=None):
                  "condition vs mass-conserving film")
     fig.tight_layout()
     fig.savefig(out / "jfo_paper.png", dpi=130)
-    print(f"wrote {out / 'jfo_paper.csv'}, {out / 'jfo_paper_steps.csv'} and "
-          f"{out / 'jfo_paper.png'}")
+    films = film_figure(r_jfo, jfo, out / "jfo_paper_films.png")
+    print(f"wrote {out / 'jfo_paper.csv'}, {out / 'jfo_paper_steps.csv'}, "
+          f"{out / 'jfo_paper.png'} and {films}")
     return rows, forms, collapses, per_bin
+
+
+def film_figure(result, scene, path, crank_angles_deg=range(0, 360, 45)):
+    """The JFO film's fraction on the unwrapped film at ``crank_angles_deg`` of the
+    recorded turn (the run's film steps replayed, :func:`film_history`)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from bearingfem.outputs.render import film_map
+    frames = film_history(result, scene, list(crank_angles_deg))
+    cols = (len(frames) + 1) // 2
+    fig, axes = plt.subplots(2, cols, figsize=(3.6 * cols, 5.6), sharex=True, sharey=True,
+                             constrained_layout=True)
+    levels = np.append(np.linspace(0.0, 0.95, 20), 1.0 + 1e-9)   # full film: the top band
+    for ax, f in zip(axes.flat, frames):
+        tri, theta = film_map(f.solution, "fraction")
+        cf = ax.tricontourf(tri, np.clip(theta, 0.0, 1.0), levels=levels, cmap="viridis")
+        ax.set_title(f"crank {f.crank_angle_deg:.0f} deg, "
+                     f"h_min {1e6 * f.solution.film_min:.2f} um", fontsize=9)
+        ax.set_xticks(range(0, 361, 90))
+    for ax in axes[-1]:
+        ax.set_xlabel("theta from the maximum film [deg]")
+    for ax in axes[:, 0]:
+        ax.set_ylabel("z [mm]")
+    fig.colorbar(cf, ax=axes, label="film fraction [1] (1: full film)", shrink=0.8)
+    fig.suptitle(f"{scene.name}: the mass-conserving film over the recorded turn")
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
 
 
 if __name__ == "__main__":

@@ -9,6 +9,7 @@ def test_jfo_paper_study_smoke(tmp_path, capsys):
     assert [r["film"] for r in rows] == ["FE, Reynolds' condition", "FE, JFO"]
     assert "JFO cavity forms at crank" in out and "cost JFO / Reynolds" in out
     assert (tmp_path / "jfo_paper.png").stat().st_size > 10_000
+    assert (tmp_path / "jfo_paper_films.png").stat().st_size > 10_000
     assert all(0.0 < r["peak_eps"] < 1.0 for r in rows)
     # a run shorter than a turn is recorded whole: every accepted step up to the last
     # saved sample (within 1/720 turn of the end) is counted in its crank-angle interval

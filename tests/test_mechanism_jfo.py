@@ -79,12 +79,27 @@ def test_coefficients_refuse_a_film_with_memory():
         coefficients(b, JournalState(eps=0.5, omega=100.0), model="fem-jfo")
 
 
-def test_film_history_refuses_a_film_with_memory():
+def test_film_history_replays_a_film_with_memory(tmp_path):
+    """A fem-jfo film depends on its past: film_history replays the run's film steps from
+    their recorded states, so each frame is the film the run had (force equal to the
+    record to round-off), with its film fraction; through save / load too."""
+    from mechanism import load_result
     from mechanism.film_history import film_history
-    r = simulate(scene(turns=0.05), progress=False)
-    with pytest.raises(ValueError, match="has memory"):
-        film_history(r, scene(), n_frames=2)
-    assert r.film_record.shape[1] == 7 and len(r.film_record) == r.stats["film_steps"]
+    sc = scene(turns=0.1)
+    r = simulate(sc, progress=False)
+    assert r.film_record.shape[1] == 12 and len(r.film_record) == r.stats["film_steps"]
+    frames = film_history(load_result(r.save(tmp_path)), sc, [10, 20, 30])
+    assert len(frames) == 3
+    for f in frames:
+        row = r.film_record[r.film_record[:, 0] == f.t][0]
+        assert f.solution.force == pytest.approx(tuple(row[1:3]), rel=1e-12, abs=1e-9)
+        assert min(abs(f.crank_angle_deg - a) for a in (10, 20, 30)) < 1.0
+        assert np.all((f.solution.fraction >= 0.0) & (f.solution.fraction <= 1.0))
+    assert min(f.solution.fraction.min() for f in frames) < 0.99    # a cavity to show
+    with pytest.raises(ValueError, match="departs from the run's record"):
+        film_history(r, scene(turns=0.1, ambient_pressure=2e5), [20])
+    with pytest.raises(ValueError, match="n_theta"):
+        film_history(r, sc, [20], n_theta=24)
 
 
 def test_film_step_spaces_the_content_updates():

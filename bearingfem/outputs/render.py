@@ -19,7 +19,7 @@ from ..film import inertial_from_theta
 from ..solution import FilmSolution
 from .export import to_meshio
 
-__all__ = ["render_film", "unwrapped_figure", "FIELDS", "SURFACES"]
+__all__ = ["render_film", "unwrapped_figure", "film_map", "FIELDS", "SURFACES"]
 
 SURFACES = ("journal", "unwrapped")
 FIELDS = {"pressure": ("pressure", 1e-6, "pressure [MPa]"),
@@ -54,7 +54,7 @@ def _check(field, surface):
         raise ValueError(f"surface must be one of {', '.join(SURFACES)}, got {surface!r}")
 
 
-def _film_map(sol: FilmSolution, field: str):
+def film_map(sol: FilmSolution, field: str):
     """Triangulation of the whole film over (theta [deg] in [0, 360], z [mm]) with one
     point per place, and the field's node values in display units."""
     import matplotlib.tri as mtri
@@ -104,7 +104,7 @@ def _boundary_lines(sol: FilmSolution):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    tri, vals = _film_map(sol, "pressure")
+    tri, vals = film_map(sol, "pressure")
     cav = _cavity(sol, tri, vals)
     if cav is None:
         return []
@@ -121,7 +121,7 @@ def unwrapped_figure(sol: FilmSolution, field: str = "pressure", clim=None, titl
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    tri, vals = _film_map(sol, field)
+    tri, vals = film_map(sol, field)
     label = FIELDS[field][2]
     fig, ax = plt.subplots(figsize=size, constrained_layout=True)
     top = float(np.max(vals)) if clim is None else float(clim[1])
