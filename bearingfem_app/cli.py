@@ -98,7 +98,8 @@ def build_parser():
     r = add("render", help="off-screen PNG of the film pressure or thickness",
             epilog="example: bearingfem render --ld 1.0 --eps 0.6 -o film.png")
     _film_args(r)
-    r.add_argument("--field", default="pressure", help="pressure | film_thickness")
+    r.add_argument("--field", default="pressure",
+                   help="pressure | film_thickness | fraction (--cavitation jfo)")
     r.add_argument("--surface", default="journal", help="journal | unwrapped")
     r.add_argument("-o", "--output", required=True, help="PNG file")
     r.set_defaults(func=command_render)
@@ -121,7 +122,8 @@ def build_parser():
     fr.add_argument("--angles", help="crank angles [deg], comma-separated (default: evenly "
                     "spaced --frames)")
     fr.add_argument("--frames", type=int, default=12, help="number of evenly spaced frames")
-    fr.add_argument("--field", default="pressure", help="pressure | film_thickness")
+    fr.add_argument("--field", default="pressure",
+                    help="pressure | film_thickness | fraction (a fem-jfo run)")
     fr.add_argument("--surface", default="journal", help="journal | unwrapped")
     fr.add_argument("--gif", action="store_true", help="also write an animated film.gif")
     fr.add_argument("--fixed-camera", action="store_true",

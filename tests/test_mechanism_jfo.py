@@ -102,6 +102,33 @@ def test_film_history_replays_a_film_with_memory(tmp_path):
         film_history(r, sc, [20], n_theta=24)
 
 
+JFO_SCENE = """name = "jfo-cli"
+[bearing]
+diameter = 0.02
+length_ratio = 0.5
+clearance = 20e-6
+viscosity = 0.0117
+[run]
+turns = 0.1
+record_from_turn = 0
+[effects.lubrication]
+model = "fem-jfo"
+n_theta = 48
+n_z = 4
+"""
+
+
+def test_frames_command_renders_a_jfo_runs_film_fraction(tmp_path):
+    from bearingfem_app.cli import main
+    (tmp_path / "jfo.toml").write_text(JFO_SCENE)
+    assert main(["simulate", str(tmp_path / "jfo.toml"), "-o", str(tmp_path / "run")]) == 0
+    assert main(["frames", str(tmp_path / "jfo.toml"), str(tmp_path / "run"), "-o",
+                 str(tmp_path / "fr"), "--angles", "15,30", "--field", "fraction",
+                 "--surface", "unwrapped"]) == 0
+    assert len(list((tmp_path / "fr").glob("frame-*.png"))) == 2
+    assert len(list((tmp_path / "fr").glob("film-*.vtu"))) == 2
+
+
 def test_film_step_spaces_the_content_updates():
     """With film_step, accepted steps closer than it to the last film step leave the
     content alone; the orbit moves by far less than the film's own resolution (measured:
