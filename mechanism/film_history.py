@@ -108,8 +108,8 @@ def _replayed(result, scene, crank_angles_deg, progress=None):
     last = max(wanted)
     peak = float(np.max(np.hypot(rec[:, 1], rec[:, 2]))) or 1.0
     frames, film = {}, TransientJFO()
-    steps = film.replay(scene.bearing, start, rec[:last + 1, [0, 7, 8, 9, 10, 11]],
-                        **scene.lubrication.options)
+    states = rec[:last + 1, [0] + list(range(7, 12))]   # t and the state (FILM_RECORD)
+    steps = film.replay(scene.bearing, start, states, **scene.lubrication.options)
     for i, (t, sol) in enumerate(steps):
         miss = float(np.hypot(*np.subtract(sol.force, rec[i, 1:3]))) / peak
         if miss > REPLAY_TOLERANCE:
