@@ -170,17 +170,22 @@ def _jfo(bearing, g: FVMGrid, state, grooves, ambient):
     """Steady JFO film on the cells: the Poiseuille balance of :func:`_assemble` with the
     content phi H carried across the theta faces from the upwind cell (6 w phi H dzeta)
     and a squeeze eps_dot changing it at eps_dot cos(theta); returns P, phi, the solve
-    record and (feed, leakage, storage) in units of c R^2 / 12 [m^3/s]."""
+    record and (feed, leakage, storage) in units of c R^2 / 12 [m^3/s].
+
+    A supply line (``g.theta0``) is a row of held cells (P ambient, phi 1) appended after
+    the grid and joined to its first and last columns through the supply faces, half a
+    cell away (doubled conductance): what they send out is the feed, as for a groove."""
     A, _ = _assemble(g, state.eps, 0.0, 0.0)
-    nz = g.n_z
+    nz, n = g.n_z, g.n
     dz = g.dzeta
     He = film_thickness(g.theta_f[1:], state.eps)
-    # upwind transport across each column's east face (periodic: the last one wraps)
+    # upwind transport across each column's east face (periodic: the last one wraps;
+    # with a supply line the last column's east face and the first's west face border it)
     f = 6.0 * state.wedge_speed * He * dz
     I, J = np.meshgrid(np.arange(g.n_theta), np.arange(nz), indexing="ij")
     k = (I * nz + J).ravel()
     d = (((I + 1) % g.n_theta) * nz + J).ravel()
-    T = upwind_transport(k, d, np.repeat(f, nz), g.n)
+    flux = np.repeat(f, nz)
     storage = np.repeat(12.0 * state.eps_dot * (np.sin(g.theta_f[1:]) - np.sin(g.theta_f[:-1]))
                         * dz, nz)
     # the axial ends hold the ambient pressure on the face half a cell away
@@ -190,13 +195,26 @@ def _jfo(bearing, g: FVMGrid, state, grooves, ambient):
     cend = cend.ravel()
     pa = ambient / bearing.pressure_scale
     fixed, values, fraction, _ = _groove_cells(bearing, g, state, grooves)
+    if g.theta0 is not None:
+        supply = n + np.arange(nz)
+        first, last = np.arange(nz), n - nz + np.arange(nz)
+        d[last] = supply
+        c = 2.0 * He[-1] ** 3 * dz / g.dtheta    # both supply faces: H at theta0 + 2 pi
+        links = sp.coo_matrix((np.full(2 * nz, -c), (np.r_[first, last],
+                                                     np.r_[supply, supply])), shape=(n + nz,) * 2)
+        A = (sp.block_diag([A, sp.diags(np.full(nz, 2.0 * c))]) + links + links.T).tocsr()
+        k, d, flux = np.r_[k, supply], np.r_[d, first], np.r_[flux, np.full(nz, f[-1])]
+        fixed, values = np.r_[fixed, np.ones(nz, bool)], np.r_[values, np.full(nz, pa)]
+        fraction = np.r_[fraction, np.ones(nz)]
+        storage, cend = np.r_[storage, np.zeros(nz)], np.r_[cend, np.zeros(nz)]
+    T = upwind_transport(k, d, flux, len(fixed))
     free = np.flatnonzero(~fixed)
     P, phi, res, inflow = solve_balance(A, T, storage, cend * pa, free, values, fraction)
     leak = float(np.sum(cend * (P - pa)))
-    # what the groove cells send out, to free cells and through their own end faces
+    # what the held cells send out, to free cells and through their own end faces
     feed = float(np.sum((-inflow - cend * pa)[fixed]))
     store = float(np.sum(storage[free] * phi[free]))
-    return P, phi, res, (feed, leak, store)
+    return P[:n], phi[:n], res, (feed, leak, store)
 
 
 def fvm_force(bearing: Bearing, state: JournalState, n_theta: int = 48, n_z: int = 8,
@@ -223,8 +241,8 @@ def fvm_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z:
     """Finite-volume Reynolds solution; same inputs and result type as ``solve_reynolds``.
 
     ``cavitation="jfo"`` is the mass-conserving film on the cells (upwind transport of
-    the content across the theta faces), with grooves or ``ambient_pressure`` > 0 as its
-    supply (a supply line is not offered here).
+    the content across the theta faces), with grooves, a supply line or
+    ``ambient_pressure`` > 0 as its supply.
 
     Forces are the midpoint sums of seed Eq. 16 (second order): F_r = sum p cos(theta) dA,
     F_t = sum p sin(theta) dA in the contract's local frame.
@@ -235,9 +253,6 @@ def fvm_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z:
                                                                          state.gamma))
     grooves = check_grooves(grooves, supply_angle, mass_conserving=cavitation == "jfo")
     ambient_pressure = check_jfo_supply(cavitation, grooves, supply_angle, ambient_pressure)
-    if cavitation == "jfo" and supply_angle is not None:
-        raise ValueError("the finite-volume JFO film takes grooves or ambient_pressure as "
-                         "its supply, not supply_angle")
     g = fvm_grid(n_theta, n_z, bearing.length_ratio, theta0)
     held = None
     if grooves:     # cells whose centres lie in a groove hold its pressure
