@@ -7,11 +7,12 @@ under Reynolds' condition, and the same scene with the JFO film (``paper-*-jfo``
 mesh, oil at atmospheric pressure around a cavity near zero absolute), both over the JFO
 scene's turns (the long bearing's JFO film settles only by the ninth turn). Prints a
 table over the recorded turn (peak eccentricity, minimum film, peak joint force, peak film
-pressure, mean friction, wall time, steps), where the JFO film's cavity forms and
-collapses (crank angles) and where each run's integrator spent its steps (per 30 deg of
-crank over the recorded turn), and writes ``jfo_paper.csv``, ``jfo_paper_steps.csv`` and
-``jfo_paper.png`` (orbits, minimum film, cavitated share, peak pressure, steps and the
-mass balance against the crank angle).
+pressure and friction power of the films at 72 crank angles, wall time, steps), where the
+JFO film's cavity forms and collapses (crank angles) and where each run's integrator spent
+its steps (per 30 deg of crank over the recorded turn), and writes ``jfo_paper.csv``,
+``jfo_paper_steps.csv``, ``jfo_paper.png`` (orbits, minimum film, cavitated share, peak
+pressure, steps and the mass balance against the crank angle) and
+``jfo_paper_films.png`` (the JFO film fraction at eight crank angles).
 """
 from __future__ import annotations
 
@@ -63,12 +64,25 @@ def steps_by_crank_angle(r, bins: int = 12) -> np.ndarray:
     return np.histogram(q, bins=bins, range=(0.0, 360.0))[0]
 
 
-def row(name, r, friction):
+def friction_power(result, frames, radius: float) -> float:
+    """Mean friction power [W] over ``frames`` (evenly spaced crank angles): the journal's
+    friction force times its surface speed relative to the bearing, R omega, with omega
+    minus the rod's angular velocity (the friction force alone changes sign with omega)."""
+    omega = -np.gradient(result.rod_angle, result.t)
+    return float(np.mean([f.solution.friction_force * radius * np.interp(f.t, result.t, omega)
+                          for f in frames]))
+
+
+def row(name, r, frames, radius):
+    """One film's line of the table; pressure and friction from ``frames`` (the film at
+    evenly spaced crank angles of the recorded turn)."""
     force = np.hypot(r.force_x, r.force_y)
     return dict(film=name, peak_eps=float(r.eps.max()), film_min_um=1e6 * float(r.film_min.min()),
-                peak_force_N=float(force.max()), peak_pressure_MPa=None,
-                mean_friction_N=friction, wall_time_s=r.stats["wall_time"],
-                steps=r.stats["steps"], film_solves=r.stats["film_solves"])
+                peak_force_N=float(force.max()),
+                peak_pressure_MPa=max(f.solution.pressure_max for f in frames) / 1e6,
+                friction_power_W=friction_power(r, frames, radius),
+                wall_time_s=r.stats["wall_time"], steps=r.stats["steps"],
+                film_solves=r.stats["film_solves"])
 
 
 def main(argv=None):
@@ -88,26 +102,28 @@ def main(argv=None):
     for r in (r_fem, r_jfo):
         if r.partial:
             print(f"{r.scene}: {r.message}")
-    # the Reynolds film's pressure and friction at 72 instants of the recorded turn
+    # both films at the same 72 crank angles of the recorded turn (JFO: the film step
+    # nearest each, its run replayed)
     frames = film_history(r_fem, fem, n_frames=72)
-    p_fem = max(f.solution.pressure_max for f in frames)
-    mu_fem = float(np.mean([f.solution.friction_force for f in frames]))
+    frames_jfo = film_history(r_jfo, jfo, n_frames=72)
     rec = r_jfo.film_record
     rec = rec[rec[:, 0] >= r_jfo.t[0]] if len(r_jfo.t) else rec
     crank_at = lambda t: np.interp(t, r_jfo.t, r_jfo.crank_angle)   # noqa: E731
-    rows = [row("FE, Reynolds' condition", r_fem, mu_fem), row("FE, JFO", r_jfo,
-                                                                float(np.mean(rec[:, 5])))]
-    rows[0]["peak_pressure_MPa"] = p_fem / 1e6
-    rows[1]["peak_pressure_MPa"] = float(rec[:, 3].max()) / 1e6
+    R = fem.bearing.radius
+    rows = [row("FE, Reynolds' condition", r_fem, frames, R),
+            row("FE, JFO", r_jfo, frames_jfo, R)]
     forms, collapses = cavity_events(rec, crank_at)
     balance = float(np.max(np.abs(rec[:, 6]))) if len(rec) else 0.0
     print("| film | peak eps | min film [um] | peak force [N] | peak pressure [MPa] | "
-          "mean friction [N] | wall time [s] | steps |")
+          "friction power [W] | wall time [s] | steps |")
     print("|---|---|---|---|---|---|---|---|")
     for w in rows:
         print(f"| {w['film']} | {w['peak_eps']:.4f} | {w['film_min_um']:.4f} | "
               f"{w['peak_force_N']:.1f} | {w['peak_pressure_MPa']:.1f} | "
-              f"{w['mean_friction_N']:.3f} | {w['wall_time_s']:.1f} | {w['steps']} |")
+              f"{w['friction_power_W']:.3f} | {w['wall_time_s']:.1f} | {w['steps']} |")
+    print(f"(peak pressure and friction power over the film at 72 crank angles of the turn; "
+          f"the JFO film's peak over all its {len(rec)} film steps of the turn: "
+          f"{rec[:, 3].max() / 1e6:.1f} MPa)")
     print(f"JFO cavity forms at crank {', '.join(f'{x:.0f}' for x in forms) or '-'} deg and "
           f"collapses at {', '.join(f'{x:.0f}' for x in collapses) or '-'} deg; largest "
           f"step mass balance {balance:.1e} m^3/s; cost JFO / Reynolds "
@@ -166,20 +182,19 @@ def main(argv=None):
                  "condition vs mass-conserving film")
     fig.tight_layout()
     fig.savefig(out / "jfo_paper.png", dpi=130)
-    films = film_figure(r_jfo, jfo, out / "jfo_paper_films.png")
+    films = film_figure(frames_jfo[::9], jfo.name, out / "jfo_paper_films.png")
     print(f"wrote {out / 'jfo_paper.csv'}, {out / 'jfo_paper_steps.csv'}, "
           f"{out / 'jfo_paper.png'} and {films}")
     return rows, forms, collapses, per_bin
 
 
-def film_figure(result, scene, path, crank_angles_deg=range(0, 360, 45)):
-    """The JFO film's fraction on the unwrapped film at ``crank_angles_deg`` of the
-    recorded turn (the run's film steps replayed, :func:`film_history`)."""
+def film_figure(frames, name: str, path):
+    """The JFO film's fraction on the unwrapped film in ``frames`` (from
+    :func:`film_history`: the run's film steps replayed)."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     from bearingfem.outputs.render import film_map
-    frames = film_history(result, scene, list(crank_angles_deg))
     cols = (len(frames) + 1) // 2
     fig, axes = plt.subplots(2, cols, figsize=(3.6 * cols, 5.6), sharex=True, sharey=True,
                              constrained_layout=True)
@@ -195,7 +210,7 @@ def film_figure(result, scene, path, crank_angles_deg=range(0, 360, 45)):
     for ax in axes[:, 0]:
         ax.set_ylabel("z [mm]")
     fig.colorbar(cf, ax=axes, label="film fraction [1] (1: full film)", shrink=0.8)
-    fig.suptitle(f"{scene.name}: the mass-conserving film over the recorded turn")
+    fig.suptitle(f"{name}: the mass-conserving film over the recorded turn")
     fig.savefig(path, dpi=110)
     plt.close(fig)
     return path
