@@ -90,9 +90,12 @@ def transport_matrix(cv: ControlVolumes, face_flux: np.ndarray) -> sp.csr_matrix
 
 def shift_rows(cv: ControlVolumes, values: np.ndarray, cells: float) -> np.ndarray:
     """Values per node (last axis) moved ``cells`` columns towards -x along each periodic
-    row (the new node k takes what sat at k + cells), by linear interpolation, which keeps
-    each row's sum exactly: the content a rotating mesh carries from one time step to the
-    next."""
+    row (the new node k takes what sat at k + cells): the content a rotating mesh carries
+    from one time step to the next. Whole columns move exactly; the fraction s of a column
+    moves as one step of limited Lax-Wendroff advection at Courant number s (flux form,
+    monotonized-central slopes): each row's sum is kept exactly, no new extremum appears,
+    and where the values are smooth the error is second order in the cell (a donor-cell
+    shift's is first order, and a time step divides it by its dt)."""
     if cells == 0.0 or not cv.periodic:
         return values
     m = int(np.floor(cells))
@@ -100,5 +103,23 @@ def shift_rows(cv: ControlVolumes, values: np.ndarray, cells: float) -> np.ndarr
     n = cv.n_columns
     node_at = np.empty((n, cv.row.max() + 1), dtype=np.intp)
     node_at[cv.column, cv.row] = np.arange(len(cv.column))
-    return ((1.0 - s) * values[..., node_at[(cv.column + m) % n, cv.row]]
-            + s * values[..., node_at[(cv.column + m + 1) % n, cv.row]])
+    u = values[..., node_at[(cv.column + m) % n, cv.row]]       # whole columns moved
+    if s == 0.0:
+        return u
+    right = values[..., node_at[(cv.column + m + 1) % n, cv.row]]
+    left = values[..., node_at[(cv.column + m - 1) % n, cv.row]]
+    slope = _mc_slope(right - u, u - left)
+    # what crosses each node's +x face during the shift: the upwind (right-hand) node's
+    # value at that face, averaged over the part that crosses
+    upwind_slope = slope[..., node_at[(cv.column + 1) % n, cv.row]]
+    flux = s * (right - 0.5 * (1.0 - s) * upwind_slope)
+    into_left = flux[..., node_at[(cv.column - 1) % n, cv.row]]
+    return u + flux - into_left
+
+
+def _mc_slope(forward: np.ndarray, backward: np.ndarray) -> np.ndarray:
+    """Monotonized-central limited slope (per column): zero at an extremum."""
+    same = forward * backward > 0.0
+    mag = np.minimum(np.minimum(2.0 * np.abs(forward), 2.0 * np.abs(backward)),
+                     0.5 * np.abs(forward + backward))
+    return np.where(same, np.sign(forward) * mag, 0.0)
