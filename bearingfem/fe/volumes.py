@@ -94,8 +94,9 @@ def shift_rows(cv: ControlVolumes, values: np.ndarray, cells: float) -> np.ndarr
     from one time step to the next. Whole columns move exactly; the fraction s of a column
     moves as one step of limited Lax-Wendroff advection at Courant number s (flux form,
     monotonized-central slopes): each row's sum is kept exactly, no new extremum appears,
-    and where the values are smooth the error is second order in the cell (a donor-cell
-    shift's is first order, and a time step divides it by its dt)."""
+    and where the values are smooth a shift errs by the cube of the cell (a donor-cell
+    shift by its square; a time step divides the error by its dt, so what reaches the
+    pressure is second order in the cell, against first)."""
     if cells == 0.0 or not cv.periodic:
         return values
     m = int(np.floor(cells))
