@@ -6,6 +6,7 @@ else, so an effect the scene does not call for costs nothing.
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass, field
 
@@ -104,7 +105,9 @@ class FilmEffect:
 
 
 def _state_row(s: JournalState) -> tuple:
-    return (s.eps, s.eps_dot, s.gamma, s.gamma_dot, s.omega)
+    """The state's fields in order (eps, eps_dot, gamma, gamma_dot, omega): what
+    ``JournalState(*row)`` takes back."""
+    return dataclasses.astuple(s)
 
 
 def hertz_stiffness(radius, clearance, young_modulus, poisson):

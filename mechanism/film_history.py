@@ -92,8 +92,9 @@ REPLAY_TOLERANCE = 1e-9
 def _replayed(result, scene, crank_angles_deg, progress=None):
     """Frames of a film with memory: its run's film steps replayed (see the module)."""
     from .lubrication import TransientJFO
+    from .result import FILM_RECORD, FILM_STATE_COLUMNS
     rec, start = result.film_record, result.stats.get("film_start")
-    if start is None or rec.ndim != 2 or rec.shape[1] < 12 or not len(rec):
+    if start is None or rec.ndim != 2 or rec.shape[1] != len(FILM_RECORD) or not len(rec):
         raise ValueError("the run has no film record with its journal states (runs of "
                          "fem-jfo record them from this version on): run the scene again")
     inside = np.flatnonzero((rec[:, 0] >= result.t[0]) & (rec[:, 0] <= result.t[-1]))
@@ -108,8 +109,8 @@ def _replayed(result, scene, crank_angles_deg, progress=None):
     last = max(wanted)
     peak = float(np.max(np.hypot(rec[:, 1], rec[:, 2]))) or 1.0
     frames, film = {}, TransientJFO()
-    states = rec[:last + 1, [0] + list(range(7, 12))]   # t and the state (FILM_RECORD)
-    steps = film.replay(scene.bearing, start, states, **scene.lubrication.options)
+    steps = film.replay(scene.bearing, start, rec[:last + 1, FILM_STATE_COLUMNS],
+                        **scene.lubrication.options)
     for i, (t, sol) in enumerate(steps):
         miss = float(np.hypot(*np.subtract(sol.force, rec[i, 1:3]))) / peak
         if miss > REPLAY_TOLERANCE:

@@ -19,6 +19,8 @@ DENSE = ("dense_t", "dense_e_x", "dense_e_y", "film_record", "step_t")
 FILM_RECORD = ("t [s]", "F_x [N]", "F_y [N]", "peak pressure [Pa]", "cavitated share [1]",
                "friction [N]", "mass balance [m^3/s]", "eps [1]", "eps_dot [1/s]",
                "gamma [rad]", "gamma_dot [rad/s]", "omega [rad/s]")
+#: The columns of ``film_record`` that replay a film step: its time and journal state.
+FILM_STATE_COLUMNS = [0, 7, 8, 9, 10, 11]
 UNITS = {"t": "s", "crank_angle": "rad", "crank_speed": "rad/s", "rod_angle": "rad",
          "slider_position": "m", "slider_acceleration": "m/s^2", "eps": "1", "e_x": "m",
          "e_y": "m", "film_min": "m", "force_x": "N", "force_y": "N"}

@@ -18,7 +18,8 @@ the nodes' control volumes (:mod:`bearingfem.fe.volumes`), which conserves mass 
   (an exact rotation of the periodic rows by whole cells, a limited second-order shift
   for the rest, :func:`~bearingfem.fe.volumes.shift_rows`: each row's total is kept
   exactly, and the error a step's pressure takes from it is second order in the cell);
-  over the step the content then moves at omega/2 relative to the bearing. With grooves the mesh stays fixed in the bearing and nothing is carried.
+  over the step the content then moves at omega/2 relative to the bearing. With grooves
+  the mesh stays fixed in the bearing and nothing is carried.
 
 Flows (per solve): what the grooves (or a supply line) feed, what leaves the axial ends
 and the rate of change of the content of the free volumes; their balance is the residual

@@ -104,18 +104,16 @@ def shift_rows(cv: ControlVolumes, values: np.ndarray, cells: float) -> np.ndarr
     n = cv.n_columns
     node_at = np.empty((n, cv.row.max() + 1), dtype=np.intp)
     node_at[cv.column, cv.row] = np.arange(len(cv.column))
-    u = values[..., node_at[(cv.column + m) % n, cv.row]]       # whole columns moved
+    at = lambda k: node_at[(cv.column + k) % n, cv.row]   # noqa: E731 (k columns on)
+    u = values[..., at(m)]                                   # whole columns moved
     if s == 0.0:
         return u
-    right = values[..., node_at[(cv.column + m + 1) % n, cv.row]]
-    left = values[..., node_at[(cv.column + m - 1) % n, cv.row]]
+    right, left = values[..., at(m + 1)], values[..., at(m - 1)]
     slope = _mc_slope(right - u, u - left)
     # what crosses each node's +x face during the shift: the upwind (right-hand) node's
     # value at that face, averaged over the part that crosses
-    upwind_slope = slope[..., node_at[(cv.column + 1) % n, cv.row]]
-    flux = s * (right - 0.5 * (1.0 - s) * upwind_slope)
-    into_left = flux[..., node_at[(cv.column - 1) % n, cv.row]]
-    return u + flux - into_left
+    flux = s * (right - 0.5 * (1.0 - s) * slope[..., at(1)])
+    return u + flux - flux[..., at(-1)]
 
 
 def _mc_slope(forward: np.ndarray, backward: np.ndarray) -> np.ndarray:
