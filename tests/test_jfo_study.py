@@ -11,6 +11,7 @@ def test_jfo_paper_study_smoke(tmp_path, capsys):
     assert (tmp_path / "jfo_paper.png").stat().st_size > 10_000
     assert (tmp_path / "jfo_paper_films.png").stat().st_size > 10_000
     assert all(0.0 < r["peak_eps"] < 1.0 for r in rows)
+    assert all(r["friction_power_W"] > 0.0 for r in rows)     # shear dissipates power
     # a run shorter than a turn is recorded whole: every accepted step up to the last
     # saved sample (within 1/720 turn of the end) is counted in its crank-angle interval
     # (0.3 turn: the first four)
