@@ -4,8 +4,8 @@
   MPLBACKEND=Agg; in-process, so the imports are paid once and the file stays within ~30 s),
   as scikit-fem runs its documentation examples: a block that drifts from the API fails here.
   A block preceded by ``<!-- skip-test: why -->`` is not run (long runs only, with the reason).
-- Every ``bearingfem COMMAND`` in a ```bash block is a subcommand of the real parser
-  (bearingfem_app/cli.py), every ``python -m studies.X`` / ``benchmarks.X`` a module with a
+- Every ``bearingfem COMMAND ...`` in a ```bash block is a subcommand of the real parser
+  (bearingfem_app/cli.py) and its options parse there, every ``python -m studies.X`` / ``benchmarks.X`` a module with a
   ``__main__`` entry, every ``make TARGET`` a Makefile target.
 - Every relative link and image points at an existing file (and a ``#fragment`` at a heading
   of it), except the pages still being written on other branches (COMING, below).
@@ -17,6 +17,8 @@ fail ``test_shell_commands_exist``; a link to ``docs/verificaton.md`` or to
 """
 from __future__ import annotations
 
+import contextlib
+import io
 import re
 import shlex
 from pathlib import Path
@@ -81,11 +83,23 @@ def test_python_block_runs(code, monkeypatch, tmp_path):
 
 
 def _subcommands():
-    from bearingfem_app.cli import build_parser
     import argparse
+    from bearingfem_app.cli import build_parser
     parser = build_parser()
     sub = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
     return set(sub.choices)
+
+
+def _parse_error(args):
+    """The parser's complaint about ``bearingfem ARGS`` (options, arity), or None."""
+    from bearingfem_app.cli import build_parser
+    err = io.StringIO()
+    try:
+        with contextlib.redirect_stderr(err):
+            build_parser().parse_args(args)
+    except SystemExit:
+        return err.getvalue().strip().splitlines()[-1]
+    return None
 
 
 def _make_targets():
@@ -120,6 +134,8 @@ def test_shell_commands_exist():
                 if Path(tok).name == "bearingfem" and nxt and not nxt.startswith("-"):
                     if nxt not in commands:
                         bad.append(f"{where}: no command {nxt!r} (have {sorted(commands)})")
+                    elif (err := _parse_error(tokens[i + 1:])) is not None:
+                        bad.append(f"{where}: {err}")
                 if tok == "-m" and nxt.split(".")[0] in ("studies", "benchmarks"):
                     path = ROOT / (nxt.replace(".", "/") + ".py")
                     if not path.is_file():
