@@ -124,7 +124,7 @@ def main(argv=None):
               f"{w['friction_power_W']:.3f} | {w['wall_time_s']:.1f} | {w['steps']} |")
     print(f"(peak pressure and friction power over the film at 72 crank angles of the turn; "
           f"the JFO film's peak over all its {len(rec)} film steps of the turn: "
-          f"{film_column(rec, "pressure_max").max() / 1e6:.1f} MPa)")
+          f"{film_column(rec, 'pressure_max').max() / 1e6:.1f} MPa)")
     print(f"JFO cavity forms at crank {', '.join(f'{x:.0f}' for x in forms) or '-'} deg and "
           f"collapses at {', '.join(f'{x:.0f}' for x in collapses) or '-'} deg; largest "
           f"step mass balance {balance:.1e} m^3/s; cost JFO / Reynolds "
