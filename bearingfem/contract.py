@@ -52,8 +52,8 @@ A film with memory (its state carries the past, e.g. the JFO film fraction) adds
     the integrator can cut its step and try again.
 12. ``snapshot()`` / ``restore(snapshot)``: the kept film as one immutable record and back.
 13. ``replay(start, steps)``: the committed steps taken again from the recorded
-    (t, state) of the start and of each step; yields (t, FilmSolution) per step, the same
-    solves on the same data as the run.
+    (t, state) of the start and of each step; yields (t, FilmSolution) per step (None for
+    a model without a whole film), the same solves on the same data as the run.
 14. ``steps``: the number of film steps taken.
 
 A steady model's :class:`RunFilm` (made by the registry) forwards ``force`` and commits
