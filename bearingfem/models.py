@@ -1,10 +1,12 @@
-"""Film models by name: one contract for the closed forms, the FE and FV films and the table.
+"""Film models by name: the registry of models keeping :mod:`bearingfem.contract`.
 
 Every model maps (bearing, JournalState, **options) to the film force (F_r, F_t) [N] on the
 journal, declares its options with their defaults, and gives the partials of that force in
 (eps, eps_dot, w): exactly where it can (closed forms by complex step, the FE film by its
-discrete sensitivity), by central differences otherwise. The mechanism, the sweeps and the
-designer functions (:mod:`bearingfem.design`) all read models from :data:`FILM_MODELS`.
+discrete sensitivity), by central differences otherwise; a mesh model also gives its whole
+film, a model with memory its transient film. The mechanism, the sweeps and the designer
+functions (:mod:`bearingfem.design`) all read models from :data:`FILM_MODELS` and ask
+them only what the contract names; :func:`register` adds one.
 """
 from __future__ import annotations
 
@@ -17,17 +19,19 @@ from .closed.long_bearing import (long_bearing_derivatives, long_bearing_exact_f
 from .closed.short_bearing import (short_bearing_derivatives, short_bearing_exact_force,
                                    short_bearing_force)
 from .differentiate import central_differences
-from .fe.force_table import TABLE_DEFAULTS, table_force
+from .contract import RunFilm, SteadyRun
+from .fe.force_table import TABLE_DEFAULTS, force_table, table_force
 from .fe.mesh import ELEMENTS
 from .fe.reynolds import fe_force, solve_reynolds
 from .fe.sensitivity import fe_force_derivatives
 from .fv.fvm import fvm_force, fvm_reynolds
 from .solution import FilmSolution, ForceDerivatives
+from .transient import TransientJFO
 from .validation import (MIN_N_THETA, MIN_N_Z, REYNOLDS_FAMILY, check_choice, check_grooves,
                          check_int)
 
 __all__ = ["FilmModel", "FILM_MODELS", "NUMERIC_MODELS", "OPTION_RULES", "film_model",
-           "solve_film"]
+           "register", "solve_film"]
 
 #: How each film option is checked, whichever model takes it: ("int" | "number", (lo, hi))
 #: with None for an open end, ("choice", names), or ("grooves", None) for Groove tuples.
@@ -41,8 +45,9 @@ OPTION_RULES = {
 }
 
 
-def _check_option(name: str, value, where: str, mass_conserving: bool = False):
-    kind, allowed = OPTION_RULES[name]
+def _check_option(name: str, value, where: str, mass_conserving: bool = False,
+                  rules: Mapping = OPTION_RULES):
+    kind, allowed = rules[name]
     label = f"{where}.{name}" if where else name
     if kind == "grooves":
         return check_grooves(value, mass_conserving=mass_conserving)
@@ -63,19 +68,24 @@ def _check_option(name: str, value, where: str, mass_conserving: bool = False):
 
 @dataclass(frozen=True)
 class FilmModel:
-    """A film model: its force, its options with their defaults, its derivatives.
+    """A registered film model, keeping :class:`bearingfem.contract.FilmContract` (the
+    numbered rules for writing one are in :mod:`bearingfem.contract`).
 
     Attributes
     ----------
     name : the name scenes, sweeps, the command line and :mod:`bearingfem.design` use
-    force : (bearing, state, **options) -> (F_r, F_t) [N]
-    defaults : every option the model takes, with its default
+    force : (bearing, state, **options) -> (F_r, F_t) [N] (rule 1)
+    defaults : every option the model takes, with its default (rule 2)
     derivatives : (bearing, state, **options) -> :class:`ForceDerivatives`, exact; None
-        means central differences of ``force``
+        means central differences of ``force`` (rule 4)
     numeric : solved on a mesh (its force is finite at the wall only with eps capped)
-    memory : the film has a state of its own (the JFO film fraction): ``force`` is its
-        steady film; a time integration advances it instead (:mod:`mechanism`), and a
-        linearisation about a state alone is not defined
+    solution : (bearing, state, **options) -> :class:`FilmSolution`, the whole film; None
+        for force-only models (rule 5)
+    transient : (bearing, **options) -> a :class:`~bearingfem.contract.RunFilm` with
+        memory, one per integration; None for a steady film (rule 9)
+    warm : () -> a force function for one integration that keeps what it learnt (rule 7)
+    rules : option rules of this model beyond :data:`OPTION_RULES` (rule 3)
+    notes : (bearing, **options) -> dict of numbers a run records about the model (rule 8)
     """
 
     name: str
@@ -83,11 +93,29 @@ class FilmModel:
     defaults: Mapping = field(default_factory=dict)
     derivatives: Callable | None = None
     numeric: bool = False
-    memory: bool = False
+    solution: Callable | None = None
+    transient: Callable | None = None
+    warm: Callable | None = None
+    rules: Mapping = field(default_factory=dict)
+    notes: Callable | None = None
+
+    def __post_init__(self):
+        unruled = sorted(set(self.defaults) - set(OPTION_RULES) - set(self.rules))
+        if unruled:
+            raise ValueError(f"film model {self.name!r}: option(s) {', '.join(unruled)} "
+                             "have no rule (give them in rules=...)")
+
+    @property
+    def memory(self) -> bool:
+        """The film has a state of its own (e.g. the JFO film fraction): ``force`` is its
+        steady film; a time integration advances it through :meth:`along_run`, and a
+        linearisation about a state alone is not defined."""
+        return self.transient is not None
 
     def options(self, options: Mapping | None = None, where: str = "") -> dict:
-        """The model's defaults updated by ``options``, each checked (OPTION_RULES);
-        an unknown or out-of-range option raises ValueError naming it (after ``where``)."""
+        """The model's defaults updated by ``options``, each checked (OPTION_RULES and the
+        model's ``rules``); an unknown or out-of-range option raises ValueError naming it
+        (after ``where``)."""
         options = dict(options or {})
         unknown = sorted(set(options) - set(self.defaults))
         if unknown:
@@ -95,12 +123,19 @@ class FilmModel:
             raise ValueError(f"{names} {'is not an option' if len(unknown) == 1 else 'are not options'} "
                              f"of film model {self.name!r} (options: "
                              f"{', '.join(sorted(self.defaults)) or 'none'})")
-        return {k: _check_option(k, options.get(k, d), where, self.memory)
+        rules = {**OPTION_RULES, **self.rules}
+        return {k: _check_option(k, options.get(k, d), where, self.memory, rules)
                 for k, d in self.defaults.items()}
 
     def film_force(self, bearing: Bearing, state: JournalState, **options):
         """(F_r, F_t) [N] with the model's defaults for options not given."""
         return self.force(bearing, state, **self.options(options))
+
+    def film_solution(self, bearing: Bearing, state: JournalState,
+                      **options) -> FilmSolution | None:
+        """The whole film (pressures, friction, flows), or None for a force-only model."""
+        opts = self.options(options)
+        return None if self.solution is None else self.solution(bearing, state, **opts)
 
     def force_derivatives(self, bearing: Bearing, state: JournalState,
                           **options) -> ForceDerivatives:
@@ -116,25 +151,81 @@ class FilmModel:
             return self.derivatives(bearing, state, **opts)
         return central_differences(lambda s: self.force(bearing, s, **opts), state)
 
+    def along_run(self, bearing: Bearing, options: Mapping | None = None) -> RunFilm:
+        """A fresh film for one time integration (:class:`~bearingfem.contract.RunFilm`):
+        the model's transient film if it has memory, else its (warm) force."""
+        opts = self.options(options)
+        if self.transient is not None:
+            return self.transient(bearing, **opts)
+        return SteadyRun(bearing, self.warm() if self.warm is not None else self.force, opts)
+
+    def run_notes(self, bearing: Bearing, options: Mapping | None = None) -> dict:
+        """What a run records about the model (rule 8); empty for most models."""
+        return {} if self.notes is None else dict(self.notes(bearing, **self.options(options)))
+
 
 def _fem(bearing, state, n_theta, n_z, element, cavitation, grooves):
     """The "fem" model's force (a cold solve; options always come from the registry)."""
     return fe_force(bearing, state, n_theta, n_z, element, cavitation, grooves=grooves)[0]
 
 
-def _fem_jfo(bearing, state, n_theta, n_z, grooves, ambient_pressure, film_step=0.0):
-    """The steady JFO film's force (steady in the frame of the line of centres).
-    ``film_step`` [s] is for time integration (time between film steps, sooner on a
-    refill: 0, every accepted step); the steady film has none."""
+def _fem_solution(bearing, state, n_theta, n_z, element, cavitation, grooves):
+    return solve_reynolds(bearing, state, n_theta, n_z, element, cavitation, grooves=grooves)
+
+
+def _warm_fem():
+    """The "fem" force for one integration: each solve starts from the previous one's
+    cavitated set and factorisation (consecutive states of an integration are close). The
+    answer is the same as a cold solve to the solver tolerance; only the cost changes."""
+    last = {}
+
+    def fem(bearing, state, n_theta, n_z, element, cavitation, grooves=()):
+        key = (bearing.length_ratio, n_theta, n_z, element, cavitation, grooves)
+        force, last[key] = fe_force(bearing, state, n_theta, n_z, element, cavitation,
+                                    warm=last.get(key), grooves=grooves)
+        return force
+    return fem
+
+
+def _fvm_solution(bearing, state, n_theta, n_z, cavitation):
+    return fvm_reynolds(bearing, state, n_theta, n_z, cavitation)
+
+
+def _table_notes(bearing, **options) -> dict:
+    """The table's own measured mesh error (the table the run used: cached)."""
+    return {"fem_table_mesh_error": force_table(bearing.length_ratio, **options).mesh_error}
+
+
+def _jfo_solution(bearing, state, n_theta, n_z, grooves, ambient_pressure, film_step=0.0):
+    """The steady JFO film (steady in the frame of the line of centres). ``film_step`` [s]
+    is for time integration (:class:`~bearingfem.transient.TransientJFO`); the steady
+    film has none."""
     return solve_reynolds(bearing, state, n_theta, n_z, "P1", "jfo", grooves=grooves,
-                          ambient_pressure=ambient_pressure).force_local
+                          ambient_pressure=ambient_pressure)
+
+
+def _fem_jfo(bearing, state, n_theta, n_z, grooves, ambient_pressure, film_step=0.0):
+    """The steady JFO film's force."""
+    return _jfo_solution(bearing, state, n_theta, n_z, grooves, ambient_pressure).force_local
 
 
 _MESH = dict(n_theta=48, n_z=8)
 #: Oil around the film at atmospheric pressure, the cavity near zero absolute: the default
 #: supply of the JFO model (it needs one; grooves add to it).
 JFO_AMBIENT = 1e5
-FILM_MODELS = {m.name: m for m in (
+FILM_MODELS: dict = {}
+
+
+def register(model: FilmModel) -> FilmModel:
+    """Add ``model`` to :data:`FILM_MODELS` under its name (replacing one of that name):
+    scenes, sweeps, :func:`solve_film` and :mod:`bearingfem.design` then take it."""
+    if not isinstance(model, FilmModel):
+        raise ValueError(f"model must be a FilmModel, got {type(model).__name__}")
+    FILM_MODELS[model.name] = model
+    return model
+
+
+for _m in (
     # switch 1 rad/s: the literal sharp switch of Eq. 9's half film makes integrators chatter
     # (a steady film, w >> 1 rad/s, is the same to round-off)
     FilmModel("short", short_bearing_force, dict(half_film="wedge", switch_speed=1.0),
@@ -143,16 +234,19 @@ FILM_MODELS = {m.name: m for m in (
     FilmModel("short-exact", short_bearing_exact_force),
     FilmModel("long-exact", long_bearing_exact_force),
     FilmModel("fem", _fem, dict(_MESH, element="P1", cavitation="gumbel", grooves=()),
-              fe_force_derivatives, numeric=True),
-    FilmModel("fvm", fvm_force, dict(_MESH, cavitation="gumbel"), numeric=True),
-    FilmModel("fem-table", table_force, dict(TABLE_DEFAULTS),
-              numeric=True),
+              fe_force_derivatives, numeric=True, solution=_fem_solution, warm=_warm_fem),
+    FilmModel("fvm", fvm_force, dict(_MESH, cavitation="gumbel"), numeric=True,
+              solution=_fvm_solution),
+    FilmModel("fem-table", table_force, dict(TABLE_DEFAULTS), numeric=True,
+              notes=_table_notes),
     FilmModel("fem-jfo", _fem_jfo, dict(_MESH, grooves=(), ambient_pressure=JFO_AMBIENT,
                                         film_step=0.0),
-              numeric=True, memory=True),
-)}
-#: Film models solved numerically: their force stays finite up to the wall only when eps is
-#: capped (scene default eps_max 0.999); the closed forms are evaluated to 1 - 1e-6.
+              numeric=True, solution=_jfo_solution, transient=TransientJFO),
+):
+    register(_m)
+#: Film models solved numerically, as registered at import (a model's own ``numeric`` is
+#: the contract): their force stays finite up to the wall only when eps is capped (scene
+#: default eps_max 0.999); the closed forms are evaluated to 1 - 1e-6.
 NUMERIC_MODELS = frozenset(name for name, m in FILM_MODELS.items() if m.numeric)
 
 
@@ -166,15 +260,6 @@ def film_model(name: str, what: str = "model") -> FilmModel:
 
 def solve_film(model: str, bearing: Bearing, state: JournalState,
                options: Mapping | None = None) -> FilmSolution | None:
-    """The whole film (pressures, friction, flows) of a mesh model with its options
-    (defaults filled in), or None for the models without one (closed forms, the table)."""
-    o = film_model(model).options(options)
-    if model == "fem":
-        return solve_reynolds(bearing, state, o["n_theta"], o["n_z"], o["element"],
-                              o["cavitation"], grooves=o["grooves"])
-    if model == "fvm":
-        return fvm_reynolds(bearing, state, o["n_theta"], o["n_z"], o["cavitation"])
-    if model == "fem-jfo":
-        return solve_reynolds(bearing, state, o["n_theta"], o["n_z"], "P1", "jfo",
-                              grooves=o["grooves"], ambient_pressure=o["ambient_pressure"])
-    return None
+    """The whole film (pressures, friction, flows) of ``model`` with its options (defaults
+    filled in), or None for the models without one (closed forms, the table)."""
+    return film_model(model).film_solution(bearing, state, **dict(options or {}))

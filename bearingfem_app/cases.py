@@ -83,19 +83,19 @@ def _film_inputs(p: dict):
 
 def _film_case(params: dict) -> dict:
     from bearingfem.design import sommerfeld_number
-    from bearingfem.models import solve_film
-    from mechanism.lubrication import film_force_function
+    from bearingfem.models import film_model
     p = {k: params.get(k, d) for k, (d, _) in FILM_PARAMS.items()}
     o = _film_options(p)
     b, s = _film_inputs(p)
     out = {}
-    sol = solve_film(p["model"], b, s, o)
+    model = film_model(p["model"])
+    sol = model.film_solution(b, s, **o)
     if sol is not None:
         f_r, f_t = sol.force_local
         out.update(pressure_max=sol.pressure_max, friction_force=sol.friction_force,
                    side_leakage=sol.side_leakage, cavitated_fraction=sol.cavitated_fraction)
     else:
-        f_r, f_t = film_force_function(p["model"])(b, s, **o)
+        f_r, f_t = model.film_force(b, s, **o)
     load = math.hypot(f_r, f_t)
     out.update(force_r=f_r, force_t=f_t, load=load,
                attitude_deg=math.degrees(math.atan2(f_t, -f_r)) if load else 0.0,
@@ -107,10 +107,10 @@ def _film_case(params: dict) -> dict:
 def _design_case(params: dict) -> dict:
     from bearingfem.design import (coefficients, flow_variable, friction_variable,
                                    petroff_friction, sommerfeld_number)
-    from bearingfem.models import FILM_MODELS, solve_film
+    from bearingfem.models import film_model
     p = {k: params.get(k, d) for k, (d, _) in DESIGN_PARAMS.items()}
     b, s = _film_inputs(p)
-    model = FILM_MODELS[p["model"]]
+    model = film_model(p["model"])
     opts = _film_options(p)
     kc = coefficients(b, s, p["model"], frame="load", **opts)
     k, c = kc.dimensionless()
@@ -121,7 +121,7 @@ def _design_case(params: dict) -> dict:
                friction_variable=friction_variable(
                    b, petroff_friction(b, p["eps"], p["omega"], f_t), load),
                coefficient_method=kc.method)
-    sol = solve_film(p["model"], b, s, opts)
+    sol = model.film_solution(b, s, **opts)
     if sol is not None:
         out["flow_variable"] = flow_variable(b, sol.side_leakage, p["omega"])
     for name, m in (("K", k), ("C", c)):

@@ -29,7 +29,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from bearingfem.outputs.tables import write_csv
-from mechanism.lubrication import FILM_MODELS
+from bearingfem.models import FILM_MODELS
 from mechanism.scene import read_toml
 
 from .cases import KINDS, MECHANISM_PARAMS, _precheck, _scene_data, run_case

@@ -15,8 +15,9 @@ import numpy as np
 from bearingfem import Bearing, JournalState
 from bearingfem.film import local_to_inertial
 
-from .lubrication import film_force_function
-from .result import FILM_RECORD
+from bearingfem.models import film_model
+
+from .result import FILM_COLUMNS, film_column, film_row
 
 __all__ = ["JointKinematics", "FilmEffect", "HertzContact", "CoulombFriction", "LinearSpring",
            "hertz_stiffness"]
@@ -42,17 +43,19 @@ class JointKinematics:
 
 @dataclass
 class FilmEffect:
-    """Hydrodynamic film force from a bearingfem model (see :mod:`mechanism.lubrication`).
+    """Hydrodynamic film force from a bearingfem model, through the film-model contract
+    (:mod:`bearingfem.contract`): the model makes the film for this run
+    (:meth:`~bearingfem.models.FilmModel.along_run`), which gives the force at each trial
+    state and advances what it keeps at :meth:`commit` (each accepted step).
 
     Beyond ``eps_max`` the film is evaluated at eps_max along the same direction: the force
     stays finite and continuous when an integrator's trial step crosses eps = 1 (the
     contact effect, or the simulator's stop at eps = 1, takes over there).
 
-    A model with memory ("fem-jfo") advances its film at ``commit`` (each accepted step)
-    and keeps what it committed in ``history``: rows of (t, F_x, F_y, peak pressure [Pa],
-    cavitated share of the film, friction force [N], mass balance [m^3/s], and the state's
-    eps, eps_dot, gamma, gamma_dot, omega), the film's first state in ``start`` (t and the
-    same five): what :meth:`TransientJFO.replay` needs to take the same film steps again.
+    A model with memory keeps what it committed in ``history``: one row per film step,
+    columns :data:`mechanism.result.FILM_COLUMNS` (what the step gave, then the journal
+    state it was taken at), and the film's first state in ``start`` (t and the state's
+    fields): what the model's ``replay`` needs to take the same film steps again.
     """
 
     bearing: Bearing
@@ -62,8 +65,9 @@ class FilmEffect:
     solves: int = 0
 
     def __post_init__(self):
-        self._f = film_force_function(self.model)
-        self.memory = hasattr(self._f, "commit")
+        self.film_model = film_model(self.model, "lubrication.model")
+        self.run = self.film_model.along_run(self.bearing, self.options)
+        self.memory = self.film_model.memory
         self.history: list = []
         self.start: tuple | None = None
 
@@ -74,40 +78,38 @@ class FilmEffect:
     def force(self, k: JointKinematics):
         s = self._state(k)
         self.solves += 1
-        if self.memory:
-            if self.start is None:
-                self.start = (k.t,) + _state_row(s)
-            f_r, f_t = self._f.force(self.bearing, s, k.t, **self.options)
-        else:
-            f_r, f_t = self._f(self.bearing, s, **self.options)
+        if self.start is None:              # the film begins at its first state
+            self.start = (k.t,) + dataclasses.astuple(s)
+            self.run.start(s, k.t)
+        f_r, f_t = self.run.force(s, k.t)
         return local_to_inertial(f_r, f_t, s.gamma)
 
     def commit(self, k: JointKinematics) -> None:
-        """Advance a film with memory to the accepted state ``k`` (at time k.t)."""
-        s = self._state(k)
-        while self.history and self.history[-1][0] > k.t:     # the integrator went back
-            self.history.pop()
-        sol = self._f.commit(self.bearing, s, k.t, **self.options)
-        if sol is not None:
-            fx, fy = sol.force
-            self.history.append((k.t, fx, fy, sol.pressure_max, sol.cavitated_fraction,
-                                 sol.friction_force, sol.mass_balance) + _state_row(s))
+        """Advance the film to the accepted state ``k`` (at time k.t); a film step that
+        fails raises and leaves the film and its history as they were."""
+        step = self.run.commit(self._state(k), k.t)
+        if step is not None:
+            self.history.append(film_row(step))
+
+    def snapshot(self):
+        """What the film keeps, with the length of its history (to go back to)."""
+        return self.run.snapshot(), len(self.history)
+
+    def restore(self, snapshot) -> None:
+        kept, n = snapshot
+        self.run.restore(kept)
+        del self.history[n:]
 
     @property
     def steps(self) -> int:
         """Film steps committed (a film with memory; 0 otherwise)."""
-        return self._f.steps if self.memory else 0
+        return self.run.steps
 
     def recorded_force(self, t):
         """(F_x, F_y) [N] at times ``t`` from the committed steps (linear in between)."""
-        h = np.array(self.history) if self.history else np.zeros((1, len(FILM_RECORD)))
-        return np.interp(t, h[:, 0], h[:, 1]), np.interp(t, h[:, 0], h[:, 2])
-
-
-def _state_row(s: JournalState) -> tuple:
-    """The state's fields in order (eps, eps_dot, gamma, gamma_dot, omega): what
-    ``JournalState(*row)`` takes back."""
-    return dataclasses.astuple(s)
+        h = np.array(self.history) if self.history else np.zeros((1, len(FILM_COLUMNS)))
+        return (np.interp(t, film_column(h, "t"), film_column(h, "force_x")),
+                np.interp(t, film_column(h, "t"), film_column(h, "force_y")))
 
 
 def hertz_stiffness(radius, clearance, young_modulus, poisson):

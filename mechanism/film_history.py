@@ -5,7 +5,7 @@ at a sample (eccentricity rate, the journal's speed relative to the bearing = mi
 rod's angular velocity) follows by differentiating those records in time, so a film can
 be re-solved at any saved instant without re-running the mechanism.
 
-A film with memory ("fem-jfo") depends on its whole past, not on the instant: its run
+A film with memory (a model whose ``memory`` is True, e.g. "fem-jfo") depends on its whole past, not on the instant: its run
 records the state of every film step (``film_record``), and the film is replayed through
 them (the same solves as in the run, checked against the recorded forces); each frame is
 the film step nearest its crank angle in the saved turns.
@@ -20,6 +20,7 @@ from pathlib import Path
 import numpy as np
 
 from bearingfem import JournalState, solve_reynolds
+from bearingfem.models import film_model
 
 __all__ = ["FilmFrame", "film_history", "write_history", "render_history"]
 
@@ -56,13 +57,15 @@ def film_history(result, scene, crank_angles_deg=None, n_frames=12, n_theta=None
         if not (isinstance(n_frames, int) and n_frames >= 1):
             raise ValueError(f"n_frames must be an integer >= 1, got {n_frames!r}")
         crank_angles_deg = np.arange(n_frames) * 360.0 / n_frames
-    if scene.lubrication is not None and scene.lubrication.model == "fem-jfo":
+    model = (film_model(scene.lubrication.model, "lubrication.model")
+             if scene.lubrication is not None else None)
+    if model is not None and model.memory:
         given = dict(n_theta=n_theta, n_z=n_z, element=element, cavitation=cavitation)
         if any(v is not None for v in given.values()):
-            raise ValueError("a fem-jfo film is replayed on its run's own mesh: leave "
+            raise ValueError(f"a {model.name} film is replayed on its run's own mesh: leave "
                              f"{', '.join(k for k, v in given.items() if v is not None)} "
                              "unset")
-        return _replayed(result, scene, crank_angles_deg, progress)
+        return _replayed(result, scene, model, crank_angles_deg, progress)
     opts = scene.lubrication.options if scene.lubrication is not None else {}
     n_theta = n_theta or opts.get("n_theta", 96)
     n_z = n_z or opts.get("n_z", 16)
@@ -89,30 +92,33 @@ def film_history(result, scene, crank_angles_deg=None, n_frames=12, n_theta=None
 REPLAY_TOLERANCE = 1e-9
 
 
-def _replayed(result, scene, crank_angles_deg, progress=None):
+def _replayed(result, scene, model, crank_angles_deg, progress=None):
     """Frames of a film with memory: its run's film steps replayed (see the module)."""
-    from .lubrication import TransientJFO
-    from .result import FILM_RECORD, FILM_STATE_COLUMNS
+    from .result import FILM_COLUMNS, film_column, film_states
     rec, start = result.film_record, result.stats.get("film_start")
-    if start is None or rec.ndim != 2 or rec.shape[1] != len(FILM_RECORD) or not len(rec):
+    if start is None or rec.ndim != 2 or rec.shape[1] != len(FILM_COLUMNS) or not len(rec):
         raise ValueError("the run has no film record with its journal states (runs of "
-                         "fem-jfo record them from this version on): run the scene again")
-    inside = np.flatnonzero((rec[:, 0] >= result.t[0]) & (rec[:, 0] <= result.t[-1]))
+                         f"{model.name} record them from this version on): run the scene "
+                         "again")
+    t_rec = film_column(rec, "t")
+    inside = np.flatnonzero((t_rec >= result.t[0]) & (t_rec <= result.t[-1]))
     if not len(inside):
         raise ValueError("no film step of the run falls in its saved turns")
     crank = lambda t: np.mod(np.degrees(np.interp(t, result.t, result.crank_angle)),  # noqa
                              360.0)
-    q_rec = crank(rec[inside, 0])
+    q_rec = crank(t_rec[inside])
     wanted = set()
     for a in np.mod(np.asarray(crank_angles_deg, float), 360.0):
         wanted.add(int(inside[np.argmin(np.abs((q_rec - a + 180.0) % 360.0 - 180.0))]))
     last = max(wanted)
-    peak = float(np.max(np.hypot(rec[:, 1], rec[:, 2]))) or 1.0
-    frames, film = {}, TransientJFO()
-    steps = film.replay(scene.bearing, start, rec[:last + 1, FILM_STATE_COLUMNS],
-                        **scene.lubrication.options)
+    force = np.column_stack([film_column(rec, "force_x"), film_column(rec, "force_y")])
+    peak = float(np.max(np.hypot(force[:, 0], force[:, 1]))) or 1.0
+    frames = {}
+    film = model.along_run(scene.bearing, scene.lubrication.options)
+    steps = film.replay((float(start[0]), JournalState(*(float(v) for v in start[1:]))),
+                        film_states(rec[:last + 1]))
     for i, (t, sol) in enumerate(steps):
-        miss = float(np.hypot(*np.subtract(sol.force, rec[i, 1:3]))) / peak
+        miss = float(np.hypot(*np.subtract(sol.force, force[i]))) / peak
         if miss > REPLAY_TOLERANCE:
             raise ValueError(f"the replayed film departs from the run's record at film step "
                              f"{i} (t = {t:.6g} s) by {miss:.2g} of the peak force: the scene's "
@@ -121,7 +127,7 @@ def _replayed(result, scene, crank_angles_deg, progress=None):
             frames[i] = sol
             if progress:
                 progress(len(frames), len(wanted))
-    return [FilmFrame(float(crank(rec[i, 0])), float(rec[i, 0]), frames[i])
+    return [FilmFrame(float(crank(t_rec[i])), float(t_rec[i]), frames[i])
             for i in sorted(frames)]
 
 

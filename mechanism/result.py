@@ -1,26 +1,63 @@
 """Simulation results: arrays over the saved time points, run statistics, saving."""
 from __future__ import annotations
 
+import dataclasses
 import json
+import math
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
+from bearingfem import JournalState
+from bearingfem.contract import FilmStep
+from bearingfem.film import local_to_inertial
 from bearingfem.outputs.tables import write_csv
 
-__all__ = ["SimulationResult", "load_result", "provenance", "FIELDS"]
+__all__ = ["SimulationResult", "load_result", "provenance", "FIELDS", "FILM_COLUMNS",
+           "film_row", "film_column", "film_states"]
 
 FIELDS = ("t", "crank_angle", "crank_speed", "rod_angle", "slider_position",
           "slider_acceleration", "eps", "e_x", "e_y", "film_min", "force_x", "force_y")
 DENSE = ("dense_t", "dense_e_x", "dense_e_y", "film_record", "step_t")
-#: Columns of ``film_record`` (a film with memory: one row per committed film step): what
-#: the step gave, then the journal state it was taken at (enough to replay the film).
+#: Columns of ``film_record`` (a film with memory: one row per committed film step), by
+#: name with their units: what the step gave, then the journal state it was taken at
+#: (the fields of :class:`bearingfem.JournalState`: enough to replay the film). A model
+#: that solves no whole film leaves the solution's columns NaN.
+FILM_COLUMNS = {"t": "s", "force_x": "N", "force_y": "N", "pressure_max": "Pa",
+                "cavitated_fraction": "1", "friction_force": "N", "mass_balance": "m^3/s",
+                "eps": "1", "eps_dot": "1/s", "gamma": "rad", "gamma_dot": "rad/s",
+                "omega": "rad/s"}
+#: The columns' headers as written (names kept from earlier result files).
 FILM_RECORD = ("t [s]", "F_x [N]", "F_y [N]", "peak pressure [Pa]", "cavitated share [1]",
                "friction [N]", "mass balance [m^3/s]", "eps [1]", "eps_dot [1/s]",
                "gamma [rad]", "gamma_dot [rad/s]", "omega [rad/s]")
-#: The columns of ``film_record`` that replay a film step: its time and journal state.
-FILM_STATE_COLUMNS = [0, 7, 8, 9, 10, 11]
+_COLUMN = {name: i for i, name in enumerate(FILM_COLUMNS)}
+_STATE_FIELDS = tuple(f.name for f in dataclasses.fields(JournalState))
+_SOLUTION_FIELDS = ("pressure_max", "cavitated_fraction", "friction_force", "mass_balance")
+
+
+def film_row(step: FilmStep) -> tuple:
+    """One ``film_record`` row of a committed film step, filled by column name."""
+    row = dict(zip(_STATE_FIELDS, dataclasses.astuple(step.state)), t=step.t)
+    row["force_x"], row["force_y"] = local_to_inertial(*step.force_local, step.state.gamma)
+    for name in _SOLUTION_FIELDS:
+        row[name] = (math.nan if step.solution is None
+                     else getattr(step.solution, name))
+    return tuple(float(row[name]) for name in FILM_COLUMNS)
+
+
+def film_column(record: np.ndarray, name: str) -> np.ndarray:
+    """The column ``name`` (a key of :data:`FILM_COLUMNS`) of a film record."""
+    return np.asarray(record)[:, _COLUMN[name]]
+
+
+def film_states(record: np.ndarray) -> list:
+    """(t, JournalState) of each row of a film record: what a replay takes."""
+    cols = np.column_stack([film_column(record, k) for k in ("t",) + _STATE_FIELDS])
+    return [(float(r[0]), JournalState(*(float(v) for v in r[1:]))) for r in cols]
+
+
 UNITS = {"t": "s", "crank_angle": "rad", "crank_speed": "rad/s", "rod_angle": "rad",
          "slider_position": "m", "slider_acceleration": "m/s^2", "eps": "1", "e_x": "m",
          "e_y": "m", "film_min": "m", "force_x": "N", "force_y": "N"}
@@ -55,7 +92,7 @@ class SimulationResult:
     dense_t: np.ndarray = field(default_factory=lambda: np.empty(0))
     dense_e_x: np.ndarray = field(default_factory=lambda: np.empty(0))
     dense_e_y: np.ndarray = field(default_factory=lambda: np.empty(0))
-    #: a film with memory ("fem-jfo"): one row per committed step, columns FILM_RECORD
+    #: a film with memory: one row per committed step, columns FILM_COLUMNS
     film_record: np.ndarray = field(default_factory=lambda: np.empty((0, len(FILM_RECORD))))
     #: where the integrator's accepted steps end [s] (the whole run, not only the
     #: recorded turns): where a run spends its steps, e.g. per crank angle
@@ -73,6 +110,9 @@ class SimulationResult:
                 f"  peak eps {np.max(self.eps):.4f}, min film {np.min(self.film_min) * 1e6:.3f} um, "
                 f"crank speed {np.min(self.crank_speed):.2f}-{np.max(self.crank_speed):.2f} rad/s, "
                 f"peak |slider acc| {np.max(np.abs(self.slider_acceleration)):.1f} m/s^2")
+        if s.get("step_cuts"):
+            lines.append(f"  {len(s['step_cuts'])} step(s) cut where a film solve did not "
+                         "converge (stats['step_cuts'])")
         if "fem_table_mesh_error" in s:
             lines.append(f"  fem-table: its mesh's forces are within "
                          f"{100 * s['fem_table_mesh_error']:.2g} % of a mesh twice as fine "

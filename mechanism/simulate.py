@@ -4,31 +4,35 @@ The state is (q, e_x, e_y) and their rates: the eccentricity itself is integrate
 error control acts on it in units of the clearance (through X_PT and A it would be the
 difference of two large numbers). A and X_PT follow from the kinematics.
 
+The loop is :func:`mechanism.stepping.integrate` (scipy's solvers stepped here: a film with
+memory commits at each accepted step); the saved samples are :mod:`mechanism.sampling`'s,
+the ideal joint :mod:`mechanism.ideal`'s.
+
 Integrating segment by segment (a quarter crank turn each) keeps every finished segment:
 a run stopped by Ctrl-C, a solver failure or the journal passing eps = 1 without a contact
 effect returns what it computed, marked partial, with the time and the reason.
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 import time
 
 import numpy as np
-from scipy.integrate import solve_ivp
 
-from .dynamics import (_gravity_terms, _mass_terms, accelerations, eccentricity_accelerations,
-                       pin_position, pin_velocity, rod_from_eccentricity)
+from .dynamics import accelerations, eccentricity_accelerations
 from .effects import (CoulombFriction, FilmEffect, HertzContact, JointKinematics, LinearSpring,
                       hertz_stiffness)
+from .ideal import simulate_ideal
+from .joint import METHODS, coordinates, joint_force
 from .parameters import GRAVITY
 from .progress import Progress
-from .result import FIELDS, FILM_RECORD, SimulationResult, provenance
-from .rigid import integrate_rigid, rigid_kinematics, rigid_rhs
+from .result import SimulationResult
+from .sampling import sample_run
 from .scene import Scene
+from .stepping import STEP_FAILURE, integrate
 
 __all__ = ["simulate", "build_effects"]
-
-_METHODS = {"lsoda": "LSODA", "bdf": "BDF", "radau": "Radau", "rk45": "RK45", "dop853": "DOP853"}
 
 
 class RunStopped(Exception):
@@ -57,30 +61,6 @@ def build_effects(scene: Scene):
     return effects, film, contact
 
 
-def _coordinates(m, y):
-    """(q, A, X_PT, q', A', X_PT') of the state y = (q, e_x, e_y, q', e_x', e_y')."""
-    q, ex, ey, qd, exd, eyd = y
-    A, Ad = rod_from_eccentricity(m, q, qd, ey, eyd)
-    px, _ = pin_position(m, q, A)
-    vx, _ = pin_velocity(m, q, A, qd, Ad)
-    return q, A, px - ex, qd, Ad, vx - exd
-
-
-def _joint(m, y):
-    q, ex, ey, qd, exd, eyd = y
-    _, Ad = rod_from_eccentricity(m, q, qd, ey, eyd)
-    return JointKinematics(ex, ey, exd, eyd, -Ad)
-
-
-def _joint_force(effects, k):
-    fx = fy = 0.0
-    for eff in effects:
-        a, b = eff.force(k)
-        fx += a
-        fy += b
-    return fx, fy
-
-
 def _initial_state(scene: Scene):
     """Pin centred in the bush and moving with the slider: e = 0, e' = 0."""
     return np.array([scene.crank_angle, 0.0, 0.0, scene.crank_speed, 0.0, 0.0])
@@ -89,7 +69,7 @@ def _initial_state(scene: Scene):
 def simulate(scene: Scene, progress: bool | None = None) -> SimulationResult:
     """Integrate the scene; see :class:`mechanism.result.SimulationResult`."""
     if scene.joint == "ideal":
-        return _simulate_ideal(scene, progress)
+        return simulate_ideal(scene, progress)
     m = scene.mechanism
     g = GRAVITY if scene.gravity else 0.0
     effects, film, contact = build_effects(scene)
@@ -103,8 +83,8 @@ def simulate(scene: Scene, progress: bool | None = None) -> SimulationResult:
 
     def rhs(t, y):
         n_rhs[0] += 1
-        q, A, _, qd, Ad, _ = _coordinates(m, y)
-        fx, fy = _joint_force(effects, JointKinematics(y[1], y[2], y[4], y[5], -Ad, t))
+        q, A, _, qd, Ad, _ = coordinates(m, y)
+        fx, fy = joint_force(effects, JointKinematics(y[1], y[2], y[4], y[5], -Ad, t))
         qdd, Add, Xdd = accelerations(m, q, A, qd, Ad, fx, fy, g,
                                       scene.crank_torque, scene.slider_force)
         exdd, eydd = eccentricity_accelerations(m, q, A, qd, Ad, qdd, Add, Xdd)
@@ -127,26 +107,22 @@ def simulate(scene: Scene, progress: bool | None = None) -> SimulationResult:
     ev_out.terminal, ev_out.direction = True, -1
 
     events = [ev_end, None]
-    if film is not None and film.memory:
-        # A film with memory advances at each accepted step: solve_ivp evaluates every
-        # event function once at the end of each accepted step (this one never fires).
-        def ev_commit(t, y):
-            _, _, _, _, Ad, _ = _coordinates(m, y)
-            film.commit(JointKinematics(y[1], y[2], y[4], y[5], -Ad, t))
-            return 1.0
-        events.append(ev_commit)
+
+    def accept(t, y):        # each accepted step: a film with memory commits there
+        _, _, _, _, Ad, _ = coordinates(m, y)
+        film.commit(JointKinematics(y[1], y[2], y[4], y[5], -Ad, t))
 
     a_len = run.atol if run.atol is not None else 1e-4 * c
     w = scene.crank_speed
     atol = np.array([a_len / m.crank_length, a_len, a_len,
                      a_len * w / m.crank_length, a_len * w, a_len * w])
-    opts = dict(method=_METHODS[run.integrator], rtol=run.rtol, atol=atol, dense_output=True)
+    opts = dict(method=METHODS[run.integrator], rtol=run.rtol, atol=atol)
     if run.max_step is not None:
         opts["max_step"] = run.max_step
 
     t, y = 0.0, _initial_state(scene)
     in_contact = gap(t, y) > 0.0
-    pieces, steps, message, partial = [], 0, "completed", False
+    pieces, steps, message, partial, cuts = [], 0, "completed", False, []
     first_step = None
     start = time.perf_counter()
     try:
@@ -155,7 +131,9 @@ def simulate(scene: Scene, progress: bool | None = None) -> SimulationResult:
             if first_step is not None and opts["method"] != "LSODA":
                 opts["first_step"] = min(first_step, t_stop - t)
             events[1] = ev_out if in_contact else ev_in
-            sol = solve_ivp(rhs, (t, t_stop), y, events=events, **opts)
+            sol = integrate(rhs, (t, t_stop), y, events=events,
+                            accept=accept if film is not None else None, **opts)
+            cuts.extend(sol.cuts)
             if sol.status == -1:
                 raise RunStopped(f"integrator failed at t = {sol.t[-1]:.6g} s: {sol.message}")
             if len(sol.t) > 1:
@@ -183,7 +161,7 @@ def simulate(scene: Scene, progress: bool | None = None) -> SimulationResult:
         partial, message = True, str(err)
     except KeyboardInterrupt:
         partial, message = True, f"interrupted at t = {t:.6g} s"
-    except (ValueError, ArithmeticError, np.linalg.LinAlgError) as err:
+    except (ValueError, ArithmeticError, np.linalg.LinAlgError, STEP_FAILURE) as err:
         partial, message = True, f"stopped at t = {t:.6g} s: {type(err).__name__}: {err}"
     wall = time.perf_counter() - start
     bar.close(message if partial else "done", complete=not partial)
@@ -192,114 +170,10 @@ def simulate(scene: Scene, progress: bool | None = None) -> SimulationResult:
              "film_steps": film.steps if film is not None else 0,
              "contact_evals": contact.evaluations if contact else 0,
              "integrator": run.integrator, "rtol": run.rtol, "atol_length": a_len,
-             "effects": [type(e).__name__ for e in effects]}
+             "effects": [type(e).__name__ for e in effects],
+             "step_cuts": [dataclasses.asdict(c) for c in cuts]}
     if film is not None and film.start is not None:   # where a film with memory began
         stats["film_start"] = [float(v) for v in film.start]
-    if film is not None and film.model == "fem-table":
-        from bearingfem.fe.force_table import force_table   # the one the run used (cached)
-        stats["fem_table_mesh_error"] = force_table(scene.bearing.length_ratio,
-                                                    **film.options).mesh_error
-    return _sample(scene, pieces, effects, g, stats, partial, message)
-
-
-def _dense(pieces):
-    bounds = np.array([p.t_min for p in pieces] + [pieces[-1].t_max])
-
-    def at(t):
-        i = np.clip(np.searchsorted(bounds, t, side="right") - 1, 0, len(pieces) - 1)
-        out = np.empty((6, len(t)))
-        for j in np.unique(i):
-            sel = i == j
-            out[:, sel] = pieces[j](t[sel])
-        return out
-    return at, bounds[0], bounds[-1]
-
-
-def _output_times(scene, crank_angle_at, t0, t1):
-    """Saved time points: every 1/samples_per_turn of a nominal turn, from where the crank
-    passes q0 + 2 pi record_from_turn to t1. A run that stopped before that window keeps
-    its whole computed trajectory, from t0."""
-    tt = np.linspace(t0, t1, 20001)
-    q = crank_angle_at(tt)
-    q_rec = scene.crank_angle + 2 * math.pi * scene.run.record_from_turn
-    t_rec = float(np.interp(q_rec, q, tt)) if q[-1] >= q_rec else t0
-    dt = 2 * math.pi / scene.crank_speed / scene.run.samples_per_turn
-    t = np.arange(t_rec, t1 + 0.5 * dt, dt)
-    return t[t <= t1]
-
-
-def _sample(scene, pieces, effects, g, stats, partial, message):
-    m = scene.mechanism
-    if not pieces:
-        return SimulationResult(**{k: np.empty(0) for k in FIELDS}, scene=scene.name,
-                                partial=partial, message=message, stats=stats,
-                                provenance=provenance(scene))
-    at, t0, t1 = _dense(pieces)
-    t = _output_times(scene, lambda tt: at(tt)[0], t0, t1)
-    Y = at(t)
-    c = scene.bearing.clearance
-    n = len(t)
-    out = {k: np.empty(n) for k in ("slider_acceleration", "force_x", "force_y", "rod_angle",
-                                    "slider_position")}
-    solves_before = [getattr(e, "solves", 0) for e in effects]
-    # a film with memory cannot be re-solved at a sample: its committed steps give it
-    live = [e for e in effects if not getattr(e, "memory", False)]
-    recorded = [e.recorded_force(t) for e in effects if getattr(e, "memory", False)]
-    for i in range(n):
-        q, A, X, qd, Ad, _ = _coordinates(m, Y[:, i])
-        fx, fy = _joint_force(live, _joint(m, Y[:, i]))
-        for rx, ry in recorded:
-            fx, fy = fx + float(rx[i]), fy + float(ry[i])
-        out["force_x"][i], out["force_y"][i] = fx, fy
-        out["rod_angle"][i], out["slider_position"][i] = A, X
-        out["slider_acceleration"][i] = accelerations(
-            m, q, A, qd, Ad, fx, fy, g, scene.crank_torque, scene.slider_force)[2]
-    stats["output_film_solves"] = int(sum(getattr(e, "solves", 0) for e in effects)
-                                      - sum(solves_before))
-    record = next((np.array(e.history).reshape(-1, len(FILM_RECORD)) for e in effects
-                   if getattr(e, "memory", False)), np.empty((0, len(FILM_RECORD))))
-    eps = np.hypot(Y[1], Y[2]) / c
-    td = np.linspace(t[0], t[-1], 10 * (len(t) - 1) + 1) if len(t) > 1 else t
-    Yd = at(td)
-    return SimulationResult(
-        t=t, crank_angle=Y[0], crank_speed=Y[3], rod_angle=out["rod_angle"],
-        slider_position=out["slider_position"],
-        slider_acceleration=out["slider_acceleration"], eps=eps, e_x=Y[1],
-        e_y=Y[2], film_min=np.maximum(c * (1.0 - eps), 0.0), force_x=out["force_x"],
-        force_y=out["force_y"], scene=scene.name, partial=partial, message=message,
-        stats=stats, provenance=provenance(scene), dense_t=td, dense_e_x=Yd[1],
-        dense_e_y=Yd[2], film_record=record,
-        step_t=np.concatenate([p.ts[1:] for p in pieces]))
-
-
-def _simulate_ideal(scene: Scene, progress=None) -> SimulationResult:
-    """The rigid mechanism through the same interface (e = 0; force = joint reaction)."""
-    m = scene.mechanism
-    g = GRAVITY if scene.gravity else 0.0
-    run = scene.run
-    f = rigid_rhs(m, g, scene.crank_torque, scene.slider_force)
-    start = time.perf_counter()
-    sol = integrate_rigid(m, scene.crank_angle, scene.crank_speed, run.turns, g,
-                          scene.crank_torque, scene.slider_force, _METHODS[run.integrator],
-                          rtol=min(run.rtol, 1e-8), atol=1e-10)
-    wall = time.perf_counter() - start
-    t = _output_times(scene, lambda tt: sol.sol(tt)[0], 0.0, sol.t[-1])
-    q, qd = sol.sol(t)
-    qdd = np.array([f(0, [a, b])[1] for a, b in zip(q, qd)])
-    A, A1, A2, X, X1, X2 = rigid_kinematics(m, q)
-    Add = A1 * qdd + A2 * qd * qd
-    Xdd = X1 * qdd + X2 * qd * qd
-    # Joint reaction on the pin: F_x from the slider's equation, F_y from the rod's.
-    Fx = -(m.slider_mass * Xdd + scene.slider_force + g * m.slider_mass)
-    m11, m12, m22, s = _mass_terms(m, q, A)
-    _, gA = _gravity_terms(m, q, A, g)
-    L = m.rod_length
-    Fy = -(m12 * qdd + m22 * Add + s * qd * qd + gA + Fx * L * np.sin(A)) / (L * np.cos(A))
-    z = np.zeros_like(t)
-    stats = {"wall_time": wall, "steps": len(sol.t) - 1, "rhs_evals": int(sol.nfev),
-             "film_solves": 0, "contact_evals": 0, "integrator": run.integrator,
-             "effects": []}
-    return SimulationResult(t=t, crank_angle=q, crank_speed=qd, rod_angle=A, slider_position=X,
-                            slider_acceleration=Xdd, eps=z, e_x=z, e_y=z, film_min=z + 0.0,
-                            force_x=Fx, force_y=Fy, scene=scene.name, stats=stats,
-                            provenance=provenance(scene))
+    if film is not None:     # what the model records about itself (e.g. a table's error)
+        stats.update(film.film_model.run_notes(scene.bearing, film.options))
+    return sample_run(scene, pieces, effects, g, stats, partial, message)

@@ -25,6 +25,7 @@ import numpy as np
 from bearingfem.outputs.tables import write_csv
 from mechanism import load_scene, simulate
 from mechanism.film_history import film_history
+from mechanism.result import film_column
 
 
 def scenes(ld: float, turns: float | None):
@@ -49,11 +50,11 @@ def scenes(ld: float, turns: float | None):
 def cavity_events(record: np.ndarray, crank_at) -> tuple[list, list]:
     """Crank angles [deg] where the JFO cavity forms (its share rises from below 1 % of
     the film) and where it collapses (falls below 1 %)."""
-    share = record[:, 4]
+    share = film_column(record, "cavitated_fraction")
     on = share > 0.01
     rise = np.flatnonzero(~on[:-1] & on[1:]) + 1
     fall = np.flatnonzero(on[:-1] & ~on[1:]) + 1
-    deg = lambda i: float(np.mod(np.degrees(crank_at(record[i, 0])), 360.0))  # noqa: E731
+    deg = lambda i: float(np.mod(np.degrees(crank_at(film_column(record, "t")[i])), 360.0))  # noqa: E731
     return [deg(i) for i in rise], [deg(i) for i in fall]
 
 
@@ -107,13 +108,13 @@ def main(argv=None):
     frames = film_history(r_fem, fem, n_frames=72)
     frames_jfo = film_history(r_jfo, jfo, n_frames=72)
     rec = r_jfo.film_record
-    rec = rec[rec[:, 0] >= r_jfo.t[0]] if len(r_jfo.t) else rec
+    rec = rec[film_column(rec, "t") >= r_jfo.t[0]] if len(r_jfo.t) else rec
     crank_at = lambda t: np.interp(t, r_jfo.t, r_jfo.crank_angle)   # noqa: E731
     R = fem.bearing.radius
     rows = [row("FE, Reynolds' condition", r_fem, frames, R),
             row("FE, JFO", r_jfo, frames_jfo, R)]
     forms, collapses = cavity_events(rec, crank_at)
-    balance = float(np.max(np.abs(rec[:, 6]))) if len(rec) else 0.0
+    balance = float(np.max(np.abs(film_column(rec, "mass_balance")))) if len(rec) else 0.0
     print("| film | peak eps | min film [um] | peak force [N] | peak pressure [MPa] | "
           "friction power [W] | wall time [s] | steps |")
     print("|---|---|---|---|---|---|---|---|")
@@ -123,7 +124,7 @@ def main(argv=None):
               f"{w['friction_power_W']:.3f} | {w['wall_time_s']:.1f} | {w['steps']} |")
     print(f"(peak pressure and friction power over the film at 72 crank angles of the turn; "
           f"the JFO film's peak over all its {len(rec)} film steps of the turn: "
-          f"{rec[:, 3].max() / 1e6:.1f} MPa)")
+          f"{film_column(rec, 'pressure_max').max() / 1e6:.1f} MPa)")
     print(f"JFO cavity forms at crank {', '.join(f'{x:.0f}' for x in forms) or '-'} deg and "
           f"collapses at {', '.join(f'{x:.0f}' for x in collapses) or '-'} deg; largest "
           f"step mass balance {balance:.1e} m^3/s; cost JFO / Reynolds "
@@ -153,9 +154,9 @@ def main(argv=None):
                  aspect="equal")
     ax[0, 1].set(xlabel="crank angle [deg]", ylabel="minimum film [um]",
                  title="minimum film")
-    qr = np.mod(np.degrees(crank_at(rec[:, 0])), 360.0)
+    qr = np.mod(np.degrees(crank_at(film_column(rec, "t"))), 360.0)
     o = np.argsort(qr)
-    ax[1, 0].plot(qr[o], 100 * rec[o, 4], "C1.", ms=2)
+    ax[1, 0].plot(qr[o], 100 * film_column(rec, "cavitated_fraction")[o], "C1.", ms=2)
     for x in forms:
         ax[1, 0].axvline(x, color="g", lw=0.8)
     for x in collapses:
@@ -165,7 +166,7 @@ def main(argv=None):
     qf = [f.crank_angle_deg for f in frames]
     ax[1, 1].semilogy(qf, [f.solution.pressure_max / 1e6 for f in frames], "C0o", ms=3,
                       label="Reynolds' condition")
-    ax[1, 1].semilogy(qr[o], rec[o, 3] / 1e6, "C1.", ms=2, label="JFO")
+    ax[1, 1].semilogy(qr[o], film_column(rec, "pressure_max")[o] / 1e6, "C1.", ms=2, label="JFO")
     ax[1, 1].set(xlabel="crank angle [deg]", ylabel="peak film pressure [MPa]",
                  title="peak pressure")
     edges = np.arange(0, 361, 30)
@@ -173,7 +174,7 @@ def main(argv=None):
         ax[0, 2].bar(edges[:-1] + 15 + (k - 0.5) * 12, h, width=12, label=name)
     ax[0, 2].set(xlabel="crank angle [deg]", ylabel="accepted steps per 30 deg",
                  title="where the integrator's steps go", xticks=edges[::2])
-    ax[1, 2].semilogy(qr[o], np.maximum(np.abs(rec[o, 6]), 1e-30), "C1.", ms=2)
+    ax[1, 2].semilogy(qr[o], np.maximum(np.abs(film_column(rec, "mass_balance")[o]), 1e-30), "C1.", ms=2)
     ax[1, 2].set(xlabel="crank angle [deg]", ylabel="|feed - leakage - storage| [m^3/s]",
                  title="JFO mass balance of each film step")
     for a_ in (ax[0, 0], ax[0, 1], ax[1, 1], ax[0, 2]):

@@ -5,7 +5,7 @@ import pytest
 from bearingfem import JournalState
 from bearingfem.bearing import seed_bearing
 from mechanism import parse_scene, simulate
-from mechanism.lubrication import TransientJFO
+from bearingfem.transient import TransientJFO
 from mechanism.simulate import build_effects
 
 
@@ -19,7 +19,7 @@ def scene(turns=0.25, **lub):
 
 def test_jfo_film_is_built_only_when_named_and_carries_its_state():
     effects, film, _ = build_effects(scene())
-    assert film.memory and isinstance(film._f, TransientJFO)
+    assert film.memory and isinstance(film.run, TransientJFO)
     effects, film, _ = build_effects(parse_scene({
         "name": "r", "bearing": {"diameter": 0.02, "length_ratio": 0.5, "clearance": 20e-6,
                                  "viscosity": 0.0117},
@@ -54,22 +54,28 @@ def test_film_history_rows_balance():
     assert np.any(h[:, 4] > 0.0)        # a cavity formed
 
 
-def test_commit_before_the_last_goes_back():
-    """An integrator that stops at an event inside its last step commits an earlier time:
-    the film is then what one step from the previous commit gives."""
+def test_restored_snapshot_goes_back():
+    """Going back to a snapshot (an integrator cutting its step) and committing an earlier
+    time gives what one step from the snapshot gives; a commit before the last film step
+    without a restore is refused (fails if restore leaves any kept field behind)."""
     b = seed_bearing(0.5)
     opts = dict(n_theta=32, n_z=4, grooves=(), ambient_pressure=1e5)
     s = [JournalState(eps=0.3 + 0.1 * k, eps_dot=40.0, omega=100.0) for k in range(3)]
-    a, ref = TransientJFO(), TransientJFO()
+    a, ref = TransientJFO(b, **opts), TransientJFO(b, **opts)
     for f in (a, ref):
-        f.force(b, s[0], 0.0, **opts)
-        f.commit(b, s[0], 0.0, **opts)
-        f.commit(b, s[1], 1e-3, **opts)
-    a.commit(b, s[2], 2e-3, **opts)
-    a.commit(b, s[2], 1.5e-3, **opts)          # back inside the last step
-    ref.commit(b, s[2], 1.5e-3, **opts)
+        f.force(s[0], 0.0)
+        f.commit(s[0], 0.0)
+        f.commit(s[1], 1e-3)
+    kept = a.snapshot()
+    a.commit(s[2], 2e-3)
+    with pytest.raises(ValueError, match="before the last film step"):
+        a.commit(s[2], 1.5e-3)
+    a.restore(kept)
+    a.commit(s[2], 1.5e-3)                     # back inside the last step
+    ref.commit(s[2], 1.5e-3)
     assert np.array_equal(a.film.fraction, ref.film.fraction)
     assert a.film.solution.force_local == pytest.approx(ref.film.solution.force_local)
+    assert a.steps == ref.steps == 2 and a.snapshot().t == ref.snapshot().t
 
 
 def test_coefficients_refuse_a_film_with_memory():
@@ -158,25 +164,25 @@ def test_film_step_fades_its_change_of_force_in():
     acts at once."""
     b = seed_bearing(0.5)
     opts = dict(n_theta=48, n_z=4, grooves=(), ambient_pressure=1e5, film_step=1e-4)
-    f = TransientJFO()
+    f = TransientJFO(b, **opts)
     s0 = JournalState(eps=0.6, omega=250.0)
-    f.force(b, s0, 0.0, **opts)
+    f.force(s0, 0.0)
     for k in range(1, 21):                   # settle a cavity at s0
-        f.commit(b, s0, k * 2e-4, **opts)
+        f.commit(s0, k * 2e-4)
     s1 = JournalState(eps=0.6, omega=250.0, eps_dot=-20.0, gamma=0.1, gamma_dot=50.0)
     t1 = 21 * 2e-4
     assert not f.film.refilled(s1)           # turned and moving, no cavity refilled
-    before = np.array(f.force(b, s1, t1, **opts))
-    assert f.commit(b, s1, t1, **opts) is not None
-    after = np.array(f.force(b, s1, t1, **opts))
+    before = np.array(f.force(s1, t1))
+    assert f.commit(s1, t1) is not None
+    after = np.array(f.force(s1, t1))
     settled = np.array(f.film.instant(s1)[0])
     assert np.linalg.norm(settled - before) > 0.05 * np.linalg.norm(before)
     np.testing.assert_allclose(after, before, rtol=1e-9)
-    np.testing.assert_allclose(f.force(b, s1, t1 + 2e-4, **opts), settled, rtol=1e-12)
+    np.testing.assert_allclose(f.force(s1, t1 + 2e-4), settled, rtol=1e-12)
     s2 = JournalState(eps=0.7, omega=250.0, gamma=0.1)
     assert f.film.refilled(s2)
-    f.commit(b, s2, t1 + 2e-4, **opts)
-    np.testing.assert_allclose(f.force(b, s2, t1 + 2e-4, **opts), f.film.instant(s2)[0],
+    f.commit(s2, t1 + 2e-4)
+    np.testing.assert_allclose(f.force(s2, t1 + 2e-4), f.film.instant(s2)[0],
                                rtol=1e-12)
 
 
@@ -186,18 +192,17 @@ def test_film_step_comes_early_when_the_kept_film_no_longer_fits():
     a cell (48 cells: 3.75 deg)."""
     b = seed_bearing(0.5)
     opts = dict(n_theta=48, n_z=4, grooves=(), ambient_pressure=1e5, film_step=0.1)
-    f = TransientJFO()
+    f = TransientJFO(b, **opts)
     s0 = JournalState(eps=0.6, omega=250.0)
-    f.force(b, s0, 0.0, **opts)
+    f.force(s0, 0.0)
     f.film_step = 2e-4
     for k in range(1, 21):
-        f.commit(b, s0, k * 3e-4, **opts)
+        f.commit(s0, k * 3e-4)
     assert f.film.cavitated.any()
     f.film_step = 0.1
     t = 21 * 3e-4
-    assert f.commit(b, JournalState(eps=0.6, omega=250.0, gamma=0.05), t, **opts) is None
-    assert f.commit(b, JournalState(eps=0.6, omega=250.0, gamma=0.07), t, **opts) is not None
+    assert f.commit(JournalState(eps=0.6, omega=250.0, gamma=0.05), t) is None
+    assert f.commit(JournalState(eps=0.6, omega=250.0, gamma=0.07), t) is not None
     s = JournalState(eps=0.6, omega=250.0, gamma=0.07)
-    assert f.commit(b, s, t + 1e-4, **opts) is None
-    assert f.commit(b, JournalState(eps=0.9, omega=250.0, gamma=0.07), t + 2e-4,
-                    **opts) is not None
+    assert f.commit(s, t + 1e-4) is None
+    assert f.commit(JournalState(eps=0.9, omega=250.0, gamma=0.07), t + 2e-4) is not None

@@ -45,7 +45,7 @@ from .mesh import FilmMesh
 from .multilevel import prolongation
 from .volumes import ControlVolumes, control_volumes, shift_rows, transport_matrix
 
-__all__ = ["JFOFilm", "solve_jfo", "jfo_force", "film_volumes", "JFOFlows"]
+__all__ = ["JFOFilm", "JFOSnapshot", "solve_jfo", "jfo_force", "film_volumes", "JFOFlows"]
 
 
 @lru_cache(maxsize=32)
@@ -99,11 +99,45 @@ def _boundary_values(bearing: Bearing, mesh: FilmMesh, grooves, ambient: float):
     return P, phi
 
 
+@dataclass(frozen=True)
+class BalanceSolve:
+    """One solve of the balance: pressure P and film fraction phi on all nodes, the
+    solver's record and the flows."""
+
+    P: np.ndarray
+    phi: np.ndarray
+    result: JFOResult
+    flows: JFOFlows
+
+
+@dataclass(frozen=True)
+class FilmAdvance:
+    """One backward-Euler step of a :class:`JFOFilm`: the mesh operator at the new state,
+    the balance solved there and the new content (dimensionless, per volume)."""
+
+    op: FilmOperator
+    solve: BalanceSolve
+    content: np.ndarray
+
+
+@dataclass(frozen=True)
+class JFOSnapshot:
+    """The kept state of a :class:`JFOFilm` (what :meth:`JFOFilm.restore` takes back)."""
+
+    time: float
+    state: JournalState
+    fraction: np.ndarray
+    content: np.ndarray
+    cavitated: np.ndarray
+    solution: FilmSolution | None
+    steps: int
+
+
 def _solve(bearing: Bearing, op: FilmOperator, eps: float, T: sp.csr_matrix,
            storage: np.ndarray, source: np.ndarray, grooves, ambient: float,
-           cavitated0=None, warm_iterations: int = 3):
-    """The balance on the film mesh with its ends, supply line and grooves held;
-    returns (P, phi, JFOResult, JFOFlows), P and phi on all nodes."""
+           cavitated0=None, warm_iterations: int = 3) -> BalanceSolve:
+    """The balance on the film mesh with its ends, supply line and grooves held
+    (P and phi on all nodes)."""
     mesh = op.mesh
     P_fix, phi_fix = _boundary_values(bearing, mesh, grooves, ambient)
     P, phi, res, inflow = solve_balance(op.stiffness(eps), T, storage, source, mesh.free,
@@ -115,7 +149,7 @@ def _solve(bearing: Bearing, op: FilmOperator, eps: float, T: sp.csr_matrix,
     flows = JFOFlows(flow_in=-k * float(np.sum(inflow[feed_nodes])),
                      side_leakage=k * float(np.sum(inflow[mesh.end])),
                      storage=k * float(np.sum(storage[free] * phi[free] - source[free])))
-    return P, phi, res, flows
+    return BalanceSolve(P, phi, res, flows)
 
 
 def _film_solution(bearing, state, op: FilmOperator, P, phi, res: JFOResult,
@@ -171,9 +205,9 @@ def _steady(bearing: Bearing, state: JournalState, operator, n_theta, n_z, groov
         u = Pc - (1.0 - phic)          # the universal variable: < 0 in the cavity
         cavitated0 = (_prolongation(opc.mesh, op.mesh) @ u) < 0.0
         warm = 12
-    P, phi, res, flows = _solve(bearing, op, state.eps, T, storage, np.zeros(op.mesh.ndofs),
-                                grooves, ambient, cavitated0, warm)
-    return P, phi, res, flows, op
+    b = _solve(bearing, op, state.eps, T, storage, np.zeros(op.mesh.ndofs), grooves, ambient,
+               cavitated0, warm)
+    return b.P, b.phi, b.result, b.flows, op
 
 
 def solve_jfo(bearing: Bearing, state: JournalState, operator, n_theta: int, n_z: int,
@@ -237,15 +271,17 @@ class JFOFilm:
         self.solution: FilmSolution | None = None
         self.steps = 0
 
-    def snapshot(self) -> tuple:
+    def snapshot(self) -> JFOSnapshot:
         """The kept state (to go back to with :meth:`restore`, e.g. when an integrator
         steps back to an event inside its last step)."""
-        return (self.time, self.state, self.fraction, self.content, self.cavitated,
-                self.solution, self.steps)
+        return JFOSnapshot(self.time, self.state, self.fraction, self.content,
+                           self.cavitated, self.solution, self.steps)
 
-    def restore(self, snapshot: tuple) -> None:
-        (self.time, self.state, self.fraction, self.content, self.cavitated,
-         self.solution, self.steps) = snapshot
+    def restore(self, snapshot: JFOSnapshot) -> None:
+        self.time, self.state = snapshot.time, snapshot.state
+        self.fraction, self.content = snapshot.fraction, snapshot.content
+        self.cavitated, self.solution = snapshot.cavitated, snapshot.solution
+        self.steps = snapshot.steps
 
     def _carried(self, cv: ControlVolumes, state: JournalState, *values: np.ndarray):
         """Per-node arrays of the kept step on the mesh of ``state`` (a tuple): a periodic
@@ -301,30 +337,31 @@ class JFOFilm:
         k = self.bearing.force_scale * (2.0 if mesh.half else 1.0)
         return (k * float(ic), k * float(is_)), cav
 
-    def _advance(self, state: JournalState, dt: float):
+    def _advance(self, state: JournalState, dt: float) -> FilmAdvance:
         dt = check_positive("dt", dt)
         op = self._operator(state)
         cv = film_volumes(op.mesh)
         old, = self._carried(cv, state, self.content)
         T = _transport(cv, state.eps, state.omega)
         H = _content(cv, state.eps)
-        P, phi, res, flows = _solve(self.bearing, op, state.eps, T, 12.0 * H / dt,
-                                    12.0 * old / dt, self.grooves, self.ambient_pressure,
-                                    self.cavitated)
-        return op, P, phi, res, flows, phi * H
+        b = _solve(self.bearing, op, state.eps, T, 12.0 * H / dt, 12.0 * old / dt,
+                   self.grooves, self.ambient_pressure, self.cavitated)
+        return FilmAdvance(op, b, b.phi * H)
 
     def trial(self, state: JournalState, dt: float) -> FilmSolution:
         """The step to ``state`` after ``dt`` [s], not kept."""
-        op, P, phi, res, flows, _ = self._advance(state, dt)
-        return _film_solution(self.bearing, state, op, P, phi, res, flows, "fem-P1/jfo")
+        a = self._advance(state, dt)
+        return _film_solution(self.bearing, state, a.op, a.solve.P, a.solve.phi,
+                              a.solve.result, a.solve.flows, "fem-P1/jfo")
 
     def step(self, state: JournalState, dt: float) -> FilmSolution:
         """Advance to ``state`` after ``dt`` [s] and keep the new film."""
-        op, P, phi, res, flows, content = self._advance(state, dt)
-        sol = _film_solution(self.bearing, state, op, P, phi, res, flows, "fem-P1/jfo")
+        a = self._advance(state, dt)
+        sol = _film_solution(self.bearing, state, a.op, a.solve.P, a.solve.phi,
+                             a.solve.result, a.solve.flows, "fem-P1/jfo")
         self.time += dt
-        self.state, self.fraction, self.content = state, phi, content
-        self.cavitated = _cavitated_nodes(op, res)
+        self.state, self.fraction, self.content = state, a.solve.phi, a.content
+        self.cavitated = _cavitated_nodes(a.op, a.solve.result)
         self.solution = sol
         self.steps += 1
         return sol

@@ -1,0 +1,162 @@
+"""The film-model contract: what every caller may ask of a film model, written once.
+
+The mechanism (:mod:`mechanism`), the designer functions (:mod:`bearingfem.design`), the
+sweeps and the command line reach a film model only through :class:`FilmContract`
+(:class:`bearingfem.models.FilmModel` keeps it; the registry is
+:data:`bearingfem.models.FILM_MODELS`). Along a time integration they reach it through the
+:class:`RunFilm` the model makes for that run. No caller branches on a model's name.
+
+Rules for writing a new film model
+----------------------------------
+A steady film (its force is a function of the journal state alone):
+
+1. ``force(bearing, state, **options) -> (F_r, F_t)`` [N]: the film's force on the journal
+   in the local frame of :class:`~bearingfem.JournalState` (r̂ along the eccentricity,
+   t̂ turned +90°). Plain floats, finite for 0 <= eps < 1; bad input raises ValueError
+   naming the parameter before any work; a solve that does not converge raises (it never
+   returns an unconverged force).
+2. ``defaults``: every option the model takes, with its default. Nothing else reaches
+   ``force``: the registry fills the defaults in and rejects unknown names.
+3. Each option is checked by a rule, ``("int" | "number", (lo, hi))``, ``("choice",
+   names)`` or ``("grooves", None)``: the shared ones are
+   :data:`bearingfem.models.OPTION_RULES`; a model adds its own in ``rules``. An option
+   without a rule is refused when the model is made.
+4. ``derivatives(bearing, state, **options) -> ForceDerivatives``: the partials in
+   (eps, eps_dot, w) where the model has them exactly; leave it None and central
+   differences of ``force`` are taken (:func:`bearingfem.differentiate.central_differences`).
+5. ``solution(bearing, state, **options) -> FilmSolution``: the whole film (pressures,
+   friction, flows) where the model has one; None for force-only models (closed forms,
+   tables). :func:`bearingfem.models.solve_film` calls it, whatever the model's name.
+6. ``numeric``: True when the force is solved on a mesh (finite at the wall only with eps
+   capped: scenes then default to eps_max = 0.999).
+7. ``warm`` (optional): a factory of a force function for one integration that may keep
+   what it learnt between calls (a factorisation, a cavitated set). Its answers must equal
+   ``force``'s to the solver tolerance; only the cost may change.
+8. ``notes(bearing, **options) -> dict`` (optional): numbers a run should record about the
+   model (e.g. a table's measured mesh error); they go into the run's statistics.
+
+A film with memory (its state carries the past, e.g. the JFO film fraction) adds:
+
+9. ``transient(bearing, **options) -> RunFilm``: a fresh film for one integration, keeping
+   :class:`RunFilm`. The model's ``memory`` is then True, its ``force`` is the steady film
+   (what a design calculation or a start uses), and force derivatives at a state alone are
+   refused (a linearisation needs an orbit).
+10. ``RunFilm.start(state, t)`` begins the film at the first state; ``force(state, t)``
+    is the film the integrator sees at a trial state: a function of (state, t) with no
+    jumps, that changes nothing kept (integrators evaluate trial states they reject).
+11. ``commit(state, t) -> FilmStep | None`` advances what is kept to an *accepted* state;
+    it is called once per accepted integrator step, in time order, and by nothing else
+    (never from an event function, never on a rejected step). It returns what the film
+    step gave, or None when the film chose not to step (e.g. within its own film step).
+    A commit that raises (:class:`ConvergenceError`) leaves the kept film unchanged, so
+    the integrator can cut its step and try again.
+12. ``snapshot()`` / ``restore(snapshot)``: the kept film as one immutable record and back.
+13. ``replay(start, steps)``: the committed steps taken again from the recorded
+    (t, state) of the start and of each step; yields (t, FilmSolution) per step (None for
+    a model without a whole film), the same solves on the same data as the run.
+14. ``steps``: the number of film steps taken.
+
+A steady model's :class:`RunFilm` (made by the registry) forwards ``force`` and commits
+nothing, so a caller treats every model the same way.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Callable, Iterator, Mapping, Protocol, runtime_checkable
+
+from .bearing import Bearing, JournalState
+from .solution import FilmSolution, ForceDerivatives
+
+try:                                     # a solve that did not converge
+    from .errors import ConvergenceError
+except ImportError:                      # pragma: no cover - until bearingfem.errors lands
+    ConvergenceError = RuntimeError
+
+__all__ = ["FilmContract", "RunFilm", "FilmStep", "SteadyRun", "ConvergenceError"]
+
+
+@dataclass(frozen=True)
+class FilmStep:
+    """What one committed film step gave: its time [s], the journal state it was taken at,
+    the film's force on the journal (F_r, F_t) [N], local frame, and the whole film when
+    the model solves one (None otherwise)."""
+
+    t: float
+    state: JournalState
+    force_local: tuple
+    solution: FilmSolution | None = None
+
+
+@runtime_checkable
+class RunFilm(Protocol):
+    """A film along one time integration (rules 10-14 of the module)."""
+
+    memory: bool
+    steps: int
+
+    def start(self, state: JournalState, t: float) -> None: ...
+
+    def force(self, state: JournalState, t: float) -> tuple: ...
+
+    def commit(self, state: JournalState, t: float) -> FilmStep | None: ...
+
+    def snapshot(self) -> object: ...
+
+    def restore(self, snapshot) -> None: ...
+
+    def replay(self, start: tuple, steps) -> Iterator[tuple]: ...
+
+
+@runtime_checkable
+class FilmContract(Protocol):
+    """A film model as its callers see it (rules 1-9 of the module)."""
+
+    name: str
+    defaults: Mapping
+    numeric: bool
+
+    @property
+    def memory(self) -> bool: ...
+
+    def options(self, options: Mapping | None = None, where: str = "") -> dict: ...
+
+    def film_force(self, bearing: Bearing, state: JournalState, **options) -> tuple: ...
+
+    def force_derivatives(self, bearing: Bearing, state: JournalState,
+                          **options) -> ForceDerivatives: ...
+
+    def film_solution(self, bearing: Bearing, state: JournalState,
+                      **options) -> FilmSolution | None: ...
+
+    def along_run(self, bearing: Bearing, options: Mapping | None = None) -> RunFilm: ...
+
+    def run_notes(self, bearing: Bearing, options: Mapping | None = None) -> dict: ...
+
+
+class SteadyRun:
+    """A steady film along a run: the force of the state alone; nothing to keep."""
+
+    memory = False
+    steps = 0
+
+    def __init__(self, bearing: Bearing, force: Callable, options: Mapping):
+        self.bearing, self._force, self._options = bearing, force, dict(options)
+
+    def start(self, state: JournalState, t: float) -> None:
+        return None
+
+    def force(self, state: JournalState, t: float) -> tuple:
+        return self._force(self.bearing, state, **self._options)
+
+    def commit(self, state: JournalState, t: float) -> None:
+        return None
+
+    def snapshot(self) -> None:
+        return None
+
+    def restore(self, snapshot) -> None:
+        return None
+
+    def replay(self, start, steps):
+        raise ValueError("a steady film has no film steps to replay: solve it at the "
+                         "recorded states instead")

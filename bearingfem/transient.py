@@ -1,0 +1,139 @@
+"""The mass-conserving (JFO) film along a time integration: when the film steps, and what
+force the integrator sees between its steps.
+
+:class:`TransientJFO` is the "fem-jfo" model's :class:`~bearingfem.contract.RunFilm`: a
+:class:`~bearingfem.fe.jfo.JFOFilm` (the physics) driven by a stepping policy (this
+module): film steps at accepted integrator steps only, spaced by ``film_step``, taken early
+when the kept film no longer fits the journal, and their change of force faded in.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from .bearing import Bearing, JournalState
+from .contract import FilmStep
+from .fe.jfo import JFOFilm, JFOSnapshot
+
+__all__ = ["TransientJFO", "TransientSnapshot", "EARLY"]
+
+#: Shortest time between film steps taken early (a refill, a turn), in film steps.
+EARLY = 1e-3
+
+
+@dataclass(frozen=True)
+class TransientSnapshot:
+    """What a :class:`TransientJFO` keeps: the time of its last film step [s], the film,
+    the change of force that step made (before minus after, (F_r, F_t) [N]) and the time
+    [s] over which it fades, and the number of film steps."""
+
+    t: float
+    film: JFOSnapshot
+    jump: tuple
+    fade: float
+    steps: int
+
+
+class TransientJFO:
+    """The "fem-jfo" model along one integration: a :class:`~bearingfem.fe.jfo.JFOFilm`
+    whose content advances only at the integrator's accepted steps.
+
+    Parameters
+    ----------
+    bearing : the bearing
+    n_theta, n_z, grooves, ambient_pressure : the film (:class:`JFOFilm`)
+    film_step : [s] time between film steps (0: a film step at every accepted step)
+
+    :meth:`commit` advances the content to ``t`` by one backward-Euler step of the
+    mass-conserving film, once ``film_step`` has passed since the last one, or sooner when
+    the kept film no longer fits the journal: a kept cavity refilled
+    (:meth:`JFOFilm.refilled`) or the line of centres turned by half a cell
+    (:meth:`JFOFilm.turned`). :meth:`force` is the film at ``state`` with the kept cavities
+    (:meth:`JFOFilm.instant`, continuous in the state) plus what is left of the last film
+    step's change of force: a routine film step moves the cavities at once, and the force
+    it changes is faded in over the next film step (smoothstep: continuous, with continuous
+    slope, in time) instead of jumping under the integrator's error control. A refill acts
+    at once: the support it gives a closing gap is not delayed (fading it in lets a fast
+    pin sink: on a coarse film, 30 % off the minimum film).
+    """
+
+    memory = True
+
+    def __init__(self, bearing: Bearing, n_theta: int, n_z: int, grooves=(),
+                 ambient_pressure: float = 0.0, film_step: float = 0.0):
+        self.bearing = bearing
+        self._film_options = dict(n_theta=n_theta, n_z=n_z, grooves=grooves,
+                                  ambient_pressure=ambient_pressure)
+        self.film_step = float(film_step)
+        self.film: JFOFilm | None = None
+        self.t = 0.0
+        self._warm = None
+        self.steps = 0
+        self._jump = (0.0, 0.0)         # force before the last film step minus after [N]
+        self._fade = 1.0                # [s] over which that jump fades
+
+    def start(self, state: JournalState, t: float) -> None:
+        """Begin a full film at ``state``, time ``t`` [s]."""
+        self.film = JFOFilm(self.bearing, state, **self._film_options)
+        self.t = float(t)
+        self._warm, self._jump, self._fade, self.steps = None, (0.0, 0.0), 1.0, 0
+
+    def force(self, state: JournalState, t: float) -> tuple:
+        """(F_r, F_t) [N] at a trial ``state`` and time ``t``; keeps nothing but the warm
+        start of the next solve (a film not started yet starts here)."""
+        if self.film is None:
+            self.start(state, t)
+        f, self._warm = self.film.instant(state, self._warm)
+        x = min(max((float(t) - self.t) / self._fade, 0.0), 1.0)
+        left = 1.0 - x * x * (3.0 - 2.0 * x)
+        return (f[0] + left * self._jump[0], f[1] + left * self._jump[1])
+
+    def commit(self, state: JournalState, t: float) -> FilmStep | None:
+        """Advance the content to the accepted ``state`` at ``t``; returns the film step
+        (None when there was nothing to advance). A failed film step raises and keeps the
+        film as it was."""
+        if self.film is None:
+            self.start(state, t)
+        t = float(t)
+        if t < self.t:
+            raise ValueError(f"t = {t!r} s is before the last film step ({self.t!r} s): "
+                             "restore a snapshot to go back")
+        dt = t - self.t
+        # film_step: accepted steps closer than this to the last film step leave the
+        # content as it is (the next film step spans them: backward Euler is exact in mass
+        # whatever its step), unless the kept film no longer fits the journal; not within
+        # film_step / 1000 either: an integrator crawling through an event would otherwise
+        # take a film step at each of its tiny steps
+        refill = self.film.refilled(state)
+        early = dt > EARLY * self.film_step and (refill or self.film.turned(state))
+        if dt <= 1e-12 * max(abs(self.t), 1e-3) or not (dt > self.film_step or early):
+            return None
+        before = self.force(state, t)
+        sol = self.film.step(state, dt)          # raises before changing the film
+        after, _ = self.film.instant(state, None)
+        self._jump = (0.0, 0.0) if refill else (before[0] - after[0], before[1] - after[1])
+        self._fade = max(self.film_step, dt)
+        self.t = t
+        self.steps += 1
+        return FilmStep(t, state, sol.force_local, sol)
+
+    def snapshot(self) -> TransientSnapshot:
+        return TransientSnapshot(self.t, self.film.snapshot(), self._jump, self._fade,
+                                 self.steps)
+
+    def restore(self, snapshot: TransientSnapshot) -> None:
+        self.t, self._jump, self._fade = snapshot.t, snapshot.jump, snapshot.fade
+        self.film.restore(snapshot.film)
+        self.steps = snapshot.steps
+
+    def replay(self, start: tuple, steps):
+        """The film steps of a run taken again: ``start`` = (t, JournalState) where the
+        film began, ``steps`` (t, JournalState) of its committed steps in order. Yields
+        (t, FilmSolution) per step: the same solves on the same data as the run, so the
+        same films."""
+        t0, s0 = start
+        self.start(s0, t0)
+        for t, state in steps:
+            sol = self.film.step(state, float(t) - self.t)
+            self.t = float(t)
+            self.steps += 1
+            yield self.t, sol

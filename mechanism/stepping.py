@@ -1,0 +1,129 @@
+"""The integration loop: scipy's OdeSolver objects stepped here, so accepted steps are
+explicit.
+
+:func:`integrate` is ``scipy.integrate.solve_ivp``'s own loop (no ``t_eval``, dense output
+on, events handled by scipy's ``find_active_events`` / ``handle_events``), so where nothing
+is committed a run steps exactly as ``solve_ivp`` would, to the bit. Two things are added:
+
+* ``accept(t, y)`` is called once per accepted step, at its end (at a terminal event's
+  root when one ends the step), before the next step begins, and never on a rejected
+  step or inside an event function: where a film with memory commits
+  (:mod:`bearingfem.contract`, rule 11).
+* A step that raises :data:`STEP_FAILURE` (a film solve that did not converge, in the
+  right-hand side or in ``accept``) is cut: the loop goes back to the last accepted state,
+  starts the solver again there with half the failed step as its largest step (kept to the
+  end of the call) and records it (:class:`StepCut`); after ``max_cuts`` cuts the error
+  propagates.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.integrate._ivp.common import OdeSolution
+from scipy.integrate._ivp.ivp import (BDF, LSODA, MESSAGES, METHODS, find_active_events,
+                                      handle_events, prepare_events)
+
+from bearingfem.contract import ConvergenceError
+
+__all__ = ["integrate", "Segment", "StepCut", "STEP_FAILURE"]
+
+#: What cuts a step instead of stopping the run: a solve that did not converge.
+STEP_FAILURE = ConvergenceError
+
+
+@dataclass(frozen=True)
+class StepCut:
+    """A step the loop cut: where it started [s], the largest step allowed after it [s]
+    and why."""
+
+    t: float
+    max_step: float
+    reason: str
+
+
+@dataclass(frozen=True)
+class Segment:
+    """One call of :func:`integrate`, as ``solve_ivp`` returns it: the accepted step ends
+    ``t`` and states ``y`` (n x len(t)), the dense output ``sol``, the event roots per
+    event, ``status`` (0 end reached, 1 terminal event, -1 solver failed), the solver's
+    message, and the steps cut."""
+
+    t: np.ndarray
+    y: np.ndarray
+    sol: OdeSolution
+    t_events: list
+    status: int
+    message: str
+    cuts: tuple = ()
+
+
+def integrate(fun, t_span, y0, method: str = "LSODA", events=(), accept=None,
+              max_cuts: int = 20, **options) -> Segment:
+    """Integrate y' = fun(t, y) over ``t_span`` with the scipy method ``method`` (a name of
+    ``solve_ivp``), ``events`` as ``solve_ivp`` takes them, ``accept(t, y)`` called at each
+    accepted step (module docstring) and the solver's ``options`` (rtol, atol, max_step,
+    first_step, ...)."""
+    solver_class = METHODS[method]
+    t0, tf = map(float, t_span)
+    solver = solver_class(fun, t0, y0, tf, vectorized=False, **options)
+    ts, ys, interpolants, cuts = [t0], [y0], [], []
+    events, max_events, event_dir = prepare_events(events)
+    event_count = np.zeros(len(events))
+    g = [event(t0, y0) for event in events]
+    t_events = [[] for _ in range(len(events))]
+    status, message = None, ""
+    while status is None:
+        try:
+            message = solver.step()
+            if solver.status == "finished":
+                status = 0
+            elif solver.status == "failed":
+                status = -1
+                break
+            t_old, t, y = solver.t_old, solver.t, solver.y
+            sol = solver.dense_output()
+            roots = []
+            g_new = [event(t, y) for event in events]
+            active_events = find_active_events(g, g_new, event_dir)
+            if active_events.size > 0:
+                count = event_count.copy()
+                count[active_events] += 1
+                root_indices, found, terminate = handle_events(
+                    sol, events, active_events, count, max_events, t_old, t)
+                roots = list(zip(root_indices, found))
+                if terminate:
+                    status = 1
+                    t = found[-1]
+                    y = sol(t)
+            if accept is not None:
+                accept(t, y)
+        except STEP_FAILURE as err:
+            if len(cuts) >= max_cuts:
+                raise
+            t_last, y_last = ts[-1], ys[-1]
+            h = solver.step_size or abs(tf - t_last)
+            cuts.append(StepCut(float(t_last), 0.5 * h, f"{type(err).__name__}: {err}"))
+            status = None
+            opts = {k: v for k, v in options.items() if k != "first_step"}
+            opts["max_step"] = min(options.get("max_step", np.inf), 0.5 * h)
+            solver = solver_class(fun, t_last, y_last, tf, vectorized=False, **opts)
+            continue
+        # the step is accepted: keep it (solve_ivp's bookkeeping)
+        if active_events.size > 0:
+            event_count[active_events] += 1
+            for e, te in roots:
+                t_events[e].append(te)
+        g = g_new
+        interpolants.append(sol)
+        if len(ts) > 1 and ts[-1] == t:
+            interpolants.pop()
+        else:
+            ts.append(t)
+            ys.append(y)
+    message = MESSAGES.get(status, message)
+    ts = np.array(ts)
+    dense = OdeSolution(ts, interpolants, alt_segment=solver_class in (BDF, LSODA)) \
+        if interpolants else None
+    return Segment(ts, np.vstack(ys).T, dense, [np.asarray(te) for te in t_events],
+                   status, message, tuple(cuts))
