@@ -21,6 +21,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from ..bearing import Bearing, JournalState
+from ..scales import force_factor
 from ..solution import ForceDerivatives
 from ..solvers.blocksolve import PinnedFactor, bordered_solve, pinned
 from ..solvers.linsolve import factorise
@@ -52,7 +53,7 @@ def fe_force_derivatives(bearing: Bearing, state: JournalState, n_theta: int = 1
     dP = np.zeros((op.mesh.ndofs, 3))
     dP[free] = _inactive_solve(op.free_stiffness(e), res.factor, inactive, rhs)
 
-    k = bearing.force_scale * (2.0 if op.mesh.half else 1.0)
+    k = force_factor(bearing, op.mesh.half)
     fields = np.concatenate([P[None], dP.T])
     # Gumbel: P and its partials where the clipped film is positive, as fe_force integrates
     where = op.at_quadrature(P) > 0.0 if cavitation == "gumbel" else None

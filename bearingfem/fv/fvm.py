@@ -23,6 +23,7 @@ import scipy.sparse.linalg as spla
 
 from ..bearing import Bearing, JournalState
 from ..film import film_thickness, reynolds_source_integral, theta_from_inertial
+from ..scales import flow_factor, force_factor, shear_friction
 from ..solution import FilmSolution, film_solution
 from ..solvers.cavitation import LCPResult, active_set, psor
 from ..solvers.jfo import solve_balance, upwind_transport
@@ -230,7 +231,7 @@ def fvm_force(bearing: Bearing, state: JournalState, n_theta: int = 48, n_z: int
 def _force(bearing: Bearing, g: FVMGrid, P: np.ndarray):
     """(F_r, F_t) [N]: midpoint sums of seed Eq. 16, sum p (cos, sin)(theta) dA."""
     Pg = P.reshape(g.n_theta, g.n_z).sum(axis=1)
-    k = bearing.force_scale * g.dtheta * g.dzeta
+    k = force_factor(bearing) * g.dtheta * g.dzeta
     return k * float(Pg @ np.cos(g.theta_c)), k * float(Pg @ np.sin(g.theta_c))
 
 
@@ -270,7 +271,6 @@ def fvm_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z:
     dA = g.dtheta * g.dzeta
     f_r, f_t = _force(bearing, g, P)
     H = film_thickness(th, state.eps)
-    mu, R, c = bearing.viscosity, bearing.radius, bearing.clearance
     wet = P > 0 if cavitation != "none" else np.ones(g.n, bool)
     # JFO: Couette shear on the oil present, Poiseuille shear in the full film
     shear, full = (1.0, 1.0) if phi is None else (phi, phi >= 1.0 - 1e-12)
@@ -282,14 +282,14 @@ def fvm_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z:
     else:
         dP = np.gradient(np.vstack([np.zeros((1, n_z)), Pg, np.zeros((1, n_z))]),
                          g.dtheta, axis=0)[1:-1]
-    friction = mu * R ** 3 / c * dA * float(np.sum(state.omega / H * shear
-                                                   + 0.5 * H * dP.ravel() * full))
+    friction = shear_friction(bearing, state.omega, dA, H, dP.ravel(), couette_share=shear,
+                              poiseuille_share=full)
     # Side leakage through the end faces: flux H^3 (P_face=0 - P_c) / (dzeta/2) per face.
     q = np.sum(_end_conductance(g, state.eps) * (Pg[:, -1] + Pg[:, 0]))
-    leakage = c * R ** 2 / 12.0 * float(q)
+    leakage = flow_factor(bearing) * float(q)
     flow_in = mass_balance = None
     if flows is not None:
-        k = c * R ** 2 / 12.0
+        k = flow_factor(bearing)
         flow_in, leakage = k * flows[0], k * flows[1]
         mass_balance = k * (flows[0] - flows[1] - flows[2])
         wet = phi >= 1.0 - 1e-12
@@ -298,7 +298,7 @@ def fvm_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z:
         # (the Reynolds-condition films do not conserve mass: no feed is defined for them)
         A, rhs = _assemble(g, state.eps, state.eps_dot, state.wedge_speed)
         r = (A @ P - rhs).reshape(n_theta, n_z)
-        flow_in = c * R ** 2 / 12.0 * float(np.sum(r[np.any(np.stack(columns), axis=0)]))
+        flow_in = flow_factor(bearing) * float(np.sum(r[np.any(np.stack(columns), axis=0)]))
     return film_solution(
         bearing, state, P, th, ze, (f_r, f_t), friction=friction, leakage=leakage,
         flow_in=flow_in, fraction=phi, mass_balance=mass_balance,
