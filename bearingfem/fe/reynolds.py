@@ -187,16 +187,7 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
                      half and not general, grooves)
     system = film = gap = None
     if general:
-        spec = fields or FilmFields()
-        film, gap = spec.on(op, state), spec.nodal_gap(op, state)
-        if any(tilt) or any(tilt_rate):
-            dH, dH_dt = tilted_gap(bearing, state, op.qp_theta, op.qp_zeta, tilt, tilt_rate)
-            film = film.plus(gap=dH, gap_rate=dH_dt)
-            gap = gap + tilted_gap(bearing, state, op.mesh.theta, op.mesh.zeta, tilt)[0]
-            if not np.all(film.gap > 0.0):
-                raise ValueError(f"tilt {tilt} [rad] brings the journal into the bush "
-                                 f"(minimum gap {float(np.min(film.gap)) * bearing.clearance:.3g} "
-                                 f"m at eps {state.eps}): reduce eps or the tilt")
+        film, gap = general_film(bearing, state, op, fields, tilt, tilt_rate)
         if not film.is_rigid(op, state):      # the rigid data takes the fast path
             system = film_system(op, film, state.wedge_speed)
     dirichlet = groove_pressures(bearing, op, grooves)
@@ -207,6 +198,23 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
                          cavitated_shear, grooves,
                          f"fem-{element}" + (f"/{method}" if cavitation == "reynolds" else ""),
                          gap)
+
+
+def general_film(bearing: Bearing, state: JournalState, op: FilmOperator,
+                 fields: FilmFields | None = None, tilt=(0.0, 0.0), tilt_rate=(0.0, 0.0)):
+    """The film's fields at ``op``'s quadrature points with the tilt's gap added, and the
+    nodal gap; raises ValueError when the tilted journal touches the bush."""
+    spec = fields or FilmFields()
+    film, gap = spec.on(op, state), spec.nodal_gap(op, state)
+    if any(tilt) or any(tilt_rate):
+        dH, dH_dt = tilted_gap(bearing, state, op.qp_theta, op.qp_zeta, tilt, tilt_rate)
+        film = film.plus(gap=dH, gap_rate=dH_dt)
+        gap = gap + tilted_gap(bearing, state, op.mesh.theta, op.mesh.zeta, tilt)[0]
+        if not np.all(film.gap > 0.0):
+            raise ValueError(f"tilt {tilt} [rad] brings the journal into the bush (minimum "
+                             f"gap {float(np.min(film.gap)) * bearing.clearance:.3g} m at eps "
+                             f"{state.eps}): reduce eps or the tilt")
+    return film, gap
 
 
 def _film_outputs(bearing, state, op, res, values, load, film, cavitation, cavitated_shear,
