@@ -109,3 +109,23 @@ def test_finite_volumes_on_the_tilted_gap(cavitation):
         ref = np.array(getattr(fe, name))
         assert np.abs(extrapolated - ref).max() <= 2e-3 * np.abs(ref).max(), name
     assert fine.side_leakage == pytest.approx(fe.side_leakage, rel=2e-3, abs=1e-15)
+
+
+def test_equilibrium_with_a_prescribed_misalignment():
+    """The tilted film balances the load (residual of the 2-D root <= 1e-8 of W); a tilt
+    and its mirror image sit at the same mid-plane position with opposite moments; the
+    misalignment thins the least film. Fails if the tilt is dropped on the way to the
+    film (then the moment is zero and the film no thinner)."""
+    from bearingfem import equilibrium
+    W = (0.0, -100.0)
+    opts = dict(n_theta=48, n_z=8)
+    aligned = equilibrium(B, W, 250.0, "fem", **opts)
+    plus = equilibrium(B, W, 250.0, "fem", tilt=(0.0, 1e-3), **opts)
+    minus = equilibrium(B, W, 250.0, "fem", tilt=(0.0, -1e-3), **opts)
+    assert np.abs(np.add(plus.film_force, W)).max() <= 1e-8 * 100.0
+    assert plus.eps == pytest.approx(minus.eps, rel=1e-9)
+    assert np.add(plus.solution.moment, minus.solution.moment) == pytest.approx(
+        (0.0, 0.0), abs=1e-9 * np.abs(plus.solution.moment).max())
+    assert plus.film_min < aligned.film_min
+    with pytest.raises(ValueError, match="tilt needs model 'fem'"):
+        equilibrium(B, W, 250.0, "short", tilt=(0.0, 1e-3))
