@@ -64,8 +64,8 @@ def test_rigid_fields_take_the_fast_path():
 
 def test_viscosity_scales_the_film():
     """A uniform viscosity ratio m scales pressure and force by m (the pressure scale
-    uses the reference mu0) and leaves the flow as it is; 1e-8: the rigid film's fast path and the
-    general path differ by the weak Couette term's quadrature error (1.4e-9 at 40x8).
+    uses the reference mu0) and leaves the flow as it is; 1e-8: the rigid film's fast
+    path and the general path differ by the weak Couette term's quadrature error (1.4e-9 at 40x8).
     Fails with the ratio applied as mu0/mu."""
     base = solve_reynolds(B, S, 40, 8, cavitation="none", half=False)
     thick = solve_reynolds(B, S, 40, 8, cavitation="none", fields=FilmFields(viscosity=2.5))

@@ -8,7 +8,8 @@ dH/dt = 0.4 zeta cos(theta), w = 2: the film's own source -6 w d(rho H)/dtheta
 - 12 rho dH/dt comes from the general assembly, the rest g = -div(rho H^3/mu grad P)
 + 6 w d(rho H)/dtheta + 12 rho dH/dt is added. Observed orders must be the theory's:
 P1 2 (L2) / 1 (H1), P2 3 / 2 (measured: P1 1.99 / 1.00, P2 3.00 / 1.99 on the last
-refinement (meshes 16x4, 32x8, 64x16 over the whole length); the tolerance 0.15 is the existing manufactured test's).
+refinement (meshes 16x4, 32x8, 64x16 over the whole length); the tolerance 0.15 is
+the existing manufactured test's).
 """
 import numpy as np
 import pytest

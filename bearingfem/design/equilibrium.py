@@ -5,8 +5,8 @@ it), and its magnitude grows monotonically from 0 at eps = 0 to the wall. So equ
 is one bracketed root, |F(eps)| = W (Brent's method), followed by the turn gamma that puts
 the film force opposite the load. Grooves fixed in space make the force depend on gamma
 too, and so does a misaligned journal's (``tilt``): from that periodic equilibrium a 2-D
-root in the journal position finishes the job. The attitude angle phi = atan2(F_t, -F_r) is the angle
-from the load line to the line of centres, in the sense of rotation.
+root in the journal position finishes the job. The attitude angle phi = atan2(F_t, -F_r)
+is the angle from the load line to the line of centres, in the sense of rotation.
 """
 from __future__ import annotations
 
@@ -178,7 +178,8 @@ def _tilted_equilibrium(bearing, omega, load, eps0, gamma0, eps_max, opts, tilt,
     W = math.hypot(*load)
     f_r, f_t = sol.force_local
     return Equilibrium(
-        eps=eps, attitude=math.atan2(f_t, -f_r), state=JournalState(eps, omega=omega, gamma=gamma),
+        eps=eps, attitude=math.atan2(f_t, -f_r),
+        state=JournalState(eps, omega=omega, gamma=gamma),
         load=load, film_force=sol.force, sommerfeld=sommerfeld_number(bearing, W, omega),
         film_min=sol.film_min, film_min_angle=float(np.mod(gamma, 2.0 * math.pi)),
         friction_force=sol.friction_force, friction_coefficient=sol.friction_force / W,

@@ -53,7 +53,8 @@ def fe_pressure(op: FilmOperator, state: JournalState, cavitation="reynolds",
     else:
         values, load = system
     if dirichlet is not None:      # pressures held on fixed dofs (grooves) enter the load
-        load = load - sp.csr_matrix((values, op.indices, op.indptr), shape=op.shape) @ dirichlet
+        K_all = sp.csr_matrix((values, op.indices, op.indptr), shape=op.shape)
+        load = load - K_all @ dirichlet
     b = load[free]
     K = op.free_stiffness(state.eps, values)
     P = np.zeros(op.mesh.ndofs) if dirichlet is None else dirichlet.copy()

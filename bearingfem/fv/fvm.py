@@ -353,7 +353,8 @@ def fvm_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z:
     if tilted:      # M_x = -sum z dF_y, M_y = sum z dF_x, dF = p (cos, sin)(theta + gamma) dA
         a = th + state.gamma
         k = moment_factor(bearing) * dA
-        moment = (-k * float(np.sum(P * ze * np.sin(a))), k * float(np.sum(P * ze * np.cos(a))))
+        Pz = P * ze
+        moment = (-k * float(np.sum(Pz * np.sin(a))), k * float(np.sum(Pz * np.cos(a))))
     return film_solution(
         bearing, state, P, th, ze, (f_r, f_t), friction=friction, leakage=leakage,
         flow_in=flow_in, fraction=phi, mass_balance=mass_balance, moment=moment,
