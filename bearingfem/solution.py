@@ -26,7 +26,8 @@ class FilmSolution:
     film_thickness : h [m] at the nodes
     pressure_max : [Pa]; pressure_max_theta, pressure_max_z its location
     pressure_max_angle : its inertial angle [rad]
-    film_min : minimum film thickness c (1 - eps) [m]
+    film_min : minimum film thickness [m]: c (1 - eps) on the rigid cylinder, the least
+        nodal gap on a general gap field
     cavitated_fraction : share of the film area at ambient (zero gauge) pressure
     friction_force : shear force on the journal surface opposing positive omega [N]
     friction_torque : friction_force * R [N m]
@@ -36,6 +37,8 @@ class FilmSolution:
     mass_balance : JFO films: flow_in - side_leakage - rate of change of the film content
         [m^3/s], zero to the solver's round-off
     iterations, residual, converged : record of the (cavitation) solve
+    moment : (M_x, M_y) [N m], the film's moment on the journal about the bearing centre
+        (mid-plane), inertial; zero for an aligned film (mid-plane symmetry)
     radius, gamma : journal radius [m] and attitude angle [rad] of the solved state
     """
 
@@ -67,6 +70,7 @@ class FilmSolution:
     flow_in: float | None = None   # flow the supply grooves feed [m^3/s] (None: no groove)
     fraction: np.ndarray | None = field(default=None, repr=False)  # JFO film fraction, [0, 1]
     mass_balance: float | None = None  # JFO: flow_in - side_leakage - d(content)/dt [m^3/s]
+    moment: tuple = (0.0, 0.0)    # (M_x, M_y) [N m] on the journal about the bearing centre
 
     def summary(self) -> str:
         """The solve in a few named lines with units (what ``bearingfem solve`` prints)."""
@@ -92,12 +96,14 @@ class FilmSolution:
 
 def film_solution(bearing, state, P, theta, zeta, force_local, *, friction, leakage,
                   cavitated_fraction, record, method, cavitation, half, mesh,
-                  flow_in=None, fraction=None, mass_balance=None) -> FilmSolution:
+                  flow_in=None, fraction=None, mass_balance=None, moment=(0.0, 0.0),
+                  gap=None) -> FilmSolution:
     """The one builder of :class:`FilmSolution` for every mesh solver: derives the
     inertial force, pressures [Pa], film, peak and its place from the dimensionless nodal
     pressure ``P`` (p = mu (R/c)^2 P, clipped as the cavitation model says) at (theta,
     zeta = z/R), given the solver's own force, friction [N] and leakage [m^3/s]; ``record``
-    carries iterations, residual, converged."""
+    carries iterations, residual, converged; ``gap``: nodal H of a general gap field
+    (None: the rigid cylinder's); ``moment`` (M_x, M_y) [N m]."""
     R, c = bearing.radius, bearing.clearance
     f_r, f_t = force_local
     i = int(np.argmax(P))
@@ -105,17 +111,18 @@ def film_solution(bearing, state, P, theta, zeta, force_local, *, friction, leak
     return FilmSolution(
         force_local=(f_r, f_t), force=local_to_inertial(f_r, f_t, state.gamma),
         pressure=bearing.pressure_scale * P, theta=theta, z=R * zeta,
-        film_thickness=film_thickness(theta, state.eps, c),
+        film_thickness=film_thickness(theta, state.eps, c) if gap is None else c * gap,
         pressure_max=bearing.pressure_scale * float(P[i]),
         pressure_max_theta=float(np.mod(theta_i, 2 * np.pi)),
         pressure_max_z=float(R * zeta[i]),
         pressure_max_angle=float(np.mod(inertial_from_theta(theta_i, state.gamma), 2 * np.pi)),
-        film_min=c * (1.0 - state.eps), cavitated_fraction=cavitated_fraction,
+        film_min=c * (1.0 - state.eps) if gap is None else c * float(np.min(gap)),
+        cavitated_fraction=cavitated_fraction,
         friction_force=friction, friction_torque=friction * R, side_leakage=leakage,
         iterations=record.iterations, residual=record.residual, converged=record.converged,
         method=method, cavitation=cavitation, n_dofs=len(P), half=half, radius=R,
         gamma=state.gamma, mesh=mesh, flow_in=flow_in, fraction=fraction,
-        mass_balance=mass_balance)
+        mass_balance=mass_balance, moment=tuple(float(m) for m in moment))
 
 
 @dataclass(frozen=True)

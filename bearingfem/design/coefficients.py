@@ -24,6 +24,8 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ..bearing import Bearing, JournalState
+from ..fe.sensitivity import fe_tilt_coefficients
+from ..fields import check_tilt
 from ..film import local_to_inertial
 from ..models import film_model
 from ..validation import check_choice, check_inputs
@@ -110,10 +112,18 @@ def coefficients(bearing: Bearing, state: JournalState, model: str = "fem",
     ("short", "long": complex step) and the FE film ("fem": discrete sensitivity with the
     cavitated set fixed, on the solve's own factors); other models use central
     differences.
+
+    ``tilt=(tilt_x, tilt_y)`` [rad] (model "fem", steady state): the translational 2x2
+    block of the misaligned film's 4x4 coefficients
+    (:func:`bearingfem.fe.sensitivity.fe_tilt_coefficients`, which also gives the moment
+    rows and tilt columns).
     """
     check_inputs(bearing, state)
-    m = film_model(model)
     check_choice("frame", frame, FRAMES)
+    tilt = check_tilt("tilt", options.pop("tilt", (0.0, 0.0)))
+    if any(tilt):
+        return _tilted(bearing, state, model, frame, tilt, options)
+    m = film_model(model)
     if state.eps < EPS_FLOOR:
         state = replace(state, eps=EPS_FLOOR)
     d = m.force_derivatives(bearing, state, **options)
@@ -133,3 +143,19 @@ def coefficients(bearing: Bearing, state: JournalState, model: str = "fem",
     local = DynamicCoefficients(K, C, "local", _axes("local", g, force), state, force, model,
                                 d.method, c, K_shift)
     return local if frame == "local" else local.in_frame(frame)
+
+
+def _tilted(bearing, state, model, frame, tilt, options) -> DynamicCoefficients:
+    """The (x, y) block of the misaligned FE film's exact 4x4 coefficients."""
+    if model != "fem":
+        raise ValueError(f"tilt needs model 'fem' (a misaligned film), got model={model!r}")
+    o = film_model(model).options(options)
+    if o.get("grooves"):
+        raise ValueError("coefficients with tilt: grooves are not supported")
+    kc = fe_tilt_coefficients(bearing, state, tilt, o["n_theta"], o["n_z"], o["element"],
+                              o["cavitation"])
+    force = tuple(float(f) for f in kc.force[:2])
+    inertial = DynamicCoefficients(kc.K[:2, :2], kc.C[:2, :2], "inertial", np.eye(2), state,
+                                   force, model, kc.method, bearing.clearance,
+                                   np.zeros((2, 2)))
+    return inertial if frame == "inertial" else inertial.in_frame(frame)

@@ -4,8 +4,9 @@ A periodic film's steady force in the local frame depends on eps alone (gamma on
 it), and its magnitude grows monotonically from 0 at eps = 0 to the wall. So equilibrium
 is one bracketed root, |F(eps)| = W (Brent's method), followed by the turn gamma that puts
 the film force opposite the load. Grooves fixed in space make the force depend on gamma
-too: from that periodic equilibrium a 2-D root in the journal position finishes the job. The attitude angle phi = atan2(F_t, -F_r) is the angle
-from the load line to the line of centres, in the sense of rotation.
+too, and so does a misaligned journal's (``tilt``): from that periodic equilibrium a 2-D
+root in the journal position finishes the job. The attitude angle phi = atan2(F_t, -F_r)
+is the angle from the load line to the line of centres, in the sense of rotation.
 """
 from __future__ import annotations
 
@@ -16,6 +17,8 @@ import numpy as np
 from scipy.optimize import brentq, root
 
 from ..bearing import Bearing, JournalState, check_finite
+from ..fe.reynolds import solve_reynolds
+from ..fields import check_tilt
 from ..film import local_to_inertial
 from ..models import film_model, solve_film
 from ..solution import FilmSolution
@@ -97,7 +100,15 @@ def equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
         options, e.g. ``n_theta=120, n_z=20, element="P2", cavitation="reynolds"``
     eps_max : largest eccentricity ratio searched, in (0, 1)
     rtol : relative tolerance on eps (relative, so light loads, eps ~ 1e-8, stay exact)
+    tilt : (tilt_x, tilt_y) [rad], a prescribed misalignment (model "fem" only): the
+        journal centre at the mid-plane is placed where the tilted film balances the load
+        (a 2-D root from the aligned equilibrium); ``solution.moment`` is the moment the
+        film then exerts (the bearing's reaction to the misalignment), ``film_min`` the
+        least gap over the length and the friction the film's own shear integral
     """
+    tilt = check_tilt("tilt", options.pop("tilt", (0.0, 0.0)))
+    if any(tilt) and model != "fem":
+        raise ValueError(f"tilt needs model 'fem' (a misaligned film), got model={model!r}")
     m = film_model(model)
     opts = m.options(options)
     wx, wy = _load_vector(load, direction)
@@ -130,6 +141,9 @@ def equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
         eps, gamma = _grooved_equilibrium(lambda e, g: force(e, g, opts), (wx, wy), eps,
                                           gamma, eps_max, model)
         f_r, f_t = force(eps, gamma, opts)
+    if any(tilt):
+        return _tilted_equilibrium(bearing, omega, (wx, wy), eps, gamma, eps_max, opts, tilt,
+                                   calls[0])
     state = JournalState(eps, omega=omega, gamma=gamma)
     film_force = local_to_inertial(f_r, f_t, gamma)
     sol = solve_film(model, bearing, state, opts)
@@ -145,6 +159,33 @@ def equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
         side_leakage=None if sol is None else sol.side_leakage,
         flow_in=None if sol is None else sol.side_leakage,
         solution=sol, model=model, iterations=calls[0])
+
+
+def _tilted_equilibrium(bearing, omega, load, eps0, gamma0, eps_max, opts, tilt, calls):
+    """Equilibrium of the misaligned FE film: the mid-plane centre (eps, gamma) where the
+    tilted film's force balances ``load``, from the aligned equilibrium (eps0, gamma0)."""
+    count = [calls]
+
+    def film(eps, gamma):
+        count[0] += 1
+        return solve_reynolds(bearing, JournalState(eps, omega=omega, gamma=gamma),
+                              opts["n_theta"], opts["n_z"], opts["element"],
+                              opts["cavitation"], grooves=opts["grooves"], tilt=tilt)
+
+    eps, gamma = _grooved_equilibrium(lambda e, g: film(e, g).force_local, load, eps0,
+                                      gamma0, eps_max, "fem with tilt")
+    sol = film(eps, gamma)
+    W = math.hypot(*load)
+    f_r, f_t = sol.force_local
+    return Equilibrium(
+        eps=eps, attitude=math.atan2(f_t, -f_r),
+        state=JournalState(eps, omega=omega, gamma=gamma),
+        load=load, film_force=sol.force, sommerfeld=sommerfeld_number(bearing, W, omega),
+        film_min=sol.film_min, film_min_angle=float(np.mod(gamma, 2.0 * math.pi)),
+        friction_force=sol.friction_force, friction_coefficient=sol.friction_force / W,
+        power_loss=abs(sol.friction_force * bearing.radius * omega),
+        pressure_max=sol.pressure_max, side_leakage=sol.side_leakage,
+        flow_in=sol.side_leakage, solution=sol, model="fem", iterations=count[0])
 
 
 def _grooved_equilibrium(force, load, eps0, gamma0, eps_max, model):

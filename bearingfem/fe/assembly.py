@@ -68,6 +68,7 @@ class FilmOperator:
     b_sin: np.ndarray
     b_cos: np.ndarray
     qp_theta: np.ndarray       # theta at the quadrature points (elements x points)
+    qp_zeta: np.ndarray        # zeta = z/R at the same points
     qp_weight: np.ndarray      # quadrature weight times Jacobian at the same points
     qp_interp: sp.csr_matrix   # nodal values -> values at those points (flattened)
 
@@ -137,7 +138,8 @@ def build_operator(mesh: FilmMesh) -> FilmOperator:
         ff_indptr=ff.indptr, ff_indices=ff.indices,
         ff_select=ff.data.astype(np.int64) - 1,
         b_sin=_load_sin.assemble(basis), b_cos=_load_cos.assemble(basis),
-        qp_theta=np.array(basis.global_coordinates()[0]), qp_weight=np.array(basis.dx),
+        qp_theta=np.array(basis.global_coordinates()[0]),
+        qp_zeta=np.array(basis.global_coordinates()[1]), qp_weight=np.array(basis.dx),
         qp_interp=_interpolation_matrix(basis))
 
 

@@ -31,6 +31,7 @@ from pathlib import Path
 import numpy as np
 from scipy.interpolate import RectBivariateSpline
 
+from ..scales import half_film_factor
 from ..solvers.cavitation import active_set
 from ..solvers.linsolve import factorise
 from ..validation import CAVITATION, check_choice, check_int
@@ -121,7 +122,7 @@ def build_force_table(length_ratio: float, n_theta=_D["n_theta"], n_z=_D["n_z"],
     free = op.mesh.free
     eps = _eps_nodes(n_eps, eps_max)
     phi = np.linspace(0.0, 2 * np.pi, n_phi, endpoint=False)
-    mult = 2.0 if op.mesh.half else 1.0
+    mult = half_film_factor(op.mesh.half)
     g = np.zeros((2, n_eps, n_phi))
     # f = 12 (sin phi * sin(theta) - cos phi * cos(theta)) on the unit-|v| film.
     b_s, b_c = 12.0 * op.b_sin[free], -12.0 * op.b_cos[free]

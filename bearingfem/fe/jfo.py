@@ -36,6 +36,7 @@ import scipy.sparse as sp
 from ..bearing import Bearing, JournalState, check_positive
 from ..validation import check_film_solve, check_grooves, check_jfo_supply
 from ..film import film_thickness, film_thickness_integral
+from ..scales import flow_factor, force_factor, shear_friction
 from ..solution import FilmSolution, film_solution
 from ..solvers.cavitation import active_set
 from ..solvers.linsolve import principal_block
@@ -144,7 +145,7 @@ def _solve(bearing: Bearing, op: FilmOperator, eps: float, T: sp.csr_matrix,
                                         P_fix, phi_fix, cavitated0, op.free_stiffness(eps),
                                         warm_iterations)
     feed_nodes = np.setdiff1d(mesh.fixed, mesh.end)
-    k = bearing.clearance * bearing.radius ** 2 / 12.0 * (2.0 if mesh.half else 1.0)
+    k = flow_factor(bearing, mesh.half)
     free = mesh.free
     flows = JFOFlows(flow_in=-k * float(np.sum(inflow[feed_nodes])),
                      side_leakage=k * float(np.sum(inflow[mesh.end])),
@@ -155,9 +156,9 @@ def _solve(bearing: Bearing, op: FilmOperator, eps: float, T: sp.csr_matrix,
 def _film_solution(bearing, state, op: FilmOperator, P, phi, res: JFOResult,
                    flows: JFOFlows, method: str) -> FilmSolution:
     """Forces, friction and the rest of a JFO film (P >= 0 is the pressure everywhere)."""
-    mult = 2.0 if op.mesh.half else 1.0
+    k = force_factor(bearing, op.mesh.half)
     ic, is_ = op.force_integrals(P)
-    f_r, f_t = bearing.force_scale * mult * float(ic), bearing.force_scale * mult * float(is_)
+    f_r, f_t = k * float(ic), k * float(is_)
     wq, th = op.qp_weight, op.qp_theta
     Hq = film_thickness(th, state.eps)
     Pq = op.at_quadrature(P)
@@ -166,10 +167,9 @@ def _film_solution(bearing, state, op: FilmOperator, P, phi, res: JFOResult,
     full = Pq > 0.0
     # Couette shear acts on the oil present (the fraction phi of the gap, as streamers);
     # the Poiseuille part where the film is full.
-    couette = state.omega / Hq * np.clip(phiq, 0.0, 1.0)
-    poiseuille = np.where(full, 0.5 * Hq * dPq, 0.0)
-    mu, R, c = bearing.viscosity, bearing.radius, bearing.clearance
-    friction = mu * R ** 3 / c * mult * float(np.sum(wq * (couette + poiseuille)))
+    friction = shear_friction(bearing, state.omega, wq, Hq, dPq,
+                              couette_share=np.clip(phiq, 0.0, 1.0), poiseuille_share=full,
+                              half=op.mesh.half)
     cv = film_volumes(op.mesh)
     area = cv.area
     cav_fraction = float(np.sum(area * (1.0 - phi > 1e-12)) / np.sum(area))
@@ -225,7 +225,7 @@ def jfo_force(bearing: Bearing, state: JournalState, operator, n_theta: int, n_z
     P, _, res, _, op = _steady(bearing, state, operator, n_theta, n_z, grooves,
                                ambient_pressure, cavitated0)
     ic, is_ = op.force_integrals(P)
-    k = bearing.force_scale * (2.0 if op.mesh.half else 1.0)
+    k = force_factor(bearing, op.mesh.half)
     return (k * float(ic), k * float(is_)), res
 
 
@@ -334,7 +334,7 @@ class JFOFilm:
         cav[mesh.fixed] = False
         cav[keep] |= P[keep] <= 0.0
         ic, is_ = op.force_integrals(P)
-        k = self.bearing.force_scale * (2.0 if mesh.half else 1.0)
+        k = force_factor(self.bearing, mesh.half)
         return (k * float(ic), k * float(is_)), cav
 
     def _advance(self, state: JournalState, dt: float) -> FilmAdvance:

@@ -86,6 +86,21 @@ def _axes(n_theta, n_z, length_ratio, theta0, half):
     return th, ze
 
 
+def _mirrored_tensor(th: np.ndarray, ze: np.ndarray) -> MeshTri1:
+    """Tensor mesh of triangles whose diagonals are mirrored in the mid-plane: cells
+    below zeta = 0 take the other diagonal, so a whole-length mesh with an even number of
+    axial cells is symmetric in z (a tilted film and its mirror image are solved on the
+    same mesh; an aligned film's moment vanishes to round-off)."""
+    mesh = MeshTri1.init_tensor(th, ze)
+    t = mesh.t.copy()
+    nt = t.shape[1] // 2
+    a, c, d, b = (t[0, :nt].copy(), t[1, :nt].copy(), t[2, :nt].copy(), t[1, nt:].copy())
+    below = mesh.p[1, a] + mesh.p[1, d] < 0.0          # cell centre below the mid-plane
+    t[:, :nt][:, below] = np.vstack([a, b, c])[:, below]
+    t[:, nt:][:, below] = np.vstack([b, d, c])[:, below]
+    return MeshTri1(mesh.p, t)
+
+
 @lru_cache(maxsize=32)
 def film_mesh(n_theta: int, n_z: int, element: str, length_ratio: float,
               theta0: float | None = None, half: bool = True, arcs: tuple = ()) -> FilmMesh:
@@ -106,10 +121,12 @@ def film_mesh(n_theta: int, n_z: int, element: str, length_ratio: float,
     lam = float(length_ratio)
     th, ze = _axes(n_theta, n_z, lam, theta0, half)
     with _quiet_skfem():
-        if theta0 is None:
-            mesh = MeshTri1DG.init_tensor(th, ze, periodic=[0])
-        else:
-            mesh = MeshTri1.init_tensor(th, ze)
+        mesh = _mirrored_tensor(th, ze)
+        if theta0 is None:      # as MeshTri1DG.init_tensor(th, ze, periodic=[0])
+            lo = mesh.nodes_satisfying(lambda x: x[0] == th.min())
+            hi = mesh.nodes_satisfying(lambda x: x[0] == th.max())
+            ix, uniq = np.unique(lo, return_index=True)
+            mesh = MeshTri1DG.periodic(mesh, ix, hi[uniq])
         basis = Basis(mesh, ELEMENTS[element](), intorder=4 if element == "P1" else 6)
     x = basis.doflocs
     # Select boundary dofs by their coordinates: get_dofs(lambda) misses dofs on periodic

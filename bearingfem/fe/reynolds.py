@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import numpy as np
+import scipy.sparse as sp
 
 from ..bearing import Bearing, JournalState
 from ..film import film_thickness
@@ -9,7 +10,10 @@ from ..solution import FilmSolution, film_solution
 from ..solvers.cavitation import LCPResult, active_set, psor
 from ..solvers.linsolve import solve_spd
 from ..validation import check_film_solve, check_grooves, check_jfo_supply
+from ..fields import FilmFields, check_tilt, tilted_gap
+from ..scales import flow_factor, force_factor, moment_factor, shear_friction
 from .assembly import FilmOperator, fe_operator
+from .general import film_system
 from .jfo import jfo_force, solve_jfo
 from .mesh import ELEMENTS
 from .multilevel import coarse_guess
@@ -31,19 +35,28 @@ def groove_pressures(bearing: Bearing, op: FilmOperator, grooves) -> np.ndarray 
 
 def fe_pressure(op: FilmOperator, state: JournalState, cavitation="reynolds",
                 method="active-set", tol=1e-10, active0=None, colours=None,
-                factor=None, dirichlet: np.ndarray | None = None) -> LCPResult:
+                factor=None, dirichlet: np.ndarray | None = None,
+                system=None) -> LCPResult:
     """Dimensionless nodal pressure P (p = mu (R/c)^2 P) on all dofs, ambient on fixed ones.
 
     For "gumbel" the returned field is the unconstrained (full-Sommerfeld) solution; the
     half-Sommerfeld clip is applied where pressure is used. ``active0`` and ``factor``
     (from the result of a nearby state on the same operator) warm-start the solve.
+    ``system`` = (stiffness values on the operator's pattern, load) of a film on general
+    fields (:func:`bearingfem.fe.general.film_system`); None is the rigid cylinder of
+    ``state``, combined from the operator's terms.
     """
     free = op.mesh.free
-    load = op.load(state.eps, state.eps_dot, state.wedge_speed)
+    if system is None:
+        values = op.values(state.eps)
+        load = op.load(state.eps, state.eps_dot, state.wedge_speed)
+    else:
+        values, load = system
     if dirichlet is not None:      # pressures held on fixed dofs (grooves) enter the load
-        load = load - op.stiffness(state.eps) @ dirichlet
+        K_all = sp.csr_matrix((values, op.indices, op.indptr), shape=op.shape)
+        load = load - K_all @ dirichlet
     b = load[free]
-    K = op.free_stiffness(state.eps)
+    K = op.free_stiffness(state.eps, values)
     P = np.zeros(op.mesh.ndofs) if dirichlet is None else dirichlet.copy()
     if not np.any(b):
         # No wedge and no squeeze: ambient everywhere (avoids 0/0 in residuals).
@@ -52,7 +65,8 @@ def fe_pressure(op: FilmOperator, state: JournalState, cavitation="reynolds",
         if method == "psor":
             res = psor(K, b, tol=tol, colours=colours)
         else:
-            # the coarse levels hold the grooves at their pressures too
+            # the coarse levels hold the grooves at their pressures too; on general fields
+            # the rigid film's coarse levels only place the first set, the fine solve is exact
             held = () if dirichlet is None else tuple(
                 float(dirichlet[dofs[0]]) if len(dofs) else 0.0 for dofs in op.mesh.grooves)
             P0 = None if active0 is not None else coarse_guess(op, state, tol, held)
@@ -101,7 +115,7 @@ def fe_force(bearing: Bearing, state: JournalState, n_theta=60, n_z=10, element=
     res = fe_pressure(op, state, cavitation, method, active0=a0, factor=factor,
                       dirichlet=groove_pressures(bearing, op, grooves))
     ic, is_ = _integrated_force(op, res.pressure, cavitation == "gumbel")
-    k = bearing.force_scale * (2.0 if op.mesh.half else 1.0)
+    k = force_factor(bearing, op.mesh.half)
     return (k * ic, k * is_), res
 
 
@@ -109,7 +123,8 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
                    element: str = "P1", cavitation: str = "reynolds", *,
                    method: str = "active-set", supply_angle=None, half: bool = True,
                    tol: float = 1e-10, cavitated_shear: str = "full",
-                   grooves=(), ambient_pressure: float = 0.0) -> FilmSolution:
+                   grooves=(), ambient_pressure: float = 0.0, fields: FilmFields | None = None,
+                   tilt=(0.0, 0.0), tilt_rate=(0.0, 0.0)) -> FilmSolution:
     """Solve the Reynolds equation on a finite-element mesh of the unwrapped film.
 
     Parameters
@@ -135,6 +150,16 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
         ``cavitation="jfo"`` a groove may be starved (``fraction`` < 1)
     ambient_pressure : JFO films: pressure at the axial ends and a supply line above the
         cavitation pressure [Pa] (>= 0)
+    fields : :class:`~bearingfem.fields.FilmFields`: gap, its rate, viscosity and density
+        fields of the film (Reynolds-family cavitation); None is the rigid cylinder
+    tilt : (tilt_x, tilt_y) [rad], the journal axis turned about the inertial x and y axes
+        through the bearing centre (:func:`~bearingfem.fields.tilted_gap`); its gap is
+        added to the fields' (Reynolds-family cavitation)
+    tilt_rate : their rates [rad/s] (squeeze)
+
+    With ``fields`` or a tilt the whole length is meshed (no mid-plane symmetry) and
+    ``moment`` is the film's moment on the journal; fields that are the rigid cylinder's
+    are solved by the rigid film's fast path (the same discrete problem).
 
     Returns
     -------
@@ -146,43 +171,86 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
     grooves = check_grooves(grooves, supply_angle, mass_conserving=cavitation == "jfo")
     ambient_pressure = check_jfo_supply(cavitation, grooves, supply_angle, ambient_pressure,
                                         element)
+    tilt, tilt_rate = check_tilt("tilt", tilt), check_tilt("tilt_rate", tilt_rate)
+    general = fields is not None or any(tilt) or any(tilt_rate)
+    if general and cavitation == "jfo":
+        raise ValueError("fields and tilt need a Reynolds-family cavitation model "
+                         "('none', 'gumbel', 'reynolds'), got cavitation='jfo'")
+    if fields is not None and not isinstance(fields, FilmFields):
+        raise ValueError(f"fields must be a FilmFields, got {type(fields).__name__}")
 
     if cavitation == "jfo":
         return solve_jfo(bearing, state,
                          lambda nt, nz: fe_operator(bearing, state, nt, nz, "P1", supply_angle,
                                                     half, grooves),
                          n_theta, n_z, grooves, ambient_pressure)
-    op = fe_operator(bearing, state, n_theta, n_z, element, supply_angle, half, grooves)
+    op = fe_operator(bearing, state, n_theta, n_z, element, supply_angle,
+                     half and not general, grooves)
+    system = film = gap = None
+    if general:
+        film, gap = general_film(bearing, state, op, fields, tilt, tilt_rate)
+        if not film.is_rigid(op, state):      # the rigid data takes the fast path
+            system = film_system(op, film, state.wedge_speed)
     dirichlet = groove_pressures(bearing, op, grooves)
-    res = fe_pressure(op, state, cavitation, method, tol, dirichlet=dirichlet)
+    res = fe_pressure(op, state, cavitation, method, tol, dirichlet=dirichlet, system=system)
+    values, load = system if system is not None else (
+        op.values(state.eps), op.load(state.eps, state.eps_dot, state.wedge_speed))
+    return _film_outputs(bearing, state, op, res, values, load, film, cavitation,
+                         cavitated_shear, grooves,
+                         f"fem-{element}" + (f"/{method}" if cavitation == "reynolds" else ""),
+                         gap)
+
+
+def general_film(bearing: Bearing, state: JournalState, op: FilmOperator,
+                 fields: FilmFields | None = None, tilt=(0.0, 0.0), tilt_rate=(0.0, 0.0)):
+    """The film's fields at ``op``'s quadrature points with the tilt's gap added, and the
+    nodal gap; raises ValueError when the tilted journal touches the bush."""
+    spec = fields or FilmFields()
+    film, gap = spec.on(op, state), spec.nodal_gap(op, state)
+    if any(tilt) or any(tilt_rate):
+        dH, dH_dt = tilted_gap(bearing, state, op.qp_theta, op.qp_zeta, tilt, tilt_rate)
+        film = film.plus(gap=dH, gap_rate=dH_dt)
+        gap = gap + tilted_gap(bearing, state, op.mesh.theta, op.mesh.zeta, tilt)[0]
+        if not np.all(film.gap > 0.0):
+            raise ValueError(f"tilt {tilt} [rad] brings the journal into the bush (minimum "
+                             f"gap {float(np.min(film.gap)) * bearing.clearance:.3g} m at eps "
+                             f"{state.eps}): reduce eps or the tilt")
+    return film, gap
+
+
+def _film_outputs(bearing, state, op, res, values, load, film, cavitation, cavitated_shear,
+                  grooves, method, gap=None) -> FilmSolution:
+    """Forces, moment, friction, leakage and feed of a solved film (rigid or on fields)."""
     P = res.pressure
+    half = op.mesh.half
     clip = cavitation != "none"
     Pn = np.maximum(P, 0.0) if clip else P
-    mult = 2.0 if op.mesh.half else 1.0
     ic, is_ = _integrated_force(op, P, cavitation == "gumbel")
-    f_r, f_t = bearing.force_scale * mult * ic, bearing.force_scale * mult * is_
+    k = force_factor(bearing, half)
+    f_r, f_t = k * ic, k * is_
 
     # Diagnostics at quadrature points of the film.
     Pq, dPq = _qp_fields(op, Pn)
     wq, th = op.qp_weight, op.qp_theta
-    Hq = film_thickness(th, state.eps)
+    Hq = film_thickness(th, state.eps) if film is None else film.gap
     pmax = float(np.max(np.abs(Pn), initial=0.0))
     wet = Pq > 1e-12 * pmax if clip else np.ones_like(Pq, bool)
     area = float(np.sum(wq))
     cav_fraction = float(np.sum(wq[~wet]) / area) if clip else 0.0
     shear_cav = 1.0 if cavitated_shear == "full" else 0.0
-    couette = state.omega / Hq * np.where(wet, 1.0, shear_cav)
-    poiseuille = np.where(wet, 0.5 * Hq * dPq, 0.0)
-    mu, R, c = bearing.viscosity, bearing.radius, bearing.clearance
-    friction = mu * R ** 3 / c * mult * float(np.sum(wq * (couette + poiseuille)))
+    friction = shear_friction(bearing, state.omega, wq, Hq, dPq,
+                              couette_share=np.where(wet, 1.0, shear_cav),
+                              poiseuille_share=wet,
+                              viscosity=1.0 if film is None else film.viscosity, half=half)
     # Side leakage: the consistent boundary flux is the residual at the end dofs. With
     # cavitation, positive residuals there are complementarity multipliers of the
     # cavitated zone, not flow, so only outflow (negative residual) counts.
-    r = op.stiffness(state.eps) @ Pn - op.load(state.eps, state.eps_dot, state.wedge_speed)
+    K = sp.csr_matrix((values, op.indices, op.indptr), shape=op.shape)
+    r = K @ Pn - load
     r_end = r[op.mesh.end]
     if clip:
         r_end = np.minimum(r_end, 0.0)
-    leakage = -c * R ** 2 / 12.0 * mult * float(np.sum(r_end))
+    leakage = -flow_factor(bearing, half) * float(np.sum(r_end))
     # What the grooves feed: the same consistent flux at their dofs (into the film > 0;
     # groove dofs on the axial ends carry leakage, counted above). The Reynolds-condition
     # films do not conserve mass (their multipliers create and destroy oil), so a feed is
@@ -190,10 +258,29 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
     flow_in = None
     if grooves and not clip:
         r_in = r[np.setdiff1d(np.concatenate(op.mesh.grooves), op.mesh.end)]
-        flow_in = c * R ** 2 / 12.0 * mult * float(np.sum(r_in))
-
+        flow_in = flow_factor(bearing, half) * float(np.sum(r_in))
+    moment = (0.0, 0.0) if half else film_moment(bearing, op, P, state.gamma,
+                                                 cavitation == "gumbel")
     return film_solution(
         bearing, state, Pn, op.mesh.theta, op.mesh.zeta, (f_r, f_t), friction=friction,
         leakage=leakage, flow_in=flow_in, cavitated_fraction=cav_fraction, record=res,
-        method=f"fem-{element}" + (f"/{method}" if cavitation == "reynolds" else ""),
-        cavitation=cavitation, half=op.mesh.half, mesh=op.mesh)
+        method=method, cavitation=cavitation, half=half, mesh=op.mesh, moment=moment,
+        gap=gap)
+
+
+def film_moment(bearing: Bearing, op: FilmOperator, P: np.ndarray, gamma: float,
+                clip: bool = False) -> tuple:
+    """(M_x, M_y) [N m]: the film's moment on the journal about the bearing centre
+    (mid-plane), inertial, of the whole-length film P.
+
+    The pressure force on the journal per area is p (cos, sin)(theta + gamma), inertial, at
+    the lever arm z = R zeta: M_x = -int z dF_y, M_y = int z dF_x. ``clip`` integrates
+    max(P, 0) at the quadrature points (Gumbel's film), as the force does.
+    """
+    Q = op.at_quadrature(P)
+    if clip:
+        Q = np.maximum(Q, 0.0)
+    Qz = Q * op.qp_weight * op.qp_zeta
+    a = op.qp_theta + gamma
+    k = moment_factor(bearing)
+    return (-k * float(np.sum(Qz * np.sin(a))), k * float(np.sum(Qz * np.cos(a))))

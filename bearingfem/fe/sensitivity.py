@@ -15,18 +15,27 @@ integrand is zero there, so it adds nothing to first order).
 """
 from __future__ import annotations
 
-from dataclasses import replace
+from dataclasses import dataclass, replace
 
 import numpy as np
 import scipy.sparse as sp
 
 from ..bearing import Bearing, JournalState
+from ..fields import check_tilt
+from ..scales import force_factor
 from ..solution import ForceDerivatives
 from ..solvers.blocksolve import PinnedFactor, bordered_solve, pinned
 from ..solvers.linsolve import factorise
-from .reynolds import fe_force, fe_operator, fe_pressure, groove_pressures
+from ..validation import check_film_solve
+from .general import film_system, general_assembly
+from .reynolds import fe_force, fe_operator, fe_pressure, general_film, groove_pressures
 
-__all__ = ["fe_force_derivatives"]
+__all__ = ["fe_force_derivatives", "TiltCoefficients", "fe_tilt_coefficients",
+           "gap_sensitivities", "generalised_forces"]
+
+#: The four journal coordinates of a misaligned film and their generalised forces.
+COORDINATES = ("e_x", "e_y", "tilt_x", "tilt_y")
+FORCES = ("F_x", "F_y", "M_x", "M_y")
 
 
 def fe_force_derivatives(bearing: Bearing, state: JournalState, n_theta: int = 120,
@@ -52,7 +61,7 @@ def fe_force_derivatives(bearing: Bearing, state: JournalState, n_theta: int = 1
     dP = np.zeros((op.mesh.ndofs, 3))
     dP[free] = _inactive_solve(op.free_stiffness(e), res.factor, inactive, rhs)
 
-    k = bearing.force_scale * (2.0 if op.mesh.half else 1.0)
+    k = force_factor(bearing, op.mesh.half)
     fields = np.concatenate([P[None], dP.T])
     # Gumbel: P and its partials where the clipped film is positive, as fe_force integrates
     where = op.at_quadrature(P) > 0.0 if cavitation == "gumbel" else None
@@ -89,3 +98,95 @@ def _inactive_solve(K: sp.csr_matrix, factor, inactive: np.ndarray, rhs: np.ndar
         X = factorise(pinned(sp.csr_matrix(K), inactive)).solve(rhs)
     X[~inactive] = 0.0
     return X
+
+
+@dataclass(frozen=True)
+class TiltCoefficients:
+    """Stiffness and damping of a misaligned film over q = (e_x, e_y, tilt_x, tilt_y)
+    [m, m, rad, rad] with generalised forces Q = (F_x, F_y, M_x, M_y) [N, N, N m, N m],
+    inertial: K_ij = -dQ_i/dq_j, C_ij = -dQ_i/dq_j' (units N/m, N, N m/m, N m/rad ... by
+    entry; C likewise per unit rate). ``force`` is Q at the state."""
+
+    K: np.ndarray
+    C: np.ndarray
+    force: np.ndarray
+    method: str = "exact-sensitivity"
+
+
+def gap_sensitivities(bearing: Bearing, state: JournalState, theta, zeta) -> np.ndarray:
+    """dH/dq for q = (e_x, e_y, tilt_x, tilt_y) at film angles theta and zeta = z/R
+    (shape (4,) + theta.shape) [1/m, 1/m, 1/rad, 1/rad].
+
+    H = 1 + (e_x(z) cos(a) + e_y(z) sin(a)) / c with a = theta + gamma, e_x(z) = e_x +
+    z tilt_y, e_y(z) = e_y - z tilt_x: the gap is linear in q. These are also the weights
+    of the generalised forces, Q_j = c int p dH/dq_j dA (virtual work).
+    """
+    a = np.asarray(theta) + state.gamma
+    c = bearing.clearance
+    z = bearing.radius * np.asarray(zeta)
+    return np.stack([np.cos(a) / c, np.sin(a) / c, -z * np.sin(a) / c, z * np.cos(a) / c])
+
+
+def generalised_forces(bearing: Bearing, state: JournalState, op, P: np.ndarray,
+                       clip: bool = False, where=None) -> np.ndarray:
+    """(F_x, F_y, M_x, M_y) [N, N, N m, N m] of the whole-length nodal pressure P (or
+    fields P of shape (n, ndofs): result (4, n)): c int p dH/dq at the quadrature points;
+    ``clip`` integrates max(P, 0) (Gumbel's film), ``where`` only where it is True."""
+    Q = op.at_quadrature(P)
+    if clip:
+        Q = np.maximum(Q, 0.0)
+    if where is not None:
+        Q = Q * where
+    g = gap_sensitivities(bearing, state, op.qp_theta, op.qp_zeta) * op.qp_weight
+    k = bearing.clearance * force_factor(bearing)
+    return k * np.einsum("...eq,jeq->j...", Q, g)
+
+
+def fe_tilt_coefficients(bearing: Bearing, state: JournalState, tilt=(0.0, 0.0),
+                         n_theta: int = 120, n_z: int = 20, element: str = "P1",
+                         cavitation: str = "reynolds") -> TiltCoefficients:
+    """4x4 K and C of the (misaligned) FE film at a steady state, by exact sensitivity.
+
+    With the cavitated set held, K_II dP_I = db/dq - dK/dq P for each coordinate, the
+    partials of the general assembly (:mod:`bearingfem.fe.general`) with
+    dk/dq = 3 H^2 dH/dq (rho = mu = 1) and db/dq the Couette load of 6 w dH/dq; a rate
+    q' enters through the squeeze load -12 dH/dq only. Four right-hand sides of each kind
+    on the factors the film solve holds. The state must be steady (eps_dot = gamma_dot = 0,
+    no tilt rate): the linearisation is about it. Whole length meshed.
+    """
+    check_film_solve(bearing, state, n_theta, n_z, cavitation, "active-set", None,
+                     element=(element, ("P1", "P2")))
+    tilt = check_tilt("tilt", tilt)
+    if cavitation == "jfo":
+        raise ValueError("fe_tilt_coefficients: cavitation must be 'none', 'gumbel' or "
+                         "'reynolds', got 'jfo'")
+    if state.eps_dot != 0.0 or state.gamma_dot != 0.0:
+        raise ValueError("fe_tilt_coefficients linearises about a steady state: eps_dot and "
+                         f"gamma_dot must be 0, got {state.eps_dot!r}, {state.gamma_dot!r}")
+    op = fe_operator(bearing, state, n_theta, n_z, element, None, False)
+    film, _ = general_film(bearing, state, op, None, tilt)
+    values, load = film_system(op, film, state.wedge_speed)
+    res = fe_pressure(op, state, cavitation, system=(values, load))
+    P = res.pressure
+    ga = general_assembly(op)
+    g = gap_sensitivities(bearing, state, op.qp_theta, op.qp_zeta)
+    H, w = film.gap, state.wedge_speed
+    zero = np.zeros_like(H)
+    shape = op.shape
+    rhs = []
+    for gj in g:          # positions: db/dq - dK/dq P
+        dK = sp.csr_matrix((ga.stiffness_values(3.0 * H ** 2 * gj), op.indices, op.indptr),
+                           shape=shape)
+        rhs.append(ga.load(6.0 * w * gj, zero) - dK @ P)
+    rhs += [ga.load(zero, -12.0 * gj) for gj in g]      # rates: squeeze loads
+    free = op.mesh.free
+    inactive = ~res.active[free] if cavitation == "reynolds" else np.ones(len(free), bool)
+    dP = np.zeros((op.mesh.ndofs, 8))
+    dP[free] = _inactive_solve(op.free_stiffness(state.eps, values), res.factor, inactive,
+                               np.column_stack(rhs)[free])
+    where = op.at_quadrature(P) > 0.0 if cavitation == "gumbel" else None
+    Q = generalised_forces(bearing, state, op, P, clip=cavitation == "gumbel")
+    # Gumbel: the partials where the clipped film is positive (its edge adds nothing to
+    # first order: the integrand vanishes there)
+    dQ = generalised_forces(bearing, state, op, dP.T, where=where)
+    return TiltCoefficients(K=-dQ[:, :4], C=-dQ[:, 4:], force=Q)

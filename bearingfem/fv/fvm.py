@@ -23,6 +23,8 @@ import scipy.sparse.linalg as spla
 
 from ..bearing import Bearing, JournalState
 from ..film import film_thickness, reynolds_source_integral, theta_from_inertial
+from ..fields import check_tilt, tilted_gap
+from ..scales import flow_factor, force_factor, moment_factor, shear_friction
 from ..solution import FilmSolution, film_solution
 from ..solvers.cavitation import LCPResult, active_set, psor
 from ..solvers.jfo import solve_balance, upwind_transport
@@ -126,11 +128,39 @@ def _assemble(g: FVMGrid, eps: float, eps_dot: float, w: float):
     return A, rhs
 
 
+def _assemble_gap(g: FVMGrid, gap, gap_rate, w: float):
+    """Matrix and right-hand side of the balance on a gap field: ``gap(theta, zeta)`` and
+    ``gap_rate(theta, zeta)`` [1/s] (functions, evaluated on the faces and centres).
+
+    Face conductances H^3 at the faces; the Couette flux 6 w H dzeta through the theta
+    faces (its difference is the cell's integral of -6 w dH/dtheta, exact in theta); the
+    squeeze -12 dH/dt at the centre times the cell area (midpoint rule)."""
+    TC, ZC = np.meshgrid(g.theta_c, g.zeta_c, indexing="ij")
+    half = 0.5 * g.dzeta
+    He = gap(TC + 0.5 * g.dtheta, ZC)
+    Hw = gap(TC - 0.5 * g.dtheta, ZC)
+    cE, cW = He ** 3 * g.dzeta / g.dtheta, Hw ** 3 * g.dzeta / g.dtheta
+    cN = gap(TC, ZC + half) ** 3 * g.dtheta / g.dzeta
+    cS = gap(TC, ZC - half) ** 3 * g.dtheta / g.dzeta
+    diag = cE + cW + cN + cS
+    diag[:, -1] += cN[:, -1]
+    diag[:, 0] += cS[:, 0]
+    if g.theta0 is not None:
+        diag[-1, :] += cE[-1, :]
+        diag[0, :] += cW[0, :]
+    vals = np.concatenate([diag.ravel()] + [-c[m] for c, m in zip((cE, cW, cN, cS), g.masks)])
+    A = sp.csr_matrix((vals[g.order], g.indices, g.indptr), shape=(g.n, g.n))
+    rhs = -6.0 * w * (He - Hw) * g.dzeta - 12.0 * gap_rate(TC, ZC) * g.dtheta * g.dzeta
+    ends = (2.0 * cN[:, -1], 2.0 * cS[:, 0])      # the end faces' conductances
+    return A, rhs.ravel(), ends
+
+
 def _pressure(g: FVMGrid, state: JournalState, cavitation: str, method="active-set",
-              tol=1e-10, held=None) -> LCPResult:
+              tol=1e-10, held=None, system=None) -> LCPResult:
     """Cell pressures; ``held`` = (mask, values): cells held at given pressures (grooves),
-    the others solved with those values moved to the right-hand side."""
-    A, rhs = _assemble(g, state.eps, state.eps_dot, state.wedge_speed)
+    the others solved with those values moved to the right-hand side; ``system`` = (A, rhs)
+    of a gap field (None: the rigid cylinder)."""
+    A, rhs = system or _assemble(g, state.eps, state.eps_dot, state.wedge_speed)
     if held is not None:
         fixed, values = held
         free = ~fixed
@@ -230,14 +260,15 @@ def fvm_force(bearing: Bearing, state: JournalState, n_theta: int = 48, n_z: int
 def _force(bearing: Bearing, g: FVMGrid, P: np.ndarray):
     """(F_r, F_t) [N]: midpoint sums of seed Eq. 16, sum p (cos, sin)(theta) dA."""
     Pg = P.reshape(g.n_theta, g.n_z).sum(axis=1)
-    k = bearing.force_scale * g.dtheta * g.dzeta
+    k = force_factor(bearing) * g.dtheta * g.dzeta
     return k * float(Pg @ np.cos(g.theta_c)), k * float(Pg @ np.sin(g.theta_c))
 
 
 def fvm_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z: int = 20,
                  cavitation: str = "reynolds", *, method: str = "active-set",
                  supply_angle=None, tol: float = 1e-10, grooves=(),
-                 ambient_pressure: float = 0.0) -> FilmSolution:
+                 ambient_pressure: float = 0.0, tilt=(0.0, 0.0),
+                 tilt_rate=(0.0, 0.0)) -> FilmSolution:
     """Finite-volume Reynolds solution; same inputs and result type as ``solve_reynolds``.
 
     ``cavitation="jfo"`` is the mass-conserving film on the cells (upwind transport of
@@ -246,6 +277,10 @@ def fvm_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z:
 
     Forces are the midpoint sums of seed Eq. 16 (second order): F_r = sum p cos(theta) dA,
     F_t = sum p sin(theta) dA in the contract's local frame.
+
+    ``tilt``, ``tilt_rate``: a misaligned journal (:func:`bearingfem.fields.tilted_gap`,
+    Reynolds-family cavitation): the balance on its gap field and ``moment`` (M_x, M_y)
+    [N m], midpoint sums as the force.
     """
     n_theta, n_z, supply_angle = check_film_solve(bearing, state, n_theta, n_z, cavitation,
                                                   method, supply_angle, tol)
@@ -253,7 +288,22 @@ def fvm_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z:
                                                                          state.gamma))
     grooves = check_grooves(grooves, supply_angle, mass_conserving=cavitation == "jfo")
     ambient_pressure = check_jfo_supply(cavitation, grooves, supply_angle, ambient_pressure)
+    tilt, tilt_rate = check_tilt("tilt", tilt), check_tilt("tilt_rate", tilt_rate)
+    tilted = any(tilt) or any(tilt_rate)
+    if tilted and cavitation == "jfo":
+        raise ValueError("tilt needs a Reynolds-family cavitation model ('none', 'gumbel', "
+                         "'reynolds'), got cavitation='jfo'")
     g = fvm_grid(n_theta, n_z, bearing.length_ratio, theta0)
+    system = gap = None
+    if tilted:
+        def gap(t, z):
+            return film_thickness(t, state.eps) + tilted_gap(bearing, state, t, z, tilt)[0]
+
+        def rate(t, z):
+            return (state.eps_dot * np.cos(t)
+                    + tilted_gap(bearing, state, t, z, tilt, tilt_rate)[1])
+        A, rhs, ends = _assemble_gap(g, gap, rate, state.wedge_speed)
+        system = (A, rhs)
     held = None
     if grooves:     # cells whose centres lie in a groove hold its pressure
         fixed, values, _, columns = _groove_cells(bearing, g, state, grooves)
@@ -262,15 +312,14 @@ def fvm_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z:
     if cavitation == "jfo":
         P, phi, res, flows = _jfo(bearing, g, state, grooves, ambient_pressure)
     else:
-        res = _pressure(g, state, cavitation, method, tol, held)
+        res = _pressure(g, state, cavitation, method, tol, held, system)
         P = res.pressure if cavitation == "none" else np.maximum(res.pressure, 0.0)
 
     th = np.repeat(g.theta_c, n_z)
     ze = np.tile(g.zeta_c, n_theta)
     dA = g.dtheta * g.dzeta
     f_r, f_t = _force(bearing, g, P)
-    H = film_thickness(th, state.eps)
-    mu, R, c = bearing.viscosity, bearing.radius, bearing.clearance
+    H = film_thickness(th, state.eps) if gap is None else gap(th, ze)
     wet = P > 0 if cavitation != "none" else np.ones(g.n, bool)
     # JFO: Couette shear on the oil present, Poiseuille shear in the full film
     shear, full = (1.0, 1.0) if phi is None else (phi, phi >= 1.0 - 1e-12)
@@ -282,26 +331,34 @@ def fvm_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z:
     else:
         dP = np.gradient(np.vstack([np.zeros((1, n_z)), Pg, np.zeros((1, n_z))]),
                          g.dtheta, axis=0)[1:-1]
-    friction = mu * R ** 3 / c * dA * float(np.sum(state.omega / H * shear
-                                                   + 0.5 * H * dP.ravel() * full))
+    friction = shear_friction(bearing, state.omega, dA, H, dP.ravel(), couette_share=shear,
+                              poiseuille_share=full)
     # Side leakage through the end faces: flux H^3 (P_face=0 - P_c) / (dzeta/2) per face.
-    q = np.sum(_end_conductance(g, state.eps) * (Pg[:, -1] + Pg[:, 0]))
-    leakage = c * R ** 2 / 12.0 * float(q)
+    q = (np.sum(_end_conductance(g, state.eps) * (Pg[:, -1] + Pg[:, 0])) if gap is None
+         else np.sum(ends[0] * Pg[:, -1] + ends[1] * Pg[:, 0]))
+    leakage = flow_factor(bearing) * float(q)
     flow_in = mass_balance = None
     if flows is not None:
-        k = c * R ** 2 / 12.0
+        k = flow_factor(bearing)
         flow_in, leakage = k * flows[0], k * flows[1]
         mass_balance = k * (flows[0] - flows[1] - flows[2])
         wet = phi >= 1.0 - 1e-12
     elif held is not None and cavitation == "none":
         # what the grooves feed: their cells' net outflow, the balance's residual there
         # (the Reynolds-condition films do not conserve mass: no feed is defined for them)
-        A, rhs = _assemble(g, state.eps, state.eps_dot, state.wedge_speed)
+        A, rhs = system or _assemble(g, state.eps, state.eps_dot, state.wedge_speed)
         r = (A @ P - rhs).reshape(n_theta, n_z)
-        flow_in = c * R ** 2 / 12.0 * float(np.sum(r[np.any(np.stack(columns), axis=0)]))
+        flow_in = flow_factor(bearing) * float(np.sum(r[np.any(np.stack(columns), axis=0)]))
+    moment = (0.0, 0.0)
+    if tilted:      # M_x = -sum z dF_y, M_y = sum z dF_x, dF = p (cos, sin)(theta + gamma) dA
+        a = th + state.gamma
+        k = moment_factor(bearing) * dA
+        Pz = P * ze
+        moment = (-k * float(np.sum(Pz * np.sin(a))), k * float(np.sum(Pz * np.cos(a))))
     return film_solution(
         bearing, state, P, th, ze, (f_r, f_t), friction=friction, leakage=leakage,
-        flow_in=flow_in, fraction=phi, mass_balance=mass_balance,
+        flow_in=flow_in, fraction=phi, mass_balance=mass_balance, moment=moment,
+        gap=None if gap is None else gap(th, ze),
         cavitated_fraction=float(np.mean(~wet)), record=res,
         method="fvm" + (f"/{method}" if cavitation == "reynolds" else ""),
         cavitation=cavitation, half=False, mesh=g)

@@ -1,0 +1,98 @@
+"""Assembly of the film on any fields: -div(rho H^3/mu grad P) = -6 w d(rho H)/dtheta
+- 12 d(rho H)/dt, for P1 and P2 (see :mod:`bearingfem.fields`).
+
+The Couette term is taken in weak form, 6 w int rho H dv/dtheta (the boundary term vanishes:
+the film is periodic in theta, or v = 0 on a supply line), so a gap needs no derivative and
+may be any nodal or quadrature field.
+
+Vectorised without a loop over elements: the film mesh is affine (straight triangles), so
+on element e the gradients are J_e^-T times the reference gradients, and
+
+    K_e[i, j] = sum_cd (J^-1 J^-T)_e[c, d] |det J_e| sum_q k_eq W_q dphi_ic(q) dphi_jd(q),
+
+four products (elements x points) @ (points x local pairs) of the coefficient
+k = rho H^3/mu at the quadrature points with reference tables; the local values are then
+summed onto the fast path's sparsity pattern (``FilmOperator.indptr/indices``), so both
+paths share the free-free selection and the solvers.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import lru_cache
+
+import numpy as np
+
+from .assembly import FilmOperator
+
+__all__ = ["GeneralAssembly", "general_assembly", "film_system"]
+
+
+@dataclass(frozen=True, eq=False)
+class GeneralAssembly:
+    """Reference tables and element metrics of one film operator (built once per mesh)."""
+
+    op: FilmOperator
+    metric: np.ndarray       # (2, 2, elements): (J^-1 J^-T) |det J|
+    grad_theta: np.ndarray   # (2, elements): (J^-1)[c, 0] |det J|, d/dtheta of ref. grads
+    det: np.ndarray          # (elements,) |det J|
+    stiff_tables: np.ndarray  # (2, 2, points, nb*nb): W_q dphi_ic dphi_jd
+    grad_tables: np.ndarray  # (2, points, nb): W_q dphi_ic
+    value_table: np.ndarray  # (points, nb): W_q phi_i
+    positions: np.ndarray    # (elements, nb*nb): place of each local entry in the pattern
+    dofs: np.ndarray         # (elements, nb)
+
+    def stiffness_values(self, k: np.ndarray) -> np.ndarray:
+        """Values on the pattern of the stiffness of -div(k grad P), k at the quadrature
+        points (elements x points)."""
+        local = sum(self.metric[c, d][:, None] * (k @ self.stiff_tables[c, d])
+                    for c in range(2) for d in range(2))
+        n = len(self.op.indices)
+        return np.bincount(self.positions.ravel(), local.ravel(), minlength=n + 1)[:n]
+
+    def load(self, couette: np.ndarray, squeeze: np.ndarray) -> np.ndarray:
+        """Load of int couette dv/dtheta + squeeze v over the film (both at the
+        quadrature points)."""
+        local = (self.grad_theta[0][:, None] * (couette @ self.grad_tables[0])
+                 + self.grad_theta[1][:, None] * (couette @ self.grad_tables[1])
+                 + self.det[:, None] * (squeeze @ self.value_table))
+        return np.bincount(self.dofs.ravel(), local.ravel(), minlength=self.op.mesh.ndofs)
+
+
+@lru_cache(maxsize=16)
+def general_assembly(op: FilmOperator) -> GeneralAssembly:
+    """The tables of ``op``'s mesh (cached per operator)."""
+    basis = op.mesh.basis
+    X, W = basis.X, basis.W
+    invJ = basis.mapping.invDF(X)[..., 0]             # (2, 2, elements), affine
+    det = np.abs(basis.mapping.detDF(X)[:, 0])
+    if not np.allclose(basis.dx, det[:, None] * W[None, :], rtol=1e-12, atol=0.0):
+        raise ValueError("the general film assembly needs straight (affine) elements")
+    nb = basis.Nbfun
+    phi = np.array([basis.elem.lbasis(X, i)[0] for i in range(nb)])      # (nb, points)
+    dphi = np.array([basis.elem.lbasis(X, i)[1] for i in range(nb)])     # (nb, 2, points)
+    # physical gradient component a: sum_c invJ[c, a] dphi_c
+    metric = np.einsum("cae,dae->cde", invJ, invJ) * det
+    stiff = np.einsum("q,icq,jdq->cdqij", W, dphi, dphi).reshape(2, 2, len(W), nb * nb)
+    dofs = np.ascontiguousarray(basis.element_dofs.T)                    # (elements, nb)
+    N = basis.N
+    rows = np.repeat(np.arange(N, dtype=np.int64), np.diff(op.indptr))
+    keys = rows * N + op.indices
+    local = (dofs[:, :, None].astype(np.int64) * N + dofs[:, None, :]).reshape(len(dofs), -1)
+    positions = np.minimum(np.searchsorted(keys, local), len(keys) - 1)
+    # Couplings the pattern lacks are zero for every coefficient (gradients orthogonal on
+    # right triangles): they go to a spare slot past the pattern's end, dropped.
+    positions[keys[positions] != local] = len(keys)
+    return GeneralAssembly(
+        op=op, metric=metric, grad_theta=invJ[:, 0] * det, det=det, stiff_tables=stiff,
+        grad_tables=np.einsum("q,icq->cqi", W, dphi), value_table=(W * phi).T,
+        positions=positions, dofs=dofs)
+
+
+def film_system(op: FilmOperator, fields, wedge_speed: float):
+    """(stiffness values on the pattern, load) of the film with evaluated
+    :class:`~bearingfem.fields.FilmFields` ``fields`` at wedge speed w [rad/s]."""
+    ga = general_assembly(op)
+    rho, H = fields.density, fields.gap
+    k = rho * H ** 3 / fields.viscosity
+    squeeze = -12.0 * (rho * fields.gap_rate + fields.density_rate * H)
+    return ga.stiffness_values(k), ga.load(6.0 * wedge_speed * rho * H, squeeze)

@@ -1,0 +1,149 @@
+"""The film's fields: gap, its rate, viscosity and density, one owner for every model.
+
+The general dimensionless Reynolds equation (theta from the maximum film of the journal
+centre at the mid-plane, zeta = z/R, p = mu0 (R/c)^2 P):
+
+    -div(rho H^3 / mu grad P) = -6 w d(rho H)/dtheta - 12 d(rho H)/dt,
+
+with H = h/c, mu and rho ratios to the reference mu0 (the bearing's viscosity) and rho0,
+w = omega - 2 gamma_dot the wedge speed and d/dt at fixed theta (the frame turning with the
+line of centres). The rigid cylinder, H = 1 + eps cos(theta), dH/dt = eps_dot cos(theta),
+mu = rho = 1, gives back :mod:`bearingfem.film`'s source
+6 w eps sin(theta) - 12 eps_dot cos(theta).
+
+A field is given as a number (uniform), a function f(theta, zeta) of the film angle and the
+axial coordinate z/R (evaluated at the quadrature points: exact wherever it is evaluated),
+an array of nodal values (one per dof of the mesh, interpolated by the elements), or an
+array already at the quadrature points. :meth:`FilmFields.on` turns the fields into arrays
+at the quadrature points of one film operator, checked: that is what the assembly
+(:mod:`bearingfem.fe.general`) takes.
+
+Misalignment (:func:`tilted_gap`) is the first user: a journal whose axis is turned by
+(tilt_x, tilt_y) about the inertial x and y axes through the bearing centre has its centre
+at (e_x + z tilt_y, e_y - z tilt_x) at the axial position z, so its gap gains a part linear
+in z.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from .bearing import check_finite
+from .film import film_thickness
+
+__all__ = ["FilmFields", "tilted_gap", "check_tilt"]
+
+FIELD_NAMES = ("gap", "gap_rate", "viscosity", "density", "density_rate")
+
+
+@dataclass(frozen=True, eq=False)
+class FilmFields:
+    """The fields of one film (dimensionless; see the module docstring for the forms a
+    field may take).
+
+    Parameters
+    ----------
+    gap : H = h/c; None is the rigid cylinder 1 + eps cos(theta) of the solved state
+    gap_rate : dH/dt at fixed theta [1/s]; None is the rigid eps_dot cos(theta)
+    viscosity : mu/mu0 (> 0), default 1
+    density : rho/rho0 (> 0), default 1
+    density_rate : d(rho/rho0)/dt at fixed theta [1/s], default 0
+    """
+
+    gap: object = None
+    gap_rate: object = None
+    viscosity: object = 1.0
+    density: object = 1.0
+    density_rate: object = 0.0
+
+    def on(self, op, state) -> "FilmFields":
+        """These fields as arrays at the quadrature points of the film operator ``op``
+        (elements x points), the rigid defaults taken from ``state``; raises ValueError
+        naming a field that is not finite, or a gap, viscosity or density not > 0."""
+        th, ze = op.qp_theta, op.qp_zeta
+        gap = film_thickness(th, state.eps) if self.gap is None else self.gap
+        rate = state.eps_dot * np.cos(th) if self.gap_rate is None else self.gap_rate
+        values = {}
+        for name, f in zip(FIELD_NAMES, (gap, rate, self.viscosity, self.density,
+                                         self.density_rate)):
+            v = _at_quadrature(name, f, op)
+            if not np.all(np.isfinite(v)):
+                raise ValueError(f"film field {name} must be finite everywhere")
+            if name in ("gap", "viscosity", "density") and not np.all(v > 0.0):
+                raise ValueError(f"film field {name} must be > 0 everywhere, "
+                                 f"min {float(np.min(v))!r}")
+            values[name] = v
+        return FilmFields(**values)
+
+    def nodal_gap(self, op, state) -> np.ndarray:
+        """H at the dofs of ``op``'s mesh (a quadrature-point gap is projected, L2)."""
+        th, ze = op.mesh.theta, op.mesh.zeta
+        g = self.gap
+        if g is None:
+            return film_thickness(th, state.eps)
+        if callable(g):
+            return np.broadcast_to(np.asarray(g(th, ze), dtype=float), th.shape).copy()
+        g = np.asarray(g, dtype=float)
+        if g.ndim == 2:
+            return np.asarray(op.mesh.basis.project(g))
+        return np.broadcast_to(g, th.shape).copy()
+
+    def is_rigid(self, op, state) -> bool:
+        """True when these (evaluated) fields are the rigid cylinder's of ``state`` to
+        round-off: then the film's fast path solves the same problem."""
+        th = op.qp_theta
+        return bool(np.allclose(self.gap, film_thickness(th, state.eps), rtol=0.0, atol=1e-14)
+                    and np.allclose(self.gap_rate, state.eps_dot * np.cos(th), rtol=0.0,
+                                    atol=1e-14 * max(1.0, abs(state.eps_dot)))
+                    and np.all(self.viscosity == 1.0) and np.all(self.density == 1.0)
+                    and not np.any(self.density_rate))
+
+    def plus(self, **extra) -> "FilmFields":
+        """Evaluated fields with arrays added to some of them (e.g. a tilt's gap)."""
+        return replace(self, **{k: getattr(self, k) + v for k, v in extra.items()})
+
+
+def _at_quadrature(name: str, f, op) -> np.ndarray:
+    shape = op.qp_theta.shape
+    if callable(f):
+        v = np.asarray(f(op.qp_theta, op.qp_zeta), dtype=float)
+    else:
+        v = np.asarray(f, dtype=float)
+        if v.ndim == 1 and v.shape[0] == op.mesh.ndofs:     # nodal values
+            v = op.at_quadrature(v)
+        elif v.ndim not in (0, 2) or (v.ndim == 2 and v.shape != shape):
+            raise ValueError(f"film field {name} must be a number, a function of (theta, "
+                             f"zeta), {op.mesh.ndofs} nodal values or an array of shape "
+                             f"{shape}, got shape {v.shape}")
+    return np.broadcast_to(v, shape).astype(float)
+
+
+def check_tilt(name: str, tilt) -> tuple:
+    """(x, y) as two finite floats, or ValueError naming ``name``."""
+    try:
+        tx, ty = tilt
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a pair (about x, about y) [rad], got {tilt!r}") \
+            from None
+    return check_finite(f"{name}[0]", tx), check_finite(f"{name}[1]", ty)
+
+
+def tilted_gap(bearing, state, theta, zeta, tilt=(0.0, 0.0), tilt_rate=(0.0, 0.0)):
+    """(dH, dH/dt) [-, 1/s]: what a tilted journal adds to the gap and its rate at the
+    film angle theta and zeta = z/R.
+
+    The journal centre at z sits at (e_x + z tilt_y, e_y - z tilt_x); the gap at inertial
+    angle alpha is c - e(z) . (cos alpha, sin alpha). With alpha = theta + gamma + pi,
+    dH = (R/c) zeta (tilt_y cos(theta + gamma) - tilt_x sin(theta + gamma)). The tilt is
+    inertial while theta turns with gamma, so its rate at fixed theta gains
+    gamma_dot d(dH)/dtheta.
+    """
+    tx, ty = tilt
+    rx, ry = tilt_rate
+    k = bearing.radius / bearing.clearance * np.asarray(zeta)
+    a = np.asarray(theta) + state.gamma
+    c, s = np.cos(a), np.sin(a)
+    dH = k * (ty * c - tx * s)
+    dH_dtheta = -k * (ty * s + tx * c)
+    return dH, k * (ry * c - rx * s) + state.gamma_dot * dH_dtheta

@@ -1,0 +1,77 @@
+"""What a film on general fields costs against the rigid cylinder's fast path.
+
+    python -m benchmarks.fields            # 120x20 and 480x80, P1 and P2, eps 0.6
+    python -m benchmarks.fields --quick    # a smoke run on small meshes (CI)
+
+Both paths solve the same film, H = 1 + eps cos(theta), over the whole length, L/D = 1,
+omega = 100 rad/s, Swift-Stieber cavitation (active set, nested first set), warm operator
+caches (mesh, pattern and the general path's element tables are built once per mesh and
+excluded). Times are the best of ``--repeat`` in one run:
+
+* fast: ``fe_pressure(op, state)``, stiffness combined from the four cos^k terms;
+* general: the fields evaluated at the quadrature points (``FilmFields.on``), the general
+  assembly (``film_system``) and the same solve;
+* assembly: the general path's fields and assembly alone.
+"""
+from __future__ import annotations
+
+import argparse
+import time
+
+import numpy as np
+
+from bearingfem import JournalState
+from bearingfem.bearing import seed_bearing
+from bearingfem.fe.general import film_system, general_assembly
+from bearingfem.fe.reynolds import fe_operator, fe_pressure
+from bearingfem.fields import FilmFields
+
+BEARING = seed_bearing(1.0)
+STATE = JournalState(eps=0.6, omega=100.0)
+
+
+def best_time(f, repeat):
+    times = []
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        out = f()
+        times.append(time.perf_counter() - t0)
+    return min(times), out
+
+
+def row(n_theta, n_z, element, repeat):
+    op = fe_operator(BEARING, STATE, n_theta, n_z, element, None, False)
+    general_assembly(op)                  # tables once per mesh, as the operator
+    spec = FilmFields(gap=lambda t, z: 1.0 + STATE.eps * np.cos(t))
+
+    def general():
+        system = film_system(op, spec.on(op, STATE), STATE.wedge_speed)
+        return fe_pressure(op, STATE, "reynolds", system=system)
+
+    t_fast, fast = best_time(lambda: fe_pressure(op, STATE, "reynolds"), repeat)
+    t_gen, gen = best_time(general, repeat)
+    t_asm, _ = best_time(lambda: film_system(op, spec.on(op, STATE), STATE.wedge_speed),
+                         repeat)
+    gap = float(np.max(np.abs(gen.pressure - fast.pressure)) / np.max(fast.pressure))
+    return dict(mesh=f"{n_theta}x{n_z}", element=element, dofs=op.mesh.ndofs,
+                fast=t_fast, general=t_gen, assembly=t_asm, ratio=t_gen / t_fast, gap=gap)
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--quick", action="store_true", help="small meshes (smoke run)")
+    ap.add_argument("--repeat", type=int, default=3)
+    args = ap.parse_args(argv)
+    meshes = [(24, 4), (48, 8)] if args.quick else [(120, 20), (480, 80)]
+    rows = [row(nt, nz, el, args.repeat) for nt, nz in meshes for el in ("P1", "P2")]
+    print(f"{'mesh':>8} {'elem':>4} {'dofs':>7} {'fast [s]':>9} {'general [s]':>11} "
+          f"{'assembly [s]':>12} {'general/fast':>12} {'max |dP|/P':>10}")
+    for r in rows:
+        print(f"{r['mesh']:>8} {r['element']:>4} {r['dofs']:>7} {r['fast']:>9.4f} "
+              f"{r['general']:>11.4f} {r['assembly']:>12.4f} {r['ratio']:>12.2f} "
+              f"{r['gap']:>10.1e}")
+    return rows
+
+
+if __name__ == "__main__":
+    main()
