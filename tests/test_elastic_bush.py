@@ -83,9 +83,9 @@ def ring_error(n, n_theta, model="ring", **options):
 @pytest.mark.parametrize("n", [0, 1, 2, 3, 4])
 def test_ring_converges_to_michell(n):
     """Ring under cos(n theta), outer surface fixed: the error falls as h^2 (order > 1.9
-    from 32 to 64 cells, measured 1.94-2.00) and is below 2 % at 64 (1.8 % at n = 4). Fails with the traction's sign
-    flipped (error 2), the hoop displacement read instead of u_r, or lambda and mu swapped
-    (order ~0, error 1e-1)."""
+    from 32 to 64 cells, measured 1.94-2.00) and is below 2 % at 64 (1.8 % at n = 4).
+    Fails with the traction's sign flipped (error 2.0), the hoop displacement read
+    instead of u_r (error 1.0) or lambda and mu swapped (error 0.33)."""
     coarse, fine = ring_error(n, 32), ring_error(n, 64)
     assert fine < 0.02
     assert np.log2(coarse / fine) > 1.9
@@ -95,9 +95,8 @@ def test_ring_converges_to_michell(n):
 def test_plane_strain_solid_converges_to_exact(n):
     """The 3-D solid with its end faces held axially (plane strain) under a z-uniform
     cos(n theta) pressure: Lame (n = 0) and Michell (n = 2) at second order (measured
-    1.99, 1.90 from 16 to 32 cells; errors 3.7e-3, 1.9e-2 at 32). Fails with the outer
-    surface's axial component left free on the held dofs' list dropped, or the end faces
-    left free (the solid then is not in plane strain: error 3e-2 at n = 0, order ~0)."""
+    1.99, 1.90 from 16 to 32 cells; errors 3.7e-3, 1.9e-2 at 32). Fails with the end
+    faces left free (the solid then is not in plane strain: errors 0.18 and 0.16)."""
     coarse = ring_error(n, 16, "solid", ends="plane-strain")
     fine = ring_error(n, 32, "solid", ends="plane-strain")
     assert fine < (5e-3 if n == 0 else 2.5e-2)
@@ -108,8 +107,8 @@ def test_plane_strain_solid_equals_ring_on_the_same_section():
     """A z-independent field of the extruded mesh solves the hexahedral equations when the
     end faces are held axially, so the solid reproduces the ring to round-off (1e-12
     measured) for a pressure varying around but not along. Fails with the film's axial
-    shape functions not summing to one (a wrong z spacing) or the inner-surface normal's
-    sign flipped."""
+    shape functions not summing to one (z spacing L / n_z: 30 % off) or the end faces
+    left free (18 % off)."""
     bush = dict(outer_radius=OUTER, modulus=E, poisson=NU)
     ring = bush_compliance(ElasticBush(**bush, model="ring"), INNER, 0.004, 24, 3,
                            n_radial=3)
