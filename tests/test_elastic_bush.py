@@ -105,7 +105,7 @@ def test_plane_strain_solid_converges_to_exact(n):
 
 def test_plane_strain_solid_equals_ring_on_the_same_section():
     """A z-independent field of the extruded mesh solves the hexahedral equations when the
-    end faces are held axially, so the solid reproduces the ring to round-off (1e-12
+    end faces are held axially, so the solid reproduces the ring to round-off (7e-16
     measured) for a pressure varying around but not along. Fails with the film's axial
     shape functions not summing to one (z spacing L / n_z: 30 % off) or the end faces
     left free (18 % off)."""

@@ -65,6 +65,8 @@ def test_reduced_compliance_is_the_best_truncation(small_solid):
                                  for e in np.eye(full.shape[0])])
         errors.append(np.linalg.norm(dense - full, 2) / norm)
         assert reduced.n_vectors <= k
+        for basis in (reduced.left, reduced.right):        # real orthonormal vectors
+            assert np.allclose(basis.T @ basis, np.eye(reduced.n_vectors), atol=1e-12)
         assert errors[-1] == pytest.approx(reduced.operator_error, rel=1e-9, abs=1e-12)
     assert errors[0] > errors[1] > errors[2] > errors[3] and errors[3] < 1e-12
 
@@ -139,3 +141,13 @@ def test_docs_snippets_run(monkeypatch):
     monkeypatch.chdir(ROOT)
     for code in snippets:
         exec(compile(code, "elastic-bush.md", "exec"), {"__name__": "docs"})
+
+
+def test_benchmark_smoke(capsys):
+    """benchmarks/bush.py runs; its reduced-basis errors fall to round-off at full rank."""
+    from benchmarks import bush
+    rows = bush.main(["--quick", "--repeat", "1"])
+    reduced = [r for r in rows if r["model"] == "solid-reduced"]
+    assert reduced[-1]["vectors"] == 192 and reduced[-1]["error"] < 1e-12
+    assert all(a["operator"] >= b["operator"] for a, b in zip(reduced, reduced[1:]))
+    assert "FFT apply" in capsys.readouterr().out

@@ -75,49 +75,61 @@ class BushCompliance:
         return self.columns[shift].transpose(0, 2, 1, 3).reshape(n * nz, n * nz)
 
     def reduced(self, n_vectors: int) -> "ReducedCompliance":
-        """The best rank-``n_vectors`` approximation of the operator (Eckart-Young): the
-        largest singular triples of the harmonic blocks, a harmonic 0 < m < n_theta / 2
-        counting as two real vectors (its cosine and sine)."""
+        """The best rank-``n_vectors`` approximation of the operator (Eckart-Young) as real
+        orthonormal vectors: the largest singular triples (s, u, v) of the harmonic blocks,
+        a harmonic 0 < m < n_theta / 2 giving two (its cosine and sine).
+
+        In theta harmonic m the operator is Sum_i s_i phi_i psi_i^H with
+        phi = u e^(i m theta_j) / sqrt(n_theta), psi likewise from v; with its conjugate
+        (harmonic -m) that is s [a c^T + b d^T], a, b = sqrt(2) (Re, Im) phi and c, d from
+        psi: two real orthonormal pairs of equal singular value."""
         n, nz = self.shape
         n_vectors = check_int("n_vectors", n_vectors, 1)
         if n_vectors > n * nz:
             raise ValueError(f"n_vectors must be <= n_theta n_z = {n * nz}, got {n_vectors}")
         u, s, vh = np.linalg.svd(self.spectrum)                  # (M, nz, nz), (M, nz)
         m = np.arange(s.shape[0])
-        weight = np.where((m == 0) | (2 * m == n), 1, 2)[:, None] * np.ones_like(s, int)
+        single = (m == 0) | (2 * m == n)                         # real harmonics
+        weight = np.where(single, 1, 2)[:, None] * np.ones_like(s, dtype=int)
         order = np.argsort(-s, axis=None, kind="stable")
-        count = np.cumsum(weight.ravel()[order])
-        keep = np.zeros(s.size, bool)
-        keep[order[count <= n_vectors]] = True
-        keep = keep.reshape(s.shape)
-        # relative 2-norm error of the operator: the largest singular value left out
-        left = s[~keep]
-        return ReducedCompliance(u * keep[:, None, :], s * keep, vh, n,
-                                 int(weight[keep].sum()),
-                                 float(left.max() / s.max()) if left.size else 0.0)
+        order = order[np.cumsum(weight.ravel()[order]) <= n_vectors]
+        harmonic, index = np.unravel_index(order, s.shape)
+        wave = np.exp(2j * np.pi * np.outer(np.arange(n), harmonic) / n) / np.sqrt(n)
+        phi = wave[:, None, :] * u[harmonic, :, index].T[None]          # (n, nz, kept)
+        psi = wave[:, None, :] * vh[harmonic, index, :].conj().T[None]
+        scale = np.where(single[harmonic], 1.0, np.sqrt(2.0))
+        pairs = ~single[harmonic]
+        left, right = (np.concatenate([a.real * scale, np.sqrt(2.0) * a.imag[..., pairs]],
+                                      axis=2).reshape(n * nz, -1) for a in (phi, psi))
+        singular = np.concatenate([s[harmonic, index], s[harmonic, index][pairs]])
+        dropped = np.ones(s.shape, bool)
+        dropped[harmonic, index] = False
+        error = float(s[dropped].max() / s.max()) if dropped.any() else 0.0
+        return ReducedCompliance(left, singular, right, (n, nz), error)
 
 
 @dataclass(frozen=True, eq=False)
 class ReducedCompliance:
-    """A truncated compliance: ``n_vectors`` real singular vectors of the operator.
-
-    ``operator_error`` is its relative 2-norm error, max over pressures of
-    |w_reduced - w| / |w| ratios' bound (sigma_{k+1} / sigma_1).
+    """A truncated compliance C_k = left diag(singular) right^T [m/Pa] on the film grid
+    flattened in C order: ``n_vectors`` real orthonormal left (deflection) and right
+    (pressure) vectors. ``operator_error`` = |C_k - C|_2 / |C|_2 = sigma_(k+1) / sigma_1.
+    The left vectors are a Ritz basis for the deflection: w = left q.
     """
 
     left: np.ndarray
     singular: np.ndarray
     right: np.ndarray
-    n_theta: int
-    n_vectors: int
+    shape: tuple
     operator_error: float
 
+    @property
+    def n_vectors(self) -> int:
+        return self.singular.size
+
     def deflection(self, pressure) -> np.ndarray:
-        """Nodal radial deflection [m] from the retained vectors only."""
-        p = _check_pressure(pressure, (self.n_theta, self.left.shape[1]))
-        coeff = np.einsum("mik,mk->mi", self.right, np.fft.rfft(p, axis=0)) * self.singular
-        return np.fft.irfft(np.einsum("mli,mi->ml", self.left, coeff), n=self.n_theta,
-                            axis=0)
+        """Nodal radial deflection [m] from the retained vectors only (cost N k)."""
+        p = _check_pressure(pressure, self.shape).ravel()
+        return (self.left @ (self.singular * (self.right.T @ p))).reshape(self.shape)
 
 
 def bush_compliance(bush: ElasticBush, radius: float, length: float, n_theta: int,
