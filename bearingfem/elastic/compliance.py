@@ -19,10 +19,10 @@ from ..bearing import check_positive
 from ..validation import check_int
 from .bush import ElasticBush
 from .ring import ring_columns
-from .solid import solid_columns
+from .solid import solid_columns, solid_system
 from .surface import FilmGrid
 
-__all__ = ["BushCompliance", "ReducedCompliance", "bush_compliance"]
+__all__ = ["BushCompliance", "ReducedCompliance", "bush_compliance", "discretise"]
 
 
 def _check_pressure(pressure, shape) -> np.ndarray:
@@ -132,17 +132,21 @@ class ReducedCompliance:
         return (self.left @ (self.singular * (self.right.T @ p))).reshape(self.shape)
 
 
-def bush_compliance(bush: ElasticBush, radius: float, length: float, n_theta: int,
-                    n_z: int, refine_theta: int = 1, refine_z: int | None = None,
-                    n_radial: int | None = None, grading: float = 4.0) -> BushCompliance:
-    """Build the compliance of ``bush`` under a film of radius ``radius`` and ``length``
-    [m] on a film grid of ``n_theta`` nodes around and ``n_z`` along (ends included).
+@dataclass(frozen=True)
+class Discretisation:
+    """The checked film grid and bush mesh options (see :func:`bush_compliance`)."""
 
-    The bush mesh refines the film grid ``refine_theta`` times in theta and ``refine_z``
-    times in z (solid only); ``n_radial`` cells cross the wall, growing outward to
-    ``grading`` times the inner one. Defaults: inner cells about as deep radially as they
-    are wide, axially one cell per film cell (the solid's cost is its sparse LU).
-    """
+    radius: float
+    film: FilmGrid
+    refine_theta: int
+    refine_z: int
+    n_radial: int
+    grading: float
+
+
+def discretise(bush, radius, length, n_theta, n_z, refine_theta=1, refine_z=None,
+               n_radial=None, grading=4.0) -> Discretisation:
+    """Check the arguments of :func:`bush_compliance` and fill in its defaults."""
     if not isinstance(bush, ElasticBush):
         raise ValueError(f"bush must be a bearingfem.ElasticBush, got {type(bush).__name__}")
     radius = bush.check_inner_radius(radius)
@@ -159,10 +163,28 @@ def bush_compliance(bush: ElasticBush, radius: float, length: float, n_theta: in
         factor = g / math.expm1(g) if g else 1.0
         n_radial = max(2, math.ceil((bush.outer_radius - radius) * factor / arc - 1e-9))
     n_radial = check_int("n_radial", n_radial, 1)
-    film = FilmGrid(n_theta, n_z, length)
+    return Discretisation(radius, FilmGrid(n_theta, n_z, length), refine_theta, refine_z,
+                          n_radial, grading)
+
+
+def bush_compliance(bush: ElasticBush, radius: float, length: float, n_theta: int,
+                    n_z: int, refine_theta: int = 1, refine_z: int | None = None,
+                    n_radial: int | None = None, grading: float = 4.0) -> BushCompliance:
+    """Build the compliance of ``bush`` under a film of radius ``radius`` and ``length``
+    [m] on a film grid of ``n_theta`` nodes around and ``n_z`` along (ends included).
+
+    The bush mesh refines the film grid ``refine_theta`` times in theta and ``refine_z``
+    times in z (solid only); ``n_radial`` cells cross the wall, growing outward to
+    ``grading`` times the inner one. Defaults: inner cells about as deep radially as they
+    are wide, axially one cell per film cell (the solid's cost is its sparse LU).
+    """
+    d = discretise(bush, radius, length, n_theta, n_z, refine_theta, refine_z, n_radial,
+                   grading)
     if bush.model == "ring":
-        columns = ring_columns(bush, radius, film, refine_theta, n_radial, grading)
+        columns = ring_columns(bush, d.radius, d.film, d.refine_theta, d.n_radial,
+                               d.grading)
     else:
-        columns = solid_columns(bush, radius, film, refine_theta, refine_z, n_radial,
-                                grading)
-    return BushCompliance(columns, bush, radius, length)
+        system = solid_system(bush, d.radius, d.film, d.refine_theta, d.refine_z,
+                              d.n_radial, d.grading)
+        columns = solid_columns(system, d.film, d.refine_theta, d.refine_z)
+    return BushCompliance(columns, bush, d.radius, length)

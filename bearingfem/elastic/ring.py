@@ -6,7 +6,7 @@ import numpy as np
 from skfem import ElementQuad1
 
 from .mesh import annulus_mesh
-from .surface import FilmGrid, unit_pressure_response
+from .surface import FilmGrid, bush_system, unit_pressure_response
 
 __all__ = ["ring_columns"]
 
@@ -18,6 +18,6 @@ def ring_columns(bush, radius: float, film: FilmGrid, refine_theta: int,
     ring = annulus_mesh(radius, bush.outer_radius, film.n_theta * refine_theta, n_radial,
                         grading)
     outer = ring.radial == ring.radii.size - 1
-    response = unit_pressure_response(ring, ElementQuad1(), bush.lame, film, [None],
-                                      [(outer, (0, 1))], refine_theta, 1)[:, 0, 0]
+    system = bush_system(ring, ElementQuad1(), bush.lame, [(outer, (0, 1))])
+    response = unit_pressure_response(system, film, [None], refine_theta, 1)[:, 0, 0]
     return response[:, None, None] * np.eye(film.n_z)[None, :, :]
