@@ -32,10 +32,47 @@ class BushField:
     def write_vtu(self, path) -> None:
         """The undeformed mesh with point data ``displacement`` [m] and ``pressure``
         [Pa] (ParaView: Warp By Vector to see it deformed)."""
-        import meshio
-        meshio.Mesh(self.mesh.p.T, [("hexahedron", self.mesh.t.T)],
-                    point_data={"displacement": self.displacement.T,
-                                "pressure": self.pressure}).write(str(path))
+        self._meshio().write(str(path))
+
+    def _meshio(self):
+        # scikit-fem's converter: its hexahedra number their nodes unlike VTK's
+        from skfem.io.meshio import to_meshio
+        return to_meshio(self.mesh, point_data={"displacement": self.displacement.T,
+                                                "pressure": self.pressure})
+
+    def render(self, path, magnify: float | None = None, window_size=(1000, 800)) -> str:
+        """Off-screen picture (PyVista) of the bush deformed ``magnify`` times (default:
+        the largest displacement drawn as 15 % of the wall), coloured by the displacement
+        magnitude [um], the loaded part of the inner surface coloured by the pressure
+        [MPa]."""
+        import pyvista as pv
+        grid = pv.from_meshio(self._meshio())
+        grid.points = grid.points * 1e3                               # millimetres
+        r = np.hypot(self.mesh.p[0], self.mesh.p[1])
+        largest = float(np.linalg.norm(self.displacement, axis=0).max())
+        if magnify is None:
+            magnify = 0.15 * (r.max() - r.min()) / largest if largest > 0 else 1.0
+        grid.point_data["displacement [um]"] = np.linalg.norm(self.displacement, axis=0) * 1e6
+        grid.point_data["pressure [MPa]"] = self.pressure * 1e-6
+        grid.point_data["u"] = self.displacement.T * 1e3 * magnify
+        warped = grid.warp_by_vector("u")
+        plot = pv.Plotter(off_screen=True, window_size=list(window_size))
+        plot.set_background("white")
+        plot.add_mesh(warped, scalars="displacement [um]", cmap="viridis",
+                      scalar_bar_args=dict(color="black", vertical=True, position_x=0.86))
+        inner = warped.extract_surface(algorithm="dataset_surface").threshold(
+            1e-3, scalars="pressure [MPa]")
+        if inner.n_points:
+            plot.add_mesh(inner, scalars="pressure [MPa]", cmap="inferno",
+                          scalar_bar_args=dict(color="black", vertical=True, position_x=0.04))
+        plot.add_text(f"elastic bush, deformation x {magnify:.0f}; largest displacement "
+                      f"{largest * 1e6:.2f} um", font_size=9, color="black")
+        plot.camera_position = "xy"
+        plot.camera.elevation = -35.0
+        plot.reset_camera()
+        plot.screenshot(str(path))
+        plot.close()
+        return str(path)
 
 
 def bush_field(bush, radius: float, length: float, pressure, refine_theta: int = 1,
