@@ -95,7 +95,8 @@ class BushCompliance:
         order = order[np.cumsum(weight.ravel()[order]) <= n_vectors]
         harmonic, index = np.unravel_index(order, s.shape)
         wave = np.exp(2j * np.pi * np.outer(np.arange(n), harmonic) / n) / np.sqrt(n)
-        # a real block's singular pair is real up to a common phase: remove it
+        # a real block's singular pair is real up to a common phase (LAPACK returns it real
+        # here, so no test sees this line; it guards the real vectors against other builds)
         lead = u[harmonic, np.abs(u[harmonic, :, index]).argmax(axis=1), index]
         wave = wave * np.where(single[harmonic], np.conj(lead) / np.abs(lead), 1.0)
         phi = wave[:, None, :] * u[harmonic, :, index].T[None]          # (n, nz, kept)
