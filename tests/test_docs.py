@@ -1,6 +1,6 @@
 """The documentation runs as written: README.md and docs/*.md.
 
-- Every ```python block runs (exec in a fresh namespace, cwd = the repository root,
+- Every ```python block runs (a page's blocks in order in one namespace, cwd = the repository root,
   MPLBACKEND=Agg; in-process, so the imports are paid once and the file stays within ~30 s),
   as scikit-fem runs its documentation examples: a block that drifts from the API fails here.
   A block preceded by ``<!-- skip-test: why -->`` is not run (long runs only, with the reason).
@@ -11,7 +11,7 @@
   of it), except the pages still being written on other branches (COMING, below).
 
 Checked against broken documentation: a snippet calling ``coefficients(..., frame="lod")``
-fails ``test_python_block_runs``; ``bearingfem simulat`` and ``python -m studies.papr``
+fails ``test_python_blocks_run``; ``bearingfem simulat`` and ``python -m studies.papr``
 fail ``test_shell_commands_exist``; a link to ``docs/verificaton.md`` or to
 ``#film-and-closed-form`` fails ``test_relative_links_resolve``.
 """
@@ -56,10 +56,12 @@ def _blocks(lang):
     return out
 
 
-def _python_params():
+def _python_pages():
+    """One param per page with python blocks: its (line, code, skip reason) in order."""
+    pages = {}
     for page, line, code, reason in _blocks("python"):
-        marks = [pytest.mark.skip(reason=f"skip-test: {reason}")] if reason is not None else []
-        yield pytest.param(code, id=f"{page}:{line}", marks=marks)
+        pages.setdefault(page, []).append((line, code, reason))
+    return [pytest.param(blocks, id=page) for page, blocks in pages.items()]
 
 
 def test_readme_is_short():
@@ -73,13 +75,32 @@ def test_skip_markers_give_a_reason():
         assert reason is None or len(reason) > 10, f"{page}:{line}: skip-test without a reason"
 
 
-@pytest.mark.parametrize("code", list(_python_params()))
-def test_python_block_runs(code, monkeypatch, tmp_path):
-    """Each block in a fresh namespace (its own imports), from the repository root."""
+@pytest.mark.parametrize("blocks", _python_pages())
+def test_python_blocks_run(blocks, monkeypatch, tmp_path):
+    """A page's blocks in order in one namespace, as a reader runs a walk-through (a later
+    block may use an earlier one's names), from the repository root; skip-test blocks are
+    left out."""
     monkeypatch.chdir(ROOT)
     monkeypatch.setenv("MPLBACKEND", "Agg")
     monkeypatch.setenv("BEARINGFEM_CACHE", str(tmp_path / "cache"))
-    exec(compile(code, "<docs block>", "exec"), {"__name__": "__docs__"})
+    from bearingfem.models import FILM_MODELS
+    registered = dict(FILM_MODELS)   # a walk-through may register a model: not for later tests
+    namespace = {"__name__": "__docs__"}
+    try:
+        _run_blocks(blocks, namespace)
+    finally:
+        FILM_MODELS.clear()
+        FILM_MODELS.update(registered)
+
+
+def _run_blocks(blocks, namespace):
+    for line, code, reason in blocks:
+        if reason is not None:
+            continue
+        try:
+            exec(compile(code, f"<docs block at line {line}>", "exec"), namespace)
+        except Exception as exc:
+            raise AssertionError(f"the block at line {line} fails: {exc!r}") from exc
 
 
 def _subcommands():

@@ -1,7 +1,6 @@
 """The film-surface compliance of the elastic bush: its circulant application, its
 reduced (truncated singular) form, the film pressure's transfer to bush meshes of any
 refinement, the long solid's approach to the plane-strain ring, and bad input."""
-import re
 from pathlib import Path
 
 import numpy as np
@@ -131,16 +130,6 @@ def test_bad_compliance_input_raises(small_solid):
         small_solid.deflection(np.full((16, 3), np.nan))
     with pytest.raises(ValueError, match="n_vectors"):
         small_solid.reduced(49)
-
-
-def test_docs_snippets_run(monkeypatch):
-    """docs/elastic-bush.md's python blocks run as written."""
-    snippets = re.findall(r"```python\n(.*?)```", (ROOT / "docs/elastic-bush.md").read_text(),
-                          re.S)
-    assert snippets
-    monkeypatch.chdir(ROOT)
-    for code in snippets:
-        exec(compile(code, "elastic-bush.md", "exec"), {"__name__": "docs"})
 
 
 def test_benchmark_smoke(capsys):
