@@ -1,7 +1,6 @@
 """The film-surface compliance of the elastic bush: its circulant application, its
 reduced (truncated singular) form, the film pressure's transfer to bush meshes of any
 refinement, the long solid's approach to the plane-strain ring, and bad input."""
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -13,7 +12,6 @@ from bearingfem.elastic import bush_compliance
 from bearingfem.elastic.mesh import cylinder_mesh
 from bearingfem.elastic.surface import elasticity
 
-ROOT = Path(__file__).resolve().parent.parent
 BRONZE = dict(outer_radius=0.016, modulus=110e9, poisson=0.34)
 
 
