@@ -2,6 +2,8 @@
 reduced (truncated singular) form, the film pressure's transfer to bush meshes of any
 refinement, the long solid's approach to the plane-strain ring, and bad input."""
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 from skfem import Basis, ElementHex1, ElementVector, asm
