@@ -87,7 +87,7 @@ def _write_numbers(out, rows):
 
 def _print_rows(rows):
     for name, value, unit in rows:
-        v = "-" if value is None else f"{value:.6g}"
+        v = "-" if value is None else (value if isinstance(value, str) else f"{value:.6g}")
         print(f"  {name:24s} {v:>14s} {unit}")
 
 
@@ -143,6 +143,8 @@ def command_coefficients(args):
                ("whirl frequency ratio", st.whirl_ratio, "-")])
     print(f"coefficients, {model} {opts or ''}, {args.frame} frame ({kc.method}):")
     _print_rows(rows)
+    print(f"  stability (Lund, rigid journal): {st.describe()}")
+    rows.append(("stability", st.verdict.value, "-"))
     _write_numbers(out, rows)
     return 0
 
