@@ -35,7 +35,12 @@ from mechanism.scene import read_toml
 from .cases import KINDS, MECHANISM_PARAMS, _precheck, _scene_data, run_case
 
 __all__ = ["Sweep", "load_sweep", "parse_sweep", "sweep_cases", "case_id", "run_case",
-           "run_sweep", "gather"]
+           "run_sweep", "gather", "shipped_sweeps", "sweep_path", "CONNECT_TIMEOUT"]
+
+#: The sweeps shipped with the package (``bearingfem sweep capacity`` finds them by name).
+SWEEPS = Path(__file__).resolve().parent / "sweeps"
+#: Seconds to wait for a Dask scheduler given by address before refusing it.
+CONNECT_TIMEOUT = 5.0
 
 
 @dataclass(frozen=True)
@@ -86,8 +91,30 @@ def parse_sweep(data: dict, name="sweep") -> Sweep:
     return Sweep(str(data.get("name", name)), kind, base, vary)
 
 
+def shipped_sweeps() -> list[str]:
+    """Names of the shipped sweeps."""
+    return sorted(p.stem for p in SWEEPS.glob("*.toml"))
+
+
+def sweep_path(path) -> Path:
+    """The sweep file ``path`` if it exists; else the shipped sweep of that name, given as
+    ``capacity``, ``capacity.toml`` or ``sweeps/capacity.toml`` (the checkout's path)."""
+    p = Path(path)
+    if p.is_file():
+        return p
+    shipped = SWEEPS / f"{p.stem}.toml"
+    if p.suffix in ("", ".toml") and p.parent in (Path("."), Path("sweeps")) and shipped.is_file():
+        return shipped
+    return p
+
+
 def load_sweep(path) -> Sweep:
-    return parse_sweep(read_toml(path, "sweep"), Path(path).stem)
+    """Read and validate a sweep TOML file, or a shipped sweep by name."""
+    p = sweep_path(path)
+    if not p.is_file():
+        raise ValueError(f"sweep file not found: {path} (shipped sweeps: "
+                         f"{', '.join(shipped_sweeps())})")
+    return parse_sweep(read_toml(p, "sweep"), p.stem)
 
 
 def sweep_cases(sweep: Sweep) -> list[dict]:
@@ -134,6 +161,9 @@ def run_sweep(sweep: Sweep, out, scheduler: str | None = None, workers: int = 2,
     if scheduler is None and (isinstance(workers, bool) or not isinstance(workers, int)
                               or workers < 1):
         raise ValueError(f"workers must be an integer >= 1, got {workers!r}")
+    if scheduler is not None:
+        from .checks import check_scheduler_address
+        check_scheduler_address(scheduler)
     cases = sweep_cases(sweep)
     for params in cases:                  # physical ranges, before any work starts
         _precheck(sweep.kind, params)
@@ -146,7 +176,6 @@ def run_sweep(sweep: Sweep, out, scheduler: str | None = None, workers: int = 2,
                 scenes[key] = _scene_data(params)
     out = Path(out)
     cases_dir = out / "cases"
-    cases_dir.mkdir(parents=True, exist_ok=True)
     todo = {}
     for params in cases:
         cid = case_id(sweep.kind, params)
@@ -161,7 +190,10 @@ def run_sweep(sweep: Sweep, out, scheduler: str | None = None, workers: int = 2,
         if scheduler is None:
             cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
                                    dashboard_address=None)
-        client = Client(scheduler if scheduler is not None else cluster)
+            client = Client(cluster)
+        else:
+            client = _connect(scheduler)
+        cases_dir.mkdir(parents=True, exist_ok=True)   # nothing is left behind until here
         try:
             futures = {client.submit(run_case, sweep.kind, params,
                                      scenes.get(params.get("scene", MECHANISM_PARAMS["scene"][0])),
@@ -187,6 +219,23 @@ def run_sweep(sweep: Sweep, out, scheduler: str | None = None, workers: int = 2,
               + (", interrupted" if interrupted else ""))
     rows = gather(out, sweep)
     return SweepResult(rows, computed, skipped, failed, interrupted, time.perf_counter() - t0)
+
+
+def _connect(scheduler: str):
+    """A client of the scheduler at ``scheduler``, or one line saying it does not answer."""
+    import logging
+
+    from dask.distributed import Client
+    quiet = logging.getLogger("distributed")
+    level = quiet.level
+    quiet.setLevel(logging.CRITICAL)      # its own retry warnings would say it many times
+    try:
+        return Client(scheduler, timeout=CONNECT_TIMEOUT)
+    except (OSError, TimeoutError) as err:
+        raise ValueError(f"--scheduler: no Dask scheduler answers at {scheduler} within "
+                         f"{CONNECT_TIMEOUT:g} s ({type(err).__name__})") from None
+    finally:
+        quiet.setLevel(level)
 
 
 def _sort_key(value):

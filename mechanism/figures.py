@@ -51,8 +51,12 @@ def plot_comparison(results, labels, clearance, title="", path=None):
     ax[1, 0].set(ylabel="joint force on pin F_y [N]", title="force, Y")
     ax[1, 1].set(ylabel="crank speed [rad/s]", title="crank angular speed")
     ax[1, 2].set(ylabel="slider acceleration [m/s^2]", title="slider acceleration")
+    # a run stopped early has no whole recorded turn: say what the axis holds instead
+    stopped = [r for r in results if r.partial]
+    xlabel = ("crank angle [deg], up to where the run stopped (partial)" if stopped
+              else "crank angle in the recorded turn [deg]")
     for a in (ax[0, 0], ax[0, 2], ax[1, 0], ax[1, 1], ax[1, 2]):
-        a.set_xlabel("crank angle in the recorded turn [deg]")
+        a.set_xlabel(xlabel)
         a.set_xlim(0, 360)
         a.grid(alpha=0.3)
     ax[0, 1].grid(alpha=0.3)
@@ -60,7 +64,7 @@ def plot_comparison(results, labels, clearance, title="", path=None):
     # one legend for all six panels, below them
     fig.legend(handles, names, loc="lower center", ncol=max(len(names), 1), fontsize=9,
                frameon=False)
-    fig.suptitle(title)
+    fig.suptitle(title + "".join(f"\n{r.scene}: PARTIAL, {r.message}" for r in stopped))
     fig.tight_layout(rect=(0, 0.05, 1, 1))
     if path is not None:
         fig.savefig(path, dpi=110)
