@@ -198,3 +198,12 @@ def test_ctrl_c_exits_130(here):
     p.wait(timeout=120)
     assert p.returncode == 130
     assert "PARTIAL" in p.stdout.read().decode()
+
+
+def test_provenance_names_the_git_commit(analytic_run):
+    """Old: a run said which version made it but not which commit of a checkout."""
+    import json
+    prov = json.loads((analytic_run / "result.json").read_text())["provenance"]
+    assert re.fullmatch(r"[0-9a-f]{40}(-dirty)?", prov["git_commit"])
+    from mechanism.result import _git_commit
+    assert _git_commit(Path("/")) is None          # no checkout: the version says it
