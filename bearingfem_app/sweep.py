@@ -284,6 +284,18 @@ def _shown(key, value):
     return f"{key} {value}"
 
 
+def _film_named(sweep: Sweep) -> str:
+    """The film model(s) and cavitation the cases used, in words."""
+    def said(key, default):
+        if key in sweep.vary:
+            return ", ".join(map(str, sweep.vary[key])) + " (varied)"
+        return str(sweep.base.get(key, default))
+    if sweep.kind == "mechanism":
+        return f"film model {said('model', 'the scene')}; cavitation {said('cavitation', 'the scene')}"
+    return (f"film model {said('model', 'fem')}; cavitation "
+            f"{said('cavitation', 'each model default')} (closed forms: half film)")
+
+
 def plot_summary(rows, sweep: Sweep, path) -> None:
     """First varied parameter on x (with units); each output the kind promises on its own
     panel; one line per combination of the other varied parameters."""
@@ -296,17 +308,31 @@ def plot_summary(rows, sweep: Sweep, path) -> None:
     xscale, xlabel = DISPLAY.get(x_key, (1.0, x_key))
     fig, axes = plt.subplots(1, len(outputs), figsize=(7 * len(outputs), 4.5),
                              constrained_layout=True, squeeze=False)
+    # one sequential colormap over the first numeric parameter of the lines (its order
+    # reads from the colour), the others by marker and line style
+    numeric = [k for k in others if all(isinstance(v, (int, float)) for v in sweep.vary[k])]
+    shade_key = numeric[0] if numeric else None
+    shades = sorted(set(sweep.vary[shade_key])) if shade_key else []
+    styled = [k for k in others if k != shade_key]
+    styles = sorted({tuple(r.get(k) for k in styled) for r in rows}, key=str)
+    cmap = plt.get_cmap("viridis")
+    markers, lines = "os^Dv<>p", ["-", "--", ":", "-."]
     for ax, (y_key, ylabel, log) in zip(axes[0], outputs):
         groups = {}
         for r in rows:
             if r.get(y_key, "") != "":
                 groups.setdefault(tuple(r.get(k) for k in others), []).append(r)
-        for g, rs in sorted(groups.items(), key=lambda kv: str(kv[0])):
+        for k, (g, rs) in enumerate(sorted(groups.items(), key=lambda kv: str(kv[0]))):
             rs = sorted(rs, key=lambda r: r[x_key])
             label = ", ".join(_shown(k, v) for k, v in zip(others, g)) or None
             xs = [r[x_key] * xscale if isinstance(r[x_key], (int, float)) else r[x_key]
                   for r in rs]
-            ax.plot(xs, [r[y_key] for r in rs], "o-", label=label)
+            named = dict(zip(others, g))
+            i = shades.index(named[shade_key]) if shade_key else k
+            n = len(shades) if shade_key else len(groups)
+            j = styles.index(tuple(named.get(s) for s in styled))
+            ax.plot(xs, [r[y_key] for r in rs], color=cmap(0.85 * i / max(n - 1, 1)),
+                    marker=markers[j % len(markers)], ls=lines[j % len(lines)], label=label)
         ax.set(xlabel=xlabel, ylabel=ylabel, yscale="log" if log else "linear")
         ax.grid(True, alpha=0.3)
         if len(groups) > 1:
@@ -314,6 +340,8 @@ def plot_summary(rows, sweep: Sweep, path) -> None:
     fixed = ", ".join(_shown(k, v) for k, v in sorted(sweep.base.items())
                       if k not in ("scene", "model", "element", "cavitation"))
     fig.suptitle(f"sweep {sweep.name} ({sweep.kind}): {len(rows)} cases"
-                 + (f"; {fixed}" if fixed else ""), fontsize=9)
+                 + (f"; {fixed}" if fixed else "") + f"\n{_film_named(sweep)}", fontsize=9)
+    if path is None:
+        return fig
     fig.savefig(path, dpi=110)
     plt.close(fig)
