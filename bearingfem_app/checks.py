@@ -99,7 +99,8 @@ def parse_angles(text: str) -> list:
         raise ValueError(f"--angles must be comma-separated degrees, got {text!r}") from None
     bad = [a for a in angles if not (math.isfinite(a) and 0.0 <= a < 360.0)]
     if bad:
-        raise ValueError(f"--angles must lie in [0, 360) deg, got {', '.join(f'{a:g}' for a in bad)}")
+        shown = ", ".join(f"{a:g}" for a in bad)
+        raise ValueError(f"--angles must lie in [0, 360) deg, got {shown}")
     return sorted(set(angles))
 
 

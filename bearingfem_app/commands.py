@@ -84,9 +84,9 @@ def _model_options(args):
     m = film_model(args.model, "--model")
     refused = [o for k, o in MODEL_OPTIONS.items() if k in args.given and k not in m.defaults]
     if refused:
+        takes = ", ".join(MODEL_OPTIONS[k] for k in m.defaults if k in MODEL_OPTIONS)
         raise ValueError(f"{', '.join(refused)} {'does' if len(refused) == 1 else 'do'} not "
-                         f"apply to --model {args.model} (its options: "
-                         f"{', '.join(MODEL_OPTIONS[k] for k in m.defaults if k in MODEL_OPTIONS) or 'none'})")
+                         f"apply to --model {args.model} (its options: {takes or 'none'})")
     if args.model == "fem-table":      # tables are built once and kept: the cache must take them
         _check_cache()
     given = {k: getattr(args, k) for k in MODEL_OPTIONS}

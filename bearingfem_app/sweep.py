@@ -291,7 +291,8 @@ def _film_named(sweep: Sweep) -> str:
             return ", ".join(map(str, sweep.vary[key])) + " (varied)"
         return str(sweep.base.get(key, default))
     if sweep.kind == "mechanism":
-        return f"film model {said('model', 'the scene')}; cavitation {said('cavitation', 'the scene')}"
+        return (f"film model {said('model', 'the scene')}; "
+                f"cavitation {said('cavitation', 'the scene')}")
     return (f"film model {said('model', 'fem')}; cavitation "
             f"{said('cavitation', 'each model default')} (closed forms: half film)")
 

@@ -98,7 +98,8 @@ def test_sweep_summary_one_colormap_and_the_cavitation():
     import matplotlib.pyplot as plt
     from bearingfem_app.sweep import load_sweep, plot_summary, sweep_cases
     sw = load_sweep("capacity")
-    rows = [{**p, "load": p["length_ratio"] * p["eps"] * {"fem": 1, "short": 2, "long": 3}[p["model"]]}
+    factor = {"fem": 1, "short": 2, "long": 3}
+    rows = [{**p, "load": p["length_ratio"] * p["eps"] * factor[p["model"]]}
             for p in sweep_cases(sw)]
     fig = plot_summary(rows, sw, None)
     lines = fig.axes[0].get_lines()

@@ -129,3 +129,15 @@ def test_cli_names_the_verdict_at_the_centre(capsys):
     out = capsys.readouterr().out
     assert "stability (Lund, rigid journal): unstable for any mass" in out
     assert "inf" not in out
+
+
+def test_reynolds_condition_whirls_at_half_speed_in_the_mesh_limit():
+    """Reynolds' condition near the centre: C_rr and C_tt differ by the mesh error only, so
+    nu / omega -> 1/2 (measured 1/2 - 0.4966 = 3.4e-3 at 60 x 10, 7.0e-4 at 120 x 20,
+    8.2e-5 at 240 x 40). Fails if the whirl ratio tends elsewhere (e.g. with C_tt halved)."""
+    gaps = []
+    for n_theta, n_z in ((60, 10), (120, 20)):
+        st = lund_stability(coefficients(B, JournalState(1e-3, omega=OMEGA), "fem",
+                                         n_theta=n_theta, n_z=n_z, cavitation="reynolds"))
+        gaps.append(abs(st.whirl_ratio - 0.5))
+    assert gaps[1] < 0.3 * gaps[0] and gaps[1] < 1e-3

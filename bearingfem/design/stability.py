@@ -18,8 +18,11 @@ unstable for any mass - never a critical mass of "inf" from dividing by K_eq <= 
 Near the centre (eps -> 0) every film here has K = [[0, k], [-k, 0]] + O(eps): the full film
 (Sommerfeld) has K_eq = 0 at every eps, so m_crit = 0 - unstable for any mass, whirling at
 nu / omega -> 1/2 (k / C = omega / 2 because the film force depends on omega - 2 gamma_dot).
-Gumbel's and Reynolds' films give K_eq ~ eps, so m_crit ~ eps -> 0; for the long Gumbel
-film m_crit omega / S -> (24 + 9 pi) eps, S = mu R^3 L / c^3 (tests/test_stability.py).
+Gumbel's and Reynolds' films give K_eq ~ eps, so m_crit ~ eps -> 0 and nu / omega -> 1/2:
+for the long Gumbel film m_crit omega / S -> (24 + 9 pi) eps, S = mu R^3 L / c^3; the FE
+film at L/D 1 gives m_crit omega / (S eps) -> 14.5 (Gumbel) and 15.5 (Reynolds' condition,
+whose cavity moves with the squeeze: C_rr = C_tt only in the mesh limit, nu / omega =
+0.4966, 0.4993, 0.49992 at 60 x 10, 120 x 20, 240 x 40). Tests: tests/test_stability.py.
 """
 from __future__ import annotations
 
