@@ -136,6 +136,7 @@ def _precheck(kind: str, params: dict) -> None:
     p = {k: params.get(k, d) for k, (d, _) in FILM_PARAMS.items()}
     try:
         _film_inputs(p)
+        _film_options(p)
     except ValueError as err:
         raise ValueError(f"sweep case {params}: {err}") from None
 

@@ -3,10 +3,14 @@ from __future__ import annotations
 
 import argparse
 import functools
+import os
 import re
 import sys
 
 from bearingfem.bearing import SEED_TABLE1
+from bearingfem.models import FILM_MODELS
+
+from .checks import check_numbers, given_options
 
 from .commands import (command_coefficients, command_convergence, command_equilibrium,
                        command_frames, command_render, command_simulate, command_solve,
@@ -14,17 +18,17 @@ from .commands import (command_coefficients, command_convergence, command_equili
 
 EXAMPLES = """examples:
   bearingfem simulate scenes/paper-short-fem.toml -o results/short-fem
-  bearingfem solve --ld 1.0 --eps 0.6 --cavitation reynolds
+  bearingfem solve --ld 1.0 --eps 0.6 --cavitation reynolds --supply-angle max-film
   bearingfem render --ld 1.0 --eps 0.6 --cavitation reynolds -o film.png
   bearingfem convergence --ld 1.0 --eps 0.6 -o results/convergence
-  bearingfem sweep sweeps/capacity.toml -o results/capacity --workers 2
+  bearingfem sweep capacity -o results/capacity --workers 2
   bearingfem frames scenes/paper-long-fem.toml results/long-fem -o results/long-frames --gif
   bearingfem equilibrium --ld 1 --load 1000 --model fem --element P2
   bearingfem coefficients --ld 0.5 --load 500 --frame load -o kc.csv
 """
 
 
-def _bearing_args(p):
+def _bearing_args(p, film=True):
     p.add_argument("--length-ratio", "--ld", dest="length_ratio", type=float, default=1.0,
                    help="L/D, the bearing's length over its diameter")
     p.add_argument("--omega", type=float, default=250.0, help="journal speed [rad/s]")
@@ -36,23 +40,30 @@ def _bearing_args(p):
                    help="[Pa s] (seed Table 1)")
     p.add_argument("--cavitation", default="reynolds",
                    help="none | gumbel | reynolds | jfo (mass-conserving; needs a supply: "
-                        "--ambient-pressure)")
+                        "--ambient-pressure > 0 or --supply-angle)" if film else
+                        "none | gumbel | reynolds (the mass-conserving film: --model fem-jfo)")
     p.add_argument("--n-theta", type=int, default=120, help="cells around the film")
     p.add_argument("--n-z", type=int, default=20, help="cells along the length")
     p.add_argument("--element", default="P1", help="P1 | P2 (finite elements only)")
+    p.add_argument("--ambient-pressure", type=float, default=None,
+                   help="the JFO film's oil pressure at the ends above the cavitation "
+                        "pressure [Pa]; " + ("with --cavitation jfo (default 0)" if film
+                                             else "with --model fem-jfo (default 1e5)"))
 
 
 def _film_args(p):
     _bearing_args(p)
     p.add_argument("--eps", type=float, default=0.6, help="eccentricity ratio in [0, 1)")
     p.add_argument("--eps-dot", type=float, default=0.0, help="d(eps)/dt [1/s]")
-    p.add_argument("--ambient-pressure", type=float, default=0.0,
-                   help="jfo: oil pressure at the ends above the cavitation pressure [Pa]")
+    p.add_argument("--supply-angle", default=None,
+                   help="an axial supply line at ambient pressure: its angle [deg] from "
+                        "the maximum film, or max-film (0: Raimondi & Boyd's film starts "
+                        "there); default: none, a fully periodic film")
 
 
 def _load_args(p, required):
     p.add_argument("--load", type=float, required=required,
-                   help="load magnitude [N]" + ("" if required else
+                   help="load magnitude [N], > 0" + ("" if required else
                                                 ": K, C at the equilibrium under it"))
     p.add_argument("--direction", type=float, default=-90.0,
                    help="load direction [deg], inertial (-90: downward)")
@@ -60,9 +71,9 @@ def _load_args(p, required):
 
 def _design_args(p):
     """Film model and mesh for the designer's commands (closed forms ignore the mesh)."""
-    _bearing_args(p)
-    p.add_argument("--model", default="fem", help="film model: short | long | short-exact "
-                   "| long-exact | fem | fvm | fem-table")
+    _bearing_args(p, film=False)
+    p.add_argument("--model", default="fem", help="film model: " + " | ".join(FILM_MODELS)
+                   + " (an option the model does not take is refused)")
     p.add_argument("-o", "--output", help="also write the numbers (.json or .csv)")
 
 
@@ -106,10 +117,12 @@ def build_parser():
     w = add("sweep", help="parameter sweep on Dask: one file per case, resumable",
             epilog="example: bearingfem sweep sweeps/capacity.toml -o out "
                    "--scheduler tcp://10.0.0.5:8786")
-    w.add_argument("sweep", help="sweep TOML file (see sweeps/)")
+    w.add_argument("sweep", help="sweep TOML file, or the name of a shipped sweep "
+                   "(capacity, design-chart, mechanism-clearance)")
     w.add_argument("-o", "--output", required=True, help="output directory (rerun to resume)")
-    w.add_argument("--scheduler", help="address of a running Dask scheduler; default: a "
-                   "local cluster")
+    w.add_argument("--scheduler", help="address [tcp://]host:port of a running Dask "
+                   "scheduler (refused if it does not answer within 5 s); default: a local "
+                   "cluster")
     w.add_argument("--workers", type=int, default=2, help="local cluster processes")
     w.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
     w.set_defaults(func=command_sweep)
@@ -119,8 +132,8 @@ def build_parser():
     fr.add_argument("scene", help="the scene TOML the run was made from")
     fr.add_argument("result", help="directory written by 'bearingfem simulate'")
     fr.add_argument("-o", "--output", required=True, help="output directory")
-    fr.add_argument("--angles", help="crank angles [deg], comma-separated (default: evenly "
-                    "spaced --frames)")
+    fr.add_argument("--angles", help="crank angles [deg] in [0, 360), comma-separated; "
+                    "taken in increasing order (default: evenly spaced --frames)")
     fr.add_argument("--frames", type=int, default=12, help="number of evenly spaced frames")
     fr.add_argument("--field", default="pressure",
                     help="pressure | film_thickness | fraction (a fem-jfo run)")
@@ -172,14 +185,26 @@ def _negative_values(argv):
 
 def main(argv=None):
     argv = sys.argv[1:] if argv is None else list(argv)
-    args = build_parser().parse_args(_negative_values(argv))
+    parser = build_parser()
+    args = parser.parse_args(_negative_values(argv))
     # options whose meaning depends on others: was it typed, or is it the default?
-    args.element_given = any(a == "--element" or a.startswith("--element=") for a in argv)
+    sub = parser._subparsers._group_actions[0].choices[args.command]
+    args.given = given_options(sub, argv)
+    args.element_given = "element" in args.given
     try:
+        check_numbers(args)
         return args.func(args)
     except ValueError as err:
         print(f"bearingfem: error: {err}", file=sys.stderr)
         return 2
+    except KeyboardInterrupt:
+        print("bearingfem: interrupted", file=sys.stderr)
+        return 130
+    except BrokenPipeError:
+        # the reader went away (``| head``): say nothing more; stdout is closed quietly
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        return 141
 
 
 if __name__ == "__main__":

@@ -8,6 +8,11 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
+from .checks import check_writable, parse_angles
+
+#: exit status of a run stopped by Ctrl-C (128 + SIGINT), as shells report it
+INTERRUPTED = 130
+
 __all__ = ["command_simulate", "command_solve", "command_render", "command_convergence",
            "command_sweep", "command_frames", "command_equilibrium", "command_coefficients"]
 
@@ -17,12 +22,15 @@ def command_simulate(args):
     from mechanism.figures import plot_run
 
     scene = load_scene(args.scene)
-    out = _make_dir(args.output, "-o/--output")
+    check_writable(args.output, "-o/--output")
     res = simulate(scene, progress=None if not args.quiet else False)
+    out = _make_dir(args.output, "-o/--output")
     res.save(out)
     plot_run(res, scene.bearing.clearance if scene.bearing else 1.0, out / "run.png")
     print(res.summary())
     print(f"wrote {out / 'result.npz'}, {out / 'result.json'}, {out / 'run.png'}")
+    if res.partial and res.message.startswith("interrupted"):
+        return INTERRUPTED
     return 1 if res.partial else 0
 
 
@@ -34,6 +42,28 @@ def _bearing(args):
                    clearance=args.clearance, viscosity=args.viscosity)
 
 
+def _supply_angle(args, gamma=0.0):
+    """--supply-angle: degrees from the maximum film (or max-film) -> inertial [rad], or
+    None. The maximum film lies opposite the eccentricity, at gamma + pi."""
+    text = args.supply_angle
+    if text is None:
+        return None
+    if text == "max-film":
+        return gamma + math.pi
+    try:
+        value = float(text)
+    except ValueError:
+        raise ValueError(f"--supply-angle must be degrees from the maximum film or max-film, "
+                         f"got {text!r}") from None
+    if not math.isfinite(value):
+        raise ValueError(f"--supply-angle must be finite, got {text!r}")
+    return gamma + math.pi + math.radians(value)
+
+
+def _ambient(args):
+    return 0.0 if args.ambient_pressure is None else args.ambient_pressure
+
+
 def _film_state(args):
     """The bearing and the journal state the film options describe."""
     from bearingfem import JournalState
@@ -42,23 +72,54 @@ def _film_state(args):
     return _bearing(args), s
 
 
+#: command-line options that are film-model options (dest -> option as typed)
+MODEL_OPTIONS = {"n_theta": "--n-theta", "n_z": "--n-z", "element": "--element",
+                 "cavitation": "--cavitation", "ambient_pressure": "--ambient-pressure"}
+
+
 def _model_options(args):
-    """The film model named on the command line and the options of it given there."""
+    """The film model named on the command line and the options of it given there; an
+    option typed that the model does not take is refused (it would be ignored)."""
     from bearingfem.models import film_model
     m = film_model(args.model, "--model")
-    given = dict(n_theta=args.n_theta, n_z=args.n_z, element=args.element,
-                 cavitation=args.cavitation)
-    return args.model, {k: v for k, v in given.items() if k in m.defaults}
+    refused = [o for k, o in MODEL_OPTIONS.items() if k in args.given and k not in m.defaults]
+    if refused:
+        takes = ", ".join(MODEL_OPTIONS[k] for k in m.defaults if k in MODEL_OPTIONS)
+        raise ValueError(f"{', '.join(refused)} {'does' if len(refused) == 1 else 'do'} not "
+                         f"apply to --model {args.model} (its options: {takes or 'none'})")
+    if args.model == "fem-table":      # tables are built once and kept: the cache must take them
+        _check_cache()
+    given = {k: getattr(args, k) for k in MODEL_OPTIONS}
+    return args.model, {k: v for k, v in given.items()
+                        if k in m.defaults and (v is not None and (k != "ambient_pressure"
+                                                                   or k in args.given))}
+
+
+def _check_cache():
+    """The fem-table cache folder takes a file (tried, not guessed from permissions)."""
+    import tempfile
+
+    from bearingfem.fe.force_table import cache_dir
+    folder = cache_dir()
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+        with tempfile.TemporaryFile(dir=folder):
+            pass
+    except OSError as err:
+        raise ValueError(f"--model fem-table: cannot write its table cache {str(folder)!r} "
+                         f"({err.strerror}); set BEARINGFEM_CACHE to a writable folder") \
+            from None
 
 
 def _check_output(path, suffixes):
-    """Refuse an output file of an unknown kind before any work; make its folder."""
+    """Refuse an output file of an unknown kind, or in a folder that cannot be made, before
+    any work (the folder is made when the file is written)."""
     if path is None:
         return None
     out = Path(path)
     if out.suffix.lower() not in suffixes:
         raise ValueError(f"-o/--output must end in {' or '.join(suffixes)}, got {path!r}")
-    _make_dir(out.parent, "-o/--output")
+    check_writable(out.parent, "-o/--output")
     return out
 
 
@@ -76,6 +137,7 @@ def _write_numbers(out, rows):
     """rows: (name, value, unit) -> JSON object or a CSV table."""
     if out is None:
         return
+    _make_dir(out.parent, "-o/--output")
     if out.suffix.lower() == ".json":
         import json
         out.write_text(json.dumps({n: {"value": v, "unit": u} for n, v, u in rows}, indent=1))
@@ -87,7 +149,7 @@ def _write_numbers(out, rows):
 
 def _print_rows(rows):
     for name, value, unit in rows:
-        v = "-" if value is None else f"{value:.6g}"
+        v = "-" if value is None else (value if isinstance(value, str) else f"{value:.6g}")
         print(f"  {name:24s} {v:>14s} {unit}")
 
 
@@ -111,8 +173,8 @@ def command_equilibrium(args):
             ("power loss", eq.power_loss, "W"),
             ("side leakage", eq.side_leakage, "m^3/s"),
             ("inflow", eq.flow_in, "m^3/s")]
-    print(f"equilibrium, {model} {opts or ''}: load {args.load:g} N at "
-          f"{args.direction:g} deg, {args.omega:g} rad/s, L/D {args.length_ratio:g}")
+    print(f"equilibrium, {model} {opts or ''}: load {args.load:g} N toward "
+          f"{args.direction:g} deg (inertial), {args.omega:g} rad/s, L/D {args.length_ratio:g}")
     _print_rows(rows)
     _write_numbers(out, rows)
     return 0
@@ -143,6 +205,8 @@ def command_coefficients(args):
                ("whirl frequency ratio", st.whirl_ratio, "-")])
     print(f"coefficients, {model} {opts or ''}, {args.frame} frame ({kc.method}):")
     _print_rows(rows)
+    print(f"  stability (Lund, rigid journal): {st.describe()}")
+    rows.append(("stability", st.verdict.value, "-"))
     _write_numbers(out, rows)
     return 0
 
@@ -166,12 +230,13 @@ def command_solve(args):
     element = _element(args, args.method)
     _check_output(args.output, FILM_FORMATS)
     b, s = _film_state(args)
+    supply = _supply_angle(args, s.gamma)
     if args.method == "fvm":
         sol = fvm_reynolds(b, s, args.n_theta, args.n_z, args.cavitation,
-                           ambient_pressure=args.ambient_pressure)
+                           ambient_pressure=_ambient(args), supply_angle=supply)
     else:
         sol = solve_reynolds(b, s, args.n_theta, args.n_z, element, args.cavitation,
-                             ambient_pressure=args.ambient_pressure)
+                             ambient_pressure=_ambient(args), supply_angle=supply)
     print(sol.summary())
     from bearingfem.design import sommerfeld_number
     load = math.hypot(*sol.force_local)
@@ -179,6 +244,7 @@ def command_solve(args):
           + (f"{sommerfeld_number(b, load, s.omega):.6g}" if load > 0 and s.omega else "-"))
     if args.output:
         from bearingfem.outputs.export import write_solution
+        _make_dir(Path(args.output).parent, "-o/--output")
         write_solution(sol, args.output)
         print(f"wrote {args.output}")
     return 0
@@ -194,10 +260,16 @@ def command_convergence(args):
     methods = tuple(args.methods.split(","))
     for m in methods:
         check_choice("--methods entry", m, ("P1", "P2", "fvm"))
+    if args.ambient_pressure is not None:
+        raise ValueError("--ambient-pressure does not apply to convergence (Reynolds-family "
+                         "films: none, gumbel, reynolds)")
     b, s = _film_state(args)
-    out = _make_dir(args.output, "-o/--output")
+    supply = _supply_angle(args, s.gamma)
+    check_writable(args.output, "-o/--output")
     st = convergence_study(b, s, levels=args.levels, n_theta=args.n_theta, n_z=args.n_z,
-                           cavitation=args.cavitation, methods=methods, progress=print)
+                           cavitation=args.cavitation, methods=methods, progress=print,
+                           supply_angle=supply)
+    out = _make_dir(args.output, "-o/--output")
     st.write_csv(out / "convergence.csv")
     st.plot(out / "convergence.png", args.quantity)
     print(f"{'method':6s} {'quantity':18s} {'finest':>14s} {'order':>7s} {'extrapolated':>14s} {'GCI':>9s}")
@@ -215,10 +287,15 @@ def command_render(args):
     from bearingfem.validation import check_choice
     check_choice("--field", args.field, tuple(FIELDS))
     check_choice("--surface", args.surface, SURFACES)
+    if args.field == "fraction" and args.cavitation != "jfo":
+        raise ValueError("--field fraction is the JFO film's fraction: use it with "
+                         f"--cavitation jfo, not {args.cavitation}")
     _check_output(args.output, IMAGE_FORMATS)
     b, s = _film_state(args)
     sol = solve_reynolds(b, s, args.n_theta, args.n_z, _element(args), args.cavitation,
-                         ambient_pressure=args.ambient_pressure)
+                         ambient_pressure=_ambient(args),
+                         supply_angle=_supply_angle(args, s.gamma))
+    _make_dir(Path(args.output).parent, "-o/--output")
     render_film(sol, args.output, field=args.field, surface=args.surface)
     print(sol.summary())
     print(f"wrote {args.output}")
@@ -228,7 +305,7 @@ def command_render(args):
 def command_sweep(args):
     from bearingfem_app.sweep import load_sweep, run_sweep
     sweep = load_sweep(args.sweep)
-    _make_dir(args.output, "-o/--output")
+    check_writable(args.output, "-o/--output")      # the runner makes it once all is checked
     res = run_sweep(sweep, args.output, scheduler=args.scheduler, workers=args.workers,
                     progress=None if not args.quiet else False)
     out = Path(args.output)
@@ -239,7 +316,7 @@ def command_sweep(args):
         print(f"  {cid}: {msg}")
     if res.rows:
         print(f"wrote {out / 'results.csv'}, {out / 'summary.png'} ({len(res.rows)} cases)")
-    return 1 if res.failed or res.interrupted else 0
+    return INTERRUPTED if res.interrupted else (1 if res.failed else 0)
 
 
 def _differences(a, b, where="scene"):
@@ -273,16 +350,19 @@ def command_frames(args):
         if differ:
             raise ValueError(f"scene {args.scene} differs from the one the run in "
                              f"{args.result!r} was made from ({', '.join(differ[:4])})")
-    angles = None
-    if args.angles:
-        try:
-            angles = [float(a) for a in args.angles.split(",")]
-        except ValueError:
-            raise ValueError(f"--angles must be comma-separated degrees, got {args.angles!r}") \
-                from None
-    out = _make_dir(args.output, "-o/--output")
+    angles = parse_angles(args.angles) if args.angles else None
+    from bearingfem.outputs.render import FIELDS, SURFACES
+    from bearingfem.validation import check_choice
+    check_choice("--field", args.field, tuple(FIELDS))
+    check_choice("--surface", args.surface, SURFACES)
+    model = scene.lubrication.model if scene.lubrication is not None else None
+    if args.field == "fraction" and model != "fem-jfo":
+        raise ValueError(f"--field fraction is the JFO film's fraction: the run's film is "
+                         f"{model or 'none'}, not fem-jfo (fields: pressure, film_thickness)")
+    check_writable(args.output, "-o/--output")
     frames = film_history(result, scene, angles, args.frames,
                           progress=lambda k, n: print(f"  film {k}/{n}", flush=True))
+    out = _make_dir(args.output, "-o/--output")
     pvd = write_history(frames, out, args.surface)
     print(f"wrote {pvd} ({len(frames)} VTU files, time = run time [s])")
     if not args.no_render:

@@ -35,7 +35,12 @@ from mechanism.scene import read_toml
 from .cases import KINDS, MECHANISM_PARAMS, _precheck, _scene_data, run_case
 
 __all__ = ["Sweep", "load_sweep", "parse_sweep", "sweep_cases", "case_id", "run_case",
-           "run_sweep", "gather"]
+           "run_sweep", "gather", "shipped_sweeps", "sweep_path", "CONNECT_TIMEOUT"]
+
+#: The sweeps shipped with the package (``bearingfem sweep capacity`` finds them by name).
+SWEEPS = Path(__file__).resolve().parent / "sweeps"
+#: Seconds to wait for a Dask scheduler given by address before refusing it.
+CONNECT_TIMEOUT = 5.0
 
 
 @dataclass(frozen=True)
@@ -86,8 +91,30 @@ def parse_sweep(data: dict, name="sweep") -> Sweep:
     return Sweep(str(data.get("name", name)), kind, base, vary)
 
 
+def shipped_sweeps() -> list[str]:
+    """Names of the shipped sweeps."""
+    return sorted(p.stem for p in SWEEPS.glob("*.toml"))
+
+
+def sweep_path(path) -> Path:
+    """The sweep file ``path`` if it exists; else the shipped sweep of that name, given as
+    ``capacity``, ``capacity.toml`` or ``sweeps/capacity.toml`` (the checkout's path)."""
+    p = Path(path)
+    if p.is_file():
+        return p
+    shipped = SWEEPS / f"{p.stem}.toml"
+    if p.suffix in ("", ".toml") and p.parent in (Path("."), Path("sweeps")) and shipped.is_file():
+        return shipped
+    return p
+
+
 def load_sweep(path) -> Sweep:
-    return parse_sweep(read_toml(path, "sweep"), Path(path).stem)
+    """Read and validate a sweep TOML file, or a shipped sweep by name."""
+    p = sweep_path(path)
+    if not p.is_file():
+        raise ValueError(f"sweep file not found: {path} (shipped sweeps: "
+                         f"{', '.join(shipped_sweeps())})")
+    return parse_sweep(read_toml(p, "sweep"), p.stem)
 
 
 def sweep_cases(sweep: Sweep) -> list[dict]:
@@ -134,6 +161,9 @@ def run_sweep(sweep: Sweep, out, scheduler: str | None = None, workers: int = 2,
     if scheduler is None and (isinstance(workers, bool) or not isinstance(workers, int)
                               or workers < 1):
         raise ValueError(f"workers must be an integer >= 1, got {workers!r}")
+    if scheduler is not None:
+        from .checks import check_scheduler_address
+        check_scheduler_address(scheduler)
     cases = sweep_cases(sweep)
     for params in cases:                  # physical ranges, before any work starts
         _precheck(sweep.kind, params)
@@ -146,7 +176,6 @@ def run_sweep(sweep: Sweep, out, scheduler: str | None = None, workers: int = 2,
                 scenes[key] = _scene_data(params)
     out = Path(out)
     cases_dir = out / "cases"
-    cases_dir.mkdir(parents=True, exist_ok=True)
     todo = {}
     for params in cases:
         cid = case_id(sweep.kind, params)
@@ -161,7 +190,10 @@ def run_sweep(sweep: Sweep, out, scheduler: str | None = None, workers: int = 2,
         if scheduler is None:
             cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
                                    dashboard_address=None)
-        client = Client(scheduler if scheduler is not None else cluster)
+            client = Client(cluster)
+        else:
+            client = _connect(scheduler)
+        cases_dir.mkdir(parents=True, exist_ok=True)   # nothing is left behind until here
         try:
             futures = {client.submit(run_case, sweep.kind, params,
                                      scenes.get(params.get("scene", MECHANISM_PARAMS["scene"][0])),
@@ -187,6 +219,23 @@ def run_sweep(sweep: Sweep, out, scheduler: str | None = None, workers: int = 2,
               + (", interrupted" if interrupted else ""))
     rows = gather(out, sweep)
     return SweepResult(rows, computed, skipped, failed, interrupted, time.perf_counter() - t0)
+
+
+def _connect(scheduler: str):
+    """A client of the scheduler at ``scheduler``, or one line saying it does not answer."""
+    import logging
+
+    from dask.distributed import Client
+    quiet = logging.getLogger("distributed")
+    level = quiet.level
+    quiet.setLevel(logging.CRITICAL)      # its own retry warnings would say it many times
+    try:
+        return Client(scheduler, timeout=CONNECT_TIMEOUT)
+    except (OSError, TimeoutError) as err:
+        raise ValueError(f"--scheduler: no Dask scheduler answers at {scheduler} within "
+                         f"{CONNECT_TIMEOUT:g} s ({type(err).__name__})") from None
+    finally:
+        quiet.setLevel(level)
 
 
 def _sort_key(value):
@@ -235,6 +284,19 @@ def _shown(key, value):
     return f"{key} {value}"
 
 
+def _film_named(sweep: Sweep) -> str:
+    """The film model(s) and cavitation the cases used, in words."""
+    def said(key, default):
+        if key in sweep.vary:
+            return ", ".join(map(str, sweep.vary[key])) + " (varied)"
+        return str(sweep.base.get(key, default))
+    if sweep.kind == "mechanism":
+        return (f"film model {said('model', 'the scene')}; "
+                f"cavitation {said('cavitation', 'the scene')}")
+    return (f"film model {said('model', 'fem')}; cavitation "
+            f"{said('cavitation', 'each model default')} (closed forms: half film)")
+
+
 def plot_summary(rows, sweep: Sweep, path) -> None:
     """First varied parameter on x (with units); each output the kind promises on its own
     panel; one line per combination of the other varied parameters."""
@@ -247,17 +309,31 @@ def plot_summary(rows, sweep: Sweep, path) -> None:
     xscale, xlabel = DISPLAY.get(x_key, (1.0, x_key))
     fig, axes = plt.subplots(1, len(outputs), figsize=(7 * len(outputs), 4.5),
                              constrained_layout=True, squeeze=False)
+    # one sequential colormap over the first numeric parameter of the lines (its order
+    # reads from the colour), the others by marker and line style
+    numeric = [k for k in others if all(isinstance(v, (int, float)) for v in sweep.vary[k])]
+    shade_key = numeric[0] if numeric else None
+    shades = sorted(set(sweep.vary[shade_key])) if shade_key else []
+    styled = [k for k in others if k != shade_key]
+    styles = sorted({tuple(r.get(k) for k in styled) for r in rows}, key=str)
+    cmap = plt.get_cmap("viridis")
+    markers, lines = "os^Dv<>p", ["-", "--", ":", "-."]
     for ax, (y_key, ylabel, log) in zip(axes[0], outputs):
         groups = {}
         for r in rows:
             if r.get(y_key, "") != "":
                 groups.setdefault(tuple(r.get(k) for k in others), []).append(r)
-        for g, rs in sorted(groups.items(), key=lambda kv: str(kv[0])):
+        for k, (g, rs) in enumerate(sorted(groups.items(), key=lambda kv: str(kv[0]))):
             rs = sorted(rs, key=lambda r: r[x_key])
             label = ", ".join(_shown(k, v) for k, v in zip(others, g)) or None
             xs = [r[x_key] * xscale if isinstance(r[x_key], (int, float)) else r[x_key]
                   for r in rs]
-            ax.plot(xs, [r[y_key] for r in rs], "o-", label=label)
+            named = dict(zip(others, g))
+            i = shades.index(named[shade_key]) if shade_key else k
+            n = len(shades) if shade_key else len(groups)
+            j = styles.index(tuple(named.get(s) for s in styled))
+            ax.plot(xs, [r[y_key] for r in rs], color=cmap(0.85 * i / max(n - 1, 1)),
+                    marker=markers[j % len(markers)], ls=lines[j % len(lines)], label=label)
         ax.set(xlabel=xlabel, ylabel=ylabel, yscale="log" if log else "linear")
         ax.grid(True, alpha=0.3)
         if len(groups) > 1:
@@ -265,6 +341,8 @@ def plot_summary(rows, sweep: Sweep, path) -> None:
     fixed = ", ".join(_shown(k, v) for k, v in sorted(sweep.base.items())
                       if k not in ("scene", "model", "element", "cavitation"))
     fig.suptitle(f"sweep {sweep.name} ({sweep.kind}): {len(rows)} cases"
-                 + (f"; {fixed}" if fixed else ""), fontsize=9)
+                 + (f"; {fixed}" if fixed else "") + f"\n{_film_named(sweep)}", fontsize=9)
+    if path is None:
+        return fig
     fig.savefig(path, dpi=110)
     plt.close(fig)

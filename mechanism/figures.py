@@ -9,10 +9,28 @@ import numpy as np  # noqa: E402
 
 from .result import SimulationResult  # noqa: E402
 
-__all__ = ["plot_run", "plot_comparison"]
+__all__ = ["plot_run", "plot_comparison", "label_log_axis"]
 
 #: Films thinner than this [um] (contact) are drawn at it on the log axis.
 FILM_FLOOR_UM = 1e-3
+
+
+def label_log_axis(axis) -> None:
+    """Readable labels on a log axis (``ax.yaxis``) whatever its span: 1-2-5 per decade over
+    several decades, plain round numbers within one (the default labels only the powers of
+    ten, often one of them, or writes 1.9 x 10^1)."""
+    from matplotlib import ticker
+    lo, hi = sorted(axis.get_view_interval())
+    if hi / lo < 10.0:
+        ticks = [t for t in ticker.MaxNLocator(6).tick_values(lo, hi) if lo <= t <= hi and t > 0]
+    else:
+        ticks = [t for t in ticker.LogLocator(subs=(1.0, 2.0, 5.0)).tick_values(lo, hi)
+                 if lo <= t <= hi]
+        if len(ticks) > 12:    # four decades or more: the powers of ten are enough
+            ticks = [t for t in ticker.LogLocator().tick_values(lo, hi) if lo <= t <= hi]
+    axis.set_major_locator(ticker.FixedLocator(ticks))
+    axis.set_major_formatter(ticker.FuncFormatter(lambda v, _: f"{v:g}"))
+    axis.set_minor_formatter(ticker.NullFormatter())
 
 
 def _crank_deg(r: SimulationResult):
@@ -51,16 +69,22 @@ def plot_comparison(results, labels, clearance, title="", path=None):
     ax[1, 0].set(ylabel="joint force on pin F_y [N]", title="force, Y")
     ax[1, 1].set(ylabel="crank speed [rad/s]", title="crank angular speed")
     ax[1, 2].set(ylabel="slider acceleration [m/s^2]", title="slider acceleration")
+    # a run stopped early has no whole recorded turn: say what the axis holds instead
+    stopped = [r for r in results if r.partial]
+    xlabel = ("crank angle [deg], up to where the run stopped (partial)" if stopped
+              else "crank angle in the recorded turn [deg]")
     for a in (ax[0, 0], ax[0, 2], ax[1, 0], ax[1, 1], ax[1, 2]):
-        a.set_xlabel("crank angle in the recorded turn [deg]")
+        a.set_xlabel(xlabel)
         a.set_xlim(0, 360)
         a.grid(alpha=0.3)
     ax[0, 1].grid(alpha=0.3)
+    if any(len(r.t) for r in results):
+        label_log_axis(ax[0, 0].yaxis)
     handles, names = ax[0, 0].get_legend_handles_labels()
     # one legend for all six panels, below them
     fig.legend(handles, names, loc="lower center", ncol=max(len(names), 1), fontsize=9,
                frameon=False)
-    fig.suptitle(title)
+    fig.suptitle(title + "".join(f"\n{r.scene}: PARTIAL, {r.message}" for r in stopped))
     fig.tight_layout(rect=(0, 0.05, 1, 1))
     if path is not None:
         fig.savefig(path, dpi=110)

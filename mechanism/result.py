@@ -164,9 +164,27 @@ def load_result(directory) -> SimulationResult:
                             stats=meta["stats"], provenance=meta.get("provenance", {}))
 
 
+def _git_commit(where: Path):
+    """The commit of the checkout ``where`` lies in (+ "-dirty" with local changes), or None
+    for an installed package (then the version says what ran)."""
+    import functools
+    import subprocess
+    try:
+        run = functools.partial(subprocess.run, cwd=where, capture_output=True, text=True,
+                                timeout=5)
+        head = run(["git", "rev-parse", "HEAD"])
+        if head.returncode != 0:
+            return None
+        dirty = run(["git", "status", "--porcelain", "--untracked-files=no"]).stdout.strip()
+        return head.stdout.strip() + ("-dirty" if dirty else "")
+    except (OSError, subprocess.SubprocessError):
+        return None
+
+
 def provenance(scene) -> dict:
     """What a run was made from: the resolved scene (every default filled in), the toolkit
-    and library versions and the date (UTC)."""
+    and library versions, the git commit of a checkout (None if installed) and the date
+    (UTC)."""
     import dataclasses
     import datetime
     import platform
@@ -176,6 +194,7 @@ def provenance(scene) -> dict:
 
     import bearingfem
     return {"scene": dataclasses.asdict(scene), "bearingfem": bearingfem.__version__,
+            "git_commit": _git_commit(Path(bearingfem.__file__).parent),
             "numpy": np.__version__, "scipy": scipy.__version__,
             "scikit-fem": getattr(skfem, "__version__", "?"),
             "python": platform.python_version(),

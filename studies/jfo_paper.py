@@ -179,6 +179,9 @@ def main(argv=None):
                  title="JFO mass balance of each film step")
     for a_ in (ax[0, 0], ax[0, 1], ax[1, 1], ax[0, 2]):
         a_.legend(fontsize=8)
+    from mechanism.figures import label_log_axis
+    for a_ in (ax[0, 1], ax[1, 1]):       # film and pressure: labels in every decade
+        label_log_axis(a_.yaxis)
     fig.suptitle(f"Seed piston pin, L/D = {fem.bearing.length_ratio:g}: Reynolds' "
                  "condition vs mass-conserving film")
     fig.tight_layout()

@@ -31,6 +31,7 @@ def test_wheel_holds_what_users_import(wheel):
     tops = {n.split("/")[0] for n in names if not n.split("/")[0].endswith(".dist-info")}
     assert tops == {"bearingfem", "mechanism", "bearingfem_app"}
     assert "mechanism/scenes/paper-short-fem.toml" in names
+    assert "bearingfem_app/sweeps/capacity.toml" in names       # bearingfem sweep capacity
     meta = next(n for n in names if n.endswith("METADATA"))
     text = zipfile.ZipFile(wheel).read(meta).decode()
     assert "License-Expression: BSD-3-Clause" in text and "Requires-Dist: pillow" in text

@@ -48,7 +48,10 @@ def test_unwrapped_map_is_oriented_and_its_cavity_boundary_is_smooth():
     fig = unwrapped_figure(sol)
     ax, cax = fig.axes
     assert "theta from the maximum film [deg]" in ax.get_xlabel() and ax.get_ylabel() == "z [mm]"
-    assert ax.get_xlim() == (0.0, 360.0)
+    # a margin either side: the maximum film (theta = 0 and 360, the seam) is not on the edge
+    assert ax.get_xlim() == (-6.0, 366.0)
+    seam = [ln for ln in ax.get_lines() if list(ln.get_xdata()) in ([0.0, 0.0], [360.0, 360.0])]
+    assert len(seam) == 2
     names = [t.get_text() for t in ax.get_legend().get_texts()]
     for name in ("maximum film", "minimum film (eccentricity)", "load line",
                  "cavitation boundary (p = 0)", "cavitated", "peak pressure"):

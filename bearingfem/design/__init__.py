@@ -7,10 +7,10 @@ from .coefficients import DynamicCoefficients, coefficients
 from .equilibrium import Equilibrium, equilibrium
 from .groups import (flow_variable, friction_variable, load_from_sommerfeld,
                      petroff_friction, sommerfeld_number)
-from .stability import (Orbit, Stability, ThresholdSpeed, journal_orbit, lund_stability,
-                        threshold_speed)
+from .stability import (Orbit, Stability, ThresholdSpeed, Verdict, journal_orbit,
+                        lund_stability, threshold_speed)
 
 __all__ = ["equilibrium", "Equilibrium", "coefficients", "DynamicCoefficients",
-           "lund_stability", "Stability", "threshold_speed", "ThresholdSpeed",
+           "lund_stability", "Stability", "Verdict", "threshold_speed", "ThresholdSpeed",
            "journal_orbit", "Orbit", "sommerfeld_number", "load_from_sommerfeld",
            "friction_variable", "flow_variable", "petroff_friction"]

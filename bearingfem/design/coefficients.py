@@ -14,7 +14,13 @@ with G = dF_loc/dgamma, zero unless grooves stay fixed while the film turns.
     -c C[:, t] = -2 W / eps
 
 K_ij = -dF_i/dx_j, C_ij = -dF_i/dv_j. Every term stays finite as eps -> 0 (F, W ~ eps);
-eps below ``EPS_FLOOR`` is linearised at EPS_FLOOR along the same gamma.
+eps below ``EPS_FLOOR`` takes the limit eps -> 0: K, C are found at EPS_FLOOR along the same
+gamma and the terms that vanish with eps are dropped. The centred journal is attitude-free:
+F_r = O(eps^2) (full film: F_r = 0; Gumbel and Reynolds' condition: the leading-order film
+and its cavity are symmetric about theta = pi/2), so K_rr, K_tt, C_rt, C_tr = O(eps) are 0
+there and K = [[0, k], [-k, 0]], the same in every frame; F is scaled to eps (0 at eps = 0).
+Grooves fixed in the bearing, or a moving journal, break the symmetry: then the film is
+linearised at EPS_FLOOR as it is.
 """
 from __future__ import annotations
 
@@ -124,10 +130,10 @@ def coefficients(bearing: Bearing, state: JournalState, model: str = "fem",
     if any(tilt):
         return _tilted(bearing, state, model, frame, tilt, options)
     m = film_model(model)
-    if state.eps < EPS_FLOOR:
-        state = replace(state, eps=EPS_FLOOR)
-    d = m.force_derivatives(bearing, state, **options)
-    e, ed, gd = state.eps, state.eps_dot, state.gamma_dot
+    centred = state.eps < EPS_FLOOR
+    at = replace(state, eps=EPS_FLOOR) if centred else state
+    d = m.force_derivatives(bearing, at, **options)
+    e, ed, gd = at.eps, at.eps_dot, at.gamma_dot
     A, B, W, F, G = (np.asarray(v, float) for v in (d.d_eps, d.d_eps_dot, d.d_wedge, d.force,
                                                      d.d_gamma))
     # turning the eccentricity turns the film (J F) and, with grooves fixed in space,
@@ -138,11 +144,17 @@ def coefficients(bearing: Bearing, state: JournalState, model: str = "fem",
     C = -np.column_stack([B, -2.0 * W / e]) / c
     K_shift = np.zeros((2, 2))
     K_shift[:, 1] = -G / (e * c)
+    limit = centred and not np.any(G) and ed == 0.0 and gd == 0.0
+    if limit:   # the steady eps -> 0 limit (module docstring)
+        k = 0.5 * (K[0, 1] - K[1, 0])
+        K, C = np.array([[0.0, k], [-k, 0.0]]), np.diag(np.diag(C))
+        F = F * (state.eps / EPS_FLOOR)
     g = state.gamma
     force = tuple(float(f) for f in local_to_inertial(F[0], F[1], g))
     local = DynamicCoefficients(K, C, "local", _axes("local", g, force), state, force, model,
                                 d.method, c, K_shift)
-    return local if frame == "local" else local.in_frame(frame)
+    out = local if frame == "local" else local.in_frame(frame)
+    return replace(out, K=K) if limit else out    # K turns into itself, without rounding
 
 
 def _tilted(bearing, state, model, frame, tilt, options) -> DynamicCoefficients:

@@ -9,13 +9,27 @@ imaginary parts of det(K - m nu^2 I + i nu C) = 0 gives (Lund 1966; Childs 1993,
     nu^2  = ((K_xx - K_eq)(K_yy - K_eq) - K_xy K_yx) / (C_xx C_yy - C_xy C_yx)
     m_crit = K_eq / nu^2,
 
-frame-independent. Heavier journals whirl unstably at nu / omega (the whirl frequency
-ratio, ~0.5 for a plain bearing at light load). nu^2 <= 0 means no mass destabilises.
+frame-independent. The eigenvalues move with m only through that one crossing (or at
+s = 0, det K = 0, for every m alike), so the stability is the same for all masses on either
+side of m_crit; the verdict checks one mass on each side. With nu^2 <= 0 or K_eq <= 0 there
+is no crossing at a positive mass and one mass decides for all: stable for any mass or
+unstable for any mass - never a critical mass of "inf" from dividing by K_eq <= 0.
+
+Near the centre (eps -> 0) every film here has K = [[0, k], [-k, 0]] + O(eps): the full film
+(Sommerfeld) has K_eq = 0 at every eps, so m_crit = 0 - unstable for any mass, whirling at
+nu / omega -> 1/2 (k / C = omega / 2 because the film force depends on omega - 2 gamma_dot).
+Gumbel's and Reynolds' films give K_eq ~ eps, so m_crit ~ eps -> 0 and nu / omega -> 1/2:
+for the long Gumbel film m_crit omega / S -> (24 + 9 pi) eps, S = mu R^3 L / c^3; the FE
+film at L/D 1 gives m_crit omega / (S eps) -> 14.5 (Gumbel) and 15.5 (Reynolds' condition,
+whose cavity moves with the squeeze: C_rr = C_tt only in the mesh limit, nu / omega =
+0.4966, 0.4993, 0.49992 at 60 x 10, 120 x 20, 240 x 40). Tests: tests/test_stability.py.
 """
 from __future__ import annotations
 
+import enum
 import math
 from dataclasses import dataclass
+from typing import Optional
 
 import numpy as np
 from scipy.integrate import solve_ivp
@@ -27,43 +41,114 @@ from ..models import film_model
 from .coefficients import DynamicCoefficients, coefficients
 from .equilibrium import Equilibrium, equilibrium
 
-__all__ = ["Stability", "lund_stability", "ThresholdSpeed", "threshold_speed", "Orbit",
-           "journal_orbit"]
+__all__ = ["Stability", "Verdict", "lund_stability", "ThresholdSpeed", "threshold_speed",
+           "Orbit", "journal_orbit"]
+
+
+class Verdict(enum.Enum):
+    """What a rigid journal of any mass does on a linearised film."""
+
+    STABLE_FOR_ANY_MASS = "stable for any mass"
+    UNSTABLE_FOR_ANY_MASS = "unstable for any mass"
+    CRITICAL_MASS = "stable below the critical mass"
+    #: the crossing the other way round (unstable light journals); not met in plain films
+    STABLE_ABOVE_CRITICAL_MASS = "stable above the critical mass"
 
 
 @dataclass(frozen=True)
 class Stability:
     """Lund's stability of a rigid journal on the film of ``coefficients``.
 
-    critical_mass [kg] (inf: stable for any mass), whirl_frequency nu [rad/s],
-    whirl_ratio nu / |omega|, stiffness_eq K_eq [N/m]."""
+    verdict : :class:`Verdict`
+    critical_mass [kg]: the mass where the stability changes (CRITICAL_MASS and
+        STABLE_ABOVE_CRITICAL_MASS); None when one verdict holds for every mass
+    whirl_frequency nu [rad/s], whirl_ratio nu / |omega|: the frequency of the whirl at the
+        critical mass, or of the unstable whirl of a light journal (UNSTABLE_FOR_ANY_MASS);
+        None when stable for any mass
+    stiffness_eq K_eq [N/m]"""
 
-    critical_mass: float
-    whirl_frequency: float
-    whirl_ratio: float
+    verdict: Verdict
+    critical_mass: Optional[float]
+    whirl_frequency: Optional[float]
+    whirl_ratio: Optional[float]
     stiffness_eq: float
     coefficients: DynamicCoefficients
 
     def stable(self, mass: float) -> bool:
         """Whether a journal of ``mass`` [kg] is stable on this film (linear theory)."""
-        return check_positive("mass", mass) < self.critical_mass
+        mass = check_positive("mass", mass)
+        v = self.verdict
+        if v is Verdict.CRITICAL_MASS:
+            return mass < self.critical_mass
+        if v is Verdict.STABLE_ABOVE_CRITICAL_MASS:
+            return mass > self.critical_mass
+        return v is Verdict.STABLE_FOR_ANY_MASS
+
+    def describe(self) -> str:
+        """One line: the verdict, with the critical mass where there is one."""
+        if self.critical_mass is None:
+            return self.verdict.value
+        return f"{self.verdict.value} {self.critical_mass:.6g} kg"
+
+
+def _eigenvalues(K, C, mass):
+    """Eigenvalues of m x'' + C x' + K x = 0."""
+    A = np.block([[np.zeros((2, 2)), np.eye(2)], [-K / mass, -C / mass]])
+    return np.linalg.eigvals(A)
+
+
+def _unstable(K, C, mass) -> bool:
+    return bool(_eigenvalues(K, C, mass).real.max() > 0.0)
 
 
 def lund_stability(kc: DynamicCoefficients) -> Stability:
-    """Critical mass and whirl frequency of a rigid journal from K and C."""
+    """The verdict, critical mass and whirl frequency of a rigid journal from K and C."""
     K, C = kc.K, kc.C
     trace_c = C[0, 0] + C[1, 1]
     if not trace_c > 0.0:
         raise ValueError("the film has no positive direct damping (C_xx + C_yy <= 0): "
                          "no stability threshold")
-    k_eq = (K[0, 0] * C[1, 1] + K[1, 1] * C[0, 0] - K[0, 1] * C[1, 0]
-            - K[1, 0] * C[0, 1]) / trace_c
-    nu2 = (((K[0, 0] - k_eq) * (K[1, 1] - k_eq) - K[0, 1] * K[1, 0])
-           / (C[0, 0] * C[1, 1] - C[0, 1] * C[1, 0]))
-    if nu2 <= 0.0 or k_eq <= 0.0:
-        return Stability(math.inf, 0.0, 0.0, float(k_eq), kc)
-    nu = math.sqrt(nu2)
-    return Stability(float(k_eq / nu2), nu, nu / abs(kc.state.omega), float(k_eq), kc)
+    det_c = C[0, 0] * C[1, 1] - C[0, 1] * C[1, 0]
+    if not det_c > 0.0:
+        raise ValueError(f"the film's damping matrix is not positive (det C = {det_c:.6g} "
+                         "N^2 s^2/m^2): no stability threshold")
+    k_eq = float((K[0, 0] * C[1, 1] + K[1, 1] * C[0, 0] - K[0, 1] * C[1, 0]
+                  - K[1, 0] * C[0, 1]) / trace_c)
+    nu2 = float(((K[0, 0] - k_eq) * (K[1, 1] - k_eq) - K[0, 1] * K[1, 0]) / det_c)
+    omega = abs(kc.state.omega)
+    # K_eq within rounding of 0 is 0 (the centred film, K = [[0, k], [-k, 0]], in any frame):
+    # m_crit = 0, unstable for any mass - not a crossing at 1e-20 kg
+    if abs(k_eq) <= 1e-12 * np.linalg.norm(K) * np.linalg.norm(C) / trace_c:
+        k_eq = 0.0
+
+    def whirl(nu):
+        return Stability(verdict, m_c, nu, None if nu is None or omega == 0.0 else nu / omega,
+                         k_eq, kc)
+
+    if nu2 > 0.0 and k_eq > 0.0:          # a crossing at a positive mass
+        m_c = k_eq / nu2
+        below, above = _unstable(K, C, 0.5 * m_c), _unstable(K, C, 2.0 * m_c)
+        verdict = {(False, True): Verdict.CRITICAL_MASS,
+                   (True, False): Verdict.STABLE_ABOVE_CRITICAL_MASS,
+                   (False, False): Verdict.STABLE_FOR_ANY_MASS,
+                   (True, True): Verdict.UNSTABLE_FOR_ANY_MASS}[(below, above)]
+        if verdict in (Verdict.CRITICAL_MASS, Verdict.STABLE_ABOVE_CRITICAL_MASS):
+            return whirl(math.sqrt(nu2))
+        m_c = None
+        return whirl(math.sqrt(nu2) if verdict is Verdict.UNSTABLE_FOR_ANY_MASS else None)
+    # no crossing at a positive mass: one mass decides for all; (tr C)^2 / |K| is the mass
+    # scale where inertia, damping and stiffness are alike
+    m_c = None
+    norm_k = float(np.linalg.norm(K))
+    if norm_k == 0.0:
+        raise ValueError("the film has no stiffness (K = 0): no stability verdict")
+    if not _unstable(K, C, trace_c ** 2 / norm_k):
+        verdict = Verdict.STABLE_FOR_ANY_MASS
+        return whirl(None)
+    verdict = Verdict.UNSTABLE_FOR_ANY_MASS
+    # the whirl of a light journal: the first-order film C x' + K x = 0
+    light = np.linalg.eigvals(-np.linalg.solve(C, K))
+    return whirl(float(np.abs(light[np.argmax(light.real)].imag)))
 
 
 @dataclass(frozen=True)
@@ -94,7 +179,12 @@ def threshold_speed(bearing: Bearing, load, mass: float, model: str = "fem", *,
     def margin(log_omega):
         eq = equilibrium(bearing, load, math.exp(log_omega), model, **options)
         st = lund_stability(coefficients(bearing, eq.state, model, **options))
-        return math.log(min(st.critical_mass, 1e300) / mass)
+        if st.verdict is Verdict.CRITICAL_MASS:
+            return math.log(st.critical_mass / mass)
+        if st.verdict is not Verdict.STABLE_ABOVE_CRITICAL_MASS:   # finite, for Brent
+            return 1e3 if st.verdict is Verdict.STABLE_FOR_ANY_MASS else -1e3
+        raise ValueError(f"at {math.exp(log_omega):.6g} rad/s the journal is "
+                         f"{st.describe()}: no onset speed of whirl for a given mass")
 
     m_lo, m_hi = margin(math.log(lo)), margin(math.log(hi))
     if m_lo < 0.0:

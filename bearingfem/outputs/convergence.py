@@ -73,8 +73,10 @@ class ConvergenceStudy:
             err = np.array([abs(r[quantity] / ref - 1.0) for r in rows]) if ref else n * 0
             ax.loglog(n, np.maximum(err, 1e-16), "o-", label=label)
         ax.set(xlabel="unknowns (degrees of freedom) [-]",
-               ylabel=f"relative error of {quantity} [-]",
-               title=f"mesh convergence of {quantity}" + (f": {self.case}" if self.case else ""))
+               ylabel=f"relative error of {quantity} [-]")
+        # the case on a line of its own: one line was cut at the figure's edge
+        ax.set_title(f"mesh convergence of {quantity}" + (f"\n{self.case}" if self.case else ""),
+                     fontsize=10)
         ax.grid(alpha=0.3, which="both")
         ax.legend(fontsize=8)
         fig.tight_layout()

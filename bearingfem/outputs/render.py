@@ -6,7 +6,10 @@
   boundary as the smooth p = 0 isoline and the cavitated region shaded.
 * ``surface="journal"``: the 3-D journal (PyVista, no display needed), camera fitted to the
   body, the maximum-film line, the eccentricity and load directions and the rotation as
-  arrows, the cavitated region grey and its boundary drawn.
+  arrows, the inertial axes (x: the slider axis), the cavitated region grey and its
+  boundary red (the caption names only what is drawn).
+* the JFO film fraction is shaded (interpolated), the full film in the top colour, with the
+  rupture line (fraction < 1) red.
 
 The title gives the force in the inertial frame, |F| and the attitude angle; the colour bar
 starts at 0 with units. ``clim`` fixes the colour range (one scale for a series of frames).
@@ -127,7 +130,16 @@ def unwrapped_figure(sol: FilmSolution, field: str = "pressure", clim=None, titl
     top = float(np.max(vals)) if clim is None else float(clim[1])
     lo = 0.0 if clim is None else float(clim[0])
     levels = np.linspace(lo, top if top > lo else lo + 1.0, 41)
-    cf = ax.tricontourf(tri, np.clip(vals, lo, levels[-1]), levels=levels, cmap="viridis")
+    if field == "fraction":
+        # interpolated shading: the full film (fraction 1) takes the top colour (filled
+        # contours leave a plateau at the top level blank) and the rupture is not a staircase
+        cf = ax.tripcolor(tri, np.clip(vals, lo, levels[-1]), shading="gouraud",
+                          cmap="viridis", vmin=levels[0], vmax=levels[-1])
+        if np.any(vals < 1.0 - 1e-6) and np.any(vals >= 1.0 - 1e-6):
+            ax.tricontour(tri, vals, levels=[1.0 - 1e-3], colors="red", linewidths=1.2)
+            ax.plot([], [], color="red", label="film ruptures (fraction < 1)")
+    else:
+        cf = ax.tricontourf(tri, np.clip(vals, lo, levels[-1]), levels=levels, cmap="viridis")
     cbar = fig.colorbar(cf, ax=ax, label=label, ticks=np.linspace(levels[0], levels[-1], 6))
     cbar.ax.yaxis.set_major_formatter(matplotlib.ticker.FormatStrFormatter("%.3g"))
     cav = _cavity(sol, tri, vals) if field == "pressure" else None
@@ -143,14 +155,20 @@ def unwrapped_figure(sol: FilmSolution, field: str = "pressure", clim=None, titl
              (np.degrees(_load_theta(sol)), "load line", "orange", "-")]
     for xm, name, colour, style in marks:
         ax.axvline(xm, color=colour, ls=style, lw=1.4, label=name)
+    # the maximum film is the map's seam: drawn at both edges, wide, inside a margin
+    ax.axvline(360.0, color="cyan", ls="--", lw=1.4)
     if sol.pressure_max > 0:
         ax.plot(np.degrees(sol.pressure_max_theta), sol.pressure_max_z * 1e3, "k+", ms=10,
                 label="peak pressure")
-    ax.set(xlim=(0, 360), ylim=(-half, half),
+    ax.set(xlim=(-6, 366), ylim=(-half, half),
            xlabel="theta from the maximum film [deg]  (the journal surface slides toward "
                   "+theta for omega > 0 ->)",
            ylabel="z [mm]", xticks=np.arange(0, 361, 45))
-    ax.legend(loc="upper right", fontsize=7, framealpha=0.85)
+    if size[1] >= 4.0:    # below the map (inside, it hides the film), when there is room
+        ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=3, fontsize=7,
+                  frameon=False)
+    else:
+        ax.legend(loc="upper right", fontsize=6, framealpha=0.85)
     ax.set_title(_title(sol, title), fontsize=8)
     return fig
 
@@ -235,18 +253,24 @@ def _render_journal(sol, path, field, window_size, title, clim, camera_angle):
     tang = np.array([-np.sin(g + np.pi / 2), np.cos(g + np.pi / 2), 0.0])
     rim = end + R * np.array([np.cos(g + np.pi / 2), np.sin(g + np.pi / 2), 0.0])
     p.add_mesh(pv.Arrow(start=rim, direction=tang, scale=0.5 * R), color="steelblue")
-    p.add_point_labels(np.array([end + 0.95 * R * ecc, end + 0.95 * R * load,
-                                 rim + 0.5 * R * tang,
-                                 [R * np.cos(a0), R * np.sin(a0), half]]),
-                       ["eccentricity", "load", "rotation", "max film"], font_size=11,
+    # eccentricity and load are told apart by colour in the caption: their labels would
+    # overlap whenever the attitude angle is small
+    p.add_point_labels(np.array([rim + 0.5 * R * tang, [R * np.cos(a0), R * np.sin(a0), half]]),
+                       ["rotation", "max film"], font_size=11,
                        text_color="black", shape_opacity=0.6, always_visible=True)
+    # the inertial frame: x is the slider axis of the mechanism
+    p.add_axes(xlabel="x (slider)", ylabel="y", zlabel="z (axis)", line_width=3,
+               color="black", labels_off=False)
     a = sol.pressure_max_angle if camera_angle is None else camera_angle
     d = 6.0 * max(R, half)
     p.camera_position = [(d * np.cos(a), d * np.sin(a), 0.8 * d), (0.0, 0.0, 0.0), (0, 0, 1)]
     p.reset_camera()                  # fit the whole body (long bearings too)
     p.camera.zoom(0.9)
-    p.add_text(_title(sol, title) + "\ngrey: cavitated; red: cavitation boundary",
-               font_size=8, color="black", position="upper_left")
+    key_text = "black arrow: eccentricity; orange arrow: load; blue: journal rotation"
+    if cavitated.any():
+        key_text += "\ngrey: cavitated; red: cavitation boundary"
+    p.add_text(_title(sol, title) + "\n" + key_text, font_size=8, color="black",
+               position="upper_left")
     p.screenshot(str(path))
     p.close()
     return path

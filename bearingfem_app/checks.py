@@ -1,0 +1,116 @@
+"""What the command line checks before any work, so that a refused run leaves nothing behind.
+
+Every number option is checked against its range at once (one message naming every bad
+option, joined by "; "); folders are checked writable without being made; the options a
+film model does not take are refused by name.
+"""
+from __future__ import annotations
+
+import math
+import os
+import re
+from pathlib import Path
+
+from bearingfem.validation import MIN_N_THETA, MIN_N_Z
+
+__all__ = ["check_numbers", "given_options", "check_writable", "parse_angles",
+           "check_scheduler_address", "RULES"]
+
+#: dest -> (option as typed, low, low included, high, high included); None: open end.
+RULES = {
+    "length_ratio": ("--length-ratio/--ld (L/D)", 0.0, False, None, False),
+    "diameter": ("--diameter", 0.0, False, None, False),
+    "clearance": ("--clearance", 0.0, False, None, False),
+    "viscosity": ("--viscosity", 0.0, False, None, False),
+    "omega": ("--omega", None, False, None, False),
+    "eps": ("--eps: eps", 0.0, True, 1.0, False),
+    "eps_dot": ("--eps-dot", None, False, None, False),
+    "ambient_pressure": ("--ambient-pressure", 0.0, True, None, False),
+    "load": ("--load (a magnitude; --direction turns it)", 0.0, False, None, False),
+    "direction": ("--direction", None, False, None, False),
+    "gamma": ("--gamma", None, False, None, False),
+    "n_theta": ("--n-theta", MIN_N_THETA, True, None, False),
+    "n_z": ("--n-z", MIN_N_Z, True, None, False),
+    "levels": ("--levels", 3, True, None, False),
+    "frames": ("--frames", 1, True, None, False),
+    "workers": ("--workers", 1, True, None, False),
+}
+
+
+def _range(lo, lo_in, hi, hi_in):
+    if lo is None and hi is None:
+        return "finite"
+    if hi is None:
+        return (f">= {lo:g}" if lo_in else "positive" if lo == 0 else f"> {lo:g}")
+    return f"in {'[' if lo_in else '('}{lo:g}, {hi:g}{']' if hi_in else ')'}"
+
+
+def check_numbers(args) -> None:
+    """Every number option of ``args`` in its range; ValueError naming all bad ones."""
+    errors = []
+    for dest, (name, lo, lo_in, hi, hi_in) in RULES.items():
+        v = getattr(args, dest, None)
+        if v is None:
+            continue
+        ok = math.isfinite(v)
+        if ok and lo is not None:
+            ok = v >= lo if lo_in else v > lo
+        if ok and hi is not None:
+            ok = v <= hi if hi_in else v < hi
+        if not ok:
+            rule = _range(lo, lo_in, hi, hi_in)
+            errors.append(f"{name} must be positive (> 0), got {v!r}" if rule == "positive"
+                          else f"{name} must lie {rule}, got {v!r}" if rule.startswith("in")
+                          else f"{name} must be {rule}, got {v!r}")
+    if errors:
+        raise ValueError("; ".join(errors))
+
+
+def given_options(subparser, argv) -> set:
+    """The dests of the options typed in ``argv`` (not left at their defaults)."""
+    typed = {a.split("=", 1)[0] for a in argv if a.startswith("-")}
+    return {a.dest for a in subparser._actions if typed & set(a.option_strings)}
+
+
+def check_writable(path, option) -> Path:
+    """A folder that can be made (or exists and takes files), without leaving it made: a
+    scratch folder is made and removed in its nearest existing parent (permissions alone
+    do not tell, e.g. for root or on /proc)."""
+    import tempfile
+    probe = Path(path).absolute()
+    while not probe.exists():
+        probe = probe.parent
+    try:
+        if not probe.is_dir():
+            raise NotADirectoryError(20, "Not a directory")
+        os.rmdir(tempfile.mkdtemp(dir=probe, prefix=".bearingfem-probe-"))
+    except OSError as err:
+        raise ValueError(f"{option}: cannot create folder {str(path)!r} "
+                         f"({err.strerror} in {probe})") from None
+    return Path(path)
+
+
+def parse_angles(text: str) -> list:
+    """``--angles``: comma-separated crank angles [deg] in [0, 360), returned sorted and
+    without repeats (the VTU series is in time order)."""
+    try:
+        angles = [float(a) for a in text.split(",")]
+    except ValueError:
+        raise ValueError(f"--angles must be comma-separated degrees, got {text!r}") from None
+    bad = [a for a in angles if not (math.isfinite(a) and 0.0 <= a < 360.0)]
+    if bad:
+        shown = ", ".join(f"{a:g}" for a in bad)
+        raise ValueError(f"--angles must lie in [0, 360) deg, got {shown}")
+    return sorted(set(angles))
+
+
+_ADDRESS = re.compile(r"^(?:(tcp|tls|ws|wss|ucx)://)?(\[[0-9a-fA-F:]+\]|[\w.-]+):(\d{1,5})$")
+
+
+def check_scheduler_address(address: str) -> str:
+    """``--scheduler``: [protocol://]host:port."""
+    m = _ADDRESS.match(address)
+    if not m or not 0 < int(m.group(3)) < 65536:
+        raise ValueError(f"--scheduler must be a Dask scheduler address "
+                         f"[tcp://]host:port, got {address!r}")
+    return address

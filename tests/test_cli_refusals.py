@@ -1,0 +1,209 @@
+"""The command line refuses before any work: one line, exit status 2, no folder left behind.
+
+Each test names what the old command line did instead (run against it before the fix)."""
+import os
+import re
+import signal
+import subprocess
+import sys
+import time
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import pytest
+
+from bearingfem_app.cli import main
+
+ROOT = Path(__file__).resolve().parent.parent
+
+
+def refused(capsys, *argv):
+    """Run ``bearingfem argv`` in-process; the one stderr line of a refusal (exit 2)."""
+    assert main(list(argv)) == 2
+    lines = capsys.readouterr().err.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("bearingfem: error: "), lines
+    return lines[0]
+
+
+@pytest.fixture
+def here(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    return tmp_path
+
+
+def test_every_bad_number_is_named_at_once(capsys):
+    """Old: only '--clearance' was named; the viscosity and the mesh waited for a rerun."""
+    line = refused(capsys, "solve", "--viscosity", "-1", "--clearance", "0", "--n-theta", "2")
+    for name in ("--viscosity", "--clearance", "--n-theta"):
+        assert name in line
+
+
+def test_negative_load_is_refused_not_flipped(capsys):
+    """Old: --load -100 pushed the journal up while the header said '-100 N at -90 deg'."""
+    assert "--load" in refused(capsys, "equilibrium", "--load", "-100")
+
+
+@pytest.mark.parametrize("argv, needle", [
+    (("equilibrium", "--load", "100", "--model", "fvm", "--element", "P2"), "--element"),
+    (("equilibrium", "--load", "100", "--model", "long", "--n-theta", "60"), "--n-theta"),
+    (("coefficients", "--eps", "0.5", "--model", "fem", "--ambient-pressure", "1e5"),
+     "--ambient-pressure"),
+])
+def test_options_a_model_does_not_take_are_refused(capsys, argv, needle):
+    """Old: --element P2 with --model fvm was silently ignored (a P1-free FV answer)."""
+    line = refused(capsys, *argv)
+    assert needle in line and "does not apply to --model" in line
+
+
+def test_model_help_lists_every_model_and_the_jfo_supply_exists():
+    """Old: fem-jfo worked but was not listed; the help named a missing --ambient-pressure."""
+    from bearingfem.models import FILM_MODELS
+    from bearingfem_app.cli import build_parser
+    p = build_parser()
+    sub = p._subparsers._group_actions[0].choices
+    for cmd in ("equilibrium", "coefficients"):
+        text = sub[cmd].format_help()
+        for name in FILM_MODELS:
+            assert name in text
+        assert "--ambient-pressure" in text
+    for cmd in ("solve", "render", "convergence", "equilibrium", "coefficients"):
+        helps = " ".join(a.help or "" for a in sub[cmd]._actions)
+        options = {o for a in sub[cmd]._actions for o in a.option_strings}
+        for named in re.findall(r"--[a-z-]+[a-z]", helps):
+            assert named in options, (cmd, named)
+
+
+def test_fraction_of_a_reynolds_film_is_refused_before_the_solve(capsys, here):
+    """Old: render --field fraction solved, then failed on the missing field."""
+    assert "--cavitation jfo" in refused(capsys, "render", "--field", "fraction", "-o",
+                                         "pics/film.png")
+    assert not (here / "pics").exists()
+
+
+@pytest.mark.parametrize("argv", [
+    ("sweep", str(ROOT / "sweeps" / "capacity.toml"), "-o", "out", "--workers", "0"),
+    ("sweep", str(ROOT / "sweeps" / "capacity.toml"), "-o", "out", "--scheduler",
+     "notanaddress"),
+    ("solve", "--eps", "2", "-o", "out/film.vtu"),
+    ("coefficients", "--eps", "0.5", "--load", "3", "-o", "out/kc.json"),
+])
+def test_refused_runs_leave_no_folder(capsys, here, argv):
+    """Old: each of these left an empty out/ behind."""
+    refused(capsys, *argv)
+    assert not (here / "out").exists()
+
+
+def test_a_sweep_with_one_bad_case_is_refused_whole(capsys, here):
+    """Old: the bad mesh (n_theta 2) was found by a worker, after the folder was made."""
+    (here / "bad.toml").write_text('name = "bad"\nkind = "film"\n[vary]\n'
+                                   'n_theta = [24, 2]\nmodel = ["fem"]\n')
+    assert "n_theta" in refused(capsys, "sweep", "bad.toml", "-o", "out")
+    assert not (here / "out").exists()
+
+
+def test_unreachable_scheduler_is_one_line_within_seconds(here):
+    """Old: 30 s of waiting, a 48-line chained traceback and an empty cases/ left behind."""
+    t0 = time.perf_counter()
+    r = subprocess.run([sys.executable, "-m", "bearingfem_app", "sweep", "capacity", "-o",
+                        "out", "--scheduler", "tcp://127.0.0.1:1"], capture_output=True,
+                       text=True, timeout=120, env={**os.environ, "PYTHONPATH": str(ROOT)})
+    wall = time.perf_counter() - t0
+    assert r.returncode == 2
+    assert r.stderr.strip().splitlines() == [
+        "bearingfem: error: --scheduler: no Dask scheduler answers at tcp://127.0.0.1:1 "
+        "within 5 s (OSError)"]
+    assert not (here / "out").exists()
+    assert wall < 25.0     # 5 s timeout + imports on a loaded machine (was 30 s + imports)
+
+
+def test_shipped_sweeps_are_found_by_name():
+    """Old: 'sweeps/capacity.toml' existed only in the checkout."""
+    from bearingfem_app.sweep import load_sweep, shipped_sweeps, sweep_path
+    assert {"capacity", "design-chart", "mechanism-clearance"} <= set(shipped_sweeps())
+    assert load_sweep("capacity").name == "capacity"
+    assert sweep_path("sweeps/capacity.toml").is_file()
+    assert "bearingfem_app" in sweep_path("capacity").parts
+
+
+def test_unwritable_fem_table_cache_is_one_line(capsys, monkeypatch, tmp_path):
+    """Old: the table was built (17 s) and its save failed silently."""
+    blocker = tmp_path / "file"
+    blocker.write_text("")
+    monkeypatch.setenv("BEARINGFEM_CACHE", str(blocker / "cache"))
+    assert "BEARINGFEM_CACHE" in refused(capsys, "equilibrium", "--load", "100", "--model",
+                                         "fem-table")
+
+
+def test_supply_at_the_maximum_film_gives_raimondi_boyd(capsys):
+    """R&B's film starts at the maximum film: L/D 1, eps 0.6 has attitude 50.6 deg (their
+    table); the periodic film gives 52.0 deg. Measured 50.53 deg at 120 x 20 and 50.53 at
+    240 x 40 (the table's 3 digits bound the gap). Fails without --supply-angle."""
+    assert main(["solve", "--ld", "1", "--eps", "0.6", "--supply-angle", "max-film"]) == 0
+    out = capsys.readouterr().out
+    attitude = float(re.search(r"attitude angle ([\d.]+) deg", out).group(1))
+    assert attitude == pytest.approx(50.6, abs=0.15)
+
+
+def test_broken_pipe_is_quiet(here):
+    """Old: '... | head' ended in a BrokenPipeError traceback."""
+    p = subprocess.Popen([sys.executable, "-m", "bearingfem_app", "solve", "--n-theta", "24",
+                          "--n-z", "4"], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                         env={**os.environ, "PYTHONPATH": str(ROOT)})
+    p.stdout.close()                    # the reader is gone before the first line
+    err = p.stderr.read().decode()
+    p.wait(timeout=120)
+    assert "Error" not in err and "Traceback" not in err
+    assert p.returncode == 141
+
+
+@pytest.fixture(scope="module")
+def analytic_run(tmp_path_factory):
+    out = tmp_path_factory.mktemp("run") / "long"
+    assert main(["simulate", "paper-long-analytic", "-o", str(out), "-q"]) == 0
+    return out
+
+
+def test_frames_refuse_the_fraction_of_a_reynolds_run(capsys, here, analytic_run):
+    """Old: 12 VTU files, then a 30-line TypeError."""
+    line = refused(capsys, "frames", "paper-long-analytic", str(analytic_run), "-o", "fr",
+                   "--field", "fraction")
+    assert "fem-jfo" in line
+    assert not (here / "fr").exists()
+
+
+@pytest.mark.parametrize("extra", [("--angles=-30,400",), ("--frames", "0")])
+def test_frames_bad_angles_are_refused(capsys, here, analytic_run, extra):
+    """Old: -30 and 400 were accepted (times out of order); --frames 0 left fr/ behind."""
+    refused(capsys, "frames", "paper-long-analytic", str(analytic_run), "-o", "fr", *extra)
+    assert not (here / "fr").exists()
+
+
+def test_frames_series_is_in_time_order(capsys, here, analytic_run):
+    """Old: the PVD listed the frames in the order typed (200 deg before 10 deg)."""
+    assert main(["frames", "paper-long-analytic", str(analytic_run), "-o", "fr",
+                 "--angles", "200,10", "--no-render"]) == 0
+    times = [float(d.get("timestep")) for d in ET.parse(here / "fr" / "film.pvd").iter("DataSet")]
+    assert len(times) == 2 and times == sorted(times)
+
+
+def test_ctrl_c_exits_130(here):
+    """Old: an interrupted simulate exited 1 (a failure), its figure's axis still said
+    'recorded turn'."""
+    p = subprocess.Popen([sys.executable, "-m", "bearingfem_app", "simulate",
+                          "paper-long-fem", "-o", "out"], stdout=subprocess.PIPE,
+                         stderr=subprocess.PIPE, env={**os.environ, "PYTHONPATH": str(ROOT)})
+    p.stderr.read(1)                      # the progress bar has started: the run is on
+    time.sleep(1.0)
+    p.send_signal(signal.SIGINT)
+    p.wait(timeout=120)
+    assert p.returncode == 130
+    assert "PARTIAL" in p.stdout.read().decode()
+
+
+def test_provenance_names_the_git_commit(analytic_run):
+    """Old: a run said which version made it but not which commit of a checkout."""
+    import json
+    prov = json.loads((analytic_run / "result.json").read_text())["provenance"]
+    assert re.fullmatch(r"[0-9a-f]{40}(-dirty)?", prov["git_commit"])
+    from mechanism.result import _git_commit
+    assert _git_commit(Path("/")) is None          # no checkout: the version says it
