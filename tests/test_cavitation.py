@@ -49,8 +49,7 @@ def test_colouring_is_proper(element):
 def test_reynolds_pressure_is_complementary(state):
     """The converged residual is the complementarity check (p >= 0 itself holds by the
     solver's clipping); Gumbel's film is the full film's pressure clipped at zero,
-    checked against a second solve without cavitation (fails if the Gumbel film were
-    anything else, e.g. clipped before the solve)."""
+    checked against a second solve without cavitation."""
     sol = solve_reynolds(table1_bearing(1.0), state, 60, 10, "P1", "reynolds")
     assert sol.residual < 1e-9
     g = solve_reynolds(table1_bearing(1.0), state, 60, 10, "P1", "gumbel")
