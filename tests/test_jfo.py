@@ -54,14 +54,14 @@ def test_squeeze_film_converges_at_first_order(squeeze_runs):
 
 def test_squeeze_film_mass_and_bounds(squeeze_runs):
     """Every step's global balance (inflow - outflow - change of content) holds to 1e-10
-    of the run's throughput; phi stays in [0, 1] (its least value h_min / h_max = 0.5);
-    no negative pressure."""
+    of the run's throughput (the discrete scheme conserves mass; the flows themselves are
+    checked against the pressure field in test_independent_jfo.py); the least phi is the
+    exact h_min / h_max = 0.5. (phi <= 1 and p >= 0 are not asserted: the solver clips
+    them.)"""
     for r in squeeze_runs:
         assert r.mass_balance < 1e-10
         # the content frozen at the smallest gap the steps see: h_min / h_max = 0.5
         assert 0.5 - 1e-12 <= r.fraction_range[0] < 0.5 + 1e-3
-        assert r.fraction_range[1] <= 1.0
-        assert r.pressure_min >= 0.0
 
 
 @pytest.fixture(scope="module")
@@ -87,15 +87,18 @@ def test_flooded_groove_at_max_film_equals_reynolds(seed):
 
 
 def test_steady_journal_mass_balance(seed):
-    """Steady: what the grooves feed leaves at the ends, to round-off (1e-10 relative)."""
+    """Steady: what the grooves feed leaves at the ends, to round-off (1e-10 relative):
+    the discrete scheme conserves mass. Both flows come from the same solve's nodal
+    residual, so this does not check their size: test_independent_jfo.py checks the flows
+    against the Poiseuille flow through the ends integrated from the pressure field, and
+    the fraction against the exact cavity law (the phi and p bounds once asserted here
+    hold by clipping)."""
     s = JournalState(eps=0.7, omega=300.0, gamma=0.4)
     g = [Groove(angle=0.3, width=0.3, pressure=2e4), Groove(angle=3.5, width=0.2)]
     sol = solve_reynolds(seed, s, 96, 16, cavitation="jfo", grooves=g)
     assert sol.converged and sol.flow_in > 0
     assert abs(sol.mass_balance) < 1e-10 * sol.flow_in
-    assert sol.flow_in == pytest.approx(sol.side_leakage, rel=1e-10)
-    assert sol.fraction.min() >= 0.0 and sol.fraction.max() <= 1.0
-    assert 0.0 < sol.cavitated_fraction < 1.0 and sol.pressure.min() >= 0.0
+    assert 0.0 < sol.cavitated_fraction < 1.0
 
 
 def test_jfo_differs_from_reynolds_where_reformation_matters(seed):
@@ -130,12 +133,12 @@ def test_jfo_differs_from_reynolds_where_reformation_matters(seed):
 ])
 def test_hard_cases_no_nan(seed, state, grooves, ambient):
     """Near contact, zero eccentricity, pure squeeze, no motion, a fully starved groove:
-    finite fields, p >= 0, phi in [0, 1], the balance to round-off."""
+    finite fields and the balance to round-off (p >= 0 and phi in [0, 1] hold by the
+    solver's clipping, so they are not asserted)."""
     sol = solve_reynolds(seed, state, 48, 8, cavitation="jfo", grooves=grooves,
                          ambient_pressure=ambient)
     assert np.all(np.isfinite(sol.pressure)) and np.all(np.isfinite(sol.force_local))
-    assert sol.pressure.min() >= 0.0
-    assert sol.fraction.min() >= 0.0 and sol.fraction.max() <= 1.0
+    assert np.all(np.isfinite(sol.fraction))
     # scale: the flow the journal's motion drags or squeezes through the film
     couette = (abs(state.omega) + abs(state.eps_dot)) * seed.radius * seed.clearance \
         * seed.length
@@ -203,7 +206,6 @@ def test_fe_and_fv_jfo_converge_together(seed):
         diffs.append(np.linalg.norm(np.subtract(fe.force_local, fv.force_local))
                      / np.linalg.norm(fe.force_local))
         assert abs(fv.mass_balance) < 1e-10 * fv.flow_in
-        assert fv.fraction.min() >= 0.0 and fv.fraction.max() <= 1.0
     assert diffs[2] < 0.006
     assert np.all(np.array(diffs[:-1]) / diffs[1:] > 3.0), diffs
 

@@ -100,7 +100,6 @@ def test_film_history_replays_a_film_with_memory(tmp_path):
         row = r.film_record[r.film_record[:, 0] == f.t][0]
         assert f.solution.force == pytest.approx(tuple(row[1:3]), rel=1e-12, abs=1e-9)
         assert min(abs(f.crank_angle_deg - a) for a in (10, 20, 30)) < 1.0
-        assert np.all((f.solution.fraction >= 0.0) & (f.solution.fraction <= 1.0))
     assert min(f.solution.fraction.min() for f in frames) < 0.99    # a cavity to show
     with pytest.raises(ValueError, match="departs from the run's record"):
         film_history(r, scene(turns=0.1, ambient_pressure=2e5), [20])
