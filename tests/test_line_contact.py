@@ -1,0 +1,171 @@
+"""EHL line contact: half-space, dry (Hertz) limit, rigid isoviscous limit, EHL film fits.
+
+Every tolerance below comes from the convergence numbers quoted beside it (measured on
+this code; the table is in docs/ehl.md).
+"""
+import math
+
+import numpy as np
+import pytest
+import scipy.integrate
+import scipy.optimize
+
+from bearingfem import Lubricant, line_contact
+from bearingfem.ehl._errors import ConvergenceError
+from bearingfem.ehl.fits import (dowson_higginson, hertz_line, pan_hamrock,
+                                 rigid_isoviscous_load, rigid_isoviscous_pressure)
+from bearingfem.ehl.halfspace import LineCompliance, dry_line_contact, hertz_deflection
+from bearingfem.ehl.line import DimensionlessLine, solve_dimensionless
+
+STEEL = dict(radius=0.02, reduced_modulus=2.26e11)
+OIL = Lubricant(viscosity=0.0117, barus=2e-8, density="dowson-higginson")
+
+
+# -- half-space -----------------------------------------------------------------------
+def test_fft_deflection_equals_dense_and_converges_to_hertz():
+    """V of Hertz's pressure against the exact (1 + 2 ln 2)/4 - X^2/2 on |X| <= 1.
+
+    Max errors 3.75e-3, 1.57e-3, 6.45e-4, 2.59e-4 on 61..481 nodes (order 1.3 -> 1.5,
+    the sqrt edge of the pressure); the FFT product equals the dense one to 1e-15.
+    Fails with the kernel's 1/pi dropped, or with the FFT's circulant wrapped wrong.
+    """
+    errors = []
+    for n in (61, 121, 241, 481):
+        X = np.linspace(-1.5, 1.5, n)
+        P = np.sqrt(np.clip(1 - X**2, 0, None))
+        c = LineCompliance(n, X[1] - X[0])
+        V = c.deflection(P)
+        np.testing.assert_allclose(V, c.matrix() @ P, rtol=0, atol=1e-13)
+        inside = np.abs(X) <= 1
+        errors.append(np.abs(V[inside] - hertz_deflection(X[inside])).max())
+    ratios = np.array(errors[:-1]) / np.array(errors[1:])
+    assert np.all(ratios > 2.2), errors
+    assert errors[-1] < 3e-4
+
+
+def test_dry_contact_tends_to_hertz():
+    """The elastic contact alone (load pi/2) against P = sqrt(1 - X^2), H0 = -(1+2ln2)/4.
+
+    Measured: max-norm 0.0527, 0.0373, 0.0264, 0.0186 on 61..481 nodes (order 1/2, set by
+    the sqrt edge); inside |X| < 0.9: 1.2e-3, 3.2e-4, 7.2e-5, 1.7e-5 (order 2); approach
+    2.2e-5 ... 3.7e-7 (order 2). Fails with the kernel's sign flipped (no contact set).
+    """
+    exact_approach = -(1 + 2 * math.log(2)) / 4
+    e_max, e_in, e_h0 = [], [], []
+    for n in (61, 121, 241, 481):
+        d = dry_line_contact(n)
+        exact = np.sqrt(np.clip(1 - d.x**2, 0, None))
+        e_max.append(np.abs(d.pressure - exact).max())
+        e_in.append(np.abs(d.pressure - exact)[np.abs(d.x) < 0.9].max())
+        e_h0.append(abs(d.approach - exact_approach))
+        assert np.all(d.pressure >= 0) and np.all(d.gap >= -1e-12)
+    for errs, ratio in ((e_max, 1.3), (e_in, 3.5), (e_h0, 3.5)):
+        assert np.all(np.array(errs[:-1]) / np.array(errs[1:]) > ratio), errs
+    assert e_max[-1] < 0.02 and e_in[-1] < 2e-5 and e_h0[-1] < 4e-7
+
+
+# -- rigid isoviscous limit -------------------------------------------------------------
+def test_martin_load_closed_form():
+    """3/(1 + c^2) = 2.44748 with the exit c = 0.475130; the classical 2.4493 within 0.1 %;
+    the closed-form load and pressure against plain quadrature of the Reynolds equation
+    (fails with the by-parts sign flipped)."""
+    assert rigid_isoviscous_load(-1e9) == pytest.approx(2.447484, abs=2e-6)
+    assert rigid_isoviscous_load(-1e9) == pytest.approx(2.4493, rel=1e-3)
+    inlet = -6.0
+    p, c = rigid_isoviscous_pressure(np.array([0.0]), inlet)
+
+    def g(s):
+        return (s**2 - c**2) / (1 + s**2) ** 3
+    assert p[0] == pytest.approx(scipy.integrate.quad(g, inlet, 0.0, epsabs=1e-14)[0], rel=1e-10)
+    load = scipy.integrate.quad(
+        lambda x: scipy.integrate.quad(g, inlet, x, epsabs=1e-14)[0], inlet, c, epsabs=1e-13)[0]
+    assert rigid_isoviscous_load(inlet) == pytest.approx(12 * load, rel=1e-8)
+
+
+def test_rigid_isoviscous_limit_converges():
+    """E' -> inf, alpha = 0: the film approach h0 against the exact rigid film with the same
+    inlet (solved from rigid_isoviscous_load). Measured relative errors of h(0):
+    -2.7e-2, -8.5e-3, -2.4e-3, -4.8e-4 on 100..800 nodes (order 1.7 -> 2.3).
+    Fails with the wedge term's upwind weights swapped for central ones or with lambda's
+    12 written 6 (error 30 %)."""
+    oil = Lubricant(0.0117)
+    R, u, w = 0.02, 1.0, 1e4
+    errors = []
+    for n in (100, 200, 400):
+        r = line_contact(radius=R, reduced_modulus=1e19, lubricant=oil, mean_speed=u,
+                         load_per_length=w, nodes=n)
+        x_in = r.x[0]
+        h0 = scipy.optimize.brentq(
+            lambda h: w * h / (2 * 0.0117 * u * R) - rigid_isoviscous_load(x_in / math.sqrt(2 * R * h)),
+            1e-9, 1e-5, xtol=1e-22)
+        errors.append(abs(r.film_central / h0 - 1))
+        assert np.all(np.isfinite(r.pressure)) and r.pressure.min() >= 0
+    assert errors[0] / errors[1] > 2.5 and errors[1] / errors[2] > 3.0, errors
+    assert errors[-1] < 4e-3
+
+
+# -- EHL: fits --------------------------------------------------------------------------
+CASES = [  # (mu0, alpha, u_m, w): Moes M from 10 to 97, L from 6.3 to 11
+    (0.0117, 2e-8, 1.0, 1e5), (0.0117, 2e-8, 1.0, 1e6),
+    (0.04, 2e-8, 2.0, 3e5), (0.04, 1.5e-8, 5.0, 1e6)]
+
+
+@pytest.mark.parametrize("mu0, alpha, u, w", CASES)
+def test_films_against_published_fits(mu0, alpha, u, w):
+    """Barus + Dowson-Higginson oil, 500 nodes (within 1 % of 4000 nodes, docs/ehl.md).
+
+    Minimum film against Dowson & Higginson's h_min = 2.65 R U^0.7 G^0.54 W^-0.13: measured
+    0.98-1.02 over these cases; central film against Pan & Hamrock (1989): 1.06-1.12 (their
+    fit is to Roelands-oil solutions; the inlet sets the film, where Roelands and Barus
+    agree, so a few percent apart). Fails with the density left out of the wedge term
+    (central film +15 %) or alpha halved (films -30 %).
+    """
+    oil = Lubricant(mu0, barus=alpha, density="dowson-higginson")
+    r = line_contact(**STEEL, lubricant=oil, mean_speed=u, load_per_length=w, nodes=500)
+    fit = pan_hamrock(0.02, 2.26e11, mu0, u, w, alpha)
+    dh = dowson_higginson(0.02, 2.26e11, mu0, u, w, alpha)
+    assert r.film_min / dh == pytest.approx(1.0, abs=0.04)
+    assert 1.0 < r.film_central / fit.central < 1.16
+    assert r.film_min < r.film_central
+    assert r.pressure.min() >= 0 and np.all(np.isfinite(r.film))
+    # load balance closes: int p dx = w
+    assert np.sum(r.pressure) * (r.x[1] - r.x[0]) == pytest.approx(w, rel=1e-8)
+    # near Hertz: peak pressure close to p_h, contact width close to 2b
+    assert r.pressure_max == pytest.approx(r.hertz_pressure, rel=0.1)
+    hz = hertz_line(0.02, 2.26e11, w)
+    assert r.hertz_half_width == pytest.approx(hz.half_width)
+
+
+def test_heavier_load_thins_film_slightly_and_raises_pressure():
+    """h ~ w^-0.13: doubling the load thins h_min by about 9 %, not 50 % (a rigid film would
+    halve). Fails if the elastic deflection is dropped (film halves)."""
+    a = line_contact(**STEEL, lubricant=OIL, mean_speed=1.0, load_per_length=5e5, nodes=400)
+    b = line_contact(**STEEL, lubricant=OIL, mean_speed=1.0, load_per_length=1e6, nodes=400)
+    assert 0.8 < b.film_min / a.film_min < 0.97
+    assert b.pressure_max > a.pressure_max
+
+
+# -- hard cases -------------------------------------------------------------------------
+@pytest.mark.parametrize("kwargs, name", [
+    (dict(radius=0.0), "radius"), (dict(radius=float("nan")), "radius"),
+    (dict(reduced_modulus=-1.0), "reduced_modulus"), (dict(mean_speed=0.0), "mean_speed"),
+    (dict(mean_speed=float("inf")), "mean_speed"), (dict(load_per_length=-5.0), "load_per_length"),
+    (dict(lubricant=0.0117), "lubricant"), (dict(nodes=10), "nodes"), (dict(nodes=500.0), "nodes"),
+    (dict(nodes=10**5), "nodes"), (dict(inlet=0.5), "inlet"), (dict(outlet=0.2), "outlet"),
+])
+def test_bad_input_names_the_parameter(kwargs, name):
+    args = dict(**STEEL, lubricant=OIL, mean_speed=1.0, load_per_length=5e5)
+    args.update(kwargs)
+    with pytest.raises(ValueError, match=name):
+        line_contact(**args)
+
+
+def test_unconverged_newton_raises():
+    """One Newton iteration cannot converge: ConvergenceError, never a result."""
+    X = np.linspace(-4.5, 1.5, 200)
+    prob = DimensionlessLine(X, 0.01, lambda P: (np.exp(10 * P), 10 * np.exp(10 * P)),
+                             lambda P: (np.ones_like(P), np.zeros_like(P)))
+    P0 = np.sqrt(np.clip(1 - X**2, 0, None))
+    with pytest.raises(ConvergenceError, match="Newton"):
+        solve_dimensionless(prob, P0, 0.1, max_iter=1)
+    assert issubclass(ConvergenceError, RuntimeError)
