@@ -203,7 +203,7 @@ def solve_dimensionless(prob: DimensionlessLine, P0: np.ndarray, H0: float, *,
         t = 1.0
         while t > 1e-4:
             P_try = P.copy()
-            P_try[inner] += t * step[:-1]
+            P_try[inner] = np.maximum(P[inner] + t * step[:-1], 0.0)   # projected: P >= 0
             H0_try = H0 + t * step[-1]
             with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
                 trial = S.merit(P_try, H0_try)
