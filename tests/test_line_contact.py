@@ -170,3 +170,25 @@ def test_unconverged_newton_raises():
     with pytest.raises(ConvergenceError, match="Newton"):
         solve_dimensionless(prob, P0, 0.1, max_iter=1)
     assert issubclass(ConvergenceError, RuntimeError)
+
+
+# -- docs and benchmark ----------------------------------------------------------------
+def test_docs_page_snippets_run(monkeypatch):
+    """docs/ehl.md's python blocks run as written (fails when the page drifts from the API)."""
+    import re
+    from pathlib import Path
+    root = Path(__file__).resolve().parent.parent
+    snippets = re.findall(r"```python\n(.*?)```", (root / "docs" / "ehl.md").read_text(), re.S)
+    assert snippets
+    monkeypatch.chdir(root)
+    for code in snippets:
+        exec(compile(code, "docs/ehl.md", "exec"), {"__name__": "docs"})
+
+
+def test_benchmark_smoke(capsys):
+    """benchmarks/ehl.py runs; its rows converge with the mesh (times printed, not asserted)."""
+    from benchmarks import ehl
+    rows = ehl.main(["--quick"])
+    assert [r["nodes"] for r in rows] == [250, 500]
+    assert rows[1]["h_c"] == pytest.approx(rows[0]["h_c"], rel=0.02)
+    assert "dense/FFT" in capsys.readouterr().out
