@@ -137,6 +137,27 @@ def test_films_against_published_fits(mu0, alpha, u, w):
     assert r.hertz_half_width == pytest.approx(hz.half_width)
 
 
+ROELANDS_CASES = [  # (mu0, Z, u_m, w): M = 9.4 ... 97, L = 5.4 ... 9.2
+    (0.0117, 0.6, 1.0, 1e5), (0.0117, 0.6, 1.0, 1e6), (0.0117, 0.6, 5.0, 2e6),
+    (0.1, 0.5, 0.5, 2e5)]
+
+
+@pytest.mark.parametrize("mu0, z, u, w", ROELANDS_CASES)
+def test_roelands_films_against_pan_hamrock(mu0, z, u, w):
+    """Roelands + Dowson-Higginson oil, the oil Pan & Hamrock (1989) fitted, G = alpha* E'.
+
+    Measured at 1000 nodes: h_c / fit 1.019, 1.005, 1.051, 1.035 and h_min / fit 1.029,
+    0.997, 1.020, 1.020; the mesh error is <= 1.2 % (docs/ehl.md), the rest is the fit's.
+    (At L = 11 ... 16 the fit is 4-16 % below: outside this test, reported in the docs.)
+    Fails with Roelands' 5.1e-9 written 5.1e-8 or with the wedge's density dropped.
+    """
+    oil = Lubricant(mu0, roelands=z, density="dowson-higginson")
+    r = line_contact(**STEEL, lubricant=oil, mean_speed=u, load_per_length=w, nodes=1000)
+    fit = pan_hamrock(0.02, 2.26e11, mu0, u, w, oil.pressure_viscosity)
+    assert r.film_central / fit.central == pytest.approx(1.0, abs=0.06)
+    assert r.film_min / fit.minimum == pytest.approx(1.0, abs=0.04)
+
+
 def test_heavier_load_thins_film_slightly_and_raises_pressure():
     """h ~ w^-0.13: doubling the load thins h_min by about 9 %, not 50 % (a rigid film would
     halve). Fails if the elastic deflection is dropped (film halves)."""
