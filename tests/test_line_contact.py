@@ -213,3 +213,40 @@ def test_benchmark_smoke(capsys):
     assert [r["nodes"] for r in rows] == [250, 500]
     assert rows[1]["h_c"] == pytest.approx(rows[0]["h_c"], rel=0.02)
     assert "dense/FFT" in capsys.readouterr().out
+
+
+@pytest.mark.slow
+def test_default_nodes_within_one_percent_of_the_mesh_limit():
+    """At M = 97 (the heaviest case above) the default grid's films are within 1 % of the
+    Richardson limit of 2000 and 4000 nodes (second order: differences fall 4x a doubling).
+    Fails if DEFAULT_NODES drops to 500 (4.7 % off)."""
+    args = dict(**STEEL, lubricant=OIL, mean_speed=1.0, load_per_length=1e6)
+    r = line_contact(**args)
+    fine, finer = (line_contact(**args, nodes=n) for n in (2000, 4000))
+    for name in ("film_central", "film_min"):
+        limit = getattr(finer, name) + (getattr(finer, name) - getattr(fine, name)) / 3
+        assert getattr(r, name) == pytest.approx(limit, rel=0.01)
+
+
+def test_load_continuation_reaches_the_cold_start_answer(monkeypatch):
+    """A cold start that fails (forced here) is rescued by ramping the load up from 1/4:
+    same films to the Newton tolerance. Fails if the load fraction is not carried into the
+    load balance or the ramp stops short (the film of a lighter contact comes back)."""
+    from bearingfem.ehl import contact
+    args = dict(**STEEL, lubricant=OIL, mean_speed=1.0, load_per_length=5e5, nodes=300)
+    cold = line_contact(**args)
+    real = contact.solve_dimensionless
+    calls = []
+
+    def fail_first(*a, **k):
+        calls.append(k.get("load", 1.0))
+        if len(calls) == 1:
+            raise ConvergenceError("forced")
+        return real(*a, **k)
+
+    monkeypatch.setattr(contact, "solve_dimensionless", fail_first)
+    ramped = line_contact(**args)
+    assert ramped.continuation_steps > 1 and calls[1] < 1.0 and calls[-1] == 1.0
+    assert ramped.film_central == pytest.approx(cold.film_central, rel=1e-7)
+    assert ramped.film_min == pytest.approx(cold.film_min, rel=1e-7)
+    np.testing.assert_allclose(ramped.pressure, cold.pressure, rtol=0, atol=1e-6 * cold.pressure_max)

@@ -171,8 +171,9 @@ def _solve_with_continuation(prob, H_guess, tol):
         failure = cold
     # continuation in load: in the target's Hertz units a load fraction f only changes the
     # load balance (dX sum P = f pi/2), so each converged state starts the next
-    f, ratio, steps, iterations = 1.0 / 16, 2.0, 0, 0
-    P, H0 = _start(prob, f, H_guess / f)
+    # (the film thickens as w^-0.13 in EHL, as 1/w when rigid: the first guess takes 1/sqrt)
+    f, ratio, steps, iterations = 0.25, 2.0, 0, 0
+    P, H0 = _start(prob, f, H_guess / math.sqrt(f))
     converged_f = None
     while True:
         try:
@@ -183,7 +184,7 @@ def _solve_with_continuation(prob, H_guess, tol):
                 f /= 4
                 if f < 1e-4:
                     break
-                P, H0 = _start(prob, f, H_guess / f)
+                P, H0 = _start(prob, f, H_guess / math.sqrt(f))
                 continue
             ratio = math.sqrt(ratio)
             if ratio < 1.02:
