@@ -250,3 +250,15 @@ def test_load_continuation_reaches_the_cold_start_answer(monkeypatch):
     assert ramped.film_central == pytest.approx(cold.film_central, rel=1e-7)
     assert ramped.film_min == pytest.approx(cold.film_min, rel=1e-7)
     np.testing.assert_allclose(ramped.pressure, cold.pressure, rtol=0, atol=1e-6 * cold.pressure_max)
+
+
+def test_extremes_converge_or_raise_never_nan():
+    """M = 0.1 (nearly rigid: the inlet stretches to 25 rigid lengths) converges to a finite
+    film close to the rigid one; M = 870 at 600 nodes is beyond this Newton solver and
+    raises ConvergenceError rather than returning a film."""
+    light = line_contact(**STEEL, lubricant=OIL, mean_speed=1.0, load_per_length=1e3, nodes=600)
+    assert np.all(np.isfinite(light.pressure)) and np.all(np.isfinite(light.film))
+    rigid = 2 * 2.44748 * 0.0117 * 1.0 * 0.02 / 1e3       # Martin's film, far inlet
+    assert light.film_central == pytest.approx(rigid, rel=0.05)
+    with pytest.raises(ConvergenceError, match="load continuation"):
+        line_contact(**STEEL, lubricant=OIL, mean_speed=0.05, load_per_length=2e6, nodes=600)
