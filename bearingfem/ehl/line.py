@@ -20,11 +20,13 @@ film is stiff. All unknowns (P at the inner nodes, H0) are solved at once by a d
 semismooth Newton method on min(P_i, s_i r_i) = 0 (s_i > 0 a row scale) with the dense
 Jacobian (the elastic block is the full influence matrix), as Houpert & Hamrock
 (J. Tribol. 108, 1986, 411-420) did; the residual itself is evaluated with the FFT
-deflection. A cold start from Hertz's pressure that fails is retried by continuation in
-load from a lighter one.
+deflection. Steps are projected on P >= 0 and damped by backtracking on |phi|_2; the
+linear system is equilibrated by rows and columns. Starting guesses, mesh sequencing and
+load continuation are in :mod:`bearingfem.ehl.contact`.
 """
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
@@ -197,7 +199,9 @@ def solve_dimensionless(prob: DimensionlessLine, P0: np.ndarray, H0: float, *,
             J *= row[:, None]
             col = 1.0 / np.maximum(np.abs(J).max(axis=0), np.finfo(float).tiny)
             J *= col[None, :]
-            step = -col * scipy.linalg.solve(J, row * phi, check_finite=False)
+            with warnings.catch_warnings():   # a poor step is caught by the line search
+                warnings.simplefilter("ignore", scipy.linalg.LinAlgWarning)
+                step = -col * scipy.linalg.solve(J, row * phi, check_finite=False)
         except (scipy.linalg.LinAlgError, ValueError):
             break
         t = 1.0
