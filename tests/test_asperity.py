@@ -104,8 +104,8 @@ def test_force_of_rigid_journal_matches_adaptive_quadrature():
     quadrature points against an adaptive quad of K E* F_5/2(h(theta)/sigma) (cos, sin)
     theta R L (h does not vary along z, so the z integral is L). Convergence with n_theta
     (P1, n_z = 10): rel. error 1.7e-6 at 60, 2.5e-13 at 120, 3e-16 at 240 (spectral, the
-    integrand is smooth and periodic); hence 1e-10 at 120. Fails with cos/sin swapped, with
-    the force's sign flipped, or with the gap taken as c (1 - eps cos theta)."""
+    integrand is smooth and periodic); hence 1e-10 at 120. Fails with cos/sin swapped or
+    the force's sign flipped in surface_force_local."""
     b, s = seed_bearing(0.5), JournalState(0.99, 0.0, 0.7, 0.0, 250.0)
     R, L, c = b.radius, b.length, b.clearance
     KE = ROUGH.factor * ROUGH.contact_modulus
