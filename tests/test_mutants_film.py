@@ -5,7 +5,8 @@ import pytest
 from scipy.integrate import quad
 
 from bearingfem.film import (cubed_thickness_coefficients, film_thickness,
-                             film_thickness_integral, inertial_from_theta, theta_from_inertial)
+                             film_thickness_integral, inertial_from_theta, local_to_inertial,
+                             theta_from_inertial)
 
 ANGLES = [(-2.0, 0.3), (0.1, 2.9), (1.7, 4.4), (5.0, 6.2)]
 
@@ -57,3 +58,14 @@ def test_cubed_thickness_derivative_coefficients(eps):
     a = cubed_thickness_coefficients(eps)
     assert sum(a[k] * np.cos(theta) ** k for k in range(4)) == pytest.approx(
         film_thickness(theta, eps) ** 3, rel=1e-13)
+
+
+def test_local_to_inertial_is_a_rotation_by_gamma():
+    """F_x + i F_y = (F_r + i F_t) exp(i gamma) (the contract's r_hat, t_hat written as one
+    complex rotation). Fails with either sign in the rotation flipped or a term dropped
+    (film.py:77)."""
+    f_r, f_t = np.array([-3.0, 2.0, 0.5]), np.array([1.5, -4.0, 2.5])
+    gamma = np.array([0.4, 2.5, -1.2])
+    ref = (f_r + 1j * f_t) * np.exp(1j * gamma)
+    fx, fy = local_to_inertial(f_r, f_t, gamma)
+    assert fx == pytest.approx(ref.real, rel=1e-13) and fy == pytest.approx(ref.imag, rel=1e-13)
