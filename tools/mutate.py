@@ -73,6 +73,7 @@ class Outcome:
     description: str
     status: str          # "killed", "survived", "timeout"
     seconds: float
+    col: int = 0         # column of the mutated node (several on one line)
 
 
 def _docstring_ids(tree) -> set:
@@ -237,10 +238,11 @@ def mutate_module(tree_dir: Path, module: str, test_args: str, timeout: float,
         for n, (index, m) in enumerate(sites, 1):
             path.write_text(mutated_source(original, index, m.kind))
             status, secs = run_tests(tree_dir, test_args, timeout)
-            outcomes.append(Outcome(module, m.line, m.description, status, round(secs, 1)))
+            outcomes.append(Outcome(module, m.line, m.description, status, round(secs, 1),
+                                    m.col))
             if record is not None:
                 record(outcomes[-1])
-            log(f"  [{n}/{len(sites)}] {module}:{m.line} {m.description}: {status} "
+            log(f"  [{n}/{len(sites)}] {module}:{m.line}:{m.col} {m.description}: {status} "
                 f"({secs:.1f} s)")
     finally:
         path.write_text(original)
@@ -258,7 +260,7 @@ def summary(outcomes: list[Outcome]) -> str:
         lines.append(f"| {module} | {len(mine)} | {k} | {s} | {t} | "
                      f"{100 * (k + t) / max(len(mine), 1):.0f} % |")
     lines.append("")
-    lines += [f"- {o.module}:{o.line} {o.description}" for o in outcomes
+    lines += [f"- {o.module}:{o.line}:{o.col} {o.description}" for o in outcomes
               if o.status == "survived"]
     return "\n".join(lines)
 
