@@ -101,10 +101,15 @@ def test_switch_speed_scales_the_squeeze_part_by_tanh():
 
 def test_exact_force_at_rest_and_on_the_sine_axis():
     """No wedge and no squeeze: no force. A pure wedge with A = 6 w eps = 1 exactly (no
-    squeeze, B = 0): Eq. 9 holds. Fails with the rest state returning 1 N, or with the
-    'A == 0' test written 'A == 1' (short_bearing.py:106-107)."""
+    squeeze, B = 0): Eq. 9 holds; a pure squeeze with B = -12 eps_dot = 1 (A = 0): the
+    positive-part quadrature. Fails with the rest state returning 1 N, or with either
+    test 'A == 0', 'B == 0' written '== 1' (short_bearing.py:106-107)."""
     b = seed_bearing(0.5)
     assert short_bearing_exact_force(b, JournalState(0.4, 0.0, 0.0, 0.0, 0.0)) == (0.0, 0.0)
     s = JournalState(0.5, 0.0, 0.0, 0.0, 1.0 / 3.0)          # 6 w eps = 1
     ref = short_bearing_force(b, s)
     assert short_bearing_exact_force(b, s) == pytest.approx(ref, rel=1e-10)
+    s = JournalState(0.5, -1.0 / 12.0, 0.0, 0.0, 0.0)      # -12 eps_dot = 1
+    ref = _short_gumbel_by_quad(b, s)
+    assert short_bearing_exact_force(b, s) == pytest.approx(ref, rel=1e-8,
+                                                            abs=1e-8 * np.abs(ref).max())

@@ -41,8 +41,10 @@ os.environ.pop("PYTHONPATH", None)
 
 #: module -> pytest arguments: tests that exercise the module and run in well under a minute
 TESTS = {
-    "bearingfem/film.py": "tests/test_closed_form.py tests/test_fe_vs_fvm.py",
-    "bearingfem/closed/short_bearing.py": "tests/test_closed_form.py",
+    "bearingfem/film.py":
+        "tests/test_closed_form.py tests/test_fe_vs_fvm.py tests/test_mutants_film.py",
+    "bearingfem/closed/short_bearing.py":
+        "tests/test_closed_form.py tests/test_mutants_short_bearing.py",
     "bearingfem/closed/long_bearing.py": "tests/test_closed_form.py",
     "bearingfem/closed/squeeze_film.py": "tests/test_jfo.py -k squeeze",
     "bearingfem/design/stability.py":
