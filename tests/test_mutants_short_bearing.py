@@ -55,11 +55,14 @@ def test_derivatives_against_central_differences(state):
 def _short_gumbel_by_quad(b, s):
     """(F_r, F_t) integrating max(p, 0) of the short-bearing pressure over theta (adaptive
     quad, the positive region found by quad itself) and z (2 L / 3 from the parabola)."""
-    def comp(trig):
+    def comp(trig, epsabs=0.0):
         g = lambda th: max(short_bearing_pressure(b, s, th, 0.0), 0.0) * trig(th)   # noqa
-        v, _ = quad(g, 0.0, 2 * math.pi, limit=500, epsabs=0.0, epsrel=1e-11)
-        return v * b.radius * (2.0 / 3.0) * b.length
-    return comp(math.cos), comp(math.sin)
+        v, _ = quad(g, 0.0, 2 * math.pi, limit=500, epsabs=epsabs, epsrel=1e-11)
+        return v
+
+    scale = comp(lambda th: 1.0)      # the load's magnitude: a component may be 0
+    k = b.radius * (2.0 / 3.0) * b.length
+    return k * comp(math.cos, 1e-12 * scale), k * comp(math.sin, 1e-12 * scale)
 
 
 @pytest.mark.parametrize("state", [JournalState(0.5, 40.0, 0.0, 0.0, 250.0),
