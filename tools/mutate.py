@@ -45,7 +45,8 @@ TESTS = {
         "tests/test_closed_form.py tests/test_fe_vs_fvm.py tests/test_mutants_film.py",
     "bearingfem/closed/short_bearing.py":
         "tests/test_closed_form.py tests/test_mutants_short_bearing.py",
-    "bearingfem/closed/long_bearing.py": "tests/test_closed_form.py",
+    "bearingfem/closed/long_bearing.py":
+        "tests/test_closed_form.py tests/test_mutants_long_bearing.py",
     "bearingfem/closed/squeeze_film.py": "tests/test_jfo.py -k squeeze",
     "bearingfem/design/stability.py":
         "tests/test_design.py -k 'lund or threshold or friswell or orbit'",
