@@ -48,12 +48,15 @@ def test_closed_form_is_seed_eq_11_13(state):
 
 @pytest.mark.parametrize("state", [JournalState(0.5, 60.0, 0.0, 0.0, 250.0),
                                    JournalState(0.7, -80.0, 0.0, 0.0, 100.0),
-                                   JournalState(0.4, 30.0, 0.0, 0.0, 0.0)])
+                                   JournalState(0.4, 30.0, 0.0, 0.0, 0.0),
+                                   JournalState(0.5, 0.0, 0.0, 0.0, 1.0),
+                                   JournalState(0.5, 1.0, 0.0, 0.0, 0.0)])
 def test_exact_force_is_the_positive_part_integral(state):
     """long_bearing_exact_force against adaptive quadrature of max(p, 0) of the corrected
     Eq. 10 times (cos, sin) theta R L. Squeeze moves the positive region away from
-    theta = 0. Fails if the sign changes were searched on [0, 2/pi] only
-    (long_bearing.py:93)."""
+    theta = 0; w = 1 rad/s and eps_dot = 1 1/s alone are ordinary states. Fails if the
+    sign changes were searched on [0, 2/pi] only, or with the rest-state test
+    'eps_dot == 0 and w == 0' written with 1 for either 0 (long_bearing.py:88, 93)."""
     b = seed_bearing(2.0)
 
     def comp(trig, epsabs=0.0):
@@ -66,3 +69,9 @@ def test_exact_force_is_the_positive_part_integral(state):
     ref *= b.radius * b.length
     assert long_bearing_exact_force(b, state) == pytest.approx(
         tuple(ref), rel=1e-8, abs=1e-9 * np.abs(ref).max())
+
+
+def test_exact_force_at_rest_is_zero():
+    """Fails with the rest state's early return giving 1 N (long_bearing.py:89)."""
+    assert long_bearing_exact_force(seed_bearing(2.0),
+                                    JournalState(0.5, 0.0, 0.0, 0.0, 0.0)) == (0.0, 0.0)
