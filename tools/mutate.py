@@ -225,7 +225,8 @@ def run_tests(tree_dir: Path, test_args: str, timeout: float) -> tuple[str, floa
 
 
 def mutate_module(tree_dir: Path, module: str, test_args: str, timeout: float,
-                  only_lines=None, every: int = 1, log=print, record=None) -> list[Outcome]:
+                  only_lines=None, every: int = 1, log=print, record=None,
+                  only=None) -> list[Outcome]:
     path = tree_dir / module
     original = path.read_text()
     status, base = run_tests(tree_dir, test_args, timeout)
@@ -235,6 +236,8 @@ def mutate_module(tree_dir: Path, module: str, test_args: str, timeout: float,
     sites = _sites(ast.parse(original))
     if only_lines:
         sites = [(i, m) for i, m in sites if m.line in only_lines]
+    if only is not None:       # (line, description) pairs, e.g. a previous run's survivors
+        sites = [(i, m) for i, m in sites if (m.line, m.description) in only]
     sites = sites[::every]     # an evenly spread sample when time is short
     outcomes = []
     try:
@@ -275,6 +278,8 @@ def main(argv=None):
     ap.add_argument("--timeout", type=float, default=180.0, help="per mutant [s]")
     ap.add_argument("--lines", help="only mutate these lines, e.g. 12,40-55")
     ap.add_argument("--every", type=int, default=1, help="mutate every k-th site only")
+    ap.add_argument("--survivors", help="only the mutants that survived in this JSONL file "
+                    "(a previous --jsonl): check that new tests kill them")
     ap.add_argument("--jsonl", help="append every outcome, as it comes, to this file")
     args = ap.parse_args(argv)
     only = None
@@ -297,9 +302,14 @@ def main(argv=None):
             test_args = args.tests or TESTS.get(module)
             if test_args is None:
                 raise SystemExit(f"no tests known for {module}: pass --tests")
+            survivors = None
+            if args.survivors:
+                rows = [json.loads(r) for r in open(args.survivors) if r.strip()]
+                survivors = {(r["line"], r["description"]) for r in rows
+                             if r["module"] == module and r["status"] == "survived"}
             outcomes += mutate_module(tree_dir, module, test_args, args.timeout, only,
                                       args.every, log=lambda s: print(s, flush=True),
-                                      record=record)
+                                      record=record, only=survivors)
     print(summary(outcomes))
 
 
