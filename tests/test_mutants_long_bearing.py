@@ -36,12 +36,14 @@ def seed_eq_11_13(b, s):
 @pytest.mark.parametrize("state", [JournalState(0.6, 40.0, 0.0, 10.0, 250.0),
                                    JournalState(0.6, -40.0, 0.0, 10.0, 250.0),
                                    JournalState(0.3, -150.0, 1.0, -30.0, 120.0),
-                                   JournalState(0.85, 5.0, 0.0, 0.0, 80.0)])
+                                   JournalState(0.85, 5.0, 0.0, 0.0, 80.0),
+                                   JournalState(0.5, 0.2, 0.0, 0.0, 50.0)])
 def test_closed_form_is_seed_eq_11_13(state):
     """The code's form in s = 2 eps_dot and w = omega - 2 gamma_dot equals the paper's
-    (E, G, k) form for either sign of the squeeze. Fails with the E < 0 ratio
-    k / (k + 3/2) written (k + 3/2) / k, or the squeeze term of F_r dropped
-    (long_bearing.py:71, 74)."""
+    (E, G, k) form for either sign of the squeeze, and for a slow one (2 eps_dot = 0.4 1/s).
+    Fails with the E < 0 ratio k / (k + 3/2) written (k + 3/2) / k, a term of either ratio
+    dropped, the squeeze term of F_r dropped, or the sign test of s moved from 0 to 1
+    (long_bearing.py:68-74)."""
     b = seed_bearing(2.0)
     assert long_bearing_force(b, state) == pytest.approx(seed_eq_11_13(b, state), rel=1e-12)
 
@@ -56,7 +58,7 @@ def test_exact_force_is_the_positive_part_integral(state):
     Eq. 10 times (cos, sin) theta R L. Squeeze moves the positive region away from
     theta = 0; w = 1 rad/s and eps_dot = 1 1/s alone are ordinary states. Fails if the
     sign changes were searched on [0, 2/pi] only, or with the rest-state test
-    'eps_dot == 0 and w == 0' written with 1 for either 0 (long_bearing.py:88, 93)."""
+    'eps_dot == 0 and w == 0' written with 1 for either 0 (long_bearing.py:87, 93)."""
     b = seed_bearing(2.0)
 
     def comp(trig, epsabs=0.0):
@@ -72,6 +74,6 @@ def test_exact_force_is_the_positive_part_integral(state):
 
 
 def test_exact_force_at_rest_is_zero():
-    """Fails with the rest state's early return giving 1 N (long_bearing.py:89)."""
+    """Fails with the rest state's early return giving 1 N (long_bearing.py:88)."""
     assert long_bearing_exact_force(seed_bearing(2.0),
                                     JournalState(0.5, 0.0, 0.0, 0.0, 0.0)) == (0.0, 0.0)
