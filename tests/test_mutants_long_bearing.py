@@ -52,13 +52,15 @@ def test_closed_form_is_seed_eq_11_13(state):
                                    JournalState(0.7, -80.0, 0.0, 0.0, 100.0),
                                    JournalState(0.4, 30.0, 0.0, 0.0, 0.0),
                                    JournalState(0.5, 0.0, 0.0, 0.0, 1.0),
-                                   JournalState(0.5, 1.0, 0.0, 0.0, 0.0)])
+                                   JournalState(0.5, 1.0, 0.0, 0.0, 0.0),
+                                   JournalState(0.5, 0.0, 0.0, 0.0, 0.1)])
 def test_exact_force_is_the_positive_part_integral(state):
     """long_bearing_exact_force against adaptive quadrature of max(p, 0) of the corrected
     Eq. 10 times (cos, sin) theta R L. Squeeze moves the positive region away from
-    theta = 0; w = 1 rad/s and eps_dot = 1 1/s alone are ordinary states. Fails if the
-    sign changes were searched on [0, 2/pi] only, or with the rest-state test
-    'eps_dot == 0 and w == 0' written with 1 for either 0 (long_bearing.py:87, 93)."""
+    theta = 0; w = 1 rad/s and eps_dot = 1 1/s alone are ordinary states; at w = 0.1 rad/s
+    the dimensionless P stays below 1. Fails if the sign changes were searched on
+    [0, 2/pi] only, with the rest-state test 'eps_dot == 0 and w == 0' written with 1 for
+    either 0, or with regions whose mid-point P <= 1 skipped (long_bearing.py:87, 93, 111)."""
     b = seed_bearing(2.0)
 
     def comp(trig, epsabs=0.0):
