@@ -49,8 +49,8 @@ TESTS = {
         "tests/test_closed_form.py tests/test_mutants_long_bearing.py",
     "bearingfem/closed/squeeze_film.py": "tests/test_jfo.py -k squeeze",
     "bearingfem/design/stability.py":
-        "tests/test_design.py -k 'lund or threshold or friswell or orbit' "
-        "tests/test_mutants_stability.py",
+        "tests/test_design.py tests/test_mutants_stability.py "
+        "-k 'lund or threshold or friswell or orbit or mutants_stability'",
     "bearingfem/contact/asperity.py": "tests/test_asperity.py",
     "bearingfem/contact/gaussian.py": "tests/test_asperity.py",
 }
