@@ -6,6 +6,7 @@ registered by name in :mod:`bearingfem.models`; the designer's numbers (equilibr
 stiffness and damping, stability) in :mod:`bearingfem.design`.
 """
 from .bearing import Bearing, Groove, JournalState
+from .contact import Roughness  # Greenwood-Tripp asperity contact (mixed lubrication)
 from .closed.long_bearing import long_bearing_exact_force, long_bearing_force
 from .closed.short_bearing import short_bearing_exact_force, short_bearing_force
 from .design import coefficients, equilibrium
