@@ -58,8 +58,13 @@ class DynamicCoefficients:
     clearance : radial clearance c [m] of the bearing
     K_groove_shift : 2x2 [N/m], the part of K from grooves fixed in the bearing that the
         film moves against as the journal turns (zero without grooves).
-        ``K - K_groove_shift`` is the stiffness of grooves turning with the line of centres:
-        what perturbation solutions on the film's own domain tabulate (Someya's data book).
+        ``K - K_groove_shift`` is the stiffness of grooves turning with the line of centres.
+        Published tables differ in which form they give: Someya's Journal-Bearing Databook
+        (1989) matches the turning form (within 3 % of the largest entry; ``K`` misses by
+        10-40 %, tests/test_someya.py), Lund & Thomsen (1978) match ``K``, the grooves fixed
+        in the bearing (within 1 %; the turning form misses by 23-53 % of the largest entry,
+        Kyx by up to 179 %, tests/test_lund_thomsen.py). Check a table's form before
+        comparing.
     """
 
     K: np.ndarray

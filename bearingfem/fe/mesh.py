@@ -4,6 +4,12 @@ theta spans one turn from ``theta0``: periodic when there is no supply line, oth
 supply line sits at both theta ends and holds ambient pressure. zeta spans the whole length
 [-L/D, L/D] or, exploiting the symmetry of an aligned journal, the half [0, L/D] with a
 natural (zero-flux) condition on the mid-plane.
+
+With axial grooves every groove edge is a grid line: the n_theta cells are shared among the
+arcs between consecutive edges in proportion to their length (uniform within each arc), so
+grooves of any width and position are resolved exactly and the film converges at the
+element's order on any n_theta. (Edges snapped to a uniform grid move by up to half a cell:
+a first-order error in the groove's width.)
 """
 from __future__ import annotations
 
@@ -59,7 +65,8 @@ class FilmMesh:
     @property
     def axes(self):
         """(theta, zeta) grid lines of the tensor mesh the elements were built on."""
-        return _axes(self.n_theta, self.n_z, self.length_ratio, self.theta0, self.half)
+        return _axes(self.n_theta, self.n_z, self.length_ratio, self.theta0, self.half,
+                     self.arcs)
 
 
 @contextmanager
@@ -78,9 +85,46 @@ def _axis(n: int, lo: float, hi: float) -> np.ndarray:
     return np.linspace(lo, hi, n + 1)
 
 
-def _axes(n_theta, n_z, length_ratio, theta0, half):
+def _edges(t_lo: float, arcs) -> np.ndarray:
+    """The grooves' edges as offsets in (0, 2 pi) from the mesh's first line, sorted."""
+    turn = 2.0 * np.pi
+    rel = np.mod(np.asarray(arcs, float).ravel() - t_lo, turn)
+    rel = np.unique(np.round(rel, 12))
+    return rel[(rel > 1e-9) & (rel < turn - 1e-9)]
+
+
+def _cells_per_arc(n: int, lengths: np.ndarray) -> np.ndarray:
+    """n cells shared among arcs in proportion to their lengths, at least one each
+    (largest remainders first; ties to the earlier arc)."""
+    ideal = n * lengths / lengths.sum()
+    cells = np.maximum(1, np.floor(ideal)).astype(int)
+    order = np.argsort(-(ideal - cells), kind="stable")
+    while cells.sum() < n:      # at most len(lengths) passes
+        k = n - cells.sum()
+        cells[order[:k]] += 1
+    while cells.sum() > n:      # only where the floor of one was raised to one
+        big = np.flatnonzero(cells > 1)
+        cells[big[np.argmin((ideal - cells)[big])]] -= 1
+    return cells
+
+
+def _theta_axis(n_theta: int, t_lo: float, arcs) -> np.ndarray:
+    """Grid lines over one turn from t_lo with a line on every groove edge."""
+    turn = 2.0 * np.pi
+    if not arcs:
+        return _axis(n_theta, t_lo, t_lo + turn)
+    breaks = np.concatenate([[0.0], _edges(t_lo, arcs), [turn]])
+    if n_theta < len(breaks) - 1:
+        raise ValueError(f"n_theta must be >= {len(breaks) - 1} (one cell per arc between "
+                         f"groove edges), got {n_theta}")
+    cells = _cells_per_arc(n_theta, np.diff(breaks))
+    parts = [np.linspace(a, b, k + 1)[:-1] for a, b, k in zip(breaks[:-1], breaks[1:], cells)]
+    return t_lo + np.concatenate(parts + [[turn]])
+
+
+def _axes(n_theta, n_z, length_ratio, theta0, half, arcs=()):
     t_lo = 0.0 if theta0 is None else float(theta0)
-    th = _axis(n_theta, t_lo, t_lo + 2.0 * np.pi)
+    th = _theta_axis(n_theta, t_lo, arcs)
     lam = float(length_ratio)
     ze = _axis(max(1, -(-n_z // 2)), 0.0, lam) if half else _axis(n_z, -lam, lam)
     return th, ze
@@ -115,11 +159,11 @@ def film_mesh(n_theta: int, n_z: int, element: str, length_ratio: float,
     theta0 : None for a fully periodic film; otherwise the film angle of a supply line
         (with grooves: the first groove's start, so that its edge is a mesh line)
     half : mesh only zeta >= 0
-    arcs : ((start, end), ...) film angles of axial grooves; their dofs are fixed (the
-        ends of later arcs snap to the nearest mesh line, within half a cell)
+    arcs : ((start, end), ...) film angles of axial grooves; their dofs are fixed. Every
+        edge is a mesh line: the cells are graded per arc between edges (module docstring)
     """
     lam = float(length_ratio)
-    th, ze = _axes(n_theta, n_z, lam, theta0, half)
+    th, ze = _axes(n_theta, n_z, lam, theta0, half, arcs)
     with _quiet_skfem():
         mesh = _mirrored_tensor(th, ze)
         if theta0 is None:      # as MeshTri1DG.init_tensor(th, ze, periodic=[0])
@@ -139,11 +183,10 @@ def film_mesh(n_theta: int, n_z: int, element: str, length_ratio: float,
                                 | np.isclose(x[0], th[-1], atol=1e-9))
         fixed = np.union1d(end, supply)
     grooves = []
-    h = 2.0 * np.pi / n_theta
-    for lo, hi in arcs:        # dofs inside [lo, hi] (to half a cell), in the mesh's turn
+    for lo, hi in arcs:        # dofs on [lo, hi], whose edges are mesh lines
         rel = np.mod(x[0] - lo, 2.0 * np.pi)
         rel = np.where(rel > 2.0 * np.pi - 1e-9, 0.0, rel)
-        grooves.append(np.flatnonzero(rel <= (hi - lo) + 0.5 * h * (1 - 1e-9)))
+        grooves.append(np.flatnonzero(rel <= np.mod(hi - lo, 2.0 * np.pi) + 1e-9))
         fixed = np.union1d(fixed, grooves[-1])
     free = np.setdiff1d(np.arange(basis.N), fixed)
     return FilmMesh(basis=basis, fixed=fixed, free=free, end=end,
