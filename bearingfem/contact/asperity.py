@@ -23,7 +23,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..bearing import check_finite
+from ..bearing import check_finite, check_positive
 from ..film import local_to_inertial
 from .gaussian import tail_moment, tail_moment_derivative
 
@@ -37,13 +37,6 @@ def elastic_factor(sigma: float, asperity_density: float, asperity_radius: float
     return (16.0 * math.sqrt(2.0) * math.pi / 15.0
             * (sigma * asperity_density * asperity_radius) ** 2
             * math.sqrt(sigma / asperity_radius))
-
-
-def _positive(name: str, value) -> float:
-    v = check_finite(name, value)
-    if v <= 0.0:
-        raise ValueError(f"{name} must be > 0, got {value!r}")
-    return v
 
 
 @dataclass(frozen=True)
@@ -68,20 +61,20 @@ class Roughness:
     friction: float = 0.0
 
     def __post_init__(self):
-        _positive("sigma", self.sigma)
-        _positive("contact_modulus", self.contact_modulus)
+        check_positive("sigma", self.sigma)
+        check_positive("contact_modulus", self.contact_modulus)
         summits = (self.asperity_density is not None, self.asperity_radius is not None)
         if self.elastic_factor is not None:
             if any(summits):
                 raise ValueError("give elastic_factor or (asperity_density, asperity_radius), "
                                  "not both")
-            _positive("elastic_factor", self.elastic_factor)
+            check_positive("elastic_factor", self.elastic_factor)
         elif not all(summits):
             raise ValueError("give elastic_factor (K > 0) or both asperity_density "
                              "(eta > 0, 1/m^2) and asperity_radius (beta > 0, m)")
         else:
-            _positive("asperity_density", self.asperity_density)
-            _positive("asperity_radius", self.asperity_radius)
+            check_positive("asperity_density", self.asperity_density)
+            check_positive("asperity_radius", self.asperity_radius)
         v = check_finite("friction", self.friction)
         if v < 0.0:
             raise ValueError(f"friction must be >= 0, got {self.friction!r}")
@@ -157,7 +150,7 @@ def asperity_contact(roughness: Roughness, gap, area, theta, *, radius: float,
     if not isinstance(roughness, Roughness):
         raise ValueError(f"roughness must be a bearingfem.Roughness, got "
                          f"{type(roughness).__name__}")
-    radius = _positive("radius", radius)
+    radius = check_positive("radius", radius)
     gamma = check_finite("gamma", gamma)
     omega = check_finite("omega", omega)
     gap, area, theta = (np.asarray(a, dtype=float) for a in (gap, area, theta))
