@@ -18,7 +18,7 @@ from functools import lru_cache
 import numpy as np
 import scipy.sparse as sp
 
-from ..solvers.cavitation import active_set
+from ..solvers.cavitation import active_set, active_set_iterations
 from .assembly import FilmOperator, film_operator
 from .mesh import MIN_N_THETA, MIN_N_Z
 
@@ -110,7 +110,9 @@ def coarse_guess(op: FilmOperator, state, tol: float = 1e-10,
     if held:
         b = b - coarse.stiffness(state.eps) @ P
     P0 = coarse_guess(coarse, state, tol, held)
-    res = active_set(coarse.free_stiffness(state.eps), b[free], P0=P0, tol=tol,
-                     max_iter=100 if P0 is None else COARSE_SOLVES)
+    K = coarse.free_stiffness(state.eps)
+    # the coarsest level is solved (it raises if it cannot), the others only iterated
+    res = (active_set(K, b[free], tol=tol) if P0 is None else
+           active_set_iterations(K, b[free], P0=P0, tol=tol, max_iter=COARSE_SOLVES))
     P[free] = res.pressure
     return prolong @ P
