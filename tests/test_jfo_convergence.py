@@ -164,3 +164,14 @@ def test_convergence_error_is_a_runtime_error_and_pickles():
     assert isinstance(e, RuntimeError)
     back = pickle.loads(pickle.dumps(e))
     assert str(back) == str(e) and "52 iterations" in str(e) and "t = 0.01 s" in str(e)
+
+
+def test_jfo_iterations_benchmark_smoke(capsys):
+    """benchmarks/jfo_iterations.py runs; its small films converge uncut and balance."""
+    from benchmarks import jfo_iterations
+    rows = jfo_iterations.main(["--quick"])
+    assert [r["film"] for r in rows] == ["squeeze", "journal"]
+    for r in rows:
+        assert r["unconverged"] == 0 and r["cut"] == 0 and r["balance"] < 1e-10
+        assert r["fac_mean"] >= 1.0 and r["it_max"] >= 1
+    assert "factorisations/step" in capsys.readouterr().out
