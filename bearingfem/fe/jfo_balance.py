@@ -16,7 +16,7 @@ from ..film import film_thickness, film_thickness_integral
 from ..solvers.jfo import FirstSet, solve_balance
 from .assembly import FilmOperator
 from .mesh import FilmMesh
-from .multilevel import coarse_level, prolongation
+from .multilevel import coarse_level, free_interpolation, prolongation
 from .volumes import ControlVolumes, control_volumes, transport_matrix
 
 __all__ = ["film_volumes", "JFOFlows"]
@@ -124,7 +124,8 @@ def _step_balance(bearing: Bearing, op: FilmOperator, state: JournalState, dt: f
         coarse = level[0]
 
         def start():
-            down, up = _prolongation(op.mesh, coarse.mesh), _prolongation(coarse.mesh, op.mesh)
+            down = _prolongation(op.mesh, coarse.mesh)
+            up = free_interpolation(_prolongation(coarse.mesh, op.mesh), coarse.mesh.free)
             Hc = _content(film_volumes(coarse.mesh), state.eps)
             try:
                 # no first set there: the previous one already failed on this mesh

@@ -25,6 +25,7 @@ from ..planar import PlanarFilm
 from ..solvers.jfo import FirstSet, JFOResult, solve_balance
 from ..validation import check_int
 from .mesh import _quiet_skfem
+from .multilevel import free_interpolation
 from .volumes import ControlVolumes, control_volumes, transport_matrix
 
 __all__ = ["PlanarSolution", "PlanarJFO", "solve_planar", "planar_mesh"]
@@ -309,9 +310,10 @@ class PlanarJFO:
             def start():
                 c_x, c_y = self._levels[level + 1]
                 down = _interpolation(f.length, f.width, n_x, n_y, f.sides, c_x, c_y)
-                up = _interpolation(f.length, f.width, c_x, c_y, f.sides, n_x, n_y)
-                dc = _Discretisation(f, planar_mesh(f.length, f.width, c_x, c_y, f.sides),
-                                     d.t)
+                mc = planar_mesh(f.length, f.width, c_x, c_y, f.sides)
+                up = free_interpolation(
+                    _interpolation(f.length, f.width, c_x, c_y, f.sides, n_x, n_y), mc.free)
+                dc = _Discretisation(f, mc, d.t)
                 fill = down @ (source / storage)      # content relative to the new gap
                 try:
                     # no first set there: the previous one already failed on this mesh
