@@ -229,7 +229,8 @@ def jfo_solve(K: sp.spmatrix, A: sp.spmatrix, b: np.ndarray, *,
         tries.append((lambda: FirstSet(np.asarray(cavitated0, bool)), warm_iterations))
     if start is not None:
         tries.append((start, max_iter))
-    tries.append((lambda: _reynolds_set(K, A, b, np.ones(n), can_cavitate), max_iter))
+    # the Reynolds-condition set takes its transport from the last iterate's fraction
+    tries.append((lambda: _reynolds_set(K, A, b, phi, can_cavitate), max_iter))
     it = lus = 0
     P, phi = np.zeros(n), np.ones(n)
     converged = False
