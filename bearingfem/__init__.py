@@ -11,6 +11,7 @@ from .closed.long_bearing import long_bearing_exact_force, long_bearing_force
 from .closed.short_bearing import short_bearing_exact_force, short_bearing_force
 from .design import coefficients, equilibrium
 from .elastic import ElasticBush
+from .errors import ConvergenceError
 from .fe.reynolds import solve_reynolds
 from .fv.fvm import fvm_reynolds
 from .lubricant import Lubricant
@@ -20,5 +21,5 @@ from .solution import FilmSolution
 __all__ = ["Bearing", "JournalState", "Groove", "solve_reynolds", "fvm_reynolds", "FilmSolution",
            "short_bearing_force", "long_bearing_force", "short_bearing_exact_force",
            "long_bearing_exact_force", "equilibrium", "coefficients", "ElasticBush",
-           "Lubricant", "line_contact"]
+           "Lubricant", "line_contact", "ConvergenceError", "Roughness"]
 __version__ = "0.1.0"

@@ -67,10 +67,7 @@ from typing import Callable, Iterator, Mapping, Protocol, runtime_checkable
 from .bearing import Bearing, JournalState
 from .solution import FilmSolution, ForceDerivatives
 
-try:                                     # a solve that did not converge
-    from .errors import ConvergenceError
-except ImportError:                      # pragma: no cover - until bearingfem.errors lands
-    ConvergenceError = RuntimeError
+from .errors import ConvergenceError   # a solve that did not converge
 
 __all__ = ["FilmContract", "RunFilm", "FilmStep", "SteadyRun", "ConvergenceError"]
 

@@ -11,7 +11,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..lubricant import Lubricant
-from ._errors import ConvergenceError
+from ..errors import ConvergenceError
 from .fits import (MARTIN_LOAD, hertz_line, moes_parameters, pan_hamrock,
                    rigid_isoviscous_pressure)
 from .halfspace import LineCompliance

@@ -21,7 +21,7 @@ import numpy as np
 import scipy.fft
 import scipy.linalg
 
-from ._errors import ConvergenceError
+from ..errors import ConvergenceError
 
 __all__ = ["LineCompliance", "hertz_deflection", "dry_line_contact", "DryContact"]
 

@@ -33,7 +33,7 @@ import numpy as np
 import scipy.linalg
 import scipy.sparse as sp
 
-from ._errors import ConvergenceError
+from ..errors import ConvergenceError
 from .halfspace import LineCompliance
 
 __all__ = ["DimensionlessLine", "NewtonRecord", "solve_dimensionless"]

@@ -28,97 +28,26 @@ of the solve, so it holds to round-off.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import lru_cache
 
 import numpy as np
-import scipy.sparse as sp
 
 from ..bearing import Bearing, JournalState, check_positive
+from ..errors import ConvergenceError
 from ..validation import check_film_solve, check_grooves, check_jfo_supply
-from ..film import film_thickness, film_thickness_integral
-from ..scales import flow_factor, force_factor, shear_friction
+from ..film import film_thickness
+from ..scales import force_factor, shear_friction
 from ..solution import FilmSolution, film_solution
 from ..solvers.cavitation import active_set
 from ..solvers.linsolve import principal_block
-from ..solvers.jfo import JFOResult, solve_balance
+from ..solvers.jfo import JFOResult
 from .assembly import FilmOperator, fe_operator
-from .mesh import FilmMesh
-from .multilevel import prolongation
-from .volumes import ControlVolumes, control_volumes, shift_rows, transport_matrix
+from .jfo_balance import (BalanceSolve, FilmAdvance, JFOFlows, _between, _boundary_values,
+                          _content, _cos_integral, _prolongation, _solve, _step_balance,
+                          _transport, film_volumes)
+from .volumes import ControlVolumes, shift_rows
 
-__all__ = ["JFOFilm", "JFOSnapshot", "solve_jfo", "jfo_force", "film_volumes", "JFOFlows"]
-
-
-@lru_cache(maxsize=32)
-def film_volumes(mesh: FilmMesh) -> ControlVolumes:
-    """Control volumes of the nodes of a P1 film mesh (theta is the sliding direction)."""
-    th, ze = mesh.axes
-    return control_volumes(mesh.theta, mesh.zeta, th, ze, mesh.periodic)
-
-
-def _content(cv: ControlVolumes, eps: float) -> np.ndarray:
-    """Exact integral of H over each volume (its content when full)."""
-    return cv.width * film_thickness_integral(cv.x_lo, cv.x_hi, eps)
-
-
-def _cos_integral(cv: ControlVolumes) -> np.ndarray:
-    """Integral of cos(theta) = dH/d(eps) over each volume: a squeeze's storage rate."""
-    return cv.width * film_thickness_integral(cv.x_lo, cv.x_hi, 1.0) - cv.area
-
-
-def _transport(cv: ControlVolumes, eps: float, speed: float) -> sp.csr_matrix:
-    """Upwind transport of 6 x speed x phi H across the volumes' theta faces."""
-    return transport_matrix(cv, 6.0 * speed * film_thickness(cv.face, eps) * cv.width)
-
-
-@dataclass(frozen=True)
-class JFOFlows:
-    """Volume flows of one solve [m^3/s]: fed by grooves / supply line, out of the axial
-    ends, and the rate of change of the film content; balance = feed - leakage - storage
-    (zero to round-off)."""
-
-    flow_in: float
-    side_leakage: float
-    storage: float
-
-    @property
-    def balance(self) -> float:
-        return self.flow_in - self.side_leakage - self.storage
-
-
-def _boundary_values(bearing: Bearing, mesh: FilmMesh, grooves, ambient: float):
-    """Pressure and film fraction held on the fixed nodes: the ends and a supply line at
-    ``ambient`` (flooded), each groove at its pressure and fraction."""
-    P = np.zeros(mesh.ndofs)
-    phi = np.ones(mesh.ndofs)
-    P[mesh.fixed] = ambient / bearing.pressure_scale
-    for g, dofs in zip(grooves, mesh.grooves):
-        P[dofs] = g.pressure / bearing.pressure_scale
-        phi[dofs] = g.fraction
-    P[mesh.end] = ambient / bearing.pressure_scale
-    phi[mesh.end] = 1.0
-    return P, phi
-
-
-@dataclass(frozen=True)
-class BalanceSolve:
-    """One solve of the balance: pressure P and film fraction phi on all nodes, the
-    solver's record and the flows."""
-
-    P: np.ndarray
-    phi: np.ndarray
-    result: JFOResult
-    flows: JFOFlows
-
-
-@dataclass(frozen=True)
-class FilmAdvance:
-    """One backward-Euler step of a :class:`JFOFilm`: the mesh operator at the new state,
-    the balance solved there and the new content (dimensionless, per volume)."""
-
-    op: FilmOperator
-    solve: BalanceSolve
-    content: np.ndarray
+__all__ = ["JFOFilm", "JFOSnapshot", "BalanceSolve", "FilmAdvance", "solve_jfo", "jfo_force",
+           "film_volumes", "JFOFlows"]
 
 
 @dataclass(frozen=True)
@@ -132,25 +61,6 @@ class JFOSnapshot:
     cavitated: np.ndarray
     solution: FilmSolution | None
     steps: int
-
-
-def _solve(bearing: Bearing, op: FilmOperator, eps: float, T: sp.csr_matrix,
-           storage: np.ndarray, source: np.ndarray, grooves, ambient: float,
-           cavitated0=None, warm_iterations: int = 3) -> BalanceSolve:
-    """The balance on the film mesh with its ends, supply line and grooves held
-    (P and phi on all nodes)."""
-    mesh = op.mesh
-    P_fix, phi_fix = _boundary_values(bearing, mesh, grooves, ambient)
-    P, phi, res, inflow = solve_balance(op.stiffness(eps), T, storage, source, mesh.free,
-                                        P_fix, phi_fix, cavitated0, op.free_stiffness(eps),
-                                        warm_iterations)
-    feed_nodes = np.setdiff1d(mesh.fixed, mesh.end)
-    k = flow_factor(bearing, mesh.half)
-    free = mesh.free
-    flows = JFOFlows(flow_in=-k * float(np.sum(inflow[feed_nodes])),
-                     side_leakage=k * float(np.sum(inflow[mesh.end])),
-                     storage=k * float(np.sum(storage[free] * phi[free] - source[free])))
-    return BalanceSolve(P, phi, res, flows)
 
 
 def _film_solution(bearing, state, op: FilmOperator, P, phi, res: JFOResult,
@@ -180,11 +90,6 @@ def _film_solution(bearing, state, op: FilmOperator, P, phi, res: JFOResult,
         fraction=phi, mass_balance=flows.balance)
 
 
-@lru_cache(maxsize=32)
-def _prolongation(coarse: FilmMesh, fine: FilmMesh) -> sp.csr_matrix:
-    return prolongation(coarse, fine.theta, fine.zeta)
-
-
 #: Below this many free nodes a steady film starts cold instead of from a coarser mesh.
 COARSEST_FREE_NODES = 500
 
@@ -205,8 +110,11 @@ def _steady(bearing: Bearing, state: JournalState, operator, n_theta, n_z, groov
         u = Pc - (1.0 - phic)          # the universal variable: < 0 in the cavity
         cavitated0 = (_prolongation(opc.mesh, op.mesh) @ u) < 0.0
         warm = 12
-    b = _solve(bearing, op, state.eps, T, storage, np.zeros(op.mesh.ndofs), grooves, ambient,
-               cavitated0, warm)
+    try:
+        b = _solve(bearing, op, state.eps, T, storage, np.zeros(op.mesh.ndofs), grooves,
+                   ambient, cavitated0, warm)
+    except ConvergenceError as e:
+        raise e.at(f"steady JFO film {n_theta}x{n_z}, eps = {state.eps:.6g}") from None
     return b.P, b.phi, b.result, b.flows, op
 
 
@@ -227,6 +135,10 @@ def jfo_force(bearing: Bearing, state: JournalState, operator, n_theta: int, n_z
     ic, is_ = op.force_integrals(P)
     k = force_factor(bearing, op.mesh.half)
     return (k * float(ic), k * float(is_)), res
+
+
+#: A transient step that does not converge is cut in halves up to this many times.
+MAX_CUTS = 3
 
 
 class JFOFilm:
@@ -270,6 +182,7 @@ class JFOFilm:
         self.cavitated = phi < 1.0
         self.solution: FilmSolution | None = None
         self.steps = 0
+        self.substeps = 1       # backward-Euler steps the last kept step was cut into
 
     def snapshot(self) -> JFOSnapshot:
         """The kept state (to go back to with :meth:`restore`, e.g. when an integrator
@@ -338,32 +251,68 @@ class JFOFilm:
         return (k * float(ic), k * float(is_)), cav
 
     def _advance(self, state: JournalState, dt: float) -> FilmAdvance:
-        dt = check_positive("dt", dt)
         op = self._operator(state)
         cv = film_volumes(op.mesh)
         old, = self._carried(cv, state, self.content)
-        T = _transport(cv, state.eps, state.omega)
-        H = _content(cv, state.eps)
-        b = _solve(self.bearing, op, state.eps, T, 12.0 * H / dt, 12.0 * old / dt,
-                   self.grooves, self.ambient_pressure, self.cavitated)
-        return FilmAdvance(op, b, b.phi * H)
+        return _step_balance(self.bearing, op, state, dt, old, self.cavitated, self.grooves,
+                             self.ambient_pressure)
+
+    def _solution(self, state: JournalState, a: FilmAdvance) -> FilmSolution:
+        b = a.solve
+        return _film_solution(self.bearing, state, a.op, b.P, b.phi, b.result, b.flows,
+                              "fem-P1/jfo")
+
+    def _where(self, state: JournalState, dt: float) -> str:
+        return (f"JFO film step {self.steps + 1} to t = {self.time + dt:.6g} s "
+                f"(eps = {state.eps:.6g}, eps_dot = {state.eps_dot:.6g} 1/s)")
 
     def trial(self, state: JournalState, dt: float) -> FilmSolution:
-        """The step to ``state`` after ``dt`` [s], not kept."""
-        a = self._advance(state, dt)
-        return _film_solution(self.bearing, state, a.op, a.solve.P, a.solve.phi,
-                              a.solve.result, a.solve.flows, "fem-P1/jfo")
+        """The step to ``state`` after ``dt`` [s], not kept (one step, never cut: raises
+        :class:`~bearingfem.errors.ConvergenceError` when it does not converge)."""
+        dt = check_positive("dt", dt)
+        try:
+            a = self._advance(state, dt)
+        except ConvergenceError as e:
+            raise e.at(self._where(state, dt)) from None
+        return self._solution(state, a)
 
     def step(self, state: JournalState, dt: float) -> FilmSolution:
-        """Advance to ``state`` after ``dt`` [s] and keep the new film."""
+        """Advance to ``state`` after ``dt`` [s] and keep the new film. A step whose
+        solve does not converge is cut in two, the journal state between taken linearly
+        (up to ``MAX_CUTS`` times; ``substeps`` then says into how many, and the returned
+        film, flows included, is that of the last); if it still does not converge,
+        :class:`~bearingfem.errors.ConvergenceError` is raised and the film stays at its
+        last converged step."""
+        dt = check_positive("dt", dt)
+        try:
+            sol, self.substeps = self._cut_step(state, dt, MAX_CUTS)
+        except ConvergenceError as e:
+            raise e.at(self._where(state, dt) + f", cut {MAX_CUTS} times") from None
+        self.steps += 1
+        return sol
+
+    def _cut_step(self, state: JournalState, dt: float, cuts: int):
+        try:
+            return self._keep(state, dt), 1
+        except ConvergenceError:
+            if cuts == 0:
+                raise
+        kept = self.snapshot()
+        try:
+            _, first = self._cut_step(_between(self.state, state), 0.5 * dt, cuts - 1)
+            sol, last = self._cut_step(state, 0.5 * dt, cuts - 1)
+        except ConvergenceError:
+            self.restore(kept)
+            raise
+        return sol, first + last
+
+    def _keep(self, state: JournalState, dt: float) -> FilmSolution:
         a = self._advance(state, dt)
-        sol = _film_solution(self.bearing, state, a.op, a.solve.P, a.solve.phi,
-                             a.solve.result, a.solve.flows, "fem-P1/jfo")
+        sol = self._solution(state, a)
         self.time += dt
         self.state, self.fraction, self.content = state, a.solve.phi, a.content
         self.cavitated = _cavitated_nodes(a.op, a.solve.result)
         self.solution = sol
-        self.steps += 1
         return sol
 
 

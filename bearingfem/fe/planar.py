@@ -11,7 +11,7 @@ the content is balanced on the nodes' control volumes (:mod:`bearingfem.fe.volum
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import lru_cache
 
 import numpy as np
@@ -20,10 +20,12 @@ from skfem import Basis, BilinearForm, ElementTriP1, MeshTri1, MeshTri1DG
 from skfem.helpers import dot, grad
 
 from ..bearing import check_positive
+from ..errors import ConvergenceError
 from ..planar import PlanarFilm
-from ..solvers.jfo import JFOResult, solve_balance
+from ..solvers.jfo import FirstSet, JFOResult, solve_balance
 from ..validation import check_int
 from .mesh import _quiet_skfem
+from .multilevel import free_interpolation
 from .volumes import ControlVolumes, control_volumes, transport_matrix
 
 __all__ = ["PlanarSolution", "PlanarJFO", "solve_planar", "planar_mesh"]
@@ -75,7 +77,10 @@ class PlanarSolution:
     of p over the film [N]; flow_in: through the inlet [m^3/s]; flow_out: through the
     outlet; storage: rate of change of the content of the free volumes [m^3/s];
     mass_balance = flow_in - flow_out - storage (round-off); cavitated_fraction: share of
-    the area with phi < 1; t: the time [s] of the film.
+    the area with phi < 1; t: the time [s] of the film; iterations and factorisations
+    of its solve (of all its substeps and the coarser meshes that placed their first
+    sets); substeps: the backward-Euler steps the step was cut into to converge (1: not
+    cut; the flows are those of the last).
     """
 
     x: np.ndarray
@@ -90,6 +95,8 @@ class PlanarSolution:
     t: float
     iterations: int
     converged: bool
+    factorisations: int = 0
+    substeps: int = 1
 
     @property
     def mass_balance(self) -> float:
@@ -114,6 +121,7 @@ class _Discretisation:
     """Operators of the planar film at one time: Poiseuille K, transport T, content."""
 
     def __init__(self, film: PlanarFilm, m: PlanarMesh, t: float):
+        self.t = t
         cv = m.volumes
         k = film.film(*m.qp, t) ** 3 / (12.0 * film.viscosity)
         self.K = _poiseuille.assemble(m.basis, k=k).tocsr()
@@ -143,7 +151,8 @@ def _solution(m: PlanarMesh, P, phi, res, inflow, storage, source, t):
         flow_in=-float(np.sum(inflow[m.inlet])), flow_out=float(np.sum(inflow[m.outlet])),
         storage=float(np.sum(storage[free] * phi[free] - source[free])),
         cavitated_fraction=float(np.sum(area * (phi < 1.0 - 1e-12)) / np.sum(area)),
-        t=float(t), iterations=res.iterations, converged=res.converged)
+        t=float(t), iterations=res.iterations, converged=res.converged,
+        factorisations=res.factorisations)
 
 
 def _check_mesh(n_x, n_y):
@@ -175,8 +184,44 @@ def solve_planar(film: PlanarFilm, n_x: int = 200, n_y: int = 4, t: float = 0.0,
         n = len(m.free)
         res = JFOResult(P[m.free], phi[m.free], np.zeros(n, bool), 1, 0.0, True)
         return _solution(m, P, phi, res, inflow, zero, zero, t)
-    P, phi, res, inflow = solve_balance(d.K, d.T, zero, zero, m.free, P_fix, phi_fix)
+    try:
+        P, phi, res, inflow = solve_balance(d.K, d.T, zero, zero, m.free, P_fix, phi_fix)
+    except ConvergenceError as e:
+        raise e.at(f"steady planar film, t = {t:.6g} s") from None
     return _solution(m, P, phi, res, inflow, zero, zero, t)
+
+
+#: A transient step that does not converge is cut in halves up to this many times.
+MAX_CUTS = 3
+
+#: Coarser meshes for a step's first set stop at this many cells along x.
+COARSEST_CELLS = 25
+
+
+@lru_cache(maxsize=64)
+def _interpolation(length: float, width: float, n_x: int, n_y: int, sides: str,
+                   fine_x: int, fine_y: int) -> sp.csr_matrix:
+    """Bilinear interpolation from the nodes of the (n_x, n_y) planar mesh to those of
+    the (fine_x, fine_y) one (either may be the finer)."""
+    periodic = sides == "periodic"
+    src = planar_mesh(length, width, n_x, n_y, sides)
+    dst = planar_mesh(length, width, fine_x, fine_y, sides)
+    i = np.rint(src.x / length * n_x).astype(int)
+    j = np.rint(src.y / width * n_y).astype(int)
+    cols = n_y if periodic else n_y + 1
+    dof_at = np.full((n_x + 1, cols), -1)
+    dof_at[i, np.mod(j, cols)] = np.arange(len(src.x))
+    if periodic:          # close the loop across y = width
+        dof_at = np.hstack([dof_at, dof_at[:, :1]])
+    u, v = dst.x / length * n_x, dst.y / width * n_y
+    i0 = np.clip(np.floor(u).astype(int), 0, n_x - 1)
+    j0 = np.clip(np.floor(v).astype(int), 0, n_y - 1)
+    s, r = np.clip(u - i0, 0.0, 1.0), np.clip(v - j0, 0.0, 1.0)
+    rows = np.repeat(np.arange(len(dst.x)), 4)
+    idx = np.column_stack([dof_at[i0, j0], dof_at[i0 + 1, j0], dof_at[i0, j0 + 1],
+                           dof_at[i0 + 1, j0 + 1]]).ravel()
+    w = np.column_stack([(1 - s) * (1 - r), s * (1 - r), (1 - s) * r, s * r]).ravel()
+    return sp.csr_matrix((w, (rows, idx)), shape=(len(dst.x), len(src.x)))
 
 
 class PlanarJFO:
@@ -201,20 +246,82 @@ class PlanarJFO:
         self.content = phi * _Discretisation(film, self.mesh, self.t).content
         self.cavitated = phi < 1.0
         self.steps = 0
+        self._levels = [(n_x, n_y)]      # the film's mesh, then the coarser ones
+        while self._levels[-1][0] // 2 >= COARSEST_CELLS:
+            c_x, c_y = self._levels[-1]
+            self._levels.append((c_x // 2, max(1, c_y // 2)))
 
     def step(self, dt: float) -> PlanarSolution:
+        """Advance by ``dt`` [s] and keep the new film. A step whose solve does not
+        converge is cut in two (up to ``MAX_CUTS`` times, the result's ``substeps`` says
+        into how many); if it still does not, :class:`~bearingfem.errors.ConvergenceError`
+        is raised and the film stays at its last converged step."""
         dt = check_positive("dt", dt)
+        try:
+            sol = self._advance(dt, MAX_CUTS)
+        except ConvergenceError as e:
+            raise e.at(f"planar film step {self.steps + 1} to t = {self.t + dt:.6g} s "
+                       f"(cut {MAX_CUTS} times)") from None
+        self.steps += 1
+        return sol
+
+    def _advance(self, dt: float, cuts: int) -> PlanarSolution:
+        kept = (self.t, self.fraction, self.content, self.cavitated)
+        try:
+            return self._solve_step(dt)
+        except ConvergenceError:
+            if cuts == 0:
+                raise
+        try:
+            first = self._advance(0.5 * dt, cuts - 1)
+            last = self._advance(0.5 * dt, cuts - 1)
+        except ConvergenceError:
+            self.t, self.fraction, self.content, self.cavitated = kept
+            raise
+        return replace(last, iterations=first.iterations + last.iterations,
+                       factorisations=first.factorisations + last.factorisations,
+                       substeps=first.substeps + last.substeps)
+
+    def _solve_step(self, dt: float) -> PlanarSolution:
         m = self.mesh
         t = self.t + dt
         d = _Discretisation(self.film, m, t)
-        P_fix, phi_fix = _held(self.film, m)
         storage, source = d.content / dt, self.content / dt
-        P, phi, res, inflow = solve_balance(d.K, d.T, storage, source, m.free, P_fix,
-                                            phi_fix, self.cavitated)
+        P, phi, res, inflow = self._balance(0, d, dt, source, self.cavitated)
         sol = _solution(m, P, phi, res, inflow, storage, source, t)
         self.t, self.fraction, self.content = t, phi, phi * d.content
         cav = np.zeros(m.basis.N, bool)
         cav[m.free] = res.cavitated
         self.cavitated = cav
-        self.steps += 1
         return sol
+
+    def _balance(self, level: int, d: _Discretisation, dt: float, source, cavitated):
+        """The step's balance on mesh ``level`` (0: the film's, then each half as fine).
+        When the previous set does not settle, its first set comes from the same step on
+        the next coarser mesh (recursively): a front that jumps many cells in one step
+        is then placed within a cell or two whatever the mesh, where the active set alone
+        moves it about a cell per iteration."""
+        f = self.film
+        n_x, n_y = self._levels[level]
+        m = planar_mesh(f.length, f.width, n_x, n_y, f.sides)
+        storage = d.content / dt
+        start = None
+        if level + 1 < len(self._levels):
+            def start():
+                c_x, c_y = self._levels[level + 1]
+                down = _interpolation(f.length, f.width, n_x, n_y, f.sides, c_x, c_y)
+                mc = planar_mesh(f.length, f.width, c_x, c_y, f.sides)
+                up = free_interpolation(
+                    _interpolation(f.length, f.width, c_x, c_y, f.sides, n_x, n_y), mc.free)
+                dc = _Discretisation(f, mc, d.t)
+                fill = down @ (source / storage)      # content relative to the new gap
+                try:
+                    # no first set there: the previous one already failed on this mesh
+                    P, phi, res, _ = self._balance(level + 1, dc, dt, fill * dc.content / dt,
+                                                   None)
+                except ConvergenceError:
+                    return None
+                return FirstSet(up @ (P - (1.0 - phi)) < 0.0, res.iterations,
+                                res.factorisations)
+        return solve_balance(d.K, d.T, storage, source, m.free, *_held(f, m), cavitated,
+                             start=start)

@@ -18,9 +18,11 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.sparse as sp
 
+from ..errors import ConvergenceError
 from .blocksolve import BlockSolver
 
-__all__ = ["LCPResult", "active_set", "psor", "complementarity_residual", "graph_colouring"]
+__all__ = ["LCPResult", "active_set", "active_set_iterations", "psor",
+           "complementarity_residual", "graph_colouring"]
 
 
 @dataclass(frozen=True)
@@ -68,7 +70,24 @@ def active_set(K: sp.csr_matrix, b: np.ndarray, *, active0: np.ndarray | None = 
     ``BORDERED_MAX_CHANGES`` dofs from it is solved exactly with those factors
     (:func:`~bearingfem.solvers.blocksolve.bordered_solve`, k + 1 triangular solves) instead of
     a new factorisation. Systems of at most ``DENSE_DOFS`` dofs are solved densely.
+
+    Raises :class:`~bearingfem.errors.ConvergenceError` when the set has not settled
+    within ``max_iter`` solves.
     """
+    res = active_set_iterations(K, b, active0=active0, P0=P0, tol=tol, max_iter=max_iter,
+                                factor=factor, few_changes=few_changes)
+    if not res.converged:
+        raise ConvergenceError("Reynolds-condition active set", res.iterations, res.residual)
+    return res
+
+
+def active_set_iterations(K: sp.csr_matrix, b: np.ndarray, *,
+                          active0: np.ndarray | None = None, P0: np.ndarray | None = None,
+                          tol: float = 1e-10, max_iter: int = 100, factor=None,
+                          few_changes: int = 8) -> LCPResult:
+    """At most ``max_iter`` iterations of :func:`active_set` (same arguments), returned
+    whether or not the set settled (``converged`` says which): a guess to start another
+    solve from (a finer mesh's, a JFO balance's first set), never a solution."""
     K = sp.csr_matrix(K)
     r_scale = max(float(np.abs(b).max(initial=0.0)), np.finfo(float).tiny)
     block = BlockSolver(K, b, factor, few_changes)
@@ -142,7 +161,9 @@ def psor(K: sp.csr_matrix, b: np.ndarray, *, omega: float = 1.8, tol: float = 1e
          colours: list[np.ndarray] | None = None) -> LCPResult:
     """Projected SOR on the complementarity problem (multicolour ordering).
 
-    Stops when the largest update of a sweep is below ``tol`` times the largest pressure.
+    Stops when the largest update of a sweep is below ``tol`` times the largest pressure;
+    raises :class:`~bearingfem.errors.ConvergenceError` when that takes over ``max_iter``
+    sweeps.
     """
     if not 0.0 < omega < 2.0:
         raise ValueError(f"omega (relaxation) must lie in (0, 2), got {omega!r}")
@@ -166,5 +187,7 @@ def psor(K: sp.csr_matrix, b: np.ndarray, *, omega: float = 1.8, tol: float = 1e
             converged = True
             break
     res = complementarity_residual(K, b, P) if P.any() else 0.0
+    if not converged:
+        raise ConvergenceError("projected SOR", it, res)
     return LCPResult(pressure=P, iterations=it, residual=res, converged=converged,
                      active=P <= 0.0)

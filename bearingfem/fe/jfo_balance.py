@@ -1,0 +1,161 @@
+"""The JFO balance on the finite-element film mesh: control volumes, content, transport,
+held boundary values and one solve of the balance (steady or one backward-Euler step),
+for :mod:`bearingfem.fe.jfo`.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import lru_cache
+
+import numpy as np
+import scipy.sparse as sp
+
+from ..bearing import Bearing, JournalState
+from ..errors import ConvergenceError
+from ..film import film_thickness, film_thickness_integral
+from ..scales import flow_factor
+from ..solvers.jfo import FirstSet, JFOResult, solve_balance
+from .assembly import FilmOperator
+from .mesh import FilmMesh
+from .multilevel import coarse_level, free_interpolation, prolongation
+from .volumes import ControlVolumes, control_volumes, transport_matrix
+
+__all__ = ["film_volumes", "JFOFlows", "BalanceSolve", "FilmAdvance"]
+
+
+@lru_cache(maxsize=32)
+def film_volumes(mesh: FilmMesh) -> ControlVolumes:
+    """Control volumes of the nodes of a P1 film mesh (theta is the sliding direction)."""
+    th, ze = mesh.axes
+    return control_volumes(mesh.theta, mesh.zeta, th, ze, mesh.periodic)
+
+
+def _content(cv: ControlVolumes, eps: float) -> np.ndarray:
+    """Exact integral of H over each volume (its content when full)."""
+    return cv.width * film_thickness_integral(cv.x_lo, cv.x_hi, eps)
+
+
+def _cos_integral(cv: ControlVolumes) -> np.ndarray:
+    """Integral of cos(theta) = dH/d(eps) over each volume: a squeeze's storage rate."""
+    return cv.width * film_thickness_integral(cv.x_lo, cv.x_hi, 1.0) - cv.area
+
+
+def _transport(cv: ControlVolumes, eps: float, speed: float) -> sp.csr_matrix:
+    """Upwind transport of 6 x speed x phi H across the volumes' theta faces."""
+    return transport_matrix(cv, 6.0 * speed * film_thickness(cv.face, eps) * cv.width)
+
+
+@dataclass(frozen=True)
+class JFOFlows:
+    """Volume flows of one solve [m^3/s]: fed by grooves / supply line, out of the axial
+    ends, and the rate of change of the film content; balance = feed - leakage - storage
+    (zero to round-off)."""
+
+    flow_in: float
+    side_leakage: float
+    storage: float
+
+    @property
+    def balance(self) -> float:
+        return self.flow_in - self.side_leakage - self.storage
+
+
+@dataclass(frozen=True)
+class BalanceSolve:
+    """One solve of the balance: pressure P and film fraction phi on all nodes, the
+    solver's record and the flows."""
+
+    P: np.ndarray
+    phi: np.ndarray
+    result: JFOResult
+    flows: JFOFlows
+
+
+@dataclass(frozen=True)
+class FilmAdvance:
+    """One backward-Euler step of the content: the mesh operator at the new state, the
+    balance solved there and the new content (dimensionless, per volume)."""
+
+    op: FilmOperator
+    solve: BalanceSolve
+    content: np.ndarray
+
+
+def _boundary_values(bearing: Bearing, mesh: FilmMesh, grooves, ambient: float):
+    """Pressure and film fraction held on the fixed nodes: the ends and a supply line at
+    ``ambient`` (flooded), each groove at its pressure and fraction."""
+    P = np.zeros(mesh.ndofs)
+    phi = np.ones(mesh.ndofs)
+    P[mesh.fixed] = ambient / bearing.pressure_scale
+    for g, dofs in zip(grooves, mesh.grooves):
+        P[dofs] = g.pressure / bearing.pressure_scale
+        phi[dofs] = g.fraction
+    P[mesh.end] = ambient / bearing.pressure_scale
+    phi[mesh.end] = 1.0
+    return P, phi
+
+
+def _solve(bearing: Bearing, op: FilmOperator, eps: float, T: sp.csr_matrix,
+           storage: np.ndarray, source: np.ndarray, grooves, ambient: float,
+           cavitated0=None, warm_iterations: int = 3, start=None) -> BalanceSolve:
+    """The balance on the film mesh with its ends, supply line and grooves held (P and phi
+    on all nodes). ``start``: see :func:`~bearingfem.solvers.jfo.jfo_solve`."""
+    mesh = op.mesh
+    P_fix, phi_fix = _boundary_values(bearing, mesh, grooves, ambient)
+    P, phi, res, inflow = solve_balance(op.stiffness(eps), T, storage, source, mesh.free,
+                                        P_fix, phi_fix, cavitated0, op.free_stiffness(eps),
+                                        warm_iterations, start)
+    feed_nodes = np.setdiff1d(mesh.fixed, mesh.end)
+    k = flow_factor(bearing, mesh.half)
+    free = mesh.free
+    flows = JFOFlows(flow_in=-k * float(np.sum(inflow[feed_nodes])),
+                     side_leakage=k * float(np.sum(inflow[mesh.end])),
+                     storage=k * float(np.sum(storage[free] * phi[free] - source[free])))
+    return BalanceSolve(P, phi, res, flows)
+
+
+@lru_cache(maxsize=32)
+def _prolongation(coarse: FilmMesh, fine: FilmMesh) -> sp.csr_matrix:
+    return prolongation(coarse, fine.theta, fine.zeta)
+
+
+def _between(a: JournalState, b: JournalState) -> JournalState:
+    """The journal state half way from ``a`` to ``b`` (linear; the attitude the short way)."""
+    turn = float(np.mod(b.gamma - a.gamma + np.pi, 2.0 * np.pi) - np.pi)
+    return JournalState(eps=0.5 * (a.eps + b.eps), eps_dot=0.5 * (a.eps_dot + b.eps_dot),
+                        gamma=a.gamma + 0.5 * turn, gamma_dot=0.5 * (a.gamma_dot + b.gamma_dot),
+                        omega=0.5 * (a.omega + b.omega))
+
+
+def _step_balance(bearing: Bearing, op: FilmOperator, state: JournalState, dt: float,
+                  old: np.ndarray, cavitated: np.ndarray, grooves,
+                  ambient: float) -> FilmAdvance:
+    """One backward-Euler step of the content on ``op``'s mesh from the content ``old``
+    (per volume) and the first set ``cavitated`` (both on that mesh's nodes, the set may
+    be None). When that set does not settle or there is none, the first set comes from the same step on a mesh half as fine
+    (recursively, :func:`~bearingfem.fe.multilevel.coarse_level`): a front that jumps many
+    cells in one step is then placed within a cell or two whatever the mesh, where the
+    active set alone moves it about a cell per iteration."""
+    cv = film_volumes(op.mesh)
+    T = _transport(cv, state.eps, state.omega)
+    H = _content(cv, state.eps)
+    level = coarse_level(op)
+    start = None
+    if level is not None:
+        coarse = level[0]
+
+        def start():
+            down = _prolongation(op.mesh, coarse.mesh)
+            up = free_interpolation(_prolongation(coarse.mesh, op.mesh), coarse.mesh.free)
+            Hc = _content(film_volumes(coarse.mesh), state.eps)
+            try:
+                # no first set there: the previous one already failed on this mesh
+                b = _step_balance(bearing, coarse, state, dt, (down @ (old / H)) * Hc,
+                                  None, grooves, ambient).solve
+            except ConvergenceError:
+                return None
+            return FirstSet(up @ (b.P - (1.0 - b.phi)) < 0.0, b.result.iterations,
+                            b.result.factorisations)
+    b = _solve(bearing, op, state.eps, T, 12.0 * H / dt, 12.0 * old / dt, grooves, ambient,
+               cavitated, start=start)
+    return FilmAdvance(op, b, b.phi * H)
