@@ -11,7 +11,7 @@ import scipy.integrate
 import scipy.optimize
 
 from bearingfem import Lubricant, line_contact
-from bearingfem.ehl._errors import ConvergenceError
+from bearingfem.errors import ConvergenceError
 from bearingfem.ehl.fits import (dowson_higginson, hertz_line, pan_hamrock,
                                  rigid_isoviscous_load, rigid_isoviscous_pressure)
 from bearingfem.ehl.halfspace import LineCompliance, dry_line_contact, hertz_deflection
