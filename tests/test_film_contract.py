@@ -32,7 +32,7 @@ class CountingSpring:
     def _maybe_fail(self, where, t):
         if where == self.fail_in and t > self.fail_after and not self.failures:
             self.failures += 1
-            raise ConvergenceError(f"toy film: {where} at t = {t:.6g} s did not converge")
+            raise ConvergenceError(f"toy film {where}", 1, where=f"t = {t:.6g} s")
 
     def start(self, state, t):
         self.t, self.steps, self.commits = float(t), 0, []

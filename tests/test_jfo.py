@@ -109,12 +109,15 @@ def test_jfo_differs_from_reynolds_where_reformation_matters(seed):
     flooded film's at phi_g = 1."""
     s = JournalState(eps=0.6, omega=250.0)
     flooded = solve_reynolds(seed, s, 96, 16, cavitation="jfo", grooves=[Groove(np.pi, 0.1)])
+    # the film's Couette throughput omega R c L / 2 [m^3/s] scales its balance when the
+    # starved groove feeds (next to) nothing
+    couette = 0.5 * s.omega * seed.radius * seed.clearance * seed.length
     loads = []
     for f in (0.2, 0.4, 0.7, 1.0):
         sol = solve_reynolds(seed, s, 96, 16, cavitation="jfo",
                              grooves=[Groove(np.pi, 0.1, fraction=f)])
         loads.append(np.hypot(*sol.force_local))
-        assert abs(sol.mass_balance) < 1e-10 * max(sol.flow_in, 1e-12)
+        assert abs(sol.mass_balance) < 1e-10 * max(sol.flow_in, couette)
         if f == 0.2:
             assert sol.pressure.max() == 0.0
             i = np.argmin(np.abs(np.mod(sol.theta, 2 * np.pi) - np.pi) + np.abs(sol.z))

@@ -241,7 +241,7 @@ def test_load_continuation_reaches_the_cold_start_answer(monkeypatch):
     def fail_first(*a, **k):
         calls.append(k.get("load", 1.0))
         if len(calls) == 1:
-            raise ConvergenceError("forced")
+            raise ConvergenceError("forced", 1)
         return real(*a, **k)
 
     monkeypatch.setattr(contact, "solve_dimensionless", fail_first)

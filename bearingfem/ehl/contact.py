@@ -198,5 +198,6 @@ def _solve_with_continuation(prob, H_guess, tol):
         converged_f = f
         P, H0 = record.pressure, record.approach
         f = min(1.0, f * ratio)
-    raise ConvergenceError(f"EHL line contact: load continuation stopped below the full load "
-                           f"(last converged load fraction {converged_f}); {failure}")
+    raise ConvergenceError("EHL line contact load continuation",
+                           getattr(failure, "iterations", 0), getattr(failure, "residual", None),
+                           f"last converged load fraction {converged_f}; {failure}")

@@ -110,4 +110,4 @@ def dry_line_contact(nodes: int, half_width: float = 1.5, max_iter: int = 100) -
         if np.array_equal(new, contact):
             return DryContact(X, P, np.where(contact, 0.0, gap), float(sol[-1]), iteration)
         contact = new
-    raise ConvergenceError(f"dry line contact: contact set not settled in {max_iter} iterations")
+    raise ConvergenceError("dry line contact (contact set)", max_iter)

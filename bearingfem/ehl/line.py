@@ -226,6 +226,5 @@ def solve_dimensionless(prob: DimensionlessLine, P0: np.ndarray, H0: float, *,
                     float(np.abs(np.minimum(P[inner], s * r[inner])).max()))
         if worst < tol:
             return NewtonRecord(np.maximum(P, 0.0), H, float(H0), it, worst)
-    raise ConvergenceError(
-        f"EHL line contact: Newton stopped after {it} iterations with complementarity "
-        f"residual {worst:.3e} (tolerance {tol:.0e}) at lambda = {prob.lam:.4g}")
+    raise ConvergenceError("EHL line contact Newton (complementarity residual)", it, worst,
+                           f"lambda = {prob.lam:.4g}, tolerance {tol:.0e}")
