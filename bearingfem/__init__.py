@@ -9,11 +9,12 @@ from .bearing import Bearing, Groove, JournalState
 from .closed.long_bearing import long_bearing_exact_force, long_bearing_force
 from .closed.short_bearing import short_bearing_exact_force, short_bearing_force
 from .design import coefficients, equilibrium
+from .elastic import ElasticBush
 from .fe.reynolds import solve_reynolds
 from .fv.fvm import fvm_reynolds
 from .solution import FilmSolution
 
 __all__ = ["Bearing", "JournalState", "Groove", "solve_reynolds", "fvm_reynolds", "FilmSolution",
            "short_bearing_force", "long_bearing_force", "short_bearing_exact_force",
-           "long_bearing_exact_force", "equilibrium", "coefficients"]
+           "long_bearing_exact_force", "equilibrium", "coefficients", "ElasticBush"]
 __version__ = "0.1.0"
