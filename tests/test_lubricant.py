@@ -1,0 +1,138 @@
+"""Lubricant: pressure-viscosity and pressure-density laws, their limits and derivatives."""
+import math
+
+import numpy as np
+import pytest
+
+from bearingfem import Lubricant
+
+P = np.linspace(0.0, 1.5e9, 31)            # gauge pressures up to 1.5 GPa [Pa]
+OILS = [Lubricant(0.0117),
+        Lubricant(0.0117, barus=2e-8, density="dowson-higginson"),
+        Lubricant(0.04, roelands=0.6, bulk_modulus=1.5e9),
+        Lubricant(0.04, roelands=0.6, density="dowson-higginson")]
+
+
+def test_barus_alpha_to_zero_is_the_constant_oil():
+    """alpha -> 0: mu(p) -> mu0 as mu0 alpha p (fails if the exponent drops alpha)."""
+    for alpha in (1e-11, 1e-13):
+        mu = Lubricant(0.0117, barus=alpha).viscosity_at(P)
+        np.testing.assert_allclose(mu / 0.0117 - 1.0, np.expm1(alpha * P), rtol=1e-9)
+        assert np.max(np.abs(mu / 0.0117 - 1.0)) <= 1.1 * alpha * P[-1]
+    np.testing.assert_array_equal(Lubricant(0.0117).viscosity_at(P), 0.0117)
+    np.testing.assert_array_equal(Lubricant(0.0117).density_at(P), 1.0)
+
+
+def test_barus_value():
+    """mu0 exp(alpha p) at 0.8 GPa, alpha = 2e-8: 8.9e6 mu0 (fails with alpha/2 or a sign flip)."""
+    mu = Lubricant(0.0117, barus=2e-8).viscosity_at(0.8e9)
+    assert mu == pytest.approx(0.0117 * math.exp(16.0), rel=1e-12)
+
+
+def test_roelands_matches_barus_at_low_pressure():
+    """Roelands with Z behaves as Barus with alpha* = 5.1e-9 Z (ln mu0 + 9.67) as p -> 0.
+
+    The relative gap is second order in p: |ln mu_R - ln mu_B| = c Z (1 - Z) (p/p0)^2 / 2,
+    so at 1 MPa it is 2e-5 and it shrinks 100x for 10x less pressure (the next term
+    is 0.3 % of it at 1 MPa). Fails with
+    the 9.67 replaced (the slope moves) or with the exponent Z dropped.
+    """
+    mu0, z = 0.04, 0.6
+    oil = Lubricant(mu0, roelands=z)
+    alpha_star = 5.1e-9 * z * (math.log(mu0) + 9.67)
+    assert oil.pressure_viscosity == pytest.approx(alpha_star, rel=1e-14)
+    barus = Lubricant(mu0, barus=alpha_star)
+    gaps = []
+    for p in (1e6, 1e5):
+        gap = abs(math.log(oil.viscosity_at(p) / barus.viscosity_at(p)))
+        expected = (math.log(mu0) + 9.67) * z * (1 - z) * (5.1e-9 * p) ** 2 / 2
+        assert gap == pytest.approx(expected, rel=5e-3)
+        gaps.append(gap)
+    assert gaps[0] / gaps[1] == pytest.approx(100.0, rel=1e-2)
+    # at high pressure Roelands rises far slower than its equivalent Barus oil
+    assert oil.viscosity_at(1e9) < 1e-2 * barus.viscosity_at(1e9)
+
+
+def test_roelands_value():
+    """Houpert's form at 0.5 GPa, computed by hand (fails with 5.1e-9 -> 5.1e-8)."""
+    mu0, z, p = 0.04, 0.6, 0.5e9
+    expected = mu0 * math.exp((math.log(mu0) + 9.67) * (-1 + (1 + 5.1e-9 * p) ** z))
+    assert Lubricant(mu0, roelands=z).viscosity_at(p) == pytest.approx(expected, rel=1e-13)
+
+
+def test_dowson_higginson_limits():
+    """rho/rho0: 1 at ambient, slope 0.6e-9 there, -> 1 + 0.6/1.7 = 1.353 as p -> inf."""
+    oil = Lubricant(0.0117, density="dowson-higginson")
+    assert oil.density_at(0.0) == 1.0
+    assert oil.density_derivative(0.0) == pytest.approx(0.6e-9, rel=1e-14)
+    assert oil.density_at(1e15) == pytest.approx(1 + 0.6 / 1.7, rel=1e-6)
+    assert oil.density_at(1e9) == pytest.approx(1 + 0.6 / 2.7, rel=1e-14)
+    assert np.all(np.diff(oil.density_at(P)) > 0)
+
+
+def test_bulk_modulus_is_exponential():
+    """rho/rho0 = exp(p/B): B = rho dp/drho exactly at every pressure."""
+    oil = Lubricant(0.0117, bulk_modulus=1.5e9)
+    rho, drho = oil.density_at(P), oil.density_derivative(P)
+    np.testing.assert_allclose(rho / drho, 1.5e9, rtol=1e-13)
+    assert oil.density_at(1.5e9) == pytest.approx(math.e, rel=1e-14)
+
+
+@pytest.mark.parametrize("oil", OILS, ids=["constant", "barus-dh", "roelands-bulk", "roelands-dh"])
+def test_derivatives_match_complex_step(oil):
+    """d mu/dp and d rho/dp against a complex step (exact to rounding); fails on any slip
+    in the chain rule (e.g. Roelands' Z-1 power written Z)."""
+    h = 1e-20 * np.maximum(P, 1e6)
+    pc = P + 1j * h
+
+    def mu_complex(p):
+        if oil.roelands is not None:
+            c = math.log(oil.viscosity) + 9.67
+            return oil.viscosity * np.exp(c * ((1 + 5.1e-9 * p) ** oil.roelands - 1))
+        return oil.viscosity * np.exp((oil.barus or 0.0) * p)
+
+    def rho_complex(p):
+        if oil.density == "dowson-higginson":
+            return 1 + 0.6e-9 * p / (1 + 1.7e-9 * p)
+        if oil.bulk_modulus is not None:
+            return np.exp(p / oil.bulk_modulus)
+        return np.ones_like(p)
+
+    np.testing.assert_allclose(oil.viscosity_at(P), mu_complex(P).real, rtol=1e-13)
+    np.testing.assert_allclose(oil.density_at(P), rho_complex(P).real, rtol=1e-14)
+    np.testing.assert_allclose(oil.viscosity_derivative(P), mu_complex(pc).imag / h,
+                               rtol=1e-12, atol=1e-300)
+    np.testing.assert_allclose(oil.density_derivative(P), rho_complex(pc).imag / h,
+                               rtol=1e-12, atol=1e-300)
+    # and the central difference of the class's own functions (independent of the above)
+    d = 1e3
+    fd_mu = (oil.viscosity_at(P + d) - oil.viscosity_at(P - d)) / (2 * d)
+    np.testing.assert_allclose(oil.viscosity_derivative(P), fd_mu, rtol=1e-6, atol=1e-300)
+    fd_rho = (oil.density_at(P + d) - oil.density_at(P - d)) / (2 * d)
+    np.testing.assert_allclose(oil.density_derivative(P), fd_rho, rtol=1e-6, atol=1e-22)
+
+
+def test_vectorised_shapes():
+    oil = OILS[1]
+    p = np.full((3, 4), 1e8)
+    for f in (oil.viscosity_at, oil.viscosity_derivative, oil.density_at, oil.density_derivative):
+        assert f(p).shape == (3, 4)
+        assert np.ndim(f(1e8)) == 0
+
+
+@pytest.mark.parametrize("kwargs, name", [
+    (dict(viscosity=0.0), "viscosity"),
+    (dict(viscosity=float("nan")), "viscosity"),
+    (dict(viscosity="oil"), "viscosity"),
+    (dict(viscosity=0.01, barus=-1e-8), "barus"),
+    (dict(viscosity=0.01, barus=float("inf")), "barus"),
+    (dict(viscosity=0.01, roelands=0.0), "roelands"),
+    (dict(viscosity=0.01, roelands=3.0), "roelands"),
+    (dict(viscosity=0.01, barus=2e-8, roelands=0.6), "roelands"),
+    (dict(viscosity=0.01, density="tait"), "density"),
+    (dict(viscosity=0.01, bulk_modulus=-1.0), "bulk_modulus"),
+    (dict(viscosity=0.01, bulk_modulus=1e9, density="dowson-higginson"), "bulk_modulus"),
+])
+def test_bad_input_names_the_parameter(kwargs, name):
+    with pytest.raises(ValueError, match=name):
+        Lubricant(**kwargs)
