@@ -115,7 +115,7 @@ def element_tables(op) -> ElementTables:
     nb = basis.Nbfun
     rows = np.broadcast_to(basis.element_dofs[:, :, None], (nb, E, Q))
     cols = np.broadcast_to(np.arange(E * Q).reshape(E, Q), (nb, E, Q))
-    phi = np.array([basis.basis[i][0].value * dx for i in range(nb)])
+    phi = np.array([np.asarray(basis.basis[i][0]) * dx for i in range(nb)])
     dphi = np.array([np.asarray(basis.basis[i][0].grad) * dx for i in range(nb)])
     return ElementTables(rows, cols, phi, dphi)
 
@@ -170,10 +170,13 @@ class EHDFilm:
 
     def system(self, P: np.ndarray, s: float = 1.0):
         """(evaluated fields, stiffness values on the pattern, load) at pressure P; the
-        fields are None when the gap closes somewhere."""
+        fields are None where the gap closes or a viscosity or density is not finite
+        and > 0."""
         film, _ = self.fields(P, s)
-        if not np.all(film.gap > 0.0) or not np.all(np.isfinite(film.viscosity)):
-            return None, None, None
+        # a trial pressure may close the gap or push a property law out of range
+        for field in (film.gap, film.viscosity, film.density):
+            if not np.all((field > 0.0) & np.isfinite(field)):
+                return None, None, None
         values, load = film_system(self.op, film, self.wedge)
         return film, values, load
 

@@ -61,7 +61,8 @@ class EHDResult:
 def _merit(film, P, s, free, cavitation):
     """(Phi on the free dofs, its scale, active rows) or Nones (gap closed): active rows
     are those where Phi = min(d P, R) takes d P (held cavitated)."""
-    R, size, values = film.residual(P, s)
+    with np.errstate(over="ignore", invalid="ignore"):   # a trial step may overflow mu
+        R, size, values = film.residual(P, s)
     if R is None or not np.all(np.isfinite(R)):
         return None, None, None
     scale = float(np.max(size[free], initial=0.0)) or 1.0
@@ -121,7 +122,9 @@ def _newton(film, P, s, free, cavitation, tol):
         while alpha >= 1.0 / 64:
             trial = P + alpha * step
             t_phi, t_scale, t_held = _merit(film, trial, s, free, cavitation)
-            if t_phi is not None and np.linalg.norm(t_phi) < (1.0 - 1e-4 * alpha) * norm:
+            with np.errstate(over="ignore"):
+                better = t_phi is not None and np.linalg.norm(t_phi) < (1 - 1e-4 * alpha) * norm
+            if better:
                 P, phi, scale, held = trial, t_phi, t_scale, t_held
                 break
             alpha *= 0.5
