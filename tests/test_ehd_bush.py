@@ -155,3 +155,17 @@ def test_seed_heavy_state_scene_mesh(model):
 def test_bad_input(kwargs, match):
     with pytest.raises(ValueError, match=match):
         solve_reynolds(SEED, LIGHT, *N, **kwargs)
+
+
+def test_benchmark_smoke(capsys):
+    """benchmarks/ehd.py --quick runs; every EHD row converged, opened the mid-plane film
+    and lowered the peak pressure of its state's rigid row."""
+    from benchmarks import ehd
+    rows = ehd.main(["--quick"])
+    assert "compliance" in capsys.readouterr().out
+    rigid = {r["eps"]: r for r in rows if r["bush"] == "-"}
+    for r in rows:
+        assert r["residual"] <= 1e-10
+        if r["bush"] != "-" and r["oil"] == "-":
+            assert r["film_mid"] > rigid[r["eps"]]["film_mid"]
+            assert r["pressure_max"] < rigid[r["eps"]]["pressure_max"]
