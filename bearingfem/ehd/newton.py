@@ -42,8 +42,9 @@ class EHDResult:
     """The converged EHD pressure with its record.
 
     pressure : dimensionless nodal pressure P; active : dofs held cavitated
-    iterations : Newton iterations over all continuation steps; steps : continuation
-    steps taken (1: s = 1 reached directly); residual : final max |Phi| relative to the
+    iterations : Newton iterations over all continuation attempts, rejected ones included;
+    steps : continuation steps taken (1: s = 1 reached directly); rejected : attempts
+    retried with a smaller increment; residual : final max |Phi| relative to the
     residual's term size; converged : always True (a failed solve raises)
     """
 
@@ -100,23 +101,23 @@ def _newton_step(film, P, s, free, phi, held):
 
 
 def _newton(film, P, s, free, cavitation, tol):
-    """Damped (semismooth) Newton at coupling s from P: (P, iterations, residual, active)
-    or None when it stalls."""
+    """Damped (semismooth) Newton at coupling s from P: ((P, residual, active) or None
+    when it stalls, the iterations it took)."""
     phi, scale, held = _merit(film, P, s, free, cavitation)
     if phi is None:
-        return None
+        return None, 0
     for it in range(MAX_NEWTON + 1):
         res = float(np.max(np.abs(phi), initial=0.0)) / scale
         if res <= tol:
             active = np.zeros(P.size, bool)
             active[free[held]] = True
-            return P, it, res, active
+            return (P, res, active), it
         if it == MAX_NEWTON:
-            return None
+            return None, it
         try:
             step = _newton_step(film, P, s, free, phi, held)
         except (RuntimeError, la.LinAlgError):       # singular Jacobian: treat as a stall
-            return None
+            return None, it
         norm = float(np.linalg.norm(phi))
         alpha = 1.0
         while alpha >= 1.0 / 64:
@@ -129,8 +130,8 @@ def _newton(film, P, s, free, cavitation, tol):
                 break
             alpha *= 0.5
         else:
-            return None
-    return None
+            return None, it + 1
+    return None, MAX_NEWTON
 
 
 def solve_ehd(film, P0: np.ndarray, cavitation: str, tol: float = 1e-10) -> EHDResult:
@@ -141,7 +142,8 @@ def solve_ehd(film, P0: np.ndarray, cavitation: str, tol: float = 1e-10) -> EHDR
     iterations = steps = rejected = 0
     while done < 1.0:
         s = min(1.0, done + increment)
-        out = _newton(film, P, s, free, cavitation, tol)
+        out, its = _newton(film, P, s, free, cavitation, tol)
+        iterations += its
         if out is None:
             rejected += 1
             increment *= 0.25
@@ -151,8 +153,7 @@ def solve_ehd(film, P0: np.ndarray, cavitation: str, tol: float = 1e-10) -> EHDR
                     f"s={done:.4g} (increment < {MIN_INCREMENT}) after {iterations} "
                     f"iterations; refine the mesh or reduce the load")
             continue
-        P, its, residual, active = out
-        iterations += its
+        P, residual, active = out
         steps += 1
         done, increment = s, min(1.0, 2.0 * increment)
     return EHDResult(P, iterations, residual, True, active, steps, rejected)

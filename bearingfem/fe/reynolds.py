@@ -162,7 +162,9 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
         cavitation; solved by Newton, :mod:`bearingfem.ehd`)
     bush : :class:`~bearingfem.elastic.ElasticBush` (its compliance is built on the film
         grid) or a prebuilt full or reduced compliance on the (n_theta, n_z + 1) grid; the
-        gap becomes c (1 + eps cos theta) + deformation (P1, Reynolds-family cavitation)
+        gap becomes c (1 + eps cos theta) + deformation (P1, Reynolds-family cavitation).
+        With a lubricant or a bush, ``method`` and ``tol`` serve the rigid start and the
+        Newton test, and ``iterations`` counts Newton steps (:mod:`bearingfem.ehd`)
 
     With ``fields`` or a tilt the whole length is meshed (no mid-plane symmetry) and
     ``moment`` is the film's moment on the journal; fields that are the rigid cylinder's
