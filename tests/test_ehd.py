@@ -16,24 +16,27 @@ S = JournalState(eps=0.6, eps_dot=0.1, gamma=0.3, gamma_dot=0.0, omega=250.0)
 BUMP = FilmFields(gap=lambda t, z: 1.0 + S.eps * np.cos(t) + 0.1 * z * np.sin(t))
 
 
+@pytest.mark.parametrize("element", ["P1", "P2"])
 @pytest.mark.parametrize("cavitation", ["none", "gumbel", "reynolds"])
-def test_zero_alpha_is_todays_film(cavitation):
+def test_zero_alpha_is_todays_film(cavitation, element):
     """Barus alpha = 0: the Newton film takes no step and is today's film on the same fields
     to round-off (1e-13; a general gap), and the rigid fast path to 1e-9 (the fast path's
     strong-form Couette term differs by quadrature error: 5e-11 measured at 60 x 10).
     Fails when the start is not the isoviscous film (e.g. the lubricant's viscosity taken
     as a ratio to itself when the bearing's differs: viscosity 2 mu0 gives 1.0 here)."""
     oil = Lubricant(viscosity=B.viscosity, barus=0.0)
-    today = solve_reynolds(B, S, 60, 10, cavitation=cavitation, fields=BUMP)
-    ehd = solve_reynolds(B, S, 60, 10, cavitation=cavitation, fields=BUMP, lubricant=oil)
+    n = (60, 10) if element == "P1" else (30, 6)
+    today = solve_reynolds(B, S, *n, element, cavitation=cavitation, fields=BUMP)
+    ehd = solve_reynolds(B, S, *n, element, cavitation=cavitation, fields=BUMP,
+                         lubricant=oil)
     assert ehd.iterations == 0
     scale = np.max(np.abs(today.pressure))
     assert np.max(np.abs(ehd.pressure - today.pressure)) <= 1e-13 * scale
-    rigid = solve_reynolds(B, S, 60, 10, cavitation=cavitation)
-    whole = solve_reynolds(B, S, 60, 10, cavitation=cavitation, lubricant=oil)
+    rigid = solve_reynolds(B, S, *n, element, cavitation=cavitation)
+    whole = solve_reynolds(B, S, *n, element, cavitation=cavitation, lubricant=oil)
     assert np.allclose(whole.force, rigid.force, rtol=1e-9, atol=0.0)
     thick = Lubricant(viscosity=2 * B.viscosity)
-    doubled = solve_reynolds(B, S, 60, 10, cavitation=cavitation, lubricant=thick)
+    doubled = solve_reynolds(B, S, *n, element, cavitation=cavitation, lubricant=thick)
     assert np.allclose(doubled.force, 2 * np.asarray(rigid.force), rtol=1e-9, atol=0.0)
 
 
@@ -79,16 +82,17 @@ def test_barus_long_bearing_reduced_pressure():
     assert errors[0] / errors[1] > 1.8
 
 
+@pytest.mark.parametrize("element", ["P1", "P2"])
 @pytest.mark.parametrize("state", [S, JournalState(eps=0.6, eps_dot=20.0, omega=0.0)])
 @pytest.mark.parametrize("oil", [Lubricant(viscosity=0.0117, barus=2e-8,
                                            density="dowson-higginson"),
                                  Lubricant(viscosity=0.0117, roelands=0.6, bulk_modulus=2e9)])
-def test_jacobian_is_the_residuals_derivative(oil, state):
+def test_jacobian_is_the_residuals_derivative(oil, state, element):
     """J v against the central difference of the residual (step 1e-6 |P|, truncation
-    ~1e-12; 3e-11 measured): agreement 1e-7 relative, on a rotating and a pure-squeeze
-    film. Fails with the density slope in the Couette term, the density slope in the
+    ~1e-12; 3e-11 P1, 8e-11 P2 measured): agreement 1e-7 relative, on a rotating and a
+    pure-squeeze film. Fails with the density slope in the Couette term, the density slope in the
     squeeze term or the viscosity slope dropped."""
-    op = fe_operator(B, state, 24, 6, "P1", None, False)
+    op = fe_operator(B, state, 24, 6, element, None, False)
     base, gap = general_film(B, state, op, BUMP)
     film = ehd_film(B, state, op, base, gap, oil, None)
     P = 0.5e9 / B.pressure_scale * np.maximum(np.sin(op.mesh.theta), 0.0) * (
