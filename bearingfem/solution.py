@@ -71,6 +71,7 @@ class FilmSolution:
     fraction: np.ndarray | None = field(default=None, repr=False)  # JFO film fraction, [0, 1]
     mass_balance: float | None = None  # JFO: flow_in - side_leakage - d(content)/dt [m^3/s]
     moment: tuple = (0.0, 0.0)    # (M_x, M_y) [N m] on the journal about the bearing centre
+    deformation: np.ndarray | None = field(default=None, repr=False)  # bush deflection [m]
 
     def summary(self) -> str:
         """The solve in a few named lines with units (what ``bearingfem solve`` prints)."""

@@ -124,7 +124,8 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
                    method: str = "active-set", supply_angle=None, half: bool = True,
                    tol: float = 1e-10, cavitated_shear: str = "full",
                    grooves=(), ambient_pressure: float = 0.0, fields: FilmFields | None = None,
-                   tilt=(0.0, 0.0), tilt_rate=(0.0, 0.0)) -> FilmSolution:
+                   tilt=(0.0, 0.0), tilt_rate=(0.0, 0.0), lubricant=None,
+                   bush=None) -> FilmSolution:
     """Solve the Reynolds equation on a finite-element mesh of the unwrapped film.
 
     Parameters
@@ -156,6 +157,14 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
         through the bearing centre (:func:`~bearingfem.fields.tilted_gap`); its gap is
         added to the fields' (Reynolds-family cavitation)
     tilt_rate : their rates [rad/s] (squeeze)
+    lubricant : :class:`~bearingfem.lubricant.Lubricant` whose viscosity and density follow
+        the pressure (ratios to the bearing's viscosity), or None (Reynolds-family
+        cavitation; solved by Newton, :mod:`bearingfem.ehd`)
+    bush : :class:`~bearingfem.elastic.ElasticBush` (its compliance is built on the film
+        grid) or a prebuilt full or reduced compliance on the (n_theta, n_z + 1) grid; the
+        gap becomes c (1 + eps cos theta) + deformation (P1, Reynolds-family cavitation).
+        With a lubricant or a bush, ``method`` and ``tol`` serve the rigid start and the
+        Newton test, and ``iterations`` counts Newton steps (:mod:`bearingfem.ehd`)
 
     With ``fields`` or a tilt the whole length is meshed (no mid-plane symmetry) and
     ``moment`` is the film's moment on the journal; fields that are the rigid cylinder's
@@ -172,7 +181,11 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
     ambient_pressure = check_jfo_supply(cavitation, grooves, supply_angle, ambient_pressure,
                                         element)
     tilt, tilt_rate = check_tilt("tilt", tilt), check_tilt("tilt_rate", tilt_rate)
-    general = fields is not None or any(tilt) or any(tilt_rate)
+    ehd = lubricant is not None or bush is not None
+    if ehd:
+        from ..ehd.film import check_ehd, solve_ehd_film
+        check_ehd(lubricant, bush, fields, element, cavitation)
+    general = fields is not None or any(tilt) or any(tilt_rate) or ehd
     if general and cavitation == "jfo":
         raise ValueError("fields and tilt need a Reynolds-family cavitation model "
                          "('none', 'gumbel', 'reynolds'), got cavitation='jfo'")
@@ -189,6 +202,10 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
     system = film = gap = None
     if general:
         film, gap = general_film(bearing, state, op, fields, tilt, tilt_rate)
+        if ehd:
+            return solve_ehd_film(bearing, state, op, film, gap, lubricant, bush, cavitation,
+                                  method, tol, groove_pressures(bearing, op, grooves),
+                                  cavitated_shear, grooves)
         if not film.is_rigid(op, state):      # the rigid data takes the fast path
             system = film_system(op, film, state.wedge_speed)
     dirichlet = groove_pressures(bearing, op, grooves)

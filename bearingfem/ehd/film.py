@@ -1,0 +1,53 @@
+"""The EHD journal film: the route of ``solve_reynolds(..., lubricant=, bush=)``."""
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+
+from ..fe.general import film_system
+from ..fe.reynolds import _film_outputs, fe_pressure
+from ..lubricant import Lubricant
+from .coupling import ehd_film
+from .newton import solve_ehd
+
+__all__ = ["solve_ehd_film", "check_ehd"]
+
+
+def check_ehd(lubricant, bush, fields, element: str, cavitation: str):
+    """ValueError for a lubricant or bush the EHD film cannot take, before any work."""
+    if lubricant is not None and not isinstance(lubricant, Lubricant):
+        raise ValueError(f"lubricant must be a bearingfem.Lubricant or None, "
+                         f"got {type(lubricant).__name__}")
+    if cavitation == "jfo":
+        raise ValueError("lubricant and bush need a Reynolds-family cavitation model "
+                         "('none', 'gumbel', 'reynolds'), got cavitation='jfo'")
+    if bush is not None and element != "P1":
+        raise ValueError(f"bush needs element='P1' (the compliance acts on the film's "
+                         f"vertex grid), got element={element!r}")
+    if lubricant is not None and fields is not None and not (
+            np.all(np.asarray(fields.viscosity) == 1.0)
+            and np.all(np.asarray(fields.density) == 1.0)):
+        raise ValueError("give the viscosity and density by the lubricant or by fields, "
+                         "not both")
+
+
+def solve_ehd_film(bearing, state, op, base, gap0, lubricant, bush, cavitation, method,
+                   tol, dirichlet, cavitated_shear, grooves):
+    """Solve the film of ``op`` with pressure-dependent fields and elastic gap; the base
+    fields ``base`` (quadrature) and nodal gap ``gap0`` are the film's without them."""
+    film = ehd_film(bearing, state, op, base, gap0, lubricant, bush)
+    zero = np.zeros(op.mesh.ndofs)
+    start, _ = film.fields(zero, 0.0)          # the isoviscous rigid film (s = 0)
+    rigid = fe_pressure(op, state, cavitation, method, tol, dirichlet=dirichlet,
+                        system=film_system(op, start, state.wedge_speed))
+    res = solve_ehd(film, rigid.pressure, "reynolds" if cavitation == "reynolds" else "none",
+                    tol)
+    P = res.pressure
+    fields, values, load = film.system(P)
+    deformation = film.deflection(P)
+    sol = _film_outputs(bearing, state, op, res, values, load, fields, cavitation,
+                        cavitated_shear, grooves, "fem-P1/ehd-newton"
+                        if op.mesh.basis.Nbfun == 3 else "fem-P2/ehd-newton",
+                        gap0 + deformation / bearing.clearance)
+    return replace(sol, deformation=deformation)
