@@ -26,10 +26,7 @@ import scipy.linalg as la
 import scipy.sparse as sp
 from scipy.sparse.linalg import splu
 
-try:                                     # the project's shared error, once it lands
-    from ..errors import ConvergenceError
-except ImportError:                      # pragma: no cover
-    from ..contract import ConvergenceError
+from ..errors import ConvergenceError
 
 __all__ = ["EHDResult", "solve_ehd", "ConvergenceError"]
 
@@ -149,9 +146,9 @@ def solve_ehd(film, P0: np.ndarray, cavitation: str, tol: float = 1e-10) -> EHDR
             increment *= 0.25
             if increment < MIN_INCREMENT:
                 raise ConvergenceError(
-                    f"EHD Newton did not converge: load continuation stalled at coupling "
-                    f"s={done:.4g} (increment < {MIN_INCREMENT}) after {iterations} "
-                    f"iterations; refine the mesh or reduce the load")
+                    "EHD Newton (load continuation)", iterations, None,
+                    f"coupling s = {done:.4g}, increment below {MIN_INCREMENT}: refine the "
+                    "mesh or reduce the load")
             continue
         P, residual, active = out
         steps += 1
