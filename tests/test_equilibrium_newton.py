@@ -90,7 +90,7 @@ def test_a_nearby_start_takes_fewer_evaluations():
 def test_closed_forms_take_newton_and_keep_their_brent_answer():
     """The short bearing's Newton equilibrium against Brent on |F(eps)| (the periodic
     film's old route, independent of the Jacobian). Fails with the Jacobian's J F term
-    dropped (no convergence in 30 steps)."""
+    dropped."""
     from scipy.optimize import brentq
     b = bearing(0.5)
     W = 2000.0
