@@ -227,8 +227,9 @@ def _newton_equilibrium(m, bearing, omega, load, opts, q0, eps_max, rtol, model,
     f_loc = m.force(bearing, state, **opts) if sol is None else sol.force_local
     residual = np.hypot(*(np.add(local_to_inertial(*f_loc, gamma), load))) / math.hypot(*load)
     if not residual <= 1e-8:
-        raise ConvergenceError(f"Newton's equilibrium ({model} model) ended at eps = {eps:.6g} "
-                               f"with film force off the load by {residual:.2e} of it")
+        raise ConvergenceError(f"Newton's equilibrium ({model} model)", calls[0], residual,
+                               f"eps = {eps:.6g} (film force off the load by more than 1e-8 "
+                               f"of it)")
     return _result(bearing, omega, load, state, f_loc, sol, model, calls[0])
 
 

@@ -98,13 +98,17 @@ def newton_position(partials, load, q0, eps_max, rtol, capacity, model):
 
     def fail(why):
         check_capacity()
-        raise ConvergenceError(f"Newton's equilibrium ({model} model) did not converge: {why} "
-                               f"(eps = {math.hypot(*q):.6g}); start it nearer "
-                               f"(start=a nearby Equilibrium)")
+        # the arguments of bearingfem.errors.ConvergenceError (solve, iterations, residual,
+        # where); a plain RuntimeError takes them too
+        raise ConvergenceError(f"Newton's equilibrium ({model} model)", steps[0],
+                               float(np.linalg.norm(r)),
+                               f"eps = {math.hypot(*q):.6g} ({why}; start it nearer: "
+                               f"start=a nearby Equilibrium)")
 
     r, J = evaluate(q)
     step_tol = math.sqrt(rtol)
-    for _ in range(NEWTON_MAX_STEPS):
+    steps = [0]
+    for steps[0] in range(1, NEWTON_MAX_STEPS + 1):
         try:
             dq = -np.linalg.solve(J, r)
         except np.linalg.LinAlgError:
