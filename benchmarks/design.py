@@ -5,6 +5,8 @@
     python -m benchmarks.design --ross     # also ROSS's FluidFlow on the same bearing, side by
                                            # side (installs ross-rotordynamics into .venv-ross
                                            # on first use; it is not a dependency)
+    python -m benchmarks.design --grooved  # Newton's equilibrium against the root search it
+                                           # replaced, grooved and periodic (see grooved.py)
 
 Bearing: Friswell et al. (2010) Example 5.5.1 (D 0.1 m, L 0.03 m, c 0.1 mm, mu 0.1 Pa s,
 157.1 rad/s, 525 N downward), with Gumbel's condition (ROSS's FluidFlow clips negative
@@ -99,7 +101,12 @@ def main(argv=None):
     ap.add_argument("--repeat", type=int, default=5)
     ap.add_argument("--quick", action="store_true", help="two meshes, coarse reference")
     ap.add_argument("--ross", action="store_true", help="measure ROSS side by side")
+    ap.add_argument("--grooved", action="store_true",
+                    help="Newton vs root search on Lund & Thomsen's two-groove bearing")
     args = ap.parse_args(argv)
+    if args.grooved:
+        from .grooved import grooved_table
+        return grooved_table(max(1, args.repeat // 2), args.quick)
     ref_opts = dict(n_theta=96, n_z=12, element="P2") if args.quick else REFERENCE
     ref = design_numbers("fem", ref_opts)
     ladder = LADDER[:1] + LADDER[3:4] if args.quick else LADDER

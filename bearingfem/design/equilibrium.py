@@ -7,6 +7,12 @@ the film force opposite the load. Grooves fixed in space make the force depend o
 too, and so does a misaligned journal's (``tilt``): from that periodic equilibrium a 2-D
 root in the journal position finishes the job. The attitude angle phi = atan2(F_t, -F_r)
 is the angle from the load line to the line of centres, in the sense of rotation.
+
+Models with exact partials (the FE film, the closed forms) instead take Newton's method in
+the journal position q = e/c: the Jacobian dF/dq is the stiffness the partials give
+(:mod:`bearingfem.design.coefficients`, grooves' d/dgamma included), so each step costs one
+film evaluation with its partials, and the iteration starts from a closed form
+(:mod:`bearingfem.design.newton`) or a nearby equilibrium (``start=``).
 """
 from __future__ import annotations
 
@@ -17,14 +23,16 @@ import numpy as np
 from scipy.optimize import brentq, root
 
 from ..bearing import Bearing, JournalState, check_finite
+from ..contract import ConvergenceError
 from ..fe.reynolds import solve_reynolds
 from ..fields import check_tilt
 from ..film import local_to_inertial
 from ..models import film_model, solve_film
 from ..solution import FilmSolution
 from .groups import petroff_friction, sommerfeld_number
+from .newton import closed_form_start, newton_position
 
-__all__ = ["Equilibrium", "equilibrium", "EPS_MAX"]
+__all__ = ["Equilibrium", "equilibrium", "EPS_MAX", "ConvergenceError"]
 
 #: Default largest eccentricity ratio searched: past it the film is thinner than 1 % of c,
 #: below the roughness of real bearings; a load that needs more is refused.
@@ -47,7 +55,9 @@ class Equilibrium:
     pressure_max [Pa], side_leakage [m^3/s], flow_in [m^3/s] (= side leakage, steady):
         from the film solution for the mesh models, None for the closed forms and the table
     solution : the :class:`FilmSolution` at equilibrium (mesh models) or None
-    model, iterations : the film model and the number of force evaluations
+    model, iterations : the film model and the number of film evaluations (a force, or a
+        force with its partials: one film solve, three for grooved FE films, whose
+        d/dgamma is a central difference)
     """
 
     eps: float
@@ -87,7 +97,7 @@ def _load_vector(load, direction):
 
 def equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
                 direction: float | None = None, eps_max: float = EPS_MAX,
-                rtol: float = 1e-13, **options) -> Equilibrium:
+                rtol: float = 1e-13, start=None, **options) -> Equilibrium:
     """Where the journal sits under a steady ``load`` at speed ``omega``.
 
     Parameters
@@ -100,6 +110,10 @@ def equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
         options, e.g. ``n_theta=120, n_z=20, element="P2", cavitation="reynolds"``
     eps_max : largest eccentricity ratio searched, in (0, 1)
     rtol : relative tolerance on eps (relative, so light loads, eps ~ 1e-8, stay exact)
+    start : an :class:`Equilibrium` or :class:`JournalState` near the answer (e.g. the
+        previous load of a sweep), where Newton's method starts (models with exact
+        partials only; default: the closed-form equilibrium). Newton's method raises
+        :class:`ConvergenceError` if it does not converge from there.
     tilt : (tilt_x, tilt_y) [rad], a prescribed misalignment (model "fem" only): the
         journal centre at the mid-plane is placed where the tilted film balances the load
         (a 2-D root from the aligned equilibrium); ``solution.moment`` is the moment the
@@ -120,6 +134,14 @@ def equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
     eps_max = check_finite("eps_max", eps_max)
     if not 0.0 < eps_max < 1.0:
         raise ValueError(f"eps_max must lie in (0, 1), got {eps_max!r}")
+    newton = m.derivatives is not None and not m.memory
+    if start is not None and not newton:
+        raise ValueError(f"start needs a model with exact partials (Newton's method), got "
+                         f"model={model!r}")
+    q0 = _start_position(start, eps_max) if start is not None else None
+    if newton:
+        return _newton_equilibrium(m, bearing, omega, (wx, wy), opts, q0, eps_max, rtol,
+                                   model, tilt)
     calls = [0]
     grooves = opts.get("grooves", ())
     periodic = {**opts, "grooves": ()} if grooves else opts
@@ -145,8 +167,15 @@ def equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
         return _tilted_equilibrium(bearing, omega, (wx, wy), eps, gamma, eps_max, opts, tilt,
                                    calls[0])
     state = JournalState(eps, omega=omega, gamma=gamma)
-    film_force = local_to_inertial(f_r, f_t, gamma)
     sol = solve_film(model, bearing, state, opts)
+    return _result(bearing, omega, (wx, wy), state, (f_r, f_t), sol, model, calls[0])
+
+
+def _result(bearing, omega, load, state, force_local, sol, model, calls):
+    """The :class:`Equilibrium` at ``state``, the film force there (local) and solution."""
+    (wx, wy), W = load, math.hypot(*load)
+    (f_r, f_t), eps, gamma = force_local, state.eps, state.gamma
+    film_force = local_to_inertial(f_r, f_t, gamma)
     friction = petroff_friction(bearing, eps, omega, f_t)
     return Equilibrium(
         eps=eps, attitude=math.atan2(f_t, -f_r), state=state, load=(wx, wy),
@@ -158,7 +187,50 @@ def equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
         pressure_max=None if sol is None else sol.pressure_max,
         side_leakage=None if sol is None else sol.side_leakage,
         flow_in=None if sol is None else sol.side_leakage,
-        solution=sol, model=model, iterations=calls[0])
+        solution=sol, model=model, iterations=calls)
+
+
+def _start_position(start, eps_max):
+    """The journal position q = e/c of ``start`` (an Equilibrium or JournalState)."""
+    state = start.state if isinstance(start, Equilibrium) else start
+    if not isinstance(state, JournalState):
+        raise ValueError(f"start must be an Equilibrium or a JournalState, got "
+                         f"{type(start).__name__}")
+    if not 0.0 < state.eps < eps_max:
+        raise ValueError(f"start.eps must lie in (0, eps_max = {eps_max:g}), got "
+                         f"{state.eps!r}")
+    return np.array([state.eps * math.cos(state.gamma), state.eps * math.sin(state.gamma)])
+
+
+def _newton_equilibrium(m, bearing, omega, load, opts, q0, eps_max, rtol, model, tilt):
+    """Equilibrium by Newton's method on the model's exact partials (module docstring)."""
+    calls = [0]
+
+    def partials(eps, gamma):
+        calls[0] += 1
+        return m.derivatives(bearing, JournalState(eps, omega=omega, gamma=gamma), **opts)
+
+    def capacity():     # what the (periodic) film carries at eps_max, for the error message
+        calls[0] += 1
+        o = {**opts, "grooves": ()} if opts.get("grooves") else opts
+        return math.hypot(*m.force(bearing, JournalState(eps_max, omega=omega), **o))
+
+    if q0 is None:
+        q0 = closed_form_start(bearing, omega, load)
+    eps, gamma = newton_position(partials, load, q0, eps_max, rtol, capacity, model)
+    if any(tilt):
+        return _tilted_equilibrium(bearing, omega, load, eps, gamma, eps_max, opts, tilt,
+                                   calls[0])
+    state = JournalState(eps, omega=omega, gamma=gamma)
+    sol = solve_film(model, bearing, state, opts)
+    calls[0] += 1
+    f_loc = m.force(bearing, state, **opts) if sol is None else sol.force_local
+    residual = np.hypot(*(np.add(local_to_inertial(*f_loc, gamma), load))) / math.hypot(*load)
+    if not residual <= 1e-8:
+        raise ConvergenceError(f"Newton's equilibrium ({model} model)", calls[0], residual,
+                               f"eps = {eps:.6g} (film force off the load by more than 1e-8 "
+                               f"of it)")
+    return _result(bearing, omega, load, state, f_loc, sol, model, calls[0])
 
 
 def _tilted_equilibrium(bearing, omega, load, eps0, gamma0, eps_max, opts, tilt, calls):

@@ -1,0 +1,142 @@
+"""Newton's method for the journal position where the film force balances a load.
+
+The unknown is the journal centre q = e / c = eps (cos gamma, sin gamma) (inertial), the
+residual r(q) = (F(q) + W) / |W|. With F = R(gamma) F_loc(eps, gamma) and the partials
+A = dF_loc/deps, G = dF_loc/dgamma (grooves fixed in the bearing), the Jacobian is
+
+    dF/dq = R(gamma) [A, (J F_loc + G) / eps] R(gamma)^T,   J F_loc = (-F_t, F_r),
+
+i.e. -c times the stiffness of :mod:`bearingfem.design.coefficients` at a steady state. A
+backtracking line search on |r| (Armijo, halving) makes it global enough from a
+closed-form start; steps are cut to stay inside eps_max.
+
+The start (:func:`closed_form_start`) is the equilibrium of the finite bearing
+approximated by combining the short- and long-bearing forces, 1/|F| = 1/|F_short| +
+1/|F_long| (each closed form overestimates the finite film's load capacity in its own
+limit; the harmonic combination follows the smaller one: Hirani, Athre & Biswas 1999,
+J. Tribol. 121, 204-210), with the short bearing's attitude.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from scipy.optimize import brentq
+
+from ..bearing import Bearing, JournalState
+from ..closed.long_bearing import long_bearing_force
+from ..closed.short_bearing import short_bearing_force
+from ..contract import ConvergenceError
+from ..film import local_to_inertial
+
+__all__ = ["closed_form_start", "newton_position", "NEWTON_MAX_STEPS"]
+
+#: Newton steps before giving up: converged films need 3-6 from the closed-form start
+#: (benchmarks/design.py --grooved); more means a start outside the basin.
+NEWTON_MAX_STEPS = 30
+#: Largest closed-form eccentricity searched for the start (the closed forms reach the wall).
+_START_EPS_MAX = 1.0 - 1e-6
+
+
+def closed_form_start(bearing: Bearing, omega: float, load) -> np.ndarray:
+    """q = e/c where the combined short/long-bearing film (module docstring) carries
+    ``load`` (W_x, W_y) [N] at ``omega`` [rad/s]: a start, not an answer."""
+    W = math.hypot(*load)
+
+    def forces(eps):
+        s = JournalState(eps, omega=omega)
+        return np.array(short_bearing_force(bearing, s)), np.array(long_bearing_force(bearing, s))
+
+    def carried(eps):
+        fs, fl = forces(eps)
+        return 1.0 / (1.0 / np.hypot(*fs) + 1.0 / np.hypot(*fl))
+
+    eps = brentq(lambda e: carried(e) - W, 1e-12, _START_EPS_MAX, rtol=1e-6) \
+        if carried(_START_EPS_MAX) > W else _START_EPS_MAX
+    f_r, f_t = forces(eps)[0]
+    gamma = math.atan2(-load[1], -load[0]) - math.atan2(f_t, f_r)
+    return eps * np.array([math.cos(gamma), math.sin(gamma)])
+
+
+def _jacobian(d, eps, gamma):
+    """dF/dq [N] (inertial) from the local partials ``d`` (:class:`ForceDerivatives`)."""
+    F, A, G = (np.asarray(v, float) for v in (d.force, d.d_eps, d.d_gamma))
+    M = np.column_stack([A, (np.array([-F[1], F[0]]) + G) / eps])
+    c, s = math.cos(gamma), math.sin(gamma)
+    R = np.array([[c, -s], [s, c]])
+    return R @ M @ R.T
+
+
+def newton_position(partials, load, q0, eps_max, rtol, capacity, model):
+    """(eps, gamma) where the film force balances ``load`` (W_x, W_y) [N].
+
+    ``partials(eps, gamma)`` -> :class:`ForceDerivatives` (local frame, d_gamma included);
+    ``q0`` the start (q = e/c); the iteration stops once a Newton step is below
+    sqrt(rtol) |q| (the step after it would be below rtol |q|: quadratic convergence) and
+    takes that step. ``capacity()`` -> what the film carries at eps_max [N], asked only on
+    failure or when a step heads past eps_max: a load beyond it raises ValueError, any other failure ConvergenceError.
+    """
+    W = math.hypot(*load)
+    q = np.asarray(q0, float)
+    if math.hypot(*q) >= eps_max:      # a closed-form start at the wall: come back inside
+        q = q * (0.9 * eps_max / math.hypot(*q))
+    checked = []
+
+    def evaluate(q):
+        eps, gamma = math.hypot(*q), math.atan2(q[1], q[0])
+        d = partials(eps, gamma)
+        r = (np.array(local_to_inertial(*d.force, gamma)) + load) / W
+        return r, _jacobian(d, eps, gamma) / W
+
+    def check_capacity():
+        if not checked:
+            checked.append(capacity())
+        if not checked[0] >= W:
+            f_max = checked[0]
+            raise ValueError(f"load {W:.6g} N exceeds what the film carries before contact: "
+                             f"{f_max:.6g} N at eps_max = {eps_max:g} ({model} model)")
+
+    def fail(why):
+        check_capacity()
+        # the arguments of bearingfem.errors.ConvergenceError (solve, iterations, residual,
+        # where); a plain RuntimeError takes them too
+        raise ConvergenceError(f"Newton's equilibrium ({model} model)", steps[0],
+                               float(np.linalg.norm(r)),
+                               f"eps = {math.hypot(*q):.6g} ({why}; start it nearer: "
+                               f"start=a nearby Equilibrium)")
+
+    r, J = evaluate(q)
+    step_tol = math.sqrt(rtol)
+    steps = [0]
+    for steps[0] in range(1, NEWTON_MAX_STEPS + 1):
+        try:
+            dq = -np.linalg.solve(J, r)
+        except np.linalg.LinAlgError:
+            fail("singular Jacobian")
+        if not np.all(np.isfinite(dq)):
+            fail("non-finite Newton step")
+        t = _inside(q, dq, eps_max)
+        if t < 1.0:     # heading for the wall: does the film carry the load at all?
+            check_capacity()
+        if t == 1.0 and math.hypot(*dq) <= step_tol * math.hypot(*q):
+            q = q + dq
+            return math.hypot(*q), math.atan2(q[1], q[0])
+        norm = np.linalg.norm(r)
+        while True:     # backtrack: accept a step that decreases |r| (Armijo)
+            r_new, J_new = evaluate(q + t * dq)
+            if np.linalg.norm(r_new) <= (1.0 - 1e-4 * t) * norm:
+                break
+            t *= 0.5
+            if t < 1.0 / 64:
+                fail("the line search found no decrease of the force residual")
+        q, r, J = q + t * dq, r_new, J_new
+    fail(f"{NEWTON_MAX_STEPS} Newton steps")
+
+
+def _inside(q, dq, eps_max):
+    """Step fraction in (0, 1] that keeps |q + t dq| at most half way to eps_max."""
+    if math.hypot(*(q + dq)) < eps_max:
+        return 1.0
+    target = 0.5 * (math.hypot(*q) + eps_max)
+    a, b, c = dq @ dq, 2.0 * q @ dq, q @ q - target ** 2     # |q + t dq|^2 = target^2
+    return float((-b + math.sqrt(b * b - 4.0 * a * c)) / (2.0 * a))
