@@ -23,7 +23,7 @@ import numpy as np
 from scipy.optimize import brentq, root
 
 from ..bearing import Bearing, JournalState, check_finite
-from ..contract import ConvergenceError
+from ..errors import ConvergenceError
 from ..fe.reynolds import solve_reynolds
 from ..fields import check_tilt
 from ..film import local_to_inertial

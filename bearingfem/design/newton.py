@@ -26,7 +26,7 @@ from scipy.optimize import brentq
 from ..bearing import Bearing, JournalState
 from ..closed.long_bearing import long_bearing_force
 from ..closed.short_bearing import short_bearing_force
-from ..contract import ConvergenceError
+from ..errors import ConvergenceError
 from ..film import local_to_inertial
 
 __all__ = ["closed_form_start", "newton_position", "NEWTON_MAX_STEPS"]
