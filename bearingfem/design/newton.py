@@ -98,8 +98,6 @@ def newton_position(partials, load, q0, eps_max, rtol, capacity, model):
 
     def fail(why):
         check_capacity()
-        # the arguments of bearingfem.errors.ConvergenceError (solve, iterations, residual,
-        # where); a plain RuntimeError takes them too
         raise ConvergenceError(f"Newton's equilibrium ({model} model)", steps[0],
                                float(np.linalg.norm(r)),
                                f"eps = {math.hypot(*q):.6g} ({why}; start it nearer: "
