@@ -6,8 +6,10 @@ Runs the seed's scene (``paper-short-fem`` or ``paper-long-fem`` by L/D) with th
 under Reynolds' condition, and the same scene with the JFO film (``paper-*-jfo``: same
 mesh, oil at atmospheric pressure around a cavity near zero absolute), both over the JFO
 scene's turns (the long bearing's JFO film settles only by the ninth turn). Prints a
-table over the recorded turn (peak eccentricity, minimum film, peak joint force, peak film
-pressure and friction power of the films at 72 crank angles, wall time, steps), where the
+table over the recorded turn (peak eccentricity, minimum film, peak joint force and peak
+film pressure from their smooth curves with the raw maxima beside them, the joint force's
+jitter about its curve, friction power of the films at 72 crank angles, wall time,
+steps), where the
 JFO film's cavity forms and collapses (crank angles) and where each run's integrator spent
 its steps (per 30 deg of crank over the recorded turn), and writes ``jfo_paper.csv``,
 ``jfo_paper_steps.csv``, ``jfo_paper.png`` (orbits, minimum film, cavitated share, peak
