@@ -48,6 +48,10 @@ class Equilibrium:
         from the film solution for the mesh models, None for the closed forms and the table
     solution : the :class:`FilmSolution` at equilibrium (mesh models) or None
     model, iterations : the film model and the number of force evaluations
+    asperity_load_share : with a ``roughness`` option (mixed lubrication), the share of the
+        load the asperity contact carries, -(F_a . W)/|W|^2 (the film carries the rest;
+        1 at omega = 0, the dry limit); 0 without. ``film_force`` is then the model's force,
+        film plus asperities, and the friction adds the summits' Coulomb friction
     """
 
     eps: float
@@ -67,6 +71,7 @@ class Equilibrium:
     solution: FilmSolution | None
     model: str
     iterations: int
+    asperity_load_share: float = 0.0
 
 
 def _load_vector(load, direction):
@@ -114,7 +119,7 @@ def equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
     wx, wy = _load_vector(load, direction)
     W = math.hypot(wx, wy)
     omega = check_finite("omega", omega)
-    if omega == 0.0:
+    if omega == 0.0 and opts.get("roughness") is None:   # rough surfaces carry a dry load
         raise ValueError("omega must be non-zero [rad/s]: without rotation a film carries "
                          "no steady load")
     eps_max = check_finite("eps_max", eps_max)
@@ -148,9 +153,13 @@ def equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
     film_force = local_to_inertial(f_r, f_t, gamma)
     sol = solve_film(model, bearing, state, opts)
     friction = petroff_friction(bearing, eps, omega, f_t)
+    contact = (0.0, 0.0) if sol is None else sol.asperity_force
+    if sol is not None:
+        friction += sol.asperity_friction_torque / bearing.radius
     return Equilibrium(
         eps=eps, attitude=math.atan2(f_t, -f_r), state=state, load=(wx, wy),
-        film_force=film_force, sommerfeld=sommerfeld_number(bearing, W, omega),
+        film_force=film_force,
+        sommerfeld=sommerfeld_number(bearing, W, omega) if omega else 0.0,   # dry: S = 0
         film_min=bearing.clearance * (1.0 - eps),
         film_min_angle=float(np.mod(gamma, 2.0 * math.pi)),
         friction_force=friction, friction_coefficient=friction / W,
@@ -158,7 +167,8 @@ def equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
         pressure_max=None if sol is None else sol.pressure_max,
         side_leakage=None if sol is None else sol.side_leakage,
         flow_in=None if sol is None else sol.side_leakage,
-        solution=sol, model=model, iterations=calls[0])
+        solution=sol, model=model, iterations=calls[0],
+        asperity_load_share=-(contact[0] * wx + contact[1] * wy) / W ** 2)
 
 
 def _tilted_equilibrium(bearing, omega, load, eps0, gamma0, eps_max, opts, tilt, calls):
