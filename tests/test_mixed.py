@@ -51,8 +51,8 @@ def reference_contact(b, eps, rough, parts=("cos", "sin", "load")):
 def test_large_gap_no_contact_and_film_unchanged(opts):
     """h/sigma >= 2000: the asperity force and torque are exactly 0 and the film (force,
     pressure, friction) is today's smooth film to the last bit, for every cavitation model.
-    Fails when the roughness changes the film solve (e.g. the contact added into ``force``)
-    or the contact is not 0 far from touching."""
+    Fails when the roughness reroutes the film solve (the whole length meshed instead of
+    the half) or the contact replaces the film's ``force``."""
     b = seed_bearing()
     s = JournalState(0.9, omega=100.0, gamma=0.4)
     rough = solve_reynolds(b, s, 48, 8, roughness=SMOOTH, **opts)
@@ -93,8 +93,8 @@ def test_equilibrium_film_and_asperities_carry_the_load():
     """At omega = 100 rad/s the film plus asperity force balances the load to 1e-9 W
     (measured 2e-11: brentq at rtol 1e-13 on eps), the share lies in (0, 1) at the heavy
     8 kN load and rises with the load (measured 1e-8, 0.019, 0.064 at 1, 4, 8 kN).
-    Fails when the contact is left out of the model's force (the share's sign and the
-    balance break) or the share is taken against the film force instead of the load."""
+    Fails when the contact is left out of the model's force, added into the solution's
+    film ``force`` (counted twice), or the share is taken from the film's force."""
     b = seed_bearing()
     shares = []
     for W in (1e3, 4e3, 8e3):
