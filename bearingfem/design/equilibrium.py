@@ -116,6 +116,8 @@ def equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
         raise ValueError(f"tilt needs model 'fem' (a misaligned film), got model={model!r}")
     m = film_model(model)
     opts = m.options(options)
+    if any(tilt) and opts.get("roughness") is not None:
+        raise ValueError("tilt with roughness is not supported: give one of them")
     wx, wy = _load_vector(load, direction)
     W = math.hypot(wx, wy)
     omega = check_finite("omega", omega)
