@@ -10,7 +10,7 @@ them only what the contract names; :func:`register` adds one.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Callable, Mapping
 
 from .bearing import Bearing, JournalState, check_finite
@@ -20,9 +20,11 @@ from .closed.short_bearing import (short_bearing_derivatives, short_bearing_exac
                                    short_bearing_force)
 from .differentiate import central_differences
 from .contract import RunFilm, SteadyRun
+from .fe.assembly import fe_operator
 from .fe.force_table import TABLE_DEFAULTS, force_table, table_force
 from .fe.mesh import ELEMENTS
 from .fe.reynolds import fe_force, solve_reynolds
+from .fe.mixed import check_roughness, contact_partial_eps, film_contact
 from .fe.sensitivity import fe_force_derivatives
 from .fv.fvm import fvm_force, fvm_reynolds
 from .solution import FilmSolution, ForceDerivatives
@@ -34,14 +36,15 @@ __all__ = ["FilmModel", "FILM_MODELS", "NUMERIC_MODELS", "OPTION_RULES", "film_m
            "register", "solve_film"]
 
 #: How each film option is checked, whichever model takes it: ("int" | "number", (lo, hi))
-#: with None for an open end, ("choice", names), or ("grooves", None) for Groove tuples.
+#: with None for an open end, ("choice", names), ("grooves", None) for Groove tuples, or
+#: ("roughness", None) for a :class:`~bearingfem.contact.Roughness` or None.
 OPTION_RULES = {
     "n_theta": ("int", (MIN_N_THETA, None)), "n_z": ("int", (MIN_N_Z, None)),
     "element": ("choice", tuple(ELEMENTS)), "cavitation": ("choice", REYNOLDS_FAMILY),
     "half_film": ("choice", ("wedge", "fixed")), "switch_speed": ("number", (0.0, None)),
     "n_eps": ("int", (6, 400)), "n_phi": ("int", (16, 1000)),
     "grooves": ("grooves", None), "ambient_pressure": ("number", (0.0, None)),
-    "film_step": ("number", (0.0, None)),
+    "film_step": ("number", (0.0, None)), "roughness": ("roughness", None),
 }
 
 
@@ -51,6 +54,8 @@ def _check_option(name: str, value, where: str, mass_conserving: bool = False,
     label = f"{where}.{name}" if where else name
     if kind == "grooves":
         return check_grooves(value, mass_conserving=mass_conserving)
+    if kind == "roughness":
+        return check_roughness(value)
     if kind == "choice":
         return check_choice(label, value, allowed)
     lo, hi = allowed
@@ -164,13 +169,41 @@ class FilmModel:
         return {} if self.notes is None else dict(self.notes(bearing, **self.options(options)))
 
 
-def _fem(bearing, state, n_theta, n_z, element, cavitation, grooves):
-    """The "fem" model's force (a cold solve; options always come from the registry)."""
-    return fe_force(bearing, state, n_theta, n_z, element, cavitation, grooves=grooves)[0]
+def _contact_force(bearing, state, n_theta, n_z, element, grooves, roughness):
+    """(F_r, F_t) [N] of the asperity contact on the "fem" model's mesh ((0, 0) without
+    roughness): the film and the summits carry the load together (:mod:`bearingfem.fe.mixed`)."""
+    if roughness is None:
+        return 0.0, 0.0
+    op = fe_operator(bearing, state, n_theta, n_z, element, None, True, grooves)
+    return film_contact(bearing, state, op, roughness).force_local
 
 
-def _fem_solution(bearing, state, n_theta, n_z, element, cavitation, grooves):
-    return solve_reynolds(bearing, state, n_theta, n_z, element, cavitation, grooves=grooves)
+def _fem(bearing, state, n_theta, n_z, element, cavitation, grooves, roughness=None):
+    """The "fem" model's force, film plus asperity contact (a cold solve; options always
+    come from the registry)."""
+    film = fe_force(bearing, state, n_theta, n_z, element, cavitation, grooves=grooves)[0]
+    contact = _contact_force(bearing, state, n_theta, n_z, element, grooves, roughness)
+    return film[0] + contact[0], film[1] + contact[1]
+
+
+def _fem_solution(bearing, state, n_theta, n_z, element, cavitation, grooves, roughness=None):
+    return solve_reynolds(bearing, state, n_theta, n_z, element, cavitation, grooves=grooves,
+                          roughness=roughness)
+
+
+def _fem_derivatives(bearing, state, n_theta, n_z, element, cavitation, grooves,
+                     roughness=None) -> ForceDerivatives:
+    """The film's exact partials plus the asperity force and its exact partial in eps (it
+    has none in eps_dot or w; its gamma partial with grooves, the mesh moving with them,
+    is a quadrature error and is left out)."""
+    d = fe_force_derivatives(bearing, state, n_theta, n_z, element, cavitation, grooves)
+    if roughness is None:
+        return d
+    op = fe_operator(bearing, state, n_theta, n_z, element, None, True, grooves)
+    f = film_contact(bearing, state, op, roughness).force_local
+    de = contact_partial_eps(bearing, state, op, roughness)
+    return replace(d, force=(d.force[0] + f[0], d.force[1] + f[1]),
+                   d_eps=(d.d_eps[0] + de[0], d.d_eps[1] + de[1]))
 
 
 def _warm_fem():
@@ -179,11 +212,12 @@ def _warm_fem():
     answer is the same as a cold solve to the solver tolerance; only the cost changes."""
     last = {}
 
-    def fem(bearing, state, n_theta, n_z, element, cavitation, grooves=()):
+    def fem(bearing, state, n_theta, n_z, element, cavitation, grooves=(), roughness=None):
         key = (bearing.length_ratio, n_theta, n_z, element, cavitation, grooves)
         force, last[key] = fe_force(bearing, state, n_theta, n_z, element, cavitation,
                                     warm=last.get(key), grooves=grooves)
-        return force
+        contact = _contact_force(bearing, state, n_theta, n_z, element, grooves, roughness)
+        return force[0] + contact[0], force[1] + contact[1]
     return fem
 
 
@@ -233,8 +267,9 @@ for _m in (
     FilmModel("long", long_bearing_force, {}, long_bearing_derivatives),
     FilmModel("short-exact", short_bearing_exact_force),
     FilmModel("long-exact", long_bearing_exact_force),
-    FilmModel("fem", _fem, dict(_MESH, element="P1", cavitation="gumbel", grooves=()),
-              fe_force_derivatives, numeric=True, solution=_fem_solution, warm=_warm_fem),
+    FilmModel("fem", _fem, dict(_MESH, element="P1", cavitation="gumbel", grooves=(),
+                                roughness=None),
+              _fem_derivatives, numeric=True, solution=_fem_solution, warm=_warm_fem),
     FilmModel("fvm", fvm_force, dict(_MESH, cavitation="gumbel"), numeric=True,
               solution=_fvm_solution),
     FilmModel("fem-table", table_force, dict(TABLE_DEFAULTS), numeric=True,

@@ -40,6 +40,12 @@ class FilmSolution:
     moment : (M_x, M_y) [N m], the film's moment on the journal about the bearing centre
         (mid-plane), inertial; zero for an aligned film (mid-plane symmetry)
     radius, gamma : journal radius [m] and attitude angle [rad] of the solved state
+    asperity_force : (F_x, F_y) [N], inertial: the Greenwood-Tripp asperity contact force
+        on the journal when the solve was given a roughness (:mod:`bearingfem.fe.mixed`),
+        (0, 0) otherwise; ``force`` stays the film's, ``total_force`` is their sum
+    asperity_force_local : the same in the local frame (F_r, F_t) [N]
+    asperity_friction_torque : the summits' Coulomb friction torque [N m], the film's
+        convention (opposing positive omega); ``friction_torque`` stays the film's shear
     """
 
     force_local: tuple
@@ -72,6 +78,14 @@ class FilmSolution:
     mass_balance: float | None = None  # JFO: flow_in - side_leakage - d(content)/dt [m^3/s]
     moment: tuple = (0.0, 0.0)    # (M_x, M_y) [N m] on the journal about the bearing centre
     deformation: np.ndarray | None = field(default=None, repr=False)  # bush deflection [m]
+    asperity_force: tuple = (0.0, 0.0)         # (F_x, F_y) [N], inertial
+    asperity_force_local: tuple = (0.0, 0.0)   # (F_r, F_t) [N]
+    asperity_friction_torque: float = 0.0      # [N m]
+
+    @property
+    def total_force(self) -> tuple:
+        """(F_x, F_y) [N]: film plus asperity contact, what carries the load."""
+        return tuple(float(f + a) for f, a in zip(self.force, self.asperity_force))
 
     def summary(self) -> str:
         """The solve in a few named lines with units (what ``bearingfem solve`` prints)."""

@@ -15,7 +15,7 @@ try:
 except ModuleNotFoundError:  # Python < 3.11
     import tomli as tomllib
 
-from bearingfem import Bearing
+from bearingfem import Bearing, Roughness
 from bearingfem.models import film_model
 from .parameters import Mechanism
 
@@ -183,9 +183,26 @@ def _lubrication(t: _Table) -> Lubrication:
     eps_max = t.number("eps_max", 0.999 if m.numeric else 1.0 - 1e-6,
                        lo=0.5, hi=1.0, hi_open=True)
     given = {k: t.get(k) for k in sorted(set(t.data) - {"model", "eps_max"})}
+    if "roughness" in given and "roughness" in m.defaults:   # mixed lubrication
+        given["roughness"] = _roughness(_Table(given["roughness"], f"{t.where}.roughness"))
     opts = m.options(given, where=t.where)
     t.done()
     return Lubrication(model=model, options=opts, eps_max=eps_max)
+
+
+def _roughness(t: _Table) -> Roughness:
+    """Greenwood-Tripp rough surfaces (mixed lubrication: the film model's asperity
+    contact, :class:`bearingfem.Roughness`)."""
+    kw = dict(sigma=t.number("sigma", required=True, lo=0.0, lo_open=True),
+              contact_modulus=t.number("contact_modulus", required=True, lo=0.0, lo_open=True),
+              friction=t.number("friction", 0.0, lo=0.0))
+    for k in ("elastic_factor", "asperity_density", "asperity_radius"):
+        kw[k] = t.number(k, None, lo=0.0, lo_open=True)
+    t.done()
+    try:
+        return Roughness(**kw)
+    except ValueError as err:
+        raise ValueError(f"{t.where}: {err}") from None
 
 
 def parse_scene(data: dict, name: str = "scene") -> Scene:
@@ -241,6 +258,9 @@ def parse_scene(data: dict, name: str = "scene") -> Scene:
                             v_reg=ft.number("v_reg", 1e-4, lo=0.0, lo_open=True))
         ft.done()
     et.done()
+    if contact is not None and lub is not None and lub.options.get("roughness") is not None:
+        raise ValueError("scene.effects.lubrication.roughness is the joint's contact (the "
+                         "asperities of mixed lubrication): remove scene.effects.contact")
     if friction is not None and contact is None:
         raise ValueError("scene.effects.friction acts at the contact: add scene.effects.contact")
     if joint == "ideal":

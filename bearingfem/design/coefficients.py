@@ -169,6 +169,8 @@ def _tilted(bearing, state, model, frame, tilt, options) -> DynamicCoefficients:
     o = film_model(model).options(options)
     if o.get("grooves"):
         raise ValueError("coefficients with tilt: grooves are not supported")
+    if o.get("roughness") is not None:
+        raise ValueError("coefficients with tilt: roughness is not supported")
     kc = fe_tilt_coefficients(bearing, state, tilt, o["n_theta"], o["n_z"], o["element"],
                               o["cavitation"])
     force = tuple(float(f) for f in kc.force[:2])

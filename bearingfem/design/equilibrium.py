@@ -58,6 +58,10 @@ class Equilibrium:
     model, iterations : the film model and the number of film evaluations (a force, or a
         force with its partials: one film solve, three for grooved FE films, whose
         d/dgamma is a central difference)
+    asperity_load_share : with a ``roughness`` option (mixed lubrication), the share of the
+        load the asperity contact carries, -(F_a . W)/|W|^2 (the film carries the rest;
+        1 at omega = 0, the dry limit); 0 without. ``film_force`` is then the model's force,
+        film plus asperities, and the friction adds the summits' Coulomb friction
     """
 
     eps: float
@@ -77,6 +81,7 @@ class Equilibrium:
     solution: FilmSolution | None
     model: str
     iterations: int
+    asperity_load_share: float = 0.0
 
 
 def _load_vector(load, direction):
@@ -125,19 +130,22 @@ def equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
         raise ValueError(f"tilt needs model 'fem' (a misaligned film), got model={model!r}")
     m = film_model(model)
     opts = m.options(options)
+    if any(tilt) and opts.get("roughness") is not None:
+        raise ValueError("tilt with roughness is not supported: give one of them")
     wx, wy = _load_vector(load, direction)
     W = math.hypot(wx, wy)
     omega = check_finite("omega", omega)
-    if omega == 0.0:
+    if omega == 0.0 and opts.get("roughness") is None:   # rough surfaces carry a dry load
         raise ValueError("omega must be non-zero [rad/s]: without rotation a film carries "
                          "no steady load")
     eps_max = check_finite("eps_max", eps_max)
     if not 0.0 < eps_max < 1.0:
         raise ValueError(f"eps_max must lie in (0, 1), got {eps_max!r}")
-    newton = m.derivatives is not None and not m.memory
+    # the dry limit (omega = 0, asperities alone) has no closed-form start: Brent's route
+    newton = m.derivatives is not None and not m.memory and omega != 0.0
     if start is not None and not newton:
-        raise ValueError(f"start needs a model with exact partials (Newton's method), got "
-                         f"model={model!r}")
+        raise ValueError(f"start needs a model with exact partials (Newton's method) and "
+                         f"omega != 0, got model={model!r}, omega={omega!r}")
     q0 = _start_position(start, eps_max) if start is not None else None
     if newton:
         return _newton_equilibrium(m, bearing, omega, (wx, wy), opts, q0, eps_max, rtol,
@@ -177,9 +185,13 @@ def _result(bearing, omega, load, state, force_local, sol, model, calls):
     (f_r, f_t), eps, gamma = force_local, state.eps, state.gamma
     film_force = local_to_inertial(f_r, f_t, gamma)
     friction = petroff_friction(bearing, eps, omega, f_t)
+    contact = (0.0, 0.0) if sol is None else sol.asperity_force
+    if sol is not None:
+        friction += sol.asperity_friction_torque / bearing.radius
     return Equilibrium(
         eps=eps, attitude=math.atan2(f_t, -f_r), state=state, load=(wx, wy),
-        film_force=film_force, sommerfeld=sommerfeld_number(bearing, W, omega),
+        film_force=film_force,
+        sommerfeld=sommerfeld_number(bearing, W, omega) if omega else 0.0,   # dry: S = 0
         film_min=bearing.clearance * (1.0 - eps),
         film_min_angle=float(np.mod(gamma, 2.0 * math.pi)),
         friction_force=friction, friction_coefficient=friction / W,
@@ -187,7 +199,8 @@ def _result(bearing, omega, load, state, force_local, sol, model, calls):
         pressure_max=None if sol is None else sol.pressure_max,
         side_leakage=None if sol is None else sol.side_leakage,
         flow_in=None if sol is None else sol.side_leakage,
-        solution=sol, model=model, iterations=calls)
+        solution=sol, model=model, iterations=calls,
+        asperity_load_share=-(contact[0] * wx + contact[1] * wy) / W ** 2)
 
 
 def _start_position(start, eps_max):
@@ -224,7 +237,9 @@ def _newton_equilibrium(m, bearing, omega, load, opts, q0, eps_max, rtol, model,
     state = JournalState(eps, omega=omega, gamma=gamma)
     sol = solve_film(model, bearing, state, opts)
     calls[0] += 1
-    f_loc = m.force(bearing, state, **opts) if sol is None else sol.force_local
+    # the model's force: the film's and, with roughness, the asperities' (mixed lubrication)
+    f_loc = m.force(bearing, state, **opts) if sol is None else tuple(
+        np.add(sol.force_local, sol.asperity_force_local))
     residual = np.hypot(*(np.add(local_to_inertial(*f_loc, gamma), load))) / math.hypot(*load)
     if not residual <= 1e-8:
         raise ConvergenceError(f"Newton's equilibrium ({model} model)", calls[0], residual,

@@ -16,6 +16,7 @@ from .assembly import FilmOperator, fe_operator
 from .general import film_system
 from .jfo import jfo_force, solve_jfo
 from .mesh import ELEMENTS
+from .mixed import check_roughness, film_contact, with_contact
 from .multilevel import coarse_guess
 
 __all__ = ["solve_reynolds", "fe_operator", "fe_pressure", "fe_force"]
@@ -125,7 +126,7 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
                    tol: float = 1e-10, cavitated_shear: str = "full",
                    grooves=(), ambient_pressure: float = 0.0, fields: FilmFields | None = None,
                    tilt=(0.0, 0.0), tilt_rate=(0.0, 0.0), lubricant=None,
-                   bush=None) -> FilmSolution:
+                   bush=None, roughness=None) -> FilmSolution:
     """Solve the Reynolds equation on a finite-element mesh of the unwrapped film.
 
     Parameters
@@ -165,6 +166,10 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
         gap becomes c (1 + eps cos theta) + deformation (P1, Reynolds-family cavitation).
         With a lubricant or a bush, ``method`` and ``tol`` serve the rigid start and the
         Newton test, and ``iterations`` counts Newton steps (:mod:`bearingfem.ehd`)
+    roughness : :class:`~bearingfem.contact.Roughness` (mixed lubrication): the
+        Greenwood-Tripp asperity contact of the gap at the film's quadrature points is
+        added as ``asperity_force`` / ``asperity_friction_torque`` (the film's pressure is
+        unchanged by it, :mod:`bearingfem.fe.mixed`); None: no contact
 
     With ``fields`` or a tilt the whole length is meshed (no mid-plane symmetry) and
     ``moment`` is the film's moment on the journal; fields that are the rigid cylinder's
@@ -191,31 +196,41 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
                          "('none', 'gumbel', 'reynolds'), got cavitation='jfo'")
     if fields is not None and not isinstance(fields, FilmFields):
         raise ValueError(f"fields must be a FilmFields, got {type(fields).__name__}")
+    roughness = check_roughness(roughness)
+    if roughness is not None and bush is not None:
+        # the asperities' load would deform the bush too: a coupling not built yet
+        raise ValueError("roughness with a bush is not supported yet (the asperity load "
+                         "does not deform the bush); give one of them")
 
     if cavitation == "jfo":
-        return solve_jfo(bearing, state,
-                         lambda nt, nz: fe_operator(bearing, state, nt, nz, "P1", supply_angle,
-                                                    half, grooves),
-                         n_theta, n_z, grooves, ambient_pressure)
+        def operator(nt, nz):
+            return fe_operator(bearing, state, nt, nz, "P1", supply_angle, half, grooves)
+        sol = solve_jfo(bearing, state, operator, n_theta, n_z, grooves, ambient_pressure)
+        return sol if roughness is None else with_contact(
+            sol, film_contact(bearing, state, operator(n_theta, n_z), roughness))
     op = fe_operator(bearing, state, n_theta, n_z, element, supply_angle,
                      half and not general, grooves)
     system = film = gap = None
     if general:
         film, gap = general_film(bearing, state, op, fields, tilt, tilt_rate)
         if ehd:
-            return solve_ehd_film(bearing, state, op, film, gap, lubricant, bush, cavitation,
-                                  method, tol, groove_pressures(bearing, op, grooves),
-                                  cavitated_shear, grooves)
+            sol = solve_ehd_film(bearing, state, op, film, gap, lubricant, bush, cavitation,
+                                 method, tol, groove_pressures(bearing, op, grooves),
+                                 cavitated_shear, grooves)
+            return sol if roughness is None else with_contact(
+                sol, film_contact(bearing, state, op, roughness, film.gap))
         if not film.is_rigid(op, state):      # the rigid data takes the fast path
             system = film_system(op, film, state.wedge_speed)
     dirichlet = groove_pressures(bearing, op, grooves)
     res = fe_pressure(op, state, cavitation, method, tol, dirichlet=dirichlet, system=system)
     values, load = system if system is not None else (
         op.values(state.eps), op.load(state.eps, state.eps_dot, state.wedge_speed))
-    return _film_outputs(bearing, state, op, res, values, load, film, cavitation,
-                         cavitated_shear, grooves,
-                         f"fem-{element}" + (f"/{method}" if cavitation == "reynolds" else ""),
-                         gap)
+    sol = _film_outputs(bearing, state, op, res, values, load, film, cavitation,
+                        cavitated_shear, grooves,
+                        f"fem-{element}" + (f"/{method}" if cavitation == "reynolds" else ""),
+                        gap)
+    return sol if roughness is None else with_contact(
+        sol, film_contact(bearing, state, op, roughness, None if film is None else film.gap))
 
 
 def general_film(bearing: Bearing, state: JournalState, op: FilmOperator,
