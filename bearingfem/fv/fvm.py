@@ -113,19 +113,23 @@ def _assemble(g: FVMGrid, eps: float, eps_dot: float, w: float):
     cE = (He ** 3 * g.dzeta / g.dtheta)[:, None] * ones
     cW = (Hw ** 3 * g.dzeta / g.dtheta)[:, None] * ones
     cN = (Hc ** 3 * g.dtheta / g.dzeta)[:, None] * ones
-    cS = cN
+    A = _conductance_matrix(g, cE, cW, cN, cN)
+    B = reynolds_source_integral(g.theta_f[:-1], g.theta_f[1:], eps, eps_dot, w) * g.dzeta
+    rhs = np.repeat(B[:, None], nz, axis=1).ravel()
+    return A, rhs
+
+
+def _conductance_matrix(g: FVMGrid, cE, cW, cN, cS) -> sp.csr_matrix:
+    """The balance's matrix from the cells' face conductances (n_theta x n_z arrays each)."""
     diag = cE + cW + cN + cS
     # Axial ends: ambient on the face half a cell away doubles the face conductance.
     diag[:, -1] += cN[:, -1]
     diag[:, 0] += cS[:, 0]
-    if g.theta0 is not None:
+    if g.theta0 is not None:     # the supply line likewise
         diag[-1, :] += cE[-1, :]
         diag[0, :] += cW[0, :]
     vals = np.concatenate([diag.ravel()] + [-c[m] for c, m in zip((cE, cW, cN, cS), g.masks)])
-    A = sp.csr_matrix((vals[g.order], g.indices, g.indptr), shape=(g.n, g.n))
-    B = reynolds_source_integral(g.theta_f[:-1], g.theta_f[1:], eps, eps_dot, w) * g.dzeta
-    rhs = np.repeat(B[:, None], nz, axis=1).ravel()
-    return A, rhs
+    return sp.csr_matrix((vals[g.order], g.indices, g.indptr), shape=(g.n, g.n))
 
 
 def _assemble_gap(g: FVMGrid, gap, gap_rate, w: float):
@@ -142,14 +146,7 @@ def _assemble_gap(g: FVMGrid, gap, gap_rate, w: float):
     cE, cW = He ** 3 * g.dzeta / g.dtheta, Hw ** 3 * g.dzeta / g.dtheta
     cN = gap(TC, ZC + half) ** 3 * g.dtheta / g.dzeta
     cS = gap(TC, ZC - half) ** 3 * g.dtheta / g.dzeta
-    diag = cE + cW + cN + cS
-    diag[:, -1] += cN[:, -1]
-    diag[:, 0] += cS[:, 0]
-    if g.theta0 is not None:
-        diag[-1, :] += cE[-1, :]
-        diag[0, :] += cW[0, :]
-    vals = np.concatenate([diag.ravel()] + [-c[m] for c, m in zip((cE, cW, cN, cS), g.masks)])
-    A = sp.csr_matrix((vals[g.order], g.indices, g.indptr), shape=(g.n, g.n))
+    A = _conductance_matrix(g, cE, cW, cN, cS)
     rhs = -6.0 * w * (He - Hw) * g.dzeta - 12.0 * gap_rate(TC, ZC) * g.dtheta * g.dzeta
     ends = (2.0 * cN[:, -1], 2.0 * cS[:, 0])      # the end faces' conductances
     return A, rhs.ravel(), ends
