@@ -12,6 +12,7 @@ from dataclasses import dataclass
 
 from .bearing import Bearing, JournalState
 from .contract import FilmStep
+from .errors import ConvergenceError
 from .fe.jfo import JFOFilm, JFOSnapshot
 
 __all__ = ["TransientJFO", "TransientSnapshot", "EARLY"]
@@ -108,8 +109,13 @@ class TransientJFO:
         if dt <= 1e-12 * max(abs(self.t), 1e-3) or not (dt > self.film_step or early):
             return None
         before = self.force(state, t)
-        sol = self.film.step(state, dt)          # raises before changing the film
-        after, _ = self.film.instant(state, None)
+        kept = self.film.snapshot()
+        try:
+            sol = self.film.step(state, dt)      # raises before changing the film
+            after, _ = self.film.instant(state, None)
+        except ConvergenceError:
+            self.film.restore(kept)              # the instant failed after the step: undo it
+            raise
         self._jump = (0.0, 0.0) if refill else (before[0] - after[0], before[1] - after[1])
         self._fade = max(self.film_step, dt)
         self.t = t

@@ -91,15 +91,6 @@ class FilmEffect:
         if step is not None:
             self.history.append(film_row(step))
 
-    def snapshot(self):
-        """What the film keeps, with the length of its history (to go back to)."""
-        return self.run.snapshot(), len(self.history)
-
-    def restore(self, snapshot) -> None:
-        kept, n = snapshot
-        self.run.restore(kept)
-        del self.history[n:]
-
     @property
     def steps(self) -> int:
         """Film steps committed (a film with memory; 0 otherwise)."""

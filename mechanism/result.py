@@ -28,10 +28,6 @@ FILM_COLUMNS = {"t": "s", "force_x": "N", "force_y": "N", "pressure_max": "Pa",
                 "cavitated_fraction": "1", "friction_force": "N", "mass_balance": "m^3/s",
                 "eps": "1", "eps_dot": "1/s", "gamma": "rad", "gamma_dot": "rad/s",
                 "omega": "rad/s"}
-#: The columns' headers as written (names kept from earlier result files).
-FILM_RECORD = ("t [s]", "F_x [N]", "F_y [N]", "peak pressure [Pa]", "cavitated share [1]",
-               "friction [N]", "mass balance [m^3/s]", "eps [1]", "eps_dot [1/s]",
-               "gamma [rad]", "gamma_dot [rad/s]", "omega [rad/s]")
 _COLUMN = {name: i for i, name in enumerate(FILM_COLUMNS)}
 _STATE_FIELDS = tuple(f.name for f in dataclasses.fields(JournalState))
 _SOLUTION_FIELDS = ("pressure_max", "cavitated_fraction", "friction_force", "mass_balance")
@@ -93,7 +89,7 @@ class SimulationResult:
     dense_e_x: np.ndarray = field(default_factory=lambda: np.empty(0))
     dense_e_y: np.ndarray = field(default_factory=lambda: np.empty(0))
     #: a film with memory: one row per committed step, columns FILM_COLUMNS
-    film_record: np.ndarray = field(default_factory=lambda: np.empty((0, len(FILM_RECORD))))
+    film_record: np.ndarray = field(default_factory=lambda: np.empty((0, len(FILM_COLUMNS))))
     #: where the integrator's accepted steps end [s] (the whole run, not only the
     #: recorded turns): where a run spends its steps, e.g. per crank angle
     step_t: np.ndarray = field(default_factory=lambda: np.empty(0))

@@ -24,7 +24,7 @@ from scipy.integrate._ivp.common import OdeSolution
 from scipy.integrate._ivp.ivp import (BDF, LSODA, MESSAGES, METHODS, find_active_events,
                                       handle_events, prepare_events)
 
-from bearingfem.contract import ConvergenceError
+from bearingfem.errors import ConvergenceError
 
 __all__ = ["integrate", "Segment", "StepCut", "STEP_FAILURE"]
 
@@ -102,7 +102,9 @@ def integrate(fun, t_span, y0, method: str = "LSODA", events=(), accept=None,
             if len(cuts) >= max_cuts:
                 raise
             t_last, y_last = ts[-1], ys[-1]
-            h = solver.step_size or abs(tf - t_last)
+            # the step that failed, or (a solver that failed its first step has none) the
+            # limit of the last cut: each cut halves what the one before allowed
+            h = solver.step_size or (cuts[-1].max_step if cuts else abs(tf - t_last))
             cuts.append(StepCut(float(t_last), 0.5 * h, f"{type(err).__name__}: {err}"))
             status = None
             opts = {k: v for k, v in options.items() if k != "first_step"}

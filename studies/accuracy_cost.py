@@ -30,7 +30,7 @@ from bearingfem.fe.reynolds import fe_force
 from bearingfem import long_bearing_exact_force, long_bearing_force
 from bearingfem import short_bearing_exact_force, short_bearing_force
 from mechanism import load_scene, simulate
-from mechanism.lubrication import NUMERIC_MODELS
+from bearingfem.models import NUMERIC_MODELS
 from mechanism.scene import SCENES, Lubrication
 from bearingfem.outputs.tables import write_csv
 

@@ -159,11 +159,12 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
         added to the fields' (Reynolds-family cavitation)
     tilt_rate : their rates [rad/s] (squeeze)
     lubricant : :class:`~bearingfem.lubricant.Lubricant` whose viscosity and density follow
-        the pressure (ratios to the bearing's viscosity), or None (Reynolds-family
-        cavitation; solved by Newton, :mod:`bearingfem.ehd`)
+        the pressure (ratios to the bearing's viscosity), or None (cavitation "none" or
+        "reynolds"; solved by Newton, :mod:`bearingfem.ehd`)
     bush : :class:`~bearingfem.elastic.ElasticBush` (its compliance is built on the film
         grid) or a prebuilt full or reduced compliance on the (n_theta, n_z + 1) grid; the
-        gap becomes c (1 + eps cos theta) + deformation (P1, Reynolds-family cavitation).
+        gap becomes c (1 + eps cos theta) + deformation (P1, cavitation "none" or
+        "reynolds"; quasi-static: the deflection's rate is left out of the squeeze term).
         With a lubricant or a bush, ``method`` and ``tol`` serve the rigid start and the
         Newton test, and ``iterations`` counts Newton steps (:mod:`bearingfem.ehd`)
     roughness : :class:`~bearingfem.contact.Roughness` (mixed lubrication): the
@@ -186,6 +187,8 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
     ambient_pressure = check_jfo_supply(cavitation, grooves, supply_angle, ambient_pressure,
                                         element)
     tilt, tilt_rate = check_tilt("tilt", tilt), check_tilt("tilt_rate", tilt_rate)
+    if fields is not None and not isinstance(fields, FilmFields):
+        raise ValueError(f"fields must be a FilmFields, got {type(fields).__name__}")
     ehd = lubricant is not None or bush is not None
     if ehd:
         from ..ehd.film import check_ehd, solve_ehd_film
@@ -194,8 +197,6 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
     if general and cavitation == "jfo":
         raise ValueError("fields and tilt need a Reynolds-family cavitation model "
                          "('none', 'gumbel', 'reynolds'), got cavitation='jfo'")
-    if fields is not None and not isinstance(fields, FilmFields):
-        raise ValueError(f"fields must be a FilmFields, got {type(fields).__name__}")
     roughness = check_roughness(roughness)
     if roughness is not None and bush is not None:
         # the asperities' load would deform the bush too: a coupling not built yet
