@@ -30,7 +30,7 @@ from pathlib import Path
 
 from bearingfem.outputs.tables import write_csv
 from bearingfem.models import FILM_MODELS
-from mechanism.scene import read_toml
+from mechanism.scene import read_toml, shipped_file
 
 from .cases import KINDS, MECHANISM_PARAMS, _precheck, _scene_data, run_case
 
@@ -99,13 +99,7 @@ def shipped_sweeps() -> list[str]:
 def sweep_path(path) -> Path:
     """The sweep file ``path`` if it exists; else the shipped sweep of that name, given as
     ``capacity``, ``capacity.toml`` or ``sweeps/capacity.toml`` (the checkout's path)."""
-    p = Path(path)
-    if p.is_file():
-        return p
-    shipped = SWEEPS / f"{p.stem}.toml"
-    if p.suffix in ("", ".toml") and p.parent in (Path("."), Path("sweeps")) and shipped.is_file():
-        return shipped
-    return p
+    return shipped_file(path, SWEEPS)
 
 
 def load_sweep(path) -> Sweep:

@@ -21,6 +21,8 @@ import numpy as np
 from bearingfem import ElasticBush
 from bearingfem.elastic import bush_compliance
 
+from .film_solve import best_time
+
 RADIUS, LENGTH = 0.010, 0.004
 BRONZE = dict(outer_radius=0.016, modulus=110e9, poisson=0.34)
 
@@ -29,15 +31,6 @@ def hertz(n_theta, n_z, peak=0.8e9, half_width=1.5e-3):
     theta = 2 * np.pi * np.arange(n_theta) / n_theta
     s = RADIUS * np.where(theta > np.pi, theta - 2 * np.pi, theta)
     return peak * np.sqrt(np.clip(1 - (s / half_width) ** 2, 0, None))[:, None] * np.ones(n_z)
-
-
-def best_time(fn, repeat):
-    best = np.inf
-    for _ in range(repeat):
-        t = time.perf_counter()
-        fn()
-        best = min(best, time.perf_counter() - t)
-    return best
 
 
 def main(argv=None):
@@ -65,15 +58,15 @@ def main(argv=None):
     c, w = built["solid"]
     n = n_theta * n_z
     dense = c.matrix()
-    t_fft = best_time(lambda: c.deflection(p), args.repeat)
-    t_dense = best_time(lambda: dense @ p.ravel(), args.repeat)
+    t_fft = best_time(lambda: c.deflection(p), args.repeat)[0]
+    t_dense = best_time(lambda: dense @ p.ravel(), args.repeat)[0]
     print(f"\nsolid, full operator (N = {n}): FFT apply {t_fft * 1e6:.0f} us, dense "
           f"matvec {t_dense * 1e6:.0f} us (ratio {t_dense / t_fft:.1f})")
     print(f"{'vectors':>8} {'operator':>10} {'error':>10} {'apply/FFT':>10}")
     for k in sorted({8, 16, 32, 64, 128, 256, 512, n // 2, n} & set(range(1, n + 1))):
         reduced = c.reduced(k)
         err = np.abs(reduced.deflection(p) - w).max() / np.abs(w).max()
-        t_red = best_time(lambda: reduced.deflection(p), args.repeat)
+        t_red = best_time(lambda: reduced.deflection(p), args.repeat)[0]
         print(f"{reduced.n_vectors:8d} {reduced.operator_error:10.2e} {err:10.2e} "
               f"{t_red / t_fft:10.2f}")
         rows.append(dict(model="solid-reduced", vectors=reduced.n_vectors,

@@ -11,24 +11,16 @@ times the half-space deflection alone, by FFT against the dense influence matrix
 from __future__ import annotations
 
 import argparse
-import time
 
 import numpy as np
 
 from bearingfem import Lubricant, line_contact
 from bearingfem.ehl.halfspace import LineCompliance
 
+from .film_solve import best_time
+
 OIL = Lubricant(viscosity=0.0117, barus=2e-8, density="dowson-higginson")
 CONTACT = dict(radius=0.02, reduced_modulus=2.26e11, lubricant=OIL, mean_speed=1.0)
-
-
-def best_time(f, repeat):
-    best, out = np.inf, None
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        out = f()
-        best = min(best, time.perf_counter() - t0)
-    return best, out
 
 
 def nodes_rows(loads, grids, repeat):

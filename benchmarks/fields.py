@@ -16,7 +16,6 @@ excluded). Times are the best of ``--repeat`` in one run:
 from __future__ import annotations
 
 import argparse
-import time
 
 import numpy as np
 
@@ -26,17 +25,10 @@ from bearingfem.fe.general import film_system, general_assembly
 from bearingfem.fe.reynolds import fe_operator, fe_pressure
 from bearingfem.fields import FilmFields
 
+from .film_solve import best_time
+
 BEARING = seed_bearing(1.0)
 STATE = JournalState(eps=0.6, omega=100.0)
-
-
-def best_time(f, repeat):
-    times = []
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        out = f()
-        times.append(time.perf_counter() - t0)
-    return min(times), out
 
 
 def row(n_theta, n_z, element, repeat):

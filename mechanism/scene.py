@@ -303,11 +303,19 @@ def scene_path(path) -> Path:
     """The scene file ``path`` if it exists; else the shipped scene of that name, given as
     ``paper-short-fem``, ``paper-short-fem.toml`` or ``scenes/paper-short-fem.toml`` (the
     checkout's path, so the same command works outside it)."""
+    return shipped_file(path, SCENES)
+
+
+def shipped_file(path, folder: Path) -> Path:
+    """``path`` if it is a file; else ``folder``'s TOML file of that name, given as NAME,
+    NAME.toml or <folder name>/NAME.toml (the checkout's path); else ``path`` unchanged
+    (the caller's check names it)."""
     p = Path(path)
     if p.is_file():
         return p
-    shipped = SCENES / f"{p.stem}.toml"
-    if p.suffix in ("", ".toml") and p.parent in (Path("."), Path("scenes")) and shipped.is_file():
+    shipped = folder / f"{p.stem}.toml"
+    if (p.suffix in ("", ".toml") and p.parent in (Path("."), Path(folder.name))
+            and shipped.is_file()):
         return shipped
     return p
 
