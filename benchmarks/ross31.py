@@ -45,7 +45,7 @@ from . import grooved
 STATIC = (0.6, -0.25 * math.pi)                 # eps, journal angle [rad]
 OURS_STATIC = [(18, 4), (36, 6), (72, 12)]      # P2; the grooves' 20 deg on nodes
 OURS_DESIGN = [(36, 6), (72, 12)]
-OURS_PLAIN = [(24, 4), (48, 8)]
+OURS_PLAIN = [(24, 4), (48, 8), (96, 16)]
 REFERENCE = (192, 32)
 ROSS_STATIC = [(40, 20), (80, 40), (160, 80)]   # elements around each land x axially
 ROSS_DESIGN = [(40, 20), (80, 40)]
