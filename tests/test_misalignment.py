@@ -195,3 +195,5 @@ def test_tilted_equilibrium_refuses_what_it_cannot_do():
                     grooves=[Groove(angle=0.0, width=0.2)])
     with pytest.raises(ValueError, match=r"\|tilt\| L / \(2 c\) must be < eps_max"):
         equilibrium(B, (0.0, -100.0), 250.0, "fem", n_theta=48, n_z=8, tilt=(0.0, 4e-3))
+    with pytest.raises(ValueError, match="exceeds what the film carries"):
+        equilibrium(B, (0.0, -1e5), 250.0, "fem", n_theta=48, n_z=8, tilt=(0.0, 1e-3))

@@ -140,3 +140,13 @@ def test_zero_tilt_limit_is_the_aligned_film(cavitation, tilt):
         assert np.abs(K - ref.K).max() <= 1e-11 * np.abs(ref.K).max()
     for C in (tilted.C, block.C[:2, :2]):
         assert np.abs(C - ref.C).max() <= 1e-11 * np.abs(ref.C).max()
+
+
+def test_centred_tilted_journal_has_finite_coefficients():
+    """At eps = 0 the turning form divides by eps: below EPS_TURN the position columns stay
+    the fixed mesh's (the centred journal has no attitude to turn) and finite. Fails if
+    the turning form is used at eps = 0 (inf, NaN)."""
+    centred = JournalState(eps=0.0, omega=250.0)
+    kc = fe_tilt_coefficients(B, centred, TILT, 32, 8, "P1", "reynolds")
+    assert np.all(np.isfinite(kc.K)) and np.all(np.isfinite(kc.C))
+    assert np.abs(kc.K[:2, :2]).max() > 0.0

@@ -29,7 +29,7 @@ trapezoidal rule on ``n_theta`` angles is spectrally accurate for the full film 
 second order across the kinks of Gumbel's.
 
 Reference: Ocvirk, F. W. (1952), Short-bearing approximation for full journal bearings,
-NACA TN 2808; misaligned short bearings: Dubois, Ocvirk & Wehe (1955), NACA TN 3491.
+NACA TN 2808 (the aligned film this one extends).
 """
 from __future__ import annotations
 

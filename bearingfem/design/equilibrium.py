@@ -4,8 +4,9 @@ A periodic film's steady force in the local frame depends on eps alone (gamma on
 it), and its magnitude grows monotonically from 0 at eps = 0 to the wall. So equilibrium
 is one bracketed root, |F(eps)| = W (Brent's method), followed by the turn gamma that puts
 the film force opposite the load. Grooves fixed in space make the force depend on gamma
-too: from that periodic equilibrium a 2-D root in the journal position finishes the job. The attitude angle phi = atan2(F_t, -F_r)
-is the angle from the load line to the line of centres, in the sense of rotation.
+too: from that periodic equilibrium a 2-D root in the journal position finishes the job.
+The attitude angle phi = atan2(F_t, -F_r) is the angle from the load line to the line of
+centres, in the sense of rotation.
 
 Models with exact partials (the FE film, the closed forms) instead take Newton's method in
 the journal position q = e/c: the Jacobian dF/dq is the stiffness the partials give

@@ -1,7 +1,7 @@
 """The literature's misalignment parameters mapped onto ``tilt=(tilt_x, tilt_y)``.
 
-Published studies of misaligned journal bearings (Vijayaraghavan & Keith 1990, J. Tribol.
-112, 60-67; restated by Jang & Khonsari 2015, Lubricants 3, 27-53, Sec. 1.2) describe the
+Published studies of misaligned journal bearings (Vijayaraghavan & Keith, J. Tribol. 112
+(1990); restated by Jang & Khonsari, Lubricants 3 (2015) 27-53, Sec. 1.2) describe the
 tilt by the projection of the journal's axis on the mid-plane: the centre at the end of
 the bearing sits e' away from the mid-plane centre, at the angle alpha from the line of
 centres (in the sense of theta, i.e. of rotation), so that the film is
