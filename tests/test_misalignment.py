@@ -129,3 +129,71 @@ def test_equilibrium_with_a_prescribed_misalignment():
     assert plus.film_min < aligned.film_min
     with pytest.raises(ValueError, match="tilt needs model 'fem'"):
         equilibrium(B, W, 250.0, "short", tilt=(0.0, 1e-3))
+
+
+# (load [N], tilt [rad], options) -> (eps, gamma [rad], moment (M_x, M_y) [N m]) found by the
+# previous tilted equilibrium (Powell's hybrid root, finite-difference Jacobian, xtol 1e-12,
+# its force residual <= 1e-8 of the load) before it moved onto Newton's method
+PREVIOUS_TILTED_EQUILIBRIA = (
+    ((0.0, -100.0), (0.0, 1e-3), dict(n_theta=48, n_z=8),
+     (0.6659124350581946, -0.8082035669119653, (-0.05139060012281947, -0.03193678981220719))),
+    ((30.0, -400.0), (5e-4, -5e-4), dict(n_theta=48, n_z=8, element="P2", cavitation="gumbel"),
+     (0.8608017706357195, -0.944167391499103, (-0.1997548133499934, 0.013782314842082628))),
+)
+
+
+@pytest.mark.parametrize("case", PREVIOUS_TILTED_EQUILIBRIA)
+def test_tilted_equilibrium_matches_the_previous_root(case):
+    """Newton's method on the exact 4x4 stiffness lands where the previous 2-D root did:
+    eps to 1e-11 relative, gamma to 1e-11 rad, the moment to 1e-9 (measured 4e-15, 2e-16,
+    2e-15; Newton stops on a step below sqrt(rtol) |q| = 3e-7 |q| and takes it, leaving
+    ~1e-13), in 5-6 film evaluations (the root took 19-27). Fails with the position
+    columns of the stiffness taken on the fixed mesh: Newton then stops 6e-11 (eps) and
+    2e-10 rad (gamma) off."""
+    from bearingfem import equilibrium
+    load, tilt, opts, (eps, gamma, moment) = case
+    eq = equilibrium(B, load, 250.0, "fem", tilt=tilt, **opts)
+    assert eq.eps == pytest.approx(eps, rel=1e-11)
+    assert eq.state.gamma == pytest.approx(gamma, abs=1e-11)
+    assert eq.solution.moment == pytest.approx(moment, rel=1e-9)
+    assert eq.iterations <= 8
+    assert np.abs(np.add(eq.film_force, load)).max() <= 1e-10 * np.hypot(*load)
+    assert eq.friction_force == pytest.approx(eq.solution.friction_force, rel=1e-14)
+
+
+def test_least_film_of_a_tilted_journal():
+    """The equilibrium's film_min and its angle are the exact least gap of the tilted
+    journal (at an end, where its centre is farthest out): against the gap of
+    :func:`tilted_gap` sampled every 0.001 deg over both ends (agreement 1e-9 c, the
+    sampling's error ~ eps (dtheta)^2 / 2 = 1e-10 c). Fails with the end offset's sign or
+    axis swapped (then the other end, or the wrong side, is taken)."""
+    from bearingfem.design.equilibrium import least_film
+    state = JournalState(eps=0.6, gamma=0.3, omega=250.0)
+    tilt = (1e-3, -0.5e-3)
+    h_min, angle = least_film(B, state, tilt)
+    theta = np.linspace(0.0, 2 * np.pi, 360001)
+    c = B.clearance
+    gaps = []
+    for zeta in (-0.5 * B.length / B.radius, 0.5 * B.length / B.radius):
+        H = 1.0 + state.eps * np.cos(theta) + tilted_gap(B, state, theta, zeta, tilt)[0]
+        gaps.append(H)
+    gaps = np.array(gaps)
+    i = np.unravel_index(np.argmin(gaps), gaps.shape)
+    assert h_min == pytest.approx(c * gaps[i], abs=1e-9 * c)
+    # theta is measured from the maximum film: the least film's inertial angle is
+    # theta + gamma + pi
+    expected = np.mod(theta[i[1]] + state.gamma + np.pi, 2 * np.pi)
+    assert abs(np.angle(np.exp(1j * (angle - expected)))) <= 1e-4
+    assert least_film(B, state, (0.0, 0.0)) == pytest.approx(
+        (c * (1 - state.eps), state.gamma), rel=1e-15)
+
+
+def test_tilted_equilibrium_refuses_what_it_cannot_do():
+    from bearingfem import Groove, equilibrium
+    with pytest.raises(ValueError, match="tilt with grooves"):
+        equilibrium(B, (0.0, -100.0), 250.0, "fem", n_theta=48, n_z=8, tilt=(0.0, 1e-3),
+                    grooves=[Groove(angle=0.0, width=0.2)])
+    with pytest.raises(ValueError, match=r"\|tilt\| L / \(2 c\) must be < eps_max"):
+        equilibrium(B, (0.0, -100.0), 250.0, "fem", n_theta=48, n_z=8, tilt=(0.0, 4e-3))
+    with pytest.raises(ValueError, match="exceeds what the film carries"):
+        equilibrium(B, (0.0, -1e5), 250.0, "fem", n_theta=48, n_z=8, tilt=(0.0, 1e-3))

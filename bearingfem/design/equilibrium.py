@@ -4,15 +4,17 @@ A periodic film's steady force in the local frame depends on eps alone (gamma on
 it), and its magnitude grows monotonically from 0 at eps = 0 to the wall. So equilibrium
 is one bracketed root, |F(eps)| = W (Brent's method), followed by the turn gamma that puts
 the film force opposite the load. Grooves fixed in space make the force depend on gamma
-too, and so does a misaligned journal's (``tilt``): from that periodic equilibrium a 2-D
-root in the journal position finishes the job. The attitude angle phi = atan2(F_t, -F_r)
-is the angle from the load line to the line of centres, in the sense of rotation.
+too: from that periodic equilibrium a 2-D root in the journal position finishes the job.
+The attitude angle phi = atan2(F_t, -F_r) is the angle from the load line to the line of
+centres, in the sense of rotation.
 
 Models with exact partials (the FE film, the closed forms) instead take Newton's method in
 the journal position q = e/c: the Jacobian dF/dq is the stiffness the partials give
 (:mod:`bearingfem.design.coefficients`, grooves' d/dgamma included), so each step costs one
 film evaluation with its partials, and the iteration starts from a closed form
-(:mod:`bearingfem.design.newton`) or a nearby equilibrium (``start=``).
+(:mod:`bearingfem.design.newton`) or a nearby equilibrium (``start=``). A misaligned FE
+film (``tilt``) takes the same iteration on its exact 4x4 stiffness, whose position
+columns are the derivative of the film as it is solved (its mesh turning with the journal).
 """
 from __future__ import annotations
 
@@ -25,12 +27,13 @@ from scipy.optimize import brentq, root
 from ..bearing import Bearing, JournalState, check_finite
 from ..errors import ConvergenceError
 from ..fe.reynolds import solve_reynolds
+from ..fe.sensitivity import fe_tilt_coefficients
 from ..fields import check_tilt
 from ..film import local_to_inertial
 from ..models import film_model, solve_film
 from ..solution import FilmSolution
 from .groups import petroff_friction, sommerfeld_number
-from .newton import closed_form_start, newton_position
+from .newton import closed_form_start, newton_position, polar_linearisation, shrink_inside
 
 __all__ = ["Equilibrium", "equilibrium", "EPS_MAX", "ConvergenceError"]
 
@@ -119,11 +122,14 @@ def equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
         previous load of a sweep), where Newton's method starts (models with exact
         partials only; default: the closed-form equilibrium). Newton's method raises
         :class:`ConvergenceError` if it does not converge from there.
-    tilt : (tilt_x, tilt_y) [rad], a prescribed misalignment (model "fem" only): the
-        journal centre at the mid-plane is placed where the tilted film balances the load
-        (a 2-D root from the aligned equilibrium); ``solution.moment`` is the moment the
-        film then exerts (the bearing's reaction to the misalignment), ``film_min`` the
-        least gap over the length and the friction the film's own shear integral
+    tilt : (tilt_x, tilt_y) [rad], a prescribed misalignment (model "fem"; no grooves
+        or roughness): the journal centre at the mid-plane is placed where the tilted film
+        balances the load, by Newton's method on the tilted film's exact stiffness
+        (:func:`bearingfem.fe.sensitivity.fe_tilt_coefficients`) with both journal ends
+        kept inside ``eps_max``; ``solution.moment`` is the moment the film then exerts
+        (the bearing's reaction to the misalignment), ``film_min`` / ``film_min_angle``
+        the least gap over the length (at an end) and its angle, and the friction the
+        film's own shear integral
     """
     tilt = check_tilt("tilt", options.pop("tilt", (0.0, 0.0)))
     if any(tilt) and model != "fem":
@@ -132,6 +138,9 @@ def equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
     opts = m.options(options)
     if any(tilt) and opts.get("roughness") is not None:
         raise ValueError("tilt with roughness is not supported: give one of them")
+    if any(tilt) and opts.get("grooves"):
+        # grooves fixed in space do not turn with the film: no exact tilted partials yet
+        raise ValueError("tilt with grooves is not supported: give one of them")
     wx, wy = _load_vector(load, direction)
     W = math.hypot(wx, wy)
     omega = check_finite("omega", omega)
@@ -171,29 +180,28 @@ def equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
         eps, gamma = _grooved_equilibrium(lambda e, g: force(e, g, opts), (wx, wy), eps,
                                           gamma, eps_max, model)
         f_r, f_t = force(eps, gamma, opts)
-    if any(tilt):
-        return _tilted_equilibrium(bearing, omega, (wx, wy), eps, gamma, eps_max, opts, tilt,
-                                   calls[0])
     state = JournalState(eps, omega=omega, gamma=gamma)
     sol = solve_film(model, bearing, state, opts)
     return _result(bearing, omega, (wx, wy), state, (f_r, f_t), sol, model, calls[0])
 
 
-def _result(bearing, omega, load, state, force_local, sol, model, calls):
+def _result(bearing, omega, load, state, force_local, sol, model, calls, tilt=(0.0, 0.0)):
     """The :class:`Equilibrium` at ``state``, the film force there (local) and solution."""
     (wx, wy), W = load, math.hypot(*load)
     (f_r, f_t), eps, gamma = force_local, state.eps, state.gamma
     film_force = local_to_inertial(f_r, f_t, gamma)
-    friction = petroff_friction(bearing, eps, omega, f_t)
+    # Petroff's closed Couette integral and the by-parts Poiseuille term hold for the
+    # cylindrical gap only: a tilted film's friction is its own shear integral
+    friction = sol.friction_force if any(tilt) else petroff_friction(bearing, eps, omega, f_t)
     contact = (0.0, 0.0) if sol is None else sol.asperity_force
     if sol is not None:
         friction += sol.asperity_friction_torque / bearing.radius
+    film_min, film_min_angle = least_film(bearing, state, tilt)
     return Equilibrium(
         eps=eps, attitude=math.atan2(f_t, -f_r), state=state, load=(wx, wy),
         film_force=film_force,
         sommerfeld=sommerfeld_number(bearing, W, omega) if omega else 0.0,   # dry: S = 0
-        film_min=bearing.clearance * (1.0 - eps),
-        film_min_angle=float(np.mod(gamma, 2.0 * math.pi)),
+        film_min=film_min, film_min_angle=film_min_angle,
         friction_force=friction, friction_coefficient=friction / W,
         power_loss=abs(friction * bearing.radius * omega),
         pressure_max=None if sol is None else sol.pressure_max,
@@ -215,27 +223,60 @@ def _start_position(start, eps_max):
     return np.array([state.eps * math.cos(state.gamma), state.eps * math.sin(state.gamma)])
 
 
+def least_film(bearing: Bearing, state: JournalState, tilt=(0.0, 0.0)):
+    """(h_min [m], its inertial angle [rad]) of the journal at ``state`` tilted by ``tilt``.
+
+    The centre at axial position z sits at e(z) = e + z (tilt_y, -tilt_x), its least gap
+    c - |e(z)| in the direction of e(z); |e(z)| is convex in z, so the least film is at
+    an end, z = +-L/2 (c (1 - eps) at gamma for an aligned journal).
+    """
+    c = bearing.clearance
+    e = c * state.eps * np.array([math.cos(state.gamma), math.sin(state.gamma)])
+    d = 0.5 * bearing.length * np.array([tilt[1], -tilt[0]])
+    end = max((e + d, e - d), key=lambda v: math.hypot(*v))
+    angle = math.atan2(end[1], end[0]) if any(tilt) else state.gamma
+    return c - math.hypot(*end), float(np.mod(angle, 2.0 * math.pi))
+
+
 def _newton_equilibrium(m, bearing, omega, load, opts, q0, eps_max, rtol, model, tilt):
-    """Equilibrium by Newton's method on the model's exact partials (module docstring)."""
+    """Equilibrium by Newton's method on the model's exact partials (module docstring); a
+    tilted FE film's from its exact 4x4 stiffness, with both journal ends inside eps_max."""
     calls = [0]
+    c = bearing.clearance
+    d_end = 0.5 * bearing.length / c * np.array([tilt[1], -tilt[0]])   # end centre - q
+    if not math.hypot(*d_end) < eps_max:
+        raise ValueError(f"tilt {tilt} [rad] puts the journal's ends {math.hypot(*d_end):.3g} "
+                         f"c off its mid-plane centre: |tilt| L / (2 c) must be < eps_max = "
+                         f"{eps_max:g}")
 
     def partials(eps, gamma):
         calls[0] += 1
         return m.derivatives(bearing, JournalState(eps, omega=omega, gamma=gamma), **opts)
 
+    def tilted(q):
+        calls[0] += 1
+        state = JournalState(math.hypot(*q), omega=omega, gamma=math.atan2(q[1], q[0]))
+        kc = fe_tilt_coefficients(bearing, state, tilt, opts["n_theta"], opts["n_z"],
+                                  opts["element"], opts["cavitation"])
+        return kc.force[:2], -c * kc.K[:2, :2]          # dF/dq = -c K, q = e/c
+
+    film = tilted if any(tilt) else polar_linearisation(partials)
+    if q0 is None:
+        q0 = closed_form_start(bearing, omega, load)
+
     def capacity():     # what the (periodic) film carries at eps_max, for the error message
         calls[0] += 1
+        if any(tilt):   # the tilted film with its nearer end at eps_max, along the start
+            return math.hypot(*film(shrink_inside(q0 / math.hypot(*q0) * 2.0, d_end,
+                                                  eps_max))[0])
         o = {**opts, "grooves": ()} if opts.get("grooves") else opts
         return math.hypot(*m.force(bearing, JournalState(eps_max, omega=omega), **o))
 
-    if q0 is None:
-        q0 = closed_form_start(bearing, omega, load)
-    eps, gamma = newton_position(partials, load, q0, eps_max, rtol, capacity, model)
-    if any(tilt):
-        return _tilted_equilibrium(bearing, omega, load, eps, gamma, eps_max, opts, tilt,
-                                   calls[0])
+    eps, gamma = newton_position(film, load, q0, eps_max, rtol, capacity, model, d_end)
     state = JournalState(eps, omega=omega, gamma=gamma)
-    sol = solve_film(model, bearing, state, opts)
+    sol = (solve_reynolds(bearing, state, opts["n_theta"], opts["n_z"], opts["element"],
+                          opts["cavitation"], tilt=tilt) if any(tilt)
+           else solve_film(model, bearing, state, opts))
     calls[0] += 1
     # the model's force: the film's and, with roughness, the asperities' (mixed lubrication)
     f_loc = m.force(bearing, state, **opts) if sol is None else tuple(
@@ -247,34 +288,7 @@ def _newton_equilibrium(m, bearing, omega, load, opts, q0, eps_max, rtol, model,
         raise ConvergenceError(f"Newton's equilibrium ({model} model)", calls[0], residual,
                                f"eps = {eps:.6g} (film force off the load by more than "
                                f"{limit:.0e} of it)")
-    return _result(bearing, omega, load, state, f_loc, sol, model, calls[0])
-
-
-def _tilted_equilibrium(bearing, omega, load, eps0, gamma0, eps_max, opts, tilt, calls):
-    """Equilibrium of the misaligned FE film: the mid-plane centre (eps, gamma) where the
-    tilted film's force balances ``load``, from the aligned equilibrium (eps0, gamma0)."""
-    count = [calls]
-
-    def film(eps, gamma):
-        count[0] += 1
-        return solve_reynolds(bearing, JournalState(eps, omega=omega, gamma=gamma),
-                              opts["n_theta"], opts["n_z"], opts["element"],
-                              opts["cavitation"], grooves=opts["grooves"], tilt=tilt)
-
-    eps, gamma = _grooved_equilibrium(lambda e, g: film(e, g).force_local, load, eps0,
-                                      gamma0, eps_max, "fem with tilt")
-    sol = film(eps, gamma)
-    W = math.hypot(*load)
-    f_r, f_t = sol.force_local
-    return Equilibrium(
-        eps=eps, attitude=math.atan2(f_t, -f_r),
-        state=JournalState(eps, omega=omega, gamma=gamma),
-        load=load, film_force=sol.force, sommerfeld=sommerfeld_number(bearing, W, omega),
-        film_min=sol.film_min, film_min_angle=float(np.mod(gamma, 2.0 * math.pi)),
-        friction_force=sol.friction_force, friction_coefficient=sol.friction_force / W,
-        power_loss=abs(sol.friction_force * bearing.radius * omega),
-        pressure_max=sol.pressure_max, side_leakage=sol.side_leakage,
-        flow_in=sol.side_leakage, solution=sol, model="fem", iterations=count[0])
+    return _result(bearing, omega, load, state, f_loc, sol, model, calls[0], tilt)
 
 
 def _grooved_equilibrium(force, load, eps0, gamma0, eps_max, model):

@@ -10,6 +10,10 @@ i.e. -c times the stiffness of :mod:`bearingfem.design.coefficients` at a steady
 backtracking line search on |r| (Armijo, halving) makes it global enough from a
 closed-form start; steps are cut to stay inside eps_max.
 
+A misaligned journal (its axis tilted) has its centre at q + z d(tilt) along the length:
+``ends`` = d at z = L/2 keeps both ends, q + d and q - d, inside eps_max (the least film is
+at an end), and the Jacobian comes straight from the tilted film's exact 4x4 stiffness.
+
 The start (:func:`closed_form_start`) is the equilibrium of the finite bearing
 approximated by combining the short- and long-bearing forces, 1/|F| = 1/|F_short| +
 1/|F_long| (each closed form overestimates the finite film's load capacity in its own
@@ -29,7 +33,8 @@ from ..closed.short_bearing import short_bearing_force
 from ..errors import ConvergenceError
 from ..film import local_to_inertial
 
-__all__ = ["closed_form_start", "newton_position", "NEWTON_MAX_STEPS"]
+__all__ = ["closed_form_start", "newton_position", "polar_linearisation", "shrink_inside",
+           "NEWTON_MAX_STEPS"]
 
 #: Newton steps before giving up: converged films need 3-6 from the closed-form start
 #: (benchmarks/design.py --grooved); more means a start outside the basin.
@@ -67,26 +72,39 @@ def _jacobian(d, eps, gamma):
     return R @ M @ R.T
 
 
-def newton_position(partials, load, q0, eps_max, rtol, capacity, model):
+def polar_linearisation(partials):
+    """``film(q)`` -> (F, dF/dq) [N] (inertial) from ``partials(eps, gamma)`` ->
+    :class:`ForceDerivatives` (local frame, d_gamma included)."""
+    def film(q):
+        eps, gamma = math.hypot(*q), math.atan2(q[1], q[0])
+        d = partials(eps, gamma)
+        return np.array(local_to_inertial(*d.force, gamma)), _jacobian(d, eps, gamma)
+    return film
+
+
+def newton_position(film, load, q0, eps_max, rtol, capacity, model, ends=(0.0, 0.0)):
     """(eps, gamma) where the film force balances ``load`` (W_x, W_y) [N].
 
-    ``partials(eps, gamma)`` -> :class:`ForceDerivatives` (local frame, d_gamma included);
-    ``q0`` the start (q = e/c); the iteration stops once a Newton step is below
-    sqrt(rtol) |q| (the step after it would be below rtol |q|: quadratic convergence) and
-    takes that step. ``capacity()`` -> what the film carries at eps_max [N], asked only on
-    failure or when a step heads past eps_max: a load beyond it raises ValueError, any other failure ConvergenceError.
+    ``film(q)`` -> (F, dF/dq) [N], inertial, at the journal position q = e/c (e.g.
+    :func:`polar_linearisation`); ``q0`` the start; the iteration stops once a Newton step
+    is below sqrt(rtol) |q| (the step after it would be below rtol |q|: quadratic
+    convergence) and takes that step. ``ends`` = d: the journal centres q + d and q - d (a
+    tilted journal's ends) stay inside eps_max; (0, 0) for an aligned journal.
+    ``capacity()`` -> what the film carries at eps_max [N], asked only on failure or when a
+    step heads past eps_max: a load beyond it raises ValueError, any other failure
+    ConvergenceError.
     """
     W = math.hypot(*load)
+    d_end = np.asarray(ends, float)
     q = np.asarray(q0, float)
-    if math.hypot(*q) >= eps_max:      # a closed-form start at the wall: come back inside
-        q = q * (0.9 * eps_max / math.hypot(*q))
+    if _reach(q, d_end) >= eps_max:      # a closed-form start at the wall: come back inside
+        q = shrink_inside(q, d_end, _reach(np.zeros(2), d_end) + 0.9 * (
+            eps_max - _reach(np.zeros(2), d_end)))
     checked = []
 
     def evaluate(q):
-        eps, gamma = math.hypot(*q), math.atan2(q[1], q[0])
-        d = partials(eps, gamma)
-        r = (np.array(local_to_inertial(*d.force, gamma)) + load) / W
-        return r, _jacobian(d, eps, gamma) / W
+        F, J = film(q)
+        return (np.asarray(F, float) + load) / W, np.asarray(J, float) / W
 
     def check_capacity():
         if not checked:
@@ -113,7 +131,7 @@ def newton_position(partials, load, q0, eps_max, rtol, capacity, model):
             fail("singular Jacobian")
         if not np.all(np.isfinite(dq)):
             fail("non-finite Newton step")
-        t = _inside(q, dq, eps_max)
+        t = min(_inside(q, dq, eps_max, s * d_end) for s in (1.0, -1.0))
         if t < 1.0:     # heading for the wall: does the film carry the load at all?
             check_capacity()
         if t == 1.0 and math.hypot(*dq) <= step_tol * math.hypot(*q):
@@ -131,10 +149,28 @@ def newton_position(partials, load, q0, eps_max, rtol, capacity, model):
     fail(f"{NEWTON_MAX_STEPS} Newton steps")
 
 
-def _inside(q, dq, eps_max):
-    """Step fraction in (0, 1] that keeps |q + t dq| at most half way to eps_max."""
-    if math.hypot(*(q + dq)) < eps_max:
+def _reach(q, d_end) -> float:
+    """The larger eccentricity ratio of the journal's ends q + d and q - d."""
+    return max(math.hypot(*(q + d_end)), math.hypot(*(q - d_end)))
+
+
+def shrink_inside(q, d_end, target) -> np.ndarray:
+    """s q with s in (0, 1] largest such that both ends s q +- d reach at most ``target``
+    (> |d|): |s q + d|^2 = target^2 solved for s, the nearer end's root."""
+    q, d_end = np.asarray(q, float), np.asarray(d_end, float)
+    a = q @ q
+    roots = [1.0]
+    for d in (d_end, -d_end):
+        b, c = q @ d, d @ d - target ** 2
+        roots.append((-b + math.sqrt(b * b - a * c)) / a)
+    return min(roots) * q
+
+
+def _inside(q, dq, eps_max, d=np.zeros(2)):
+    """Step fraction in (0, 1] that keeps |q + d + t dq| at most half way to eps_max."""
+    p = q + d
+    if math.hypot(*(p + dq)) < eps_max:
         return 1.0
-    target = 0.5 * (math.hypot(*q) + eps_max)
-    a, b, c = dq @ dq, 2.0 * q @ dq, q @ q - target ** 2     # |q + t dq|^2 = target^2
+    target = 0.5 * (math.hypot(*p) + eps_max)
+    a, b, c = dq @ dq, 2.0 * p @ dq, p @ p - target ** 2     # |p + t dq|^2 = target^2
     return float((-b + math.sqrt(b * b - 4.0 * a * c)) / (2.0 * a))

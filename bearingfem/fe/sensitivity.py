@@ -15,6 +15,7 @@ integrand is zero there, so it adds nothing to first order).
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -152,7 +153,10 @@ def fe_tilt_coefficients(bearing: Bearing, state: JournalState, tilt=(0.0, 0.0),
     dk/dq = 3 H^2 dH/dq (rho = mu = 1) and db/dq the Couette load of 6 w dH/dq; a rate
     q' enters through the squeeze load -12 dH/dq only. Four right-hand sides of each kind
     on the factors the film solve holds. The state must be steady (eps_dot = gamma_dot = 0,
-    no tilt rate): the linearisation is about it. Whole length meshed.
+    no tilt rate): the linearisation is about it. Whole length meshed. The position
+    columns are those of the film whose mesh turns with the journal, as ``solve_reynolds``
+    solves it (:func:`_turning_position_columns`; eps >= ``EPS_TURN``): K is the exact
+    derivative of its force and moment, and at zero tilt the aligned film's 2x2.
     """
     check_film_solve(bearing, state, n_theta, n_z, cavitation, "active-set", None,
                      element=(element, ("P1", "P2")))
@@ -189,4 +193,33 @@ def fe_tilt_coefficients(bearing: Bearing, state: JournalState, tilt=(0.0, 0.0),
     # Gumbel: the partials where the clipped film is positive (its edge adds nothing to
     # first order: the integrand vanishes there)
     dQ = generalised_forces(bearing, state, op, dP.T, where=where)
-    return TiltCoefficients(K=-dQ[:, :4], C=-dQ[:, 4:], force=Q)
+    K = -dQ[:, :4]
+    if state.eps >= EPS_TURN:
+        K[:, :2] = _turning_position_columns(bearing, state, tilt, K, Q)
+    return TiltCoefficients(K=K, C=-dQ[:, 4:], force=Q)
+
+
+#: Below this eccentricity ratio the position columns stay the fixed mesh's: the turning
+#: form divides by eps (the polar frame is singular at the centre).
+EPS_TURN = 1e-6
+
+
+def _turning_position_columns(bearing, state, tilt, K, Q) -> np.ndarray:
+    """K's (e_x, e_y) columns of the film as ``solve_reynolds`` solves it, its mesh turning
+    with gamma.
+
+    Along the eccentricity (r) the mesh stays put: the fixed-mesh column is exact. Across
+    it (t) the mesh turns: turning eps, gamma and the tilt together turns the whole
+    discrete problem, so Q turns with it exactly, dQ/dgamma|_all = J Q (J turns each of
+    (F_x, F_y) and (M_x, M_y) by +90 deg); the tilt held inertial takes back its share,
+    dQ/dtilt J tilt. Hence dQ/de_t = (J Q - dQ/dtilt J tilt) / (c eps), the partial that
+    also makes the zero-tilt limit the aligned film's 2x2 (which turns its mesh too) to
+    round-off, where the fixed mesh's differs by the cavitation front's discretisation.
+    """
+    g = state.gamma
+    r_hat, t_hat = np.array([math.cos(g), math.sin(g)]), np.array([-math.sin(g), math.cos(g)])
+    JQ = np.array([-Q[1], Q[0], -Q[3], Q[2]])
+    J_tilt = np.array([-tilt[1], tilt[0]])
+    K_r = K[:, :2] @ r_hat
+    K_t = -(JQ + K[:, 2:] @ J_tilt) / (bearing.clearance * state.eps)
+    return np.outer(K_r, r_hat) + np.outer(K_t, t_hat)
