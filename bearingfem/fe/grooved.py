@@ -31,6 +31,7 @@ is not built on fields).
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from functools import lru_cache
 
@@ -42,6 +43,7 @@ from ..errors import ConvergenceError
 from ..film import cubed_thickness_coefficients, film_thickness, source_coefficients
 from ..scales import force_factor
 from ..solution import FilmSolution, ForceDerivatives
+from ..solvers.blocksolve import DENSE_DOFS
 from ..solvers.cavitation import LCPResult
 from .assembly import FilmOperator, film_operator
 from .general import general_assembly
@@ -61,8 +63,9 @@ class GroovedOperator:
         angle at gamma = 0), grooves on mesh lines
     harmonics : (7, nnz) values of int w(phi) grad u . grad v on op's pattern for
         w = 1, cos phi, sin phi, cos 2 phi, sin 2 phi, cos 3 phi, sin 3 phi
-    last : the last converged cavitated set (a start for the next state: the answer does
-        not depend on it, only the number of active-set solves)
+    last : the last solve on this operator: its state, result and cavitated set (the
+        next state's active set starts from it, the same state takes its result; the answer
+        does not depend on it, only the number of solves)
     """
 
     op: FilmOperator
@@ -73,13 +76,11 @@ class GroovedOperator:
         """The seven weights of :attr:`harmonics` at (eps, gamma); ``wrt`` "eps" or
         "gamma" gives their partial."""
         a0, a1, a2, a3 = cubed_thickness_coefficients(eps, wrt == "eps")
-        amp = np.array([a1 + 0.75 * a3, 0.5 * a2, 0.25 * a3])
-        m = np.arange(1, 4)
-        c, s = np.cos(m * gamma), np.sin(m * gamma)
-        if wrt == "gamma":
-            pairs = np.column_stack([-m * amp * s, m * amp * c])
-            return np.concatenate([[0.0], pairs.ravel()])
-        return np.concatenate([[a0 + 0.5 * a2], np.column_stack([amp * c, amp * s]).ravel()])
+        out = [0.0 if wrt == "gamma" else a0 + 0.5 * a2]
+        for m, amp in ((1, a1 + 0.75 * a3), (2, 0.5 * a2), (3, 0.25 * a3)):
+            c, s = math.cos(m * gamma), math.sin(m * gamma)
+            out += [-m * amp * s, m * amp * c] if wrt == "gamma" else [amp * c, amp * s]
+        return np.array(out)
 
     def values(self, eps: float, gamma: float, wrt: str | None = None) -> np.ndarray:
         """Stiffness values on the pattern at (eps, gamma) (a partial with ``wrt``)."""
@@ -164,9 +165,15 @@ def grooved_pressure(gop: GroovedOperator, bearing: Bearing, state: JournalState
     from .reynolds import fe_pressure     # reynolds routes grooved films here
     G = _held(bearing, gop, grooves)
     values, load = _system(gop, state, G)
+    key = (state.eps, state.eps_dot, state.wedge_speed, state.gamma, cavitation, method,
+           tol, tuple(g.pressure for g in grooves))
+    if warm and gop.last.get("key") == key:     # the same film again (K/C after a solve)
+        return gop.last["result"]
     if cavitation != "reynolds" or method != "active-set":
-        return fe_pressure(gop.op, state, cavitation, method, tol, dirichlet=G,
-                           system=(values, load))
+        res = fe_pressure(gop.op, state, cavitation, method, tol, dirichlet=G,
+                          system=(values, load))
+        gop.last.update(key=key, result=res)
+        return res
     last = gop.last.get("active") if warm else None
     try:
         res = None if last is None else fe_pressure(gop.op, state, cavitation, method, tol,
@@ -179,7 +186,7 @@ def grooved_pressure(gop: GroovedOperator, bearing: Bearing, state: JournalState
                           active0=_coarse_active(gop, bearing, state, grooves, tol, values,
                                                  load, G),
                           dirichlet=G, system=(values, load))
-    gop.last["active"] = res.active
+    gop.last.update(active=res.active, key=key, result=res)
     return res
 
 
@@ -222,8 +229,13 @@ def grooved_derivatives(bearing: Bearing, state: JournalState, gop: GroovedOpera
     free = op.mesh.free
     inactive = ~res.active[free] if cavitation == "reynolds" else np.ones(len(free), bool)
     dP = np.zeros((op.mesh.ndofs, 4))
-    dP[free] = _inactive_solve(op.free_stiffness(e, gop.values(e, g)), res.factor, inactive,
-                               rhs[free])
+    K = op.free_stiffness(e, gop.values(e, g))
+    if len(free) <= DENSE_DOFS:     # tiny films: LAPACK beats setting up sparse factors
+        block = np.flatnonzero(inactive)
+        dP[free[block]] = np.linalg.solve(K.toarray()[np.ix_(block, block)],
+                                          rhs[free[block]])
+    else:
+        dP[free] = _inactive_solve(K, res.factor, inactive, rhs[free])
     k = force_factor(bearing, True)
     where = op.at_quadrature(P) > 0.0 if cavitation == "gumbel" else None
     I = op.force_integrals(np.concatenate([P[None], dP.T]), where=where)    # (2, 5)
