@@ -125,3 +125,25 @@ def test_the_whole_film_equals_the_moving_meshs_whole_length_film(cavitation):
                                    atol=1e-12, err_msg=name)
     if cavitation == "none":
         assert half.flow_in == pytest.approx(whole.flow_in, rel=1e-9)
+
+
+def test_warm_starts_change_the_cost_not_the_answer():
+    """fe_force warm from a nearby state's result, and the designer's partials after a
+    solve at a far state (the operator's last set), give the cold answers to the solver's
+    tolerance (measured 1e-14), the warm force in fewer active-set iterations. Fails if
+    the last film is reused at another state, or the warm set is dropped (as many
+    iterations as cold)."""
+    s = JournalState(0.6, omega=OMEGA, gamma=-0.7)
+    near = replace(s, eps=0.603, gamma=-0.69)
+    cold_f, cold = fe_force(B, s, 24, 4, "P2", "reynolds", grooves=GROOVES)
+    _, prev = fe_force(B, near, 24, 4, "P2", "reynolds", grooves=GROOVES)
+    warm_f, warm = fe_force(B, s, 24, 4, "P2", "reynolds", grooves=GROOVES, warm=prev)
+    np.testing.assert_allclose(warm_f, cold_f, rtol=1e-10)
+    assert warm.iterations < cold.iterations
+    gop = groove_operator_for(B, 24, 4, "P2", GROOVES)
+    ref = grooved_derivatives(B, s, gop, GROOVES)
+    grooved_force(B, replace(s, eps=0.2, gamma=2.0), gop, GROOVES)     # far away
+    again = grooved_derivatives(B, s, gop, GROOVES)
+    for name in ("force", "d_eps", "d_eps_dot", "d_wedge", "d_gamma"):
+        np.testing.assert_allclose(getattr(again, name), getattr(ref, name), rtol=1e-10,
+                                   err_msg=name)

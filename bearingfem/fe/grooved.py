@@ -63,9 +63,9 @@ class GroovedOperator:
         angle at gamma = 0), grooves on mesh lines
     harmonics : (7, nnz) values of int w(phi) grad u . grad v on op's pattern for
         w = 1, cos phi, sin phi, cos 2 phi, sin 2 phi, cos 3 phi, sin 3 phi
-    last : the last solve on this operator: its state, result and cavitated set (the
-        next state's active set starts from it, the same state takes its result; the answer
-        does not depend on it, only the number of solves)
+    last : the last solve on this operator (its film's key and result), which the
+        designer's partials start from (:func:`grooved_derivatives`); the answer does not
+        depend on it beyond the solver's tolerance, only the number of solves
     """
 
     op: FilmOperator
@@ -143,7 +143,7 @@ def _coarse_active(gop, bearing, state, grooves, tol, values, load, G):
         return None
     coarse, prolong = level
     res = grooved_pressure(grooved_operator(coarse), bearing, state, grooves, "reynolds",
-                           tol=tol, warm=False)
+                           tol=tol)
     op = gop.op
     free = op.mesh.free
     P0 = np.maximum(prolong @ res.pressure, 0.0)
@@ -157,36 +157,38 @@ def _coarse_active(gop, bearing, state, grooves, tol, values, load, G):
 
 def grooved_pressure(gop: GroovedOperator, bearing: Bearing, state: JournalState, grooves,
                      cavitation: str = "reynolds", method: str = "active-set",
-                     tol: float = 1e-10, warm: bool = True) -> LCPResult:
+                     tol: float = 1e-10, start: np.ndarray | None = None,
+                     reuse: bool = False) -> LCPResult:
     """Nodal dimensionless pressure of the grooved film at ``state`` (groove pressures held
-    on their dofs). With ``warm`` the Reynolds active set starts from the last converged
-    set on this operator (the answer is the same to the solver's tolerance), else from the
-    coarser levels."""
+    on their dofs). The Reynolds active set starts from ``start`` (a cavitated set over
+    the dofs, e.g. a nearby state's ``LCPResult.active``) or, without one (or when it
+    does not settle), from the coarser levels: the answer is the same to the solver's
+    tolerance. With ``reuse`` the last solve on this operator is returned when it was of
+    this very film (K/C after the film's solve). Every solve is kept as
+    ``gop.last``."""
     from .reynolds import fe_pressure     # reynolds routes grooved films here
     G = _held(bearing, gop, grooves)
     values, load = _system(gop, state, G)
     key = (state.eps, state.eps_dot, state.wedge_speed, state.gamma, cavitation, method,
            tol, tuple(g.pressure for g in grooves))
-    if warm and gop.last.get("key") == key:     # the same film again (K/C after a solve)
+    if reuse and gop.last.get("key") == key:
         return gop.last["result"]
+    res = None
     if cavitation != "reynolds" or method != "active-set":
         res = fe_pressure(gop.op, state, cavitation, method, tol, dirichlet=G,
                           system=(values, load))
-        gop.last.update(key=key, result=res)
-        return res
-    last = gop.last.get("active") if warm else None
-    try:
-        res = None if last is None else fe_pressure(gop.op, state, cavitation, method, tol,
-                                                    active0=last, dirichlet=G,
-                                                    system=(values, load))
-    except ConvergenceError:     # a set from too far away: start from the coarse levels
-        res = None
+    elif start is not None and np.shape(start) == (gop.op.mesh.ndofs,):
+        try:
+            res = fe_pressure(gop.op, state, cavitation, method, tol, active0=start,
+                              dirichlet=G, system=(values, load))
+        except ConvergenceError:     # a set from too far away: start from the coarse levels
+            res = None
     if res is None:
         res = fe_pressure(gop.op, state, cavitation, method, tol,
                           active0=_coarse_active(gop, bearing, state, grooves, tol, values,
                                                  load, G),
                           dirichlet=G, system=(values, load))
-    gop.last.update(active=res.active, key=key, result=res)
+    gop.last.update(key=key, result=res)
     return res
 
 
@@ -203,19 +205,25 @@ def _force(bearing, gop, P, gamma, cavitation):
 
 
 def grooved_force(bearing: Bearing, state: JournalState, gop: GroovedOperator, grooves,
-                  cavitation: str = "reynolds", method: str = "active-set"):
-    """(F_r, F_t) [N] of the grooved film and its :class:`LCPResult`."""
-    res = grooved_pressure(gop, bearing, state, grooves, cavitation, method)
+                  cavitation: str = "reynolds", method: str = "active-set", warm=None):
+    """(F_r, F_t) [N] of the grooved film and its :class:`LCPResult`; ``warm``: a nearby
+    state's result on this operator, whose cavitated set starts the solve."""
+    res = grooved_pressure(gop, bearing, state, grooves, cavitation, method,
+                           start=None if warm is None else warm.active)
     return _force(bearing, gop, res.pressure, state.gamma, cavitation), res
 
 
 def grooved_derivatives(bearing: Bearing, state: JournalState, gop: GroovedOperator, grooves,
                         cavitation: str = "reynolds") -> ForceDerivatives:
     """(F_r, F_t) [N] and the exact partials in eps, eps_dot, w and gamma (module
-    docstring), four right-hand sides on the factors of the film solve."""
+    docstring), four right-hand sides on the factors of the film solve. The designer's
+    path (Newton's steps, K/C, charts): the solve starts from the operator's last
+    cavitated set, and at the state of the last solve takes its film."""
     from .sensitivity import _inactive_solve
     op = gop.op
-    res = grooved_pressure(gop, bearing, state, grooves, cavitation)
+    last = gop.last.get("result")
+    res = grooved_pressure(gop, bearing, state, grooves, cavitation,
+                           start=None if last is None else last.active, reuse=True)
     P = res.pressure
     e, ed, w, g = state.eps, state.eps_dot, state.wedge_speed, state.gamma
 
@@ -257,7 +265,7 @@ def grooved_solution(bearing: Bearing, state: JournalState, gop: GroovedOperator
     from ..fields import FilmFields
     from .reynolds import _film_outputs
     op = gop.op
-    res = grooved_pressure(gop, bearing, state, grooves, cavitation, method, tol, warm=False)
+    res = grooved_pressure(gop, bearing, state, grooves, cavitation, method, tol)
     values, load = _system(gop, state, None)
     film = FilmFields(gap=film_thickness(gop.film_angle(state.gamma), state.eps))
     return _film_outputs(bearing, state, op, res, values, load, film, cavitation,

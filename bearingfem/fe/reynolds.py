@@ -100,8 +100,10 @@ def fe_force(bearing: Bearing, state: JournalState, n_theta=60, n_z=10, element=
     """(F_r, F_t) [N] and the :class:`LCPResult`: the light path used in time integration.
 
     Pass the previous call's result as ``warm`` (same mesh, nearby state): its cavitated
-    set and factorisation start this solve. ``grooves`` (fixed in the inertial frame) move
-    the mesh with the attitude angle, so the force stays smooth in it.
+    set and factorisation start this solve. ``grooves`` (fixed in the inertial frame) are
+    solved on the bearing-fixed mesh of :mod:`bearingfem.fe.grooved` (no rebuild for a
+    new journal angle; ``warm`` gives its cavitated set only); the JFO film moves its mesh
+    with the grooves.
     """
     if cavitation == "jfo":     # steady JFO film; warm = previous call's cavitated set
         return jfo_force(bearing, state,
@@ -113,7 +115,7 @@ def fe_force(bearing: Bearing, state: JournalState, n_theta=60, n_z=10, element=
         from .grooved import groove_operator_for, grooved_force
         return grooved_force(bearing, state,
                              groove_operator_for(bearing, n_theta, n_z, element, grooves),
-                             grooves, cavitation, method)
+                             grooves, cavitation, method, warm)
     op = fe_operator(bearing, state, n_theta, n_z, element, None, half, grooves)
     a0, factor = (None, None) if warm is None else (warm.active, warm.factor)
     if a0 is not None and (a0.shape != (op.mesh.ndofs,) or not a0.any()):
