@@ -75,8 +75,8 @@ def test_the_harmonic_tables_equal_a_direct_assembly_of_the_turned_gap():
 
 @pytest.mark.parametrize("cavitation, element, n, z", CASES)
 def test_the_exact_partials_match_central_differences(cavitation, element, n, z):
-    """d/dgamma (and d/deps, d/deps_dot, d/dw = -d/dgamma_dot / 2) by sensitivity on the solve's factors
-    against central differences of the force (h = 1e-6: agreement measured at <= 3e-9 of
+    """d/dgamma (and d/deps, d/deps_dot, d/dw = -d/dgamma_dot / 2) by sensitivity on the
+    solve's factors against central differences of the force (h = 1e-6: agreement measured at <= 3e-9 of
     the largest partial, the cavitated set held across the step). Fails with the rotation
     term (F_t, -F_r) dropped, the dK/dgamma P term dropped or the load's partial's sign
     flipped."""

@@ -91,10 +91,11 @@ class GroovedOperator:
         """Load of the source a_sin sin(phi - gamma) + a_cos cos(phi - gamma) (its
         gamma-partial with ``wrt_gamma``)."""
         a_sin, a_cos = source_coefficients(eps, eps_dot, wedge_speed)
-        c, s = np.cos(gamma), np.sin(gamma)
+        c, s = math.cos(gamma), math.sin(gamma)
+        b_sin, b_cos = self.op.b_sin, self.op.b_cos
         if wrt_gamma:
-            return (a_cos * c - a_sin * s) * self.op.b_sin - (a_sin * c + a_cos * s) * self.op.b_cos
-        return (a_sin * c + a_cos * s) * self.op.b_sin + (a_cos * c - a_sin * s) * self.op.b_cos
+            return (a_cos * c - a_sin * s) * b_sin - (a_sin * c + a_cos * s) * b_cos
+        return (a_sin * c + a_cos * s) * b_sin + (a_cos * c - a_sin * s) * b_cos
 
     def film_angle(self, gamma: float) -> np.ndarray:
         """theta = phi - gamma at the quadrature points."""
@@ -129,7 +130,7 @@ def _held(bearing: Bearing, gop: GroovedOperator, grooves) -> np.ndarray:
     return G
 
 
-def _system(gop, state, G):
+def _system(gop, state):
     values = gop.values(state.eps, state.gamma)
     load = gop.load(state.eps, state.eps_dot, state.wedge_speed, state.gamma)
     return values, load
@@ -168,7 +169,7 @@ def grooved_pressure(gop: GroovedOperator, bearing: Bearing, state: JournalState
     ``gop.last``."""
     from .reynolds import fe_pressure     # reynolds routes grooved films here
     G = _held(bearing, gop, grooves)
-    values, load = _system(gop, state, G)
+    values, load = _system(gop, state)
     key = (state.eps, state.eps_dot, state.wedge_speed, state.gamma, cavitation, method,
            tol, tuple(g.pressure for g in grooves))
     if reuse and gop.last.get("key") == key:
@@ -266,7 +267,7 @@ def grooved_solution(bearing: Bearing, state: JournalState, gop: GroovedOperator
     from .reynolds import _film_outputs
     op = gop.op
     res = grooved_pressure(gop, bearing, state, grooves, cavitation, method, tol)
-    values, load = _system(gop, state, None)
+    values, load = _system(gop, state)
     film = FilmFields(gap=film_thickness(gop.film_angle(state.gamma), state.eps))
     return _film_outputs(bearing, state, op, res, values, load, film, cavitation,
                          cavitated_shear, grooves,
