@@ -59,8 +59,8 @@ class Equilibrium:
         from the film solution for the mesh models, None for the closed forms and the table
     solution : the :class:`FilmSolution` at equilibrium (mesh models) or None
     model, iterations : the film model and the number of film evaluations (a force, or a
-        force with its partials: one film solve, three for grooved FE films, whose
-        d/dgamma is a central difference)
+        force with its partials: one film solve, grooved FE films too, whose d/dgamma is
+        exact on the bearing-fixed mesh of :mod:`bearingfem.fe.grooved`)
     asperity_load_share : with a ``roughness`` option (mixed lubrication), the share of the
         load the asperity contact carries, -(F_a . W)/|W|^2 (the film carries the rest;
         1 at omega = 0, the dry limit); 0 without. ``film_force`` is then the model's force,

@@ -100,8 +100,10 @@ def fe_force(bearing: Bearing, state: JournalState, n_theta=60, n_z=10, element=
     """(F_r, F_t) [N] and the :class:`LCPResult`: the light path used in time integration.
 
     Pass the previous call's result as ``warm`` (same mesh, nearby state): its cavitated
-    set and factorisation start this solve. ``grooves`` (fixed in the inertial frame) move
-    the mesh with the attitude angle, so the force stays smooth in it.
+    set and factorisation start this solve. ``grooves`` (fixed in the inertial frame) are
+    solved on the bearing-fixed mesh of :mod:`bearingfem.fe.grooved` (no rebuild for a
+    new journal angle; ``warm`` gives its cavitated set only); the JFO film moves its mesh
+    with the grooves.
     """
     if cavitation == "jfo":     # steady JFO film; warm = previous call's cavitated set
         return jfo_force(bearing, state,
@@ -109,6 +111,11 @@ def fe_force(bearing: Bearing, state: JournalState, n_theta=60, n_z=10, element=
                                                     grooves),
                          n_theta, n_z, grooves, ambient_pressure,
                          None if warm is None else getattr(warm, "cavitated", None))
+    if grooves and half:    # the bearing-fixed mesh: a new journal angle rebuilds nothing
+        from .grooved import groove_operator_for, grooved_force
+        return grooved_force(bearing, state,
+                             groove_operator_for(bearing, n_theta, n_z, element, grooves),
+                             grooves, cavitation, method, warm)
     op = fe_operator(bearing, state, n_theta, n_z, element, None, half, grooves)
     a0, factor = (None, None) if warm is None else (warm.active, warm.factor)
     if a0 is not None and (a0.shape != (op.mesh.ndofs,) or not a0.any()):
@@ -209,6 +216,15 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
         sol = solve_jfo(bearing, state, operator, n_theta, n_z, grooves, ambient_pressure)
         return sol if roughness is None else with_contact(
             sol, film_contact(bearing, state, operator(n_theta, n_z), roughness))
+    if grooves and half and not general and supply_angle is None:
+        from .grooved import groove_operator_for, grooved_solution   # (imports this module)
+        sol = grooved_solution(bearing, state,
+                               groove_operator_for(bearing, n_theta, n_z, element, grooves),
+                               grooves, cavitation, method, tol, cavitated_shear, element)
+        return sol if roughness is None else with_contact(
+            sol, film_contact(bearing, state, fe_operator(bearing, state, n_theta, n_z,
+                                                          element, None, True, grooves),
+                              roughness))
     op = fe_operator(bearing, state, n_theta, n_z, element, supply_angle,
                      half and not general, grooves)
     system = film = gap = None
@@ -252,15 +268,19 @@ def general_film(bearing: Bearing, state: JournalState, op: FilmOperator,
 
 
 def _film_outputs(bearing, state, op, res, values, load, film, cavitation, cavitated_shear,
-                  grooves, method, gap=None) -> FilmSolution:
-    """Forces, moment, friction, leakage and feed of a solved film (rigid or on fields)."""
+                  grooves, method, gap=None, force=None, theta=None) -> FilmSolution:
+    """Forces, moment, friction, leakage and feed of a solved film (rigid or on fields).
+    ``force`` (F_r, F_t) [N] and the nodes' film angles ``theta`` of a mesh not in the film
+    frame (grooved films, :mod:`bearingfem.fe.grooved`); None: integrated here, op's."""
     P = res.pressure
     half = op.mesh.half
     clip = cavitation != "none"
     Pn = np.maximum(P, 0.0) if clip else P
-    ic, is_ = _integrated_force(op, P, cavitation == "gumbel")
-    k = force_factor(bearing, half)
-    f_r, f_t = k * ic, k * is_
+    if force is None:
+        ic, is_ = _integrated_force(op, P, cavitation == "gumbel")
+        k = force_factor(bearing, half)
+        force = (k * ic, k * is_)
+    f_r, f_t = force
 
     # Diagnostics at quadrature points of the film.
     Pq, dPq = _qp_fields(op, Pn)
@@ -295,7 +315,8 @@ def _film_outputs(bearing, state, op, res, values, load, film, cavitation, cavit
     moment = (0.0, 0.0) if half else film_moment(bearing, op, P, state.gamma,
                                                  cavitation == "gumbel")
     return film_solution(
-        bearing, state, Pn, op.mesh.theta, op.mesh.zeta, (f_r, f_t), friction=friction,
+        bearing, state, Pn, op.mesh.theta if theta is None else theta, op.mesh.zeta,
+        (f_r, f_t), friction=friction,
         leakage=leakage, flow_in=flow_in, cavitated_fraction=cav_fraction, record=res,
         method=method, cavitation=cavitation, half=half, mesh=op.mesh, moment=moment,
         gap=gap)

@@ -29,6 +29,7 @@ from ..solvers.blocksolve import PinnedFactor, bordered_solve, pinned
 from ..solvers.linsolve import factorise
 from ..validation import check_film_solve
 from .general import film_system, general_assembly
+from .grooved import groove_operator_for, grooved_derivatives
 from .reynolds import fe_force, fe_operator, fe_pressure, general_film, groove_pressures
 
 __all__ = ["fe_force_derivatives", "TiltCoefficients", "fe_tilt_coefficients",
@@ -46,9 +47,13 @@ def fe_force_derivatives(bearing: Bearing, state: JournalState, n_theta: int = 1
 
     Same film as :func:`~bearingfem.fe.reynolds.solve_reynolds` (half domain). With
     ``grooves`` (held pressures enter through P, which carries them on the fixed dofs) the
-    partial in gamma, the grooves moving against the film, is a central difference: the
-    mesh moves with the grooves, so the force is smooth in gamma.
+    film is solved on the bearing-fixed mesh of :mod:`bearingfem.fe.grooved`, which also
+    gives the partial in gamma (the grooves moving against the film) exactly.
     """
+    if grooves:     # the bearing-fixed mesh: d/dgamma exact (bearingfem.fe.grooved)
+        return grooved_derivatives(bearing, state,
+                                   groove_operator_for(bearing, n_theta, n_z, element, grooves),
+                                   grooves, cavitation)
     op = fe_operator(bearing, state, n_theta, n_z, element, None, True, grooves)
     res = fe_pressure(op, state, cavitation, dirichlet=groove_pressures(bearing, op, grooves))
     P = res.pressure
@@ -68,14 +73,7 @@ def fe_force_derivatives(bearing: Bearing, state: JournalState, n_theta: int = 1
     where = op.at_quadrature(P) > 0.0 if cavitation == "gumbel" else None
     F = k * op.force_integrals(fields, where=where)
     col = [tuple(float(x) for x in F[:, j]) for j in range(4)]
-    d_gamma = (0.0, 0.0)
-    if grooves:
-        h = 1e-6
-        plus, minus = (np.array(fe_force(bearing, replace(state, gamma=state.gamma + d), n_theta,
-                                         n_z, element, cavitation, grooves=grooves)[0])
-                       for d in (h, -h))
-        d_gamma = tuple(float(v) for v in (plus - minus) / (2 * h))
-    return ForceDerivatives(col[0], col[1], col[2], col[3], "exact-sensitivity", d_gamma)
+    return ForceDerivatives(col[0], col[1], col[2], col[3], "exact-sensitivity")
 
 
 def _inactive_solve(K: sp.csr_matrix, factor, inactive: np.ndarray, rhs: np.ndarray):

@@ -1,0 +1,142 @@
+"""A design chart: eps, attitude, friction and the dynamic coefficients against the
+Sommerfeld number (Raimondi & Boyd 1958 for the static columns; Lund & Thomsen 1978 and
+Someya 1989 for the coefficients), from any film model with exact partials.
+
+For a rigid, isoviscous bearing every dimensionless output depends on S = (R/c)^2 mu N / P
+alone, so one bearing at one speed walks the whole chart by its load. Each point is the
+Newton equilibrium of :mod:`bearingfem.design.newton` started from the previous point (the
+first from the closed form), then K and C at that state: with the FE film's grooved
+operator (:mod:`bearingfem.fe.grooved`) every evaluation reuses the mesh, the operator
+and the previous cavitated set, and the coefficients reuse the last solve's film.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..bearing import Bearing, JournalState, check_finite
+from ..errors import ConvergenceError
+from ..models import film_model
+from .coefficients import coefficients
+from .equilibrium import EPS_MAX
+from .groups import load_from_sommerfeld, petroff_friction
+from .newton import closed_form_start, newton_position
+
+__all__ = ["ChartPoint", "DesignChart", "design_chart", "CHART_SOMMERFELD"]
+
+#: The chart's default abscissa: 20 Sommerfeld numbers from 10 (light load) to 0.01.
+CHART_SOMMERFELD = tuple(float(s) for s in np.geomspace(10.0, 0.01, 20))
+
+
+@dataclass(frozen=True)
+class ChartPoint:
+    """One Sommerfeld number of the chart.
+
+    Attributes
+    ----------
+    sommerfeld : S; eps : eccentricity ratio; attitude : angle from the load line to the
+        line of centres, in the sense of rotation [rad]
+    friction_variable : (R/c) f, f the friction coefficient (full Couette shear in the
+        cavity, :func:`~bearingfem.design.groups.petroff_friction`)
+    K, B : 2x2 K c / W and C c omega / W in the load frame (axis 1 along the load)
+    state : the journal's :class:`JournalState` there
+    """
+
+    sommerfeld: float
+    eps: float
+    attitude: float
+    friction_variable: float
+    K: np.ndarray
+    B: np.ndarray
+    state: JournalState
+
+
+@dataclass(frozen=True)
+class DesignChart:
+    """The chart's points in the order asked, the model, and the film evaluations (each a
+    force with its partials) the walk took."""
+
+    points: tuple
+    model: str
+    evaluations: int
+
+    def column(self, name: str) -> np.ndarray:
+        """One output over the chart: an array of the points' ``name`` (e.g. "eps", "K")."""
+        return np.array([getattr(p, name) for p in self.points])
+
+
+def _sommerfeld_numbers(sommerfeld) -> np.ndarray:
+    S = np.atleast_1d(np.asarray(sommerfeld, dtype=float))
+    if S.ndim != 1 or S.size == 0 or not np.all(np.isfinite(S)) or not np.all(S > 0.0):
+        raise ValueError(f"sommerfeld must be one or more finite numbers > 0, got "
+                         f"{sommerfeld!r}")
+    return S
+
+
+def design_chart(bearing: Bearing, omega: float, sommerfeld=CHART_SOMMERFELD,
+                 model: str = "fem", *, direction: float = -0.5 * math.pi,
+                 eps_max: float = EPS_MAX, rtol: float = 1e-10, **options) -> DesignChart:
+    """Walk the Sommerfeld numbers ``sommerfeld`` of ``bearing`` turning at ``omega``
+    [rad/s] under a load along ``direction`` [rad] (inertial; default downward, the
+    grooves of :class:`~bearingfem.bearing.Groove` stay where they are given).
+
+    ``model`` must have exact partials (Newton's method; e.g. "fem", "short", "long") and
+    ``options`` are its options. ``rtol``: Newton stops once a step is below
+    sqrt(rtol) |q|; the film force then balances the load to about rtol (checked: a point
+    off by more than max(1e-8, 10 rtol) raises :class:`ConvergenceError`). A load beyond
+    what the film carries before eps_max raises ValueError.
+    """
+    m = film_model(model)
+    opts = m.options(options)
+    if m.derivatives is None or m.memory:
+        raise ValueError(f"design_chart needs a model with exact partials (Newton's method), "
+                         f"got model={model!r}")
+    omega = check_finite("omega", omega)
+    if omega == 0.0:
+        raise ValueError("omega must be non-zero [rad/s]: without rotation a film carries "
+                         "no steady load")
+    direction = check_finite("direction", direction)
+    eps_max = check_finite("eps_max", eps_max)
+    if not 0.0 < eps_max < 1.0:
+        raise ValueError(f"eps_max must lie in (0, 1), got {eps_max!r}")
+    rtol = check_finite("rtol", rtol)
+    if not 0.0 < rtol < 1e-3:
+        raise ValueError(f"rtol must lie in (0, 1e-3), got {rtol!r}")
+    S = _sommerfeld_numbers(sommerfeld)
+    count = [0]
+
+    def partials(eps, gamma):
+        count[0] += 1
+        return m.derivatives(bearing, JournalState(eps, omega=omega, gamma=gamma), **opts)
+
+    def capacity():     # asked only when a load looks too heavy: the periodic film's
+        o = {**opts, "grooves": ()} if opts.get("grooves") else opts
+        return math.hypot(*m.force(bearing, JournalState(eps_max, omega=omega), **o))
+
+    u = np.array([math.cos(direction), math.sin(direction)])
+    points, q = [], None
+    for s in S:
+        W = load_from_sommerfeld(bearing, s, omega)
+        load = W * u
+        q0 = closed_form_start(bearing, omega, load) if q is None else q
+        eps, gamma = newton_position(partials, load, q0, eps_max, rtol, capacity, model)
+        q = eps * np.array([math.cos(gamma), math.sin(gamma)])
+        state = JournalState(eps, omega=omega, gamma=gamma)
+        kc = coefficients(bearing, state, model, frame="load", **opts)
+        count[0] += 1
+        residual = math.hypot(*(np.add(kc.force, load))) / W
+        if not residual <= max(1e-8, 10.0 * rtol):
+            raise ConvergenceError(f"design chart's equilibrium ({model} model)", count[0],
+                                   residual, f"S = {s:g}, eps = {eps:.6g}")
+        c, sn = math.cos(gamma), math.sin(gamma)
+        f_r = kc.force[0] * c + kc.force[1] * sn
+        f_t = kc.force[1] * c - kc.force[0] * sn
+        K, B = kc.dimensionless()
+        friction = petroff_friction(bearing, eps, omega, f_t)
+        points.append(ChartPoint(
+            sommerfeld=float(s), eps=eps, attitude=math.atan2(f_t, -f_r),
+            friction_variable=bearing.radius / bearing.clearance * friction / W,
+            K=K, B=B, state=state))
+    return DesignChart(tuple(points), model, count[0])

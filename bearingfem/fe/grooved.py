@@ -1,0 +1,276 @@
+"""Grooved films on a mesh fixed in the bearing: a new journal angle rebuilds nothing.
+
+Axial grooves are fixed in the bearing, so their edges are mesh lines of one mesh whose
+angle is phi = theta + gamma, the film angle of a journal at gamma = 0 (the grooves' film
+angles at gamma = 0; :func:`~bearingfem.fe.mesh.film_mesh` grades the cells per arc so
+every edge is a grid line, on any n_theta). The journal's angle only moves the gap,
+
+    H = 1 + eps cos(phi - gamma),
+    H^3 = A_0 + sum_{m=1..3} A_m cos(m (phi - gamma)),
+    A_0 = a_0 + a_2/2, A_1 = a_1 + 3 a_3/4, A_2 = a_2/2, A_3 = a_3/4,
+
+with a_k = (1, 3 eps, 3 eps^2, eps^3) the film's cos^k coefficients
+(:func:`~bearingfem.film.cubed_thickness_coefficients`), and cos(m (phi - gamma)) =
+cos(m phi) cos(m gamma) + sin(m phi) sin(m gamma). The stiffness of -div(H^3 grad P) is
+then a combination of seven matrices int {1, cos m phi, sin m phi} grad u . grad v,
+assembled once per mesh (by the general-field tables, :mod:`bearingfem.fe.general`) and
+combined per state like the periodic film's four; the load of the source
+a_sin sin(theta) + a_cos cos(theta) combines b_sin and b_cos of phi. The forces rotate:
+F_r = k (I_c cos gamma + I_s sin gamma), F_t = k (I_s cos gamma - I_c sin gamma) with
+I_c, I_s the integrals of P cos phi and P sin phi.
+
+Because the mesh is the moving mesh of the grooves turned by gamma (both start at the
+first groove's edge and grade the same arcs), the discrete film is the one the grooves'
+moving mesh solved, at the same quadrature points: the results agree to round-off. The
+partial in gamma is exact (the same sensitivity as in eps, on the solve's own factors):
+K_II dP_I/dgamma = db_I/dgamma - (dK/dgamma P)_I, plus the rotation of the force.
+
+Flooded grooves with the Reynolds-family films ("none", "gumbel", "reynolds"); the
+mass-conserving JFO film (starved grooves) keeps its moving mesh (:mod:`bearingfem.fe.jfo`
+is not built on fields).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from functools import lru_cache
+
+import numpy as np
+import scipy.sparse as sp
+
+from ..bearing import Bearing, JournalState
+from ..errors import ConvergenceError
+from ..film import cubed_thickness_coefficients, film_thickness, source_coefficients
+from ..scales import force_factor
+from ..solution import FilmSolution, ForceDerivatives
+from ..solvers.blocksolve import DENSE_DOFS
+from ..solvers.cavitation import LCPResult
+from .assembly import FilmOperator, film_operator
+from .general import general_assembly
+from .multilevel import coarse_level
+
+__all__ = ["GroovedOperator", "grooved_operator", "groove_operator_for", "grooved_pressure",
+           "grooved_force", "grooved_derivatives", "grooved_solution"]
+
+
+@dataclass(frozen=True, eq=False)
+class GroovedOperator:
+    """The film operator of a grooved bearing on its bearing-fixed mesh.
+
+    Attributes
+    ----------
+    op : the :class:`~bearingfem.fe.assembly.FilmOperator` of the mesh in phi (the film
+        angle at gamma = 0), grooves on mesh lines
+    harmonics : (7, nnz) values of int w(phi) grad u . grad v on op's pattern for
+        w = 1, cos phi, sin phi, cos 2 phi, sin 2 phi, cos 3 phi, sin 3 phi
+    last : the last solve on this operator (its film's key and result), which the
+        designer's partials start from (:func:`grooved_derivatives`); the answer does not
+        depend on it beyond the solver's tolerance, only the number of solves
+    """
+
+    op: FilmOperator
+    harmonics: np.ndarray
+    last: dict = field(default_factory=dict, repr=False)
+
+    def coefficients(self, eps: float, gamma: float, wrt: str | None = None) -> np.ndarray:
+        """The seven weights of :attr:`harmonics` at (eps, gamma); ``wrt`` "eps" or
+        "gamma" gives their partial."""
+        a0, a1, a2, a3 = cubed_thickness_coefficients(eps, wrt == "eps")
+        out = [0.0 if wrt == "gamma" else a0 + 0.5 * a2]
+        for m, amp in ((1, a1 + 0.75 * a3), (2, 0.5 * a2), (3, 0.25 * a3)):
+            c, s = math.cos(m * gamma), math.sin(m * gamma)
+            out += [-m * amp * s, m * amp * c] if wrt == "gamma" else [amp * c, amp * s]
+        return np.array(out)
+
+    def values(self, eps: float, gamma: float, wrt: str | None = None) -> np.ndarray:
+        """Stiffness values on the pattern at (eps, gamma) (a partial with ``wrt``)."""
+        return self.coefficients(eps, gamma, wrt) @ self.harmonics
+
+    def load(self, eps: float, eps_dot: float, wedge_speed: float, gamma: float,
+             wrt_gamma: bool = False) -> np.ndarray:
+        """Load of the source a_sin sin(phi - gamma) + a_cos cos(phi - gamma) (its
+        gamma-partial with ``wrt_gamma``)."""
+        a_sin, a_cos = source_coefficients(eps, eps_dot, wedge_speed)
+        c, s = math.cos(gamma), math.sin(gamma)
+        b_sin, b_cos = self.op.b_sin, self.op.b_cos
+        if wrt_gamma:
+            return (a_cos * c - a_sin * s) * b_sin - (a_sin * c + a_cos * s) * b_cos
+        return (a_sin * c + a_cos * s) * b_sin + (a_cos * c - a_sin * s) * b_cos
+
+    def film_angle(self, gamma: float) -> np.ndarray:
+        """theta = phi - gamma at the quadrature points."""
+        return self.op.qp_theta - gamma
+
+
+def _harmonic_weights(theta: np.ndarray) -> list:
+    return [np.ones_like(theta)] + [f(m * theta) for m in (1, 2, 3) for f in (np.cos, np.sin)]
+
+
+@lru_cache(maxsize=16)
+def grooved_operator(op: FilmOperator) -> GroovedOperator:
+    """The harmonic tables of ``op``'s mesh (cached per operator)."""
+    ga = general_assembly(op)
+    return GroovedOperator(op, np.array([ga.stiffness_values(w)
+                                         for w in _harmonic_weights(op.qp_theta)]))
+
+
+def groove_operator_for(bearing: Bearing, n_theta: int, n_z: int, element: str,
+                        grooves) -> GroovedOperator:
+    """The bearing-fixed grooved operator (half length) of ``grooves`` on this mesh."""
+    arcs = tuple((float(np.round(lo, 12)), float(np.round(hi, 12)))
+                 for lo, hi in (g.arc(0.0) for g in grooves))
+    return grooved_operator(film_operator(int(n_theta), int(n_z), element,
+                                          bearing.length_ratio, arcs[0][0], True, arcs))
+
+
+def _held(bearing: Bearing, gop: GroovedOperator, grooves) -> np.ndarray:
+    G = np.zeros(gop.op.mesh.ndofs)
+    for g, dofs in zip(grooves, gop.op.mesh.grooves):
+        G[dofs] = g.pressure / bearing.pressure_scale
+    return G
+
+
+def _system(gop, state):
+    values = gop.values(state.eps, state.gamma)
+    load = gop.load(state.eps, state.eps_dot, state.wedge_speed, state.gamma)
+    return values, load
+
+
+def _coarse_active(gop, bearing, state, grooves, tol, values, load, G):
+    """The first cavitated set from the film solved on the coarser levels (the
+    multilevel start of :mod:`bearingfem.fe.multilevel`, here with the grooved film)."""
+    level = coarse_level(gop.op)
+    if level is None:
+        return None
+    coarse, prolong = level
+    res = grooved_pressure(grooved_operator(coarse), bearing, state, grooves, "reynolds",
+                           tol=tol)
+    op = gop.op
+    free = op.mesh.free
+    P0 = np.maximum(prolong @ res.pressure, 0.0)
+    K = op.free_stiffness(0.0, values)
+    b = (load - sp.csr_matrix((values, op.indices, op.indptr), shape=op.shape) @ G)[free]
+    active = np.zeros(op.mesh.ndofs, bool)
+    # the semismooth Newton step from P0, as the active set takes a start pressure
+    active[free] = P0 < (K @ P0 - b) / K.diagonal()
+    return active
+
+
+def grooved_pressure(gop: GroovedOperator, bearing: Bearing, state: JournalState, grooves,
+                     cavitation: str = "reynolds", method: str = "active-set",
+                     tol: float = 1e-10, start: np.ndarray | None = None,
+                     reuse: bool = False) -> LCPResult:
+    """Nodal dimensionless pressure of the grooved film at ``state`` (groove pressures held
+    on their dofs). The Reynolds active set starts from ``start`` (a cavitated set over
+    the dofs, e.g. a nearby state's ``LCPResult.active``) or, without one (or when it
+    does not settle), from the coarser levels: the answer is the same to the solver's
+    tolerance. With ``reuse`` the last solve on this operator is returned when it was of
+    this very film (K/C after the film's solve). Every solve is kept as
+    ``gop.last``."""
+    from .reynolds import fe_pressure     # reynolds routes grooved films here
+    G = _held(bearing, gop, grooves)
+    values, load = _system(gop, state)
+    key = (state.eps, state.eps_dot, state.wedge_speed, state.gamma, cavitation, method,
+           tol, tuple(g.pressure for g in grooves))
+    if reuse and gop.last.get("key") == key:
+        return gop.last["result"]
+    res = None
+    if cavitation != "reynolds" or method != "active-set":
+        res = fe_pressure(gop.op, state, cavitation, method, tol, dirichlet=G,
+                          system=(values, load))
+    elif start is not None and np.shape(start) == (gop.op.mesh.ndofs,):
+        try:
+            res = fe_pressure(gop.op, state, cavitation, method, tol, active0=start,
+                              dirichlet=G, system=(values, load))
+        except ConvergenceError:     # a set from too far away: start from the coarse levels
+            res = None
+    if res is None:
+        res = fe_pressure(gop.op, state, cavitation, method, tol,
+                          active0=_coarse_active(gop, bearing, state, grooves, tol, values,
+                                                 load, G),
+                          dirichlet=G, system=(values, load))
+    gop.last.update(key=key, result=res)
+    return res
+
+
+def _rotated(I: np.ndarray, gamma: float) -> np.ndarray:
+    """(F_r, F_t) / k from (int P cos phi, int P sin phi) (leading axis of I)."""
+    c, s = np.cos(gamma), np.sin(gamma)
+    return np.stack([c * I[0] + s * I[1], c * I[1] - s * I[0]])
+
+
+def _force(bearing, gop, P, gamma, cavitation):
+    I = gop.op.force_integrals(P, cavitation == "gumbel")
+    k = force_factor(bearing, True)
+    return tuple(float(f) for f in k * _rotated(I, gamma))
+
+
+def grooved_force(bearing: Bearing, state: JournalState, gop: GroovedOperator, grooves,
+                  cavitation: str = "reynolds", method: str = "active-set", warm=None):
+    """(F_r, F_t) [N] of the grooved film and its :class:`LCPResult`; ``warm``: a nearby
+    state's result on this operator, whose cavitated set starts the solve."""
+    res = grooved_pressure(gop, bearing, state, grooves, cavitation, method,
+                           start=None if warm is None else warm.active)
+    return _force(bearing, gop, res.pressure, state.gamma, cavitation), res
+
+
+def grooved_derivatives(bearing: Bearing, state: JournalState, gop: GroovedOperator, grooves,
+                        cavitation: str = "reynolds") -> ForceDerivatives:
+    """(F_r, F_t) [N] and the exact partials in eps, eps_dot, w and gamma (module
+    docstring), four right-hand sides on the factors of the film solve. The designer's
+    path (Newton's steps, K/C, charts): the solve starts from the operator's last
+    cavitated set, and at the state of the last solve takes its film."""
+    from .sensitivity import _inactive_solve
+    op = gop.op
+    last = gop.last.get("result")
+    res = grooved_pressure(gop, bearing, state, grooves, cavitation,
+                           start=None if last is None else last.active, reuse=True)
+    P = res.pressure
+    e, ed, w, g = state.eps, state.eps_dot, state.wedge_speed, state.gamma
+
+    def dK(wrt):
+        return sp.csr_matrix((gop.values(e, g, wrt), op.indices, op.indptr), shape=op.shape)
+
+    # the source is linear in eps (wedge), eps_dot and w: unit values give its partials
+    rhs = np.column_stack([gop.load(1.0, 0.0, w, g) - dK("eps") @ P, gop.load(e, 1.0, 0.0, g),
+                           gop.load(e, 0.0, 1.0, g),
+                           gop.load(e, ed, w, g, wrt_gamma=True) - dK("gamma") @ P])
+    free = op.mesh.free
+    inactive = ~res.active[free] if cavitation == "reynolds" else np.ones(len(free), bool)
+    dP = np.zeros((op.mesh.ndofs, 4))
+    K = op.free_stiffness(e, gop.values(e, g))
+    if len(free) <= DENSE_DOFS:     # tiny films: LAPACK beats setting up sparse factors
+        block = np.flatnonzero(inactive)
+        dP[free[block]] = np.linalg.solve(K.toarray()[np.ix_(block, block)],
+                                          rhs[free[block]])
+    else:
+        dP[free] = _inactive_solve(K, res.factor, inactive, rhs[free])
+    k = force_factor(bearing, True)
+    where = op.at_quadrature(P) > 0.0 if cavitation == "gumbel" else None
+    I = op.force_integrals(np.concatenate([P[None], dP.T]), where=where)    # (2, 5)
+    F = k * _rotated(I, g)
+    # turning the journal also turns the frame the force is read in: d/dgamma of the
+    # rotation is (F_t, -F_r)
+    d_gamma = F[:, 4] + np.array([F[1, 0], -F[0, 0]])
+    col = [tuple(float(x) for x in F[:, j]) for j in range(4)]
+    return ForceDerivatives(col[0], col[1], col[2], col[3], "exact-sensitivity",
+                            tuple(float(x) for x in d_gamma))
+
+
+def grooved_solution(bearing: Bearing, state: JournalState, gop: GroovedOperator, grooves,
+                     cavitation: str, method: str, tol: float, cavitated_shear: str,
+                     element: str) -> FilmSolution:
+    """The whole grooved film (:func:`~bearingfem.fe.reynolds.solve_reynolds`'s outputs),
+    nodes reported at their film angles theta = phi - gamma; a cold solve (the active set
+    from the coarser levels, never from an earlier call)."""
+    from ..fields import FilmFields
+    from .reynolds import _film_outputs
+    op = gop.op
+    res = grooved_pressure(gop, bearing, state, grooves, cavitation, method, tol)
+    values, load = _system(gop, state)
+    film = FilmFields(gap=film_thickness(gop.film_angle(state.gamma), state.eps))
+    return _film_outputs(bearing, state, op, res, values, load, film, cavitation,
+                         cavitated_shear, grooves,
+                         f"fem-{element}" + (f"/{method}" if cavitation == "reynolds" else ""),
+                         force=_force(bearing, gop, res.pressure, state.gamma, cavitation),
+                         theta=op.mesh.theta - state.gamma)
