@@ -182,10 +182,11 @@ class CompressibleJFOFilm(JFOFilm):
     Parameters are those of :class:`JFOFilm` and ``bulk_modulus`` B [Pa] > 0. The film
     starts at the density ratio ``fraction`` (1: full at the cavitation pressure).
 
-    Between steps (:meth:`instant`) the kept cavities are closed volumes of oil: where the
-    gap has closed below a cavity's content m, the oil is compressed, p = B ln(m / h),
-    which rises continuously from zero as the gap closes (no refill jump); the kept full
-    film carries the Reynolds film of the instant's motion, as in :class:`JFOFilm`.
+    Between steps (:meth:`instant`) the kept full film carries the Reynolds film of the
+    instant's motion, as in :class:`JFOFilm`, and where the gap has closed below a kept
+    cavity's content m the oil is compressed: p = B ln(m / h), capped by the pressure the
+    refilled film would give there, rises continuously from zero as the gap closes (no
+    refill jump, hence no early film step on a refill: :meth:`refilled` is False).
     """
 
     def __init__(self, bearing: Bearing, state: JournalState, n_theta: int = 96,
