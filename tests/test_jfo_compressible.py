@@ -49,8 +49,9 @@ def test_steady_film_tends_to_the_incompressible_jfo_film_as_one_over_B(seed):
     """Seed bearing L/D 1, eps 0.6, starved-free groove, 60x10: the relative force
     difference to the incompressible JFO film times B is 1.735e6, 1.7326e6, 1.7331e6,
     1.7331e6 Pa for B = 1e9 ... 1e12 (about 0.75 x the peak pressure): the rate is 1/B.
-    Fails with any term of the density left out or with a sign flipped in it (the product
-    then drifts or the difference stops falling)."""
+    Fails with the sign of the density term A/beta flipped, or with the pressure taken as
+    -B ln(1 - Q/B) (both: the product drifts). The storage part of A/beta is zero in a
+    steady film: the transient test below fails without it."""
     s = JournalState(eps=0.6, omega=250.0)
     g = [Groove(angle=np.pi, width=0.1)]
     ref = solve_reynolds(seed, s, 60, 10, cavitation="jfo", grooves=g)
@@ -104,8 +105,8 @@ def test_transient_film_tends_to_the_incompressible_one_and_keeps_its_oil():
     4.07e7 Pa at B = 1e10, 1e11, 1e12 (3.7e7 at 1e9): the rate is 1/B. The oil that
     crossed the film's boundaries over the turn (sum of the steps' feed - leakage) equals
     the change of the content summed over the volumes (12 x flow factor x sum of rho h)
-    to 1e-9: fails when the content kept is phi h instead of rho h, or when the carry
-    between the turned meshes loses content."""
+    to 1e-9: fails when the content kept is phi h instead of rho h, or when the storage
+    is left out of the density term A/beta."""
     from bearingfem.fe.jfo import JFOFilm
     from bearingfem.fe.jfo_compressible import CompressibleJFOFilm
     b, state, turn = _orbit()
