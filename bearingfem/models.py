@@ -27,8 +27,10 @@ from .fe.reynolds import fe_force, solve_reynolds
 from .fe.mixed import check_roughness, contact_partial_eps, film_contact
 from .fe.sensitivity import fe_force_derivatives
 from .fv.fvm import fvm_force, fvm_reynolds
+from .lubricant import Lubricant
 from .solution import FilmSolution, ForceDerivatives
 from .transient import TransientJFO
+from .transient_compressible import OIL_BULK_MODULUS, CompressibleTransientJFO
 from .validation import (MIN_N_THETA, MIN_N_Z, REYNOLDS_FAMILY, check_choice, check_grooves,
                          check_int)
 
@@ -243,6 +245,21 @@ def _fem_jfo(bearing, state, n_theta, n_z, grooves, ambient_pressure, film_step=
     return _jfo_solution(bearing, state, n_theta, n_z, grooves, ambient_pressure).force_local
 
 
+def _compressible_jfo_solution(bearing, state, n_theta, n_z, grooves, ambient_pressure,
+                               film_step=0.0, bulk_modulus=OIL_BULK_MODULUS):
+    """The steady compressible (Elrod) JFO film, oil of bulk modulus ``bulk_modulus`` [Pa]."""
+    oil = Lubricant(viscosity=bearing.viscosity, bulk_modulus=bulk_modulus)
+    return solve_reynolds(bearing, state, n_theta, n_z, "P1", "jfo", grooves=grooves,
+                          ambient_pressure=ambient_pressure, lubricant=oil)
+
+
+def _fem_jfo_compressible(bearing, state, n_theta, n_z, grooves, ambient_pressure,
+                          film_step=0.0, bulk_modulus=OIL_BULK_MODULUS):
+    """The steady compressible JFO film's force."""
+    return _compressible_jfo_solution(bearing, state, n_theta, n_z, grooves,
+                                      ambient_pressure, film_step, bulk_modulus).force_local
+
+
 _MESH = dict(n_theta=48, n_z=8)
 #: Oil around the film at atmospheric pressure, the cavity near zero absolute: the default
 #: supply of the JFO model (it needs one; grooves add to it).
@@ -277,6 +294,13 @@ for _m in (
     FilmModel("fem-jfo", _fem_jfo, dict(_MESH, grooves=(), ambient_pressure=JFO_AMBIENT,
                                         film_step=0.0),
               numeric=True, solution=_jfo_solution, transient=TransientJFO),
+    FilmModel("fem-jfo-compressible", _fem_jfo_compressible,
+              dict(_MESH, grooves=(), ambient_pressure=JFO_AMBIENT, film_step=0.0,
+                   bulk_modulus=OIL_BULK_MODULUS),
+              numeric=True, solution=_compressible_jfo_solution,
+              transient=CompressibleTransientJFO,
+              # below 1e5 Pa (a gas's) nothing is an oil
+              rules={"bulk_modulus": ("number", (1e5, None))}),
 ):
     register(_m)
 #: Film models solved numerically, as registered at import (a model's own ``numeric`` is

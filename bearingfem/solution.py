@@ -81,6 +81,7 @@ class FilmSolution:
     asperity_force: tuple = (0.0, 0.0)         # (F_x, F_y) [N], inertial
     asperity_force_local: tuple = (0.0, 0.0)   # (F_r, F_t) [N]
     asperity_friction_torque: float = 0.0      # [N m]
+    density: np.ndarray | None = field(default=None, repr=False)  # compressible JFO: rho/rho0
 
     @property
     def total_force(self) -> tuple:

@@ -27,3 +27,13 @@ def test_jfo_benchmark_smoke(tmp_path, capsys):
     rows = jfo.main(["--quick", "--repeat", "1", "-o", str(tmp_path)])
     assert rows[0]["mesh"] == "120x20" and rows[0]["jfo_iterations"] >= 1
     assert "JFO / linear" in capsys.readouterr().out
+
+
+def test_compressible_jfo_benchmark_smoke(tmp_path, capsys):
+    from benchmarks import jfo_compressible
+    rows = jfo_compressible.main(["--part", "limits", "--quick", "-o", str(tmp_path)])["limits"]
+    a, b = rows
+    # the incompressible limit at the rate 1/B (the docs' table: order 0.996-1.000)
+    assert 0.95 < a["steady_diff"] / b["steady_diff"] / 10.0 < 1.05
+    assert 0.9 < a["transient_diff"] / b["transient_diff"] / 10.0 < 1.1
+    assert "order" in capsys.readouterr().out

@@ -15,6 +15,7 @@ from ..scales import flow_factor, force_factor, moment_factor, shear_friction
 from .assembly import FilmOperator, fe_operator
 from .general import film_system
 from .jfo import jfo_force, solve_jfo
+from .jfo_compressible import check_elrod, is_elrod, solve_compressible_jfo
 from .mesh import ELEMENTS
 from .mixed import check_roughness, film_contact, with_contact
 from .multilevel import coarse_guess
@@ -167,7 +168,9 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
     tilt_rate : their rates [rad/s] (squeeze)
     lubricant : :class:`~bearingfem.lubricant.Lubricant` whose viscosity and density follow
         the pressure (ratios to the bearing's viscosity), or None (cavitation "none" or
-        "reynolds"; solved by Newton, :mod:`bearingfem.ehd`)
+        "reynolds"; solved by Newton, :mod:`bearingfem.ehd`). With cavitation "jfo", a
+        lubricant with a ``bulk_modulus`` (and constant viscosity) gives the compressible
+        Elrod-type JFO film (:mod:`bearingfem.fe.jfo_compressible`; ``density`` rho/rho0)
     bush : :class:`~bearingfem.elastic.ElasticBush` (its compliance is built on the film
         grid) or a prebuilt full or reduced compliance on the (n_theta, n_z + 1) grid; the
         gap becomes c (1 + eps cos theta) + deformation (P1, cavitation "none" or
@@ -196,7 +199,10 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
     tilt, tilt_rate = check_tilt("tilt", tilt), check_tilt("tilt_rate", tilt_rate)
     if fields is not None and not isinstance(fields, FilmFields):
         raise ValueError(f"fields must be a FilmFields, got {type(fields).__name__}")
-    ehd = lubricant is not None or bush is not None
+    # a lubricant with a bulk modulus and nothing else: the compressible (Elrod) JFO film
+    compressible = cavitation == "jfo" and bush is None and is_elrod(lubricant)
+    bulk_modulus = check_elrod(bearing, lubricant) if compressible else None
+    ehd = not compressible and (lubricant is not None or bush is not None)
     if ehd:
         from ..ehd.film import check_ehd, solve_ehd_film
         check_ehd(lubricant, bush, fields, element, cavitation)
@@ -213,7 +219,10 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
     if cavitation == "jfo":
         def operator(nt, nz):
             return fe_operator(bearing, state, nt, nz, "P1", supply_angle, half, grooves)
-        sol = solve_jfo(bearing, state, operator, n_theta, n_z, grooves, ambient_pressure)
+        sol = solve_compressible_jfo(bearing, state, operator, n_theta, n_z,
+                                     bulk_modulus, grooves, ambient_pressure) \
+            if compressible else solve_jfo(bearing, state, operator, n_theta, n_z, grooves,
+                                           ambient_pressure)
         return sol if roughness is None else with_contact(
             sol, film_contact(bearing, state, operator(n_theta, n_z), roughness))
     if grooves and half and not general and supply_angle is None:
