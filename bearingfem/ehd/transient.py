@@ -171,6 +171,7 @@ class TransientEHD:
         self._kept: KeptFilm | None = None
         self._solution: FilmSolution | None = None
         self.t, self._jump, self._fade = 0.0, (0.0, 0.0), 1.0
+        self._active = None          # the last trial solve's cavitated set (a warm start)
 
     def _solve(self, state: JournalState) -> FilmSolution:
         return ehd_solution(self.bearing, state, start=self._solution, **self._film)
@@ -186,15 +187,39 @@ class TransientEHD:
         self.t, self._jump, self._fade, self.steps = float(t), (0.0, 0.0), 1.0, 0
 
     def kept_force(self, state: JournalState, kept: KeptFilm | None = None) -> tuple:
-        """(F_r, F_t) [N]: the Reynolds film at ``state`` on the kept fields."""
+        """(F_r, F_t) [N]: the Reynolds film (Swift-Stieber) at ``state`` on the kept
+        fields, plus the asperities' force with roughness. The light path of the
+        integrator's trial states: the film's system, its pressure (active set started
+        from the last call's cavitated set: the same answer to the solver's tolerance)
+        and force, no other outputs."""
         from ..fe.assembly import fe_operator
-        from ..fe.reynolds import solve_reynolds
+        from ..fe.general import film_system
+        from ..fe.mixed import film_contact
+        from ..fe.reynolds import fe_pressure
+        from ..scales import force_factor
         f = self._film
         op = fe_operator(self.bearing, state, f["n_theta"], f["n_z"], "P1", None, False)
         fields = (kept or self._kept).fields(self.bearing, state, op, f["lubricant"])
-        sol = solve_reynolds(self.bearing, state, f["n_theta"], f["n_z"], "P1", "reynolds",
-                             fields=fields, roughness=f["roughness"])
-        return total_force(sol)
+        if not np.all(fields.gap > 0.0):
+            raise ValueError(f"the kept deflection does not open the gap at eps {state.eps} "
+                             "(the journal passed the deflected bush): reduce film_step")
+        fields = FilmFields(gap=fields.gap, gap_rate=state.eps_dot * np.cos(op.qp_theta),
+                            viscosity=np.broadcast_to(fields.viscosity, op.qp_theta.shape),
+                            density=np.broadcast_to(fields.density, op.qp_theta.shape),
+                            density_rate=np.zeros_like(op.qp_theta))
+        active = self._active if (self._active is not None
+                                  and self._active.shape == (op.mesh.ndofs,)
+                                  and self._active.any()) else None
+        res = fe_pressure(op, state, "reynolds", active0=active,
+                          system=film_system(op, fields, state.wedge_speed))
+        self._active = res.active
+        ic, is_ = op.force_integrals(res.pressure)
+        k = force_factor(self.bearing, False)
+        force = (k * float(ic), k * float(is_))
+        if f["roughness"] is None:
+            return force
+        c = film_contact(self.bearing, state, op, f["roughness"], fields.gap).force_local
+        return force[0] + c[0], force[1] + c[1]
 
     def force(self, state: JournalState, t: float) -> tuple:
         """(F_r, F_t) [N] at a trial ``state`` and time ``t``; keeps nothing (a film not
