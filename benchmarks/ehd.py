@@ -83,7 +83,9 @@ def main(argv=None):
                                  cold_iterations=cold.iterations,
                                  warm_iterations=warm.iterations,
                                  pressure_max=warm.pressure_max, film_mid=mid_film(warm),
-                                 deflection=w, same=float(np.max(np.abs(
+                                 deflection=w, residual=warm.residual,
+                                 rigid_pressure_max=rigid.pressure_max,
+                                 rigid_film_mid=mid_film(rigid), same=float(np.max(np.abs(
                                      warm.pressure - cold.pressure)) / cold.pressure_max)))
                 print(f"{model:>6} {kind:>11} {'B+DH' if oil else '-':>5} "
                       f"{build if kind == 'full' else 0.0:9.2f} {t_cold:8.3f} "
