@@ -33,14 +33,31 @@ def test_model_is_registered_with_memory_and_the_scene_loads():
     (dict(bush="bronze"), "bush"), (dict(lubricant=0.0117), "lubricant"),
     (dict(modes=-1), "modes"), (dict(modes=2.5), "modes"), (dict(n_theta=4), "n_theta"),
     (dict(film_step=-1e-4), "film_step"), (dict(cavitation="jfo"), "cavitation"),
-    (dict(roughness=Roughness(sigma=0.3e-6, contact_modulus=5e10, elastic_factor=1e-3), bush=RING), "roughness"),
-    (dict(n_theta=8, n_z=2, bush=RING, modes=100), "modes"),
 ])
 def test_bad_options_raise_naming_the_option(options, name):
+    """The registry refuses each before any work, naming it after where it was given.
+    Fails with the "instance" rule (lubricant, bush) left unchecked: the film's own
+    checks downstream would name the parameter without the scene's path."""
+    m = film_model("fem-ehd")
+    with pytest.raises(ValueError, match=f"lubrication.{name}"):
+        m.options(options, where="scene.effects.lubrication")
+    with pytest.raises(ValueError, match=name):
+        m.film_force(B, S, **options)
+
+
+@pytest.mark.parametrize("options, name", [
+    (dict(roughness=Roughness(sigma=0.3e-6, contact_modulus=5e10, elastic_factor=1e-3),
+          bush=RING), "roughness"),
+    (dict(n_theta=8, n_z=2, bush=RING, modes=100), "modes"),
+])
+def test_option_pairs_the_film_cannot_take(options, name):
+    """Roughness with a bush (the asperity load does not deform the bush yet) and more
+    modes than the film grid has nodes: refused by the steady force and, for roughness,
+    before a run starts."""
     m = film_model("fem-ehd")
     with pytest.raises(ValueError, match=name):
         m.film_force(B, S, **options)
-    if "roughness" in options:     # also before a run starts
+    if "roughness" in options:
         with pytest.raises(ValueError, match=name):
             m.along_run(B, options)
 
