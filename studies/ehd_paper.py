@@ -12,8 +12,8 @@ peak film pressure (at the film steps of a film with memory, at 72 instants othe
 asperity load share (zero: no scene here has roughness; the EHD film refuses roughness with
 a bush), friction power, crank speed range, peak slider acceleration, wall time and cost
 per turn; a run that stopped says where and why. Writes ``ehd_paper.csv`` and renders the
-bush's deflection and the film pressure at the peak joint load (the state of the EHD run
-there, or of the rigid Reynolds run if the EHD run stopped before it) to
+bush's deflection and the film pressure at the EHD run's peak film force (its film step
+there, up to where it stopped) to
 ``docs/img/ehd_deflection.png`` (``--figure`` elsewhere).
 """
 from __future__ import annotations
@@ -117,16 +117,17 @@ def main(argv=None):
         if w["message"]:
             print(f"  ({w['film']} stopped: {w['message']})")
     write_csv(rows, out / "ehd_paper.csv")
-    # the peak joint load: the EHD run's if it got there, else the rigid Reynolds run's
+    # the peak joint load of the EHD run (its film steps; up to where it stopped), or the
+    # rigid Reynolds run's eccentricity at its peak if the EHD run took no film step
     _, sc_ehd, r_ehd = runs[2]
-    r = r_ehd if not r_ehd.partial else runs[0][2]
-    i = int(np.argmax(np.hypot(r.force_x, r.force_y)))
-    rec = r.film_record
-    if r is r_ehd and len(rec):
-        j = int(np.argmin(np.abs(film_column(rec, "t") - r.t[i])))
+    rec = r_ehd.film_record
+    if len(rec):
+        j = int(np.argmax(np.hypot(film_column(rec, "force_x"), film_column(rec, "force_y"))))
         state = JournalState(**{n: float(film_column(rec, n)[j])
                                 for n in ("eps", "eps_dot", "gamma", "gamma_dot", "omega")})
     else:
+        r = runs[0][2]
+        i = int(np.argmax(np.hypot(r.force_x, r.force_y)))
         state = JournalState(eps=min(float(r.eps[i]), 0.995), gamma=0.0, omega=a.speed)
     sol = render_deflection(sc_ehd, state, Path(a.figure))
     print(f"deflection at the peak load (eps {state.eps:.4f}): max "
