@@ -123,7 +123,8 @@ def test_film_step_convergence():
     steps 4e-4, 2e-4, 1e-4 s: the lag's error falls 5.7x from 4e-4 to 2e-4 s and then
     sits at ~1e-8 m, five times the run's absolute tolerance (2e-9 m) - the integrator's
     and the fade's floor, not the lag's. ~95 s, hence slow. Fails if the kept deflection
-    is dropped (the error is then the whole deflection's effect at every film step)."""
+    is dropped (every film step then gives the rigid film's orbit: errors 0, and the
+    test fails)."""
     ref = _orbit_end(0.0)
     err = [np.hypot(*(_orbit_end(h) - ref)) for h in (4e-4, 2e-4, 1e-4)]
     print("film-step errors [m]", err)
