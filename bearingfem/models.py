@@ -31,6 +31,8 @@ from .lubricant import Lubricant
 from .solution import FilmSolution, ForceDerivatives
 from .transient import TransientJFO
 from .transient_compressible import OIL_BULK_MODULUS, CompressibleTransientJFO
+from .ehd.transient import TransientEHD, check_ehd_model, ehd_solution
+from .elastic import ElasticBush
 from .validation import (MIN_N_THETA, MIN_N_Z, REYNOLDS_FAMILY, check_choice, check_grooves,
                          check_int)
 
@@ -58,6 +60,11 @@ def _check_option(name: str, value, where: str, mass_conserving: bool = False,
         return check_grooves(value, mass_conserving=mass_conserving)
     if kind == "roughness":
         return check_roughness(value)
+    if kind == "instance":    # an object of one of the allowed classes, or None
+        if value is not None and not isinstance(value, allowed):
+            raise ValueError(f"{label} must be a {' or '.join(c.__name__ for c in allowed)} "
+                             f"or None, got {type(value).__name__}")
+        return value
     if kind == "choice":
         return check_choice(label, value, allowed)
     lo, hi = allowed
@@ -260,6 +267,24 @@ def _fem_jfo_compressible(bearing, state, n_theta, n_z, grooves, ambient_pressur
                                       ambient_pressure, film_step, bulk_modulus).force_local
 
 
+def _ehd_solution(bearing, state, lubricant, bush, roughness, n_theta, n_z, modes,
+                  film_step=0.0):
+    """The steady EHD film (a cold full solve; ``film_step`` [s] is for time integration,
+    :class:`~bearingfem.ehd.transient.TransientEHD`)."""
+    return ehd_solution(bearing, state, lubricant, bush, roughness, n_theta, n_z, modes)
+
+
+def _fem_ehd(bearing, state, lubricant, bush, roughness, n_theta, n_z, modes, film_step=0.0):
+    """The steady EHD film's force, film plus asperity contact."""
+    sol = _ehd_solution(bearing, state, lubricant, bush, roughness, n_theta, n_z, modes)
+    f, c = sol.force_local, sol.asperity_force_local
+    return float(f[0] + c[0]), float(f[1] + c[1])
+
+
+#: The "fem-ehd" model's own options: lubricant and bush objects (or None), modes the
+#: number of compliance vectors (0: the full compliance).
+EHD_RULES = {"lubricant": ("instance", (Lubricant,)), "bush": ("instance", (ElasticBush,)),
+             "modes": ("int", (0, None))}
 _MESH = dict(n_theta=48, n_z=8)
 #: Oil around the film at atmospheric pressure, the cavity near zero absolute: the default
 #: supply of the JFO model (it needs one; grooves add to it).
@@ -301,6 +326,9 @@ for _m in (
               transient=CompressibleTransientJFO,
               # below 1e5 Pa (a gas's) nothing is an oil
               rules={"bulk_modulus": ("number", (1e5, None))}),
+    FilmModel("fem-ehd", _fem_ehd, dict(_MESH, lubricant=None, bush=None, roughness=None,
+                                        modes=64, film_step=0.0),
+              numeric=True, solution=_ehd_solution, transient=TransientEHD, rules=EHD_RULES),
 ):
     register(_m)
 #: Film models solved numerically, as registered at import (a model's own ``numeric`` is

@@ -38,8 +38,10 @@ def film_row(step: FilmStep) -> tuple:
     row = dict(zip(_STATE_FIELDS, dataclasses.astuple(step.state)), t=step.t)
     row["force_x"], row["force_y"] = local_to_inertial(*step.force_local, step.state.gamma)
     for name in _SOLUTION_FIELDS:
-        row[name] = (math.nan if step.solution is None
-                     else getattr(step.solution, name))
+        # NaN where the film does not define it (no whole film; a Reynolds-condition
+        # film's mass balance)
+        value = None if step.solution is None else getattr(step.solution, name)
+        row[name] = math.nan if value is None else value
     return tuple(float(row[name]) for name in FILM_COLUMNS)
 
 

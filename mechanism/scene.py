@@ -15,7 +15,8 @@ try:
 except ModuleNotFoundError:  # Python < 3.11
     import tomli as tomllib
 
-from bearingfem import Bearing, Roughness
+from bearingfem import Bearing, ElasticBush, Roughness
+from bearingfem.lubricant import Lubricant
 from bearingfem.models import film_model
 from .parameters import Mechanism
 
@@ -185,6 +186,12 @@ def _lubrication(t: _Table) -> Lubrication:
     given = {k: t.get(k) for k in sorted(set(t.data) - {"model", "eps_max"})}
     if "roughness" in given and "roughness" in m.defaults:   # mixed lubrication
         given["roughness"] = _roughness(_Table(given["roughness"], f"{t.where}.roughness"))
+    for key, cls in (("lubricant", Lubricant), ("bush", ElasticBush)):   # the EHD film
+        if isinstance(given.get(key), dict) and key in m.defaults:
+            try:
+                given[key] = cls(**given[key])
+            except (TypeError, ValueError) as err:
+                raise ValueError(f"{t.where}.{key}: {err}") from None
     opts = m.options(given, where=t.where)
     t.done()
     return Lubrication(model=model, options=opts, eps_max=eps_max)

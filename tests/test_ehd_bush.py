@@ -159,13 +159,14 @@ def test_bad_input(kwargs, match):
 
 def test_benchmark_smoke(capsys):
     """benchmarks/ehd.py --quick runs; every EHD row converged, opened the mid-plane film
-    and lowered the peak pressure of its state's rigid row."""
+    and lowered the peak pressure of the rigid film; the warm start found the cold
+    start's film (isoviscous rows: one solution)."""
     from benchmarks import ehd
     rows = ehd.main(["--quick"])
     assert "compliance" in capsys.readouterr().out
-    rigid = {r["eps"]: r for r in rows if r["bush"] == "-"}
     for r in rows:
         assert r["residual"] <= 1e-10
-        if r["bush"] != "-" and r["oil"] == "-":
-            assert r["film_mid"] > rigid[r["eps"]]["film_mid"]
-            assert r["pressure_max"] < rigid[r["eps"]]["pressure_max"]
+        assert r["film_mid"] > r["rigid_film_mid"]
+        assert r["pressure_max"] < r["rigid_pressure_max"]
+        if not r["oil"]:
+            assert r["same"] < 1e-6

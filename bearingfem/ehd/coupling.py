@@ -99,25 +99,60 @@ def dof_compliance(bush, bearing, op) -> DofCompliance:
 
 
 @dataclass(frozen=True, eq=False)
-class ElementTables:
-    """Shape functions of the film mesh at its quadrature points (built once per solve)."""
+class JacobianTables:
+    """The film mesh's element pattern and shape functions at its quadrature points
+    (cached per film operator: one build per mesh, not per solve).
 
-    rows: np.ndarray       # (nb, E, Q) dof of local function i
-    cols: np.ndarray       # (nb, E, Q) flattened quadrature point e Q + q
+    The stiffness pattern of the operator drops couplings that vanish for every
+    conductance (orthogonal gradients on right triangles); the Jacobian's local terms
+    (phi_i phi_j, dphi_i/dtheta phi_j) do not vanish there, so it has the whole element
+    pattern: ``indptr/indices``, ``positions`` (elements, nb*nb) of each local entry in
+    it, ``from_stiffness`` the place of each stiffness entry.
+    """
+
+    indptr: np.ndarray
+    indices: np.ndarray
+    positions: np.ndarray
+    from_stiffness: np.ndarray
     phi: np.ndarray        # (nb, E, Q) phi_i dx
     dphi: np.ndarray       # (nb, 2, E, Q) grad phi_i dx
+    value: np.ndarray      # (nb, E, Q) phi_j (no weight)
+    dx: np.ndarray         # (E, Q) quadrature weights
+    shape: tuple
 
 
-def element_tables(op) -> ElementTables:
+@lru_cache(maxsize=16)
+def jacobian_tables(op) -> JacobianTables:
     basis = op.mesh.basis
     dx = basis.dx
-    E, Q = dx.shape
-    nb = basis.Nbfun
-    rows = np.broadcast_to(basis.element_dofs[:, :, None], (nb, E, Q))
-    cols = np.broadcast_to(np.arange(E * Q).reshape(E, Q), (nb, E, Q))
-    phi = np.array([np.asarray(basis.basis[i][0]) * dx for i in range(nb)])
-    dphi = np.array([np.asarray(basis.basis[i][0].grad) * dx for i in range(nb)])
-    return ElementTables(rows, cols, phi, dphi)
+    nb, N = basis.Nbfun, basis.N
+    dofs = np.ascontiguousarray(basis.element_dofs.T).astype(np.int64)     # (E, nb)
+    local = (dofs[:, :, None] * N + dofs[:, None, :]).reshape(len(dofs), -1)
+    keys = np.unique(local)
+    rows, cols = np.divmod(keys, N)
+    indptr = np.searchsorted(rows, np.arange(N + 1)).astype(np.int32)
+    stiff_rows = np.repeat(np.arange(N, dtype=np.int64), np.diff(op.indptr))
+    value = np.array([np.asarray(basis.basis[i][0]) for i in range(nb)])
+    return JacobianTables(
+        indptr=indptr, indices=cols.astype(np.int32), positions=np.searchsorted(keys, local),
+        from_stiffness=np.searchsorted(keys, stiff_rows * N + op.indices),
+        phi=value * dx, dphi=np.array([np.asarray(basis.basis[i][0].grad) * dx
+                                       for i in range(nb)]),
+        value=value, dx=np.asarray(dx), shape=(N, N))
+
+
+@dataclass(frozen=True, eq=False)
+class FilmState:
+    """The EHD film evaluated at one pressure: its fields at the quadrature points, their
+    pressure slopes (None without a lubricant), stiffness values on the operator's
+    pattern, load, residual R = K P - load and the size of its terms |K| |P| + |load|."""
+
+    fields: FilmFields
+    slopes: tuple | None
+    values: np.ndarray
+    load: np.ndarray
+    residual: np.ndarray
+    size: np.ndarray
 
 
 @dataclass(frozen=True, eq=False)
@@ -141,7 +176,7 @@ class EHDFilm:
     clearance: float
     wedge: float
     viscosity: float
-    tables: ElementTables
+    tables: JacobianTables
 
     def deflection(self, P: np.ndarray, s: float = 1.0) -> np.ndarray:
         """Nodal radial deflection w [m] of the bush under s p (zero without a bush)."""
@@ -168,63 +203,67 @@ class EHDFilm:
                           density_rate=self.base.density_rate)
         return film, slopes
 
-    def system(self, P: np.ndarray, s: float = 1.0):
-        """(evaluated fields, stiffness values on the pattern, load) at pressure P; the
-        fields are None where the gap closes or a viscosity or density is not finite
-        and > 0."""
-        film, _ = self.fields(P, s)
-        # a trial pressure may close the gap or push a property law out of range
+    def evaluate(self, P: np.ndarray, s: float = 1.0) -> FilmState | None:
+        """The film at pressure P, or None where the gap closes or a viscosity or density
+        is not finite and > 0 (a trial pressure may push a property law out of range)."""
+        film, slopes = self.fields(P, s)
         for field in (film.gap, film.viscosity, film.density):
             if not np.all((field > 0.0) & np.isfinite(field)):
-                return None, None, None
+                return None
         values, load = film_system(self.op, film, self.wedge)
-        return film, values, load
+        K = sp.csr_matrix((values, self.op.indices, self.op.indptr), shape=self.op.shape)
+        size = np.abs(K) @ np.abs(P) + np.abs(load)
+        return FilmState(film, slopes, values, load, K @ P - load, size)
+
+    def system(self, P: np.ndarray, s: float = 1.0):
+        """(evaluated fields, stiffness values on the pattern, load) at pressure P, or
+        Nones where the gap closes."""
+        ev = self.evaluate(P, s)
+        return (None, None, None) if ev is None else (ev.fields, ev.values, ev.load)
 
     def residual(self, P: np.ndarray, s: float = 1.0):
         """(R = K P - load on all dofs, a scale of its terms, K values) or Nones when the
         gap closes."""
-        film, values, load = self.system(P, s)
-        if film is None:
-            return None, None, None
-        K = sp.csr_matrix((values, self.op.indices, self.op.indptr), shape=self.op.shape)
-        size = np.abs(K) @ np.abs(P) + np.abs(load)
-        return K @ P - load, size, values
+        ev = self.evaluate(P, s)
+        return (None, None, None) if ev is None else (ev.residual, ev.size, ev.values)
 
-    def jacobian(self, P: np.ndarray, s: float = 1.0):
+    def jacobian(self, P: np.ndarray, s: float = 1.0, state: FilmState | None = None):
         """(J_sparse, U, V) with dR/dP = J_sparse + U V^T (U, V None without a bush; for
-        the full compliance V is the identity, given as None and U dense N x N)."""
-        film, slopes = self.fields(P, s)
-        values, _ = film_system(self.op, film, self.wedge)
-        K = sp.csr_matrix((values, self.op.indices, self.op.indptr), shape=self.op.shape)
-        t = self.tables
+        the full compliance V is the identity, given as None and U dense N x N), at P
+        (``state`` its evaluation, when the caller has it: the film is then not built
+        again)."""
+        ev = self.evaluate(P, s) if state is None else state
+        film, slopes, t = ev.fields, ev.slopes, self.tables
         rho, mu, H = film.density, film.viscosity, film.gap
-        gP = np.asarray(self.op.mesh.basis.interpolate(P).grad)            # (2, E, Q)
-        Bk = np.einsum("iceq,ceq->ieq", t.dphi, gP)                         # grad P.grad phi dx
+        dofs = self.op.mesh.basis.element_dofs                              # (nb, E)
+        gradP = np.einsum("jceq,je->ceq", t.dphi, P[dofs]) / t.dx          # grad P
+        Bk = np.einsum("iceq,ceq->ieq", t.dphi, gradP)                      # grad P.grad phi dx
         Bc = t.dphi[:, 0]                                                   # dphi/dtheta dx
         Bs = t.phi
-        N, NQ = self.op.mesh.ndofs, H.size
 
-        def assemble(dk, dc, dsq):     # sum_q B_iq (coefficient derivative)_q, (N, NQ)
-            v = Bk * dk - Bc * dc - Bs * dsq
-            return sp.csr_matrix((v.ravel(), (t.rows.ravel(), t.cols.ravel())),
-                                 shape=(N, NQ))
-        J = K
+        def assemble(dk, dc, dsq):     # sum_q B_iq (coefficient derivative)_q phi_j(q)
+            g = Bk * dk - Bc * dc - Bs * dsq                                # (nb, E, Q)
+            local = np.einsum("ieq,jeq->eij", g, t.value).reshape(g.shape[1], -1)
+            return np.bincount(t.positions.ravel(), local.ravel(),
+                               minlength=len(t.indices))
+        data = np.bincount(t.from_stiffness, ev.values, minlength=len(t.indices))
         if slopes is not None:
             drho, dmu = slopes
             ds = s * self.scale
-            dk = ds * (drho * H**3 / mu - rho * H**3 * dmu / mu**2)
-            dc = ds * 6.0 * self.wedge * drho * H
-            dsq = ds * -12.0 * drho * film.gap_rate
-            J = J + assemble(dk, dc, dsq) @ self.op.qp_interp
+            data += assemble(ds * (drho * H**3 / mu - rho * H**3 * dmu / mu**2),
+                             ds * 6.0 * self.wedge * drho * H,
+                             ds * -12.0 * drho * film.gap_rate)
+        J = sp.csc_matrix(sp.csr_matrix((data, t.indices, t.indptr), shape=t.shape))
         if self.compliance is None:
-            return J.tocsc(), None, None
+            return J, None, None
         dsq_H = -12.0 * film.density_rate * np.ones_like(H)
-        TH = assemble(3.0 * rho * H**2 / mu, 6.0 * self.wedge * rho, dsq_H) @ self.op.qp_interp
+        TH = sp.csr_matrix((assemble(3.0 * rho * H**2 / mu, 6.0 * self.wedge * rho, dsq_H),
+                            t.indices, t.indptr), shape=t.shape)
         k = s * self.scale / self.clearance
         c = self.compliance
         if c.right is None:
-            return J.tocsc(), k * (TH @ c.left), None
-        return J.tocsc(), k * (TH @ (c.left * c.singular)), c.right
+            return J, k * (TH @ c.left), None
+        return J, k * (TH @ (c.left * c.singular)), c.right
 
 
 def ehd_film(bearing, state, op, base: FilmFields, gap0, lubricant, bush) -> EHDFilm:
@@ -233,4 +272,4 @@ def ehd_film(bearing, state, op, base: FilmFields, gap0, lubricant, bush) -> EHD
     return EHDFilm(op=op, base=base, gap0=gap0, lubricant=lubricant, compliance=compliance,
                    scale=bearing.pressure_scale, clearance=bearing.clearance,
                    wedge=state.wedge_speed, viscosity=bearing.viscosity,
-                   tables=element_tables(op))
+                   tables=jacobian_tables(op))

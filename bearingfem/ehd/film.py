@@ -34,17 +34,35 @@ def check_ehd(lubricant, bush, fields, element: str, cavitation: str):
                          "not both")
 
 
+def warm_pressure(start, bearing, op, dirichlet) -> np.ndarray | None:
+    """The dimensionless nodal pressure of a previous solution ``start`` on the same
+    mesh (a :class:`FilmSolution`; None: a cold start), fixed dofs at their held values;
+    ValueError when it is on another mesh."""
+    if start is None:
+        return None
+    p = getattr(start, "pressure", None)
+    if p is None or np.shape(p) != (op.mesh.ndofs,):
+        raise ValueError(f"start must be a FilmSolution of the same film mesh "
+                         f"({op.mesh.ndofs} nodes) or None")
+    P = np.asarray(p, float) / bearing.pressure_scale
+    fixed = np.setdiff1d(np.arange(op.mesh.ndofs), op.mesh.free)
+    P[fixed] = 0.0 if dirichlet is None else dirichlet[fixed]
+    return P
+
+
 def solve_ehd_film(bearing, state, op, base, gap0, lubricant, bush, cavitation, method,
-                   tol, dirichlet, cavitated_shear, grooves):
+                   tol, dirichlet, cavitated_shear, grooves, start=None):
     """Solve the film of ``op`` with pressure-dependent fields and elastic gap; the base
-    fields ``base`` (quadrature) and nodal gap ``gap0`` are the film's without them."""
+    fields ``base`` (quadrature) and nodal gap ``gap0`` are the film's without them.
+    ``start``: a previous solution on the same mesh to start Newton from (warm)."""
     film = ehd_film(bearing, state, op, base, gap0, lubricant, bush)
-    zero = np.zeros(op.mesh.ndofs)
-    start, _ = film.fields(zero, 0.0)          # the isoviscous rigid film (s = 0)
-    rigid = fe_pressure(op, state, cavitation, method, tol, dirichlet=dirichlet,
-                        system=film_system(op, start, state.wedge_speed))
-    res = solve_ehd(film, rigid.pressure, "reynolds" if cavitation == "reynolds" else "none",
-                    tol)
+
+    def rigid():                                # the isoviscous rigid film (s = 0)
+        film0, _ = film.fields(np.zeros(op.mesh.ndofs), 0.0)
+        return fe_pressure(op, state, cavitation, method, tol, dirichlet=dirichlet,
+                           system=film_system(op, film0, state.wedge_speed)).pressure
+    res = solve_ehd(film, rigid, "reynolds" if cavitation == "reynolds" else "none", tol,
+                    start=warm_pressure(start, bearing, op, dirichlet))
     P = res.pressure
     fields, values, load = film.system(P)
     deformation = film.deflection(P)

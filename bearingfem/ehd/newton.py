@@ -57,24 +57,26 @@ class EHDResult:
 
 
 def _merit(film, P, s, free, cavitation):
-    """(Phi on the free dofs, its scale, active rows) or Nones (gap closed): active rows
-    are those where Phi = min(d P, R) takes d P (held cavitated)."""
+    """(Phi on the free dofs, its scale, active rows, the evaluated film) or Nones (gap
+    closed): active rows are those where Phi = min(d P, R) takes d P (held cavitated)."""
     with np.errstate(over="ignore", invalid="ignore"):   # a trial step may overflow mu
-        R, size, values = film.residual(P, s)
-    if R is None or not np.all(np.isfinite(R)):
-        return None, None, None
+        ev = film.evaluate(P, s)
+    if ev is None or not np.all(np.isfinite(ev.residual)):
+        return None, None, None, None
+    R, size, values = ev.residual, ev.size, ev.values
     scale = float(np.max(size[free], initial=0.0)) or 1.0
     if cavitation != "reynolds":
-        return R[free], scale, np.zeros(free.size, bool)
+        return R[free], scale, np.zeros(free.size, bool), ev
+    # the stiffness diagonal: the pattern's diagonal entries
     K = sp.csr_matrix((values, film.op.indices, film.op.indptr), shape=film.op.shape)
     dP, Rf = K.diagonal()[free] * P[free], R[free]
-    return np.minimum(dP, Rf), scale, dP < Rf
+    return np.minimum(dP, Rf), scale, dP < Rf, ev
 
 
-def _newton_step(film, P, s, free, phi, held):
+def _newton_step(film, P, s, free, phi, held, ev):
     """The Newton (semismooth) step on all dofs (zero on fixed dofs): held rows step to
-    P = 0, the others take the Newton row of R (= Phi there)."""
-    J, U, V = film.jacobian(P, s)
+    P = 0, the others take the Newton row of R (= Phi there); ``ev`` is the film at P."""
+    J, U, V = film.jacobian(P, s, ev)
     I, A = free[~held], free[held]
     dA = -P[A]
     J_rows = J[I]
@@ -100,7 +102,7 @@ def _newton_step(film, P, s, free, phi, held):
 def _newton(film, P, s, free, cavitation, tol):
     """Damped (semismooth) Newton at coupling s from P: ((P, residual, active) or None
     when it stalls, the iterations it took)."""
-    phi, scale, held = _merit(film, P, s, free, cavitation)
+    phi, scale, held, ev = _merit(film, P, s, free, cavitation)
     if phi is None:
         return None, 0
     for it in range(MAX_NEWTON + 1):
@@ -112,18 +114,18 @@ def _newton(film, P, s, free, cavitation, tol):
         if it == MAX_NEWTON:
             return None, it
         try:
-            step = _newton_step(film, P, s, free, phi, held)
+            step = _newton_step(film, P, s, free, phi, held, ev)
         except (RuntimeError, la.LinAlgError):       # singular Jacobian: treat as a stall
             return None, it
         norm = float(np.linalg.norm(phi))
         alpha = 1.0
         while alpha >= 1.0 / 64:
             trial = P + alpha * step
-            t_phi, t_scale, t_held = _merit(film, trial, s, free, cavitation)
+            t_phi, t_scale, t_held, t_ev = _merit(film, trial, s, free, cavitation)
             with np.errstate(over="ignore"):
                 better = t_phi is not None and np.linalg.norm(t_phi) < (1 - 1e-4 * alpha) * norm
             if better:
-                P, phi, scale, held = trial, t_phi, t_scale, t_held
+                P, phi, scale, held, ev = trial, t_phi, t_scale, t_held, t_ev
                 break
             alpha *= 0.5
         else:
@@ -131,12 +133,23 @@ def _newton(film, P, s, free, cavitation, tol):
     return None, MAX_NEWTON
 
 
-def solve_ehd(film, P0: np.ndarray, cavitation: str, tol: float = 1e-10) -> EHDResult:
+def solve_ehd(film, P0, cavitation: str, tol: float = 1e-10,
+              start: np.ndarray | None = None) -> EHDResult:
     """The EHD pressure from the rigid film's P0 (fixed dofs keep P0's values), with the
-    load continuation of the module docstring."""
+    load continuation of the module docstring. ``P0`` may be a function giving it (called
+    only when needed). ``start`` (nodal P, fixed dofs at their held values): a warm start,
+    Newton at s = 1 from it first (a nearby state converges in a few steps); if that
+    stalls, the cold route from P0."""
     free = film.op.mesh.free
+    iterations = 0
+    if start is not None:
+        out, iterations = _newton(film, np.array(start, float), 1.0, free, cavitation, tol)
+        if out is not None:
+            P, residual, active = out
+            return EHDResult(P, iterations, residual, True, active, 1, 0)
+    P0 = P0() if callable(P0) else P0
     P, done, increment = P0.copy(), 0.0, 1.0
-    iterations = steps = rejected = 0
+    steps = rejected = 0
     while done < 1.0:
         s = min(1.0, done + increment)
         out, its = _newton(film, P, s, free, cavitation, tol)

@@ -134,7 +134,7 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
                    tol: float = 1e-10, cavitated_shear: str = "full",
                    grooves=(), ambient_pressure: float = 0.0, fields: FilmFields | None = None,
                    tilt=(0.0, 0.0), tilt_rate=(0.0, 0.0), lubricant=None,
-                   bush=None, roughness=None) -> FilmSolution:
+                   bush=None, roughness=None, start=None) -> FilmSolution:
     """Solve the Reynolds equation on a finite-element mesh of the unwrapped film.
 
     Parameters
@@ -181,6 +181,9 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
         Greenwood-Tripp asperity contact of the gap at the film's quadrature points is
         added as ``asperity_force`` / ``asperity_friction_torque`` (the film's pressure is
         unchanged by it, :mod:`bearingfem.fe.mixed`); None: no contact
+    start : with a lubricant or bush, a previous :class:`FilmSolution` of the same mesh
+        whose pressure starts Newton (a nearby state converges in a few steps; if that
+        stalls, the cold route); None: a cold start. Same answer to ``tol``.
 
     With ``fields`` or a tilt the whole length is meshed (no mid-plane symmetry) and
     ``moment`` is the film's moment on the journal; fields that are the rigid cylinder's
@@ -197,6 +200,8 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
     ambient_pressure = check_jfo_supply(cavitation, grooves, supply_angle, ambient_pressure,
                                         element)
     tilt, tilt_rate = check_tilt("tilt", tilt), check_tilt("tilt_rate", tilt_rate)
+    if start is not None and not (lubricant is not None or bush is not None):
+        raise ValueError("start is for the EHD film (a lubricant or a bush); got neither")
     if fields is not None and not isinstance(fields, FilmFields):
         raise ValueError(f"fields must be a FilmFields, got {type(fields).__name__}")
     # a lubricant with a bulk modulus and nothing else: the compressible (Elrod) JFO film
@@ -242,7 +247,7 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
         if ehd:
             sol = solve_ehd_film(bearing, state, op, film, gap, lubricant, bush, cavitation,
                                  method, tol, groove_pressures(bearing, op, grooves),
-                                 cavitated_shear, grooves)
+                                 cavitated_shear, grooves, start)
             return sol if roughness is None else with_contact(
                 sol, film_contact(bearing, state, op, roughness, film.gap))
         if not film.is_rigid(op, state):      # the rigid data takes the fast path

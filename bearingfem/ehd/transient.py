@@ -1,0 +1,277 @@
+"""The EHD film along a time integration: the "fem-ehd" model's film with memory.
+
+A full EHD solve (:mod:`bearingfem.ehd.newton`: Newton on the pressure with the bush's
+compliance and the lubricant's fields) costs a few Newton steps even from a warm start,
+and an integrator asks for the force at many trial states per step. :class:`TransientEHD`
+therefore solves the full EHD film at accepted integrator steps only, spaced by
+``film_step``, and keeps what that solve gave the film: the bush's radial deflection and
+the lubricant's viscosity and density ratios, held in the bush's (inertial) frame. At a
+trial state the force is the Reynolds film (Swift-Stieber cavitation) of the rigid gap of
+that state plus the kept deflection, with the kept viscosity and density: one
+general-field film solve (:func:`~bearingfem.fe.reynolds.solve_reynolds` with ``fields``),
+a few milliseconds. The kept fields lag the journal by at most one film step: the force's
+error is O(film_step), shown by the film-step convergence test. The force changed by a
+film step is faded in over the next one (smoothstep, as for the JFO film,
+:mod:`bearingfem.transient`), so the integrator sees no jump.
+
+Quasi-static bush: its deflection rate is left out of the squeeze term (as in the steady
+EHD film), and the bush has no mass.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import lru_cache
+
+import numpy as np
+
+from ..bearing import Bearing, JournalState
+from ..contract import FilmStep
+from ..elastic import ElasticBush, bush_compliance
+from ..fields import FilmFields
+from ..film import film_thickness, inertial_from_theta
+from ..solution import FilmSolution
+
+__all__ = ["TransientEHD", "EHDSnapshot", "KeptFilm", "kept_film", "ehd_solution",
+           "ehd_compliance", "check_ehd_model"]
+
+
+def check_ehd_model(bush, roughness):
+    """ValueError for option pairs the EHD film cannot take, before any work."""
+    if bush is not None and roughness is not None:
+        # the asperities' load would deform the bush too: a coupling not built yet
+        raise ValueError("fem-ehd.roughness needs fem-ehd.bush = None (the asperity load "
+                         "does not deform the bush yet); give one of them")
+
+
+@lru_cache(maxsize=8)
+def ehd_compliance(bush: ElasticBush, radius: float, length: float, n_theta: int, n_z: int,
+                   modes: int):
+    """The bush's compliance on the film grid: full (``modes`` 0) or its best rank-modes
+    approximation (cached: one build per bush and mesh)."""
+    full = bush_compliance(bush, radius, length, n_theta, n_z + 1)
+    if modes == 0:
+        return full
+    if modes > n_theta * (n_z + 1):
+        raise ValueError(f"modes must be <= n_theta (n_z + 1) = {n_theta * (n_z + 1)}, "
+                         f"got {modes}")
+    return full.reduced(modes)
+
+
+def ehd_solution(bearing: Bearing, state: JournalState, lubricant, bush, roughness,
+                 n_theta: int, n_z: int, modes: int, start: FilmSolution | None = None,
+                 ) -> FilmSolution:
+    """The full EHD film at ``state`` (P1, Swift-Stieber cavitation; ``start`` a previous
+    solution of the same mesh for a warm start)."""
+    from ..fe.reynolds import solve_reynolds      # the film route imports this package
+    check_ehd_model(bush, roughness)
+    comp = None if bush is None else ehd_compliance(
+        bush, bearing.radius, bearing.length, n_theta, n_z, modes)
+    if comp is None and lubricant is None:
+        start = None                  # the rigid isoviscous film: nothing to iterate
+    return solve_reynolds(bearing, state, n_theta, n_z, "P1", "reynolds", lubricant=lubricant,
+                          bush=comp, roughness=roughness, start=start)
+
+
+def total_force(sol: FilmSolution) -> tuple:
+    """(F_r, F_t) [N]: the film's force plus the asperities' (zero without roughness)."""
+    f, c = sol.force_local, sol.asperity_force_local
+    return float(f[0] + c[0]), float(f[1] + c[1])
+
+
+@dataclass(frozen=True, eq=False)
+class KeptFilm:
+    """What a full EHD solve leaves the film, on the film grid in the bush's frame: the
+    deflection over the clearance w/c and the pressure p [Pa], each (n_theta, n_z + 1) at
+    inertial angles ``alpha0`` + 2 pi j / n_theta and zeta = -h + 2 h k / n_z, ``half_width``
+    h = L/(2R)."""
+
+    alpha0: float
+    deflection: np.ndarray
+    pressure: np.ndarray
+    half_width: float
+
+    def at(self, grid: np.ndarray, alpha: np.ndarray, zeta: np.ndarray) -> np.ndarray:
+        """Bilinear, periodic in alpha, values of a kept ``grid`` at (alpha, zeta) (exact
+        at the grid's nodes)."""
+        n, m = grid.shape
+        u = np.mod(alpha - self.alpha0, 2 * np.pi) / (2 * np.pi) * n
+        v = np.clip((zeta + self.half_width) / (2 * self.half_width) * (m - 1), 0, m - 1)
+        j, k = np.floor(u).astype(int), np.minimum(np.floor(v).astype(int), m - 2)
+        a, b = u - j, v - k
+        j0, j1 = j % n, (j + 1) % n
+        return ((1 - a) * ((1 - b) * grid[j0, k] + b * grid[j0, k + 1])
+                + a * ((1 - b) * grid[j1, k] + b * grid[j1, k + 1]))
+
+    def fields(self, bearing: Bearing, state: JournalState, op, lubricant) -> FilmFields:
+        """The film's fields at ``state`` on the film operator ``op`` at its quadrature
+        points: the rigid gap plus the kept deflection, and the lubricant's ratios at the
+        kept pressure, both read at the mesh nodes (moved to the film angle of ``state``)
+        and interpolated by the elements as the EHD film does: at the state of the solve
+        they are that solve's fields."""
+        alpha = inertial_from_theta(op.mesh.theta, state.gamma)
+        w = op.at_quadrature(self.at(self.deflection, alpha, op.mesh.zeta))
+        gap = film_thickness(op.qp_theta, state.eps) + w
+        if lubricant is None:
+            return FilmFields(gap=gap)
+        p = op.at_quadrature(self.at(self.pressure, alpha, op.mesh.zeta))
+        return FilmFields(gap=gap, viscosity=lubricant.viscosity_at(p) / bearing.viscosity,
+                          density=lubricant.density_at(p))
+
+
+def kept_film(bearing: Bearing, state: JournalState, sol: FilmSolution, n_theta: int,
+              n_z: int) -> KeptFilm:
+    """The deflection and pressure of the EHD solution ``sol`` at ``state`` on the film
+    grid (its mesh is the periodic whole-length one: nodes at theta = 2 pi j / n_theta)."""
+    theta, zeta = np.asarray(sol.theta), np.asarray(sol.z) / bearing.radius
+    lam = bearing.length / (2 * bearing.radius)
+    j = np.rint(theta / (2 * np.pi / n_theta)).astype(int) % n_theta
+    k = np.rint((zeta + lam) / (2 * lam) * n_z).astype(int)
+    p = np.asarray(sol.pressure)
+    w = np.zeros_like(p) if sol.deformation is None else np.asarray(sol.deformation)
+    grids = []
+    for values in (w / bearing.clearance, p):
+        g = np.empty((n_theta, n_z + 1))
+        g[j, k] = values
+        grids.append(g)
+    return KeptFilm(float(inertial_from_theta(0.0, state.gamma)), *grids, half_width=lam)
+
+
+@dataclass(frozen=True)
+class EHDSnapshot:
+    """What a :class:`TransientEHD` keeps (see :meth:`TransientEHD.snapshot`)."""
+
+    t: float
+    kept: KeptFilm
+    solution: FilmSolution
+    jump: tuple
+    fade: float
+    steps: int
+
+
+class TransientEHD:
+    """The "fem-ehd" model along one integration (see the module docstring).
+
+    Parameters
+    ----------
+    bearing : the bearing
+    lubricant, bush, roughness, n_theta, n_z, modes : the film (:func:`ehd_solution`)
+    film_step : [s] time between full EHD solves (0: one at every accepted step)
+    """
+
+    memory = True
+
+    def __init__(self, bearing: Bearing, lubricant=None, bush=None, roughness=None,
+                 n_theta: int = 48, n_z: int = 8, modes: int = 0, film_step: float = 0.0):
+        check_ehd_model(bush, roughness)
+        self.bearing = bearing
+        self._film = dict(lubricant=lubricant, bush=bush, roughness=roughness,
+                          n_theta=n_theta, n_z=n_z, modes=modes)
+        self.film_step = float(film_step)
+        self.steps = 0
+        self._kept: KeptFilm | None = None
+        self._solution: FilmSolution | None = None
+        self.t, self._jump, self._fade = 0.0, (0.0, 0.0), 1.0
+        self._active = None          # the last trial solve's cavitated set (a warm start)
+
+    def _solve(self, state: JournalState) -> FilmSolution:
+        return ehd_solution(self.bearing, state, start=self._solution, **self._film)
+
+    def _keep(self, state: JournalState, sol: FilmSolution) -> KeptFilm:
+        return kept_film(self.bearing, state, sol, self._film["n_theta"], self._film["n_z"])
+
+    def start(self, state: JournalState, t: float) -> None:
+        """Begin with the full EHD film at ``state``, time ``t`` [s] (a cold solve)."""
+        self._solution = None
+        self._solution = self._solve(state)
+        self._kept = self._keep(state, self._solution)
+        self.t, self._jump, self._fade, self.steps = float(t), (0.0, 0.0), 1.0, 0
+
+    def kept_force(self, state: JournalState, kept: KeptFilm | None = None) -> tuple:
+        """(F_r, F_t) [N]: the Reynolds film (Swift-Stieber) at ``state`` on the kept
+        fields, plus the asperities' force with roughness. The light path of the
+        integrator's trial states: the film's system, its pressure (active set started
+        from the last call's cavitated set: the same answer to the solver's tolerance)
+        and force, no other outputs."""
+        from ..fe.assembly import fe_operator
+        from ..fe.general import film_system
+        from ..fe.mixed import film_contact
+        from ..fe.reynolds import fe_pressure
+        from ..scales import force_factor
+        f = self._film
+        op = fe_operator(self.bearing, state, f["n_theta"], f["n_z"], "P1", None, False)
+        fields = (kept or self._kept).fields(self.bearing, state, op, f["lubricant"])
+        if not np.all(fields.gap > 0.0):
+            raise ValueError(f"the kept deflection does not open the gap at eps {state.eps} "
+                             "(the journal passed the deflected bush): reduce film_step")
+        fields = FilmFields(gap=fields.gap, gap_rate=state.eps_dot * np.cos(op.qp_theta),
+                            viscosity=np.broadcast_to(fields.viscosity, op.qp_theta.shape),
+                            density=np.broadcast_to(fields.density, op.qp_theta.shape),
+                            density_rate=np.zeros_like(op.qp_theta))
+        active = self._active if (self._active is not None
+                                  and self._active.shape == (op.mesh.ndofs,)
+                                  and self._active.any()) else None
+        res = fe_pressure(op, state, "reynolds", active0=active,
+                          system=film_system(op, fields, state.wedge_speed))
+        self._active = res.active
+        ic, is_ = op.force_integrals(res.pressure)
+        k = force_factor(self.bearing, False)
+        force = (k * float(ic), k * float(is_))
+        if f["roughness"] is None:
+            return force
+        c = film_contact(self.bearing, state, op, f["roughness"], fields.gap).force_local
+        return force[0] + c[0], force[1] + c[1]
+
+    def force(self, state: JournalState, t: float) -> tuple:
+        """(F_r, F_t) [N] at a trial ``state`` and time ``t``; keeps nothing (a film not
+        started yet starts here)."""
+        if self._kept is None:
+            self.start(state, t)
+        f = self.kept_force(state)
+        x = min(max((float(t) - self.t) / self._fade, 0.0), 1.0)
+        left = 1.0 - x * x * (3.0 - 2.0 * x)
+        return (f[0] + left * self._jump[0], f[1] + left * self._jump[1])
+
+    def commit(self, state: JournalState, t: float) -> FilmStep | None:
+        """A full EHD solve at the accepted ``state`` once ``film_step`` has passed since the
+        last one (None otherwise); a failed solve raises and keeps the film as it was."""
+        if self._kept is None:
+            self.start(state, t)
+        t = float(t)
+        if t < self.t:
+            raise ValueError(f"t = {t!r} s is before the last film step ({self.t!r} s): "
+                             "restore a snapshot to go back")
+        dt = t - self.t
+        if dt <= 1e-12 * max(abs(self.t), 1e-3) or dt <= self.film_step:
+            return None
+        before = self.force(state, t)
+        sol = self._solve(state)                # raises ConvergenceError before any change
+        kept = self._keep(state, sol)
+        after = self.kept_force(state, kept)
+        self._kept, self._solution = kept, sol
+        self._jump = (before[0] - after[0], before[1] - after[1])
+        self._fade = max(self.film_step, dt)
+        self.t = t
+        self.steps += 1
+        return FilmStep(t, state, total_force(sol), sol)
+
+    def snapshot(self) -> EHDSnapshot:
+        return EHDSnapshot(self.t, self._kept, self._solution, self._jump, self._fade,
+                           self.steps)
+
+    def restore(self, snapshot: EHDSnapshot) -> None:
+        self.t, self._kept, self._solution = snapshot.t, snapshot.kept, snapshot.solution
+        self._jump, self._fade, self.steps = snapshot.jump, snapshot.fade, snapshot.steps
+
+    def replay(self, start: tuple, steps):
+        """The film steps of a run taken again from ``start`` = (t, JournalState) and the
+        (t, JournalState) of its committed steps; yields (t, FilmSolution) per step (the
+        same solves, warm from the same previous solutions)."""
+        t0, s0 = start
+        self.start(s0, t0)
+        for t, state in steps:
+            self._solution = self._solve(state)
+            self._kept = self._keep(state, self._solution)
+            self.t = float(t)
+            self.steps += 1
+            yield self.t, self._solution
+

@@ -1,0 +1,95 @@
+"""The EHD-coupled seed pin run against the rigid JFO- and Reynolds-coupled runs: cost,
+and the EHD run's film-step, modes and mesh convergence.
+
+    python -m benchmarks.ehd_run [--speed 100] [--turns 0.25] [--mesh 48 4]
+
+The seed's slider-crank with the ``paper-short-ehd`` film (ring bronze bush, Barus oil)
+at crank speed ``--speed`` [rad/s]: at the seed's 250 rad/s the EHD run does not start
+(docs/ehd.md: the joint load needs the pin centre past the rigid clearance circle, which
+the mechanism does not allow yet). Every run covers ``--turns`` from top dead centre, on
+one machine in one process: "x JFO" is the wall time over the rigid JFO run's on the same
+mesh (run once per mesh). The EHD rows vary one of film step, modes and mesh from the base row; "d_orbit" is
+the largest distance [um] of the orbit from the base row's finer neighbour (the last row of
+its group), over the saved samples.
+"""
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import time
+
+import numpy as np
+
+from mechanism import load_scene, simulate
+from mechanism.result import film_column
+
+
+def scene(name, speed, turns, **options):
+    sc = load_scene(name)
+    lub = dataclasses.replace(sc.lubrication, options=dict(sc.lubrication.options, **options))
+    return dataclasses.replace(sc, lubrication=lub, crank_speed=speed,
+                               run=dataclasses.replace(sc.run, turns=turns,
+                                                       record_from_turn=0.0))
+
+
+def timed_run(sc):
+    t = time.perf_counter()
+    r = simulate(sc, progress=False)
+    return r, time.perf_counter() - t
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--speed", type=float, default=100.0)
+    ap.add_argument("--turns", type=float, default=0.25)
+    ap.add_argument("--mesh", type=int, nargs=2, default=(48, 4))
+    a = ap.parse_args(argv)
+    nt, nz = a.mesh
+    base = dict(n_theta=nt, n_z=nz, modes=32, film_step=1e-4)
+    r_jfo, t_jfo = timed_run(scene("paper-short-jfo", a.speed, a.turns, n_theta=nt, n_z=nz))
+    r_rey, t_rey = timed_run(scene("paper-short-fem", a.speed, a.turns, n_theta=nt, n_z=nz,
+                                   cavitation="reynolds"))
+    print(f"seed pin at {a.speed:g} rad/s, {a.turns:g} turn(s): rigid JFO {t_jfo:.1f} s "
+          f"({r_jfo.stats['steps']} steps), rigid Reynolds {t_rey:.1f} s "
+          f"({r_rey.stats['steps']} steps), {nt} x {nz}")
+    groups = {"film step [s]": ("film_step", (2e-4, 1e-4, 5e-5)),
+              "modes": ("modes", (16, 32, 64)),
+              "mesh": ("n_theta", (nt, 2 * nt))}
+    print(f"{'varied':>14} {'value':>8} {'wall[s]':>8} {'x JFO':>6} {'steps':>6} "
+          f"{'EHD solves':>10} {'peak eps':>9} {'p_max[MPa]':>11} {'d_orbit[um]':>11}")
+    rows, cache, jfo_time = [], {}, {(nt, nz): t_jfo}
+    for label, (key, values) in groups.items():
+        runs = []
+        for v in values:
+            opts = dict(base, **{key: v})
+            if key == "n_theta":     # the mesh: both directions
+                opts["n_z"] = nz * v // nt
+            k = tuple(sorted(opts.items()))
+            if k not in cache:
+                cache[k] = timed_run(scene("paper-short-ehd", a.speed, a.turns, **opts))
+            runs.append((v, *cache[k]))
+        ref = runs[-1][1]
+        for v, r, t in runs:
+            mesh = (v, nz * v // nt) if key == "n_theta" else (nt, nz)
+            if mesh not in jfo_time:
+                jfo_time[mesh] = timed_run(scene("paper-short-jfo", a.speed, a.turns,
+                                                 n_theta=mesh[0], n_z=mesh[1]))[1]
+            t_ref = jfo_time[mesh]
+            d = (np.max(np.hypot(np.interp(ref.t, r.t, r.e_x) - ref.e_x,
+                                 np.interp(ref.t, r.t, r.e_y) - ref.e_y))
+                 if not r.partial and not ref.partial else float("nan"))
+            rec = r.film_record
+            p = float(np.nanmax(film_column(rec, "pressure_max"))) if len(rec) else np.nan
+            row = dict(varied=label, value=v, wall=t, ratio=t / t_ref,
+                       steps=r.stats["steps"], ehd_solves=r.stats["film_steps"],
+                       peak_eps=float(r.eps.max()) if len(r.t) else np.nan,
+                       pressure_max=p, d_orbit=d, completed=not r.partial)
+            rows.append(row)
+            print(f"{label:>14} {v:8.3g} {t:8.1f} {t / t_ref:6.1f} {row['steps']:6d} "
+                  f"{row['ehd_solves']:10d} {row['peak_eps']:9.4f} {p / 1e6:11.1f} "
+                  f"{1e6 * d:11.4f}" + ("" if not r.partial else f"  ({r.message})"))
+    return rows
+
+
+if __name__ == "__main__":
+    main()

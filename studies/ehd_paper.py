@@ -1,0 +1,140 @@
+"""Rigid Reynolds, rigid JFO and EHD films side by side for the seed's piston pin.
+
+    python -m studies.ehd_paper -o results/ehd_paper [--turns 5] [--mesh 192 8] [--speed 250]
+
+Runs ``paper-short-fem`` under Reynolds' condition (rigid Reynolds), ``paper-short-jfo``
+(rigid, mass-conserving) and ``paper-short-ehd`` (elastic bronze bush, piezoviscous oil,
+Reynolds' condition: the EHD film is Reynolds-family, an EHD-JFO film is not built yet),
+each over ``--turns`` (the last one recorded; shorter than the scenes' five when the machine
+allows less) on the same mesh, at crank speed ``--speed`` [rad/s] (the seed's 250: the EHD
+run stops at the wall there, docs/ehd.md; 100 runs). Prints one line per film: peak eccentricity, minimum film,
+peak film pressure (at the film steps of a film with memory, at 72 instants otherwise),
+asperity load share (zero: no scene here has roughness; the EHD film refuses roughness with
+a bush), friction power, crank speed range, peak slider acceleration, wall time and cost
+per turn; a run that stopped says where and why. Writes ``ehd_paper.csv`` and renders the
+bush's deflection and the film pressure at the EHD run's peak film force (its film step
+there, up to where it stopped) to
+``docs/img/ehd_deflection.png`` (``--figure`` elsewhere).
+"""
+from __future__ import annotations
+
+import argparse
+import dataclasses
+from pathlib import Path
+
+import numpy as np
+
+from bearingfem import JournalState
+from bearingfem.ehd.transient import ehd_solution
+from bearingfem.outputs.tables import write_csv
+from mechanism import load_scene, simulate
+from mechanism.film_history import film_history
+from mechanism.result import film_column
+
+from .jfo_paper import friction_power
+
+
+def scenes(turns: float, n_theta: int, n_z: int, speed: float = 250.0):
+    """The three scenes on one mesh, ``turns`` long, the last turn recorded, at crank
+    speed ``speed`` [rad/s]."""
+    out = []
+    for name, extra in (("paper-short-fem", dict(cavitation="reynolds")),
+                        ("paper-short-jfo", {}), ("paper-short-ehd", {})):
+        sc = load_scene(name)
+        lub = dataclasses.replace(sc.lubrication, options=dict(
+            sc.lubrication.options, n_theta=n_theta, n_z=n_z, **extra))
+        out.append(dataclasses.replace(sc, lubrication=lub, crank_speed=speed,
+                                       run=dataclasses.replace(
+            sc.run, turns=turns, record_from_turn=max(0.0, turns - 1.0))))
+    return out
+
+
+def row(label, sc, r, turns):
+    """The film's line: orbit and film numbers over the recorded samples."""
+    out = dict(film=label, completed=not r.partial, message="" if not r.partial else r.message,
+               wall_time_s=r.stats["wall_time"], cost_per_turn_s=r.stats["wall_time"] / turns)
+    if len(r.t) < 3:
+        return out
+    frames = film_history(r, sc, n_frames=72) if not r.partial else []
+    rec = r.film_record
+    p_max = (np.nanmax(film_column(rec, "pressure_max")) if len(rec) else
+             max(f.solution.pressure_max for f in frames))
+    out.update(peak_eps=float(r.eps.max()), film_min_um=1e6 * float(r.film_min.min()),
+               peak_pressure_MPa=float(p_max) / 1e6, asperity_share=0.0,
+               friction_power_W=(friction_power(r, frames, sc.bearing.radius) if frames
+                                 else float("nan")),
+               crank_speed_min=float(r.crank_speed.min()),
+               crank_speed_max=float(r.crank_speed.max()),
+               peak_slider_acc=float(np.max(np.abs(r.slider_acceleration))))
+    return out
+
+
+def render_deflection(sc, state: JournalState, path: Path):
+    """The EHD film at ``state`` (bush deflection and film pressure over the unwrapped
+    film) to ``path``; returns the solution."""
+    import matplotlib.pyplot as plt
+    o = sc.lubrication.options
+    sol = ehd_solution(sc.bearing, state, o["lubricant"], o["bush"], None, o["n_theta"],
+                       o["n_z"], o["modes"])
+    theta, z = np.degrees(np.asarray(sol.theta)), 1e3 * np.asarray(sol.z)
+    fig, ax = plt.subplots(2, 1, figsize=(7, 5), sharex=True)
+    for a, v, label in ((ax[0], 1e6 * sol.deformation, "bush deflection w [um]"),
+                        (ax[1], sol.pressure / 1e6, "film pressure [MPa]")):
+        c = a.tricontourf(theta, z, v, levels=20)
+        fig.colorbar(c, ax=a, label=label)
+        a.set_ylabel("z [mm]")
+    ax[1].set_xlabel("film angle from the largest gap [deg]")
+    ax[0].set_title(f"seed pin, EHD film at the peak joint load (eps {state.eps:.4f})")
+    fig.tight_layout()
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return sol
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("-o", "--output", default="results/ehd_paper")
+    ap.add_argument("--turns", type=float, default=5.0)
+    ap.add_argument("--mesh", type=int, nargs=2, default=(192, 8))
+    ap.add_argument("--speed", type=float, default=250.0)
+    ap.add_argument("--figure", default="docs/img/ehd_deflection.png")
+    a = ap.parse_args(argv)
+    out = Path(a.output)
+    out.mkdir(parents=True, exist_ok=True)
+    labels = ("rigid, Reynolds' condition", "rigid, JFO", "EHD (bronze bush, Barus oil)")
+    runs = [(lab, sc, simulate(sc, progress=False))
+            for lab, sc in zip(labels, scenes(a.turns, *a.mesh, a.speed))]
+    rows = [row(lab, sc, r, a.turns) for lab, sc, r in runs]
+    keys = ("peak_eps", "film_min_um", "peak_pressure_MPa", "asperity_share",
+            "friction_power_W", "crank_speed_min", "crank_speed_max", "peak_slider_acc",
+            "wall_time_s", "cost_per_turn_s")
+    print("| film | " + " | ".join(keys) + " |")
+    print("|---" * (len(keys) + 1) + "|")
+    for w in rows:
+        print(f"| {w['film']} | " + " | ".join(
+            f"{w[k]:.4g}" if k in w else "-" for k in keys) + " |")
+        if w["message"]:
+            print(f"  ({w['film']} stopped: {w['message']})")
+    write_csv(rows, out / "ehd_paper.csv")
+    # the peak joint load of the EHD run (its film steps; up to where it stopped), or the
+    # rigid Reynolds run's eccentricity at its peak if the EHD run took no film step
+    _, sc_ehd, r_ehd = runs[2]
+    rec = r_ehd.film_record
+    if len(rec):
+        j = int(np.argmax(np.hypot(film_column(rec, "force_x"), film_column(rec, "force_y"))))
+        state = JournalState(**{n: float(film_column(rec, n)[j])
+                                for n in ("eps", "eps_dot", "gamma", "gamma_dot", "omega")})
+    else:
+        r = runs[0][2]
+        i = int(np.argmax(np.hypot(r.force_x, r.force_y)))
+        state = JournalState(eps=min(float(r.eps[i]), 0.995), gamma=0.0, omega=a.speed)
+    sol = render_deflection(sc_ehd, state, Path(a.figure))
+    print(f"deflection at the peak load (eps {state.eps:.4f}): max "
+          f"{1e6 * np.max(sol.deformation):.3f} um, peak pressure "
+          f"{sol.pressure_max / 1e6:.1f} MPa -> {a.figure}")
+    return rows
+
+
+if __name__ == "__main__":
+    main()
