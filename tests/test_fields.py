@@ -84,10 +84,11 @@ def test_bad_fields_raise(kwargs, match):
         solve_reynolds(B, S, 16, 4, fields=FilmFields(**kwargs))
 
 
-def test_fields_refuse_jfo():
-    with pytest.raises(ValueError, match="cavitation"):
-        solve_reynolds(B, S, 16, 4, cavitation="jfo", ambient_pressure=1e5,
-                       fields=FilmFields())
+def test_fields_with_jfo_need_p1():
+    """The JFO film takes fields on P1 (its control volumes); P2 is refused by name."""
+    with pytest.raises(ValueError, match="element"):
+        solve_reynolds(B, S, 16, 4, "P2", cavitation="jfo", ambient_pressure=1e5,
+                       fields=FilmFields(viscosity=2.0))
 
 
 def test_fields_benchmark_smoke(capsys):
