@@ -30,8 +30,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+import scipy.sparse as sp
 
-from ..bearing import Bearing, JournalState, check_positive
+from ..bearing import Bearing, JournalState, check_finite, check_positive
 from ..errors import ConvergenceError
 from ..validation import check_film_solve, check_grooves, check_jfo_supply
 from ..film import film_thickness
@@ -41,7 +42,8 @@ from ..solvers.cavitation import active_set
 from ..solvers.linsolve import principal_block
 from ..solvers.jfo import JFOResult
 from .assembly import FilmOperator, fe_operator
-from .general import film_moment
+from .general import film_moment, film_system, general_film
+from .jfo_fields import FilmSpec, balance_films
 from .jfo_balance import (BalanceSolve, FilmAdvance, JFOFlows, _between, _boundary_values,
                           _content, _cos_integral, _prolongation, _solve, _step_balance,
                           _transport, film_volumes)
@@ -167,6 +169,15 @@ class JFOFilm:
     fraction : the film fraction at the start, a number or one value per node (1: full)
     ambient_pressure : pressure of the oil at the axial ends (and a supply line) above
         the cavitation pressure [Pa]; > 0 lets a cavity draw oil in from the ends
+    fields : the film's :class:`~bearingfem.fields.FilmFields` (gap, viscosity, density),
+        or a function (state, t) -> FilmFields of the journal state and the time t [s];
+        None: the rigid cylinder (:mod:`bearingfem.fe.jfo_fields`)
+    tilt, tilt_rate : the journal's tilt (tilt_x, tilt_y) [rad] and its rate [rad/s]
+        (:func:`~bearingfem.fields.tilted_gap`), each a pair or a function t -> pair
+    time : the time of the start [s] (the clock of ``fields`` and ``tilt``)
+
+    With fields or a tilt the whole length is meshed and the film's ``moment`` reported;
+    without them the film is the rigid cylinder's, on the fast path.
 
     ``step(state, dt)`` advances by dt [s] to the new journal state and keeps the result;
     ``trial(state, dt)`` computes the same step from the kept state without keeping it
@@ -176,24 +187,26 @@ class JFOFilm:
 
     def __init__(self, bearing: Bearing, state: JournalState, n_theta: int = 96,
                  n_z: int = 16, *, grooves=(), supply_angle=None, half: bool = True,
-                 fraction=1.0, ambient_pressure: float = 0.0):
+                 fraction=1.0, ambient_pressure: float = 0.0, fields=None,
+                 tilt=(0.0, 0.0), tilt_rate=(0.0, 0.0), time: float = 0.0):
         n_theta, n_z, supply_angle = check_film_solve(bearing, state, n_theta, n_z, "jfo",
                                                       "active-set", supply_angle)
         self.grooves = check_grooves(grooves, supply_angle, mass_conserving=True)
         self.ambient_pressure = check_jfo_supply("jfo", self.grooves, supply_angle,
                                                  ambient_pressure)
+        self._film_spec = FilmSpec.checked(fields, tilt, tilt_rate)
         self.bearing = bearing
+        half = half and self._film_spec is None
         self._operator = lambda s: fe_operator(bearing, s, n_theta, n_z, "P1", supply_angle,
                                                half, self.grooves)
         op = self._operator(state)
-        cv = film_volumes(op.mesh)
+        self.time = check_finite("time", time)
         phi = np.broadcast_to(np.asarray(fraction, float), (op.mesh.ndofs,)).copy()
         if not np.all((phi >= 0.0) & (phi <= 1.0)):
             raise ValueError("fraction must lie in [0, 1] (one number or one per node)")
-        self.time = 0.0
         self.state = state
         self.fraction = phi
-        self.content = phi * _content(cv, state.eps)     # dimensionless, per volume
+        self.content = phi * self._full_content(op, state, self.time)   # per volume
         self.cavitated = phi < 1.0
         self.solution: FilmSolution | None = None
         self.steps = 0
@@ -224,11 +237,27 @@ class JFOFilm:
         """How far the line of centres has turned since the kept step [rad], in [-pi, pi)."""
         return float(np.mod(state.gamma - self.state.gamma + np.pi, 2.0 * np.pi) - np.pi)
 
-    def refilled(self, state: JournalState) -> bool:
-        """Whether the gap at ``state`` has closed on the content of a kept cavity (the
-        kept film would hold it at zero pressure where the oil now fills the gap)."""
-        cv = film_volumes(self._operator(state).mesh)
-        return bool(np.any(self.cavitated & (self.content >= _content(cv, state.eps))))
+    def _films(self, state: JournalState, time: float):
+        """The function op -> BalanceFilm of the fields at ``state`` and ``time``, or None
+        for the rigid cylinder."""
+        if self._film_spec is None:
+            return None
+        spec, tilt, rate = self._film_spec.at(state, time)
+        return balance_films(self.bearing, state, self._operator(state), spec, tilt, rate)
+
+    def _full_content(self, op: FilmOperator, state: JournalState, time: float):
+        """The content of the full film per volume at ``state`` and ``time``."""
+        films = self._films(state, time)
+        return _content(film_volumes(op.mesh), state.eps) if films is None else \
+            films(op).content
+
+    def refilled(self, state: JournalState, time: float | None = None) -> bool:
+        """Whether the gap at ``state`` (at ``time`` [s], default the kept time) has closed
+        on the content of a kept cavity (the kept film would hold it at zero pressure
+        where the oil now fills the gap)."""
+        full = self._full_content(self._operator(state), state,
+                                  self.time if time is None else time)
+        return bool(np.any(self.cavitated & (self.content >= full)))
 
     def turned(self, state: JournalState) -> bool:
         """Whether a periodic mesh (it starts at the line of centres) has turned by more
@@ -236,7 +265,8 @@ class JFOFilm:
         cv = film_volumes(self._operator(state).mesh)
         return bool(cv.periodic and abs(self._turn(state)) > np.pi / cv.n_columns)
 
-    def instant(self, state: JournalState, warm: np.ndarray | None = None):
+    def instant(self, state: JournalState, warm: np.ndarray | None = None,
+                time: float | None = None):
         """The film at ``state`` with the kept film, before any content moves: the volumes
         full at the kept step carry the Reynolds film of this instant's motion (Reynolds'
         condition is exact at rupture), the others stay cavities at zero pressure, the set
@@ -244,15 +274,22 @@ class JFOFilm:
         :meth:`step` moves it. What a time integrator sees between accepted steps: a
         function of the state with no jumps (a set that followed the carried content
         between steps would switch volumes one by one as the journal moves, each a jump of
-        the force). Returns ((F_r, F_t) [N], cavitated set on all nodes, for ``warm`` of
-        the next call)."""
+        the force). ``time`` [s]: of the fields and tilt (default the kept time). Returns
+        ((F_r, F_t) [N], cavitated set on all nodes, for ``warm`` of the next call)."""
         op = self._operator(state)
         full = ~self.cavitated
         mesh = op.mesh
         # held values on the fixed nodes, zero on the free ones
         P, _ = _boundary_values(self.bearing, mesh, self.grooves, self.ambient_pressure)
-        K = op.stiffness(state.eps)
-        load = op.load(state.eps, state.eps_dot, state.wedge_speed) - K @ P
+        if self._film_spec is None:
+            K = op.stiffness(state.eps)
+            load = op.load(state.eps, state.eps_dot, state.wedge_speed)
+        else:           # the Reynolds film of the fields at this instant
+            spec, tilt, rate = self._film_spec.at(state, self.time if time is None else time)
+            values, load = film_system(op, general_film(self.bearing, state, op, spec, tilt,
+                                                        rate)[0], state.wedge_speed, state.eps)
+            K = sp.csr_matrix((values, op.indices, op.indptr), shape=op.shape)
+        load = load - K @ P
         keep = mesh.free[full[mesh.free]]
         if len(keep) and np.any(load[keep]):
             a0 = None if warm is None else warm[keep]
@@ -270,12 +307,13 @@ class JFOFilm:
         cv = film_volumes(op.mesh)
         old, = self._carried(cv, state, self.content)
         return _step_balance(self.bearing, op, state, dt, old, self.cavitated, self.grooves,
-                             self.ambient_pressure)
+                             self.ambient_pressure, self._films(state, self.time + dt))
 
-    def _solution(self, state: JournalState, a: FilmAdvance) -> FilmSolution:
+    def _solution(self, state: JournalState, a: FilmAdvance, dt: float) -> FilmSolution:
         b = a.solve
+        films = self._films(state, self.time + dt)
         return _film_solution(self.bearing, state, a.op, b.P, b.phi, b.result, b.flows,
-                              "fem-P1/jfo")
+                              "fem-P1/jfo", None if films is None else films(a.op))
 
     def _where(self, state: JournalState, dt: float) -> str:
         return (f"JFO film step {self.steps + 1} to t = {self.time + dt:.6g} s "
@@ -289,7 +327,7 @@ class JFOFilm:
             a = self._advance(state, dt)
         except ConvergenceError as e:
             raise e.at(self._where(state, dt)) from None
-        return self._solution(state, a)
+        return self._solution(state, a, dt)
 
     def step(self, state: JournalState, dt: float) -> FilmSolution:
         """Advance to ``state`` after ``dt`` [s] and keep the new film. A step whose
@@ -323,7 +361,7 @@ class JFOFilm:
 
     def _keep(self, state: JournalState, dt: float) -> FilmSolution:
         a = self._advance(state, dt)
-        sol = self._solution(state, a)
+        sol = self._solution(state, a, dt)
         self.time += dt
         self.state, self.fraction, self.content = state, a.solve.phi, a.content
         self.cavitated = _cavitated_nodes(a.op, a.solve.result)

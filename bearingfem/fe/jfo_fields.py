@@ -27,7 +27,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from ..bearing import Bearing, JournalState
-from ..fields import FilmFields, tilted_gap
+from ..fields import FilmFields, check_tilt, tilted_gap
 from ..film import film_thickness
 from .assembly import FilmOperator
 from .general import film_system, general_film
@@ -35,8 +35,8 @@ from .jfo_balance import _content, _cos_integral, film_volumes
 from .multilevel import prolongation
 from .volumes import ControlVolumes, transport_matrix
 
-__all__ = ["BalanceFilm", "rigid_balance_film", "field_balance_film", "balance_films",
-           "GAUSS"]
+__all__ = ["BalanceFilm", "FilmSpec", "rigid_balance_film", "field_balance_film",
+           "balance_films", "GAUSS"]
 
 #: Gauss points on each half of a control volume, per direction.
 GAUSS = 3
@@ -185,3 +185,39 @@ def balance_films(bearing: Bearing, state: JournalState, fine: FilmOperator,
         return films[op]
     film(fine)
     return film
+
+
+@dataclass(frozen=True)
+class FilmSpec:
+    """What a transient film on fields is given: ``fields`` (a FilmFields, a function
+    (state, t) -> FilmFields or None), ``tilt`` and ``tilt_rate`` (pairs [rad], [rad/s],
+    or functions t -> pair), t the time [s]."""
+
+    fields: object
+    tilt: object
+    tilt_rate: object
+
+    @classmethod
+    def checked(cls, fields, tilt, tilt_rate) -> "FilmSpec | None":
+        """The spec, or None for the rigid cylinder (no fields, no tilt); ValueError
+        naming a bad argument."""
+        if fields is not None and not (isinstance(fields, FilmFields) or callable(fields)):
+            raise ValueError("fields must be a FilmFields or a function (state, t) -> "
+                             f"FilmFields, got {type(fields).__name__}")
+        pairs = {}
+        for name, v in (("tilt", tilt), ("tilt_rate", tilt_rate)):
+            pairs[name] = v if callable(v) else check_tilt(name, v)
+        if fields is None and not any(callable(v) or any(v) for v in pairs.values()):
+            return None
+        return cls(fields, pairs["tilt"], pairs["tilt_rate"])
+
+    def at(self, state: JournalState, t: float):
+        """(FilmFields or None, tilt, tilt_rate) at ``state`` and time ``t`` [s]."""
+        spec = self.fields(state, t) if callable(self.fields) else self.fields
+        if spec is not None and not isinstance(spec, FilmFields):
+            raise ValueError(f"fields(state, t) must return a FilmFields, got "
+                             f"{type(spec).__name__}")
+        tilt = check_tilt("tilt", self.tilt(t)) if callable(self.tilt) else self.tilt
+        rate = (check_tilt("tilt_rate", self.tilt_rate(t)) if callable(self.tilt_rate)
+                else self.tilt_rate)
+        return spec, tilt, rate
