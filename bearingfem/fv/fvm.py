@@ -132,13 +132,15 @@ def _conductance_matrix(g: FVMGrid, cE, cW, cN, cS) -> sp.csr_matrix:
     return sp.csr_matrix((vals[g.order], g.indices, g.indptr), shape=(g.n, g.n))
 
 
-def _assemble_gap(g: FVMGrid, gap, gap_rate, w: float):
+def _assemble_gap(g: FVMGrid, gap, gap_rate, w: float, eps_dot: float = 0.0):
     """Matrix and right-hand side of the balance on a gap field: ``gap(theta, zeta)`` and
     ``gap_rate(theta, zeta)`` [1/s] (functions, evaluated on the faces and centres).
 
     Face conductances H^3 at the faces; the Couette flux 6 w H dzeta through the theta
     faces (its difference is the cell's integral of -6 w dH/dtheta, exact in theta); the
-    squeeze -12 dH/dt at the centre times the cell area (midpoint rule)."""
+    squeeze -12 dH/dt: the rigid cylinder's part eps_dot cos(theta) integrated exactly
+    (as :func:`_assemble`), the rest at the centre times the cell area (midpoint rule),
+    so the rigid gap given as a field is the rigid balance to round-off."""
     TC, ZC = np.meshgrid(g.theta_c, g.zeta_c, indexing="ij")
     half = 0.5 * g.dzeta
     He = gap(TC + 0.5 * g.dtheta, ZC)
@@ -147,9 +149,18 @@ def _assemble_gap(g: FVMGrid, gap, gap_rate, w: float):
     cN = gap(TC, ZC + half) ** 3 * g.dtheta / g.dzeta
     cS = gap(TC, ZC - half) ** 3 * g.dtheta / g.dzeta
     A = _conductance_matrix(g, cE, cW, cN, cS)
-    rhs = -6.0 * w * (He - Hw) * g.dzeta - 12.0 * gap_rate(TC, ZC) * g.dtheta * g.dzeta
+    rhs = -6.0 * w * (He - Hw) * g.dzeta + _squeeze(g, gap_rate, eps_dot)
     ends = (2.0 * cN[:, -1], 2.0 * cS[:, 0])      # the end faces' conductances
     return A, rhs.ravel(), ends
+
+
+def _squeeze(g: FVMGrid, gap_rate, eps_dot: float) -> np.ndarray:
+    """-12 times each cell's integral of dH/dt (n_theta x n_z): eps_dot cos(theta)
+    exactly, the rest by the midpoint rule."""
+    TC, ZC = np.meshgrid(g.theta_c, g.zeta_c, indexing="ij")
+    rigid = eps_dot * (np.sin(g.theta_f[1:]) - np.sin(g.theta_f[:-1])) * g.dzeta
+    rest = (gap_rate(TC, ZC) - eps_dot * np.cos(TC)) * g.dtheta * g.dzeta
+    return -12.0 * (rigid[:, None] + rest)
 
 
 def _pressure(g: FVMGrid, state: JournalState, cavitation: str, method="active-set",
@@ -216,7 +227,7 @@ def _jfo(bearing, g: FVMGrid, state, grooves, ambient, gap=None, rate=None):
         A, _, ends = _assemble_gap(g, gap, rate, 0.0)
         TC, ZC = np.meshgrid(g.theta_c, g.zeta_c, indexing="ij")
         He = gap(TC + 0.5 * g.dtheta, ZC)
-        storage = (12.0 * rate(TC, ZC) * g.dtheta * dz).ravel()
+        storage = -_squeeze(g, rate, state.eps_dot).ravel()
     # upwind transport across each cell's east face (periodic: the last one wraps;
     # with a supply line the last column's east face and the first's west face border it)
     f = 6.0 * state.wedge_speed * He * dz
@@ -305,7 +316,7 @@ def fvm_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z:
         def rate(t, z):
             return (state.eps_dot * np.cos(t)
                     + tilted_gap(bearing, state, t, z, tilt, tilt_rate)[1])
-        A, rhs, ends = _assemble_gap(g, gap, rate, state.wedge_speed)
+        A, rhs, ends = _assemble_gap(g, gap, rate, state.wedge_speed, state.eps_dot)
         system = (A, rhs)
     held = None
     if grooves:     # cells whose centres lie in a groove hold its pressure
