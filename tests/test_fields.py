@@ -99,5 +99,5 @@ def test_fields_benchmark_smoke(capsys):
     never asserted)."""
     from benchmarks import fields
     rows = fields.main(["--quick", "--repeat", "1"])
-    assert len(rows) == 4 and "general/fast" in capsys.readouterr().out
+    assert len(rows) == 6 and "general/fast" in capsys.readouterr().out
     assert all(r["gap"] < 1e-11 for r in rows)   # round-off (the rigid split)
