@@ -21,6 +21,10 @@ the nodes' control volumes (:mod:`bearingfem.fe.volumes`), which conserves mass 
   over the step the content then moves at omega/2 relative to the bearing. With grooves
   the mesh stays fixed in the bearing and nothing is carried.
 
+On gap, viscosity and density fields and with a tilted journal the balance takes its
+stiffness, contents, faces and squeeze from :mod:`bearingfem.fe.jfo_fields` (``film``
+arguments, a function op -> BalanceFilm); without them the rigid cylinder's fast path.
+
 Flows (per solve): what the grooves (or a supply line) feed, what leaves the axial ends
 and the rate of change of the content of the free volumes; their balance is the residual
 of the solve, so it holds to round-off.

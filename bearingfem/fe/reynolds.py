@@ -155,10 +155,11 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
     ambient_pressure : JFO films: pressure at the axial ends and a supply line above the
         cavitation pressure [Pa] (>= 0)
     fields : :class:`~bearingfem.fields.FilmFields`: gap, its rate, viscosity and density
-        fields of the film (Reynolds-family cavitation); None is the rigid cylinder
+        fields of the film (every cavitation model; JFO: :mod:`bearingfem.fe.jfo_fields`);
+        None is the rigid cylinder
     tilt : (tilt_x, tilt_y) [rad], the journal axis turned about the inertial x and y axes
         through the bearing centre (:func:`~bearingfem.fields.tilted_gap`); its gap is
-        added to the fields' (Reynolds-family cavitation)
+        added to the fields' (every cavitation model)
     tilt_rate : their rates [rad/s] (squeeze)
     lubricant : :class:`~bearingfem.lubricant.Lubricant` whose viscosity and density follow
         the pressure (ratios to the bearing's viscosity), or None (cavitation "none" or
@@ -206,16 +207,18 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
         def operator(nt, nz):
             return fe_operator(bearing, state, nt, nz, "P1", supply_angle,
                                half and not general, grooves)
-        film = None
+        film = contact_gap = None
         if general:
             fine = operator(n_theta, n_z)
             film = balance_films(bearing, state, fine, fields, tilt, tilt_rate)
-            if film(fine).fields.is_rigid(fine, state):   # bad fields raised above
+            contact_gap = film(fine).fields.gap            # bad fields raised above
+            if film(fine).fields.is_rigid(fine, state):
                 film = None                 # the rigid data takes the fast path
         sol = solve_jfo(bearing, state, operator, n_theta, n_z, grooves, ambient_pressure,
                         film)
         return sol if roughness is None else with_contact(
-            sol, film_contact(bearing, state, operator(n_theta, n_z), roughness))
+            sol, film_contact(bearing, state, operator(n_theta, n_z), roughness,
+                              contact_gap))
     op = fe_operator(bearing, state, n_theta, n_z, element, supply_angle,
                      half and not general, grooves)
     system = film = gap = None
