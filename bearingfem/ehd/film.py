@@ -42,7 +42,7 @@ def solve_ehd_film(bearing, state, op, base, gap0, lubricant, bush, cavitation, 
     zero = np.zeros(op.mesh.ndofs)
     start, _ = film.fields(zero, 0.0)          # the isoviscous rigid film (s = 0)
     rigid = fe_pressure(op, state, cavitation, method, tol, dirichlet=dirichlet,
-                        system=film_system(op, start, state.wedge_speed))
+                        system=film_system(op, start, state.wedge_speed, state.eps))
     res = solve_ehd(film, rigid.pressure, "reynolds" if cavitation == "reynolds" else "none",
                     tol)
     P = res.pressure
