@@ -65,9 +65,6 @@ class BalanceFilm:
     fields: FilmFields | None = None
     gap: np.ndarray | None = None
 
-    def stiffness(self, op: FilmOperator) -> sp.csr_matrix:
-        return sp.csr_matrix((self.values, op.indices, op.indptr), shape=op.shape)
-
     def transport(self, cv: ControlVolumes, speed: float) -> sp.csr_matrix:
         """Upwind transport of 6 x speed x rho phi H across the volumes' theta faces."""
         return transport_matrix(cv, 6.0 * speed * self.face)
