@@ -67,13 +67,7 @@ class FilmFields:
         values = {}
         for name, f in zip(FIELD_NAMES, (gap, rate, self.viscosity, self.density,
                                          self.density_rate)):
-            v = _at_quadrature(name, f, op)
-            if not np.all(np.isfinite(v)):
-                raise ValueError(f"film field {name} must be finite everywhere")
-            if name in ("gap", "viscosity", "density") and not np.all(v > 0.0):
-                raise ValueError(f"film field {name} must be > 0 everywhere, "
-                                 f"min {float(np.min(v))!r}")
-            values[name] = v
+            values[name] = _checked(name, _at_quadrature(name, f, op))
         return FilmFields(**values)
 
     def nodal_gap(self, op, state) -> np.ndarray:
@@ -99,6 +93,24 @@ class FilmFields:
                     and np.all(self.viscosity == 1.0) and np.all(self.density == 1.0)
                     and not np.any(self.density_rate))
 
+    def at_points(self, op, state, theta, zeta, interpolation) -> "FilmFields":
+        """These fields as arrays at any points (theta, zeta) of ``op``'s film (the control
+        volumes' quadrature of the JFO balance): a function is evaluated there, nodal
+        values are interpolated by ``interpolation`` (sparse, points x dofs, the points
+        flattened), values at the element quadrature points are first projected onto the
+        nodes (L2). Checked as :meth:`on`."""
+        theta, zeta = np.asarray(theta, float), np.asarray(zeta, float)
+        gap = ((lambda t, z: film_thickness(t, state.eps)) if self.gap is None
+               else self.gap)
+        rate = ((lambda t, z: state.eps_dot * np.cos(t)) if self.gap_rate is None
+                else self.gap_rate)
+        values = {}
+        for name, f in zip(FIELD_NAMES, (gap, rate, self.viscosity, self.density,
+                                         self.density_rate)):
+            values[name] = _checked(name, _at_points(name, f, op, theta, zeta,
+                                                     interpolation))
+        return FilmFields(**values)
+
     def plus(self, **extra) -> "FilmFields":
         """Evaluated fields with arrays added to some of them (e.g. a tilt's gap)."""
         return replace(self, **{k: getattr(self, k) + v for k, v in extra.items()})
@@ -117,6 +129,30 @@ def _at_quadrature(name: str, f, op) -> np.ndarray:
                              f"zeta), {op.mesh.ndofs} nodal values or an array of shape "
                              f"{shape}, got shape {v.shape}")
     return np.broadcast_to(v, shape).astype(float)
+
+
+def _checked(name: str, v: np.ndarray) -> np.ndarray:
+    if not np.all(np.isfinite(v)):
+        raise ValueError(f"film field {name} must be finite everywhere")
+    if name in ("gap", "viscosity", "density") and not np.all(v > 0.0):
+        raise ValueError(f"film field {name} must be > 0 everywhere, "
+                         f"min {float(np.min(v))!r}")
+    return v
+
+
+def _at_points(name: str, f, op, theta: np.ndarray, zeta: np.ndarray,
+               interpolation) -> np.ndarray:
+    if callable(f):
+        v = np.asarray(f(theta, zeta), dtype=float)
+    else:
+        v = np.asarray(f, dtype=float)
+        if v.ndim == 2 and v.shape == op.qp_theta.shape:   # at the element quadrature
+            v = np.asarray(op.mesh.basis.project(v))
+        elif not (v.ndim == 0 or (v.ndim == 1 and v.shape[0] == op.mesh.ndofs)):
+            _at_quadrature(name, f, op)                     # raises, naming the field
+        if v.ndim == 1:
+            v = (interpolation @ v).reshape(theta.shape)
+    return np.broadcast_to(v, np.broadcast(theta, zeta).shape).astype(float)
 
 
 def check_tilt(name: str, tilt) -> tuple:

@@ -43,6 +43,8 @@ class TransientJFO:
     bearing : the bearing
     n_theta, n_z, grooves, ambient_pressure : the film (:class:`JFOFilm`)
     film_step : [s] time between film steps (0: a film step at every accepted step)
+    fields, tilt, tilt_rate : the film on fields and a tilted journal (:class:`JFOFilm`;
+        functions of time are called with the integrator's time t [s])
 
     :meth:`commit` advances the content to ``t`` by one backward-Euler step of the
     mass-conserving film, once ``film_step`` has passed since the last one, or sooner when
@@ -60,10 +62,12 @@ class TransientJFO:
     memory = True
 
     def __init__(self, bearing: Bearing, n_theta: int, n_z: int, grooves=(),
-                 ambient_pressure: float = 0.0, film_step: float = 0.0):
+                 ambient_pressure: float = 0.0, film_step: float = 0.0, *, fields=None,
+                 tilt=(0.0, 0.0), tilt_rate=(0.0, 0.0)):
         self.bearing = bearing
         self._film_options = dict(n_theta=n_theta, n_z=n_z, grooves=grooves,
-                                  ambient_pressure=ambient_pressure)
+                                  ambient_pressure=ambient_pressure, fields=fields,
+                                  tilt=tilt, tilt_rate=tilt_rate)
         self.film_step = float(film_step)
         self.film: JFOFilm | None = None
         self.t = 0.0
@@ -74,7 +78,7 @@ class TransientJFO:
 
     def start(self, state: JournalState, t: float) -> None:
         """Begin a full film at ``state``, time ``t`` [s]."""
-        self.film = JFOFilm(self.bearing, state, **self._film_options)
+        self.film = JFOFilm(self.bearing, state, time=float(t), **self._film_options)
         self.t = float(t)
         self._warm, self._jump, self._fade, self.steps = None, (0.0, 0.0), 1.0, 0
 
@@ -83,7 +87,7 @@ class TransientJFO:
         start of the next solve (a film not started yet starts here)."""
         if self.film is None:
             self.start(state, t)
-        f, self._warm = self.film.instant(state, self._warm)
+        f, self._warm = self.film.instant(state, self._warm, float(t))
         x = min(max((float(t) - self.t) / self._fade, 0.0), 1.0)
         left = 1.0 - x * x * (3.0 - 2.0 * x)
         return (f[0] + left * self._jump[0], f[1] + left * self._jump[1])
@@ -104,7 +108,7 @@ class TransientJFO:
         # whatever its step), unless the kept film no longer fits the journal; not within
         # film_step / 1000 either: an integrator crawling through an event would otherwise
         # take a film step at each of its tiny steps
-        refill = self.film.refilled(state)
+        refill = self.film.refilled(state, t)
         early = dt > EARLY * self.film_step and (refill or self.film.turned(state))
         if dt <= 1e-12 * max(abs(self.t), 1e-3) or not (dt > self.film_step or early):
             return None
@@ -112,7 +116,7 @@ class TransientJFO:
         kept = self.film.snapshot()
         try:
             sol = self.film.step(state, dt)      # raises before changing the film
-            after, _ = self.film.instant(state, None)
+            after, _ = self.film.instant(state, None, t)
         except ConvergenceError:
             self.film.restore(kept)              # the instant failed after the step: undo it
             raise

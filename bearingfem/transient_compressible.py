@@ -33,7 +33,10 @@ class CompressibleTransientJFO(TransientJFO):
 
     def start(self, state: JournalState, t: float) -> None:
         """Begin a full film at ``state``, time ``t`` [s]."""
+        # the compressible film takes no fields or tilt (the constructor gives none)
+        options = {k: v for k, v in self._film_options.items()
+                   if k not in ("fields", "tilt", "tilt_rate")}
         self.film = CompressibleJFOFilm(self.bearing, state, bulk_modulus=self.bulk_modulus,
-                                        **self._film_options)
+                                        time=float(t), **options)
         self.t = float(t)
         self._warm, self._jump, self._fade, self.steps = None, (0.0, 0.0), 1.0, 0

@@ -12,6 +12,12 @@ excluded). Times are the best of ``--repeat`` in one run:
 * general: the fields evaluated at the quadrature points (``FilmFields.on``), the general
   assembly (``film_system``) and the same solve;
 * assembly: the general path's fields and assembly alone.
+
+JFO rows (P1, ambient 2e4 Pa at the ends): the steady mass-conserving film, fast path
+(``solve_reynolds(..., cavitation="jfo", half=False)``) against the same film given as
+fields through the general balance (:func:`bearingfem.fe.jfo_fields.balance_films`: the
+control volumes' Gauss quadrature of the fields on every level of the nested solve,
+rebuilt per solve, as a state's fields change); "assembly" is that balance data alone.
 """
 from __future__ import annotations
 
@@ -21,7 +27,10 @@ import numpy as np
 
 from bearingfem import JournalState
 from bearingfem.bearing import seed_bearing
+from bearingfem import solve_reynolds
 from bearingfem.fe.general import film_system, general_assembly
+from bearingfem.fe.jfo import solve_jfo
+from bearingfem.fe.jfo_fields import balance_films
 from bearingfem.fe.reynolds import fe_operator, fe_pressure
 from bearingfem.fields import FilmFields
 
@@ -37,16 +46,41 @@ def row(n_theta, n_z, element, repeat):
     spec = FilmFields(gap=lambda t, z: 1.0 + STATE.eps * np.cos(t))
 
     def general():
-        system = film_system(op, spec.on(op, STATE), STATE.wedge_speed)
+        system = film_system(op, spec.on(op, STATE), STATE.wedge_speed, STATE.eps)
         return fe_pressure(op, STATE, "reynolds", system=system)
 
     t_fast, fast = best_time(lambda: fe_pressure(op, STATE, "reynolds"), repeat)
     t_gen, gen = best_time(general, repeat)
-    t_asm, _ = best_time(lambda: film_system(op, spec.on(op, STATE), STATE.wedge_speed),
+    t_asm, _ = best_time(lambda: film_system(op, spec.on(op, STATE), STATE.wedge_speed,
+                                               STATE.eps),
                          repeat)
     gap = float(np.max(np.abs(gen.pressure - fast.pressure)) / np.max(fast.pressure))
     return dict(mesh=f"{n_theta}x{n_z}", element=element, dofs=op.mesh.ndofs,
                 fast=t_fast, general=t_gen, assembly=t_asm, ratio=t_gen / t_fast, gap=gap)
+
+
+AMBIENT = 2e4
+
+
+def jfo_row(n_theta, n_z, repeat):
+    def operator(nt, nz):
+        return fe_operator(BEARING, STATE, nt, nz, "P1", None, False)
+    spec = FilmFields(gap=lambda t, z: 1.0 + STATE.eps * np.cos(t))
+    fine = operator(n_theta, n_z)
+    general_assembly(fine)
+
+    def general():
+        film = balance_films(BEARING, STATE, fine, spec)
+        return solve_jfo(BEARING, STATE, operator, n_theta, n_z, (), AMBIENT, film)
+
+    t_fast, fast = best_time(lambda: solve_reynolds(
+        BEARING, STATE, n_theta, n_z, cavitation="jfo", ambient_pressure=AMBIENT,
+        half=False), repeat)
+    t_gen, gen = best_time(general, repeat)
+    t_asm, _ = best_time(lambda: balance_films(BEARING, STATE, fine, spec), repeat)
+    gap = float(np.max(np.abs(gen.pressure - fast.pressure)) / fast.pressure_max)
+    return dict(mesh=f"{n_theta}x{n_z}", element="JFO", dofs=fine.mesh.ndofs, fast=t_fast,
+                general=t_gen, assembly=t_asm, ratio=t_gen / t_fast, gap=gap)
 
 
 def main(argv=None):
@@ -56,6 +90,7 @@ def main(argv=None):
     args = ap.parse_args(argv)
     meshes = [(24, 4), (48, 8)] if args.quick else [(120, 20), (480, 80)]
     rows = [row(nt, nz, el, args.repeat) for nt, nz in meshes for el in ("P1", "P2")]
+    rows += [jfo_row(nt, nz, args.repeat) for nt, nz in meshes]
     print(f"{'mesh':>8} {'elem':>4} {'dofs':>7} {'fast [s]':>9} {'general [s]':>11} "
           f"{'assembly [s]':>12} {'general/fast':>12} {'max |dP|/P':>10}")
     for r in rows:

@@ -165,6 +165,8 @@ class EHDFilm:
     lubricant : Lubricant or None; compliance : DofCompliance or None
     scale : pressure scale mu0 (R/c)^2 [Pa s]; clearance c [m]; wedge : wedge speed [rad/s]
     viscosity : the bearing's viscosity mu0 [Pa s] (the ratios' reference)
+    eps : the state's eccentricity ratio, the reference cylinder of the general load
+        (:func:`~bearingfem.fe.general.film_system`)
     """
 
     op: object
@@ -177,6 +179,7 @@ class EHDFilm:
     wedge: float
     viscosity: float
     tables: JacobianTables
+    eps: float = 0.0   # the reference cylinder's eps (film_system's strong-form Couette)
 
     def deflection(self, P: np.ndarray, s: float = 1.0) -> np.ndarray:
         """Nodal radial deflection w [m] of the bush under s p (zero without a bush)."""
@@ -210,7 +213,7 @@ class EHDFilm:
         for field in (film.gap, film.viscosity, film.density):
             if not np.all((field > 0.0) & np.isfinite(field)):
                 return None
-        values, load = film_system(self.op, film, self.wedge)
+        values, load = film_system(self.op, film, self.wedge, self.eps)
         K = sp.csr_matrix((values, self.op.indices, self.op.indptr), shape=self.op.shape)
         size = np.abs(K) @ np.abs(P) + np.abs(load)
         return FilmState(film, slopes, values, load, K @ P - load, size)
@@ -272,4 +275,4 @@ def ehd_film(bearing, state, op, base: FilmFields, gap0, lubricant, bush) -> EHD
     return EHDFilm(op=op, base=base, gap0=gap0, lubricant=lubricant, compliance=compliance,
                    scale=bearing.pressure_scale, clearance=bearing.clearance,
                    wedge=state.wedge_speed, viscosity=bearing.viscosity,
-                   tables=jacobian_tables(op))
+                   tables=jacobian_tables(op), eps=state.eps)

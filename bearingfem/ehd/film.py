@@ -60,7 +60,7 @@ def solve_ehd_film(bearing, state, op, base, gap0, lubricant, bush, cavitation, 
     def rigid():                                # the isoviscous rigid film (s = 0)
         film0, _ = film.fields(np.zeros(op.mesh.ndofs), 0.0)
         return fe_pressure(op, state, cavitation, method, tol, dirichlet=dirichlet,
-                           system=film_system(op, film0, state.wedge_speed)).pressure
+                           system=film_system(op, film0, state.wedge_speed, state.eps)).pressure
     res = solve_ehd(film, rigid, "reynolds" if cavitation == "reynolds" else "none", tol,
                     start=warm_pressure(start, bearing, op, dirichlet))
     P = res.pressure

@@ -211,7 +211,7 @@ class TransientEHD:
                                   and self._active.shape == (op.mesh.ndofs,)
                                   and self._active.any()) else None
         res = fe_pressure(op, state, "reynolds", active0=active,
-                          system=film_system(op, fields, state.wedge_speed))
+                          system=film_system(op, fields, state.wedge_speed, state.eps))
         self._active = res.active
         ic, is_ = op.force_integrals(res.pressure)
         k = force_factor(self.bearing, False)

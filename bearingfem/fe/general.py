@@ -22,9 +22,13 @@ from functools import lru_cache
 
 import numpy as np
 
+from ..bearing import Bearing, JournalState
+from ..fields import FilmFields, tilted_gap
+from ..film import film_thickness
+from ..scales import moment_factor
 from .assembly import FilmOperator
 
-__all__ = ["GeneralAssembly", "general_assembly", "film_system"]
+__all__ = ["GeneralAssembly", "general_assembly", "film_system", "general_film", "film_moment"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -88,11 +92,56 @@ def general_assembly(op: FilmOperator) -> GeneralAssembly:
         positions=positions, dofs=dofs)
 
 
-def film_system(op: FilmOperator, fields, wedge_speed: float):
+def film_system(op: FilmOperator, fields, wedge_speed: float, eps: float = 0.0):
     """(stiffness values on the pattern, load) of the film with evaluated
-    :class:`~bearingfem.fields.FilmFields` ``fields`` at wedge speed w [rad/s]."""
+    :class:`~bearingfem.fields.FilmFields` ``fields`` at wedge speed w [rad/s].
+
+    The Couette content rho H is split into a reference cylinder 1 + eps cos(theta), whose
+    term is the fast path's exact load (strong form, :meth:`FilmOperator.load`), and the
+    departure rho H - (1 + eps cos(theta)), taken in weak form: the rigid cylinder of
+    ``eps`` given as fields then solves the fast path's discrete film to round-off, and
+    any other film converges as before (the split changes the quadrature error only)."""
     ga = general_assembly(op)
     rho, H = fields.density, fields.gap
     k = rho * H ** 3 / fields.viscosity
     squeeze = -12.0 * (rho * fields.gap_rate + fields.density_rate * H)
-    return ga.stiffness_values(k), ga.load(6.0 * wedge_speed * rho * H, squeeze)
+    departure = rho * H - film_thickness(op.qp_theta, eps)
+    load = ga.load(6.0 * wedge_speed * departure, squeeze)
+    if eps:
+        load = load + op.load(eps, 0.0, wedge_speed)
+    return ga.stiffness_values(k), load
+
+
+def general_film(bearing: Bearing, state: JournalState, op: FilmOperator,
+                 fields: FilmFields | None = None, tilt=(0.0, 0.0), tilt_rate=(0.0, 0.0)):
+    """The film's fields at ``op``'s quadrature points with the tilt's gap added, and the
+    nodal gap; raises ValueError when the tilted journal touches the bush."""
+    spec = fields or FilmFields()
+    film, gap = spec.on(op, state), spec.nodal_gap(op, state)
+    if any(tilt) or any(tilt_rate):
+        dH, dH_dt = tilted_gap(bearing, state, op.qp_theta, op.qp_zeta, tilt, tilt_rate)
+        film = film.plus(gap=dH, gap_rate=dH_dt)
+        gap = gap + tilted_gap(bearing, state, op.mesh.theta, op.mesh.zeta, tilt)[0]
+        if not np.all(film.gap > 0.0):
+            raise ValueError(f"tilt {tilt} [rad] brings the journal into the bush (minimum "
+                             f"gap {float(np.min(film.gap)) * bearing.clearance:.3g} m at eps "
+                             f"{state.eps}): reduce eps or the tilt")
+    return film, gap
+
+
+def film_moment(bearing: Bearing, op: FilmOperator, P: np.ndarray, gamma: float,
+                clip: bool = False) -> tuple:
+    """(M_x, M_y) [N m]: the film's moment on the journal about the bearing centre
+    (mid-plane), inertial, of the whole-length film P.
+
+    The pressure force on the journal per area is p (cos, sin)(theta + gamma), inertial, at
+    the lever arm z = R zeta: M_x = -int z dF_y, M_y = int z dF_x. ``clip`` integrates
+    max(P, 0) at the quadrature points (Gumbel's film), as the force does.
+    """
+    Q = op.at_quadrature(P)
+    if clip:
+        Q = np.maximum(Q, 0.0)
+    Qz = Q * op.qp_weight * op.qp_zeta
+    a = op.qp_theta + gamma
+    k = moment_factor(bearing)
+    return (-k * float(np.sum(Qz * np.sin(a))), k * float(np.sum(Qz * np.cos(a))))

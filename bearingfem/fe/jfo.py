@@ -21,6 +21,10 @@ the nodes' control volumes (:mod:`bearingfem.fe.volumes`), which conserves mass 
   over the step the content then moves at omega/2 relative to the bearing. With grooves
   the mesh stays fixed in the bearing and nothing is carried.
 
+On gap, viscosity and density fields and with a tilted journal the balance takes its
+stiffness, contents, faces and squeeze from :mod:`bearingfem.fe.jfo_fields` (``film``
+arguments, a function op -> BalanceFilm); without them the rigid cylinder's fast path.
+
 Flows (per solve): what the grooves (or a supply line) feed, what leaves the axial ends
 and the rate of change of the content of the free volumes; their balance is the residual
 of the solve, so it holds to round-off.
@@ -30,8 +34,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+import scipy.sparse as sp
 
-from ..bearing import Bearing, JournalState, check_positive
+from ..bearing import Bearing, JournalState, check_finite, check_positive
 from ..errors import ConvergenceError
 from ..validation import check_film_solve, check_grooves, check_jfo_supply
 from ..film import film_thickness
@@ -41,6 +46,8 @@ from ..solvers.cavitation import active_set
 from ..solvers.linsolve import principal_block
 from ..solvers.jfo import JFOResult
 from .assembly import FilmOperator, fe_operator
+from .general import film_moment, film_system, general_film
+from .jfo_fields import FilmSpec, balance_films
 from .jfo_balance import (BalanceSolve, FilmAdvance, JFOFlows, _between, _boundary_values,
                           _content, _cos_integral, _prolongation, _solve, _step_balance,
                           _transport, film_volumes)
@@ -64,13 +71,16 @@ class JFOSnapshot:
 
 
 def _film_solution(bearing, state, op: FilmOperator, P, phi, res: JFOResult,
-                   flows: JFOFlows, method: str) -> FilmSolution:
-    """Forces, friction and the rest of a JFO film (P >= 0 is the pressure everywhere)."""
+                   flows: JFOFlows, method: str, film=None) -> FilmSolution:
+    """Forces, friction and the rest of a JFO film (P >= 0 is the pressure everywhere);
+    ``film``: its :class:`~bearingfem.fe.jfo_fields.BalanceFilm` on fields (None: the
+    rigid cylinder): a whole-length film on fields also gets its moment."""
     k = force_factor(bearing, op.mesh.half)
     ic, is_ = op.force_integrals(P)
     f_r, f_t = k * float(ic), k * float(is_)
     wq, th = op.qp_weight, op.qp_theta
-    Hq = film_thickness(th, state.eps)
+    fields = None if film is None else film.fields
+    Hq = film_thickness(th, state.eps) if fields is None else fields.gap
     Pq = op.at_quadrature(P)
     dPq = np.asarray(op.mesh.basis.interpolate(P).grad[0])
     phiq = op.at_quadrature(phi)
@@ -79,6 +89,7 @@ def _film_solution(bearing, state, op: FilmOperator, P, phi, res: JFOResult,
     # the Poiseuille part where the film is full.
     friction = shear_friction(bearing, state.omega, wq, Hq, dPq,
                               couette_share=np.clip(phiq, 0.0, 1.0), poiseuille_share=full,
+                              viscosity=1.0 if fields is None else fields.viscosity,
                               half=op.mesh.half)
     cv = film_volumes(op.mesh)
     area = cv.area
@@ -87,7 +98,9 @@ def _film_solution(bearing, state, op: FilmOperator, P, phi, res: JFOResult,
         bearing, state, P, op.mesh.theta, op.mesh.zeta, (f_r, f_t), friction=friction,
         leakage=flows.side_leakage, flow_in=flows.flow_in, cavitated_fraction=cav_fraction,
         record=res, method=method, cavitation="jfo", half=op.mesh.half, mesh=op.mesh,
-        fraction=phi, mass_balance=flows.balance)
+        fraction=phi, mass_balance=flows.balance,
+        moment=(0.0, 0.0) if op.mesh.half else film_moment(bearing, op, P, state.gamma),
+        gap=None if film is None else film.gap)
 
 
 #: Below this many free nodes a steady film starts cold instead of from a coarser mesh.
@@ -95,43 +108,51 @@ COARSEST_FREE_NODES = 500
 
 
 def _steady(bearing: Bearing, state: JournalState, operator, n_theta, n_z, grooves,
-            ambient, cavitated0=None):
+            ambient, cavitated0=None, film=None):
     """Steady film on the mesh ``operator(n_theta, n_z)``. A cold start takes its first
     cavitated set from the same film on a mesh half as fine (recursively): the fronts then
-    sit within a node of their place and one or two iterations finish."""
+    sit within a node of their place and one or two iterations finish. ``film``: a
+    function of the operator giving its :class:`~bearingfem.fe.jfo_fields.BalanceFilm`
+    (None: the rigid cylinder's); the last value returned is the fine mesh's (or None)."""
     op = operator(n_theta, n_z)
     cv = film_volumes(op.mesh)
-    T = _transport(cv, state.eps, state.wedge_speed)
-    storage = 12.0 * state.eps_dot * _cos_integral(cv)
+    f = None if film is None else film(op)
+    if f is None:
+        T = _transport(cv, state.eps, state.wedge_speed)
+        storage = 12.0 * state.eps_dot * _cos_integral(cv)
+    else:
+        T, storage = f.transport(cv, state.wedge_speed), 12.0 * f.squeeze
     warm = 3
     if cavitated0 is None and len(op.mesh.free) > COARSEST_FREE_NODES:
-        Pc, phic, _, _, opc = _steady(bearing, state, operator, max(8, n_theta // 2),
-                                      max(2, n_z // 2), grooves, ambient)
+        Pc, phic, _, _, opc, _ = _steady(bearing, state, operator, max(8, n_theta // 2),
+                                         max(2, n_z // 2), grooves, ambient, film=film)
         u = Pc - (1.0 - phic)          # the universal variable: < 0 in the cavity
         cavitated0 = (_prolongation(opc.mesh, op.mesh) @ u) < 0.0
         warm = 12
     try:
         b = _solve(bearing, op, state.eps, T, storage, np.zeros(op.mesh.ndofs), grooves,
-                   ambient, cavitated0, warm)
+                   ambient, cavitated0, warm, values=None if f is None else f.values)
     except ConvergenceError as e:
         raise e.at(f"steady JFO film {n_theta}x{n_z}, eps = {state.eps:.6g}") from None
-    return b.P, b.phi, b.result, b.flows, op
+    return b.P, b.phi, b.result, b.flows, op, f
 
 
 def solve_jfo(bearing: Bearing, state: JournalState, operator, n_theta: int, n_z: int,
-              grooves=(), ambient_pressure: float = 0.0) -> FilmSolution:
+              grooves=(), ambient_pressure: float = 0.0, film=None) -> FilmSolution:
     """Steady JFO film on the mesh ``operator(n_theta, n_z)`` (a callable that builds the
-    film operator of a mesh; arguments checked by ``solve_reynolds``)."""
-    P, phi, res, flows, op = _steady(bearing, state, operator, n_theta, n_z, grooves,
-                                     ambient_pressure)
-    return _film_solution(bearing, state, op, P, phi, res, flows, "fem-P1/jfo")
+    film operator of a mesh; arguments checked by ``solve_reynolds``); ``film``: a
+    function of the operator giving the film on fields
+    (:func:`~bearingfem.fe.jfo_fields.field_balance_film`), None the rigid cylinder."""
+    P, phi, res, flows, op, f = _steady(bearing, state, operator, n_theta, n_z, grooves,
+                                        ambient_pressure, film=film)
+    return _film_solution(bearing, state, op, P, phi, res, flows, "fem-P1/jfo", f)
 
 
 def jfo_force(bearing: Bearing, state: JournalState, operator, n_theta: int, n_z: int,
               grooves=(), ambient_pressure: float = 0.0, cavitated0=None):
     """(F_r, F_t) [N] of the steady JFO film and its solve record (light path)."""
-    P, _, res, _, op = _steady(bearing, state, operator, n_theta, n_z, grooves,
-                               ambient_pressure, cavitated0)
+    P, _, res, _, op, _ = _steady(bearing, state, operator, n_theta, n_z, grooves,
+                                  ambient_pressure, cavitated0)
     ic, is_ = op.force_integrals(P)
     k = force_factor(bearing, op.mesh.half)
     return (k * float(ic), k * float(is_)), res
@@ -152,6 +173,15 @@ class JFOFilm:
     fraction : the film fraction at the start, a number or one value per node (1: full)
     ambient_pressure : pressure of the oil at the axial ends (and a supply line) above
         the cavitation pressure [Pa]; > 0 lets a cavity draw oil in from the ends
+    fields : the film's :class:`~bearingfem.fields.FilmFields` (gap, viscosity, density),
+        or a function (state, t) -> FilmFields of the journal state and the time t [s];
+        None: the rigid cylinder (:mod:`bearingfem.fe.jfo_fields`)
+    tilt, tilt_rate : the journal's tilt (tilt_x, tilt_y) [rad] and its rate [rad/s]
+        (:func:`~bearingfem.fields.tilted_gap`), each a pair or a function t -> pair
+    time : the time of the start [s] (the clock of ``fields`` and ``tilt``)
+
+    With fields or a tilt the whole length is meshed and the film's ``moment`` reported;
+    without them the film is the rigid cylinder's, on the fast path.
 
     ``step(state, dt)`` advances by dt [s] to the new journal state and keeps the result;
     ``trial(state, dt)`` computes the same step from the kept state without keeping it
@@ -161,24 +191,26 @@ class JFOFilm:
 
     def __init__(self, bearing: Bearing, state: JournalState, n_theta: int = 96,
                  n_z: int = 16, *, grooves=(), supply_angle=None, half: bool = True,
-                 fraction=1.0, ambient_pressure: float = 0.0):
+                 fraction=1.0, ambient_pressure: float = 0.0, fields=None,
+                 tilt=(0.0, 0.0), tilt_rate=(0.0, 0.0), time: float = 0.0):
         n_theta, n_z, supply_angle = check_film_solve(bearing, state, n_theta, n_z, "jfo",
                                                       "active-set", supply_angle)
         self.grooves = check_grooves(grooves, supply_angle, mass_conserving=True)
         self.ambient_pressure = check_jfo_supply("jfo", self.grooves, supply_angle,
                                                  ambient_pressure)
+        self._film_spec = FilmSpec.checked(fields, tilt, tilt_rate)
         self.bearing = bearing
+        half = half and self._film_spec is None
         self._operator = lambda s: fe_operator(bearing, s, n_theta, n_z, "P1", supply_angle,
                                                half, self.grooves)
         op = self._operator(state)
-        cv = film_volumes(op.mesh)
+        self.time = check_finite("time", time)
         phi = np.broadcast_to(np.asarray(fraction, float), (op.mesh.ndofs,)).copy()
         if not np.all((phi >= 0.0) & (phi <= 1.0)):
             raise ValueError("fraction must lie in [0, 1] (one number or one per node)")
-        self.time = 0.0
         self.state = state
         self.fraction = phi
-        self.content = phi * _content(cv, state.eps)     # dimensionless, per volume
+        self.content = phi * self._full_content(op, state, self.time)   # per volume
         self.cavitated = phi < 1.0
         self.solution: FilmSolution | None = None
         self.steps = 0
@@ -209,11 +241,27 @@ class JFOFilm:
         """How far the line of centres has turned since the kept step [rad], in [-pi, pi)."""
         return float(np.mod(state.gamma - self.state.gamma + np.pi, 2.0 * np.pi) - np.pi)
 
-    def refilled(self, state: JournalState) -> bool:
-        """Whether the gap at ``state`` has closed on the content of a kept cavity (the
-        kept film would hold it at zero pressure where the oil now fills the gap)."""
-        cv = film_volumes(self._operator(state).mesh)
-        return bool(np.any(self.cavitated & (self.content >= _content(cv, state.eps))))
+    def _films(self, state: JournalState, time: float):
+        """The function op -> BalanceFilm of the fields at ``state`` and ``time``, or None
+        for the rigid cylinder."""
+        if self._film_spec is None:
+            return None
+        spec, tilt, rate = self._film_spec.at(state, time)
+        return balance_films(self.bearing, state, self._operator(state), spec, tilt, rate)
+
+    def _full_content(self, op: FilmOperator, state: JournalState, time: float):
+        """The content of the full film per volume at ``state`` and ``time``."""
+        films = self._films(state, time)
+        return _content(film_volumes(op.mesh), state.eps) if films is None else \
+            films(op).content
+
+    def refilled(self, state: JournalState, time: float | None = None) -> bool:
+        """Whether the gap at ``state`` (at ``time`` [s], default the kept time) has closed
+        on the content of a kept cavity (the kept film would hold it at zero pressure
+        where the oil now fills the gap)."""
+        full = self._full_content(self._operator(state), state,
+                                  self.time if time is None else time)
+        return bool(np.any(self.cavitated & (self.content >= full)))
 
     def turned(self, state: JournalState) -> bool:
         """Whether a periodic mesh (it starts at the line of centres) has turned by more
@@ -221,7 +269,8 @@ class JFOFilm:
         cv = film_volumes(self._operator(state).mesh)
         return bool(cv.periodic and abs(self._turn(state)) > np.pi / cv.n_columns)
 
-    def instant(self, state: JournalState, warm: np.ndarray | None = None):
+    def instant(self, state: JournalState, warm: np.ndarray | None = None,
+                time: float | None = None):
         """The film at ``state`` with the kept film, before any content moves: the volumes
         full at the kept step carry the Reynolds film of this instant's motion (Reynolds'
         condition is exact at rupture), the others stay cavities at zero pressure, the set
@@ -229,15 +278,22 @@ class JFOFilm:
         :meth:`step` moves it. What a time integrator sees between accepted steps: a
         function of the state with no jumps (a set that followed the carried content
         between steps would switch volumes one by one as the journal moves, each a jump of
-        the force). Returns ((F_r, F_t) [N], cavitated set on all nodes, for ``warm`` of
-        the next call)."""
+        the force). ``time`` [s]: of the fields and tilt (default the kept time). Returns
+        ((F_r, F_t) [N], cavitated set on all nodes, for ``warm`` of the next call)."""
         op = self._operator(state)
         full = ~self.cavitated
         mesh = op.mesh
         # held values on the fixed nodes, zero on the free ones
         P, _ = _boundary_values(self.bearing, mesh, self.grooves, self.ambient_pressure)
-        K = op.stiffness(state.eps)
-        load = op.load(state.eps, state.eps_dot, state.wedge_speed) - K @ P
+        if self._film_spec is None:
+            K = op.stiffness(state.eps)
+            load = op.load(state.eps, state.eps_dot, state.wedge_speed)
+        else:           # the Reynolds film of the fields at this instant
+            spec, tilt, rate = self._film_spec.at(state, self.time if time is None else time)
+            values, load = film_system(op, general_film(self.bearing, state, op, spec, tilt,
+                                                        rate)[0], state.wedge_speed, state.eps)
+            K = sp.csr_matrix((values, op.indices, op.indptr), shape=op.shape)
+        load = load - K @ P
         keep = mesh.free[full[mesh.free]]
         if len(keep) and np.any(load[keep]):
             a0 = None if warm is None else warm[keep]
@@ -255,12 +311,13 @@ class JFOFilm:
         cv = film_volumes(op.mesh)
         old, = self._carried(cv, state, self.content)
         return _step_balance(self.bearing, op, state, dt, old, self.cavitated, self.grooves,
-                             self.ambient_pressure)
+                             self.ambient_pressure, self._films(state, self.time + dt))
 
-    def _solution(self, state: JournalState, a: FilmAdvance) -> FilmSolution:
+    def _solution(self, state: JournalState, a: FilmAdvance, dt: float) -> FilmSolution:
         b = a.solve
+        films = self._films(state, self.time + dt)
         return _film_solution(self.bearing, state, a.op, b.P, b.phi, b.result, b.flows,
-                              "fem-P1/jfo")
+                              "fem-P1/jfo", None if films is None else films(a.op))
 
     def _where(self, state: JournalState, dt: float) -> str:
         return (f"JFO film step {self.steps + 1} to t = {self.time + dt:.6g} s "
@@ -274,7 +331,7 @@ class JFOFilm:
             a = self._advance(state, dt)
         except ConvergenceError as e:
             raise e.at(self._where(state, dt)) from None
-        return self._solution(state, a)
+        return self._solution(state, a, dt)
 
     def step(self, state: JournalState, dt: float) -> FilmSolution:
         """Advance to ``state`` after ``dt`` [s] and keep the new film. A step whose
@@ -308,7 +365,7 @@ class JFOFilm:
 
     def _keep(self, state: JournalState, dt: float) -> FilmSolution:
         a = self._advance(state, dt)
-        sol = self._solution(state, a)
+        sol = self._solution(state, a, dt)
         self.time += dt
         self.state, self.fraction, self.content = state, a.solve.phi, a.content
         self.cavitated = _cavitated_nodes(a.op, a.solve.result)

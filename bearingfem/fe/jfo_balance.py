@@ -97,14 +97,21 @@ def _boundary_values(bearing: Bearing, mesh: FilmMesh, grooves, ambient: float):
 
 def _solve(bearing: Bearing, op: FilmOperator, eps: float, T: sp.csr_matrix,
            storage: np.ndarray, source: np.ndarray, grooves, ambient: float,
-           cavitated0=None, warm_iterations: int = 3, start=None) -> BalanceSolve:
+           cavitated0=None, warm_iterations: int = 3, start=None,
+           values: np.ndarray | None = None) -> BalanceSolve:
     """The balance on the film mesh with its ends, supply line and grooves held (P and phi
-    on all nodes). ``start``: see :func:`~bearingfem.solvers.jfo.jfo_solve`."""
+    on all nodes). ``start``: see :func:`~bearingfem.solvers.jfo.jfo_solve`; ``values``:
+    the Poiseuille stiffness on the operator's pattern (None: the rigid cylinder's of
+    ``eps``)."""
     mesh = op.mesh
     P_fix, phi_fix = _boundary_values(bearing, mesh, grooves, ambient)
-    P, phi, res, inflow = solve_balance(op.stiffness(eps), T, storage, source, mesh.free,
-                                        P_fix, phi_fix, cavitated0, op.free_stiffness(eps),
-                                        warm_iterations, start)
+    if values is None:
+        values = op.values(eps)
+    K = sp.csr_matrix((values, op.indices, op.indptr), shape=op.shape)
+    P, phi, res, inflow = solve_balance(K, T, storage, source, mesh.free,
+                                        P_fix, phi_fix, cavitated0,
+                                        op.free_stiffness(eps, values), warm_iterations,
+                                        start)
     feed_nodes = np.setdiff1d(mesh.fixed, mesh.end)
     k = flow_factor(bearing, mesh.half)
     free = mesh.free
@@ -129,16 +136,19 @@ def _between(a: JournalState, b: JournalState) -> JournalState:
 
 def _step_balance(bearing: Bearing, op: FilmOperator, state: JournalState, dt: float,
                   old: np.ndarray, cavitated: np.ndarray, grooves,
-                  ambient: float) -> FilmAdvance:
+                  ambient: float, film=None) -> FilmAdvance:
     """One backward-Euler step of the content on ``op``'s mesh from the content ``old``
     (per volume) and the first set ``cavitated`` (both on that mesh's nodes, the set may
     be None). When that set does not settle or there is none, the first set comes from the same step on a mesh half as fine
     (recursively, :func:`~bearingfem.fe.multilevel.coarse_level`): a front that jumps many
     cells in one step is then placed within a cell or two whatever the mesh, where the
-    active set alone moves it about a cell per iteration."""
+    active set alone moves it about a cell per iteration. ``film``: a function of the
+    operator giving its :class:`~bearingfem.fe.jfo_fields.BalanceFilm` at ``state`` (None:
+    the rigid cylinder's)."""
     cv = film_volumes(op.mesh)
-    T = _transport(cv, state.eps, state.omega)
-    H = _content(cv, state.eps)
+    f = None if film is None else film(op)
+    T = _transport(cv, state.eps, state.omega) if f is None else f.transport(cv, state.omega)
+    H = _content(cv, state.eps) if f is None else f.content
     level = coarse_level(op)
     start = None
     if level is not None:
@@ -147,15 +157,16 @@ def _step_balance(bearing: Bearing, op: FilmOperator, state: JournalState, dt: f
         def start():
             down = _prolongation(op.mesh, coarse.mesh)
             up = free_interpolation(_prolongation(coarse.mesh, op.mesh), coarse.mesh.free)
-            Hc = _content(film_volumes(coarse.mesh), state.eps)
+            Hc = (_content(film_volumes(coarse.mesh), state.eps) if film is None
+                  else film(coarse).content)
             try:
                 # no first set there: the previous one already failed on this mesh
                 b = _step_balance(bearing, coarse, state, dt, (down @ (old / H)) * Hc,
-                                  None, grooves, ambient).solve
+                                  None, grooves, ambient, film).solve
             except ConvergenceError:
                 return None
             return FirstSet(up @ (b.P - (1.0 - b.phi)) < 0.0, b.result.iterations,
                             b.result.factorisations)
     b = _solve(bearing, op, state.eps, T, 12.0 * H / dt, 12.0 * old / dt, grooves, ambient,
-               cavitated, start=start)
+               cavitated, start=start, values=None if f is None else f.values)
     return FilmAdvance(op, b, b.phi * H)

@@ -191,11 +191,12 @@ class CompressibleJFOFilm(JFOFilm):
 
     def __init__(self, bearing: Bearing, state: JournalState, n_theta: int = 96,
                  n_z: int = 16, *, bulk_modulus: float, grooves=(), supply_angle=None,
-                 half: bool = True, fraction=1.0, ambient_pressure: float = 0.0):
+                 half: bool = True, fraction=1.0, ambient_pressure: float = 0.0,
+                 time: float = 0.0):
         B = check_positive("bulk_modulus", bulk_modulus)
         super().__init__(bearing, state, n_theta, n_z, grooves=grooves,
                          supply_angle=supply_angle, half=half, fraction=fraction,
-                         ambient_pressure=ambient_pressure)
+                         ambient_pressure=ambient_pressure, time=time)
         self.bulk_modulus = B
         self.beta = _beta(bearing, B)
         self.density = self.fraction.copy()
@@ -210,7 +211,7 @@ class CompressibleJFOFilm(JFOFilm):
                      self.beta, self.cavitated)
         return FilmAdvance(op, s, s.density * H)
 
-    def _solution(self, state: JournalState, a: FilmAdvance) -> FilmSolution:
+    def _solution(self, state: JournalState, a: FilmAdvance, dt: float) -> FilmSolution:
         return _solution(self.bearing, state, a.op, a.solve, "fem-P1/jfo-compressible")
 
     def _keep(self, state: JournalState, dt: float) -> FilmSolution:
@@ -218,14 +219,16 @@ class CompressibleJFOFilm(JFOFilm):
         self.density = sol.density
         return sol
 
-    def refilled(self, state: JournalState) -> bool:
+    def refilled(self, state: JournalState, time: float | None = None) -> bool:
         """Never: a cavity the gap closes on is compressed (:meth:`instant`), its pressure
         continuous in the state, so no early film step is needed for it."""
         return False
 
-    def instant(self, state: JournalState, warm: np.ndarray | None = None):
+    def instant(self, state: JournalState, warm: np.ndarray | None = None,
+                time: float | None = None):
         """The film at ``state`` with the kept film (see the class text): ((F_r, F_t) [N],
-        cavitated set for ``warm`` of the next call)."""
+        cavitated set for ``warm`` of the next call). ``time`` is the base film's (of its
+        fields), which this film does not take."""
         op = self._operator(state)
         mesh = op.mesh
         H = _content(film_volumes(mesh), state.eps)

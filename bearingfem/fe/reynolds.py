@@ -10,17 +10,19 @@ from ..solution import FilmSolution, film_solution
 from ..solvers.cavitation import LCPResult, active_set, psor
 from ..solvers.linsolve import solve_spd
 from ..validation import check_film_solve, check_grooves, check_jfo_supply
-from ..fields import FilmFields, check_tilt, tilted_gap
-from ..scales import flow_factor, force_factor, moment_factor, shear_friction
+from ..fields import FilmFields, check_tilt
+from ..scales import flow_factor, force_factor, shear_friction
 from .assembly import FilmOperator, fe_operator
-from .general import film_system
+from .general import film_moment, film_system, general_film
 from .jfo import jfo_force, solve_jfo
 from .jfo_compressible import check_elrod, is_elrod, solve_compressible_jfo
+from .jfo_fields import balance_films
 from .mesh import ELEMENTS
 from .mixed import check_roughness, film_contact, with_contact
 from .multilevel import coarse_guess
 
-__all__ = ["solve_reynolds", "fe_operator", "fe_pressure", "fe_force"]
+__all__ = ["solve_reynolds", "fe_operator", "fe_pressure", "fe_force", "general_film",
+           "film_moment"]
 
 SHEAR = ("full", "none")
 
@@ -161,10 +163,11 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
     ambient_pressure : JFO films: pressure at the axial ends and a supply line above the
         cavitation pressure [Pa] (>= 0)
     fields : :class:`~bearingfem.fields.FilmFields`: gap, its rate, viscosity and density
-        fields of the film (Reynolds-family cavitation); None is the rigid cylinder
+        fields of the film (every cavitation model; JFO: :mod:`bearingfem.fe.jfo_fields`);
+        None is the rigid cylinder
     tilt : (tilt_x, tilt_y) [rad], the journal axis turned about the inertial x and y axes
         through the bearing centre (:func:`~bearingfem.fields.tilted_gap`); its gap is
-        added to the fields' (Reynolds-family cavitation)
+        added to the fields' (every cavitation model)
     tilt_rate : their rates [rad/s] (squeeze)
     lubricant : :class:`~bearingfem.lubricant.Lubricant` whose viscosity and density follow
         the pressure (ratios to the bearing's viscosity), or None (cavitation "none" or
@@ -212,9 +215,9 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
         from ..ehd.film import check_ehd, solve_ehd_film
         check_ehd(lubricant, bush, fields, element, cavitation)
     general = fields is not None or any(tilt) or any(tilt_rate) or ehd
-    if general and cavitation == "jfo":
-        raise ValueError("fields and tilt need a Reynolds-family cavitation model "
-                         "('none', 'gumbel', 'reynolds'), got cavitation='jfo'")
+    if compressible and general:
+        raise ValueError("the compressible JFO film (a lubricant with bulk_modulus) takes no "
+                         "fields, tilt or tilt_rate yet; give the incompressible film those")
     roughness = check_roughness(roughness)
     if roughness is not None and bush is not None:
         # the asperities' load would deform the bush too: a coupling not built yet
@@ -223,13 +226,22 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
 
     if cavitation == "jfo":
         def operator(nt, nz):
-            return fe_operator(bearing, state, nt, nz, "P1", supply_angle, half, grooves)
+            return fe_operator(bearing, state, nt, nz, "P1", supply_angle,
+                               half and not general, grooves)
+        film = contact_gap = None
+        if general:
+            fine = operator(n_theta, n_z)
+            film = balance_films(bearing, state, fine, fields, tilt, tilt_rate)
+            contact_gap = film(fine).fields.gap            # bad fields raised above
+            if film(fine).fields.is_rigid(fine, state):
+                film = None                 # the rigid data takes the fast path
         sol = solve_compressible_jfo(bearing, state, operator, n_theta, n_z,
                                      bulk_modulus, grooves, ambient_pressure) \
             if compressible else solve_jfo(bearing, state, operator, n_theta, n_z, grooves,
-                                           ambient_pressure)
+                                           ambient_pressure, film)
         return sol if roughness is None else with_contact(
-            sol, film_contact(bearing, state, operator(n_theta, n_z), roughness))
+            sol, film_contact(bearing, state, operator(n_theta, n_z), roughness,
+                              contact_gap))
     if grooves and half and not general and supply_angle is None:
         from .grooved import groove_operator_for, grooved_solution   # (imports this module)
         sol = grooved_solution(bearing, state,
@@ -251,7 +263,7 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
             return sol if roughness is None else with_contact(
                 sol, film_contact(bearing, state, op, roughness, film.gap))
         if not film.is_rigid(op, state):      # the rigid data takes the fast path
-            system = film_system(op, film, state.wedge_speed)
+            system = film_system(op, film, state.wedge_speed, state.eps)
     dirichlet = groove_pressures(bearing, op, grooves)
     res = fe_pressure(op, state, cavitation, method, tol, dirichlet=dirichlet, system=system)
     values, load = system if system is not None else (
@@ -262,23 +274,6 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
                         gap)
     return sol if roughness is None else with_contact(
         sol, film_contact(bearing, state, op, roughness, None if film is None else film.gap))
-
-
-def general_film(bearing: Bearing, state: JournalState, op: FilmOperator,
-                 fields: FilmFields | None = None, tilt=(0.0, 0.0), tilt_rate=(0.0, 0.0)):
-    """The film's fields at ``op``'s quadrature points with the tilt's gap added, and the
-    nodal gap; raises ValueError when the tilted journal touches the bush."""
-    spec = fields or FilmFields()
-    film, gap = spec.on(op, state), spec.nodal_gap(op, state)
-    if any(tilt) or any(tilt_rate):
-        dH, dH_dt = tilted_gap(bearing, state, op.qp_theta, op.qp_zeta, tilt, tilt_rate)
-        film = film.plus(gap=dH, gap_rate=dH_dt)
-        gap = gap + tilted_gap(bearing, state, op.mesh.theta, op.mesh.zeta, tilt)[0]
-        if not np.all(film.gap > 0.0):
-            raise ValueError(f"tilt {tilt} [rad] brings the journal into the bush (minimum "
-                             f"gap {float(np.min(film.gap)) * bearing.clearance:.3g} m at eps "
-                             f"{state.eps}): reduce eps or the tilt")
-    return film, gap
 
 
 def _film_outputs(bearing, state, op, res, values, load, film, cavitation, cavitated_shear,
@@ -334,21 +329,3 @@ def _film_outputs(bearing, state, op, res, values, load, film, cavitation, cavit
         leakage=leakage, flow_in=flow_in, cavitated_fraction=cav_fraction, record=res,
         method=method, cavitation=cavitation, half=half, mesh=op.mesh, moment=moment,
         gap=gap)
-
-
-def film_moment(bearing: Bearing, op: FilmOperator, P: np.ndarray, gamma: float,
-                clip: bool = False) -> tuple:
-    """(M_x, M_y) [N m]: the film's moment on the journal about the bearing centre
-    (mid-plane), inertial, of the whole-length film P.
-
-    The pressure force on the journal per area is p (cos, sin)(theta + gamma), inertial, at
-    the lever arm z = R zeta: M_x = -int z dF_y, M_y = int z dF_x. ``clip`` integrates
-    max(P, 0) at the quadrature points (Gumbel's film), as the force does.
-    """
-    Q = op.at_quadrature(P)
-    if clip:
-        Q = np.maximum(Q, 0.0)
-    Qz = Q * op.qp_weight * op.qp_zeta
-    a = op.qp_theta + gamma
-    k = moment_factor(bearing)
-    return (-k * float(np.sum(Qz * np.sin(a))), k * float(np.sum(Qz * np.cos(a))))

@@ -167,7 +167,7 @@ def fe_tilt_coefficients(bearing: Bearing, state: JournalState, tilt=(0.0, 0.0),
                          f"gamma_dot must be 0, got {state.eps_dot!r}, {state.gamma_dot!r}")
     op = fe_operator(bearing, state, n_theta, n_z, element, None, False)
     film, _ = general_film(bearing, state, op, None, tilt)
-    values, load = film_system(op, film, state.wedge_speed)
+    values, load = film_system(op, film, state.wedge_speed, state.eps)
     res = fe_pressure(op, state, cavitation, system=(values, load))
     P = res.pressure
     ga = general_assembly(op)

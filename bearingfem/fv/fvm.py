@@ -132,13 +132,15 @@ def _conductance_matrix(g: FVMGrid, cE, cW, cN, cS) -> sp.csr_matrix:
     return sp.csr_matrix((vals[g.order], g.indices, g.indptr), shape=(g.n, g.n))
 
 
-def _assemble_gap(g: FVMGrid, gap, gap_rate, w: float):
+def _assemble_gap(g: FVMGrid, gap, gap_rate, w: float, eps_dot: float = 0.0):
     """Matrix and right-hand side of the balance on a gap field: ``gap(theta, zeta)`` and
     ``gap_rate(theta, zeta)`` [1/s] (functions, evaluated on the faces and centres).
 
     Face conductances H^3 at the faces; the Couette flux 6 w H dzeta through the theta
     faces (its difference is the cell's integral of -6 w dH/dtheta, exact in theta); the
-    squeeze -12 dH/dt at the centre times the cell area (midpoint rule)."""
+    squeeze -12 dH/dt: the rigid cylinder's part eps_dot cos(theta) integrated exactly
+    (as :func:`_assemble`), the rest at the centre times the cell area (midpoint rule),
+    so the rigid gap given as a field is the rigid balance to round-off."""
     TC, ZC = np.meshgrid(g.theta_c, g.zeta_c, indexing="ij")
     half = 0.5 * g.dzeta
     He = gap(TC + 0.5 * g.dtheta, ZC)
@@ -147,9 +149,18 @@ def _assemble_gap(g: FVMGrid, gap, gap_rate, w: float):
     cN = gap(TC, ZC + half) ** 3 * g.dtheta / g.dzeta
     cS = gap(TC, ZC - half) ** 3 * g.dtheta / g.dzeta
     A = _conductance_matrix(g, cE, cW, cN, cS)
-    rhs = -6.0 * w * (He - Hw) * g.dzeta - 12.0 * gap_rate(TC, ZC) * g.dtheta * g.dzeta
+    rhs = -6.0 * w * (He - Hw) * g.dzeta + _squeeze(g, gap_rate, eps_dot)
     ends = (2.0 * cN[:, -1], 2.0 * cS[:, 0])      # the end faces' conductances
     return A, rhs.ravel(), ends
+
+
+def _squeeze(g: FVMGrid, gap_rate, eps_dot: float) -> np.ndarray:
+    """-12 times each cell's integral of dH/dt (n_theta x n_z): eps_dot cos(theta)
+    exactly, the rest by the midpoint rule."""
+    TC, ZC = np.meshgrid(g.theta_c, g.zeta_c, indexing="ij")
+    rigid = eps_dot * (np.sin(g.theta_f[1:]) - np.sin(g.theta_f[:-1])) * g.dzeta
+    rest = (gap_rate(TC, ZC) - eps_dot * np.cos(TC)) * g.dtheta * g.dzeta
+    return -12.0 * (rigid[:, None] + rest)
 
 
 def _pressure(g: FVMGrid, state: JournalState, cavitation: str, method="active-set",
@@ -193,32 +204,41 @@ def _groove_cells(bearing, g: FVMGrid, state, grooves):
     return fixed, values, fraction, columns
 
 
-def _jfo(bearing, g: FVMGrid, state, grooves, ambient):
+def _jfo(bearing, g: FVMGrid, state, grooves, ambient, gap=None, rate=None):
     """Steady JFO film on the cells: the Poiseuille balance of :func:`_assemble` with the
     content phi H carried across the theta faces from the upwind cell (6 w phi H dzeta)
     and a squeeze eps_dot changing it at eps_dot cos(theta); returns P, phi, the solve
-    record and (feed, leakage, storage) in units of c R^2 / 12 [m^3/s].
+    record and (feed, leakage, storage) in units of c R^2 / 12 [m^3/s]. On a gap field
+    (``gap``, ``rate``: functions of (theta, zeta), :func:`_assemble_gap`) the faces take
+    the field's H at their midpoints and the squeeze its rate at the cell centre.
 
     A supply line (``g.theta0``) is a row of held cells (P ambient, phi 1) appended after
     the grid and joined to its first and last columns through the supply faces, half a
     cell away (doubled conductance): what they send out is the feed, as for a groove."""
-    A, _ = _assemble(g, state.eps, 0.0, 0.0)
     nz, n = g.n_z, g.n
     dz = g.dzeta
-    He = film_thickness(g.theta_f[1:], state.eps)
-    # upwind transport across each column's east face (periodic: the last one wraps;
+    if gap is None:
+        A, _ = _assemble(g, state.eps, 0.0, 0.0)
+        He = np.repeat(film_thickness(g.theta_f[1:], state.eps)[:, None], nz, axis=1)
+        storage = np.repeat(12.0 * state.eps_dot * (np.sin(g.theta_f[1:])
+                                                    - np.sin(g.theta_f[:-1])) * dz, nz)
+        ends = (_end_conductance(g, state.eps),) * 2
+    else:
+        A, _, ends = _assemble_gap(g, gap, rate, 0.0)
+        TC, ZC = np.meshgrid(g.theta_c, g.zeta_c, indexing="ij")
+        He = gap(TC + 0.5 * g.dtheta, ZC)
+        storage = -_squeeze(g, rate, state.eps_dot).ravel()
+    # upwind transport across each cell's east face (periodic: the last one wraps;
     # with a supply line the last column's east face and the first's west face border it)
     f = 6.0 * state.wedge_speed * He * dz
     I, J = np.meshgrid(np.arange(g.n_theta), np.arange(nz), indexing="ij")
     k = (I * nz + J).ravel()
     d = (((I + 1) % g.n_theta) * nz + J).ravel()
-    flux = np.repeat(f, nz)
-    storage = np.repeat(12.0 * state.eps_dot * (np.sin(g.theta_f[1:]) - np.sin(g.theta_f[:-1]))
-                        * dz, nz)
+    flux = f.ravel()
     # the axial ends hold the ambient pressure on the face half a cell away
     cend = np.zeros((g.n_theta, nz))
-    cend[:, 0] += _end_conductance(g, state.eps)
-    cend[:, -1] += _end_conductance(g, state.eps)
+    cend[:, 0] += ends[1]
+    cend[:, -1] += ends[0]
     cend = cend.ravel()
     pa = ambient / bearing.pressure_scale
     fixed, values, fraction, _ = _groove_cells(bearing, g, state, grooves)
@@ -227,10 +247,10 @@ def _jfo(bearing, g: FVMGrid, state, grooves, ambient):
         first, last = np.arange(nz), n - nz + np.arange(nz)
         d[last] = supply
         c = 2.0 * He[-1] ** 3 * dz / g.dtheta    # both supply faces: H at theta0 + 2 pi
-        links = sp.coo_matrix((np.full(2 * nz, -c), (np.r_[first, last],
-                                                     np.r_[supply, supply])), shape=(n + nz,) * 2)
-        A = (sp.block_diag([A, sp.diags(np.full(nz, 2.0 * c))]) + links + links.T).tocsr()
-        k, d, flux = np.r_[k, supply], np.r_[d, first], np.r_[flux, np.full(nz, f[-1])]
+        links = sp.coo_matrix((np.r_[-c, -c], (np.r_[first, last],
+                                                np.r_[supply, supply])), shape=(n + nz,) * 2)
+        A = (sp.block_diag([A, sp.diags(2.0 * c)]) + links + links.T).tocsr()
+        k, d, flux = np.r_[k, supply], np.r_[d, first], np.r_[flux, f[-1]]
         fixed, values = np.r_[fixed, np.ones(nz, bool)], np.r_[values, np.full(nz, pa)]
         fraction = np.r_[fraction, np.ones(nz)]
         storage, cend = np.r_[storage, np.zeros(nz)], np.r_[cend, np.zeros(nz)]
@@ -276,7 +296,7 @@ def fvm_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z:
     F_t = sum p sin(theta) dA in the contract's local frame.
 
     ``tilt``, ``tilt_rate``: a misaligned journal (:func:`bearingfem.fields.tilted_gap`,
-    Reynolds-family cavitation): the balance on its gap field and ``moment`` (M_x, M_y)
+    every cavitation model): the balance on its gap field and ``moment`` (M_x, M_y)
     [N m], midpoint sums as the force.
     """
     n_theta, n_z, supply_angle = check_film_solve(bearing, state, n_theta, n_z, cavitation,
@@ -287,9 +307,6 @@ def fvm_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z:
     ambient_pressure = check_jfo_supply(cavitation, grooves, supply_angle, ambient_pressure)
     tilt, tilt_rate = check_tilt("tilt", tilt), check_tilt("tilt_rate", tilt_rate)
     tilted = any(tilt) or any(tilt_rate)
-    if tilted and cavitation == "jfo":
-        raise ValueError("tilt needs a Reynolds-family cavitation model ('none', 'gumbel', "
-                         "'reynolds'), got cavitation='jfo'")
     g = fvm_grid(n_theta, n_z, bearing.length_ratio, theta0)
     system = gap = None
     if tilted:
@@ -299,7 +316,7 @@ def fvm_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z:
         def rate(t, z):
             return (state.eps_dot * np.cos(t)
                     + tilted_gap(bearing, state, t, z, tilt, tilt_rate)[1])
-        A, rhs, ends = _assemble_gap(g, gap, rate, state.wedge_speed)
+        A, rhs, ends = _assemble_gap(g, gap, rate, state.wedge_speed, state.eps_dot)
         system = (A, rhs)
     held = None
     if grooves:     # cells whose centres lie in a groove hold its pressure
@@ -307,7 +324,8 @@ def fvm_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z:
         held = (fixed, values)
     phi = flows = None
     if cavitation == "jfo":
-        P, phi, res, flows = _jfo(bearing, g, state, grooves, ambient_pressure)
+        P, phi, res, flows = _jfo(bearing, g, state, grooves, ambient_pressure,
+                                  gap, rate if tilted else None)
     else:
         res = _pressure(g, state, cavitation, method, tol, held, system)
         P = res.pressure if cavitation == "none" else np.maximum(res.pressure, 0.0)
