@@ -40,8 +40,8 @@ def test_nodal_viscosity_field_scales_the_pressure():
     """A viscosity given as nodal values, mu/mu0 = 2 at every dof, doubles the full film's
     pressure and force (the film equation is linear in P/mu): against twice the rigid
     film: the general assembly and the fast path agree to 2.3e-10 (their quadratures of
-    H^3 differ at round-off of the element sums), hence 1e-8. Fails when nodal arrays are not recognised as
-    such (fields.py:113, then refused as a wrong shape)."""
+    H^3 differ at round-off of the element sums), hence 1e-8. Fails when nodal arrays
+    are not recognised as such (fields.py:113, then refused as a wrong shape)."""
     ndofs = fe_operator(B, S, 48, 8, "P1", None, False).mesh.ndofs
     rigid = _force(FilmFields())
     assert _force(FilmFields(viscosity=np.full(ndofs, 2.0))) == pytest.approx(
