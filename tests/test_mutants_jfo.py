@@ -46,3 +46,16 @@ def test_a_partly_filled_start_is_accepted_and_bad_fractions_refused():
     for bad in (-0.1, 1.1):
         with pytest.raises(ValueError, match="fraction"):
             JFOFilm(B, S0, 48, 4, ambient_pressure=1e5, fraction=bad)
+
+
+def test_half_way_state_by_hand():
+    """The state half way through a cut step, by hand: every rate and speed the mean of the
+    two ends, the attitude the short way round (0.1 and 2 pi - 0.1 rad meet at 0, not at
+    pi). The cut-step test above takes its reference through the same helper, so this
+    pins the helper itself. Fails with a mean's 1/2 divided in (jfo_balance.py:125)."""
+    a = JournalState(0.2, -4.0, 0.1, 3.0, 100.0)
+    b = JournalState(0.6, 10.0, 2 * np.pi - 0.1, 5.0, 300.0)
+    mid = _between(a, b)
+    assert (mid.eps, mid.eps_dot, mid.gamma_dot, mid.omega) == pytest.approx(
+        (0.4, 3.0, 4.0, 200.0), rel=1e-15)
+    assert mid.gamma == pytest.approx(0.0, abs=1e-15)
