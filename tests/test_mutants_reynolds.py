@@ -13,8 +13,8 @@ B = table1_bearing(1.0)
 @pytest.mark.parametrize("cavitation", ["none", "reynolds"])
 def test_a_journal_at_rest_carries_no_film_pressure(cavitation):
     """No rotation, no whirl, no squeeze: the Reynolds equation has no source, so the film
-    is ambient everywhere and carries no force, whatever the eccentricity (an exact limit);
-    only the film's shear of a journal at rest is zero as well. FE and FV alike. Fails
+    is ambient everywhere and carries no force, whatever the eccentricity (an exact limit),
+    and with omega = 0 there is no shear either. FE and FV alike. Fails
     with the source-free shortcut's result negated (reynolds.py:64)."""
     rest = JournalState(0.7, 0.0, 0.3, 0.0, 0.0)
     for sol in (solve_reynolds(B, rest, 48, 8, "P1", cavitation),
