@@ -1,0 +1,22 @@
+"""The planar JFO film (bearingfem.fe.planar): a mutant of the mesh-to-mesh interpolation its
+coarse starts use survived the planar JFO tests (docs/mutation.md)."""
+import numpy as np
+import pytest
+
+from bearingfem.fe.planar import _interpolation, planar_mesh
+
+L, W = 0.03, 0.01
+
+
+@pytest.mark.parametrize("coarse, fine", [((6, 3), (12, 6)), ((12, 6), (6, 3)),
+                                          ((5, 2), (15, 7))])
+def test_interpolation_reproduces_a_bilinear_field(coarse, fine):
+    """Bilinear interpolation between two planar meshes reproduces a bilinear function
+    a + b x + c y + d x y exactly (to round-off), either way and on meshes whose nodes do
+    not nest. Fails with the upper row of a cell taken one row too high (planar.py:223)."""
+    def f(x, y):
+        return 1.0 + 40.0 * x - 70.0 * y + 900.0 * x * y
+    src = planar_mesh(L, W, *coarse, "closed")
+    dst = planar_mesh(L, W, *fine, "closed")
+    M = _interpolation(L, W, *coarse, "closed", *fine)
+    assert M @ f(src.x, src.y) == pytest.approx(f(dst.x, dst.y), rel=1e-12, abs=1e-12)
