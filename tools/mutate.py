@@ -127,6 +127,7 @@ class Outcome:
     status: str          # "killed", "survived", "timeout"
     seconds: float
     col: int = 0         # column of the mutated node (several on one line)
+    node: int = -1       # its index in ast.walk order (nested operators share a column)
 
 
 def _docstring_ids(tree) -> set:
@@ -299,7 +300,9 @@ def mutate_module(tree_dir: Path, module: str, test_args: str, timeout: float,
     if only_lines:
         sites = [(i, m) for i, m in sites if m.line in only_lines]
     if only is not None:       # (line, col, description): a previous run's survivors
-        sites = [(i, m) for i, m in sites if (m.line, m.col, m.description) in only]
+        sites = [(i, m) for i, m in sites if (m.line, m.col, m.description) in only
+                 and ((m.line, m.col, m.description, i) in only
+                      or (m.line, m.col, m.description, -1) in only)]
     sites = sites[::every]     # an evenly spread sample when time is short
     if sample is not None and sample < len(sites):
         # a seeded random sample: the same seed draws the same mutants in a later run
@@ -312,7 +315,7 @@ def mutate_module(tree_dir: Path, module: str, test_args: str, timeout: float,
             path.write_text(mutated_source(original, index, m.kind))
             status, secs = run_tests(tree_dir, test_args, timeout)
             outcomes.append(Outcome(module, m.line, m.description, status, round(secs, 1),
-                                    m.col))
+                                    m.col, index))
             if record is not None:
                 record(outcomes[-1])
             log(f"  [{n}/{len(sites)}] {module}:{m.line}:{m.col} {m.description}: {status} "
@@ -379,8 +382,11 @@ def main(argv=None):
             survivors = None
             if args.survivors:
                 rows = [json.loads(r) for r in open(args.survivors) if r.strip()]
-                survivors = {(r["line"], r.get("col", 0), r["description"]) for r in rows
-                             if r["module"] == module and r["status"] == "survived"}
+                mine = [r for r in rows if r["module"] == module and r["status"] == "survived"]
+                survivors = {(r["line"], r.get("col", 0), r["description"]) for r in mine}
+                # with the node index (recorded since) only that node; without, all nodes
+                survivors |= {(r["line"], r.get("col", 0), r["description"], r.get("node", -1))
+                              for r in mine}
             outcomes += mutate_module(tree_dir, module, test_args, args.timeout, only,
                                       args.every, log=lambda s: print(s, flush=True),
                                       record=record, only=survivors,
