@@ -59,3 +59,21 @@ def test_half_way_state_by_hand():
     assert (mid.eps, mid.eps_dot, mid.gamma_dot, mid.omega) == pytest.approx(
         (0.4, 3.0, 4.0, 200.0), rel=1e-15)
     assert mid.gamma == pytest.approx(0.0, abs=1e-15)
+
+
+@pytest.mark.parametrize("half", [True, False])
+def test_full_content_sums_to_the_film_volume(half):
+    """The full content of the control volumes (the exact integral of H over each) sums
+    to the film's volume, int (1 + eps cos theta) dtheta dzeta = 2 pi times the meshed
+    length in zeta (lambda for the half film, 2 lambda for the whole), to round-off; each
+    volume holds between (1 - eps) and (1 + eps) times its area. Fails with the content
+    negated (jfo_balance.py:35)."""
+    from bearingfem.fe.assembly import fe_operator
+    from bearingfem.fe.jfo_balance import _content, film_volumes
+
+    op = fe_operator(B, S1, 48, 8, "P1", None, half)
+    cv = film_volumes(op.mesh)
+    content = _content(cv, S1.eps)
+    lam = B.length / (2 * B.radius)
+    assert content.sum() == pytest.approx(2 * np.pi * lam * (1 if half else 2), rel=1e-12)
+    assert np.all(content >= (1 - S1.eps) * cv.area) and np.all(content <= (1 + S1.eps) * cv.area)
