@@ -10,6 +10,11 @@ scikit-fem and pytest imported once, before the fork), under a timeout:
     nice -n 19 python tools/mutate.py bearingfem/film.py bearingfem/closed/short_bearing.py \
         --timeout 120 --jsonl mutation.jsonl
 
+A sample for a shared machine (a fixed seed draws the same mutants again):
+
+    python tools/mutate.py bearingfem/fe/assembly.py --sample 30 --seed 23 --jsonl m.jsonl
+    python tools/mutate.py bearingfem/fe/assembly.py --survivors m.jsonl   # after new tests
+
 A mutant is *killed* when the tests fail, *survives* when they pass, *timeout* when they
 run past the limit. Tests for a module come from TESTS below or ``--tests`` (pytest
 arguments, e.g. "tests/test_design.py -k lund").
@@ -39,6 +44,8 @@ if sys.path and Path(sys.path[0]).resolve() == ROOT / "tools":
 sys.path = [p for p in sys.path if Path(p or ".").resolve() != ROOT]
 os.environ.pop("PYTHONPATH", None)
 
+#: leaves out the two long JFO tests (a closed-form squeeze front, an iteration benchmark)
+QUICK_JFO = " -k 'not squeeze_film_front and not benchmark_smoke and not fraction_is_exported'"
 #: module -> pytest arguments: tests that exercise the module and run in well under a minute
 TESTS = {
     "bearingfem/film.py":
@@ -53,6 +60,48 @@ TESTS = {
         "-k 'lund or threshold or friswell or orbit or mutants_stability'",
     "bearingfem/contact/asperity.py": "tests/test_asperity.py",
     "bearingfem/contact/gaussian.py": "tests/test_asperity.py",
+    # FE / FV / JFO films and their solvers: a few seconds of the most direct tests each
+    # (a surviving mutant costs the whole selection; the machine is shared)
+    "bearingfem/scales.py":
+        "tests/test_fe_vs_fvm.py tests/test_independent_jfo.py tests/test_mutants_scales.py",
+    "bearingfem/fields.py":
+        "tests/test_manufactured_fields.py tests/test_misalignment.py "
+        "tests/test_mutants_fields.py",
+    "bearingfem/fe/assembly.py":
+        "tests/test_manufactured.py tests/test_fe_vs_fvm.py tests/test_cavitation.py "
+        "tests/test_mutants_assembly.py",
+    "bearingfem/fe/reynolds.py":
+        "tests/test_manufactured.py tests/test_fe_vs_fvm.py tests/test_cavitation.py "
+        "tests/test_mutants_reynolds.py",
+    "bearingfem/fe/general.py":
+        "tests/test_manufactured_fields.py tests/test_misalignment.py "
+        "tests/test_mutants_general.py",
+    "bearingfem/fe/sensitivity.py":
+        "tests/test_tilt_coefficients.py tests/test_independent_coefficients.py "
+        "tests/test_mutants_sensitivity.py",
+    "bearingfem/fe/jfo.py":
+        "tests/test_independent_jfo.py tests/test_jfo_solver.py tests/test_jfo.py "
+        "tests/test_mutants_jfo.py" + QUICK_JFO,
+    "bearingfem/fe/jfo_balance.py":
+        "tests/test_independent_jfo.py tests/test_jfo.py tests/test_mutants_jfo.py" + QUICK_JFO,
+    "bearingfem/fe/volumes.py":
+        "tests/test_jfo_transient.py tests/test_independent_jfo.py tests/test_mutants_volumes.py "
+        "-k 'not load_reversing'",
+    "bearingfem/fe/planar.py":
+        "tests/test_jfo.py tests/test_jfo_convergence.py tests/test_mutants_planar.py "
+        "-k 'planar or mutants'",
+    "bearingfem/fv/fvm.py":
+        "tests/test_fe_vs_fvm.py tests/test_manufactured.py tests/test_jfo.py "
+        "tests/test_mutants_fvm.py -k 'not test_jfo or fe_and_fv or mutants'",
+    "bearingfem/solvers/cavitation.py":
+        "tests/test_cavitation.py tests/test_blocksolve.py tests/test_mutants_cavitation.py",
+    "bearingfem/solvers/jfo.py":
+        "tests/test_jfo_solver.py tests/test_independent_jfo.py tests/test_jfo.py "
+        "tests/test_mutants_solvers_jfo.py" + QUICK_JFO,
+    "bearingfem/solvers/linsolve.py":
+        "tests/test_linsolve.py tests/test_blocksolve.py tests/test_mutants_linsolve.py",
+    "bearingfem/solvers/blocksolve.py":
+        "tests/test_blocksolve.py tests/test_mutants_blocksolve.py",
 }
 SWAP_BIN = {ast.Add: ast.Sub, ast.Sub: ast.Add, ast.Mult: ast.Div, ast.Div: ast.Mult}
 SWAP_CMP = {ast.Lt: ast.LtE, ast.LtE: ast.Lt, ast.Gt: ast.GtE, ast.GtE: ast.Gt}
@@ -78,6 +127,7 @@ class Outcome:
     status: str          # "killed", "survived", "timeout"
     seconds: float
     col: int = 0         # column of the mutated node (several on one line)
+    node: int = -1       # its index in ast.walk order (nested operators share a column)
 
 
 def _docstring_ids(tree) -> set:
@@ -225,28 +275,47 @@ def run_tests(tree_dir: Path, test_args: str, timeout: float) -> tuple[str, floa
         time.sleep(0.05)
 
 
+def _existing(tree_dir: Path, test_args: str, first_pass: bool = False) -> str:
+    """The pytest arguments without test files that do not exist (yet): a module's
+    ``test_mutants_*`` file is written after its first pass (and left out of a
+    ``first_pass``, which scores the older tests)."""
+    def dropped(a):
+        return a.startswith("tests/") and a.endswith(".py") and (
+            not (tree_dir / a).exists() or first_pass and a.startswith("tests/test_mutants_"))
+    return shlex.join(a for a in shlex.split(test_args) if not dropped(a))
+
+
 def mutate_module(tree_dir: Path, module: str, test_args: str, timeout: float,
                   only_lines=None, every: int = 1, log=print, record=None,
-                  only=None) -> list[Outcome]:
+                  only=None, sample: int | None = None, seed: int = 0,
+                  first_pass: bool = False) -> list[Outcome]:
     path = tree_dir / module
     original = path.read_text()
+    test_args = _existing(tree_dir, test_args, first_pass)
     status, base = run_tests(tree_dir, test_args, timeout)
     if status != "survived":
         raise RuntimeError(f"{module}: the unmutated tests do not pass ({status})")
-    log(f"{module}: tests pass unmutated in {base:.1f} s")
+    log(f"{module}: tests pass unmutated in {base:.1f} s ({test_args})")
     sites = _sites(ast.parse(original))
     if only_lines:
         sites = [(i, m) for i, m in sites if m.line in only_lines]
-    if only is not None:       # (line, description) pairs, e.g. a previous run's survivors
-        sites = [(i, m) for i, m in sites if (m.line, m.description) in only]
+    if only is not None:       # (line, col, description): a previous run's survivors
+        sites = [(i, m) for i, m in sites if (m.line, m.col, m.description) in only
+                 and ((m.line, m.col, m.description, i) in only
+                      or (m.line, m.col, m.description, -1) in only)]
     sites = sites[::every]     # an evenly spread sample when time is short
+    if sample is not None and sample < len(sites):
+        # a seeded random sample: the same seed draws the same mutants in a later run
+        import random
+        picked = sorted(random.Random(seed).sample(range(len(sites)), sample))
+        sites = [sites[k] for k in picked]
     outcomes = []
     try:
         for n, (index, m) in enumerate(sites, 1):
             path.write_text(mutated_source(original, index, m.kind))
             status, secs = run_tests(tree_dir, test_args, timeout)
             outcomes.append(Outcome(module, m.line, m.description, status, round(secs, 1),
-                                    m.col))
+                                    m.col, index))
             if record is not None:
                 record(outcomes[-1])
             log(f"  [{n}/{len(sites)}] {module}:{m.line}:{m.col} {m.description}: {status} "
@@ -279,6 +348,12 @@ def main(argv=None):
     ap.add_argument("--timeout", type=float, default=180.0, help="per mutant [s]")
     ap.add_argument("--lines", help="only mutate these lines, e.g. 12,40-55")
     ap.add_argument("--every", type=int, default=1, help="mutate every k-th site only")
+    ap.add_argument("--sample", type=int, help="a random sample of this many mutants per "
+                    "module (after --lines/--every)")
+    ap.add_argument("--seed", type=int, default=0, help="seed of --sample")
+    ap.add_argument("--first-pass", action="store_true", help="leave out the tests/"
+                    "test_mutants_* files (the score of the tests written before)")
+    ap.add_argument("--nice", type=int, default=10, help="niceness added to this process")
     ap.add_argument("--survivors", help="only the mutants that survived in this JSONL file "
                     "(a previous --jsonl): check that new tests kill them")
     ap.add_argument("--jsonl", help="append every outcome, as it comes, to this file")
@@ -294,6 +369,7 @@ def main(argv=None):
             with open(args.jsonl, "a") as f:
                 f.write(json.dumps(asdict(o)) + "\n")
 
+    os.nice(args.nice)
     preload()
     outcomes = []
     with tempfile.TemporaryDirectory(prefix="bearingfem-mutants-") as tmp:
@@ -306,11 +382,16 @@ def main(argv=None):
             survivors = None
             if args.survivors:
                 rows = [json.loads(r) for r in open(args.survivors) if r.strip()]
-                survivors = {(r["line"], r["description"]) for r in rows
-                             if r["module"] == module and r["status"] == "survived"}
+                mine = [r for r in rows if r["module"] == module and r["status"] == "survived"]
+                survivors = {(r["line"], r.get("col", 0), r["description"]) for r in mine}
+                # with the node index (recorded since) only that node; without, all nodes
+                survivors |= {(r["line"], r.get("col", 0), r["description"], r.get("node", -1))
+                              for r in mine}
             outcomes += mutate_module(tree_dir, module, test_args, args.timeout, only,
                                       args.every, log=lambda s: print(s, flush=True),
-                                      record=record, only=survivors)
+                                      record=record, only=survivors,
+                                      sample=None if survivors else args.sample,
+                                      seed=args.seed, first_pass=args.first_pass)
     print(summary(outcomes))
 
 
