@@ -16,7 +16,7 @@
   0.7: eps_dot jumps at the turns (one period, 200 steps).
 
 ``--journal-steps N`` runs only the first N journal steps (large meshes), ``--journal-only``
-skips the squeeze film.
+skips the squeeze film (``--squeeze-only`` the journal), ``--mesh 960x160`` runs that journal mesh instead of the others.
 
 Per step: the iterations of its solves (all coarser meshes that placed a first set and
 all substeps counted), the sparse LU factorisations (``scipy.sparse.linalg.splu`` calls,
@@ -122,6 +122,9 @@ def main(argv=None):
     ap.add_argument("--journal-steps", type=int, default=200,
                     help="journal steps run (of 200 a period)")
     ap.add_argument("--journal-only", action="store_true", help="skip the squeeze film")
+    ap.add_argument("--squeeze-only", action="store_true", help="skip the journal film")
+    ap.add_argument("--mesh", action="append", default=None,
+                    help="journal mesh NTHETAxNZ instead of the default ones (repeatable)")
     ap.add_argument("--save", default=None, help="keep each run's forces in this .npz")
     ap.add_argument("--against", default=None, help="compare the forces with this .npz")
     a = ap.parse_args(argv)
@@ -154,7 +157,10 @@ def _table(lu, a):
         runs = ([] if a.journal_only else
                 [lambda n=n: squeeze_run(lu, n, a.steps) for n in SQUEEZE_CELLS])
         meshes = JOURNAL_MESHES + (LARGE_MESHES if a.large else ())
-        runs += [lambda m=m: journal_run(lu, *m, run=a.journal_steps) for m in meshes]
+        if a.mesh:
+            meshes = tuple(tuple(int(n) for n in m.split("x")) for m in a.mesh)
+        runs += [lambda m=m: journal_run(lu, *m, run=a.journal_steps) for m in meshes
+                 if not a.squeeze_only]
     print("| film | mesh | steps | iterations/step mean | max | factorisations/step mean | "
           "max | cut steps | unconverged | worst balance / throughput | ms/step |")
     print("|---|---|---|---|---|---|---|---|---|---|---|")

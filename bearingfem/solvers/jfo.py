@@ -229,26 +229,34 @@ def jfo_solve(K: sp.spmatrix, A: sp.spmatrix, b: np.ndarray, *,
     scale = max(float(np.abs(b).max(initial=0.0)), np.finfo(float).tiny)
     # Volumes that can hold a cavity: those whose own content leaves or changes (A_jj > 0).
     can_cavitate = A.diagonal() > 0.0
-    tries = [(lambda c=c: FirstSet(c), warm_iterations) for c in _first_sets(cavitated0)]
+    # (first set, iterations, iterations while near the answer: warm sets only)
+    tries = [(lambda c=c: FirstSet(c), warm_iterations, 2 * warm_iterations)
+             for c in _first_sets(cavitated0)]
     if start is not None:
-        tries.append((start, max_iter))
+        tries.append((start, max_iter, None))
     # the Reynolds-condition set takes its transport from the last iterate's fraction
-    tries.append((lambda: _reynolds_set(K, A, b, phi, can_cavitate), max_iter))
+    tries.append((lambda: _reynolds_set(K, A, b, phi, can_cavitate), max_iter, None))
     it = lus = 0
     P, phi = np.zeros(n), np.ones(n)
-    converged = False
+    converged = warm_near = False
     sets = _SetSolver(K, A)
-    for first, limit in tries:
+    for first, limit, near_limit in tries:
+        if near_limit is not None and warm_near:
+            continue
         guess = first()
         if guess is None:
             continue
         it, lus = it + guess.iterations, lus + guess.factorisations
         cav = np.asarray(guess.cavitated, bool) & can_cavitate
         P, phi, cav, k, converged = _active_set(sets, A, b, cav, can_cavitate, limit,
-                                                max(limit, 2 * warm_iterations))
+                                                near_limit)
         it += k
         if converged:
             break
+        # a warm set that was near the answer (a far one stops after one iteration) and
+        # did not settle: its fronts travel farther than iterations move them, and the
+        # other warm sets are farther still; the coarse meshes place them
+        warm_near = near_limit is not None and k > 1
     lus += sets.factorisations
     if not converged:
         P, phi, fb_it, converged = _fischer_burmeister(
@@ -291,20 +299,22 @@ def _first_sets(cavitated0) -> list:
     return [np.asarray(cavitated0, bool)]
 
 
-def _active_set(sets: _SetSolver, A, b, cav, can_cavitate, max_iter, shrinking_iter=None):
+def _active_set(sets: _SetSolver, A, b, cav, can_cavitate, max_iter, near_iter=None):
     """Semismooth Newton on the universal variable from the set ``cav`` (module text):
-    ``max_iter`` iterations, and on up to ``shrinking_iter`` while the set is near the
-    answer: its first iteration changed under ``NEAR_SHARE`` of the volumes (a band along
-    the fronts, where a set off by a jump of the squeeze differs on an area: measured
-    0.2 % against 47 % on the journal film of benchmarks/jfo_iterations.py at 480x80) and
-    each iteration changes fewer volumes than the one before (measured 7, 2, 1, 0 at
-    240x40; 33, 26, 10, ... at 480x80)."""
+    ``max_iter`` iterations. With ``near_iter`` (a warm set: the kept or extrapolated
+    one) the set must be near the answer: its first iteration changes under
+    ``NEAR_SHARE`` of the volumes (a band along the fronts, where a set off by a jump of
+    the squeeze differs on an area: measured 0.2 % against 47 % on the journal film of
+    benchmarks/jfo_iterations.py at 480x80), or the try ends there (the caller's next
+    first set is better than a front moved a layer per iteration); near, it goes on up
+    to ``near_iter`` while each iteration changes fewer volumes than the one before
+    (measured 7, 2, 1, 0 at 240x40; 33, 26, 10, ... at 480x80)."""
     n = b.shape[0]
     P, phi = np.zeros(n), np.ones(n)
     seen = set()
     near, last_changes = True, n
     it = 0
-    while it < max(max_iter, shrinking_iter or 0):
+    while it < max(max_iter, near_iter or 0):
         it += 1
         rhs = b - A @ np.where(cav, 0.0, 1.0)
         x = sets.solve(cav, rhs)
@@ -316,6 +326,7 @@ def _active_set(sets: _SetSolver, A, b, cav, can_cavitate, max_iter, shrinking_i
         if np.array_equal(new, cav):
             P, phi = _refined(sets, A, b, cav, P, phi)
             return P, phi, cav, it, True
+        new &= ~_filled_ahead(sets.K, A, cav, phi)
         key = new.tobytes()
         if key in seen:        # the sets cycle: let the caller take over
             return P, phi, cav, it, False
@@ -323,10 +334,42 @@ def _active_set(sets: _SetSolver, A, b, cav, can_cavitate, max_iter, shrinking_i
         changes = int(np.count_nonzero(new != cav))
         cav = new
         near = near and (it > 1 or changes < NEAR_SHARE * n)
+        if near_iter is not None and not near:
+            break
         if it >= max_iter and not (near and changes < last_changes):
             break
         last_changes = changes
     return P, phi, cav, it, False
+
+
+def _filled_ahead(K: sp.csc_matrix, A: sp.csc_matrix, cav: np.ndarray, phi: np.ndarray,
+                  layers: int = 64) -> np.ndarray:
+    """Cavities the overfill of a reformation front fills beyond its first layer: a
+    cavity with phi > 1 holds (phi - 1) A_jj more content than it can; shared equally
+    among its cavity neighbours (the pattern of K) it fills those whose deficit
+    (1 - phi) A_kk it covers, and what is left goes on. The active set alone moves the
+    front one layer per iteration (a cavity beyond the first sees no pressure), where a
+    nearly full cavity takes many layers a step."""
+    D = A.diagonal()
+    over = cav & (phi > 1.0)
+    filled = over.copy()
+    excess = np.where(over, (phi - 1.0) * D, 0.0)
+    deficit = np.where(cav & ~over, (1.0 - phi) * D, 0.0)
+    G = sp.csr_matrix(K, copy=True)
+    G.data[:] = 1.0
+    G.setdiag(0.0)
+    G.eliminate_zeros()
+    for _ in range(layers):
+        open_ = cav & ~filled
+        takers = G @ open_.astype(float)                 # open cavity neighbours of each
+        share = np.where((excess > 0.0) & (takers > 0.0), excess / np.maximum(takers, 1.0), 0.0)
+        received = np.where(open_, G @ share, 0.0)
+        newly = open_ & (received > 0.0) & (received >= deficit)
+        if not newly.any():
+            break
+        filled |= newly
+        excess = np.where(newly, received - deficit, 0.0)
+    return filled & ~over
 
 
 def _refined(sets: _SetSolver, A, b, cav, P, phi, passes: int = 4):
