@@ -67,9 +67,9 @@ class FirstSet:
     factorisations: int = 0
 
 
-#: A first set is near the answer when its first iteration changes under this share of
-#: the volumes (see ``_active_set``).
-NEAR_SHARE = 0.01
+#: A warm first set is near the answer when its first iteration changes fewer volumes
+#: than this many layers along its fronts (see ``_active_set``).
+NEAR_LAYERS = 4
 
 #: Largest residual (relative to max |b|) a converged JFO solve may leave.
 RESIDUAL_LIMIT = 1e-8
@@ -117,6 +117,24 @@ class _SetSolver:
         self.base: np.ndarray | None = None      # the set C0 of the factors
         self.lu = None
         self.factorisations = 0
+        self._neighbours = None
+
+    @property
+    def neighbours(self) -> sp.csr_matrix:
+        """Adjacency of the volumes (the pattern of K off its diagonal), 0/1."""
+        if self._neighbours is None:
+            G = sp.csr_matrix(self.K, copy=True)
+            G.data[:] = 1.0
+            G.setdiag(0.0)
+            G.eliminate_zeros()
+            self._neighbours = G
+        return self._neighbours
+
+    def front(self, cavitated: np.ndarray) -> int:
+        """How many volumes have a neighbour on the other side of the set's boundary."""
+        c = cavitated.astype(float)
+        G = self.neighbours
+        return int(np.count_nonzero(np.where(cavitated, G @ (1.0 - c), G @ c)))
 
     def solve(self, cavitated: np.ndarray, rhs: np.ndarray) -> np.ndarray:
         if self.base is not None:
@@ -302,17 +320,18 @@ def _first_sets(cavitated0) -> list:
 def _active_set(sets: _SetSolver, A, b, cav, can_cavitate, max_iter, near_iter=None):
     """Semismooth Newton on the universal variable from the set ``cav`` (module text):
     ``max_iter`` iterations. With ``near_iter`` (a warm set: the kept or extrapolated
-    one) the set must be near the answer: its first iteration changes under
-    ``NEAR_SHARE`` of the volumes (a band along the fronts, where a set off by a jump of
-    the squeeze differs on an area: measured 0.2 % against 47 % on the journal film of
-    benchmarks/jfo_iterations.py at 480x80), or the try ends there (the caller's next
-    first set is better than a front moved a layer per iteration); near, it goes on up
-    to ``near_iter`` while each iteration changes fewer volumes than the one before
-    (measured 7, 2, 1, 0 at 240x40; 33, 26, 10, ... at 480x80)."""
+    one) the set must be near the answer: its first iteration changes fewer volumes than
+    ``NEAR_LAYERS`` layers along its fronts (a set off by a jump of the squeeze differs
+    on an area: on the journal film of benchmarks/jfo_iterations.py at 480x80, 9086
+    volumes at the jump against 8-75 in the other steps), or the try ends there (the
+    caller's next first set is better than fronts moved a layer per iteration); near, it
+    goes on up to ``near_iter`` while each iteration changes fewer volumes than the one
+    before (measured 7, 2, 1, 0 at 240x40; 33, 26, 10, ... at 480x80)."""
     n = b.shape[0]
     P, phi = np.zeros(n), np.ones(n)
     seen = set()
     near, last_changes = True, n
+    band = NEAR_LAYERS * sets.front(cav) if near_iter is not None else n
     it = 0
     while it < max(max_iter, near_iter or 0):
         it += 1
@@ -326,14 +345,14 @@ def _active_set(sets: _SetSolver, A, b, cav, can_cavitate, max_iter, near_iter=N
         if np.array_equal(new, cav):
             P, phi = _refined(sets, A, b, cav, P, phi)
             return P, phi, cav, it, True
-        new &= ~_filled_ahead(sets.K, A, cav, phi)
+        new &= ~_filled_ahead(sets.neighbours, A, cav, phi)
         key = new.tobytes()
         if key in seen:        # the sets cycle: let the caller take over
             return P, phi, cav, it, False
         seen.add(key)
         changes = int(np.count_nonzero(new != cav))
         cav = new
-        near = near and (it > 1 or changes < NEAR_SHARE * n)
+        near = near and (it > 1 or changes < band)
         if near_iter is not None and not near:
             break
         if it >= max_iter and not (near and changes < last_changes):
@@ -342,11 +361,11 @@ def _active_set(sets: _SetSolver, A, b, cav, can_cavitate, max_iter, near_iter=N
     return P, phi, cav, it, False
 
 
-def _filled_ahead(K: sp.csc_matrix, A: sp.csc_matrix, cav: np.ndarray, phi: np.ndarray,
+def _filled_ahead(G: sp.csr_matrix, A: sp.csc_matrix, cav: np.ndarray, phi: np.ndarray,
                   layers: int = 64) -> np.ndarray:
     """Cavities the overfill of a reformation front fills beyond its first layer: a
     cavity with phi > 1 holds (phi - 1) A_jj more content than it can; shared equally
-    among its cavity neighbours (the pattern of K) it fills those whose deficit
+    among its cavity neighbours (``G``: the adjacency of the volumes) it fills those whose deficit
     (1 - phi) A_kk it covers, and what is left goes on. The active set alone moves the
     front one layer per iteration (a cavity beyond the first sees no pressure), where a
     nearly full cavity takes many layers a step."""
@@ -355,10 +374,6 @@ def _filled_ahead(K: sp.csc_matrix, A: sp.csc_matrix, cav: np.ndarray, phi: np.n
     filled = over.copy()
     excess = np.where(over, (phi - 1.0) * D, 0.0)
     deficit = np.where(cav & ~over, (1.0 - phi) * D, 0.0)
-    G = sp.csr_matrix(K, copy=True)
-    G.data[:] = 1.0
-    G.setdiag(0.0)
-    G.eliminate_zeros()
     for _ in range(layers):
         open_ = cav & ~filled
         takers = G @ open_.astype(float)                 # open cavity neighbours of each
