@@ -182,8 +182,10 @@ def test_jfo_iterations_benchmark_smoke(capsys):
 def test_journal_squeeze_jump_converges_on_a_fine_circumference():
     """A journal film 3840x4 in pure squeeze whose eps_dot jumps from -40 to +40 1/s: the
     cavity reforms and reopens within a step or two. Every step converges uncut in few
-    iterations (measured 21 to 24 with the coarse meshes, 1 or 2 when the set stays; the coarse meshes are halved along theta only while
-    their cells are long axially). Fails on the previous solver (kept unconverged steps)
+    iterations (measured 20 to 26 with the coarse meshes, 1 or 2 when the set stays, 4
+    where the extrapolated set is near; 21 to 24 before the extrapolated set and the
+    fill-ahead; the coarse meshes are halved along theta only while their cells are long
+    axially). Fails on the previous solver (kept unconverged steps)
     and with both directions halved (1920x2 then misplaces the cavity by a third of its
     nodes and the step raises even cut)."""
     from bearingfem.fe.jfo import JFOFilm
