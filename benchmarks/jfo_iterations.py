@@ -123,6 +123,8 @@ def main(argv=None):
                     help="journal steps run (of 200 a period)")
     ap.add_argument("--journal-only", action="store_true", help="skip the squeeze film")
     ap.add_argument("--squeeze-only", action="store_true", help="skip the journal film")
+    ap.add_argument("--cells", action="append", type=int, default=None,
+                    help="squeeze film cells instead of 200 ... 1600 (repeatable)")
     ap.add_argument("--mesh", action="append", default=None,
                     help="journal mesh NTHETAxNZ instead of the default ones (repeatable)")
     ap.add_argument("--save", default=None, help="keep each run's forces in this .npz")
@@ -155,7 +157,7 @@ def _table(lu, a):
         runs = [lambda: squeeze_run(lu, 100, 400, 1), lambda: journal_run(lu, 48, 4, 20)]
     else:
         runs = ([] if a.journal_only else
-                [lambda n=n: squeeze_run(lu, n, a.steps) for n in SQUEEZE_CELLS])
+                [lambda n=n: squeeze_run(lu, n, a.steps) for n in a.cells or SQUEEZE_CELLS])
         meshes = JOURNAL_MESHES + (LARGE_MESHES if a.large else ())
         if a.mesh:
             meshes = tuple(tuple(int(n) for n in m.split("x")) for m in a.mesh)
