@@ -49,7 +49,7 @@ def test_squeeze_film_opening_converges_in_few_iterations(n_x):
     """The steps in which the cavity opens and its front runs up to ~100 cells a step
     (the first 40): every step converged, its flows balanced to 1e-10 of its throughput
     (plus round-off, see run_squeeze), uncut, in few iterations (all coarser meshes that
-    placed the first set counted; measured at most 18, 20, 22, 24 at 200 ... 1600 cells,
+    placed the first set counted; measured at most 16, 18, 20, 22 at 200 ... 1600 cells,
     where the Reynolds-condition start took 55, 104 and at 800 cells 155: its
     100-iteration cap, 12 active-set and 40 Fischer-Burmeister iterations). Fails on the solver that
     kept unconverged steps (at 800 cells steps 4 to 19 ended with converged=False, flow
