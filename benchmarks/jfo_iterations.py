@@ -15,8 +15,9 @@
   rotation, 0.1 bar at the ends, pure squeeze at eps_dot = +-40 1/s between eps = 0.3 and
   0.7: eps_dot jumps at the turns (one period, 200 steps).
 
-``--journal-steps N`` runs only the first N journal steps (large meshes), ``--journal-only``
-skips the squeeze film (``--squeeze-only`` the journal), ``--mesh 960x160`` runs that journal mesh instead of the others.
+``--journal-steps N`` runs only the first N journal steps (large meshes),
+``--journal-only`` skips the squeeze film (``--squeeze-only`` the journal), ``--mesh
+960x160`` and ``--cells 1600`` run those meshes instead of the others (repeatable).
 
 Per step: the iterations of its solves (all coarser meshes that placed a first set and
 all substeps counted), the sparse LU factorisations (``scipy.sparse.linalg.splu`` calls,
