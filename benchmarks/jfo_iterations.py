@@ -4,6 +4,8 @@
     python -m benchmarks.jfo_iterations --large         # adds the journal at 960x160 and 1920x320
     python -m benchmarks.jfo_iterations --quick         # a smoke run (CI)
     python -m benchmarks.jfo_iterations --before DIR    # the same runs with the toolkit in DIR
+    python -m benchmarks.jfo_iterations --save A.npz    # keep each step's force (or load)
+    python -m benchmarks.jfo_iterations --against A.npz # largest force change against A.npz
 
 * planar: parallel plates 10 mm long, gap h = 10 um - 5 um cos(2 pi 50 t), mu = 0.01 Pa s,
   both ends at 1 bar, 2 periods of 3200 backward-Euler steps each (``--steps`` per
@@ -12,6 +14,10 @@
 * journal: a bearing R = 10 mm, L = 20 mm, c = 20 um, mu = 0.0117 Pa s, no
   rotation, 0.1 bar at the ends, pure squeeze at eps_dot = +-40 1/s between eps = 0.3 and
   0.7: eps_dot jumps at the turns (one period, 200 steps).
+
+``--journal-steps N`` runs only the first N journal steps (large meshes),
+``--journal-only`` skips the squeeze film (``--squeeze-only`` the journal), ``--mesh
+960x160`` and ``--cells 1600`` run those meshes instead of the others (repeatable).
 
 Per step: the iterations of its solves (all coarser meshes that placed a first set and
 all substeps counted), the sparse LU factorisations (``scipy.sparse.linalg.splu`` calls,
@@ -51,17 +57,18 @@ class _CountedLU:
         return self.splu(*args, **kw)
 
 
-def _record(rows, lu, sol, substeps, balance, wall):
-    rows.append((sol.iterations, lu.count, substeps, bool(sol.converged), balance, wall))
+def _record(rows, lu, sol, substeps, balance, wall, force):
+    rows.append((sol.iterations, lu.count, substeps, bool(sol.converged), balance, wall,
+                 force))
     lu.count = 0
 
 
 def _summary(name, mesh, rows):
-    it, fac, sub, conv, bal, wall = (np.array(c) for c in zip(*rows))
+    it, fac, sub, conv, bal, wall, force = (np.array(c) for c in zip(*rows))
     return dict(film=name, mesh=mesh, steps=len(rows), it_mean=it.mean(), it_max=int(it.max()),
                 fac_mean=fac.mean(), fac_max=int(fac.max()), cut=int(np.sum(sub > 1)),
                 unconverged=int(np.sum(~conv)), balance=float(bal.max()),
-                ms_per_step=1e3 * float(wall.sum()) / len(rows))
+                ms_per_step=1e3 * float(wall.sum()) / len(rows), force=force)
 
 
 def squeeze_run(lu, n_x: int, steps_per_period: int, periods: int = 2):
@@ -77,11 +84,12 @@ def squeeze_run(lu, n_x: int, steps_per_period: int, periods: int = 2):
         s = f.step(dt)
         thr = max(abs(s.flow_in), abs(s.flow_out), abs(s.storage))
         _record(rows, lu, s, getattr(s, "substeps", 1), abs(s.mass_balance) / thr,
-                time.perf_counter() - t0)
+                time.perf_counter() - t0, s.load)
     return _summary("squeeze", f"{n_x}", rows)
 
 
-def journal_run(lu, n_theta: int, n_z: int, steps: int = 200):
+def journal_run(lu, n_theta: int, n_z: int, steps: int = 200, run: int | None = None):
+    """The journal film, ``steps`` a period, the first ``run`` of them (all: None)."""
     from bearingfem import Bearing, JournalState
     from bearingfem.fe.jfo import JFOFilm
     b = Bearing(radius=0.01, length=0.02, clearance=20e-6, viscosity=0.0117)
@@ -96,13 +104,13 @@ def journal_run(lu, n_theta: int, n_z: int, steps: int = 200):
         return JournalState(eps=float(eps), eps_dot=rate if up else -rate)
     f = JFOFilm(b, state(0.0), n_theta, n_z, ambient_pressure=1e4)
     rows = []
-    for k in range(1, steps + 1):
+    for k in range(1, (steps if run is None else run) + 1):
         t0 = time.perf_counter()
         s = f.step(state(k * dt), dt)
         thr = max(abs(s.flow_in or 0.0), abs(s.side_leakage),
                   abs(s.side_leakage - (s.flow_in or 0.0) + s.mass_balance))
         _record(rows, lu, s, getattr(f, "substeps", 1), abs(s.mass_balance) / max(thr, 1e-300),
-                time.perf_counter() - t0)
+                time.perf_counter() - t0, np.hypot(*s.force_local))
     return _summary("journal", f"{n_theta}x{n_z}", rows)
 
 
@@ -112,6 +120,16 @@ def main(argv=None):
     ap.add_argument("--large", action="store_true", help="add the journal at 960x160, 1920x320")
     ap.add_argument("--steps", type=int, default=3200, help="squeeze steps per period")
     ap.add_argument("--before", default=None, help="import the toolkit from this directory")
+    ap.add_argument("--journal-steps", type=int, default=200,
+                    help="journal steps run (of 200 a period)")
+    ap.add_argument("--journal-only", action="store_true", help="skip the squeeze film")
+    ap.add_argument("--squeeze-only", action="store_true", help="skip the journal film")
+    ap.add_argument("--cells", action="append", type=int, default=None,
+                    help="squeeze film cells instead of 200 ... 1600 (repeatable)")
+    ap.add_argument("--mesh", action="append", default=None,
+                    help="journal mesh NTHETAxNZ instead of the default ones (repeatable)")
+    ap.add_argument("--save", default=None, help="keep each run's forces in this .npz")
+    ap.add_argument("--against", default=None, help="compare the forces with this .npz")
     a = ap.parse_args(argv)
     if a.before:
         sys.path.insert(0, a.before)
@@ -120,16 +138,32 @@ def main(argv=None):
     import bearingfem
     print(f"toolkit: {bearingfem.__file__}")
     with _CountedLU() as lu:
-        return _table(lu, a)
+        rows = _table(lu, a)
+    key = lambda r: f"{r['film']} {r['mesh']} {r['steps']}"    # noqa: E731
+    if a.save:
+        np.savez(a.save, **{key(r): r["force"] for r in rows})
+    if a.against:
+        kept = np.load(a.against)
+        print("| film | mesh | steps | largest force change / largest force |\n|---|---|---|---|")
+        for r in rows:
+            if key(r) in kept:
+                f0 = kept[key(r)]
+                change = np.max(np.abs(r["force"] - f0)) / np.max(np.abs(f0))
+                print(f"| {r['film']} | {r['mesh']} | {r['steps']} | {change:.1e} |")
+    return rows
 
 
 def _table(lu, a):
     if a.quick:
         runs = [lambda: squeeze_run(lu, 100, 400, 1), lambda: journal_run(lu, 48, 4, 20)]
     else:
-        runs = [lambda n=n: squeeze_run(lu, n, a.steps) for n in SQUEEZE_CELLS]
+        runs = ([] if a.journal_only else
+                [lambda n=n: squeeze_run(lu, n, a.steps) for n in a.cells or SQUEEZE_CELLS])
         meshes = JOURNAL_MESHES + (LARGE_MESHES if a.large else ())
-        runs += [lambda m=m: journal_run(lu, *m) for m in meshes]
+        if a.mesh:
+            meshes = tuple(tuple(int(n) for n in m.split("x")) for m in a.mesh)
+        runs += [lambda m=m: journal_run(lu, *m, run=a.journal_steps) for m in meshes
+                 if not a.squeeze_only]
     print("| film | mesh | steps | iterations/step mean | max | factorisations/step mean | "
           "max | cut steps | unconverged | worst balance / throughput | ms/step |")
     print("|---|---|---|---|---|---|---|---|---|---|---|")

@@ -68,6 +68,17 @@ class JFOSnapshot:
     cavitated: np.ndarray
     solution: FilmSolution | None
     steps: int
+    trend: "SetTrend | None" = None
+
+
+@dataclass(frozen=True)
+class SetTrend:
+    """The universal variable u = P - (1 - phi) of the kept step on its nodes (< 0 in a
+    cavity) and its rate over that step [1/s] (None after the first step): what
+    :meth:`JFOFilm.step` extrapolates to place the next step's first cavitated set."""
+
+    universal: np.ndarray
+    rate: np.ndarray | None
 
 
 def _film_solution(bearing, state, op: FilmOperator, P, phi, res: JFOResult,
@@ -215,18 +226,20 @@ class JFOFilm:
         self.solution: FilmSolution | None = None
         self.steps = 0
         self.substeps = 1       # backward-Euler steps the last kept step was cut into
+        self.trend: SetTrend | None = None
 
     def snapshot(self) -> JFOSnapshot:
         """The kept state (to go back to with :meth:`restore`, e.g. when an integrator
         steps back to an event inside its last step)."""
         return JFOSnapshot(self.time, self.state, self.fraction, self.content,
-                           self.cavitated, self.solution, self.steps)
+                           self.cavitated, self.solution, self.steps, self.trend)
 
     def restore(self, snapshot: JFOSnapshot) -> None:
         self.time, self.state = snapshot.time, snapshot.state
         self.fraction, self.content = snapshot.fraction, snapshot.content
         self.cavitated, self.solution = snapshot.cavitated, snapshot.solution
         self.steps = snapshot.steps
+        self.trend = snapshot.trend
 
     def _carried(self, cv: ControlVolumes, state: JournalState, *values: np.ndarray):
         """Per-node arrays of the kept step on the mesh of ``state`` (a tuple): a periodic
@@ -309,9 +322,26 @@ class JFOFilm:
     def _advance(self, state: JournalState, dt: float) -> FilmAdvance:
         op = self._operator(state)
         cv = film_volumes(op.mesh)
-        old, = self._carried(cv, state, self.content)
-        return _step_balance(self.bearing, op, state, dt, old, self.cavitated, self.grooves,
+        # the extrapolated set first, then the kept one (better just after the squeeze
+        # rate jumps, where the extrapolation continues the old trend)
+        sets = [u for u in (self._predicted(dt), np.where(self.cavitated, -1.0, 1.0))
+                if u is not None]
+        old, *sets = self._carried(cv, state, self.content, *sets)
+        first = tuple(u < 0.0 for u in sets)
+        return _step_balance(self.bearing, op, state, dt, old, first, self.grooves,
                              self.ambient_pressure, self._films(state, self.time + dt))
+
+    def _predicted(self, dt: float) -> np.ndarray | None:
+        """The universal variable u = P - (1 - phi) extrapolated over ``dt`` [s] from the
+        last two kept steps, on the kept mesh (its cavity u < 0 is the first set tried;
+        None before two steps). Fronts move several cells a step on a fine mesh but at a
+        speed that changes slowly; the active set moves a reformation front about one
+        cell per iteration, so the kept set costs as many iterations as the front has
+        cells to travel, where the extrapolated one leaves a cell or less (measured on
+        the journal film of benchmarks/jfo_iterations.py, see docs/convergence.md)."""
+        if self.trend is None or self.trend.rate is None:
+            return None
+        return self.trend.universal + dt * self.trend.rate
 
     def _solution(self, state: JournalState, a: FilmAdvance, dt: float) -> FilmSolution:
         b = a.solve
@@ -366,11 +396,20 @@ class JFOFilm:
     def _keep(self, state: JournalState, dt: float) -> FilmSolution:
         a = self._advance(state, dt)
         sol = self._solution(state, a, dt)
+        self.trend = self._next_trend(a, state, dt)     # before the state moves on
         self.time += dt
         self.state, self.fraction, self.content = state, a.solve.phi, a.content
         self.cavitated = _cavitated_nodes(a.op, a.solve.result)
         self.solution = sol
         return sol
+
+    def _next_trend(self, a: FilmAdvance, state: JournalState, dt: float) -> SetTrend:
+        u = a.solve.P - (1.0 - a.solve.phi)
+        if self.trend is None:
+            return SetTrend(u, None)
+        # the kept step's u carried to this step's mesh
+        before, = self._carried(film_volumes(a.op.mesh), state, self.trend.universal)
+        return SetTrend(u, (u - before) / dt)
 
 
 def _cavitated_nodes(op: FilmOperator, res: JFOResult) -> np.ndarray:

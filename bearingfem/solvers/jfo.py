@@ -23,11 +23,10 @@ from typing import Callable
 
 import numpy as np
 import scipy.sparse as sp
-import scipy.sparse.linalg as spla
 
 from ..errors import ConvergenceError
-from .blocksolve import BORDERED_MAX_CHANGES
 from .cavitation import active_set_iterations
+from .jfo_sets import _SetSolver, _lu, _set_matrix  # noqa: F401 (tests import them here)
 from .linsolve import principal_block
 
 __all__ = ["JFOResult", "FirstSet", "jfo_solve", "solve_balance", "upwind_transport"]
@@ -67,79 +66,12 @@ class FirstSet:
     factorisations: int = 0
 
 
+#: A warm first set is near the answer when its first iteration changes fewer volumes
+#: than this many layers along its fronts (see ``_active_set``).
+NEAR_LAYERS = 4
+
 #: Largest residual (relative to max |b|) a converged JFO solve may leave.
 RESIDUAL_LIMIT = 1e-8
-
-
-def _lu(J: sp.csc_matrix):
-    """LU of a set's matrix. Its columns are those of K (an M-matrix) or of the transport
-    and storage (positive diagonal, column sums >= 0): diagonally dominant by columns, so
-    diagonal pivots are stable and the symmetric fill-reducing ordering of the film
-    stiffness serves (the cost of one factorisation of K)."""
-    return spla.splu(J, permc_spec="MMD_AT_PLUS_A",
-                     options=dict(SymmetricMode=True, DiagPivotThresh=0.1))
-
-
-def _set_matrix(K: sp.csc_matrix, A: sp.csc_matrix, cavitated: np.ndarray,
-                stacked=None) -> sp.csc_matrix:
-    """Columns of K off the set and of A on it: the Jacobian of R for that set, gathered
-    from the CSC arrays directly (no sparse products or format conversions).
-    ``stacked``: (data, indices) of K and A concatenated, when the caller keeps them."""
-    data, indices = stacked if stacked is not None else _stacked(K, A)
-    count = np.where(cavitated, np.diff(A.indptr), np.diff(K.indptr))
-    indptr = np.zeros(len(count) + 1, dtype=K.indptr.dtype)
-    np.cumsum(count, out=indptr[1:])
-    start = np.where(cavitated, A.indptr[:-1] + K.nnz, K.indptr[:-1])
-    pos = np.repeat(start - indptr[:-1], count) + np.arange(indptr[-1])
-    return sp.csc_matrix((data[pos], indices[pos], indptr), shape=K.shape)
-
-
-def _stacked(K: sp.csc_matrix, A: sp.csc_matrix):
-    return np.concatenate([K.data, A.data]), np.concatenate([K.indices, A.indices])
-
-
-class _SetSolver:
-    """Solves J(C) x = r for the sets C of one balance. J(C) has the columns of K off C
-    and of A on C, so the matrices of two sets differ only in the k columns of the volumes
-    where the sets differ: J(C) = J(C0) + U E^T with U those columns' differences and E
-    their unit vectors. For k <= ``BORDERED_MAX_CHANGES`` (as for the Reynolds film's
-    bordered solves, a fixed count keeps every run reproducible) the Woodbury identity
-    solves it exactly with the factors of J(C0): one solve with k + 1 right-hand sides and
-    a k x k dense system, instead of a new factorisation."""
-
-    def __init__(self, K: sp.spmatrix, A: sp.spmatrix):
-        self.K, self.A = sp.csc_matrix(K), sp.csc_matrix(A)
-        self.stacked = _stacked(self.K, self.A)
-        self.base: np.ndarray | None = None      # the set C0 of the factors
-        self.lu = None
-        self.factorisations = 0
-
-    def solve(self, cavitated: np.ndarray, rhs: np.ndarray) -> np.ndarray:
-        if self.base is not None:
-            changed = np.flatnonzero(cavitated != self.base)
-            if len(changed) <= BORDERED_MAX_CHANGES:
-                x = self._corrected(cavitated, changed, rhs)
-                if x is not None:
-                    return x
-        self.lu = _lu(_set_matrix(self.K, self.A, cavitated, self.stacked))
-        self.base = cavitated.copy()
-        self.factorisations += 1
-        return self.lu.solve(rhs)
-
-    def _corrected(self, cavitated, changed, rhs):
-        """The Woodbury solve, or None when its k x k system is near singular (then the
-        caller factorises)."""
-        if len(changed) == 0:
-            return self.lu.solve(rhs)
-        # new column minus old: A_j - K_j where j joined the set, K_j - A_j where it left
-        sign = np.where(cavitated[changed], 1.0, -1.0)
-        U = (self.A[:, changed] - self.K[:, changed]).toarray() * sign
-        Y = self.lu.solve(np.column_stack([rhs, U]))
-        y, Z = Y[:, 0], Y[:, 1:]
-        S = np.eye(len(changed)) + Z[changed]
-        if np.linalg.cond(S) > 1e10:
-            return None
-        return y - Z @ np.linalg.solve(S, y[changed])
 
 
 def _fischer_burmeister(K: sp.csc_matrix, A: sp.csc_matrix, b: np.ndarray, P: np.ndarray,
@@ -206,8 +138,9 @@ def jfo_solve(K: sp.spmatrix, A: sp.spmatrix, b: np.ndarray, *,
     K, A : free-volume operators (square, sparse); A must have a positive diagonal on
         every volume that may cavitate (a cavity keeps or sheds its own content)
     b : right-hand side
-    cavitated0 : initial set (e.g. the previous time step's, or a coarser mesh's), tried
-        for ``warm_iterations``
+    cavitated0 : initial set (e.g. the previous time step's, or a coarser mesh's), or a
+        tuple of them tried in turn, each for ``warm_iterations`` (and on, up to twice
+        that, while its set changes fewer volumes at every iteration)
     start : called (once) when there is no ``cavitated0`` or it did not settle: a
         :class:`FirstSet` near the answer (the same balance on a coarser mesh), tried for
         ``max_iter``; None or returning None: skipped. Last, the set of this balance's
@@ -224,27 +157,34 @@ def jfo_solve(K: sp.spmatrix, A: sp.spmatrix, b: np.ndarray, *,
     scale = max(float(np.abs(b).max(initial=0.0)), np.finfo(float).tiny)
     # Volumes that can hold a cavity: those whose own content leaves or changes (A_jj > 0).
     can_cavitate = A.diagonal() > 0.0
-    tries = []
-    if cavitated0 is not None:
-        tries.append((lambda: FirstSet(np.asarray(cavitated0, bool)), warm_iterations))
+    # (first set, iterations, iterations while near the answer: warm sets only)
+    tries = [(lambda c=c: FirstSet(c), warm_iterations, 2 * warm_iterations)
+             for c in _first_sets(cavitated0)]
     if start is not None:
-        tries.append((start, max_iter))
+        tries.append((start, max_iter, None))
     # the Reynolds-condition set takes its transport from the last iterate's fraction
-    tries.append((lambda: _reynolds_set(K, A, b, phi, can_cavitate), max_iter))
+    tries.append((lambda: _reynolds_set(K, A, b, phi, can_cavitate), max_iter, None))
     it = lus = 0
     P, phi = np.zeros(n), np.ones(n)
-    converged = False
+    converged = warm_near = False
     sets = _SetSolver(K, A)
-    for first, limit in tries:
+    for first, limit, near_limit in tries:
+        if near_limit is not None and warm_near:
+            continue
         guess = first()
         if guess is None:
             continue
         it, lus = it + guess.iterations, lus + guess.factorisations
         cav = np.asarray(guess.cavitated, bool) & can_cavitate
-        P, phi, cav, k, converged = _active_set(sets, A, b, cav, can_cavitate, limit)
+        P, phi, cav, k, converged = _active_set(sets, A, b, cav, can_cavitate, limit,
+                                                near_limit)
         it += k
         if converged:
             break
+        # a warm set that was near the answer (a far one stops after one iteration) and
+        # did not settle: its fronts travel farther than iterations move them, and the
+        # other warm sets are farther still; the coarse meshes place them
+        warm_near = near_limit is not None and k > 1
     lus += sets.factorisations
     if not converged:
         P, phi, fb_it, converged = _fischer_burmeister(
@@ -278,12 +218,33 @@ def _reynolds_set(K, A, b, phi_guess, can_cavitate) -> FirstSet:
                     res.factorisations)
 
 
-def _active_set(sets: _SetSolver, A, b, cav, can_cavitate, max_iter):
-    """Semismooth Newton on the universal variable from the set ``cav`` (module text)."""
+def _first_sets(cavitated0) -> list:
+    """``cavitated0`` of :func:`jfo_solve` as a list of boolean sets."""
+    if cavitated0 is None:
+        return []
+    if isinstance(cavitated0, tuple):
+        return [np.asarray(c, bool) for c in cavitated0]
+    return [np.asarray(cavitated0, bool)]
+
+
+def _active_set(sets: _SetSolver, A, b, cav, can_cavitate, max_iter, near_iter=None):
+    """Semismooth Newton on the universal variable from the set ``cav`` (module text):
+    ``max_iter`` iterations. With ``near_iter`` (a warm set: the kept or extrapolated
+    one) the set must be near the answer: its first iteration changes fewer volumes than
+    ``NEAR_LAYERS`` layers along its fronts (a set off by a jump of the squeeze differs
+    on an area: on the journal film of benchmarks/jfo_iterations.py at 480x80, 9086
+    volumes at the jump against 8-75 in the other steps), or the try ends there (the
+    caller's next first set is better than fronts moved a layer per iteration); near, it
+    goes on up to ``near_iter`` while each iteration changes fewer volumes than the one
+    before (measured 7, 2, 1, 0 at 240x40; 33, 26, 10, ... at 480x80)."""
     n = b.shape[0]
     P, phi = np.zeros(n), np.ones(n)
     seen = set()
-    for it in range(1, max_iter + 1):
+    near, last_changes = True, n
+    band = NEAR_LAYERS * sets.front(cav) if near_iter is not None else n
+    it = 0
+    while it < max(max_iter, near_iter or 0):
+        it += 1
         rhs = b - A @ np.where(cav, 0.0, 1.0)
         x = sets.solve(cav, rhs)
         P = np.where(cav, 0.0, x)
@@ -294,12 +255,48 @@ def _active_set(sets: _SetSolver, A, b, cav, can_cavitate, max_iter):
         if np.array_equal(new, cav):
             P, phi = _refined(sets, A, b, cav, P, phi)
             return P, phi, cav, it, True
+        new &= ~_filled_ahead(sets.neighbours, A, cav, phi)
         key = new.tobytes()
         if key in seen:        # the sets cycle: let the caller take over
             return P, phi, cav, it, False
         seen.add(key)
+        changes = int(np.count_nonzero(new != cav))
         cav = new
-    return P, phi, cav, max_iter, False
+        near = near and (it > 1 or changes < band)
+        if near_iter is not None and not near:
+            break
+        if it >= max_iter and not (near and changes < last_changes):
+            break
+        last_changes = changes
+    return P, phi, cav, it, False
+
+
+def _filled_ahead(G: sp.csr_matrix, A: sp.csc_matrix, cav: np.ndarray, phi: np.ndarray,
+                  layers: int = 64) -> np.ndarray:
+    """Cavities the overfill of a reformation front fills beyond its first layer: a
+    cavity with phi > 1 holds (phi - 1) A_jj more content than it can; shared equally
+    among its cavity neighbours (``G``: the adjacency of the volumes) it fills those
+    whose deficit (1 - phi) A_kk it covers, and what is left goes on. The active set
+    alone moves the front one layer per iteration (a cavity beyond the first sees no
+    pressure), where a nearly full cavity takes many layers a step. Only where the
+    first set was placed: the set's own iterations then confirm or undo each volume."""
+    D = A.diagonal()
+    over = cav & (phi > 1.0)
+    filled = over.copy()
+    excess = np.where(over, (phi - 1.0) * D, 0.0)
+    deficit = np.where(cav & ~over, (1.0 - phi) * D, 0.0)
+    for _ in range(layers):
+        open_ = cav & ~filled
+        takers = G @ open_.astype(float)                 # open cavity neighbours of each
+        share = np.where((excess > 0.0) & (takers > 0.0),
+                         excess / np.maximum(takers, 1.0), 0.0)
+        received = np.where(open_, G @ share, 0.0)
+        newly = open_ & (received > 0.0) & (received >= deficit)
+        if not newly.any():
+            break
+        filled |= newly
+        excess = np.where(newly, received - deficit, 0.0)
+    return filled & ~over
 
 
 def _refined(sets: _SetSolver, A, b, cav, P, phi, passes: int = 4):
@@ -342,7 +339,7 @@ def solve_balance(K: sp.csr_matrix, T: sp.csr_matrix, storage: np.ndarray,
     b = source[free] - (K @ Pb)[free] - (T @ phib)[free]
     A = (principal_block(T, free) + sp.diags(storage[free])).tocsr()
     Kf = principal_block(K, free) if K_free is None else K_free
-    c0 = None if cavitated0 is None else np.asarray(cavitated0, bool)[free]
+    c0 = tuple(c[free] for c in _first_sets(cavitated0))
     n = len(free)
     if not np.any(b) and not np.any(A.diagonal()):
         res = JFOResult(np.zeros(n), np.ones(n), np.zeros(n, bool), 0, 0.0, True)
