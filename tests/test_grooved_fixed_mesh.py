@@ -160,11 +160,11 @@ def _clear_operators():
 def test_equilibrium_hands_its_last_film_to_the_solution_and_coefficients():
     """equilibrium() keeps the film at its answer with its exact partials on the grooved
     operator; the Equilibrium's solution and coefficients() there take them, and equal a
-    cold solve and cold coefficients (caches cleared) to 1e-8 (measured ~1e-13, the
-    solver's tolerance); K/C at another state after it are that state's own. Fails if the
-    kept partials are returned at another state (the key check dropped: K at the nearby
-    state would be the equilibrium's, ~5 % off), or the solution is taken from a film of
-    another state."""
+    cold solve and cold coefficients (caches cleared) to 1e-8 (measured 4e-15, round-off);
+    K/C at another state after it are that state's own. Fails if the kept partials are
+    returned at another state (the key check dropped: K at the nearby state would be the
+    equilibrium's, 11 % off; run), or the solution is taken from a film of another state
+    (eps 0.1 % off: Newton's residual check raises; run)."""
     from bearingfem.design import coefficients, equilibrium
     opts = dict(n_theta=30, n_z=6, element="P2", cavitation="reynolds", grooves=GROOVES)
     _clear_operators()
