@@ -128,6 +128,25 @@ def design_row(case, mesh, repeat):
                 kc_s=kc[0])
 
 
+def chart_row(case, mesh):
+    """The design chart: one bearing built per load of ``case["chart_loads"]`` (once
+    each), times summed; eps and journal angle per point (None where ROSS raised)."""
+    total, points = np.zeros(2), []
+    for load in case["chart_loads"]:
+        t0 = clock()
+        try:
+            with Timers():
+                b = bearing(case, mesh, load=load)
+            out = b._results.outputs[0]
+            points.append([out["eccentricity"][0], math.atan2(out["yj_cb"][0],
+                                                              out["xj_cb"][0])])
+        except Exception:             # noqa: BLE001 - a point ROSS does not reach
+            points.append(None)
+        total += clock() - t0
+    return dict(case=case["name"], kind="chart", mesh=f"{mesh[0]}x{mesh[1]}", points=points,
+                time_s=total[0], cpu_s=total[1])
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("spec", help="JSON: cases with their static / design meshes")
@@ -146,6 +165,8 @@ def main():
             rows.append(static_row(case, case["static_meshes"][0], 1, through_film=ey))
         for mesh in case.get("design_meshes", []):
             rows.append(design_row(case, mesh, max(1, args.repeat - 1)))
+        if case.get("chart_loads"):
+            rows.append(chart_row(case, case["chart_mesh"]))
     print(json.dumps(rows))
 
 

@@ -9,19 +9,28 @@ the newest public source of the engine ROSS 3.1 ships; built once by
 - ``two-groove static``: Lund & Thomsen's (1978) two-axial-groove bearing (benchmarks/
   grooved.py: 20 deg grooves at 0 and 180 deg, load down, L/D 1, D 0.1 m, c 100 um,
   0.02 Pa s, 3000 rpm), one static film at eps 0.6, journal at -45 deg (about where this
-  load puts it). Error = |F - F_ref| / |F_ref|, F_ref our P2 192x32.
+  load puts it). Error = |F - F_ref| / |F_ref|, F_ref our P2 192x32. Ours: a journal
+  angle not solved before on a built mesh (the bearing-fixed grooved mesh: nothing is
+  rebuilt for a new angle).
 - ``two-groove design``: equilibrium + K, C at S 0.635. Error = the largest of |d eps|/eps,
-  |d journal angle| [rad], max|dK|/max|K|, max|dC|/max|C| against our P2 192x32.
+  |d journal angle| [rad], max|dK|/max|K|, max|dC|/max|C| against our P2 192x32. Ours
+  with the caches cleared.
+- ``two-groove chart``: the design chart, S 10 .. 0.01, 20 points (ours
+  :func:`bearingfem.design.design_chart`, caches cleared; ROSS one bearing built per load
+  at 40x20). Error: the largest |d eps|/eps, |d attitude| [rad] over the points (ROSS's:
+  those it reached) against our P2 144x24 (K, B not compared here; their accuracy:
+  benchmarks/chart_accuracy.py).
 - ``plain design``: Friswell's Example 5.5.1 bearing of benchmarks/design.py without
   grooves, Reynolds' condition; ROSS's plain bore is one 360 deg land.
 
 Both codes solve Reynolds' equation with Reynolds' (Swift-Stieber) condition, isoviscous.
 Times: one run, wall and CPU of the run with the best wall time of ``--repeat`` (both codes
-single-threaded: on a loaded machine CPU time is the cost). Ours "cold" clears the mesh and
-operator caches (every new journal angle of a grooved film rebuilds them), "warm" reuses
-them. ROSS's time is the bearing object built and solved as a user does it (for the static
-film less the K/C solves it always runs); its film solve alone (meshes built) is the "warm"
-column; numba's first call (compile or cache load) is printed apart.
+single-threaded: on a loaded machine CPU time is the cost). Our rows are
+:func:`benchmarks.grooved.ours_rows` (the grooved cases) and the plain bearing's here
+("cold": caches cleared). ROSS's time is the bearing object built and solved as a user
+does it (for the static film less the K/C solves it always runs); its film solve alone
+(meshes built) is the "warm" column; numba's first call (compile or cache load) is
+printed apart.
 """
 from __future__ import annotations
 
@@ -35,8 +44,10 @@ from pathlib import Path
 
 import numpy as np
 
-from bearingfem import Bearing, JournalState, solve_reynolds
+from bearingfem import Bearing
 from bearingfem.design import coefficients, equilibrium
+from bearingfem.design.chart import CHART_SOMMERFELD
+from bearingfem.design.groups import load_from_sommerfeld
 from bearingfem.fe.assembly import film_operator
 from bearingfem.fe.mesh import film_mesh
 
@@ -45,8 +56,6 @@ from . import design as plain
 from . import grooved
 
 STATIC = (0.6, -0.25 * math.pi)                 # eps, journal angle [rad]
-OURS_STATIC = [(18, 4), (36, 6), (72, 12)]      # P2; the grooves' 20 deg on nodes
-OURS_DESIGN = [(18, 4), (36, 6), (72, 12)]
 OURS_PLAIN = [(24, 4), (48, 8), (96, 16)]
 REFERENCE = (192, 32)
 ROSS_STATIC = [(40, 20), (80, 40), (160, 80)]   # elements around each land x axially
@@ -77,13 +86,6 @@ def best_time(f, repeat, cold):
         t = (time.perf_counter() - t0, time.process_time() - c0)
         best = min(best, t)
     return best, out
-
-
-def static_force(mesh):
-    """(F_x, F_y) [N] of the two-groove film at ``STATIC``."""
-    state = JournalState(STATIC[0], omega=grooved.OMEGA, gamma=STATIC[1])
-    return np.asarray(solve_reynolds(grooved.BEARING, state,
-                                     **fe_options(mesh, grooved.GROOVES)).force)
 
 
 def design_numbers(bearing, load, omega, mesh, grooves):
@@ -143,6 +145,9 @@ def ross_spec(quick):
         if name == "two_groove":
             spec["static_meshes"] = ROSS_STATIC[:2] if quick else ROSS_STATIC
             spec["through_film"] = [] if quick else [10, 60]
+            spec["chart_loads"] = [[0.0, -load_from_sommerfeld(b, S, c["omega"])]
+                                   for S in CHART_SOMMERFELD]
+            spec["chart_mesh"] = ROSS_DESIGN[0]
         cases.append(spec)
     return dict(cases=cases)
 
@@ -159,17 +164,18 @@ def ross_rows(quick, repeat):
 
 
 def ours_rows(quick, repeat):
-    """Our rows and references: static two-groove film, then equilibrium + K/C."""
+    """Our rows and references: the two-groove static film, equilibrium + K/C and chart
+    from :func:`benchmarks.grooved.ours_rows` (the static film at a new journal angle,
+    the design and chart with the caches cleared), the plain bearing's here."""
     ref_mesh = (96, 16) if quick else REFERENCE
-    rows, refs = [], {}
-    refs["static"] = static_force(ref_mesh)
-    for mesh in OURS_STATIC[:2] if quick else OURS_STATIC:
-        cold, F = best_time(lambda: static_force(mesh), repeat, cold=True)
-        warm, _ = best_time(lambda: static_force(mesh), repeat, cold=False)
-        rows.append(dict(case="two-groove static", code="bearingfem", mesh=f"P2 {mesh[0]}x"
-                         f"{mesh[1]}", error=force_error(F, refs["static"]), time_s=cold[0],
-                         cpu_s=cold[1], warm_cpu_s=warm[1]))
-    for name, meshes in (("two_groove", OURS_DESIGN), ("plain", OURS_PLAIN)):
+    rows, refs = grooved.ours_rows(quick, repeat)
+    for r in rows:
+        r["code"] = "bearingfem"
+        if r["case"] == "two-groove chart":     # ROSS's chart is compared on position only
+            r["error"] = r["error_position"]
+        r.setdefault("warm_cpu_s", math.nan)   # static: warm_s is wall time
+    refs["chart"] = grooved.chart((48, 8) if quick else grooved.CHART_REFERENCE)
+    for name, meshes in (("plain", OURS_PLAIN),):
         c = CASES[name]
         args = (c["bearing"], c["load"], c["omega"])
         refs[name] = design_numbers(*args, ref_mesh, c["grooves"])
@@ -196,6 +202,11 @@ def ross_table_rows(ross, refs):
                              error=force_error(r["force"], refs["static"]),
                              error_own=force_error(r["force"], finest), time_s=r["time_s"],
                              cpu_s=r["cpu_s"], warm_cpu_s=r["film_cpu_s"]))
+        elif r["kind"] == "chart":
+            rows.append(dict(case="two-groove chart", code="ROSS", mesh=r["mesh"],
+                             error=chart_error(r["points"], refs["chart"]),
+                             time_s=r["time_s"], cpu_s=r["cpu_s"], warm_cpu_s=math.nan,
+                             reached=sum(p is not None for p in r["points"])))
         elif r["kind"] == "design":
             name = r["case"]
             ref = refs[CASES[name].get("ref", name)]
@@ -206,6 +217,16 @@ def ross_table_rows(ross, refs):
                              time_s=r["time_s"], cpu_s=r["cpu_s"],
                              warm_cpu_s=r["film_cpu_s"]))
     return rows
+
+
+def chart_error(points, ref):
+    """ROSS's chart against ours: the largest over the points ROSS reached of |d eps| / eps
+    and |d journal angle| [rad] (ROSS's K, C are not compared here); inf if it reached
+    none."""
+    errs = [max(abs(p[0] - q.eps) / q.eps,
+                abs(math.remainder(p[1] - q.state.gamma, 2 * math.pi)))
+            for p, q in zip(points, ref.points) if p is not None]
+    return max(errs) if errs else math.inf
 
 
 def print_table(rows):
@@ -261,6 +282,9 @@ def main(argv=None):
           "ours (cold) on our cheapest mesh at the same or smaller error; warm CPU: ours with "
           "the mesh and operators cached, ROSS's film solves alone")
     print_table(rows)
+    for r in (r for r in rows if r["code"] == "ROSS" and "reached" in r):
+        print(f"ROSS {r['mesh']} chart: {r['reached']} of {len(CHART_SOMMERFELD)} points "
+              "reached")
     return rows
 
 

@@ -147,3 +147,40 @@ def test_warm_starts_change_the_cost_not_the_answer():
     for name in ("force", "d_eps", "d_eps_dot", "d_wedge", "d_gamma"):
         np.testing.assert_allclose(getattr(again, name), getattr(ref, name), rtol=1e-10,
                                    err_msg=name)
+
+
+def _clear_operators():
+    from bearingfem.fe.grooved import grooved_operator
+    from bearingfem.fe.mesh import film_mesh
+    film_operator.cache_clear()
+    film_mesh.cache_clear()
+    grooved_operator.cache_clear()
+
+
+def test_equilibrium_hands_its_last_film_to_the_solution_and_coefficients():
+    """equilibrium() keeps the film at its answer with its exact partials on the grooved
+    operator; the Equilibrium's solution and coefficients() there take them, and equal a
+    cold solve and cold coefficients (caches cleared) to 1e-8 (measured 4e-15, round-off);
+    K/C at another state after it are that state's own. Fails if the kept partials are
+    returned at another state (the key check dropped: K at the nearby state would be the
+    equilibrium's, 11 % off; run), or the solution is taken from a film of another state
+    (eps 0.1 % off: Newton's residual check raises; run)."""
+    from bearingfem.design import coefficients, equilibrium
+    opts = dict(n_theta=30, n_z=6, element="P2", cavitation="reynolds", grooves=GROOVES)
+    _clear_operators()
+    eq = equilibrium(B, (0.0, -2.0e4), OMEGA, "fem", **opts)
+    kc = coefficients(B, eq.state, "fem", **opts)
+    near = replace(eq.state, eps=eq.eps + 0.02)
+    kc_near = coefficients(B, near, "fem", **opts)
+    _clear_operators()
+    cold_sol = solve_reynolds(B, eq.state, **opts)
+    _clear_operators()
+    cold = coefficients(B, eq.state, "fem", **opts)
+    _clear_operators()
+    cold_near = coefficients(B, near, "fem", **opts)
+    for got, ref in ((kc, cold), (kc_near, cold_near)):
+        np.testing.assert_allclose(got.K, ref.K, rtol=1e-8, atol=1e-8 * np.abs(ref.K).max())
+        np.testing.assert_allclose(got.C, ref.C, rtol=1e-8, atol=1e-8 * np.abs(ref.C).max())
+    np.testing.assert_allclose(eq.solution.pressure, cold_sol.pressure, rtol=1e-8,
+                               atol=1e-8 * cold_sol.pressure_max)
+    assert eq.pressure_max == pytest.approx(cold_sol.pressure_max, rel=1e-8)

@@ -274,6 +274,11 @@ def _newton_equilibrium(m, bearing, omega, load, opts, q0, eps_max, rtol, model,
 
     eps, gamma = newton_position(film, load, q0, eps_max, rtol, capacity, model, d_end)
     state = JournalState(eps, omega=omega, gamma=gamma)
+    if opts.get("grooves") and not any(tilt) and model == "fem":
+        # the film there with its partials, warm from Newton's last cavitated set: the
+        # grooved operator keeps both, so the solution below and coefficients() at this
+        # state take them instead of a cold solve (bearingfem.fe.grooved)
+        partials(eps, gamma)
     sol = (solve_reynolds(bearing, state, opts["n_theta"], opts["n_z"], opts["element"],
                           opts["cavitation"], tilt=tilt) if any(tilt)
            else solve_film(model, bearing, state, opts))

@@ -156,6 +156,12 @@ def _coarse_active(gop, bearing, state, grooves, tol, values, load, G):
     return active
 
 
+def _film_key(state, grooves, cavitation, method="active-set", tol=1e-10):
+    """What makes a grooved film on one operator: equal keys, the same solve."""
+    return (state.eps, state.eps_dot, state.wedge_speed, state.gamma, cavitation, method,
+            tol, tuple(g.pressure for g in grooves))
+
+
 def grooved_pressure(gop: GroovedOperator, bearing: Bearing, state: JournalState, grooves,
                      cavitation: str = "reynolds", method: str = "active-set",
                      tol: float = 1e-10, start: np.ndarray | None = None,
@@ -170,8 +176,7 @@ def grooved_pressure(gop: GroovedOperator, bearing: Bearing, state: JournalState
     from .reynolds import fe_pressure     # reynolds routes grooved films here
     G = _held(bearing, gop, grooves)
     values, load = _system(gop, state)
-    key = (state.eps, state.eps_dot, state.wedge_speed, state.gamma, cavitation, method,
-           tol, tuple(g.pressure for g in grooves))
+    key = _film_key(state, grooves, cavitation, method, tol)
     if reuse and gop.last.get("key") == key:
         return gop.last["result"]
     res = None
@@ -219,8 +224,13 @@ def grooved_derivatives(bearing: Bearing, state: JournalState, gop: GroovedOpera
     """(F_r, F_t) [N] and the exact partials in eps, eps_dot, w and gamma (module
     docstring), four right-hand sides on the factors of the film solve. The designer's
     path (Newton's steps, K/C, charts): the solve starts from the operator's last
-    cavitated set, and at the state of the last solve takes its film."""
+    cavitated set, and at the state of the last solve takes its film; asked again at
+    the state of the last partials (K/C at a Newton equilibrium) returns them."""
     from .sensitivity import _inactive_solve
+    key = _film_key(state, grooves, cavitation)
+    kept = gop.last.get("derivatives")
+    if kept is not None and kept[0] == key and gop.last.get("key") == key:
+        return kept[1]
     op = gop.op
     last = gop.last.get("result")
     res = grooved_pressure(gop, bearing, state, grooves, cavitation,
@@ -253,8 +263,10 @@ def grooved_derivatives(bearing: Bearing, state: JournalState, gop: GroovedOpera
     # rotation is (F_t, -F_r)
     d_gamma = F[:, 4] + np.array([F[1, 0], -F[0, 0]])
     col = [tuple(float(x) for x in F[:, j]) for j in range(4)]
-    return ForceDerivatives(col[0], col[1], col[2], col[3], "exact-sensitivity",
-                            tuple(float(x) for x in d_gamma))
+    d = ForceDerivatives(col[0], col[1], col[2], col[3], "exact-sensitivity",
+                         tuple(float(x) for x in d_gamma))
+    gop.last["derivatives"] = (key, d)
+    return d
 
 
 def grooved_solution(bearing: Bearing, state: JournalState, gop: GroovedOperator, grooves,
@@ -262,11 +274,17 @@ def grooved_solution(bearing: Bearing, state: JournalState, gop: GroovedOperator
                      element: str) -> FilmSolution:
     """The whole grooved film (:func:`~bearingfem.fe.reynolds.solve_reynolds`'s outputs),
     nodes reported at their film angles theta = phi - gamma; a cold solve (the active set
-    from the coarser levels, never from an earlier call)."""
+    from the coarser levels, never from an earlier call's set), except that the film of the
+    designer's last partials (:func:`grooved_derivatives`) is taken when it was this very
+    film (an equilibrium's answer: the same film to the solver's tolerance)."""
     from ..fields import FilmFields
     from .reynolds import _film_outputs
     op = gop.op
-    res = grooved_pressure(gop, bearing, state, grooves, cavitation, method, tol)
+    kept = gop.last.get("derivatives")
+    designer = kept is not None and kept[0] == _film_key(state, grooves, cavitation, method,
+                                                          tol)
+    res = grooved_pressure(gop, bearing, state, grooves, cavitation, method, tol,
+                           reuse=designer)
     values, load = _system(gop, state)
     film = FilmFields(gap=film_thickness(gop.film_angle(state.gamma), state.eps))
     return _film_outputs(bearing, state, op, res, values, load, film, cavitation,
