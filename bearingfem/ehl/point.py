@@ -80,6 +80,21 @@ class _PointSystem:
         self.Dx = sp.kron(_upwind(nx, d), Iy).tocsr()
         inner = np.zeros(self.shape, bool)
         inner[1:-1, 1:-1] = True
+        # the film is symmetric about Y = 0: the unknowns are the inner nodes with Y >= 0,
+        # each standing for itself and its mirror image (the dense solve ~8x cheaper)
+        c = ny // 2
+        half = inner.copy()
+        half[:, :c] = False
+        self.half = np.flatnonzero(half)
+        jj = np.arange(ny)
+        rep = np.arange(nx)[:, None] * ny + (c + np.abs(jj - c))[None, :]
+        self.mirror = rep.ravel()                      # full node -> its Y >= 0 twin
+        position = np.full(nx * ny, -1)
+        position[self.half] = np.arange(self.half.size)
+        cols = position[self.mirror]
+        keep = inner.ravel()
+        self.E = sp.csr_matrix((np.ones(keep.sum()), (np.flatnonzero(keep), cols[keep])),
+                               shape=(nx * ny, self.half.size))
         self.inner = np.flatnonzero(inner)
         self.compliance = PointCompliance(nx, ny, d, d)
         self.spectrum = self.compliance.spectrum()
@@ -119,7 +134,7 @@ class _PointSystem:
     def merit(self, P, H0, s=None):
         H = self.film(P, H0)
         r, eps = self.reynolds(P, H)
-        i = self.inner
+        i = self.half
         if s is None:
             # row scale ~ 1 / the Jacobian's diagonal: Poiseuille where the oil is thin,
             # the elastic wedge lambda rho K' where it is stiff
@@ -135,24 +150,32 @@ def solve_point(prob: DimensionlessPoint, P0: np.ndarray, H0: float, *, tol: flo
                 max_iter: int = 60, load: float = 1.0) -> NewtonRecord:
     """Damped semismooth Newton on (P, H0) for dX dY sum P = load 2 pi/3; raises
     ConvergenceError if it stalls. P0 is (nx, ny); the record's pressure and film too."""
+    Y = np.asarray(prob.Y, float)
+    if Y.size % 2 == 0 or not np.allclose(Y, -Y[::-1], rtol=0, atol=1e-12 * np.abs(Y).max()):
+        raise ValueError("Y must be symmetric about 0 with an odd number of nodes")
     S = _PointSystem(prob, load)
-    i = S.inner
+    i = S.half
     P = np.zeros(S.shape)
     P[1:-1, 1:-1] = np.asarray(P0, float)[1:-1, 1:-1]
-    P = P.ravel()
+    P = P.ravel()[S.mirror]                  # symmetric in Y
     phi, H, r, s = S.merit(P, H0)
     norm, worst, it = np.linalg.norm(phi), float(np.abs(phi).max()), 0
-    S.K = S.compliance.matrix()[:, i]
+    # dV/dP_half: each unknown's column plus its mirror's
+    Y_index = i % S.shape[1]
+    off_axis = Y_index > S.shape[1] // 2
+    K = S.compliance.matrix(None, i)
+    K[:, off_axis] += S.compliance.matrix(None, i[off_axis] - 2 * (Y_index[off_axis] - S.shape[1] // 2))
+    weight = np.asarray(S.E.sum(axis=0)).ravel()       # 2 off the axis, 1 on it
     for it in range(1, max_iter + 1):
         JP, JH = S.jacobian(P, H)
         m = i.size
         J = np.empty((m + 1, m + 1))
-        J[:-1, :-1] = s[:, None] * (JH[i] @ S.K + JP[i][:, i].toarray())
+        J[:-1, :-1] = s[:, None] * (JH[i] @ K + (JP[i] @ S.E).toarray())
         J[:-1, -1] = s * np.asarray(JH[i].sum(axis=1)).ravel()
         active = _cavitated(P[i], s * r[i])
         J[:-1][active] = 0.0
         J[np.flatnonzero(active), np.flatnonzero(active)] = 1.0
-        J[-1, :-1] = S.d**2
+        J[-1, :-1] = S.d**2 * weight
         J[-1, -1] = 0.0
         try:
             row = 1.0 / np.maximum(np.abs(J).max(axis=1), np.finfo(float).tiny)
@@ -168,6 +191,7 @@ def solve_point(prob: DimensionlessPoint, P0: np.ndarray, H0: float, *, tol: flo
         while t > 1e-4:
             P_try = P.copy()
             P_try[i] = np.maximum(P[i] + t * step[:-1], 0.0)
+            P_try = P_try[S.mirror]
             H0_try = H0 + t * step[-1]
             with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
                 trial = S.merit(P_try, H0_try)

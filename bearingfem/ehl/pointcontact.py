@@ -21,7 +21,7 @@ __all__ = ["PointContact", "point_contact", "HertzPoint", "hertz_point", "hamroc
            "DEFAULT_POINT_NODES"]
 
 DEFAULT_POINT_NODES = 33        # along the rolling direction; ~1 s (docs/ehl.md)
-POINT_NODES_RANGE = (17, 65)    # the dense Newton Jacobian grows as nodes^4
+POINT_NODES_RANGE = (17, 97)    # the dense Newton Jacobian grows as nodes^4
 SIDE = 2.0                      # [a] the domain spans |Y| <= SIDE
 
 
@@ -89,7 +89,7 @@ def point_contact(*, radius: float, reduced_modulus: float, lubricant: Lubricant
     lubricant : the oil (viscosity and density laws).
     mean_speed : u_m = (u1 + u2)/2 [m/s], > 0, along x.
     load : w [N], > 0.
-    nodes : nodes along x over [inlet, outlet], in [17, 65]; square cells, the y extent
+    nodes : nodes along x over [inlet, outlet], in [17, 97]; square cells, the y extent
         is |y| <= 2 a. Cost grows as nodes^6 (dense Newton), ~1 s at 33.
     inlet, outlet : domain ends in Hertz radii a (inlet <= -1.5, outlet >= 1).
     """
