@@ -194,3 +194,13 @@ def test_jacobian_blocks_against_central_differences():
                                    atol=1e-7 * np.abs(dP).max())
         np.testing.assert_allclose(JH[:, k].toarray().ravel(), dH, rtol=1e-6,
                                    atol=1e-7 * np.abs(dH).max())
+
+
+def test_point_benchmark_smoke(capsys):
+    """benchmarks/ehl_point.py runs (times printed, not asserted); its quick rows are the
+    17- and 25-node films of the test above."""
+    from benchmarks import ehl_point
+    rows = ehl_point.main(["--quick"])
+    assert [r["nodes"] for r in rows] == [17, 25]
+    assert rows[1]["hc_fit"] == pytest.approx(0.770, abs=2e-3)
+    assert "Dry contact against Hertz" in capsys.readouterr().out
