@@ -16,7 +16,8 @@ Hertz units (X = x/a, P = p/p_h, H = h R/a^2, :mod:`bearingfem.ehl.pointspace`)
 terms central (face coefficients the mean of the nodes'), the wedge second-order upwind
 along X (first order next to the inlet), as in :mod:`bearingfem.ehl.line`; the same
 damped, projected semismooth Newton method on (P, H0) with the dense Jacobian (the
-elastic block is the full influence matrix), so grids up to ~50 x 50 nodes.
+elastic block is the full influence matrix) on the y >= 0 half of the grid, so grids up to
+~97 nodes along x.
 """
 from __future__ import annotations
 
