@@ -15,11 +15,11 @@ from .errors import ConvergenceError
 from .fe.reynolds import solve_reynolds
 from .fv.fvm import fvm_reynolds
 from .lubricant import Lubricant
-from .ehl import line_contact
+from .ehl import line_contact, point_contact
 from .solution import FilmSolution
 
 __all__ = ["Bearing", "JournalState", "Groove", "solve_reynolds", "fvm_reynolds", "FilmSolution",
            "short_bearing_force", "long_bearing_force", "short_bearing_exact_force",
            "long_bearing_exact_force", "equilibrium", "coefficients", "ElasticBush",
-           "Lubricant", "line_contact", "ConvergenceError", "Roughness"]
+           "Lubricant", "line_contact", "point_contact", "ConvergenceError", "Roughness"]
 __version__ = "0.1.0"

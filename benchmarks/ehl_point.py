@@ -1,0 +1,97 @@
+"""The EHL point contact: mesh convergence of the films against Hamrock & Dowson's fits,
+and what it costs (time, Newton iterations), plus the dry contact against Hertz.
+
+    python -m benchmarks.ehl_point            # nodes 33 ... 97 (a few minutes)
+    python -m benchmarks.ehl_point --quick    # a smoke run (CI)
+
+Steel ball on steel plane, R = 12.7 mm, E' = 226 GPa; a Barus (alpha = 2e-8 1/Pa) and
+Dowson-Higginson oil of 0.04 Pa s (G = 4520). The cases sit inside Hamrock & Dowson's
+(1977) parameter range for k = 1 (U 1.7e-12 ... 1.7e-11, W 3.7e-7 ... 7.4e-6). All times
+in one run; the Richardson column extrapolates the two finest grids with the measured
+order.
+"""
+from __future__ import annotations
+
+import argparse
+import math
+import time
+
+import numpy as np
+
+from bearingfem import Lubricant, point_contact
+from bearingfem.ehl.pointcontact import hamrock_dowson_point
+from bearingfem.ehl.pointspace import dry_point_contact
+
+OIL = Lubricant(viscosity=0.04, barus=2e-8, density="dowson-higginson")
+R, E = 0.0127, 2.26e11
+
+
+def case(U, W):
+    """(mean speed [m/s], load [N]) of Hamrock's U and W for this ball and oil."""
+    return U * E * R / OIL.viscosity, W * E * R**2
+
+
+def film_rows(cases, grids):
+    rows = []
+    for U, W in cases:
+        u, w = case(U, W)
+        fit = hamrock_dowson_point(R, E, OIL.viscosity, u, w, OIL.pressure_viscosity)
+        for n in grids:
+            t0 = time.perf_counter()
+            r = point_contact(radius=R, reduced_modulus=E, lubricant=OIL, mean_speed=u,
+                              load=w, nodes=n)
+            rows.append(dict(U=U, W=W, nodes=n, M=r.moes_M, L=r.moes_L,
+                             time=time.perf_counter() - t0, iterations=r.iterations,
+                             hc_fit=r.film_central / fit.central,
+                             hmin_fit=r.film_min / fit.minimum,
+                             p_max=r.pressure_max / r.hertz_pressure))
+    return rows
+
+
+def dry_rows(grids):
+    rows = []
+    for n in grids:
+        t0 = time.perf_counter()
+        d = dry_point_contact(n)
+        r = np.hypot(d.x[:, None], d.y[None, :])
+        err = np.abs(d.pressure - np.sqrt(np.clip(1 - r**2, 0, None)))
+        rows.append(dict(nodes=n, time=time.perf_counter() - t0, max_err=err.max(),
+                         inner_err=err[r < 0.8].max(), approach_err=abs(d.approach + 1)))
+    return rows
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__)
+    parser.add_argument("--quick", action="store_true")
+    args = parser.parse_args(argv)
+    grids = (17, 25) if args.quick else (33, 49, 65, 81, 97)
+    cases = [(1.683e-11, 3.686e-7)] if args.quick else [(1.683e-11, 3.686e-7), (1.0e-11, 7.37e-7)]
+    rows = film_rows(cases, grids)
+    print("EHL point contact (k = 1) against Hamrock & Dowson (1977)")
+    print(f"{'U':>9} {'W':>9} {'nodes':>5} {'M':>6} {'L':>5} {'time s':>7} {'iter':>4} "
+          f"{'h_c/fit':>8} {'h_min/fit':>9} {'p_max/p_h':>9}")
+    for r in rows:
+        print(f"{r['U']:9.3g} {r['W']:9.3g} {r['nodes']:5d} {r['M']:6.1f} {r['L']:5.1f} "
+              f"{r['time']:7.2f} {r['iterations']:4d} {r['hc_fit']:8.4f} {r['hmin_fit']:9.4f} "
+              f"{r['p_max']:9.4f}")
+    for U, W in cases:
+        sub = [r for r in rows if r["U"] == U and r["W"] == W]
+        if len(sub) >= 3:
+            for key in ("hc_fit", "hmin_fit"):
+                a, b, c = (s[key] for s in sub[-3:])
+                ratio = (sub[-2]["nodes"] - 1) / (sub[-3]["nodes"] - 1)
+                order = math.log(abs((b - a) / (c - b))) / math.log(ratio) if c != b else float("nan")
+                limit = c + (c - b) / (((sub[-1]["nodes"] - 1) / (sub[-2]["nodes"] - 1)) ** order - 1)
+                print(f"U {U:.3g} W {W:.3g}: {key} observed order {order:.2f}, "
+                      f"Richardson limit {limit:.4f}")
+    dry = dry_rows((13, 25) if args.quick else (13, 25, 49, 97))
+    print("\nDry contact against Hertz (P = sqrt(1 - r^2), H0 = -1)")
+    print(f"{'nodes':>5} {'time s':>7} {'max err':>9} {'r<0.8 err':>9} {'H0 err':>9}")
+    for r in dry:
+        print(f"{r['nodes']:5d} {r['time']:7.2f} {r['max_err']:9.2e} {r['inner_err']:9.2e} "
+              f"{r['approach_err']:9.2e}")
+    return rows
+
+
+if __name__ == "__main__":
+    main()
