@@ -17,7 +17,7 @@ def test_set_changes_solved_by_low_rank_correction_equal_a_new_factorisation(see
     factorisation; beyond BORDERED_MAX_CHANGES volumes it factorises again."""
     import scipy.sparse as sp
     import scipy.sparse.linalg as spla
-    from bearingfem.fe.jfo import _transport, film_volumes
+    from bearingfem.fe.jfo_balance import _transport, film_volumes
     from bearingfem.solvers.blocksolve import BORDERED_MAX_CHANGES
     from bearingfem.solvers.jfo import _SetSolver, _set_matrix
     from bearingfem.solvers.linsolve import principal_block
@@ -65,7 +65,7 @@ def test_balance_is_refined_to_round_off(seed):
     1e-7 s film step of the long seed bearing is 3e-7 of the throughput)."""
     import scipy.sparse as sp
     from bearingfem.fe.assembly import fe_operator
-    from bearingfem.fe.jfo import _transport, film_volumes
+    from bearingfem.fe.jfo_balance import _transport, film_volumes
     from bearingfem.solvers.jfo import jfo_solve
     from bearingfem.solvers.linsolve import principal_block
     state = JournalState(eps=0.6, omega=250.0)

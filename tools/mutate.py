@@ -82,6 +82,9 @@ TESTS = {
     "bearingfem/fe/jfo.py":
         "tests/test_independent_jfo.py tests/test_jfo_solver.py tests/test_jfo.py "
         "tests/test_mutants_jfo.py" + QUICK_JFO,
+    "bearingfem/fe/jfo_steady.py":
+        "tests/test_independent_jfo.py tests/test_jfo_solver.py tests/test_jfo.py "
+        "tests/test_mutants_jfo.py" + QUICK_JFO,
     "bearingfem/fe/jfo_balance.py":
         "tests/test_independent_jfo.py tests/test_jfo.py tests/test_mutants_jfo.py" + QUICK_JFO,
     "bearingfem/fe/volumes.py":

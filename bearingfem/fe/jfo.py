@@ -10,7 +10,7 @@ with phi the film fraction (1 in the full film). The Poiseuille term is the P1 o
 the nodes' control volumes (:mod:`bearingfem.fe.volumes`), which conserves mass exactly;
 :func:`bearingfem.solvers.jfo.jfo_solve` finds (P, phi).
 
-* Steady (:func:`solve_jfo`): the film is steady in the frame of the line of centres,
+* Steady (:func:`~bearingfem.fe.jfo_steady.solve_jfo`): the film is steady in the frame of the line of centres,
   where the content moves at w/2 = (omega - 2 gamma_dot)/2 and a squeeze eps_dot changes
   the local film at the rate eps_dot cos(theta).
 * Transient (:class:`JFOFilm`): backward Euler on the content. The mesh follows the line
@@ -39,19 +39,18 @@ import scipy.sparse as sp
 from ..bearing import Bearing, JournalState, check_finite, check_positive
 from ..errors import ConvergenceError
 from ..validation import check_film_solve, check_grooves, check_jfo_supply
-from ..film import film_thickness
-from ..scales import force_factor, shear_friction
-from ..solution import FilmSolution, film_solution
+from ..scales import force_factor
+from ..solution import FilmSolution
 from ..solvers.cavitation import active_set
 from ..solvers.linsolve import principal_block
 from ..solvers.jfo import JFOResult
 from .assembly import FilmOperator, fe_operator
-from .general import film_moment, film_system, general_film
+from .general import film_system, general_film
 from .jfo_fields import FilmSpec, balance_films
 from .jfo_balance import (BalanceSolve, FilmAdvance, JFOFlows, _between, _boundary_values,
-                          _content, _cos_integral, _prolongation, _solve, _step_balance,
-                          _transport, film_volumes)
+                          _content, _step_balance, film_volumes)
 from .volumes import ControlVolumes, shift_rows
+from .jfo_steady import _film_solution, jfo_force, solve_jfo   # (re-exported)
 
 __all__ = ["JFOFilm", "JFOSnapshot", "BalanceSolve", "FilmAdvance", "solve_jfo", "jfo_force",
            "film_volumes", "JFOFlows"]
@@ -81,95 +80,6 @@ class SetTrend:
     rate: np.ndarray | None
 
 
-def _film_solution(bearing, state, op: FilmOperator, P, phi, res: JFOResult,
-                   flows: JFOFlows, method: str, film=None) -> FilmSolution:
-    """Forces, friction and the rest of a JFO film (P >= 0 is the pressure everywhere);
-    ``film``: its :class:`~bearingfem.fe.jfo_fields.BalanceFilm` on fields (None: the
-    rigid cylinder): a whole-length film on fields also gets its moment."""
-    k = force_factor(bearing, op.mesh.half)
-    ic, is_ = op.force_integrals(P)
-    f_r, f_t = k * float(ic), k * float(is_)
-    wq, th = op.qp_weight, op.qp_theta
-    fields = None if film is None else film.fields
-    Hq = film_thickness(th, state.eps) if fields is None else fields.gap
-    Pq = op.at_quadrature(P)
-    dPq = np.asarray(op.mesh.basis.interpolate(P).grad[0])
-    phiq = op.at_quadrature(phi)
-    full = Pq > 0.0
-    # Couette shear acts on the oil present (the fraction phi of the gap, as streamers);
-    # the Poiseuille part where the film is full.
-    friction = shear_friction(bearing, state.omega, wq, Hq, dPq,
-                              couette_share=np.clip(phiq, 0.0, 1.0), poiseuille_share=full,
-                              viscosity=1.0 if fields is None else fields.viscosity,
-                              half=op.mesh.half)
-    cv = film_volumes(op.mesh)
-    area = cv.area
-    cav_fraction = float(np.sum(area * (1.0 - phi > 1e-12)) / np.sum(area))
-    return film_solution(
-        bearing, state, P, op.mesh.theta, op.mesh.zeta, (f_r, f_t), friction=friction,
-        leakage=flows.side_leakage, flow_in=flows.flow_in, cavitated_fraction=cav_fraction,
-        record=res, method=method, cavitation="jfo", half=op.mesh.half, mesh=op.mesh,
-        fraction=phi, mass_balance=flows.balance,
-        moment=(0.0, 0.0) if op.mesh.half else film_moment(bearing, op, P, state.gamma),
-        gap=None if film is None else film.gap)
-
-
-#: Below this many free nodes a steady film starts cold instead of from a coarser mesh.
-COARSEST_FREE_NODES = 500
-
-
-def _steady(bearing: Bearing, state: JournalState, operator, n_theta, n_z, grooves,
-            ambient, cavitated0=None, film=None):
-    """Steady film on the mesh ``operator(n_theta, n_z)``. A cold start takes its first
-    cavitated set from the same film on a mesh half as fine (recursively): the fronts then
-    sit within a node of their place and one or two iterations finish. ``film``: a
-    function of the operator giving its :class:`~bearingfem.fe.jfo_fields.BalanceFilm`
-    (None: the rigid cylinder's); the last value returned is the fine mesh's (or None)."""
-    op = operator(n_theta, n_z)
-    cv = film_volumes(op.mesh)
-    f = None if film is None else film(op)
-    if f is None:
-        T = _transport(cv, state.eps, state.wedge_speed)
-        storage = 12.0 * state.eps_dot * _cos_integral(cv)
-    else:
-        T, storage = f.transport(cv, state.wedge_speed), 12.0 * f.squeeze
-    warm = 3
-    if cavitated0 is None and len(op.mesh.free) > COARSEST_FREE_NODES:
-        Pc, phic, _, _, opc, _ = _steady(bearing, state, operator, max(8, n_theta // 2),
-                                         max(2, n_z // 2), grooves, ambient, film=film)
-        u = Pc - (1.0 - phic)          # the universal variable: < 0 in the cavity
-        cavitated0 = (_prolongation(opc.mesh, op.mesh) @ u) < 0.0
-        warm = 12
-    try:
-        b = _solve(bearing, op, state.eps, T, storage, np.zeros(op.mesh.ndofs), grooves,
-                   ambient, cavitated0, warm, values=None if f is None else f.values)
-    except ConvergenceError as e:
-        raise e.at(f"steady JFO film {n_theta}x{n_z}, eps = {state.eps:.6g}") from None
-    return b.P, b.phi, b.result, b.flows, op, f
-
-
-def solve_jfo(bearing: Bearing, state: JournalState, operator, n_theta: int, n_z: int,
-              grooves=(), ambient_pressure: float = 0.0, film=None) -> FilmSolution:
-    """Steady JFO film on the mesh ``operator(n_theta, n_z)`` (a callable that builds the
-    film operator of a mesh; arguments checked by ``solve_reynolds``); ``film``: a
-    function of the operator giving the film on fields
-    (:func:`~bearingfem.fe.jfo_fields.field_balance_film`), None the rigid cylinder."""
-    P, phi, res, flows, op, f = _steady(bearing, state, operator, n_theta, n_z, grooves,
-                                        ambient_pressure, film=film)
-    return _film_solution(bearing, state, op, P, phi, res, flows, "fem-P1/jfo", f)
-
-
-def jfo_force(bearing: Bearing, state: JournalState, operator, n_theta: int, n_z: int,
-              grooves=(), ambient_pressure: float = 0.0, cavitated0=None):
-    """(F_r, F_t) [N] of the steady JFO film and its solve record (light path)."""
-    P, _, res, _, op, _ = _steady(bearing, state, operator, n_theta, n_z, grooves,
-                                  ambient_pressure, cavitated0)
-    ic, is_ = op.force_integrals(P)
-    k = force_factor(bearing, op.mesh.half)
-    return (k * float(ic), k * float(is_)), res
-
-
-#: A transient step that does not converge is cut in halves up to this many times.
 MAX_CUTS = 3
 
 

@@ -48,7 +48,8 @@ from ..solvers.cavitation import active_set
 from ..solvers.jfo import JFOResult, solve_balance
 from ..solvers.linsolve import principal_block
 from .assembly import FilmOperator
-from .jfo import JFOFilm, _film_solution
+from .jfo import JFOFilm
+from .jfo_steady import _film_solution
 from .jfo_balance import (FilmAdvance, JFOFlows, _boundary_values, _content,
                           _cos_integral, _prolongation, _transport, film_volumes)
 
