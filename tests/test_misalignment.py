@@ -132,22 +132,26 @@ def test_equilibrium_with_a_prescribed_misalignment():
 
 
 # (load [N], tilt [rad], options) -> (eps, gamma [rad], moment (M_x, M_y) [N m]) found by the
-# previous tilted equilibrium (Powell's hybrid root, finite-difference Jacobian, xtol 1e-12,
-# its force residual <= 1e-8 of the load) before it moved onto Newton's method
+# previous tilted equilibrium (Powell's hybrid root, scipy.optimize.root "hybr" with its
+# finite-difference Jacobian, xtol 1e-12, from the aligned equilibrium) before it moved onto
+# Newton's method, rerun on the current discrete film (the Couette load's reference cylinder
+# in strong form): its force residual 7e-17 and 4e-16 of the load, in 13 and 17 film solves.
+# The P1 film moved the root by 3.7e-11 (eps) from the all-weak-form film's
+# 0.6659124350581946; the P2 film by 3.5e-15.
 PREVIOUS_TILTED_EQUILIBRIA = (
     ((0.0, -100.0), (0.0, 1e-3), dict(n_theta=48, n_z=8),
-     (0.6659124350581946, -0.8082035669119653, (-0.05139060012281947, -0.03193678981220719))),
+     (0.6659124350826455, -0.8082035668897363, (-0.05139060013099008, -0.03193678981654502))),
     ((30.0, -400.0), (5e-4, -5e-4), dict(n_theta=48, n_z=8, element="P2", cavitation="gumbel"),
-     (0.8608017706357195, -0.944167391499103, (-0.1997548133499934, 0.013782314842082628))),
+     (0.8608017706357225, -0.9441673914991008, (-0.19975481334998746, 0.013782314842084043))),
 )
 
 
 @pytest.mark.parametrize("case", PREVIOUS_TILTED_EQUILIBRIA)
 def test_tilted_equilibrium_matches_the_previous_root(case):
     """Newton's method on the exact 4x4 stiffness lands where the previous 2-D root did:
-    eps to 1e-11 relative, gamma to 1e-11 rad, the moment to 1e-9 (measured 4e-15, 2e-16,
-    2e-15; Newton stops on a step below sqrt(rtol) |q| = 3e-7 |q| and takes it, leaving
-    ~1e-13), in 5-6 film evaluations (the root took 19-27). Fails with the position
+    eps to 1e-11 relative, gamma to 1e-11 rad, the moment to 1e-9 (measured 3e-16, 4e-16,
+    5e-15; Newton stops on a step below sqrt(rtol) |q| = 3e-7 |q| and takes it, leaving
+    1.4e-15 and 2.7e-15 of the load), in 5-6 film evaluations (the root took 19-27). Fails with the position
     columns of the stiffness taken on the fixed mesh: Newton then stops 6e-11 (eps) and
     2e-10 rad (gamma) off."""
     from bearingfem import equilibrium
@@ -159,6 +163,36 @@ def test_tilted_equilibrium_matches_the_previous_root(case):
     assert eq.iterations <= 8
     assert np.abs(np.add(eq.film_force, load)).max() <= 1e-10 * np.hypot(*load)
     assert eq.friction_force == pytest.approx(eq.solution.friction_force, rel=1e-14)
+
+
+@pytest.mark.parametrize("case", PREVIOUS_TILTED_EQUILIBRIA)
+def test_recorded_previous_root_is_powells_on_the_current_film(case):
+    """The record above is the previous route rerun on today's film: Powell's hybrid root
+    (finite-difference Jacobian, xtol 1e-12) of the tilted force from the aligned
+    equilibrium, to the tolerances the Newton test uses. Fails as soon as the discrete
+    film changes (then rerun this route and record its values)."""
+    import math
+    from scipy.optimize import root
+    from bearingfem import equilibrium
+    load, tilt, opts, (eps, gamma, moment) = case
+    o = {"element": "P1", "cavitation": "gumbel", **opts}    # the fem model's defaults
+    aligned = equilibrium(B, load, 250.0, "fem", **opts)
+    W = math.hypot(*load)
+
+    def film(q):
+        state = JournalState(math.hypot(*q), omega=250.0, gamma=math.atan2(q[1], q[0]))
+        return solve_reynolds(B, state, o["n_theta"], o["n_z"], o["element"],
+                              o["cavitation"], tilt=tilt)
+
+    def residual(q):
+        return np.add(film(q).force, load) / W
+
+    q0 = aligned.eps * np.array([math.cos(aligned.state.gamma), math.sin(aligned.state.gamma)])
+    sol = root(residual, q0, method="hybr", options=dict(xtol=1e-12))
+    assert sol.success and np.abs(residual(sol.x)).max() <= 1e-10
+    assert math.hypot(*sol.x) == pytest.approx(eps, rel=1e-11)
+    assert math.atan2(sol.x[1], sol.x[0]) == pytest.approx(gamma, abs=1e-11)
+    assert film(sol.x).moment == pytest.approx(moment, rel=1e-9)
 
 
 def test_least_film_of_a_tilted_journal():

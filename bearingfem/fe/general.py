@@ -28,7 +28,8 @@ from ..film import film_thickness
 from ..scales import moment_factor
 from .assembly import FilmOperator
 
-__all__ = ["GeneralAssembly", "general_assembly", "film_system", "general_film", "film_moment"]
+__all__ = ["GeneralAssembly", "general_assembly", "film_system", "reference_load_partial",
+           "general_film", "film_moment"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -110,6 +111,20 @@ def film_system(op: FilmOperator, fields, wedge_speed: float, eps: float = 0.0):
     if eps:
         load = load + op.load(eps, 0.0, wedge_speed)
     return ga.stiffness_values(k), load
+
+
+def reference_load_partial(op: FilmOperator, wedge_speed: float) -> np.ndarray:
+    """d(load)/d(eps) of :func:`film_system` with the fields held: the reference cylinder's
+    strong-form load d/deps 6 w (1 + eps cos(theta)) minus its weak-form share taken back
+    from the departure, at wedge speed w [rad/s].
+
+    Zero for the exact integrals, but not for the discrete ones: the two forms differ by
+    the weak Couette term's quadrature error, so a sensitivity that moves eps (and with it
+    the fields' gap) needs it to differentiate the load the solve assembles. The load is
+    linear in eps, so this holds at any eps."""
+    weak = general_assembly(op).load(6.0 * wedge_speed * np.cos(op.qp_theta),
+                                     np.zeros_like(op.qp_theta))
+    return op.load(1.0, 0.0, wedge_speed) - weak
 
 
 def general_film(bearing: Bearing, state: JournalState, op: FilmOperator,

@@ -28,7 +28,7 @@ from ..solution import ForceDerivatives
 from ..solvers.blocksolve import PinnedFactor, bordered_solve, pinned
 from ..solvers.linsolve import factorise
 from ..validation import check_film_solve
-from .general import film_system, general_assembly
+from .general import film_system, general_assembly, reference_load_partial
 from .grooved import groove_operator_for, grooved_derivatives
 from .reynolds import fe_force, fe_operator, fe_pressure, general_film, groove_pressures
 
@@ -148,7 +148,9 @@ def fe_tilt_coefficients(bearing: Bearing, state: JournalState, tilt=(0.0, 0.0),
 
     With the cavitated set held, K_II dP_I = db/dq - dK/dq P for each coordinate, the
     partials of the general assembly (:mod:`bearingfem.fe.general`) with
-    dk/dq = 3 H^2 dH/dq (rho = mu = 1) and db/dq the Couette load of 6 w dH/dq; a rate
+    dk/dq = 3 H^2 dH/dq (rho = mu = 1) and db/dq the Couette load of 6 w dH/dq plus, along
+    the eccentricity, the partial of the load's strong-form reference cylinder
+    (:func:`~bearingfem.fe.general.reference_load_partial`; it moves with eps); a rate
     q' enters through the squeeze load -12 dH/dq only. Four right-hand sides of each kind
     on the factors the film solve holds. The state must be steady (eps_dot = gamma_dot = 0,
     no tilt rate): the linearisation is about it. Whole length meshed. The position
@@ -175,11 +177,16 @@ def fe_tilt_coefficients(bearing: Bearing, state: JournalState, tilt=(0.0, 0.0),
     H, w = film.gap, state.wedge_speed
     zero = np.zeros_like(H)
     shape = op.shape
+    # the load's reference cylinder follows eps = |e| / c: it moves with e along r only,
+    # deps/dq = (cos(gamma), sin(gamma), 0, 0) / c
+    deps = np.array([math.cos(state.gamma), math.sin(state.gamma), 0.0, 0.0])
+    deps /= bearing.clearance
+    db_deps = reference_load_partial(op, w)
     rhs = []
-    for gj in g:          # positions: db/dq - dK/dq P
+    for gj, de in zip(g, deps):          # positions: db/dq - dK/dq P
         dK = sp.csr_matrix((ga.stiffness_values(3.0 * H ** 2 * gj), op.indices, op.indptr),
                            shape=shape)
-        rhs.append(ga.load(6.0 * w * gj, zero) - dK @ P)
+        rhs.append(ga.load(6.0 * w * gj, zero) + de * db_deps - dK @ P)
     rhs += [ga.load(zero, -12.0 * gj) for gj in g]      # rates: squeeze loads
     free = op.mesh.free
     inactive = ~res.active[free] if cavitation == "reynolds" else np.ones(len(free), bool)
