@@ -111,8 +111,6 @@ def design_chart(bearing: Bearing, omega: float, sommerfeld=CHART_SOMMERFELD,
         count[0] += 1
         return m.derivatives(bearing, JournalState(eps, omega=omega, gamma=gamma), **opts)
 
-    film = polar_linearisation(partials)     # newton_position takes film(q) -> (F, dF/dq)
-
     def capacity():     # asked only when a load looks too heavy: the periodic film's
         o = {**opts, "grooves": ()} if opts.get("grooves") else opts
         return math.hypot(*m.force(bearing, JournalState(eps_max, omega=omega), **o))
