@@ -46,6 +46,8 @@ os.environ.pop("PYTHONPATH", None)
 
 #: leaves out the two long JFO tests (a closed-form squeeze front, an iteration benchmark)
 QUICK_JFO = " -k 'not squeeze_film_front and not benchmark_smoke and not fraction_is_exported'"
+JFO_FILM = ("tests/test_independent_jfo.py tests/test_jfo_solver.py tests/test_jfo.py "
+            "tests/test_mutants_jfo.py" + QUICK_JFO)
 #: module -> pytest arguments: tests that exercise the module and run in well under a minute
 TESTS = {
     "bearingfem/film.py":
@@ -79,12 +81,8 @@ TESTS = {
     "bearingfem/fe/sensitivity.py":
         "tests/test_tilt_coefficients.py tests/test_independent_coefficients.py "
         "tests/test_mutants_sensitivity.py",
-    "bearingfem/fe/jfo.py":
-        "tests/test_independent_jfo.py tests/test_jfo_solver.py tests/test_jfo.py "
-        "tests/test_mutants_jfo.py" + QUICK_JFO,
-    "bearingfem/fe/jfo_steady.py":
-        "tests/test_independent_jfo.py tests/test_jfo_solver.py tests/test_jfo.py "
-        "tests/test_mutants_jfo.py" + QUICK_JFO,
+    "bearingfem/fe/jfo.py": JFO_FILM,
+    "bearingfem/fe/jfo_steady.py": JFO_FILM,
     "bearingfem/fe/jfo_balance.py":
         "tests/test_independent_jfo.py tests/test_jfo.py tests/test_mutants_jfo.py" + QUICK_JFO,
     "bearingfem/fe/volumes.py":
