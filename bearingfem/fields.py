@@ -61,7 +61,7 @@ class FilmFields:
         """These fields as arrays at the quadrature points of the film operator ``op``
         (elements x points), the rigid defaults taken from ``state``; raises ValueError
         naming a field that is not finite, or a gap, viscosity or density not > 0."""
-        th, ze = op.qp_theta, op.qp_zeta
+        th = op.qp_theta
         gap = film_thickness(th, state.eps) if self.gap is None else self.gap
         rate = state.eps_dot * np.cos(th) if self.gap_rate is None else self.gap_rate
         values = {}

@@ -21,6 +21,15 @@ __all__ = ["TransientJFO", "TransientSnapshot", "EARLY"]
 EARLY = 1e-3
 
 
+def faded_force(force: tuple, jump: tuple, elapsed: float, fade: float) -> tuple:
+    """(F_r, F_t) [N]: ``force`` plus what is left of the ``jump`` [N] a film step made,
+    ``elapsed`` [s] after it; the jump fades out smoothly (C1, smoothstep) over ``fade``
+    [s] so the integrator sees no discontinuity in the force."""
+    x = min(max(elapsed / fade, 0.0), 1.0)
+    left = 1.0 - x * x * (3.0 - 2.0 * x)
+    return (force[0] + left * jump[0], force[1] + left * jump[1])
+
+
 @dataclass(frozen=True)
 class TransientSnapshot:
     """What a :class:`TransientJFO` keeps: the time of its last film step [s], the film,
@@ -88,9 +97,7 @@ class TransientJFO:
         if self.film is None:
             self.start(state, t)
         f, self._warm = self.film.instant(state, self._warm, float(t))
-        x = min(max((float(t) - self.t) / self._fade, 0.0), 1.0)
-        left = 1.0 - x * x * (3.0 - 2.0 * x)
-        return (f[0] + left * self._jump[0], f[1] + left * self._jump[1])
+        return faded_force(f, self._jump, float(t) - self.t, self._fade)
 
     def commit(self, state: JournalState, t: float) -> FilmStep | None:
         """Advance the content to the accepted ``state`` at ``t``; returns the film step

@@ -53,3 +53,25 @@ def test_fade_is_the_c1_cubic_over_the_step():
     h = 1e-3
     ends = _left(f, s1, t1, t1 + np.array([0.0, h, 1.0 - h, 1.0]) * dt)
     assert abs(ends[1] - ends[0]) / h < 1e-2 and abs(ends[3] - ends[2]) / h < 1e-2
+
+
+def test_force_is_continuous_across_a_film_step():
+    """The force the integrator sees at (s1, t1) is the same just before and just after
+    the film step taken there (to 1e-9 of the force), while that step changed the settled
+    film by > 5 %. Fails with the jump's sign flipped in the fade (faded_force adding
+    -left * jump: the force then jumps by twice the step's change)."""
+    dt = 2e-4
+    b = seed_bearing(0.5)
+    f = TransientJFO(b, n_theta=48, n_z=4, grooves=(), ambient_pressure=1e5, film_step=1e-4)
+    s0 = JournalState(eps=0.6, omega=250.0)
+    f.force(s0, 0.0)
+    for k in range(1, 21):
+        f.commit(s0, k * dt)
+    s1 = JournalState(eps=0.6, omega=250.0, eps_dot=-20.0, gamma=0.1, gamma_dot=50.0)
+    t1 = 21 * dt
+    before = np.array(f.force(s1, t1))
+    assert f.commit(s1, t1) is not None
+    after = np.array(f.force(s1, t1))
+    settled = np.array(f.film.instant(s1)[0])
+    assert np.linalg.norm(after - settled) > 0.05 * np.linalg.norm(settled)
+    np.testing.assert_allclose(after, before, rtol=0, atol=1e-9 * np.linalg.norm(before))

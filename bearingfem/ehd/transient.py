@@ -30,6 +30,7 @@ from ..elastic import ElasticBush, bush_compliance
 from ..fields import FilmFields
 from ..film import film_thickness, inertial_from_theta
 from ..solution import FilmSolution
+from ..transient import faded_force
 
 __all__ = ["TransientEHD", "EHDSnapshot", "KeptFilm", "kept_film", "ehd_solution",
            "ehd_compliance", "check_ehd_model"]
@@ -227,9 +228,7 @@ class TransientEHD:
         if self._kept is None:
             self.start(state, t)
         f = self.kept_force(state)
-        x = min(max((float(t) - self.t) / self._fade, 0.0), 1.0)
-        left = 1.0 - x * x * (3.0 - 2.0 * x)
-        return (f[0] + left * self._jump[0], f[1] + left * self._jump[1])
+        return faded_force(f, self._jump, float(t) - self.t, self._fade)
 
     def commit(self, state: JournalState, t: float) -> FilmStep | None:
         """A full EHD solve at the accepted ``state`` once ``film_step`` has passed since the

@@ -53,6 +53,22 @@ def _positive(name, value, unit):
     return float(value)
 
 
+def _pressure_laws(lubricant: Lubricant, hertz_pressure: float):
+    """(eta, rho): the oil's viscosity eta/mu0 and density rho/rho0 laws of the
+    dimensionless pressure P = p/p_H, each returning (value, d value / dP)."""
+    mu0, ph = lubricant.viscosity, hertz_pressure
+
+    def eta(P):
+        p = ph * P
+        return lubricant.viscosity_at(p) / mu0, ph * lubricant.viscosity_derivative(p) / mu0
+
+    def rho(P):
+        p = ph * P
+        return lubricant.density_at(p), ph * lubricant.density_derivative(p)
+
+    return eta, rho
+
+
 def line_contact(*, radius: float, reduced_modulus: float, lubricant: Lubricant,
                  mean_speed: float, load_per_length: float, nodes: int = DEFAULT_NODES,
                  inlet: float | None = None, outlet: float | None = None,
@@ -103,14 +119,7 @@ def line_contact(*, radius: float, reduced_modulus: float, lubricant: Lubricant,
         raise ValueError(f"outlet must be a finite number >= 1 [Hertz half-widths], got {outlet!r}")
 
     lam = 12.0 * mu0 * u * R**2 / (b**3 * ph)
-
-    def eta(P):
-        p = ph * P
-        return lubricant.viscosity_at(p) / mu0, ph * lubricant.viscosity_derivative(p) / mu0
-
-    def rho(P):
-        p = ph * P
-        return lubricant.density_at(p), ph * lubricant.density_derivative(p)
+    eta, rho = _pressure_laws(lubricant, ph)
 
     # mesh sequencing: the coarsest grid (>= COARSEST nodes) from a cold start (with load
     # continuation if need be), each finer one (twice the nodes) from the coarser answer,

@@ -192,17 +192,8 @@ def solve_dimensionless(prob: DimensionlessLine, P0: np.ndarray, H0: float, *,
         J[:-1][active] = 0.0
         J[np.flatnonzero(active), np.flatnonzero(active)] = 1.0
         J[-1, :-1] = S.dx
-        try:
-            # equilibrate rows then columns: in the rigid limit the H0 column is many
-            # orders of magnitude off the pressure columns
-            row = 1.0 / np.maximum(np.abs(J).max(axis=1), np.finfo(float).tiny)
-            J *= row[:, None]
-            col = 1.0 / np.maximum(np.abs(J).max(axis=0), np.finfo(float).tiny)
-            J *= col[None, :]
-            with warnings.catch_warnings():   # a poor step is caught by the line search
-                warnings.simplefilter("ignore", scipy.linalg.LinAlgWarning)
-                step = -col * scipy.linalg.solve(J, row * phi, check_finite=False)
-        except (scipy.linalg.LinAlgError, ValueError):
+        step = _equilibrated_step(J, phi)
+        if step is None:
             break
         t = 1.0
         while t > 1e-4:
@@ -228,3 +219,19 @@ def solve_dimensionless(prob: DimensionlessLine, P0: np.ndarray, H0: float, *,
             return NewtonRecord(np.maximum(P, 0.0), H, float(H0), it, worst)
     raise ConvergenceError("EHL line contact Newton (complementarity residual)", it, worst,
                            f"lambda = {prob.lam:.4g}, tolerance {tol:.0e}")
+
+
+def _equilibrated_step(J: np.ndarray, phi: np.ndarray):
+    """Newton step -J^-1 phi of a dense Jacobian (scaled in place), or None if singular.
+    Rows then columns are equilibrated: in the rigid limit the H0 column is many orders
+    of magnitude off the pressure columns."""
+    try:
+        row = 1.0 / np.maximum(np.abs(J).max(axis=1), np.finfo(float).tiny)
+        J *= row[:, None]
+        col = 1.0 / np.maximum(np.abs(J).max(axis=0), np.finfo(float).tiny)
+        J *= col[None, :]
+        with warnings.catch_warnings():   # a poor step is caught by the line search
+            warnings.simplefilter("ignore", scipy.linalg.LinAlgWarning)
+            return -col * scipy.linalg.solve(J, row * phi, check_finite=False)
+    except (scipy.linalg.LinAlgError, ValueError):
+        return None

@@ -21,15 +21,13 @@ elastic block is the full influence matrix) on the y >= 0 half of the grid, so g
 """
 from __future__ import annotations
 
-import warnings
 from dataclasses import dataclass
 
 import numpy as np
-import scipy.linalg
 import scipy.sparse as sp
 
 from ..errors import ConvergenceError
-from .line import UPWIND, NewtonRecord, _cavitated, _complementarity
+from .line import UPWIND, NewtonRecord, _cavitated, _complementarity, _equilibrated_step
 from .pointspace import HERTZ_POINT_LOAD, PointCompliance
 
 __all__ = ["DimensionlessPoint", "solve_point"]
@@ -178,15 +176,8 @@ def solve_point(prob: DimensionlessPoint, P0: np.ndarray, H0: float, *, tol: flo
         J[np.flatnonzero(active), np.flatnonzero(active)] = 1.0
         J[-1, :-1] = S.d**2 * weight
         J[-1, -1] = 0.0
-        try:
-            row = 1.0 / np.maximum(np.abs(J).max(axis=1), np.finfo(float).tiny)
-            J *= row[:, None]
-            col = 1.0 / np.maximum(np.abs(J).max(axis=0), np.finfo(float).tiny)
-            J *= col[None, :]
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore", scipy.linalg.LinAlgWarning)
-                step = -col * scipy.linalg.solve(J, row * phi, check_finite=False)
-        except (scipy.linalg.LinAlgError, ValueError):
+        step = _equilibrated_step(J, phi)
+        if step is None:
             break
         t = 1.0
         while t > 1e-4:

@@ -13,7 +13,7 @@ import numpy as np
 
 from ..errors import ConvergenceError
 from ..lubricant import Lubricant
-from .contact import _positive
+from .contact import _positive, _pressure_laws
 from .fits import FilmFit
 from .point import DimensionlessPoint, solve_point
 
@@ -117,14 +117,7 @@ def point_contact(*, radius: float, reduced_modulus: float, lubricant: Lubricant
     U, W, G = mu0 * u / (E * R), w / (E * R**2), alpha * E
     film_scale = a**2 / R
     lam = 12.0 * mu0 * u * R**2 / (a**3 * ph)
-
-    def eta(P):
-        p = ph * P
-        return lubricant.viscosity_at(p) / mu0, ph * lubricant.viscosity_derivative(p) / mu0
-
-    def rho(P):
-        p = ph * P
-        return lubricant.density_at(p), ph * lubricant.density_derivative(p)
+    eta, rho = _pressure_laws(lubricant, ph)
 
     d = (outlet - inlet) / (nodes - 1)
     half = int(math.ceil(SIDE / d))

@@ -49,9 +49,9 @@ from ..solvers.jfo import JFOResult, solve_balance
 from ..solvers.linsolve import principal_block
 from .assembly import FilmOperator
 from .jfo import JFOFilm
-from .jfo_steady import _film_solution
+from .jfo_steady import COARSEST_FREE_NODES, _film_solution, _coarser, _prolonged_cavity
 from .jfo_balance import (FilmAdvance, JFOFlows, _boundary_values, _content,
-                          _cos_integral, _prolongation, _transport, film_volumes)
+                          _cos_integral, _transport, film_volumes)
 
 __all__ = ["CompressibleSolve", "CompressibleJFOFilm", "solve_compressible_jfo",
            "compressible_jfo_force", "is_elrod", "check_elrod"]
@@ -118,10 +118,6 @@ def _balance(bearing: Bearing, op: FilmOperator, eps: float, T: sp.csr_matrix,
     return CompressibleSolve(beta * np.log1p(Q / beta), phi, density, res, flows)
 
 
-#: Below this many free nodes a steady film starts cold instead of from a coarser mesh.
-COARSEST_FREE_NODES = 500
-
-
 def _steady(bearing: Bearing, state: JournalState, operator, n_theta: int, n_z: int,
             grooves, ambient: float, beta: float, cavitated0=None):
     """Steady film (line-of-centres frame) on ``operator(n_theta, n_z)``; a cold start
@@ -132,10 +128,9 @@ def _steady(bearing: Bearing, state: JournalState, operator, n_theta: int, n_z: 
     storage = 12.0 * state.eps_dot * _cos_integral(cv)
     warm = 3
     if cavitated0 is None and len(op.mesh.free) > COARSEST_FREE_NODES:
-        c, opc = _steady(bearing, state, operator, max(8, n_theta // 2), max(2, n_z // 2),
-                         grooves, ambient, beta)
-        u = c.P - (1.0 - c.phi)        # < 0 in the cavity
-        cavitated0 = (_prolongation(opc.mesh, op.mesh) @ u) < 0.0
+        c, opc = _steady(bearing, state, operator, *_coarser(n_theta, n_z), grooves,
+                         ambient, beta)
+        cavitated0 = _prolonged_cavity(opc, op, c.P, c.phi)
         warm = 12
     try:
         s = _balance(bearing, op, state.eps, T, storage, np.zeros(op.mesh.ndofs), grooves,

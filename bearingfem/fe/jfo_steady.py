@@ -58,6 +58,17 @@ def _film_solution(bearing, state, op: FilmOperator, P, phi, res: JFOResult,
 COARSEST_FREE_NODES = 500
 
 
+def _coarser(n_theta: int, n_z: int) -> tuple:
+    """(n_theta, n_z) of the mesh half as fine a cold start takes its cavity from."""
+    return max(8, n_theta // 2), max(2, n_z // 2)
+
+
+def _prolonged_cavity(coarse: FilmOperator, fine: FilmOperator, P, phi):
+    """Cavitated set (bool per node) on ``fine`` from the film (P, phi) solved on
+    ``coarse``: where the prolonged universal variable P - (1 - phi) is < 0."""
+    return (_prolongation(coarse.mesh, fine.mesh) @ (P - (1.0 - phi))) < 0.0
+
+
 def _steady(bearing: Bearing, state: JournalState, operator, n_theta, n_z, grooves,
             ambient, cavitated0=None, film=None):
     """Steady film on the mesh ``operator(n_theta, n_z)``. A cold start takes its first
@@ -75,10 +86,9 @@ def _steady(bearing: Bearing, state: JournalState, operator, n_theta, n_z, groov
         T, storage = f.transport(cv, state.wedge_speed), 12.0 * f.squeeze
     warm = 3
     if cavitated0 is None and len(op.mesh.free) > COARSEST_FREE_NODES:
-        Pc, phic, _, _, opc, _ = _steady(bearing, state, operator, max(8, n_theta // 2),
-                                         max(2, n_z // 2), grooves, ambient, film=film)
-        u = Pc - (1.0 - phic)          # the universal variable: < 0 in the cavity
-        cavitated0 = (_prolongation(opc.mesh, op.mesh) @ u) < 0.0
+        Pc, phic, _, _, opc, _ = _steady(bearing, state, operator, *_coarser(n_theta, n_z),
+                                         grooves, ambient, film=film)
+        cavitated0 = _prolonged_cavity(opc, op, Pc, phic)
         warm = 12
     try:
         b = _solve(bearing, op, state.eps, T, storage, np.zeros(op.mesh.ndofs), grooves,

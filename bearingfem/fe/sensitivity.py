@@ -16,7 +16,7 @@ integrand is zero there, so it adds nothing to first order).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import numpy as np
 import scipy.sparse as sp
@@ -30,7 +30,7 @@ from ..solvers.linsolve import factorise
 from ..validation import check_film_solve
 from .general import film_system, general_assembly, reference_load_partial
 from .grooved import groove_operator_for, grooved_derivatives
-from .reynolds import fe_force, fe_operator, fe_pressure, general_film, groove_pressures
+from .reynolds import fe_operator, fe_pressure, general_film, groove_pressures
 
 __all__ = ["fe_force_derivatives", "TiltCoefficients", "fe_tilt_coefficients",
            "gap_sensitivities", "generalised_forces"]
