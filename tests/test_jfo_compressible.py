@@ -210,3 +210,15 @@ def test_mechanism_model_runs_the_compressible_film_and_tends_to_fem_jfo():
     assert np.max(np.abs(e - ref.eps)) < 1e-6, np.max(np.abs(e - ref.eps))
     with pytest.raises(ValueError, match="bulk_modulus"):
         _scene("fem-jfo-compressible", bulk_modulus=10.0)
+
+
+@pytest.mark.parametrize("extra", [dict(tilt=(0.0, 1e-4)), dict(tilt_rate=(1e-3, 0.0))])
+def test_compressible_film_refuses_tilt_it_would_ignore(extra):
+    """The compressible film is built on the rigid cylinder: a tilt or tilt rate is refused
+    by name, not silently dropped (fails with the refusal in solve_reynolds removed: the
+    aligned film comes back)."""
+    b, s = seed_bearing(1.0), JournalState(eps=0.6, omega=250.0)
+    oil = Lubricant(viscosity=b.viscosity, bulk_modulus=1.5e9)
+    with pytest.raises(ValueError, match="compressible JFO film .*tilt"):
+        solve_reynolds(b, s, 24, 4, cavitation="jfo", lubricant=oil,
+                       grooves=[Groove(angle=np.pi, width=0.1)], **extra)
