@@ -30,6 +30,15 @@ def faded_force(force: tuple, jump: tuple, elapsed: float, fade: float) -> tuple
     return (force[0] + left * jump[0], force[1] + left * jump[1])
 
 
+def since_film_step(t: float, last: float) -> float:
+    """Time [s] from the last film step at ``last`` to an accepted step at ``t``; a step
+    back in time raises (a film with memory goes back only by restoring a snapshot)."""
+    if t < last:
+        raise ValueError(f"t = {t!r} s is before the last film step ({last!r} s): "
+                         "restore a snapshot to go back")
+    return t - last
+
+
 @dataclass(frozen=True)
 class TransientSnapshot:
     """What a :class:`TransientJFO` keeps: the time of its last film step [s], the film,
@@ -106,10 +115,7 @@ class TransientJFO:
         if self.film is None:
             self.start(state, t)
         t = float(t)
-        if t < self.t:
-            raise ValueError(f"t = {t!r} s is before the last film step ({self.t!r} s): "
-                             "restore a snapshot to go back")
-        dt = t - self.t
+        dt = since_film_step(t, self.t)
         # film_step: accepted steps closer than this to the last film step leave the
         # content as it is (the next film step spans them: backward Euler is exact in mass
         # whatever its step), unless the kept film no longer fits the journal; not within

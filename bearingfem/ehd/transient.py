@@ -30,7 +30,7 @@ from ..elastic import ElasticBush, bush_compliance
 from ..fields import FilmFields
 from ..film import film_thickness, inertial_from_theta
 from ..solution import FilmSolution
-from ..transient import faded_force
+from ..transient import faded_force, since_film_step
 
 __all__ = ["TransientEHD", "EHDSnapshot", "KeptFilm", "kept_film", "ehd_solution",
            "ehd_compliance", "check_ehd_model"]
@@ -236,10 +236,7 @@ class TransientEHD:
         if self._kept is None:
             self.start(state, t)
         t = float(t)
-        if t < self.t:
-            raise ValueError(f"t = {t!r} s is before the last film step ({self.t!r} s): "
-                             "restore a snapshot to go back")
-        dt = t - self.t
+        dt = since_film_step(t, self.t)
         if dt <= 1e-12 * max(abs(self.t), 1e-3) or dt <= self.film_step:
             return None
         before = self.force(state, t)
