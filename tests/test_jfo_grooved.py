@@ -97,3 +97,10 @@ def test_a_starved_grooves_supply_is_the_flow_through_cuts_around_it():
     richardson = supply + 2.0 * err[2] - err[1]
     assert richardson == pytest.approx(supply, rel=0.02)
     assert supply > 0.0
+
+
+def test_new_angle_benchmark_smoke(capsys):
+    """The benchmark runs and both routes give one force (to round-off)."""
+    from benchmarks import jfo_grooved
+    rows = jfo_grooved.main(["--quick"])
+    assert rows[0]["mesh"] == "48x8" and rows[0]["deviation"] < 1e-10
