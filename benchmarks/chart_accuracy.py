@@ -4,8 +4,8 @@ S 10 .. 0.01, 20 points; benchmarks/grooved.py's bearing).
     python -m benchmarks.chart_accuracy [--quick]
 
 Each mesh's chart (:func:`bearingfem.design.design_chart`, FE P2, Reynolds' condition,
-caches cleared, one run) against the chart on the reference mesh (P2 192x32; --quick
-192x16). Columns: CPU time [s] of the chart, and over its points the largest relative
+caches cleared, one run) against the chart on the reference mesh (P2 384x32, or --reference N M;
+--quick 192x16). Columns: CPU time [s] of the chart, and over its points the largest relative
 error of the position (|d eps| / eps, |d attitude| [rad]) and of the coefficients
 (max|dK| / max|K|, max|dB| / max|B|, dimensionless in the load frame), each over all 20
 points and over the heavy loads S < 0.1 (eps 0.69 .. 0.94) alone. Rows marked "gr" are on
@@ -26,8 +26,8 @@ from . import grooved
 MESHES = [(24, 4), (48, 8), (96, 8), (96, 16), (192, 8), (192, 16)]
 #: theta-graded meshes (:func:`bearingfem.design.chart_grading`: cells towards the heavy
 #: loads' minimum film, sized like 1 - 0.9 cos)
-GRADED = [(48, 8), (64, 8), (96, 8), (96, 12)]
-REFERENCE = (192, 32)
+GRADED = [(48, 8), (48, 12), (64, 12), (96, 12)]
+REFERENCE = (384, 32)
 
 
 def chart(mesh, grading=None):
@@ -51,9 +51,12 @@ def errors(ch, ref):
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true", help="coarser meshes and reference")
+    ap.add_argument("--reference", type=int, nargs=2, default=None,
+                    help="the reference chart's P2 mesh (default 384 32)")
     args = ap.parse_args(argv)
     meshes = MESHES[:3] if args.quick else MESHES
-    ref_mesh = (192, 16) if args.quick else REFERENCE
+    ref_mesh = tuple(args.reference) if args.reference else \
+        (192, 16) if args.quick else REFERENCE
     ref, t_ref = chart(ref_mesh)
     heavy = np.array([p.sommerfeld < 0.1 for p in ref.points])
     print(f"reference P2 {ref_mesh[0]}x{ref_mesh[1]}: {t_ref:.2f} s CPU")

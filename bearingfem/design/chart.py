@@ -130,7 +130,9 @@ def design_chart(bearing: Bearing, omega: float, sommerfeld=CHART_SOMMERFELD,
         return m.derivatives(bearing, JournalState(eps, omega=omega, gamma=gamma), **opts)
 
     def capacity():     # asked only when a load looks too heavy: the periodic film's
-        o = {**opts, "grooves": ()} if opts.get("grooves") else opts
+        o = {**opts, "grooves": ()} if opts.get("grooves") else dict(opts)
+        if o.get("grading") is not None:      # a grading is for the grooved mesh
+            o["grading"] = None
         return math.hypot(*m.force(bearing, JournalState(eps_max, omega=omega), **o))
 
     film = polar_linearisation(partials)
