@@ -12,9 +12,8 @@ costs a few vector operations (:func:`grooved_balance_film`).
 
 As on the grooves' moving mesh, the steady film is the one steady in the frame of the
 line of centres (content carried at w/2, a squeeze eps_dot cos(theta)) with the grooves
-where they are at this instant. (The transient grooved film,
-:class:`~bearingfem.fe.jfo.JFOFilm`, still takes the grooves' moving mesh.) The grooves
-may be flooded (``Groove.pressure`` held, fraction 1) or
+where they are at this instant; the transient film on this mesh is
+:class:`~bearingfem.fe.jfo_grooved_transient.GroovedJFOFilm`. The grooves may be flooded (``Groove.pressure`` held, fraction 1) or
 starved (``Groove.fraction`` < 1: what the groove supplies is the flow the film draws at
 that fraction, reported as ``flow_in``).
 
