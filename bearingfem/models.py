@@ -21,6 +21,8 @@ from .closed.short_bearing import (short_bearing_derivatives, short_bearing_exac
 from .differentiate import central_differences
 from .contract import RunFilm, SteadyRun
 from .fe.assembly import fe_operator
+from .fe.grooved import (check_grading, groove_operator_for, grooved_derivatives,
+                         grooved_force, grooved_solution)
 from .fe.force_table import TABLE_DEFAULTS, force_table, table_force
 from .fe.mesh import ELEMENTS
 from .fe.reynolds import fe_force, solve_reynolds
@@ -49,6 +51,7 @@ OPTION_RULES = {
     "n_eps": ("int", (6, 400)), "n_phi": ("int", (16, 1000)),
     "grooves": ("grooves", None), "ambient_pressure": ("number", (0.0, None)),
     "film_step": ("number", (0.0, None)), "roughness": ("roughness", None),
+    "grading": ("grading", None),
 }
 
 
@@ -60,6 +63,8 @@ def _check_option(name: str, value, where: str, mass_conserving: bool = False,
         return check_grooves(value, mass_conserving=mass_conserving)
     if kind == "roughness":
         return check_roughness(value)
+    if kind == "grading":
+        return check_grading(value)
     if kind == "instance":    # an object of one of the allowed classes, or None
         if value is not None and not isinstance(value, allowed):
             raise ValueError(f"{label} must be a {' or '.join(c.__name__ for c in allowed)} "
@@ -187,24 +192,47 @@ def _contact_force(bearing, state, n_theta, n_z, element, grooves, roughness):
     return film_contact(bearing, state, op, roughness).force_local
 
 
-def _fem(bearing, state, n_theta, n_z, element, cavitation, grooves, roughness=None):
+def _graded(bearing, n_theta, n_z, element, grooves, roughness, grading):
+    """The bearing-fixed grooved operator of a ``grading`` (None without one); ValueError
+    when it is given without grooves or with roughness."""
+    if grading is None:
+        return None
+    if not grooves or roughness is not None:
+        raise ValueError("grading is for grooved films on the bearing-fixed mesh: give "
+                         "grooves, and no roughness")
+    return groove_operator_for(bearing, n_theta, n_z, element, grooves, grading)
+
+
+def _fem(bearing, state, n_theta, n_z, element, cavitation, grooves, roughness=None,
+         grading=None):
     """The "fem" model's force, film plus asperity contact (a cold solve; options always
     come from the registry)."""
+    gop = _graded(bearing, n_theta, n_z, element, grooves, roughness, grading)
+    if gop is not None:
+        return grooved_force(bearing, state, gop, grooves, cavitation)[0]
     film = fe_force(bearing, state, n_theta, n_z, element, cavitation, grooves=grooves)[0]
     contact = _contact_force(bearing, state, n_theta, n_z, element, grooves, roughness)
     return film[0] + contact[0], film[1] + contact[1]
 
 
-def _fem_solution(bearing, state, n_theta, n_z, element, cavitation, grooves, roughness=None):
+def _fem_solution(bearing, state, n_theta, n_z, element, cavitation, grooves, roughness=None,
+                  grading=None):
+    gop = _graded(bearing, n_theta, n_z, element, grooves, roughness, grading)
+    if gop is not None:
+        return grooved_solution(bearing, state, gop, grooves, cavitation, "active-set",
+                                1e-10, "full", element)
     return solve_reynolds(bearing, state, n_theta, n_z, element, cavitation, grooves=grooves,
                           roughness=roughness)
 
 
 def _fem_derivatives(bearing, state, n_theta, n_z, element, cavitation, grooves,
-                     roughness=None) -> ForceDerivatives:
+                     roughness=None, grading=None) -> ForceDerivatives:
     """The film's exact partials plus the asperity force and its exact partial in eps (it
     has none in eps_dot or w; its gamma partial with grooves, the mesh moving with them,
     is a quadrature error and is left out)."""
+    gop = _graded(bearing, n_theta, n_z, element, grooves, roughness, grading)
+    if gop is not None:
+        return grooved_derivatives(bearing, state, gop, grooves, cavitation)
     d = fe_force_derivatives(bearing, state, n_theta, n_z, element, cavitation, grooves)
     if roughness is None:
         return d
@@ -221,8 +249,14 @@ def _warm_fem():
     answer is the same as a cold solve to the solver tolerance; only the cost changes."""
     last = {}
 
-    def fem(bearing, state, n_theta, n_z, element, cavitation, grooves=(), roughness=None):
-        key = (bearing.length_ratio, n_theta, n_z, element, cavitation, grooves)
+    def fem(bearing, state, n_theta, n_z, element, cavitation, grooves=(), roughness=None,
+            grading=None):
+        key = (bearing.length_ratio, n_theta, n_z, element, cavitation, grooves, grading)
+        gop = _graded(bearing, n_theta, n_z, element, grooves, roughness, grading)
+        if gop is not None:
+            force, last[key] = grooved_force(bearing, state, gop, grooves, cavitation,
+                                             warm=last.get(key))
+            return force
         force, last[key] = fe_force(bearing, state, n_theta, n_z, element, cavitation,
                                     warm=last.get(key), grooves=grooves)
         contact = _contact_force(bearing, state, n_theta, n_z, element, grooves, roughness)
@@ -310,7 +344,7 @@ for _m in (
     FilmModel("short-exact", short_bearing_exact_force),
     FilmModel("long-exact", long_bearing_exact_force),
     FilmModel("fem", _fem, dict(_MESH, element="P1", cavitation="gumbel", grooves=(),
-                                roughness=None),
+                                roughness=None, grading=None),
               _fem_derivatives, numeric=True, solution=_fem_solution, warm=_warm_fem),
     FilmModel("fvm", fvm_force, dict(_MESH, cavitation="gumbel"), numeric=True,
               solution=_fvm_solution),

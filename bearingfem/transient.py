@@ -14,6 +14,8 @@ from .bearing import Bearing, JournalState
 from .contract import FilmStep
 from .errors import ConvergenceError
 from .fe.jfo import JFOFilm, JFOSnapshot
+from .fe.jfo_fields import FilmSpec
+from .fe.jfo_grooved_transient import GroovedJFOFilm
 
 __all__ = ["TransientJFO", "TransientSnapshot", "EARLY"]
 
@@ -96,7 +98,14 @@ class TransientJFO:
 
     def start(self, state: JournalState, t: float) -> None:
         """Begin a full film at ``state``, time ``t`` [s]."""
-        self.film = JFOFilm(self.bearing, state, time=float(t), **self._film_options)
+        o = self._film_options
+        if o["grooves"] and FilmSpec.checked(o["fields"], o["tilt"], o["tilt_rate"]) is None:
+            # rigid grooved film: the bearing-fixed mesh (no operator per journal angle)
+            self.film = GroovedJFOFilm(self.bearing, state, o["n_theta"], o["n_z"],
+                                       grooves=o["grooves"], time=float(t),
+                                       ambient_pressure=o["ambient_pressure"])
+        else:
+            self.film = JFOFilm(self.bearing, state, time=float(t), **o)
         self.t = float(t)
         self._warm, self._jump, self._fade, self.steps = None, (0.0, 0.0), 1.0, 0
 

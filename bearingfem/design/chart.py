@@ -24,7 +24,7 @@ from .equilibrium import EPS_MAX
 from .groups import load_from_sommerfeld, petroff_friction
 from .newton import closed_form_start, newton_position, polar_linearisation
 
-__all__ = ["ChartPoint", "DesignChart", "design_chart", "CHART_SOMMERFELD"]
+__all__ = ["ChartPoint", "DesignChart", "design_chart", "CHART_SOMMERFELD", "chart_grading"]
 
 #: The chart's default abscissa: 20 Sommerfeld numbers from 10 (light load) to 0.01.
 CHART_SOMMERFELD = tuple(float(s) for s in np.geomspace(10.0, 0.01, 20))
@@ -75,6 +75,24 @@ def _sommerfeld_numbers(sommerfeld) -> np.ndarray:
     return S
 
 
+def chart_grading(bearing: Bearing, omega: float, sommerfeld=CHART_SOMMERFELD,
+                  direction: float = -0.5 * math.pi, strength: float = 0.9) -> tuple:
+    """The "fem" model's ``grading`` (angle [rad], strength) for a grooved chart: the
+    cells concentrated where the closed form (:func:`~bearingfem.design.newton.closed_form_start`)
+    puts the minimum film at the geometric mean of the chart's heavy loads (S < 0.1, whose
+    narrow pressure peaks set the mesh's error; the smallest S if none). One mesh serves
+    the whole chart: grading per point would rebuild it per point. ``strength`` 0.9 is
+    what benchmarks/chart_accuracy.py measured best (cells ~19x finer there than opposite).
+    """
+    S = _sommerfeld_numbers(sommerfeld)
+    heavy = S[S < 0.1]
+    s = float(np.exp(np.mean(np.log(heavy)))) if heavy.size else float(S.min())
+    W = load_from_sommerfeld(bearing, s, check_finite("omega", omega))
+    u = np.array([math.cos(direction), math.sin(direction)])
+    q = closed_form_start(bearing, omega, W * u)
+    return math.atan2(q[1], q[0]), float(strength)
+
+
 def design_chart(bearing: Bearing, omega: float, sommerfeld=CHART_SOMMERFELD,
                  model: str = "fem", *, direction: float = -0.5 * math.pi,
                  eps_max: float = EPS_MAX, rtol: float = 1e-10, **options) -> DesignChart:
@@ -112,7 +130,9 @@ def design_chart(bearing: Bearing, omega: float, sommerfeld=CHART_SOMMERFELD,
         return m.derivatives(bearing, JournalState(eps, omega=omega, gamma=gamma), **opts)
 
     def capacity():     # asked only when a load looks too heavy: the periodic film's
-        o = {**opts, "grooves": ()} if opts.get("grooves") else opts
+        o = {**opts, "grooves": ()} if opts.get("grooves") else dict(opts)
+        if o.get("grading") is not None:      # a grading is for the grooved mesh
+            o["grading"] = None
         return math.hypot(*m.force(bearing, JournalState(eps_max, omega=omega), **o))
 
     film = polar_linearisation(partials)

@@ -160,9 +160,10 @@ def _interpolation_matrix(basis) -> sp.csr_matrix:
 @lru_cache(maxsize=32)
 def film_operator(n_theta: int, n_z: int, element: str, length_ratio: float,
                   theta0: float | None = None, half: bool = True,
-                  arcs: tuple = ()) -> FilmOperator:
+                  arcs: tuple = (), grading: tuple | None = None) -> FilmOperator:
     """Cached operator for a mesh (see :func:`bearingfem.fe.mesh.film_mesh`)."""
-    return build_operator(film_mesh(n_theta, n_z, element, length_ratio, theta0, half, arcs))
+    return build_operator(film_mesh(n_theta, n_z, element, length_ratio, theta0, half, arcs,
+                                    grading))
 
 
 def fe_operator(bearing, state, n_theta=120, n_z=20, element="P1",

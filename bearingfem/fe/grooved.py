@@ -50,7 +50,7 @@ from .general import general_assembly
 from .multilevel import coarse_level
 
 __all__ = ["GroovedOperator", "grooved_operator", "groove_operator_for", "grooved_pressure",
-           "grooved_force", "grooved_derivatives", "grooved_solution"]
+           "grooved_force", "grooved_derivatives", "grooved_solution", "check_grading"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -114,13 +114,37 @@ def grooved_operator(op: FilmOperator) -> GroovedOperator:
                                          for w in _harmonic_weights(op.qp_theta)]))
 
 
+def check_grading(grading) -> tuple | None:
+    """None, or (angle, strength) as floats: the inertial angle [rad] where the cells
+    concentrate and a strength in [0, 0.99]; ValueError naming ``grading`` otherwise."""
+    if grading is None:
+        return None
+    try:
+        angle, strength = (float(v) for v in grading)
+    except (TypeError, ValueError):
+        raise ValueError(f"grading must be None or (angle [rad], strength in [0, 0.99]), "
+                         f"got {grading!r}") from None
+    if not (math.isfinite(angle) and 0.0 <= strength <= 0.99):
+        raise ValueError(f"grading must be None or (angle [rad], strength in [0, 0.99]), "
+                         f"got {grading!r}")
+    return angle, strength
+
+
 def groove_operator_for(bearing: Bearing, n_theta: int, n_z: int, element: str,
-                        grooves) -> GroovedOperator:
-    """The bearing-fixed grooved operator (half length) of ``grooves`` on this mesh."""
+                        grooves, grading=None) -> GroovedOperator:
+    """The bearing-fixed grooved operator (half length) of ``grooves`` on this mesh;
+    ``grading`` (angle, strength): theta cells concentrated towards the inertial ``angle``
+    [rad] (e.g. where the heaviest load puts the minimum film), sized like
+    1 - strength cos (:func:`~bearingfem.fe.mesh.film_mesh`); None: uniform per arc."""
     arcs = tuple((float(np.round(lo, 12)), float(np.round(hi, 12)))
                  for lo, hi in (g.arc(0.0) for g in grooves))
+    grading = check_grading(grading)
+    if grading is not None:     # the mesh angle is the film angle at gamma = 0
+        grading = (float(np.round(np.mod(grading[0] - math.pi, 2.0 * math.pi), 12)),
+                   grading[1])
     return grooved_operator(film_operator(int(n_theta), int(n_z), element,
-                                          bearing.length_ratio, arcs[0][0], True, arcs))
+                                          bearing.length_ratio, arcs[0][0], True, arcs,
+                                          grading))
 
 
 def _held(bearing: Bearing, gop: GroovedOperator, grooves) -> np.ndarray:

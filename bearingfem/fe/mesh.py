@@ -10,6 +10,11 @@ arcs between consecutive edges in proportion to their length (uniform within eac
 grooves of any width and position are resolved exactly and the film converges at the
 element's order on any n_theta. (Edges snapped to a uniform grid move by up to half a cell:
 a first-order error in the groove's width.)
+
+A ``grading`` (focus, strength) sizes the theta cells like the gap of a journal at
+eccentricity ``strength`` whose minimum film is at the mesh angle ``focus``: cell width
+proportional to 1 - strength cos(theta - focus), both in the cells' share per arc and
+within each arc (a heavily loaded film's pressure peak is narrow where the film is thin).
 """
 from __future__ import annotations
 
@@ -57,6 +62,7 @@ class FilmMesh:
     theta0: float | None
     grooves: tuple = ()        # dof indices held at each groove's pressure, one array each
     arcs: tuple = ()           # the grooves' (start, end) film angles
+    grading: tuple | None = None   # (focus, strength) of the theta cells (module docstring)
 
     @property
     def ndofs(self) -> int:
@@ -66,7 +72,7 @@ class FilmMesh:
     def axes(self):
         """(theta, zeta) grid lines of the tensor mesh the elements were built on."""
         return _axes(self.n_theta, self.n_z, self.length_ratio, self.theta0, self.half,
-                     self.arcs)
+                     self.arcs, self.grading)
 
 
 @contextmanager
@@ -108,9 +114,41 @@ def _cells_per_arc(n: int, lengths: np.ndarray) -> np.ndarray:
     return cells
 
 
-def _theta_axis(n_theta: int, t_lo: float, arcs) -> np.ndarray:
+def _graded_axis(n_theta: int, t_lo: float, arcs, grading) -> np.ndarray:
+    """The grid lines of a ``grading`` (focus, strength): the arcs' breaks mapped to the
+    cumulative cell density 1 / (1 - strength cos(theta - focus)) (exact integral), the
+    cells shared by it and spaced uniformly in it within each arc."""
+    focus, s = grading
+    turn = 2.0 * np.pi
+    breaks = np.concatenate([[0.0], _edges(t_lo, arcs), [turn]]) if arcs else \
+        np.array([0.0, turn])
+    if n_theta < len(breaks) - 1:
+        raise ValueError(f"n_theta must be >= {len(breaks) - 1} (one cell per arc between "
+                         f"groove edges), got {n_theta}")
+    # the density's integral from the focus: 2/sqrt(1-s^2) atan(sqrt((1+s)/(1-s)) tan(x/2))
+    # made continuous over the turn; inverted on a fine table (monotone)
+    k, r = 2.0 / np.sqrt(1.0 - s * s), np.sqrt((1.0 + s) / (1.0 - s))
+
+    def cdf(x):
+        u = t_lo + x - focus
+        return k * (np.arctan(r * np.tan(0.5 * u - np.pi * np.round(u / turn))) +
+                    np.pi * np.round(u / turn))
+    x = np.linspace(0.0, turn, 64 * n_theta + 1)
+    c = cdf(x)
+    c = np.maximum.accumulate(c)        # round-off at the atan's branch points
+    w = np.interp(breaks, x, c)
+    cells = _cells_per_arc(n_theta, np.diff(w))
+    parts = [np.interp(np.linspace(a, b, m + 1)[:-1], c, x)
+             for a, b, m in zip(w[:-1], w[1:], cells)]
+    parts = [np.concatenate([[lo], p[1:]]) for lo, p in zip(breaks[:-1], parts)]
+    return t_lo + np.concatenate(parts + [[turn]])
+
+
+def _theta_axis(n_theta: int, t_lo: float, arcs, grading=None) -> np.ndarray:
     """Grid lines over one turn from t_lo with a line on every groove edge."""
     turn = 2.0 * np.pi
+    if grading is not None:
+        return _graded_axis(n_theta, t_lo, arcs, grading)
     if not arcs:
         return _axis(n_theta, t_lo, t_lo + turn)
     breaks = np.concatenate([[0.0], _edges(t_lo, arcs), [turn]])
@@ -122,9 +160,9 @@ def _theta_axis(n_theta: int, t_lo: float, arcs) -> np.ndarray:
     return t_lo + np.concatenate(parts + [[turn]])
 
 
-def _axes(n_theta, n_z, length_ratio, theta0, half, arcs=()):
+def _axes(n_theta, n_z, length_ratio, theta0, half, arcs=(), grading=None):
     t_lo = 0.0 if theta0 is None else float(theta0)
-    th = _theta_axis(n_theta, t_lo, arcs)
+    th = _theta_axis(n_theta, t_lo, arcs, grading)
     lam = float(length_ratio)
     ze = _axis(max(1, -(-n_z // 2)), 0.0, lam) if half else _axis(n_z, -lam, lam)
     return th, ze
@@ -147,7 +185,8 @@ def _mirrored_tensor(th: np.ndarray, ze: np.ndarray) -> MeshTri1:
 
 @lru_cache(maxsize=32)
 def film_mesh(n_theta: int, n_z: int, element: str, length_ratio: float,
-              theta0: float | None = None, half: bool = True, arcs: tuple = ()) -> FilmMesh:
+              theta0: float | None = None, half: bool = True, arcs: tuple = (),
+              grading: tuple | None = None) -> FilmMesh:
     """Build (and cache) the film mesh.
 
     Parameters
@@ -161,9 +200,11 @@ def film_mesh(n_theta: int, n_z: int, element: str, length_ratio: float,
     half : mesh only zeta >= 0
     arcs : ((start, end), ...) film angles of axial grooves; their dofs are fixed. Every
         edge is a mesh line: the cells are graded per arc between edges (module docstring)
+    grading : None (uniform per arc) or (focus, strength): theta cells sized like
+        1 - strength cos(theta - focus), focus in the mesh's angle [rad], strength in [0, 1)
     """
     lam = float(length_ratio)
-    th, ze = _axes(n_theta, n_z, lam, theta0, half, arcs)
+    th, ze = _axes(n_theta, n_z, lam, theta0, half, arcs, grading)
     with _quiet_skfem():
         mesh = _mirrored_tensor(th, ze)
         if theta0 is None:      # as MeshTri1DG.init_tensor(th, ze, periodic=[0])
@@ -192,4 +233,4 @@ def film_mesh(n_theta: int, n_z: int, element: str, length_ratio: float,
     return FilmMesh(basis=basis, fixed=fixed, free=free, end=end,
                     theta=np.array(x[0]), zeta=np.array(x[1]), half=half,
                     periodic=theta0 is None, n_theta=n_theta, n_z=n_z, length_ratio=lam,
-                    theta0=theta0, grooves=tuple(grooves), arcs=tuple(arcs))
+                    theta0=theta0, grooves=tuple(grooves), arcs=tuple(arcs), grading=grading)

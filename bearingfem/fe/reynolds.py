@@ -105,9 +105,13 @@ def fe_force(bearing: Bearing, state: JournalState, n_theta=60, n_z=10, element=
     Pass the previous call's result as ``warm`` (same mesh, nearby state): its cavitated
     set and factorisation start this solve. ``grooves`` (fixed in the inertial frame) are
     solved on the bearing-fixed mesh of :mod:`bearingfem.fe.grooved` (no rebuild for a
-    new journal angle; ``warm`` gives its cavitated set only); the JFO film moves its mesh
-    with the grooves.
+    new journal angle; ``warm`` gives its cavitated set only), the JFO film's too
+    (:mod:`bearingfem.fe.jfo_grooved`).
     """
+    if cavitation == "jfo" and grooves and half:     # the bearing-fixed mesh
+        from .jfo_grooved import grooved_jfo_force
+        return grooved_jfo_force(bearing, state, n_theta, n_z, grooves, ambient_pressure,
+                                 None if warm is None else getattr(warm, "cavitated", None))
     if cavitation == "jfo":     # steady JFO film; warm = previous call's cavitated set
         return jfo_force(bearing, state,
                          lambda nt, nz: fe_operator(bearing, state, nt, nz, "P1", None, half,
@@ -224,6 +228,10 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
         raise ValueError("roughness with a bush is not supported yet (the asperity load "
                          "does not deform the bush); give one of them")
 
+    if cavitation == "jfo" and grooves and half and not general and not compressible \
+            and roughness is None:     # the bearing-fixed mesh: a new angle rebuilds nothing
+        from .jfo_grooved import solve_grooved_jfo
+        return solve_grooved_jfo(bearing, state, n_theta, n_z, grooves, ambient_pressure)
     if cavitation == "jfo":
         def operator(nt, nz):
             return fe_operator(bearing, state, nt, nz, "P1", supply_angle,
