@@ -9,8 +9,9 @@ from ..bearing import check_finite, check_positive
 __all__ = ["ElasticBush", "MODELS", "ENDS"]
 
 #: "solid": the bush as a 3-D body by finite elements; "ring": a plane-strain ring per
-#: axial slice of the film, slices independent.
-MODELS = ("solid", "ring")
+#: axial slice of the film, slices independent; "liner": a thin liner (wall t =
+#: outer_radius - R << R) compressing locally, w = t p / M (Winkler, :mod:`.liner`).
+MODELS = ("solid", "ring", "liner")
 #: End faces of the solid: "free" (traction-free) or "plane-strain" (held axially, free to
 #: slide radially and tangentially, so a z-independent load gives the plane-strain field).
 ENDS = ("free", "plane-strain")
@@ -26,8 +27,9 @@ class ElasticBush:
     outer_radius : radius of the held outer surface [m], > R (checked where R is known)
     modulus : Young's modulus E [Pa], > 0
     poisson : Poisson's ratio nu, in (-1, 0.5)
-    model : "solid" or "ring" (see :data:`MODELS`)
-    ends : end faces of the solid model (see :data:`ENDS`); the ring ignores it
+    model : "solid", "ring" or "liner" (see :data:`MODELS`); the liner's thickness is the
+        wall, outer_radius - R
+    ends : end faces of the solid model (see :data:`ENDS`); the ring and liner ignore it
     """
 
     outer_radius: float = 0.016

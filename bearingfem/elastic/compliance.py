@@ -18,6 +18,7 @@ import numpy as np
 from ..bearing import check_positive
 from ..validation import check_int
 from .bush import ElasticBush
+from .liner import liner_columns
 from .ring import ring_columns
 from .solid import solid_columns, solid_system
 from .surface import FilmGrid
@@ -180,11 +181,14 @@ def bush_compliance(bush: ElasticBush, radius: float, length: float, n_theta: in
     The bush mesh refines the film grid ``refine_theta`` times in theta and ``refine_z``
     times in z (solid only); ``n_radial`` cells cross the wall, growing outward to
     ``grading`` times the inner one. Defaults: inner cells about as deep radially as they
-    are wide, axially one cell per film cell (the solid's cost is its sparse LU).
+    are wide, axially one cell per film cell (the solid's cost is its sparse LU). The
+    liner (``model="liner"``) has no mesh: its compliance is local (:mod:`.liner`).
     """
     d = discretise(bush, radius, length, n_theta, n_z, refine_theta, refine_z, n_radial,
                    grading)
-    if bush.model == "ring":
+    if bush.model == "liner":
+        columns = liner_columns(bush, d.radius, d.film)
+    elif bush.model == "ring":
         columns = ring_columns(bush, d.radius, d.film, d.refine_theta, d.n_radial,
                                d.grading)
     else:
