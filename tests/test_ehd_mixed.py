@@ -5,6 +5,7 @@ differences), the infinitely stiff bush (today's rigid mixed film), the smooth l
 Fourier solve with Michell's exact ring, and near-contact films h/sigma < 1."""
 import numpy as np
 import pytest
+import scipy.linalg as la
 
 from bearingfem import JournalState, Roughness, solve_reynolds
 from bearingfem.bearing import seed_bearing
@@ -12,6 +13,8 @@ from bearingfem.ehd.coupling import ehd_film
 from bearingfem.elastic import ElasticBush, bush_compliance
 from bearingfem.fe.reynolds import fe_operator, general_film
 from bearingfem.fields import FilmFields
+
+from test_elastic_bush import lame_exact, ring_exact
 
 SEED = seed_bearing(0.2)                 # R 10 mm, L 4 mm, c 20 um, mu 0.0117 Pa s
 RING = ElasticBush(outer_radius=0.016, modulus=110e9, poisson=0.34, model="ring")
@@ -113,3 +116,95 @@ def test_deformation_includes_the_summits_share():
     w = comp.deflection(total)[j, k]
     assert np.max(np.abs(sol.deformation - w)) <= 1e-10 * np.max(np.abs(w))
     assert np.max(np.abs(comp.deflection(film_only)[j, k] - w)) > 1e-8
+
+
+def michell(n, a, b, lam, mu):
+    """Inner-surface radial displacement amplitude [m/Pa] of a plane-strain ring (radii a,
+    b, outer surface held) under the inner pressure cos(n theta), n >= 2, in floating
+    point: U = sum c_k A_k r^k, V = sum c_k B_k r^k with Navier's four exponents
+    k = n + 1, 1 - n (div u and rot u from sigma's harmonic pair: beta = +-(lam + 2 mu)/mu
+    alpha) and n - 1, -1 - n (div u = rot u = 0: B = -(k + 1) A / n), each power scaled
+    at the radius where it is largest so that n = 500 stays well conditioned. Equal to
+    test_elastic_bush.ring_exact (sympy) to 1e-14 for n = 2, 3, 5."""
+    cols = []
+    for k, r0 in ((n + 1, b), (n - 1, b), (1 - n, a), (-1 - n, a)):
+        if k in (n - 1, -1 - n):
+            A, B = 1.0, -(k + 1) / n
+        else:
+            beta = (1.0 if k - 1 == n else -1.0) * (lam + 2 * mu) / mu
+            A, B = np.linalg.solve([[k + 1, n], [n, k + 1]], [1.0, beta])
+        cols.append((k, r0, A, B))
+
+    def at(r):
+        power = np.array([(r / r0) ** k for k, r0, _, _ in cols])
+        A, B = np.array([c[2] for c in cols]), np.array([c[3] for c in cols])
+        k = np.array([c[0] for c in cols])
+        return A * power, B * power, A * k / r * power, B * k / r * power
+    Ub, Vb, _, _ = at(b)
+    Ua, Va, dUa, dVa = at(a)
+    srr = (lam + 2 * mu) * dUa + lam * (Ua + n * Va) / a
+    srt = mu * (-n * Ua / a + dVa - Va / a)
+    coeff = np.linalg.solve(np.array([Ub, Vb, srr, srt]), [0.0, 0.0, -1.0, 0.0])
+    return float(Ua @ coeff)
+
+
+def dry_ring_force(eps, roughness, points=256):
+    """F_r [N] of the dry rough contact with the ring bush, solved apart from the film
+    code: on ``points`` angles the deflection w = G p_a(c (1 + eps cos theta) + w), G the
+    exact ring's response (Lame n = 0, Michell n >= 1) applied in Fourier space, by
+    Newton's method with the dense Jacobian I - G diag(dp_a/dh); the ring's slices are
+    independent, so F_r = L R int p_a cos theta dtheta. Spectrally converged: 256 and
+    1024 points agree to 1e-14."""
+    lam, mu = RING.lame
+    a, b = SEED.radius, RING.outer_radius
+    g = np.array([lame_exact(a, b, lam, mu), ring_exact(1, a, b, lam, mu)]
+                 + [michell(n, a, b, lam, mu) for n in range(2, points // 2 + 1)])
+    G = np.fft.irfft(g[:, None] * np.fft.rfft(np.eye(points), axis=0), n=points, axis=0)
+    theta = 2 * np.pi * np.arange(points) / points
+    h0 = SEED.clearance * (1 + eps * np.cos(theta))
+    w = np.zeros(points)
+    for _ in range(30):
+        pa = roughness.pressure(h0 + w)
+        r = w - G @ pa
+        if np.max(np.abs(r)) <= 1e-14 * np.max(np.abs(w)):
+            return SEED.length * SEED.radius * 2 * np.pi / points * np.sum(pa * np.cos(theta))
+        w = w + la.solve(np.eye(points) - G * roughness.pressure_derivative(h0 + w), -r)
+    raise AssertionError("the reference's Newton did not converge")
+
+
+def test_zero_speed_dry_contact_against_the_exact_ring():
+    """Zero speed (the hard case): no film pressure, the summits carry the whole load and
+    deflect the ring bush (rigid minimum gap 0.1 um, sigma 0.4 um; deflection 0.23 um).
+    The contact force converges to the independent Fourier solve with Michell's exact
+    ring at the second order of the ring's finite elements (measured relative errors
+    n_theta 32, 64, 128, 256: 15.4 %, 5.0 %, 1.3 %, 0.34 %; ratios 3.1, 3.8, 3.9).
+    Asserted: below 2 % at 128 cells and falling > 3.5x from 64. Fails with p_a left out
+    of the bush's load (the rigid contact) or subtracted from it (no solution)."""
+    state = JournalState(eps=0.995, omega=0.0)
+    exact = dry_ring_force(0.995, ROUGH)
+    err = []
+    for n_theta in (64, 128):
+        sol = solve_reynolds(SEED, state, n_theta, 2, bush=RING, roughness=ROUGH)
+        assert sol.pressure_max == 0.0 and np.max(sol.deformation) > 0.2e-6
+        err.append(abs(sol.asperity_force_local[0] / exact - 1))
+    assert err[1] < 0.02
+    assert err[0] / err[1] > 3.5
+
+
+def test_near_contact_films_converge_and_the_share_rises_with_sigma():
+    """eps 0.999 (rigid minimum gap 0.02 um), 25 rad/s, Reynolds cavitation: for sigma
+    0.1, 0.2, 0.4 um the mixed film converges with finite fields, the least gap is below
+    sigma at 0.4 um (h/sigma 0.72 measured), and the asperities' share of the total force
+    rises with sigma (measured 0.010, 0.072, 0.365). Fails with p_a subtracted from the
+    bush's load or the film pressure's deflection sign flipped (no solution)."""
+    state = JournalState(eps=0.999, gamma=0.2, omega=25.0)
+    share = []
+    for sigma in (0.1e-6, 0.2e-6, 0.4e-6):
+        sol = solve_reynolds(SEED, state, *N, cavitation="reynolds", bush=RING,
+                             roughness=rough(sigma))
+        assert sol.converged and np.all(np.isfinite(sol.pressure))
+        assert np.all(np.isfinite(sol.deformation))
+        fa, ft = np.array(sol.asperity_force), np.array(sol.total_force)
+        share.append(float(fa @ ft / (ft @ ft)))
+    assert np.min(sol.film_thickness) < 0.4e-6
+    assert 0.0 < share[0] < share[1] < share[2] < 1.0
