@@ -208,3 +208,21 @@ def test_near_contact_films_converge_and_the_share_rises_with_sigma():
         share.append(float(fa @ ft / (ft @ ft)))
     assert np.min(sol.film_thickness) < 0.4e-6
     assert 0.0 < share[0] < share[1] < share[2] < 1.0
+
+
+def test_equilibrium_shares_the_load_with_the_summits():
+    """equilibrium(model="fem-ehd", bush=, roughness=): dry (omega = 0) the summits carry
+    the whole load (share 1 to 1e-9); at 25 rad/s under 200 N film and summits share it,
+    and the share is the solution's asperity force against the load. Fails with the
+    asperity force left out of the "fem-ehd" model's force (no dry equilibrium) or without
+    the deflection solve's tolerance floor (Brent's search passes eps 0.36, summits 32 sigma
+    away, deflection 1e-300 m: ConvergenceError)."""
+    from bearingfem.design.equilibrium import equilibrium
+    opts = dict(model="fem-ehd", bush=RING, roughness=ROUGH, n_theta=24, n_z=4, modes=16,
+                eps_max=0.9999)
+    dry = equilibrium(SEED, load=(0.0, -100.0), omega=0.0, **opts)
+    assert abs(dry.asperity_load_share - 1.0) < 1e-9
+    eq = equilibrium(SEED, load=(0.0, -200.0), omega=25.0, **opts)
+    assert 0.0 < eq.asperity_load_share < 1.0
+    fa = np.array(eq.solution.asperity_force)
+    assert np.isclose(eq.asperity_load_share, -(fa @ [0.0, -200.0]) / 200.0 ** 2, rtol=1e-9)

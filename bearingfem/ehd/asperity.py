@@ -39,8 +39,11 @@ __all__ = ["ContactDeflection", "contact_deflection", "deflection_factors"]
 
 #: Newton iterations of the deflection before a trial film pressure is rejected
 MAX_ITERATIONS = 60
-#: the deflection's convergence: max |r| <= TOL max |w| (round-off of C p is ~1e-16)
+#: the deflection's convergence: max |r| <= TOL max(|w|, FLOOR sigma) (round-off of C p
+#: is ~1e-16 relative; the floor keeps a deflection of a few subnormal numbers, summits
+#: 30 sigma away, from asking for digits it does not have)
 TOL = 1e-13
+FLOOR = 1e-6
 
 
 @dataclass(frozen=True, eq=False)
@@ -96,9 +99,9 @@ def contact_deflection(compliance, roughness, gap0: np.ndarray, pressure: np.nda
     w = film.copy()
     r, pa = residual(w)
     for it in range(MAX_ITERATIONS + 1):
-        size = float(np.max(np.abs(w), initial=0.0))
+        size = max(float(np.max(np.abs(w), initial=0.0)), FLOOR * roughness.sigma)
         norm = float(np.max(np.abs(r), initial=0.0))
-        if norm <= TOL * size or norm == 0.0:
+        if norm <= TOL * size:
             slope = roughness.pressure_derivative(gap0 + w)
             return ContactDeflection(w, pa, slope, it)
         if it == MAX_ITERATIONS or not np.isfinite(norm):
