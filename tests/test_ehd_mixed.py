@@ -226,3 +226,14 @@ def test_equilibrium_shares_the_load_with_the_summits():
     assert 0.0 < eq.asperity_load_share < 1.0
     fa = np.array(eq.solution.asperity_force)
     assert np.isclose(eq.asperity_load_share, -(fa @ [0.0, -200.0]) / 200.0 ** 2, rtol=1e-9)
+
+
+def test_benchmark_smoke(capsys):
+    """benchmarks/ehd_mixed.py --quick runs; every row converged with a share in (0, 1)
+    that rises with sigma."""
+    from benchmarks import ehd_mixed
+    rows = ehd_mixed.main(["--quick"])
+    assert "share" in capsys.readouterr().out
+    assert all(r["residual"] <= 1e-10 for r in rows)
+    shares = [r["share"] for r in rows]
+    assert 0.0 < shares[0] < shares[1] < shares[2] < 1.0
