@@ -18,7 +18,8 @@ the two quadratures of the summit load differ by the mesh's O(h^2).
 For a given film pressure the deflection solves the monotone equation
 r(w) = w - s C (p + p_a(h0 + w)) = 0 (C positive, p_a decreasing in h: one solution),
 here by Newton's method on w. Its Jacobian I - s C D, D = diag(dp_a/dh), is a low-rank
-update of the identity: D vanishes where h > 39 sigma (F_3/2 underflows) and C = U W^T
+update of the identity: D is negligible where h exceeds several sigma (below round-off of C p there: those
+nodes are left out of the update, ``NEGLIGIBLE``) and C = U W^T
 with U = C[:, A], W the selection of the contact nodes A (full compliance) or
 U = left diag(s), W = right (reduced), so each step solves a |A| x |A| or k x k system.
 The film's Newton (:mod:`bearingfem.ehd.coupling`) then sees the deflection as a function
@@ -60,6 +61,21 @@ class ContactDeflection:
     iterations: int
 
 
+#: summits whose stiffness moves the deflection by less than this share of the pressure's
+#: own (|dp_a/dh| max C_ii) are left out of the low-rank update: below round-off of C p
+NEGLIGIBLE = 1e-17
+
+
+def _contact_nodes(compliance, s: float, slope: np.ndarray) -> np.ndarray:
+    """The nodes whose summits' stiffness enters I - s C D above round-off."""
+    if compliance.right is None:
+        self_compliance = np.max(np.abs(np.diag(compliance.left)))
+    else:
+        self_compliance = np.max(np.abs(compliance.left * compliance.singular)
+                                 @ np.abs(compliance.right).T.max(axis=1, keepdims=True))
+    return np.flatnonzero(s * self_compliance * np.abs(slope) > NEGLIGIBLE)
+
+
 def _factors(compliance, s: float, nodes: np.ndarray):
     """(U, W^T) with the compliance's columns that multiply the nodes ``nodes``:
     s C[:, nodes] = U W^T[:, nodes] (W^T as a matrix acting on the nodes' values)."""
@@ -72,7 +88,7 @@ def _factors(compliance, s: float, nodes: np.ndarray):
 def deflection_factors(compliance, s: float, slope: np.ndarray):
     """(U, V) with dw/dp [m/Pa] = U V^T (V None: the dense matrix U) for the summits'
     stiffness ``slope`` = dp_a/dh at the nodes (see the module docstring)."""
-    nodes = np.flatnonzero(slope)
+    nodes = _contact_nodes(compliance, s, slope)
     if compliance.right is None:
         C = s * compliance.left
         if nodes.size == 0:
@@ -107,7 +123,7 @@ def contact_deflection(compliance, roughness, gap0: np.ndarray, pressure: np.nda
         if it == MAX_ITERATIONS or not np.isfinite(norm):
             return None
         slope = roughness.pressure_derivative(gap0 + w)
-        nodes = np.flatnonzero(slope)
+        nodes = _contact_nodes(compliance, s, slope)
         # (I - U W^T D) dw = -r: dw = -r + U y, (I - W^T D U) y = -W^T D r
         U, Wt = _factors(compliance, s, nodes)
         WtD = Wt * slope[nodes]
