@@ -4,7 +4,7 @@ convergence."""
 import numpy as np
 import pytest
 
-from bearingfem import ElasticBush, JournalState, Roughness
+from bearingfem import ElasticBush, JournalState
 from bearingfem.bearing import Bearing, seed_bearing
 from bearingfem.ehd.transient import TransientEHD, ehd_solution
 from bearingfem.lubricant import Lubricant
@@ -45,21 +45,12 @@ def test_bad_options_raise_naming_the_option(options, name):
         m.film_force(B, S, **options)
 
 
-@pytest.mark.parametrize("options, name", [
-    (dict(roughness=Roughness(sigma=0.3e-6, contact_modulus=5e10, elastic_factor=1e-3),
-          bush=RING), "roughness"),
-    (dict(n_theta=8, n_z=2, bush=RING, modes=100), "modes"),
-])
-def test_option_pairs_the_film_cannot_take(options, name):
-    """Roughness with a bush (the asperity load does not deform the bush yet) and more
-    modes than the film grid has nodes: refused by the steady force and, for roughness,
-    before a run starts."""
+def test_more_modes_than_the_film_grid_has_nodes_is_refused():
+    """More compliance vectors than the film grid has nodes: refused by the steady force
+    naming ``modes`` (roughness with a bush is the mixed EHD film, tests/test_ehd_mixed.py)."""
     m = film_model("fem-ehd")
-    with pytest.raises(ValueError, match=name):
-        m.film_force(B, S, **options)
-    if "roughness" in options:
-        with pytest.raises(ValueError, match=name):
-            m.along_run(B, options)
+    with pytest.raises(ValueError, match="modes"):
+        m.film_force(B, S, **dict(n_theta=8, n_z=2, bush=RING, modes=100))
 
 
 def test_scene_tables_are_checked():

@@ -27,6 +27,7 @@ from functools import lru_cache
 import numpy as np
 import scipy.sparse as sp
 
+from .asperity import contact_deflection, deflection_factors
 from ..elastic import BushCompliance, ElasticBush, ReducedCompliance, bush_compliance
 from ..fields import FilmFields
 from ..fe.general import film_system
@@ -153,6 +154,7 @@ class FilmState:
     load: np.ndarray
     residual: np.ndarray
     size: np.ndarray
+    contact: object = None     # ContactDeflection with roughness (bearingfem.ehd.asperity)
 
 
 @dataclass(frozen=True, eq=False)
@@ -180,18 +182,35 @@ class EHDFilm:
     viscosity: float
     tables: JacobianTables
     eps: float = 0.0   # the reference cylinder's eps (film_system's strong-form Couette)
+    roughness: object = None   # Roughness: the summits' pressure loads the bush too
 
-    def deflection(self, P: np.ndarray, s: float = 1.0) -> np.ndarray:
-        """Nodal radial deflection w [m] of the bush under s p (zero without a bush)."""
+    def contact(self, P: np.ndarray, s: float = 1.0):
+        """The bush's deflection under s (p + p_a) with the summits' pressure
+        (:class:`~bearingfem.ehd.asperity.ContactDeflection`), None where its Newton
+        solve fails (a bush and a roughness needed)."""
+        return contact_deflection(self.compliance, self.roughness,
+                                  self.clearance * self.gap0, self.scale * P, s)
+
+    def deflection(self, P: np.ndarray, s: float = 1.0) -> np.ndarray | None:
+        """Nodal radial deflection w [m] of the bush under s p, with roughness under
+        s (p + p_a) (zero without a bush; None where the contact's solve fails)."""
         if self.compliance is None:
             return np.zeros_like(P)
+        if self.roughness is not None:
+            c = self.contact(P, s)
+            return None if c is None else c.deflection
         return s * self.compliance.apply(self.scale * P)
 
-    def fields(self, P: np.ndarray, s: float = 1.0):
-        """(FilmFields at the quadrature points, d(rho, mu)/dp there [1/Pa] or None)."""
+    def fields(self, P: np.ndarray, s: float = 1.0, contact=None):
+        """(FilmFields at the quadrature points, d(rho, mu)/dp there [1/Pa] or None);
+        with roughness ``contact`` the deflection's solve at P (None: solved here);
+        (None, None) where that solve fails."""
         Hq = self.base.gap
         if self.compliance is not None:
-            Hq = Hq + self.op.at_quadrature(self.deflection(P, s)) / self.clearance
+            w = self.deflection(P, s) if contact is None else contact.deflection
+            if w is None:
+                return None, None
+            Hq = Hq + self.op.at_quadrature(w) / self.clearance
         if self.lubricant is None:
             rho = mu = 1.0
             slopes = None
@@ -209,14 +228,19 @@ class EHDFilm:
     def evaluate(self, P: np.ndarray, s: float = 1.0) -> FilmState | None:
         """The film at pressure P, or None where the gap closes or a viscosity or density
         is not finite and > 0 (a trial pressure may push a property law out of range)."""
-        film, slopes = self.fields(P, s)
+        contact = None
+        if self.compliance is not None and self.roughness is not None:
+            contact = self.contact(P, s)
+            if contact is None:
+                return None
+        film, slopes = self.fields(P, s, contact)
         for field in (film.gap, film.viscosity, film.density):
             if not np.all((field > 0.0) & np.isfinite(field)):
                 return None
         values, load = film_system(self.op, film, self.wedge, self.eps)
         K = sp.csr_matrix((values, self.op.indices, self.op.indptr), shape=self.op.shape)
         size = np.abs(K) @ np.abs(P) + np.abs(load)
-        return FilmState(film, slopes, values, load, K @ P - load, size)
+        return FilmState(film, slopes, values, load, K @ P - load, size, contact)
 
     def system(self, P: np.ndarray, s: float = 1.0):
         """(evaluated fields, stiffness values on the pattern, load) at pressure P, or
@@ -264,15 +288,22 @@ class EHDFilm:
                             t.indices, t.indptr), shape=t.shape)
         k = s * self.scale / self.clearance
         c = self.compliance
+        if ev.contact is not None:      # dw/dp through the summits' stiffness (asperity.py)
+            U, V = deflection_factors(c, s, ev.contact.slope)
+            k = self.scale / self.clearance          # s is in U
+            return J, k * (TH @ U), V
         if c.right is None:
             return J, k * (TH @ c.left), None
         return J, k * (TH @ (c.left * c.singular)), c.right
 
 
-def ehd_film(bearing, state, op, base: FilmFields, gap0, lubricant, bush) -> EHDFilm:
-    """Build the EHD film of ``op`` on the evaluated base fields ``base``."""
+def ehd_film(bearing, state, op, base: FilmFields, gap0, lubricant, bush,
+             roughness=None) -> EHDFilm:
+    """Build the EHD film of ``op`` on the evaluated base fields ``base`` (``roughness``:
+    the summits' pressure loads the bush too, :mod:`bearingfem.ehd.asperity`)."""
     compliance = None if bush is None else dof_compliance(bush, bearing, op)
     return EHDFilm(op=op, base=base, gap0=gap0, lubricant=lubricant, compliance=compliance,
                    scale=bearing.pressure_scale, clearance=bearing.clearance,
                    wedge=state.wedge_speed, viscosity=bearing.viscosity,
-                   tables=jacobian_tables(op), eps=state.eps)
+                   tables=jacobian_tables(op), eps=state.eps,
+                   roughness=None if bush is None else roughness)

@@ -6,6 +6,7 @@ from dataclasses import replace
 import numpy as np
 
 from ..fe.general import film_system
+from ..fe.mixed import film_contact, with_contact
 from ..fe.reynolds import _film_outputs, fe_pressure
 from ..lubricant import Lubricant
 from .coupling import ehd_film
@@ -51,11 +52,14 @@ def warm_pressure(start, bearing, op, dirichlet) -> np.ndarray | None:
 
 
 def solve_ehd_film(bearing, state, op, base, gap0, lubricant, bush, cavitation, method,
-                   tol, dirichlet, cavitated_shear, grooves, start=None):
+                   tol, dirichlet, cavitated_shear, grooves, start=None, roughness=None):
     """Solve the film of ``op`` with pressure-dependent fields and elastic gap; the base
     fields ``base`` (quadrature) and nodal gap ``gap0`` are the film's without them.
-    ``start``: a previous solution on the same mesh to start Newton from (warm)."""
-    film = ehd_film(bearing, state, op, base, gap0, lubricant, bush)
+    ``start``: a previous solution on the same mesh to start Newton from (warm).
+    ``roughness``: the asperity contact of the deformed gap is added
+    (:func:`~bearingfem.fe.mixed.with_contact`); with a bush its pressure deforms the bush
+    too (:mod:`bearingfem.ehd.asperity`), so ``deformation`` includes the summits' share."""
+    film = ehd_film(bearing, state, op, base, gap0, lubricant, bush, roughness)
 
     def rigid():                                # the isoviscous rigid film (s = 0)
         film0, _ = film.fields(np.zeros(op.mesh.ndofs), 0.0)
@@ -70,4 +74,8 @@ def solve_ehd_film(bearing, state, op, base, gap0, lubricant, bush, cavitation, 
                         cavitated_shear, grooves, "fem-P1/ehd-newton"
                         if op.mesh.basis.Nbfun == 3 else "fem-P2/ehd-newton",
                         gap0 + deformation / bearing.clearance)
-    return replace(sol, deformation=deformation)
+    sol = replace(sol, deformation=deformation)
+    if roughness is None:
+        return sol
+    # the summits on the deformed gap, at the quadrature points (the rigid mixed film's rule)
+    return with_contact(sol, film_contact(bearing, state, op, roughness, fields.gap))

@@ -187,7 +187,8 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
     roughness : :class:`~bearingfem.contact.Roughness` (mixed lubrication): the
         Greenwood-Tripp asperity contact of the gap at the film's quadrature points is
         added as ``asperity_force`` / ``asperity_friction_torque`` (the film's pressure is
-        unchanged by it, :mod:`bearingfem.fe.mixed`); None: no contact
+        unchanged by it, :mod:`bearingfem.fe.mixed`); with a bush the summits' pressure
+        deforms the bush too (mixed EHD, :mod:`bearingfem.ehd.asperity`); None: no contact
     start : with a lubricant or bush, a previous :class:`FilmSolution` of the same mesh
         whose pressure starts Newton (a nearby state converges in a few steps; if that
         stalls, the cold route); None: a cold start. Same answer to ``tol``.
@@ -223,10 +224,6 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
         raise ValueError("the compressible JFO film (a lubricant with bulk_modulus) takes no "
                          "fields, tilt or tilt_rate yet; give the incompressible film those")
     roughness = check_roughness(roughness)
-    if roughness is not None and bush is not None:
-        # the asperities' load would deform the bush too: a coupling not built yet
-        raise ValueError("roughness with a bush is not supported yet (the asperity load "
-                         "does not deform the bush); give one of them")
 
     if cavitation == "jfo" and grooves and half and not general and not compressible \
             and roughness is None:     # the bearing-fixed mesh: a new angle rebuilds nothing
@@ -265,11 +262,9 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
     if general:
         film, gap = general_film(bearing, state, op, fields, tilt, tilt_rate)
         if ehd:
-            sol = solve_ehd_film(bearing, state, op, film, gap, lubricant, bush, cavitation,
-                                 method, tol, groove_pressures(bearing, op, grooves),
-                                 cavitated_shear, grooves, start)
-            return sol if roughness is None else with_contact(
-                sol, film_contact(bearing, state, op, roughness, film.gap))
+            return solve_ehd_film(bearing, state, op, film, gap, lubricant, bush, cavitation,
+                                  method, tol, groove_pressures(bearing, op, grooves),
+                                  cavitated_shear, grooves, start, roughness)
         if not film.is_rigid(op, state):      # the rigid data takes the fast path
             system = film_system(op, film, state.wedge_speed, state.eps)
     dirichlet = groove_pressures(bearing, op, grooves)
