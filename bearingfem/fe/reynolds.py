@@ -211,6 +211,20 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
     compressible = cavitation == "jfo" and bush is None and is_elrod(lubricant)
     bulk_modulus = check_elrod(bearing, lubricant) if compressible else None
     ehd = not compressible and (lubricant is not None or bush is not None)
+    if ehd and cavitation == "jfo":        # the EHD film with JFO cavitation
+        from ..ehd.jfo import check_ehd_jfo, solve_ehd_jfo_film
+        check_ehd_jfo(lubricant, fields, tilt, tilt_rate)
+        if start is not None:
+            raise ValueError("start is for the Reynolds-family EHD film; "
+                             "cavitation='jfo' starts from the rigid JFO film")
+        if roughness is not None:
+            raise ValueError("roughness with cavitation='jfo' and a bush or lubricant is "
+                             "not supported yet")
+
+        def whole(nt, nz):
+            return fe_operator(bearing, state, nt, nz, "P1", supply_angle, False, grooves)
+        return solve_ehd_jfo_film(bearing, state, whole, n_theta, n_z, lubricant, bush,
+                                  grooves, ambient_pressure, tol)
     if ehd:
         from ..ehd.film import check_ehd, solve_ehd_film
         check_ehd(lubricant, bush, fields, element, cavitation)
