@@ -180,3 +180,31 @@ def test_bad_input(kwargs, match):
     """Bad input raises ValueError naming the parameter, before any work."""
     with pytest.raises(ValueError, match=match):
         solve_reynolds(SEED, STATE, *N, **SUPPLY, **kwargs)
+
+
+def test_benchmark_smoke(capsys):
+    """benchmarks/ehd_jfo.py --quick runs; at the seed's heavy state every EHD row opened
+    the mid-plane film of the rigid JFO film and lowered its peak pressure (both fail
+    with the deflection's sign flipped: the gap closes)."""
+    from benchmarks import ehd_jfo
+    rows = ehd_jfo.main(["--quick"])
+    assert "EHD-JFO" in capsys.readouterr().out
+    for r in rows:
+        assert r["film_mid"] > r["rigid_film_mid"]
+        assert r["pressure_max"] < r["rigid_pressure_max"]
+
+
+def test_warm_start_finds_the_cold_film():
+    """From the EHD-JFO film of a nearby state (eps 0.8 -> 0.81, gamma +0.01) Newton finds
+    the cold start's film (P to 1e-8 of its peak, phi to 1e-8) in fewer steps; a start
+    on another mesh is refused by name. Fails when the start is not passed on to Newton
+    (the cold route's steps)."""
+    near = solve_reynolds(SEED, JournalState(eps=0.81, gamma=0.41, omega=250.0), *N,
+                          bush=SOFT, **SUPPLY)
+    cold = solve_reynolds(SEED, STATE, *N, bush=SOFT, **SUPPLY)
+    warm = solve_reynolds(SEED, STATE, *N, bush=SOFT, start=near, **SUPPLY)
+    assert np.max(np.abs(warm.pressure - cold.pressure)) <= 1e-8 * cold.pressure_max
+    assert np.max(np.abs(warm.fraction - cold.fraction)) <= 1e-8
+    assert warm.iterations < cold.iterations
+    with pytest.raises(ValueError, match="start"):
+        solve_reynolds(SEED, STATE, 24, 4, bush=SOFT, start=near, **SUPPLY)

@@ -292,19 +292,32 @@ class _Newton:
         return None, MAX_NEWTON
 
 
-def solve_ehd_jfo(bearing, film: JFOCoupling, P0: np.ndarray, phi0: np.ndarray,
-                  tol: float = 1e-10) -> EHDJFOSolve:
-    """The EHD-JFO film from the rigid JFO film (P0, phi0 on all nodes) by load
-    continuation (module docstring); raises ConvergenceError when it does not converge."""
+def solve_ehd_jfo(bearing, film: JFOCoupling, P0, phi0=None, tol: float = 1e-10,
+                  start=None) -> EHDJFOSolve:
+    """The EHD-JFO film from the rigid JFO film (P0, phi0 on all nodes; ``P0`` may be a
+    function giving that pair, called only when needed) by load continuation (module
+    docstring); raises ConvergenceError when it does not converge. ``start``: (P, phi)
+    on all nodes of a nearby solved film: Newton at s = 1 from it first (a warm start),
+    the cold route if that stalls."""
     op = film.op
     free = op.mesh.free
     st0 = film.evaluate(np.zeros(op.mesh.ndofs), np.ones(op.mesh.ndofs), 0.0)
     A = (st0.T + sp.diags(film.storage)).tocsc()
     can = A.diagonal()[free] > 0.0        # a volume whose content can leave or change
     newton = _Newton(film, free, can)
-    u = np.where(phi0[free] < 1.0, phi0[free] - 1.0, P0[free])
     done, increment, iterations, steps, rejected = 0.0, 1.0, 0, 0, 0
     residual = 0.0
+    if start is not None:
+        Ps, phis = start
+        out, iterations = newton.run(np.where(phis[free] < 1.0, phis[free] - 1.0,
+                                              Ps[free]), 1.0, tol)
+        if out is not None:
+            done, (u, residual) = 1.0, out
+            steps = 1
+    if done < 1.0:
+        if callable(P0):
+            P0, phi0 = P0()
+        u = np.where(phi0[free] < 1.0, phi0[free] - 1.0, P0[free])
     while done < 1.0:
         s = min(1.0, done + increment)
         out, its = newton.run(u, s, tol)
@@ -344,15 +357,26 @@ def balance_film(film: JFOCoupling, P: np.ndarray) -> BalanceFilm:
 
 
 def solve_ehd_jfo_film(bearing, state, operator, n_theta: int, n_z: int, lubricant, bush,
-                       grooves, ambient: float, tol: float):
+                       grooves, ambient: float, tol: float, start=None):
     """The route of ``solve_reynolds(..., cavitation="jfo", bush=, lubricant=)``: the rigid
     JFO film on ``operator(n_theta, n_z)`` (whole length), then the EHD-JFO Newton; a
-    :class:`FilmSolution` with ``fraction``, ``deformation`` [m] and the deformed ``gap``."""
+    :class:`FilmSolution` with ``fraction``, ``deformation`` [m] and the deformed ``gap``.
+    ``start``: a previous EHD-JFO FilmSolution on the same mesh (warm start)."""
     from ..fe.jfo_steady import _film_solution, _steady
-    P0, phi0, _, _, op, _ = _steady(bearing, state, operator, n_theta, n_z, grooves, ambient)
+    op = operator(n_theta, n_z)
     film = jfo_coupling(bearing, state, op, lubricant, bush, grooves, ambient)
+
+    def rigid():
+        return _steady(bearing, state, operator, n_theta, n_z, grooves, ambient)[:2]
+    warm = None
+    if start is not None:
+        P, phi = getattr(start, "pressure", None), getattr(start, "fraction", None)
+        if P is None or phi is None or np.shape(P) != (op.mesh.ndofs,):
+            raise ValueError(f"start must be a JFO FilmSolution of the same film mesh "
+                             f"({op.mesh.ndofs} nodes) or None")
+        warm = (np.asarray(P, float) / bearing.pressure_scale, np.asarray(phi, float))
     try:
-        out = solve_ehd_jfo(bearing, film, P0, phi0, tol)
+        out = solve_ehd_jfo(bearing, film, rigid, None, tol, warm)
     except ConvergenceError as e:
         raise e.at(f"steady EHD-JFO film {n_theta}x{n_z}, eps = {state.eps:.6g}") from None
     sol = _film_solution(bearing, state, op, out.P, out.phi, out.result, out.flows,
