@@ -208,3 +208,16 @@ def test_warm_start_finds_the_cold_film():
     assert warm.iterations < cold.iterations
     with pytest.raises(ValueError, match="start"):
         solve_reynolds(SEED, STATE, 24, 4, bush=SOFT, start=near, **SUPPLY)
+
+
+def test_constant_viscosity_lubricant_scales_the_jfo_film():
+    """A lubricant of twice the bearing's viscosity (no pressure law) on the rigid gap,
+    supply line at ambient 0: the JFO balance K P / mu + T phi = 0 has P doubled and phi
+    unchanged (1e-9), the exact scaling. Fails when the lubricant's viscosity ratio is
+    not applied to K."""
+    thick = solve_reynolds(SEED, STATE, *N, lubricant=Lubricant(viscosity=2 * SEED.viscosity),
+                           cavitation="jfo", supply_angle=np.pi)
+    rigid = solve_reynolds(SEED, STATE, *N, half=False, cavitation="jfo", supply_angle=np.pi)
+    assert np.max(np.abs(thick.pressure - 2 * rigid.pressure)) <= 1e-9 * 2 * rigid.pressure_max
+    assert np.max(np.abs(thick.fraction - rigid.fraction)) <= 1e-9
+    assert rigid.fraction.min() < 0.5
