@@ -126,8 +126,8 @@ def test_no_solution_raises():
 
 @pytest.mark.parametrize("kwargs, match", [
     (dict(lubricant=0.0117), "lubricant must be"),
-    (dict(lubricant=Lubricant(viscosity=0.0117), cavitation="jfo", ambient_pressure=1e5),
-     "cavitation .none. or .reynolds."),
+    (dict(lubricant=Lubricant(viscosity=0.0117, density="dowson-higginson"),
+          cavitation="jfo", ambient_pressure=1e5), "density=None"),
     (dict(lubricant=Lubricant(viscosity=0.0117), fields=FilmFields(viscosity=2.0)),
      "not both"),
 ])

@@ -148,7 +148,7 @@ def test_seed_heavy_state_scene_mesh(model):
 
 @pytest.mark.parametrize("kwargs, match", [
     (dict(bush=RING, element="P2"), "element='P1'"),
-    (dict(bush=RING, cavitation="jfo", ambient_pressure=1e5), "cavitation 'none' or 'reynolds'"),
+    (dict(bush=RING, cavitation="jfo", ambient_pressure=1e5, tilt=(1e-4, 0.0)), "tilt"),
     (dict(bush="bronze"), "bush must be"),
     (dict(bush=bush_compliance(RING, 0.01, 0.004, 24, 5)), r"film grid \(48, 5\)"),
 ])

@@ -180,8 +180,9 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
         Elrod-type JFO film (:mod:`bearingfem.fe.jfo_compressible`; ``density`` rho/rho0)
     bush : :class:`~bearingfem.elastic.ElasticBush` (its compliance is built on the film
         grid) or a prebuilt full or reduced compliance on the (n_theta, n_z + 1) grid; the
-        gap becomes c (1 + eps cos theta) + deformation (P1, cavitation "none" or
-        "reynolds"; quasi-static: the deflection's rate is left out of the squeeze term).
+        gap becomes c (1 + eps cos theta) + deformation (P1, cavitation "none",
+        "reynolds" or "jfo" (:mod:`bearingfem.ehd.jfo`, with a pressure-viscosity law
+        only); quasi-static: the deflection's rate is left out of the squeeze term).
         With a lubricant or a bush, ``method`` and ``tol`` serve the rigid start and the
         Newton test, and ``iterations`` counts Newton steps (:mod:`bearingfem.ehd`)
     roughness : :class:`~bearingfem.contact.Roughness` (mixed lubrication): the
@@ -190,8 +191,8 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
         unchanged by it, :mod:`bearingfem.fe.mixed`); with a bush the summits' pressure
         deforms the bush too (mixed EHD, :mod:`bearingfem.ehd.asperity`); None: no contact
     start : with a lubricant or bush, a previous :class:`FilmSolution` of the same mesh
-        whose pressure starts Newton (a nearby state converges in a few steps; if that
-        stalls, the cold route); None: a cold start. Same answer to ``tol``.
+        whose pressure (and JFO fraction) starts Newton (a nearby state converges in a
+        few steps; if that stalls, the cold route); None: a cold start. Same answer to ``tol``.
 
     With ``fields`` or a tilt the whole length is meshed (no mid-plane symmetry) and
     ``moment`` is the film's moment on the journal; fields that are the rigid cylinder's
@@ -216,6 +217,17 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
     compressible = cavitation == "jfo" and bush is None and is_elrod(lubricant)
     bulk_modulus = check_elrod(bearing, lubricant) if compressible else None
     ehd = not compressible and (lubricant is not None or bush is not None)
+    if ehd and cavitation == "jfo":        # the EHD film with JFO cavitation
+        from ..ehd.jfo import check_ehd_jfo, solve_ehd_jfo_film
+        check_ehd_jfo(lubricant, fields, tilt, tilt_rate)
+        if roughness is not None:
+            raise ValueError("roughness with cavitation='jfo' and a bush or lubricant is "
+                             "not supported yet")
+
+        def whole(nt, nz):
+            return fe_operator(bearing, state, nt, nz, "P1", supply_angle, False, grooves)
+        return solve_ehd_jfo_film(bearing, state, whole, n_theta, n_z, lubricant, bush,
+                                  grooves, ambient_pressure, tol, start)
     if ehd:
         from ..ehd.film import check_ehd, solve_ehd_film
         check_ehd(lubricant, bush, fields, element, cavitation)
