@@ -83,6 +83,7 @@ class EHDJFOStep:
     iterations: int
     inflow: float
     content_rate: float
+    result: object = None           # the solver's JFOResult
 
 
 class EHDJFOFilm:
@@ -124,7 +125,7 @@ class EHDJFOFilm:
         return StepCoupling(speed=state.omega, storage=12.0 * film.content0 / dt,
                             rate=12.0 / dt, old=12.0 * old / dt, **kept), old
 
-    def step(self, state: JournalState, dt: float) -> EHDJFOStep:
+    def advance(self, state: JournalState, dt: float) -> EHDJFOStep:
         """Advance by ``dt`` [s] to ``state`` and keep the new film; raises
         ConvergenceError (keeping the film as it was) when Newton does not converge."""
         dt = check_positive("dt", dt)
@@ -155,4 +156,4 @@ class EHDJFOFilm:
                           (k * float(ic), k * float(is_)), out.result.iterations,
                           inflow=float(np.sum(flux[op.mesh.fixed])),
                           content_rate=float(np.sum((12.0 * phi * Q - 12.0 * old)[free]))
-                          / dt)
+                          / dt, result=out.result)
