@@ -141,3 +141,33 @@ def test_bronze_bush_run_has_no_nan_and_moves_the_orbit():
     assert np.all(np.isfinite(run.force_x)) and np.all(np.isfinite(run.force_y))
     d = np.max(np.hypot(jfo.e_x - run.e_x, jfo.e_y - run.e_y))
     assert 1e-8 < d < 1e-6
+
+
+@pytest.mark.parametrize("dt", [1e-2, 2e-7])
+def test_step_jacobian_is_exact(dt):
+    """The step's dR/dP (the bush through faces and content) and dR/dphi against central
+    differences at a random (P, phi), full compliance: 1e-6 of the column's size (measured
+    1e-8 .. 1e-7 with h = 1e-3, truncation and round-off of a residual of size 12 Q / dt).
+    Fails with the content's slope 12 phi / dt dQ/dH left out of dR/dP (3e-1 off)."""
+    from bearingfem.ehd.transient import ehd_compliance
+    b = seed_bearing(0.5)
+    comp = ehd_compliance(ElasticBush(outer_radius=0.016, modulus=110e9, poisson=0.34,
+                                      model="ring"), b.radius, b.length, 32, 4, 0)
+    s = JournalState(eps=0.5, gamma=0.3, omega=250.0)
+    film, _ = EHDJFOFilm(b, s, 32, 4, comp, ambient_pressure=AMBIENT).coupling(s, dt)
+    n = film.op.mesh.ndofs
+    rng = np.random.default_rng(0)
+    P = film.P_fixed + 30.0 * np.abs(rng.normal(size=n))
+    phi = 1.0 - 0.3 * rng.random(n)
+    J, U, _, A = film.jacobian(P, phi, 1.0, film.evaluate(P, phi))
+    dP, dphi = J.toarray() + U, A.toarray()
+    h = 1e-3
+    for j in (5, 17, 40):
+        e = np.zeros(n)
+        e[j] = h
+        for exact, fd in ((dP[:, j], film.evaluate(P + e, phi).residual
+                           - film.evaluate(P - e, phi).residual),
+                          (dphi[:, j], film.evaluate(P, phi + e).residual
+                           - film.evaluate(P, phi - e).residual)):
+            fd = fd / (2 * h)
+            assert np.max(np.abs(fd - exact)) <= 1e-6 * np.max(np.abs(fd))
