@@ -95,3 +95,21 @@ def test_beyond_one_the_load_rises_steeply_and_the_deflection_opens_the_gap():
     p[node] = s.pressure
     assert np.allclose(s.deformation, (comp @ p)[node], rtol=1e-9,
                        atol=1e-9 * np.max(np.abs(s.deformation)))
+
+
+def test_only_a_model_declaring_beyond_clearance_takes_eps_beyond_one():
+    """Contract rule 15 at the registry: "fem-ehd" declares the cap, the rigid models
+    refuse eps >= 1 by name, before any work; the mechanism's film effect moves its wall
+    to the declared cap for "fem-ehd" and keeps it at 1 for a rigid model. Fails with
+    the registry's check_state dropped (the closed form then returns a force at eps 1.05)."""
+    from bearingfem.models import FILM_MODELS
+    from mechanism.effects import FilmEffect
+    s = ElasticJournalState(eps=1.05, omega=62.5)
+    for name in ("short", "fem"):
+        with pytest.raises(ValueError, match=r"eps must lie in \[0, 1\)"):
+            FILM_MODELS[name].film_force(B, s)
+    assert FILM_MODELS["fem-ehd"].beyond_clearance == ELASTIC_EPS_CAP
+    assert FILM_MODELS["fem"].beyond_clearance == 0.0
+    assert FilmEffect(B, "fem-ehd", dict(n_theta=24, n_z=4, bush=SOLID, modes=8)).wall \
+        == ELASTIC_EPS_CAP
+    assert FilmEffect(B, "short").wall == 1.0
