@@ -55,7 +55,8 @@ def test_a_ring_bush_cannot_open_its_ends_and_is_refused_by_name():
 def test_force_is_continuous_across_the_clearance_circle():
     """The ordinary load continuation (eps < 1) and the continuation in eps (eps >= 1)
     meet at eps = 1: the jump between eps 1 - d and 1 + d falls with d like d (the force's
-    slope there, ~1e4 N per unit eps on this mesh: 10 N at d = 1e-3, 1 N at d = 1e-4).
+    slope there, ~9e3 N per unit eps on this mesh: measured 18.1, 1.78 and 0.178 N at d =
+    1e-3, 1e-4, 1e-5).
     Fails with at_eps not moving the rigid gap (the continuation then solves at its start
     eps 0.95: a jump of ~130 N)."""
     jumps = []
@@ -63,7 +64,7 @@ def test_force_is_continuous_across_the_clearance_circle():
         lo, hi = solve(1.0 - d).force_local, solve(1.0 + d).force_local
         jumps.append(np.hypot(hi[0] - lo[0], hi[1] - lo[1]))
     assert jumps[1] < 0.2 * jumps[0]
-    assert jumps[1] < 2.0                    # 1e-4 times the slope, ~1 N of 322 N
+    assert jumps[1] < 2.5                    # 1e-4 times the slope: 1.78 N of 322 N
     at_one = solve(1.0).force_local          # eps = 1 itself: the continuation's route
     below = solve(1.0 - 1e-6).force_local
     assert np.hypot(at_one[0] - below[0], at_one[1] - below[1]) < 0.1
