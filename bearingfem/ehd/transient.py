@@ -26,6 +26,7 @@ import numpy as np
 
 from ..bearing import Bearing, JournalState
 from ..contract import FilmStep
+from ..errors import ConvergenceError
 from ..elastic import ElasticBush, bush_compliance
 from ..fields import FilmFields
 from ..film import film_thickness, inertial_from_theta
@@ -200,8 +201,11 @@ class TransientEHD:
         op = fe_operator(self.bearing, state, f["n_theta"], f["n_z"], "P1", None, False)
         fields = (kept or self._kept).fields(self.bearing, state, op, f["lubricant"])
         if not np.all(fields.gap > 0.0):
-            raise ValueError(f"the kept deflection does not open the gap at eps {state.eps} "
-                             "(the journal passed the deflected bush): reduce film_step")
+            # a trial state past what the kept bush opens (beyond the clearance circle): an
+            # integrator cuts its step on this, as on a solve that does not converge
+            raise ConvergenceError("EHD kept film", 0, None,
+                                   f"eps {state.eps}: the kept deflection does not open the "
+                                   "gap (the journal passed the deflected bush)")
         fields = FilmFields(gap=fields.gap, gap_rate=state.eps_dot * np.cos(op.qp_theta),
                             viscosity=np.broadcast_to(fields.viscosity, op.qp_theta.shape),
                             density=np.broadcast_to(fields.density, op.qp_theta.shape),

@@ -132,7 +132,8 @@ def general_film(bearing: Bearing, state: JournalState, op: FilmOperator,
     """The film's fields at ``op``'s quadrature points with the tilt's gap added, and the
     nodal gap; raises ValueError when the tilted journal touches the bush."""
     spec = fields or FilmFields()
-    film, gap = spec.on(op, state), spec.nodal_gap(op, state)
+    film = spec.on(op, state) if state.eps < 1.0 else spec.beyond_clearance(op, state)
+    gap = spec.nodal_gap(op, state)
     if any(tilt) or any(tilt_rate):
         dH, dH_dt = tilted_gap(bearing, state, op.qp_theta, op.qp_zeta, tilt, tilt_rate)
         film = film.plus(gap=dH, gap_rate=dH_dt)
