@@ -70,7 +70,9 @@ UNITS = {"t": "s", "crank_angle": "rad", "crank_speed": "rad/s", "rod_angle": "r
 class SimulationResult:
     """One run. Arrays (SI, rad) over the saved time points; ``force_x``/``force_y`` are the
     joint's total force on the pin (inertial frame); ``film_min`` = c (1 - eps), clipped at 0
-    in contact (where eps > 1 measures the penetration). ``partial`` is True when the run
+    in contact (where eps > 1 measures the penetration); an elastic film's (a model with
+    ``beyond_clearance``) is its own minimum gap, bush deflection included, from its film
+    steps (``film_record``), linear between them. ``partial`` is True when the run
     stopped early; ``message`` says why and when."""
 
     t: np.ndarray

@@ -28,6 +28,13 @@ def test_the_ehd_film_carries_the_seed_pin_through_the_clearance_circle():
     assert 1.02 < np.max(r.eps) < 1.3
     assert np.all(np.isfinite(r.force_x)) and np.all(np.isfinite(r.force_y))
     assert r.stats["film_steps"] > 5
+    # the run's film_min is the elastic film's own (the bush opens the gap), not the rigid
+    # c (1 - eps) that is 0 beyond the circle: the record's value at each film step, where
+    # a film step falls on a sample (fails with the rigid column kept: 0 where eps > 1)
+    beyond = r.eps > 1.0
+    assert beyond.any() and np.all(r.film_min[beyond] > 0.0)
+    rec_t, rec_h = r.film_record[:, 0], r.film_record[:, -1]
+    assert np.allclose(np.interp(rec_t, r.t, r.film_min), rec_h, rtol=0.2)
 
 
 def test_a_rigid_film_on_the_same_pin_still_stops_at_the_wall():
