@@ -8,7 +8,8 @@ condition ("fem", cavitation reynolds, the same mesh) and with the JFO film ("fe
 each with every integrator named, all in one process, once each. Per run: accepted steps,
 right-hand-side evaluations (each one film solve at a trial state), film steps (of them
 early: the kept film no longer fitted the journal; refills: early steps whose force acts at
-once), the process's CPU time [s], the part of it in the commits (film steps and their
+once), the share of LSODA's steps taken with its stiff method (BDF, else Adams), the
+process's CPU time [s], the part of it in the commits (film steps and their
 checks) and the mean cost of one trial-state evaluation [ms]; the ratios to the Reynolds
 run with the same integrator and to the Reynolds run with LSODA (the scenes'
 integrator); the minimum film of the last turn and, with ``--reference-rtol``, the orbit's
@@ -29,6 +30,8 @@ from pathlib import Path
 
 import numpy as np
 
+from scipy.integrate._ivp.lsoda import LSODA
+
 from bearingfem import transient
 from bearingfem.outputs.tables import write_csv
 from mechanism import effects, load_scene, simulate
@@ -36,8 +39,15 @@ from mechanism import effects, load_scene, simulate
 
 @contextlib.contextmanager
 def _timed_film(counts: dict):
-    """Time FilmEffect.commit (CPU) and count early and refill film steps while inside."""
+    """Time FilmEffect.commit (CPU), count early and refill film steps and LSODA's steps
+    taken with its stiff method (BDF; its other is Adams) while inside."""
     commit, jfo_commit = effects.FilmEffect.commit, transient.TransientJFO.commit
+    lsoda_step = LSODA._step_impl
+
+    def counted(self):
+        out = lsoda_step(self)
+        counts["stiff"] += int(self._lsoda_solver._integrator.iwork[18] == 2)  # MUSED
+        return out
 
     def timed(self, k):
         c0 = time.process_time()
@@ -54,10 +64,12 @@ def _timed_film(counts: dict):
             counts["refills"] += self._jump == (0.0, 0.0)
         return step
     effects.FilmEffect.commit, transient.TransientJFO.commit = timed, classified
+    LSODA._step_impl = counted
     try:
         yield counts
     finally:
         effects.FilmEffect.commit, transient.TransientJFO.commit = commit, jfo_commit
+        LSODA._step_impl = lsoda_step
 
 
 def _scene(turns: float, model: str, integrator: str, rtol: float | None = None):
@@ -72,7 +84,7 @@ def _scene(turns: float, model: str, integrator: str, rtol: float | None = None)
 
 
 def _run(scene) -> dict:
-    counts = dict(commit_cpu=0.0, early=0, refills=0)
+    counts = dict(commit_cpu=0.0, early=0, refills=0, stiff=0)
     with _timed_film(counts):
         c0 = time.process_time()
         r = simulate(scene, progress=False)
@@ -81,7 +93,8 @@ def _run(scene) -> dict:
     return dict(film=scene.lubrication.model, integrator=scene.run.integrator,
                 steps=int(s["steps"]), rhs_evals=int(s["rhs_evals"]),
                 film_steps=int(s["film_steps"]), early=counts["early"],
-                refills=counts["refills"], cpu_s=cpu, commit_cpu_s=counts["commit_cpu"],
+                refills=counts["refills"], stiff_fraction=counts["stiff"] / s["steps"],
+                cpu_s=cpu, commit_cpu_s=counts["commit_cpu"],
                 ms_per_eval=1e3 * (cpu - counts["commit_cpu"]) / s["rhs_evals"],
                 partial=bool(r.partial), film_min_um=1e6 * float(r.film_min.min()),
                 peak_eps=float(r.eps.max()), orbit=(r.t, r.e_x, r.e_y))
@@ -109,9 +122,9 @@ def main(argv=None):
     rey = {r["integrator"]: r["cpu_s"] for r in rows if r["film"] == "fem"}
     print(f"paper-long-jfo, {a.turns:g} turns, rtol 1e-6, CPU time of one process")
     print("| film | integrator | steps | rhs evals | evals/step | film steps (early, refills) "
-          "| CPU [s] | in commits [s] | ms / eval | / Reynolds, same integrator | "
-          "/ Reynolds LSODA | min film [um] | orbit vs reference [um] |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+          "| LSODA stiff steps | CPU [s] | in commits [s] | ms / eval | / Reynolds, same "
+          "integrator | / Reynolds LSODA | min film [um] | orbit vs reference [um] |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for r in rows + ([ref] if ref else []):
         r["over_reynolds"] = r["cpu_s"] / rey.get(r["integrator"], np.nan)
         r["over_reynolds_lsoda"] = r["cpu_s"] / rey.get("lsoda", np.nan)
@@ -120,7 +133,8 @@ def main(argv=None):
         name = "reference" if r is ref else r["film"]
         print(f"| {name}{' (partial)' if r['partial'] else ''} | {r['integrator']} | "
               f"{r['steps']} | {r['rhs_evals']} | {r['rhs_evals'] / r['steps']:.2f} | "
-              f"{r['film_steps']} ({r['early']}, {r['refills']}) | {r['cpu_s']:.1f} | "
+              f"{r['film_steps']} ({r['early']}, {r['refills']}) | "
+              f"{r['stiff_fraction']:.0%} | {r['cpu_s']:.1f} | "
               f"{r['commit_cpu_s']:.1f} | {r['ms_per_eval']:.2f} | "
               f"{r['over_reynolds']:.2f} | {r['over_reynolds_lsoda']:.2f} | "
               f"{r['film_min_um']:.3f} | {r['orbit_vs_reference_um']:.3f} |", flush=True)
