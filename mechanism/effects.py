@@ -97,10 +97,12 @@ class FilmEffect:
 
     def commit(self, k: JointKinematics) -> None:
         """Advance the film to the accepted state ``k`` (at time k.t); a film step that
-        fails raises and leaves the film and its history as they were."""
+        fails raises and leaves the film and its history as they were. Returns whether a
+        film step was taken (the force at ``k`` may then have changed)."""
         step = self.run.commit(self._state(k), k.t)
         if step is not None:
             self.history.append(film_row(step))
+        return step is not None
 
     @property
     def steps(self) -> int:

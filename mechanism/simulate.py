@@ -114,7 +114,7 @@ def simulate(scene: Scene, progress: bool | None = None) -> SimulationResult:
 
     def accept(t, y):        # each accepted step: a film with memory commits there
         _, _, _, _, Ad, _ = coordinates(m, y)
-        film.commit(JointKinematics(y[1], y[2], y[4], y[5], -Ad, t))
+        return film.commit(JointKinematics(y[1], y[2], y[4], y[5], -Ad, t))
 
     a_len = run.atol if run.atol is not None else 1e-4 * c
     w = scene.crank_speed
