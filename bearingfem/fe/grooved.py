@@ -45,12 +45,14 @@ from ..scales import force_factor
 from ..solution import FilmSolution, ForceDerivatives
 from ..solvers.blocksolve import DENSE_DOFS
 from ..solvers.cavitation import LCPResult
-from .assembly import FilmOperator, film_operator
+from .assembly import FilmOperator
 from .general import general_assembly
-from .multilevel import coarse_level
+from .grooved_build import build_grooved_tables, harmonic_weights
+from .mesh import film_mesh
+from .multilevel import coarse_shape, prolongation
 
-__all__ = ["GroovedOperator", "grooved_operator", "groove_operator_for", "grooved_pressure",
-           "grooved_force", "grooved_derivatives", "grooved_solution"]
+__all__ = ["GroovedOperator", "grooved_operator", "bearing_fixed_operator", "groove_operator_for",
+           "grooved_pressure", "grooved_force", "grooved_derivatives", "grooved_solution"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -102,16 +104,22 @@ class GroovedOperator:
         return self.op.qp_theta - gamma
 
 
-def _harmonic_weights(theta: np.ndarray) -> list:
-    return [np.ones_like(theta)] + [f(m * theta) for m in (1, 2, 3) for f in (np.cos, np.sin)]
-
-
 @lru_cache(maxsize=16)
 def grooved_operator(op: FilmOperator) -> GroovedOperator:
     """The harmonic tables of ``op``'s mesh (cached per operator)."""
     ga = general_assembly(op)
     return GroovedOperator(op, np.array([ga.stiffness_values(w)
-                                         for w in _harmonic_weights(op.qp_theta)]))
+                                         for w in harmonic_weights(op.qp_theta)]))
+
+
+@lru_cache(maxsize=16)
+def bearing_fixed_operator(n_theta: int, n_z: int, element: str, length_ratio: float,
+                           arcs: tuple) -> GroovedOperator:
+    """The grooved operator of the bearing-fixed mesh (half length, from the first groove's
+    edge), its tables built by numpy from the element matrices
+    (:mod:`bearingfem.fe.grooved_build`; cached)."""
+    mesh = film_mesh(n_theta, n_z, element, length_ratio, arcs[0][0], True, arcs)
+    return GroovedOperator(*build_grooved_tables(mesh))
 
 
 def groove_operator_for(bearing: Bearing, n_theta: int, n_z: int, element: str,
@@ -119,8 +127,7 @@ def groove_operator_for(bearing: Bearing, n_theta: int, n_z: int, element: str,
     """The bearing-fixed grooved operator (half length) of ``grooves`` on this mesh."""
     arcs = tuple((float(np.round(lo, 12)), float(np.round(hi, 12)))
                  for lo, hi in (g.arc(0.0) for g in grooves))
-    return grooved_operator(film_operator(int(n_theta), int(n_z), element,
-                                          bearing.length_ratio, arcs[0][0], True, arcs))
+    return bearing_fixed_operator(int(n_theta), int(n_z), element, bearing.length_ratio, arcs)
 
 
 def _held(bearing: Bearing, gop: GroovedOperator, grooves) -> np.ndarray:
@@ -136,15 +143,29 @@ def _system(gop, state):
     return values, load
 
 
+@lru_cache(maxsize=16)
+def _grooved_coarse_level(gop: GroovedOperator):
+    """(the P1 grooved operator half as fine, the interpolation from its dofs to ``gop``'s
+    free dofs), or None at the coarsest level: :func:`~bearingfem.fe.multilevel.coarse_level`
+    on the bearing-fixed mesh, built when a cold start first asks for it, by numpy."""
+    m = gop.op.mesh
+    shape = coarse_shape(m)
+    if shape is None:
+        return None
+    coarse = bearing_fixed_operator(*shape, "P1", m.length_ratio, m.arcs)
+    if coarse.op.mesh.ndofs >= m.ndofs:   # already at the coarsest mesh
+        return None
+    return coarse, prolongation(coarse.op.mesh, m.theta[m.free], m.zeta[m.free])
+
+
 def _coarse_active(gop, bearing, state, grooves, tol, values, load, G):
     """The first cavitated set from the film solved on the coarser levels (the
     multilevel start of :mod:`bearingfem.fe.multilevel`, here with the grooved film)."""
-    level = coarse_level(gop.op)
+    level = _grooved_coarse_level(gop)
     if level is None:
         return None
     coarse, prolong = level
-    res = grooved_pressure(grooved_operator(coarse), bearing, state, grooves, "reynolds",
-                           tol=tol)
+    res = grooved_pressure(coarse, bearing, state, grooves, "reynolds", tol=tol)
     op = gop.op
     free = op.mesh.free
     P0 = np.maximum(prolong @ res.pressure, 0.0)
