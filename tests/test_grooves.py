@@ -88,10 +88,10 @@ def test_grooved_film_starts_from_its_coarser_meshes(monkeypatch):
                                                             pressure=1e5)]
     nested = solve_reynolds(B, s, 240, 40, cavitation="reynolds", grooves=g)
     assert nested.iterations <= 3
-    grooved._grooved_coarse_level.cache_clear()     # the grooved film's levels
+    grooved.bearing_fixed_operator.cache_clear()    # the grooved film's levels with it
     monkeypatch.setattr(multilevel, "COARSEST_FREE_DOFS", 10 ** 9)
     cold = solve_reynolds(B, s, 240, 40, cavitation="reynolds", grooves=g)
-    grooved._grooved_coarse_level.cache_clear()
+    grooved.bearing_fixed_operator.cache_clear()
     assert cold.iterations > 10
     np.testing.assert_allclose(nested.pressure, cold.pressure, rtol=0,
                                atol=1e-9 * cold.pressure.max())
