@@ -107,7 +107,7 @@ def main(argv=None):
     a = ap.parse_args(argv)
     out = Path(a.output)
     out.mkdir(parents=True, exist_ok=True)
-    labels = ("rigid, Reynolds' condition", "rigid, JFO", "EHD (bronze bush, Barus oil)")
+    labels = ("rigid, Reynolds' condition", "rigid, JFO", "EHD (bronze bush, Roelands oil)")
     runs = [(lab, sc, simulate(sc, progress=False))
             for lab, sc in zip(labels, scenes(a.turns, *a.mesh, a.speed))]
     rows = [row(lab, sc, r, a.turns) for lab, sc, r in runs]
