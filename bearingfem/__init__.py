@@ -5,7 +5,7 @@ the closed-form short (Frene) and long (Pinkus-Sternlicht) bearing models; every
 registered by name in :mod:`bearingfem.models`; the designer's numbers (equilibrium,
 stiffness and damping, stability) in :mod:`bearingfem.design`.
 """
-from .bearing import Bearing, Groove, JournalState
+from .bearing import Bearing, ElasticJournalState, Groove, JournalState
 from .contact import Roughness  # Greenwood-Tripp asperity contact (mixed lubrication)
 from .closed.long_bearing import long_bearing_exact_force, long_bearing_force
 from .closed.short_bearing import short_bearing_exact_force, short_bearing_force
@@ -18,7 +18,7 @@ from .lubricant import Lubricant
 from .ehl import line_contact, point_contact
 from .solution import FilmSolution
 
-__all__ = ["Bearing", "JournalState", "Groove", "solve_reynolds", "fvm_reynolds", "FilmSolution",
+__all__ = ["Bearing", "JournalState", "ElasticJournalState", "Groove", "solve_reynolds", "fvm_reynolds", "FilmSolution",
            "short_bearing_force", "long_bearing_force", "short_bearing_exact_force",
            "long_bearing_exact_force", "equilibrium", "coefficients", "ElasticBush",
            "Lubricant", "line_contact", "point_contact", "ConvergenceError", "Roughness"]

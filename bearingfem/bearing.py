@@ -149,6 +149,43 @@ class JournalState:
                    omega=omega)
 
 
+#: The largest eccentricity ratio an elastic film admits (:class:`ElasticJournalState`):
+#: the journal centre may pass the clearance circle by at most one clearance. There the
+#: rigid gap overlaps the bush by a whole clearance, so the bush's deflection exceeds the
+#: clearance itself: beyond it a small-strain linear bush is no longer a fair model.
+ELASTIC_EPS_CAP = 2.0
+
+
+@dataclass(frozen=True)
+class ElasticJournalState(JournalState):
+    """A journal state an elastic film may take beyond the rigid clearance circle.
+
+    As :class:`JournalState`, but eps lies in [0, ``ELASTIC_EPS_CAP``): at eps >= 1 the
+    rigid gap c (1 + eps cos theta) is negative on an arc and only a bush's deflection w
+    opens it (h = c (1 + eps cos theta) + w > 0), as in an EHL contact. Only films with a
+    bush accept eps >= 1 (their model declares ``beyond_clearance``,
+    :mod:`bearingfem.contract` rule 15); a rigid film refuses it with a ValueError naming
+    eps. Below 1 it is the same state as a :class:`JournalState`.
+    """
+
+    def __post_init__(self):
+        eps = check_finite("eps", self.eps)
+        if not 0.0 <= eps < ELASTIC_EPS_CAP:
+            raise ValueError(f"eps must lie in [0, {ELASTIC_EPS_CAP}) for an elastic film, "
+                             f"got {self.eps!r}")
+        object.__setattr__(self, "eps", eps)
+        for name in ("eps_dot", "gamma", "gamma_dot", "omega"):
+            object.__setattr__(self, name, check_finite(name, getattr(self, name)))
+
+
+def check_inside_clearance(state: JournalState, what: str) -> None:
+    """ValueError naming eps when a rigid film (``what``) is asked beyond the clearance
+    circle (an :class:`ElasticJournalState` with eps >= 1): its gap would be negative."""
+    if state.eps >= 1.0:
+        raise ValueError(f"eps must lie in [0, 1) for {what} (a rigid film: its gap closes "
+                         f"at eps = 1; only a film with a bush goes beyond), got {state.eps!r}")
+
+
 @dataclass(frozen=True)
 class Groove:
     """An axial supply groove over the whole length of the bearing.

@@ -56,6 +56,17 @@ A film with memory (its state carries the past, e.g. the JFO film fraction) adds
     a model without a whole film), the same solves on the same data as the run.
 14. ``steps``: the number of film steps taken.
 
+A film that carries the journal beyond the rigid clearance circle:
+
+15. An elastic film (its gap opened by a bush's deflection, h = c (1 + eps cos theta) + w)
+    declares ``beyond_clearance``: the largest eps it takes
+    (:data:`~bearingfem.bearing.ELASTIC_EPS_CAP`); a rigid film leaves it 0. Such a film
+    takes an :class:`~bearingfem.bearing.ElasticJournalState` with 1 <= eps < that cap
+    and gives a finite force there; every film given eps >= 1 without a bush raises a
+    ValueError naming eps (the public :class:`~bearingfem.JournalState` itself keeps
+    eps in [0, 1)). A caller that integrates a journal (:mod:`mechanism`) then moves the
+    wall from eps = 1 to the declared cap.
+
 A steady model's :class:`RunFilm` (made by the registry) forwards ``force`` and commits
 nothing, so a caller treats every model the same way.
 """

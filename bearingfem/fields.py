@@ -70,6 +70,17 @@ class FilmFields:
             values[name] = _checked(name, _at_quadrature(name, f, op))
         return FilmFields(**values)
 
+    def beyond_clearance(self, op, state) -> "FilmFields":
+        """As :meth:`on` for a state beyond the clearance circle (eps >= 1, only a film
+        with a bush: its deflection opens the gap): the rigid gap 1 + eps cos(theta) is
+        then negative on an arc and is not checked; the other fields are. Given gaps are
+        refused (a bush film at eps >= 1 takes the state's own gap)."""
+        if self.gap is not None:
+            raise ValueError("a film beyond the clearance circle (eps >= 1) takes the "
+                             "state's rigid gap: give no gap field")
+        checked = replace(self, gap=np.ones_like(op.qp_theta)).on(op, state)
+        return replace(checked, gap=film_thickness(op.qp_theta, state.eps))
+
     def nodal_gap(self, op, state) -> np.ndarray:
         """H at the dofs of ``op``'s mesh (a quadrature-point gap is projected, L2)."""
         th, ze = op.mesh.theta, op.mesh.zeta

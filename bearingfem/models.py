@@ -13,7 +13,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field, replace
 from typing import Callable, Mapping
 
-from .bearing import Bearing, JournalState, check_finite
+from .bearing import ELASTIC_EPS_CAP, Bearing, JournalState, check_finite, check_inside_clearance
 from .closed.long_bearing import (long_bearing_derivatives, long_bearing_exact_force,
                                   long_bearing_force)
 from .closed.short_bearing import (short_bearing_derivatives, short_bearing_exact_force,
@@ -106,6 +106,9 @@ class FilmModel:
     warm : () -> a force function for one integration that keeps what it learnt (rule 7)
     rules : option rules of this model beyond :data:`OPTION_RULES` (rule 3)
     notes : (bearing, **options) -> dict of numbers a run records about the model (rule 8)
+    beyond_clearance : the largest eps the film takes (rule 15): an elastic film carries
+        the journal beyond the rigid clearance circle up to it; 0 for a rigid film, which
+        refuses eps >= 1 by name
     """
 
     name: str
@@ -118,6 +121,7 @@ class FilmModel:
     warm: Callable | None = None
     rules: Mapping = field(default_factory=dict)
     notes: Callable | None = None
+    beyond_clearance: float = 0.0
 
     def __post_init__(self):
         unruled = sorted(set(self.defaults) - set(OPTION_RULES) - set(self.rules))
@@ -147,20 +151,30 @@ class FilmModel:
         return {k: _check_option(k, options.get(k, d), where, self.memory, rules)
                 for k, d in self.defaults.items()}
 
+    def check_state(self, state: JournalState) -> JournalState:
+        """``state``, or a ValueError naming eps when it lies beyond the clearance circle
+        and the model does not declare ``beyond_clearance`` (rule 15)."""
+        if state.eps >= 1.0 and not state.eps < self.beyond_clearance:
+            check_inside_clearance(state, f"film model {self.name!r}")
+        return state
+
     def film_force(self, bearing: Bearing, state: JournalState, **options):
         """(F_r, F_t) [N] with the model's defaults for options not given."""
+        self.check_state(state)
         return self.force(bearing, state, **self.options(options))
 
     def film_solution(self, bearing: Bearing, state: JournalState,
                       **options) -> FilmSolution | None:
         """The whole film (pressures, friction, flows), or None for a force-only model."""
         opts = self.options(options)
+        self.check_state(state)
         return None if self.solution is None else self.solution(bearing, state, **opts)
 
     def force_derivatives(self, bearing: Bearing, state: JournalState,
                           **options) -> ForceDerivatives:
         """Force and its partials in (eps, eps_dot, w) (see :class:`ForceDerivatives`)."""
         opts = self.options(options)
+        self.check_state(state)
         if self.memory:
             raise ValueError(
                 f"film model {self.name!r} has memory (its film fraction is carried by the "
@@ -373,7 +387,8 @@ for _m in (
               rules={"bulk_modulus": ("number", (1e5, None))}),
     FilmModel("fem-ehd", _fem_ehd, dict(_MESH, lubricant=None, bush=None, roughness=None,
                                         modes=64, film_step=0.0, cavitation="reynolds"),
-              numeric=True, solution=_ehd_solution, transient=ehd_run_film, rules=EHD_RULES),
+              numeric=True, solution=_ehd_solution, transient=ehd_run_film, rules=EHD_RULES,
+              beyond_clearance=ELASTIC_EPS_CAP),
 ):
     register(_m)
 #: Film models solved numerically, as registered at import (a model's own ``numeric`` is

@@ -49,6 +49,7 @@ from bearingfem.design import coefficients, equilibrium
 from bearingfem.design.chart import CHART_SOMMERFELD
 from bearingfem.design.groups import load_from_sommerfeld
 from bearingfem.fe.assembly import film_operator
+from bearingfem.fe.grooved import bearing_fixed_operator
 from bearingfem.fe.mesh import film_mesh
 
 from . import _ross31_env
@@ -71,6 +72,7 @@ def fe_options(mesh, grooves):
 def clear_caches():
     film_operator.cache_clear()
     film_mesh.cache_clear()
+    bearing_fixed_operator.cache_clear()
 
 
 def best_time(f, repeat, cold):

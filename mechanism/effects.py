@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from bearingfem import Bearing, JournalState
+from bearingfem import Bearing, ElasticJournalState, JournalState
 from bearingfem.film import local_to_inertial
 
 from bearingfem.models import film_model
@@ -50,7 +50,10 @@ class FilmEffect:
 
     Beyond ``eps_max`` the film is evaluated at eps_max along the same direction: the force
     stays finite and continuous when an integrator's trial step crosses eps = 1 (the
-    contact effect, or the simulator's stop at eps = 1, takes over there).
+    contact effect, or the simulator's stop at eps = 1, takes over there). A model that
+    carries the journal beyond the clearance circle (its ``beyond_clearance``, contract
+    rule 15: an elastic bush) has its ``wall`` there instead: its states are
+    :class:`~bearingfem.bearing.ElasticJournalState` capped at ``eps_max`` times that wall.
 
     A model with memory keeps what it committed in ``history``: one row per film step,
     columns :data:`mechanism.result.FILM_COLUMNS` (what the step gave, then the journal
@@ -71,9 +74,17 @@ class FilmEffect:
         self.history: list = []
         self.start: tuple | None = None
 
+    @property
+    def wall(self) -> float:
+        """The eps where the film's journal meets the bush: 1, or the model's
+        ``beyond_clearance`` (an elastic film)."""
+        return max(1.0, self.film_model.beyond_clearance)
+
     def _state(self, k: JointKinematics) -> JournalState:
-        return JournalState.from_eccentricity(k.e_x, k.e_y, k.de_x, k.de_y,
-                                              self.bearing.clearance, k.omega, self.eps_max)
+        wall = self.wall
+        cls = JournalState if wall == 1.0 else ElasticJournalState
+        return cls.from_eccentricity(k.e_x, k.e_y, k.de_x, k.de_y, self.bearing.clearance,
+                                     k.omega, self.eps_max * wall)
 
     def force(self, k: JointKinematics):
         s = self._state(k)
@@ -86,10 +97,12 @@ class FilmEffect:
 
     def commit(self, k: JointKinematics) -> None:
         """Advance the film to the accepted state ``k`` (at time k.t); a film step that
-        fails raises and leaves the film and its history as they were."""
+        fails raises and leaves the film and its history as they were. Returns whether a
+        film step was taken (the force at ``k`` may then have changed)."""
         step = self.run.commit(self._state(k), k.t)
         if step is not None:
             self.history.append(film_row(step))
+        return step is not None
 
     @property
     def steps(self) -> int:

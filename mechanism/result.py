@@ -9,7 +9,7 @@ from pathlib import Path
 
 import numpy as np
 
-from bearingfem import JournalState
+from bearingfem import ElasticJournalState, JournalState
 from bearingfem.contract import FilmStep
 from bearingfem.film import local_to_inertial
 from bearingfem.outputs.tables import write_csv
@@ -27,10 +27,13 @@ DENSE = ("dense_t", "dense_e_x", "dense_e_y", "film_record", "step_t")
 FILM_COLUMNS = {"t": "s", "force_x": "N", "force_y": "N", "pressure_max": "Pa",
                 "cavitated_fraction": "1", "friction_force": "N", "mass_balance": "m^3/s",
                 "eps": "1", "eps_dot": "1/s", "gamma": "rad", "gamma_dot": "rad/s",
-                "omega": "rad/s"}
+                "omega": "rad/s", "film_min": "m"}
 _COLUMN = {name: i for i, name in enumerate(FILM_COLUMNS)}
 _STATE_FIELDS = tuple(f.name for f in dataclasses.fields(JournalState))
-_SOLUTION_FIELDS = ("pressure_max", "cavitated_fraction", "friction_force", "mass_balance")
+#: film_min: the whole film's own minimum (an EHD film's includes the bush's deflection,
+#: unlike the run's rigid c (1 - eps), which is 0 beyond the clearance circle)
+_SOLUTION_FIELDS = ("pressure_max", "cavitated_fraction", "friction_force", "mass_balance",
+                    "film_min")
 
 
 def film_row(step: FilmStep) -> tuple:
@@ -51,9 +54,11 @@ def film_column(record: np.ndarray, name: str) -> np.ndarray:
 
 
 def film_states(record: np.ndarray) -> list:
-    """(t, JournalState) of each row of a film record: what a replay takes."""
+    """(t, JournalState) of each row of a film record: what a replay takes (an
+    ElasticJournalState beyond the clearance circle, where an elastic film went)."""
     cols = np.column_stack([film_column(record, k) for k in ("t",) + _STATE_FIELDS])
-    return [(float(r[0]), JournalState(*(float(v) for v in r[1:]))) for r in cols]
+    return [(float(r[0]), (JournalState if r[1] < 1.0 else ElasticJournalState)(
+        *(float(v) for v in r[1:]))) for r in cols]
 
 
 UNITS = {"t": "s", "crank_angle": "rad", "crank_speed": "rad/s", "rod_angle": "rad",
@@ -65,7 +70,9 @@ UNITS = {"t": "s", "crank_angle": "rad", "crank_speed": "rad/s", "rod_angle": "r
 class SimulationResult:
     """One run. Arrays (SI, rad) over the saved time points; ``force_x``/``force_y`` are the
     joint's total force on the pin (inertial frame); ``film_min`` = c (1 - eps), clipped at 0
-    in contact (where eps > 1 measures the penetration). ``partial`` is True when the run
+    in contact (where eps > 1 measures the penetration); an elastic film's (a model with
+    ``beyond_clearance``) is its own minimum gap, bush deflection included, from its film
+    steps (``film_record``), linear between them. ``partial`` is True when the run
     stopped early; ``message`` says why and when."""
 
     t: np.ndarray

@@ -70,13 +70,19 @@ def sample_run(scene, pieces, effects, g, stats, partial, message):
     record = next((np.array(e.history).reshape(-1, len(FILM_COLUMNS)) for e in effects
                    if getattr(e, "memory", False)), np.empty((0, len(FILM_COLUMNS))))
     eps = np.hypot(Y[1], Y[2]) / c
+    film_min = np.maximum(c * (1.0 - eps), 0.0)
+    if any(getattr(e, "wall", 1.0) > 1.0 for e in effects) and len(record):
+        # an elastic film's gap is the rigid one plus the bush's deflection (0 beyond the
+        # clearance circle rigidly): its own minimum, committed per film step, between steps
+        # linearly (the deflection is kept between film steps)
+        film_min = np.interp(t, record[:, 0], record[:, list(FILM_COLUMNS).index("film_min")])
     td = np.linspace(t[0], t[-1], 10 * (len(t) - 1) + 1) if len(t) > 1 else t
     Yd = at(td)
     return SimulationResult(
         t=t, crank_angle=Y[0], crank_speed=Y[3], rod_angle=out["rod_angle"],
         slider_position=out["slider_position"],
         slider_acceleration=out["slider_acceleration"], eps=eps, e_x=Y[1],
-        e_y=Y[2], film_min=np.maximum(c * (1.0 - eps), 0.0), force_x=out["force_x"],
+        e_y=Y[2], film_min=film_min, force_x=out["force_x"],
         force_y=out["force_y"], scene=scene.name, partial=partial, message=message,
         stats=stats, provenance=provenance(scene), dense_t=td, dense_e_x=Yd[1],
         dense_e_y=Yd[2], film_record=record,

@@ -95,8 +95,12 @@ def simulate(scene: Scene, progress: bool | None = None) -> SimulationResult:
         return y[0] - q_end
     ev_end.terminal, ev_end.direction = True, 1
 
-    def gap(t, y):   # eps - 1: positive in contact
-        return math.hypot(y[1], y[2]) / c - 1.0
+    # the wall: eps = 1, or beyond it for a film whose bush carries the journal there
+    # (contract rule 15) when no contact effect takes over at eps = 1
+    wall = film.wall if film is not None and contact is None else 1.0
+
+    def gap(t, y):   # eps - wall: positive in contact
+        return math.hypot(y[1], y[2]) / c - wall
 
     def ev_in(t, y):
         return gap(t, y)
@@ -110,7 +114,7 @@ def simulate(scene: Scene, progress: bool | None = None) -> SimulationResult:
 
     def accept(t, y):        # each accepted step: a film with memory commits there
         _, _, _, _, Ad, _ = coordinates(m, y)
-        film.commit(JointKinematics(y[1], y[2], y[4], y[5], -Ad, t))
+        return film.commit(JointKinematics(y[1], y[2], y[4], y[5], -Ad, t))
 
     a_len = run.atol if run.atol is not None else 1e-4 * c
     w = scene.crank_speed
@@ -148,7 +152,7 @@ def simulate(scene: Scene, progress: bool | None = None) -> SimulationResult:
                     in_contact = False
                 elif contact is None and scene.spring is None:
                     raise RunStopped(
-                        f"the journal reached the bearing wall (eps = 1) at t = {t:.6g} s, "
+                        f"the journal reached the bearing wall (eps = {wall:g}) at t = {t:.6g} s, "
                         f"crank angle {math.degrees(y[0]):.1f} deg, and the scene has no "
                         "contact effect: add scene.effects.contact or a stiffer film")
                 else:

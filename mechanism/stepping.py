@@ -8,7 +8,11 @@ is committed a run steps exactly as ``solve_ivp`` would, to the bit. Two things 
 * ``accept(t, y)`` is called once per accepted step, at its end (at a terminal event's
   root when one ends the step), before the next step begins, and never on a rejected
   step or inside an event function: where a film with memory commits
-  (:mod:`bearingfem.contract`, rule 11).
+  (:mod:`bearingfem.contract`, rule 11). When it returns True (what it committed may have
+  changed ``fun`` at (t, y), e.g. a refill's force acting at once) a solver that keeps
+  the derivative at its last state (Runge-Kutta's first-same-as-last, Radau's error
+  estimate and Jacobian) has it evaluated again there: the next step then starts from
+  the film as committed, not from the one before.
 * A step that raises :data:`STEP_FAILURE` (a film solve that did not converge, in the
   right-hand side or in ``accept``) is cut: the loop goes back to the last accepted state,
   starts the solver again there with half the failed step as its largest step (kept to the
@@ -96,8 +100,7 @@ def integrate(fun, t_span, y0, method: str = "LSODA", events=(), accept=None,
                     status = 1
                     t = found[-1]
                     y = sol(t)
-            if accept is not None:
-                accept(t, y)
+            changed = accept is not None and bool(accept(t, y))
         except STEP_FAILURE as err:
             if len(cuts) >= max_cuts:
                 raise
@@ -123,6 +126,8 @@ def integrate(fun, t_span, y0, method: str = "LSODA", events=(), accept=None,
         else:
             ts.append(t)
             ys.append(y)
+        if changed and status is None and hasattr(solver, "f"):
+            solver.f = solver.fun(t, y)     # LSODA and BDF keep none (BDF: differences)
     message = MESSAGES.get(status, message)
     ts = np.array(ts)
     dense = OdeSolution(ts, interpolants, alt_segment=solver_class in (BDF, LSODA)) \

@@ -37,3 +37,21 @@ def test_compressible_jfo_benchmark_smoke(tmp_path, capsys):
     assert 0.95 < a["steady_diff"] / b["steady_diff"] / 10.0 < 1.05
     assert 0.9 < a["transient_diff"] / b["transient_diff"] / 10.0 < 1.1
     assert "order" in capsys.readouterr().out
+
+
+def test_coupled_cost_benchmark_counts_and_leaves_the_film_as_it_was(tmp_path, capsys):
+    """The coupled-cost benchmark's counts are the run's own (film steps only for the JFO
+    film, the commits' time inside the run's) and its instrumentation is taken off after
+    each run. Fails with the film effect's or the JFO film's commit left wrapped."""
+    from benchmarks import jfo_coupled
+    from bearingfem.transient import TransientJFO
+    from mechanism.effects import FilmEffect
+    before = (FilmEffect.commit, TransientJFO.commit)
+    rows = jfo_coupled.main(["--turns", "0.02", "--integrators", "lsoda", "-o",
+                             str(tmp_path)])
+    assert (FilmEffect.commit, TransientJFO.commit) == before
+    rey, jfo = rows
+    assert rey["film_steps"] == rey["early"] == 0 and jfo["film_steps"] > 0
+    assert jfo["refills"] <= jfo["early"] <= jfo["film_steps"]
+    assert 0.0 <= jfo["commit_cpu_s"] < jfo["cpu_s"] and 0.0 <= jfo["stiff_fraction"] <= 1.0
+    assert "/ Reynolds LSODA" in capsys.readouterr().out

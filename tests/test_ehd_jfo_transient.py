@@ -171,3 +171,15 @@ def test_step_jacobian_is_exact(dt):
                            - film.evaluate(P, phi - e).residual)):
             fd = fd / (2 * h)
             assert np.max(np.abs(fd - exact)) <= 1e-6 * np.max(np.abs(fd))
+
+
+def test_beyond_the_clearance_circle_is_refused():
+    """fem-ehd declares eps up to 2 (an elastic film); the JFO one raises ValueError
+    naming eps there (its load continuation starts from the rigid step) instead of a NaN."""
+    from bearingfem.bearing import ElasticJournalState
+    from bearingfem.models import film_model
+    film = film_model("fem-ehd").along_run(SEED, dict(n_theta=24, n_z=4, bush=SOFT, modes=8,
+                                                      cavitation="jfo"))
+    film.start(moving(0), 0.0)
+    with pytest.raises(ValueError, match="eps"):
+        film.force(ElasticJournalState(eps=1.05, gamma=0.4, omega=250.0), 1e-4)

@@ -223,3 +223,25 @@ def test_mechanism_steps_as_solve_ivp_did():
     from benchmarks import stepping
     _, same = stepping.main(["--turns", "0.6", "--repeats", "1"])
     assert same
+
+
+@pytest.mark.parametrize("method", ["RK45", "DOP853"])
+def test_step_after_a_changed_commit_starts_from_the_new_derivative(method):
+    """A commit that changes the right-hand side at the accepted state (a refill's force
+    acting at once) must reach the next step's first stage: an explicit Runge-Kutta method
+    reuses the derivative it computed at the step's end (first same as last). y' = a, a
+    switched from +1 to -1 at the first accepted step past t = 0.5: the exact y(T) is
+    2 t_s - T (the methods integrate a constant exactly). Fails with the derivative not
+    evaluated again after the commit (y(T) off by 7.6e-5 with RK45, 7.8e-6 with DOP853)."""
+    a = [1.0]
+    switched = []
+
+    def accept(t, y):
+        if not switched and t >= 0.5:
+            a[0], switched[:] = -1.0, [t]
+            return True
+        return False
+    got = integrate(lambda t, y: [a[0]], (0.0, 2.0), [0.0], method, accept=accept,
+                    rtol=1e-6, atol=1e-9)
+    assert got.status == 0 and switched
+    assert abs(got.y[0, -1] - (2.0 * switched[0] - 2.0)) < 1e-12

@@ -81,16 +81,17 @@ def test_grooved_film_starts_from_its_coarser_meshes(monkeypatch):
     """Nested iteration holds the grooves at their pressures on every coarse level, so a
     cold grooved Reynolds-condition solve takes two or three set iterations (from its own
     full film it took 15) and gives the same pressure."""
+    import bearingfem.fe.grooved as grooved
     import bearingfem.fe.multilevel as multilevel
     s = JournalState(eps=0.8, omega=250.0, gamma=1.0)
     g = [Groove(angle=0.5, width=0.3, pressure=2e5), Groove(angle=3.5, width=0.2,
                                                             pressure=1e5)]
     nested = solve_reynolds(B, s, 240, 40, cavitation="reynolds", grooves=g)
     assert nested.iterations <= 3
-    multilevel.coarse_level.cache_clear()
+    grooved.bearing_fixed_operator.cache_clear()    # the grooved film's levels with it
     monkeypatch.setattr(multilevel, "COARSEST_FREE_DOFS", 10 ** 9)
     cold = solve_reynolds(B, s, 240, 40, cavitation="reynolds", grooves=g)
-    multilevel.coarse_level.cache_clear()
+    grooved.bearing_fixed_operator.cache_clear()
     assert cold.iterations > 10
     np.testing.assert_allclose(nested.pressure, cold.pressure, rtol=0,
                                atol=1e-9 * cold.pressure.max())

@@ -10,6 +10,7 @@ from ..fe.mixed import film_contact, with_contact
 from ..fe.reynolds import _film_outputs, fe_pressure
 from ..lubricant import Lubricant
 from .coupling import ehd_film
+from .beyond import solve_beyond
 from .newton import solve_ehd
 
 __all__ = ["solve_ehd_film", "check_ehd"]
@@ -61,12 +62,15 @@ def solve_ehd_film(bearing, state, op, base, gap0, lubricant, bush, cavitation, 
     too (:mod:`bearingfem.ehd.asperity`), so ``deformation`` includes the summits' share."""
     film = ehd_film(bearing, state, op, base, gap0, lubricant, bush, roughness)
 
-    def rigid():                                # the isoviscous rigid film (s = 0)
+    def rigid(film=film):                       # the isoviscous rigid film (s = 0)
         film0, _ = film.fields(np.zeros(op.mesh.ndofs), 0.0)
-        return fe_pressure(op, state, cavitation, method, tol, dirichlet=dirichlet,
-                           system=film_system(op, film0, state.wedge_speed, state.eps)).pressure
-    res = solve_ehd(film, rigid, "reynolds" if cavitation == "reynolds" else "none", tol,
-                    start=warm_pressure(start, bearing, op, dirichlet))
+        return fe_pressure(op, replace(state, eps=film.eps), cavitation, method, tol,
+                           dirichlet=dirichlet,
+                           system=film_system(op, film0, state.wedge_speed, film.eps)).pressure
+    # beyond the clearance circle the rigid film does not exist: continue in eps instead
+    solve = solve_beyond if state.eps >= 1.0 else solve_ehd
+    res = solve(film, rigid, "reynolds" if cavitation == "reynolds" else "none", tol,
+                start=warm_pressure(start, bearing, op, dirichlet))
     P = res.pressure
     fields, values, load = film.system(P)
     deformation = film.deflection(P)

@@ -53,6 +53,7 @@ class KeptEHDJFO:
                  bush, lubricant, modes: int, ambient_pressure: float):
         comp = ehd_compliance(bush, bearing.radius, bearing.length, n_theta, n_z, modes)
         self.bearing, self.lubricant, self.n = bearing, lubricant, (n_theta, n_z)
+        self._op(state)
         self.film = EHDJFOFilm(bearing, state, n_theta, n_z, comp, lubricant,
                                ambient_pressure)
         self.ambient = float(ambient_pressure)
@@ -60,6 +61,10 @@ class KeptEHDJFO:
         self.steps = 0
 
     def _op(self, state):
+        if state.eps >= 1.0:
+            # the rigid step that starts the load continuation needs a rigid gap > 0
+            raise ValueError(f"eps must be < 1 for fem-ehd cavitation='jfo' (the elastic "
+                             f"JFO film within the clearance circle), got {state.eps}")
         return fe_operator(self.bearing, state, *self.n, "P1", None, False)
 
     @property
@@ -132,8 +137,8 @@ class KeptEHDJFO:
     def step(self, state: JournalState, dt: float):
         """Advance by ``dt`` [s] and keep the film; its FilmSolution (raises
         ConvergenceError keeping the film as it was)."""
-        a = self.film.advance(state, dt)
         op = self._op(state)
+        a = self.film.advance(state, dt)
         k = flow_factor(self.bearing, False)
         flows = JFOFlows(flow_in=k * a.inflow, side_leakage=0.0, storage=k * a.content_rate)
         sol = _film_solution(self.bearing, state, op, a.P, a.fraction, a.result, flows,

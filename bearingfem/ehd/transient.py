@@ -9,9 +9,12 @@ the lubricant's viscosity and density ratios, held in the bush's (inertial) fram
 trial state the force is the Reynolds film (Swift-Stieber cavitation) of the rigid gap of
 that state plus the kept deflection, with the kept viscosity and density: one
 general-field film solve (:func:`~bearingfem.fe.reynolds.solve_reynolds` with ``fields``),
-a few milliseconds. The kept fields lag the journal by at most one film step: the force's
-error is O(film_step), shown by the film-step convergence test. The force changed by a
-film step is faded in over the next one (smoothstep, as for the JFO film,
+a few milliseconds. The kept fields lag the journal by one film step (an explicit
+coupling): the force's error is O(film_step). Beyond the rigid clearance circle the gap is
+almost all deflection, so that lag moves the gap by about as much as the gap itself
+(docs/ehd.md, "Beyond the rigid clearance"); :class:`~bearingfem.ehd.tangent.TangentEHD`
+moves the kept fields along their tangent in the journal's state instead. The force changed
+by a film step is faded in over the next one (smoothstep, as for the JFO film,
 :mod:`bearingfem.transient`), so the integrator sees no jump.
 
 Quasi-static bush: its deflection rate is left out of the squeeze term (as in the steady
@@ -26,6 +29,7 @@ import numpy as np
 
 from ..bearing import Bearing, JournalState
 from ..contract import FilmStep
+from ..errors import ConvergenceError
 from ..elastic import ElasticBush, bush_compliance
 from ..fields import FilmFields
 from ..film import film_thickness, inertial_from_theta
@@ -33,8 +37,7 @@ from ..solution import FilmSolution
 from ..transient import faded_force, since_film_step
 
 __all__ = ["TransientEHD", "EHDSnapshot", "KeptFilm", "kept_film", "ehd_solution",
-           "ehd_compliance", "check_ehd_model"]
-
+           "ehd_compliance", "check_ehd_model", "state_coordinates"]
 
 def check_ehd_model(bush, roughness):
     """ValueError for option pairs the EHD film cannot take, before any work."""
@@ -88,6 +91,30 @@ class KeptFilm:
     deflection: np.ndarray
     pressure: np.ndarray
     half_width: float
+    origin: np.ndarray | None = None          # s_n (5,): the state of the solve
+    deflection_slope: np.ndarray | None = None    # d(w/c)/ds (5, n_theta, n_z + 1)
+    pressure_slope: np.ndarray | None = None      # dp/ds [Pa] (5, n_theta, n_z + 1)
+
+    def grids(self, state: JournalState) -> tuple:
+        """(w/c, p) grids at ``state``: the kept ones moved along their tangent (the kept
+        ones without a tangent); p clipped at 0."""
+        if self.origin is None:
+            return self.deflection, self.pressure
+        s = state_coordinates(state)
+        ds = s - self.origin
+        n = self.deflection.shape[0]
+        alpha = (self.alpha0 + 2 * np.pi * np.arange(n) / n)[:, None]
+        # the held film's gap at s (the rigid gap 1 - x cos(alpha) - y sin(alpha) on the
+        # grid plus w_n); the deflection's change dw closes it in log h (g exp(dw / g):
+        # the same first derivative, and it stays > 0, where a linear step closes the thin
+        # film at the bush's free ends) and opens it linearly (C1 across dw = 0)
+        g = 1.0 - s[0] * np.cos(alpha) - s[1] * np.sin(alpha) + self.deflection
+        dw = np.tensordot(ds, self.deflection_slope, axes=1)
+        safe = np.where(g > 0.0, g, 1.0)
+        closing = g * np.expm1(np.minimum(dw, 0.0) / safe)
+        w = self.deflection + np.where((dw < 0.0) & (g > 0.0), closing, dw)
+        p = self.pressure + np.tensordot(ds, self.pressure_slope, axes=1)
+        return w, np.maximum(p, 0.0)
 
     def at(self, grid: np.ndarray, alpha: np.ndarray, zeta: np.ndarray) -> np.ndarray:
         """Bilinear, periodic in alpha, values of a kept ``grid`` at (alpha, zeta) (exact
@@ -108,13 +135,22 @@ class KeptFilm:
         and interpolated by the elements as the EHD film does: at the state of the solve
         they are that solve's fields."""
         alpha = inertial_from_theta(op.mesh.theta, state.gamma)
-        w = op.at_quadrature(self.at(self.deflection, alpha, op.mesh.zeta))
+        w_grid, p_grid = self.grids(state)
+        w = op.at_quadrature(self.at(w_grid, alpha, op.mesh.zeta))
         gap = film_thickness(op.qp_theta, state.eps) + w
         if lubricant is None:
             return FilmFields(gap=gap)
-        p = op.at_quadrature(self.at(self.pressure, alpha, op.mesh.zeta))
+        p = op.at_quadrature(self.at(p_grid, alpha, op.mesh.zeta))
         return FilmFields(gap=gap, viscosity=lubricant.viscosity_at(p) / bearing.viscosity,
                           density=lubricant.density_at(p))
+
+
+def state_coordinates(state: JournalState) -> np.ndarray:
+    """s = (x, y, x', y', omega) of ``state``: x + i y = eps e^{i gamma} (the journal centre
+    over the clearance in the bush's frame) and its rate [1/s], and omega [rad/s]."""
+    c, s = np.cos(state.gamma), np.sin(state.gamma)
+    e, ed, gd = state.eps, state.eps_dot, state.gamma_dot
+    return np.array([e * c, e * s, ed * c - e * gd * s, ed * s + e * gd * c, state.omega])
 
 
 def kept_film(bearing: Bearing, state: JournalState, sol: FilmSolution, n_theta: int,
@@ -145,6 +181,7 @@ class EHDSnapshot:
     jump: tuple
     fade: float
     steps: int
+    origin: np.ndarray | None = None
 
 
 class TransientEHD:
@@ -171,6 +208,7 @@ class TransientEHD:
         self._solution: FilmSolution | None = None
         self.t, self._jump, self._fade = 0.0, (0.0, 0.0), 1.0
         self._active = None          # the last trial solve's cavitated set (a warm start)
+        self._origin = None          # s at the last film step
 
     def _solve(self, state: JournalState) -> FilmSolution:
         return ehd_solution(self.bearing, state, start=self._solution, **self._film)
@@ -178,11 +216,22 @@ class TransientEHD:
     def _keep(self, state: JournalState, sol: FilmSolution) -> KeptFilm:
         return kept_film(self.bearing, state, sol, self._film["n_theta"], self._film["n_z"])
 
+    def _keep_at(self, state: JournalState, sol: FilmSolution) -> KeptFilm:
+        """The kept film of a film step (:class:`~bearingfem.ehd.tangent.TangentEHD` adds
+        its tangent)."""
+        return self._keep(state, sol)
+
+    def _fits(self, state: JournalState) -> bool:
+        """Whether the kept film still holds at the accepted ``state`` (always, here: the
+        film steps come every ``film_step``)."""
+        return True
+
     def start(self, state: JournalState, t: float) -> None:
         """Begin with the full EHD film at ``state``, time ``t`` [s] (a cold solve)."""
         self._solution = None
         self._solution = self._solve(state)
-        self._kept = self._keep(state, self._solution)
+        self._kept = self._keep_at(state, self._solution)
+        self._origin = state_coordinates(state)
         self.t, self._jump, self._fade, self.steps = float(t), (0.0, 0.0), 1.0, 0
 
     def kept_force(self, state: JournalState, kept: KeptFilm | None = None) -> tuple:
@@ -200,8 +249,11 @@ class TransientEHD:
         op = fe_operator(self.bearing, state, f["n_theta"], f["n_z"], "P1", None, False)
         fields = (kept or self._kept).fields(self.bearing, state, op, f["lubricant"])
         if not np.all(fields.gap > 0.0):
-            raise ValueError(f"the kept deflection does not open the gap at eps {state.eps} "
-                             "(the journal passed the deflected bush): reduce film_step")
+            # a trial state past what the kept bush opens (beyond the clearance circle): an
+            # integrator cuts its step on this, as on a solve that does not converge
+            raise ConvergenceError("EHD kept film", 0, None,
+                                   f"eps {state.eps}: the kept deflection does not open the "
+                                   "gap (the journal passed the deflected bush)")
         fields = FilmFields(gap=fields.gap, gap_rate=state.eps_dot * np.cos(op.qp_theta),
                             viscosity=np.broadcast_to(fields.viscosity, op.qp_theta.shape),
                             density=np.broadcast_to(fields.density, op.qp_theta.shape),
@@ -235,13 +287,14 @@ class TransientEHD:
             self.start(state, t)
         t = float(t)
         dt = since_film_step(t, self.t)
-        if dt <= 1e-12 * max(abs(self.t), 1e-3) or dt <= self.film_step:
+        if dt <= 1e-12 * max(abs(self.t), 1e-3) or (dt <= self.film_step
+                                                     and self._fits(state)):
             return None
         before = self.force(state, t)
         sol = self._solve(state)                # raises ConvergenceError before any change
-        kept = self._keep(state, sol)
+        kept = self._keep_at(state, sol)
         after = self.kept_force(state, kept)
-        self._kept, self._solution = kept, sol
+        self._kept, self._solution, self._origin = kept, sol, state_coordinates(state)
         self._jump = (before[0] - after[0], before[1] - after[1])
         self._fade = max(self.film_step, dt)
         self.t = t
@@ -250,11 +303,12 @@ class TransientEHD:
 
     def snapshot(self) -> EHDSnapshot:
         return EHDSnapshot(self.t, self._kept, self._solution, self._jump, self._fade,
-                           self.steps)
+                           self.steps, self._origin)
 
     def restore(self, snapshot: EHDSnapshot) -> None:
         self.t, self._kept, self._solution = snapshot.t, snapshot.kept, snapshot.solution
         self._jump, self._fade, self.steps = snapshot.jump, snapshot.fade, snapshot.steps
+        self._origin = snapshot.origin
 
     def replay(self, start: tuple, steps):
         """The film steps of a run taken again from ``start`` = (t, JournalState) and the
@@ -265,6 +319,7 @@ class TransientEHD:
         for t, state in steps:
             self._solution = self._solve(state)
             self._kept = self._keep(state, self._solution)
+            self._origin = state_coordinates(state)
             self.t = float(t)
             self.steps += 1
             yield self.t, self._solution

@@ -28,8 +28,8 @@ from ..film import film_thickness
 from ..scales import moment_factor
 from .assembly import FilmOperator
 
-__all__ = ["GeneralAssembly", "general_assembly", "film_system", "reference_load_partial",
-           "general_film", "film_moment"]
+__all__ = ["GeneralAssembly", "general_assembly", "ElementTables", "element_tables",
+           "film_system", "reference_load_partial", "general_film", "film_moment"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -63,10 +63,34 @@ class GeneralAssembly:
         return np.bincount(self.dofs.ravel(), local.ravel(), minlength=self.op.mesh.ndofs)
 
 
-@lru_cache(maxsize=16)
-def general_assembly(op: FilmOperator) -> GeneralAssembly:
-    """The tables of ``op``'s mesh (cached per operator)."""
-    basis = op.mesh.basis
+@dataclass(frozen=True, eq=False)
+class ElementTables:
+    """Element metrics and reference tables of an affine scikit-fem basis (the parts of
+    :class:`GeneralAssembly` that need no sparsity pattern)."""
+
+    metric: np.ndarray       # (2, 2, elements): (J^-1 J^-T) |det J|
+    grad_theta: np.ndarray   # (2, elements)
+    det: np.ndarray          # (elements,)
+    stiff_tables: np.ndarray  # (2, 2, points, nb*nb)
+    grad_tables: np.ndarray  # (2, points, nb)
+    value_table: np.ndarray  # (points, nb)
+    dofs: np.ndarray         # (elements, nb)
+
+    def local_stiffness(self, k: np.ndarray) -> np.ndarray:
+        """(elements, nb*nb) element matrices of -div(k grad P), k at the quadrature
+        points (elements x points)."""
+        return sum(self.metric[c, d][:, None] * (k @ self.stiff_tables[c, d])
+                   for c in range(2) for d in range(2))
+
+    def local_load(self, couette: np.ndarray, squeeze: np.ndarray) -> np.ndarray:
+        """(elements, nb) element loads of int couette dv/dtheta + squeeze v."""
+        return (self.grad_theta[0][:, None] * (couette @ self.grad_tables[0])
+                + self.grad_theta[1][:, None] * (couette @ self.grad_tables[1])
+                + self.det[:, None] * (squeeze @ self.value_table))
+
+
+def element_tables(basis) -> ElementTables:
+    """The tables of an affine basis (raises ValueError on curved elements)."""
     X, W = basis.X, basis.W
     invJ = basis.mapping.invDF(X)[..., 0]             # (2, 2, elements), affine
     det = np.abs(basis.mapping.detDF(X)[:, 0])
@@ -78,8 +102,18 @@ def general_assembly(op: FilmOperator) -> GeneralAssembly:
     # physical gradient component a: sum_c invJ[c, a] dphi_c
     metric = np.einsum("cae,dae->cde", invJ, invJ) * det
     stiff = np.einsum("q,icq,jdq->cdqij", W, dphi, dphi).reshape(2, 2, len(W), nb * nb)
-    dofs = np.ascontiguousarray(basis.element_dofs.T)                    # (elements, nb)
-    N = basis.N
+    return ElementTables(metric=metric, grad_theta=invJ[:, 0] * det, det=det,
+                         stiff_tables=stiff, grad_tables=np.einsum("q,icq->cqi", W, dphi),
+                         value_table=(W * phi).T,
+                         dofs=np.ascontiguousarray(basis.element_dofs.T))
+
+
+@lru_cache(maxsize=16)
+def general_assembly(op: FilmOperator) -> GeneralAssembly:
+    """The tables of ``op``'s mesh (cached per operator)."""
+    t = element_tables(op.mesh.basis)
+    dofs = t.dofs                                                        # (elements, nb)
+    N = op.mesh.basis.N
     rows = np.repeat(np.arange(N, dtype=np.int64), np.diff(op.indptr))
     keys = rows * N + op.indices
     local = (dofs[:, :, None].astype(np.int64) * N + dofs[:, None, :]).reshape(len(dofs), -1)
@@ -88,8 +122,8 @@ def general_assembly(op: FilmOperator) -> GeneralAssembly:
     # right triangles): they go to a spare slot past the pattern's end, dropped.
     positions[keys[positions] != local] = len(keys)
     return GeneralAssembly(
-        op=op, metric=metric, grad_theta=invJ[:, 0] * det, det=det, stiff_tables=stiff,
-        grad_tables=np.einsum("q,icq->cqi", W, dphi), value_table=(W * phi).T,
+        op=op, metric=t.metric, grad_theta=t.grad_theta, det=t.det,
+        stiff_tables=t.stiff_tables, grad_tables=t.grad_tables, value_table=t.value_table,
         positions=positions, dofs=dofs)
 
 
@@ -132,7 +166,8 @@ def general_film(bearing: Bearing, state: JournalState, op: FilmOperator,
     """The film's fields at ``op``'s quadrature points with the tilt's gap added, and the
     nodal gap; raises ValueError when the tilted journal touches the bush."""
     spec = fields or FilmFields()
-    film, gap = spec.on(op, state), spec.nodal_gap(op, state)
+    film = spec.on(op, state) if state.eps < 1.0 else spec.beyond_clearance(op, state)
+    gap = spec.nodal_gap(op, state)
     if any(tilt) or any(tilt_rate):
         dH, dH_dt = tilted_gap(bearing, state, op.qp_theta, op.qp_zeta, tilt, tilt_rate)
         film = film.plus(gap=dH, gap_rate=dH_dt)

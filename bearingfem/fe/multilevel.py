@@ -22,7 +22,7 @@ from ..solvers.cavitation import active_set, active_set_iterations
 from .assembly import FilmOperator, film_operator
 from .mesh import MIN_N_THETA, MIN_N_Z
 
-__all__ = ["prolongation", "free_interpolation", "coarse_level", "coarse_guess",
+__all__ = ["prolongation", "free_interpolation", "coarse_shape", "coarse_level", "coarse_guess",
            "COARSEST_FREE_DOFS", "COARSE_SOLVES"]
 
 #: Below this many free dofs a cold start is cheaper than another level.
@@ -93,23 +93,34 @@ def free_interpolation(P: sp.csr_matrix, free: np.ndarray) -> sp.csr_matrix:
     return sp.csr_matrix(sp.diags(scale) @ Q + sp.diags((~ok).astype(float)) @ P)
 
 
-@lru_cache(maxsize=32)
-def coarse_level(op: FilmOperator) -> tuple[FilmOperator, sp.csr_matrix] | None:
-    """The P1 operator on a mesh half as fine as ``op``'s and the interpolation from its
-    dofs to ``op``'s free dofs; None when ``op`` is coarse enough for a cold start.
+def coarse_shape(mesh) -> tuple[int, int] | None:
+    """(n_theta, n_z) of the P1 mesh half as fine as ``mesh`` (a :class:`FilmMesh`), or None
+    when ``mesh`` is coarse enough for a cold start.
 
     A direction whose cells are over twice as long as the other's is not coarsened
     (semi-coarsening): on a mesh of long thin cells the coarse film must keep what
     resolves it (3840x4 halved to 1920x2 lost the side leakage of the cavity's rows: a
     third fewer cavitated nodes, too far for the fine iterations to recover)."""
-    m = op.mesh
+    m = mesh
     if len(m.free) <= COARSEST_FREE_DOFS:
         return None
     h_theta = 2.0 * np.pi / m.n_theta
     h_z = float(np.ptp(m.zeta)) / m.n_z
     n_theta = max(MIN_N_THETA, m.n_theta // 2 if h_theta <= 2.0 * h_z else m.n_theta)
     n_z = max(MIN_N_Z, m.n_z // 2 if h_z <= 2.0 * h_theta else m.n_z)
-    coarse = film_operator(n_theta, n_z, "P1", m.length_ratio, m.theta0, m.half, m.arcs)
+    return n_theta, n_z
+
+
+@lru_cache(maxsize=32)
+def coarse_level(op: FilmOperator) -> tuple[FilmOperator, sp.csr_matrix] | None:
+    """The P1 operator on a mesh half as fine as ``op``'s (:func:`coarse_shape`) and the
+    interpolation from its dofs to ``op``'s free dofs; None when ``op`` is coarse enough
+    for a cold start."""
+    m = op.mesh
+    shape = coarse_shape(m)
+    if shape is None:
+        return None
+    coarse = film_operator(*shape, "P1", m.length_ratio, m.theta0, m.half, m.arcs)
     if coarse.mesh.ndofs >= m.ndofs:   # already at the coarsest mesh
         return None
     return coarse, prolongation(coarse.mesh, m.theta[m.free], m.zeta[m.free])

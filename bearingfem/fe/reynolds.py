@@ -4,7 +4,7 @@ from __future__ import annotations
 import numpy as np
 import scipy.sparse as sp
 
-from ..bearing import Bearing, JournalState
+from ..bearing import Bearing, JournalState, check_inside_clearance
 from ..film import film_thickness
 from ..solution import FilmSolution, film_solution
 from ..solvers.cavitation import LCPResult, active_set, psor
@@ -209,6 +209,8 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
     ambient_pressure = check_jfo_supply(cavitation, grooves, supply_angle, ambient_pressure,
                                         element)
     tilt, tilt_rate = check_tilt("tilt", tilt), check_tilt("tilt_rate", tilt_rate)
+    if bush is None:
+        check_inside_clearance(state, "solve_reynolds without a bush")
     if start is not None and not (lubricant is not None or bush is not None):
         raise ValueError("start is for the EHD film (a lubricant or a bush); got neither")
     if fields is not None and not isinstance(fields, FilmFields):
