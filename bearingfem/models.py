@@ -33,8 +33,8 @@ from .lubricant import Lubricant
 from .solution import FilmSolution, ForceDerivatives
 from .transient import TransientJFO
 from .transient_compressible import OIL_BULK_MODULUS, CompressibleTransientJFO
-from .ehd.transient import TransientEHD, check_ehd_model, ehd_compliance, ehd_solution
-from .ehd.jfo_run import ehd_run_film
+from .ehd.transient import TransientEHD, check_ehd_model, ehd_solution
+from .ehd.jfo_run import ehd_jfo_solution, ehd_run_film
 from .elastic import ElasticBush
 from .validation import (MIN_N_THETA, MIN_N_Z, REYNOLDS_FAMILY, check_choice, check_grooves,
                          check_int)
@@ -319,15 +319,9 @@ def _fem_jfo_compressible(bearing, state, n_theta, n_z, grooves, ambient_pressur
 def _ehd_solution(bearing, state, lubricant, bush, roughness, n_theta, n_z, modes,
                   film_step=0.0, cavitation="reynolds"):
     """The steady EHD film (a cold full solve; ``film_step`` [s] is for time integration,
-    :class:`~bearingfem.ehd.transient.TransientEHD`); ``cavitation`` "jfo": the EHD-JFO
-    film with oil around it at JFO_AMBIENT."""
+    :class:`~bearingfem.ehd.transient.TransientEHD`); ``cavitation`` "jfo": EHD-JFO."""
     if cavitation == "jfo":
-        from .fe.reynolds import solve_reynolds
-        comp = None if bush is None else ehd_compliance(bush, bearing.radius, bearing.length,
-                                                         n_theta, n_z, modes)
-        return solve_reynolds(bearing, state, n_theta, n_z, "P1", "jfo", half=False,
-                              lubricant=lubricant, bush=comp, roughness=roughness,
-                              ambient_pressure=JFO_AMBIENT)
+        return ehd_jfo_solution(bearing, state, lubricant, bush, roughness, n_theta, n_z, modes)
     return ehd_solution(bearing, state, lubricant, bush, roughness, n_theta, n_z, modes)
 
 

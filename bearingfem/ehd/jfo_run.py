@@ -33,7 +33,7 @@ from .jfo import check_ehd_jfo, face_maps
 from .jfo_transient import EHDJFOFilm
 from .transient import ehd_compliance, kept_film
 
-__all__ = ["KeptEHDJFO", "TransientEHDJFO"]
+__all__ = ["KeptEHDJFO", "TransientEHDJFO", "ehd_run_film", "ehd_jfo_solution"]
 
 
 @dataclass(frozen=True)
@@ -196,6 +196,18 @@ def ehd_run_film(bearing: Bearing, lubricant=None, bush=None, roughness=None,
     if cavitation == "jfo":
         return TransientEHDJFO(bearing, **o, ambient_pressure=JFO_AMBIENT)
     raise ValueError(f"cavitation must be 'reynolds' or 'jfo', got {cavitation!r}")
+
+
+def ehd_jfo_solution(bearing: Bearing, state: JournalState, lubricant, bush, roughness,
+                     n_theta: int, n_z: int, modes: int):
+    """The steady EHD-JFO film of "fem-ehd" with ``cavitation="jfo"`` (whole length, oil
+    around it at :data:`JFO_AMBIENT`)."""
+    from ..fe.reynolds import solve_reynolds      # the film route imports this package
+    comp = None if bush is None else ehd_compliance(bush, bearing.radius, bearing.length,
+                                                     n_theta, n_z, modes)
+    return solve_reynolds(bearing, state, n_theta, n_z, "P1", "jfo", half=False,
+                          lubricant=lubricant, bush=comp, roughness=roughness,
+                          ambient_pressure=JFO_AMBIENT)
 
 
 #: Oil around the film [Pa] (the "fem-jfo" model's default supply).
