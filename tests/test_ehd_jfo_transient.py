@@ -183,3 +183,19 @@ def test_beyond_the_clearance_circle_is_refused():
     film.start(moving(0), 0.0)
     with pytest.raises(ValueError, match="eps"):
         film.force(ElasticJournalState(eps=1.05, gamma=0.4, omega=250.0), 1e-4)
+
+
+def test_steady_force_rigid_bush_is_fem_jfo():
+    """The model's steady force with cavitation "jfo" and a 1e25 Pa bush equals fem-jfo's
+    (half mesh, same supply) to 1e-9 (Newton's tolerance, measured in test_ehd_jfo.py's
+    rigid limit). Fails with the steady route left on Reynolds' condition (fem-ehd's
+    default)."""
+    from bearingfem.models import film_model
+    s = JournalState(eps=0.8, gamma=0.4, omega=250.0)
+    stiff = ElasticBush(outer_radius=0.016, modulus=1e25, poisson=0.34, model="ring")
+    ehd = film_model("fem-ehd").film_force(SEED, s, n_theta=48, n_z=4, bush=stiff, modes=0,
+                                           cavitation="jfo")
+    jfo = film_model("fem-jfo").film_force(SEED, s, n_theta=48, n_z=4)
+    assert np.allclose(ehd, jfo, rtol=1e-9, atol=0.0)
+    rey = film_model("fem-ehd").film_force(SEED, s, n_theta=48, n_z=4, bush=stiff, modes=0)
+    assert not np.allclose(rey, jfo, rtol=1e-3, atol=0.0)
