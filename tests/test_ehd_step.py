@@ -87,3 +87,25 @@ def test_the_rigid_limit():
                            24, 4, "P1", "reynolds").force_local
     assert film._kept.origin is not None
     assert np.allclose(film.kept_force(s1), rigid, rtol=1e-4)
+
+
+def test_a_half_length_film_is_kept_on_the_whole_grid_by_its_mirror_image():
+    """The rigid, untilted film is solved on its half length (z >= 0): the kept grids hold
+    it on both halves, mirrored, and are the same at every call. Fails with the grids left
+    unset on the other half (np.empty: values then differ between calls or are NaN)."""
+    import numpy as np
+    from bearingfem import JournalState, solve_reynolds
+    from bearingfem.bearing import seed_bearing
+    from bearingfem.ehd.transient import kept_film
+    b = seed_bearing(0.2)
+    s = JournalState(eps=0.6, gamma=0.3, omega=250.0)
+    sol = solve_reynolds(b, s, 24, 4, element="P1", cavitation="reynolds")
+    assert np.min(sol.z) >= 0.0                          # the half-length solve
+    kept = kept_film(b, s, sol, 24, 4)
+    p = kept.pressure
+    assert np.all(np.isfinite(p)) and np.array_equal(p, p[:, ::-1])
+    assert p.max() == np.max(sol.pressure)
+    full = solve_reynolds(b, s, 24, 4, element="P1", cavitation="reynolds", tilt=(0.0, 1e-14))
+    assert np.min(full.z) < 0.0                          # the whole-length solve
+    np.testing.assert_allclose(kept_film(b, s, full, 24, 4).pressure, p,
+                               atol=1e-6 * np.abs(p).max())

@@ -165,8 +165,14 @@ def kept_film(bearing: Bearing, state: JournalState, sol: FilmSolution, n_theta:
     w = np.zeros_like(p) if sol.deformation is None else np.asarray(sol.deformation)
     grids = []
     for values in (w / bearing.clearance, p):
-        g = np.empty((n_theta, n_z + 1))
+        g = np.full((n_theta, n_z + 1), np.nan)
         g[j, k] = values
+        # a film solved on its half length (mid-plane symmetry: the rigid, untilted film)
+        # covers z >= 0 only: its mirror image fills the other half
+        g[j, n_z - k] = np.where(np.isnan(g[j, n_z - k]), values, g[j, n_z - k])
+        if np.isnan(g).any():
+            raise ValueError(f"the EHD solution's nodes do not cover the {n_theta} x {n_z} "
+                             "film grid (n_theta, n_z must be the solve's mesh)")
         grids.append(g)
     return KeptFilm(float(inertial_from_theta(0.0, state.gamma)), *grids, half_width=lam)
 
