@@ -80,6 +80,8 @@ class TransientJFO:
     """
 
     memory = True
+    #: shortest time between film steps taken early, in film steps (:data:`EARLY`)
+    early_fraction = EARLY
 
     def __init__(self, bearing: Bearing, n_theta: int, n_z: int, grooves=(),
                  ambient_pressure: float = 0.0, film_step: float = 0.0, *, fields=None,
@@ -131,7 +133,7 @@ class TransientJFO:
         # film_step / 1000 either: an integrator crawling through an event would otherwise
         # take a film step at each of its tiny steps
         refill = self.film.refilled(state, t)
-        early = dt > EARLY * self.film_step and (refill or self.film.turned(state))
+        early = dt > self.early_fraction * self.film_step and (refill or self.film.turned(state))
         if dt <= 1e-12 * max(abs(self.t), 1e-3) or not (dt > self.film_step or early):
             return None
         before = self.force(state, t)

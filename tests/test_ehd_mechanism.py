@@ -34,7 +34,7 @@ def test_model_is_registered_with_memory_and_the_scene_loads():
 @pytest.mark.parametrize("options, name", [
     (dict(bush="bronze"), "bush"), (dict(lubricant=0.0117), "lubricant"),
     (dict(modes=-1), "modes"), (dict(modes=2.5), "modes"), (dict(n_theta=4), "n_theta"),
-    (dict(film_step=-1e-4), "film_step"), (dict(cavitation="jfo"), "cavitation"),
+    (dict(film_step=-1e-4), "film_step"), (dict(cavitation="gumbel"), "cavitation"),
 ])
 def test_bad_options_raise_naming_the_option(options, name):
     """The registry refuses each before any work, naming it after where it was given.

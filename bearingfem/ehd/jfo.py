@@ -164,6 +164,11 @@ class JFOCoupling:
         size = np.abs(K) @ np.abs(P) + np.abs(T) @ np.abs(phi) + np.abs(self.storage * phi)
         return BalanceState(ev, K, T, face, K @ P + flow, size)
 
+    def content_slope(self, phi):
+        """d(residual)/d(gap departure) beyond the faces' (None: the steady balance has
+        no content term; the transient step's, :mod:`bearingfem.ehd.jfo_transient`)."""
+        return None
+
     def jacobian(self, P, phi, s, state: BalanceState):
         """(dR/dP sparse, U, V, dR/dphi) with dR/dP = sparse + U V^T (U, V None without a
         bush; V None: U is the dense full product)."""
@@ -183,6 +188,9 @@ class JFOCoupling:
                             (np.concatenate([k, cv.down[k]]), np.concatenate([k, k]))),
                            shape=(n, n))
         TH = DT @ self.maps.face
+        slope = self.content_slope(phi)
+        if slope is not None:
+            TH = TH + slope
         scale = s * f.scale / f.clearance
         c = f.compliance
         if c.right is None:
