@@ -33,8 +33,7 @@ from .lubricant import Lubricant
 from .solution import FilmSolution, ForceDerivatives
 from .transient import TransientJFO
 from .transient_compressible import OIL_BULK_MODULUS, CompressibleTransientJFO
-from .ehd.transient import TransientEHD, check_ehd_model, ehd_solution
-from .ehd.jfo_run import ehd_jfo_solution, ehd_run_film
+from .ehd.jfo_run import ehd_model_solution, ehd_run_film
 from .elastic import ElasticBush
 from .validation import (MIN_N_THETA, MIN_N_Z, REYNOLDS_FAMILY, check_choice, check_grooves,
                          check_int)
@@ -316,20 +315,11 @@ def _fem_jfo_compressible(bearing, state, n_theta, n_z, grooves, ambient_pressur
                                       ambient_pressure, film_step, bulk_modulus).force_local
 
 
-def _ehd_solution(bearing, state, lubricant, bush, roughness, n_theta, n_z, modes,
-                  film_step=0.0, cavitation="reynolds"):
-    """The steady EHD film (a cold full solve; ``film_step`` [s] is for time integration,
-    :class:`~bearingfem.ehd.transient.TransientEHD`); ``cavitation`` "jfo": EHD-JFO."""
-    if cavitation == "jfo":
-        return ehd_jfo_solution(bearing, state, lubricant, bush, roughness, n_theta, n_z, modes)
-    return ehd_solution(bearing, state, lubricant, bush, roughness, n_theta, n_z, modes)
-
-
 def _fem_ehd(bearing, state, lubricant, bush, roughness, n_theta, n_z, modes, film_step=0.0,
              cavitation="reynolds"):
     """The steady EHD film's force, film plus asperity contact."""
-    sol = _ehd_solution(bearing, state, lubricant, bush, roughness, n_theta, n_z, modes,
-                        cavitation=cavitation)
+    sol = ehd_model_solution(bearing, state, lubricant, bush, roughness, n_theta, n_z, modes,
+                             cavitation=cavitation)
     f, c = sol.force_local, sol.asperity_force_local
     return float(f[0] + c[0]), float(f[1] + c[1])
 
@@ -381,7 +371,7 @@ for _m in (
               rules={"bulk_modulus": ("number", (1e5, None))}),
     FilmModel("fem-ehd", _fem_ehd, dict(_MESH, lubricant=None, bush=None, roughness=None,
                                         modes=64, film_step=0.0, cavitation="reynolds"),
-              numeric=True, solution=_ehd_solution, transient=ehd_run_film, rules=EHD_RULES,
+              numeric=True, solution=ehd_model_solution, transient=ehd_run_film, rules=EHD_RULES,
               beyond_clearance=ELASTIC_EPS_CAP),
 ):
     register(_m)

@@ -33,7 +33,7 @@ from .jfo import check_ehd_jfo, face_maps
 from .jfo_transient import EHDJFOFilm
 from .transient import ehd_compliance, kept_film
 
-__all__ = ["KeptEHDJFO", "TransientEHDJFO", "ehd_run_film", "ehd_jfo_solution"]
+__all__ = ["KeptEHDJFO", "TransientEHDJFO", "ehd_run_film", "ehd_jfo_solution", "ehd_model_solution"]
 
 
 @dataclass(frozen=True)
@@ -208,6 +208,17 @@ def ehd_jfo_solution(bearing: Bearing, state: JournalState, lubricant, bush, rou
     return solve_reynolds(bearing, state, n_theta, n_z, "P1", "jfo", half=False,
                           lubricant=lubricant, bush=comp, roughness=roughness,
                           ambient_pressure=JFO_AMBIENT)
+
+
+def ehd_model_solution(bearing: Bearing, state: JournalState, lubricant, bush, roughness,
+                       n_theta: int, n_z: int, modes: int, film_step: float = 0.0,
+                       cavitation: str = "reynolds"):
+    """The "fem-ehd" model's steady film for its ``cavitation`` (a cold full solve;
+    ``film_step`` [s] is for time integration only): Reynolds' condition or EHD-JFO."""
+    from .transient import ehd_solution
+    if cavitation == "jfo":
+        return ehd_jfo_solution(bearing, state, lubricant, bush, roughness, n_theta, n_z, modes)
+    return ehd_solution(bearing, state, lubricant, bush, roughness, n_theta, n_z, modes)
 
 
 #: Oil around the film [Pa] (the "fem-jfo" model's default supply).
