@@ -21,12 +21,10 @@ import scipy.sparse as sp
 from ..bearing import Bearing, JournalState
 from ..fe.assembly import fe_operator
 from ..fe.general import film_system
-from ..fe.jfo_balance import JFOFlows, _boundary_values, film_volumes
+from ..fe.jfo_balance import JFOFlows, _boundary_values, film_volumes, kept_set_pressure
 from ..fe.jfo_steady import _film_solution
 from ..fields import FilmFields
 from ..scales import flow_factor, force_factor
-from ..solvers.cavitation import active_set
-from ..solvers.linsolve import principal_block
 from ..transient import TransientJFO
 from ..fe.jfo_fields import rigid_balance_film
 from .jfo import check_ehd_jfo, face_maps
@@ -121,15 +119,7 @@ class KeptEHDJFO:
         values, load = film_system(op, fields, state.wedge_speed, state.eps)
         K = sp.csr_matrix((values, op.indices, op.indptr), shape=op.shape)
         P, _ = _boundary_values(self.bearing, mesh, (), self.ambient)
-        load = load - K @ P
-        full = ~self.cavitated
-        keep = mesh.free[full[mesh.free]]
-        if len(keep) and np.any(load[keep]):
-            a0 = None if warm is None else warm[keep]
-            P[keep] = active_set(principal_block(K, keep), load[keep], active0=a0).pressure
-        cav = ~full
-        cav[mesh.fixed] = False
-        cav[keep] |= P[keep] <= 0.0
+        P, cav = kept_set_pressure(K, load, P, mesh, self.cavitated, warm)
         ic, is_ = op.force_integrals(P)
         k = force_factor(self.bearing, mesh.half)
         return (k * float(ic), k * float(is_)), cav

@@ -41,14 +41,12 @@ from ..errors import ConvergenceError
 from ..validation import check_film_solve, check_grooves, check_jfo_supply
 from ..scales import force_factor
 from ..solution import FilmSolution
-from ..solvers.cavitation import active_set
-from ..solvers.linsolve import principal_block
 from ..solvers.jfo import JFOResult
 from .assembly import FilmOperator, fe_operator
 from .general import film_system, general_film
 from .jfo_fields import FilmSpec, balance_films
 from .jfo_balance import (BalanceSolve, FilmAdvance, JFOFlows, _between, _boundary_values,
-                          _content, _step_balance, film_volumes)
+                          _content, _step_balance, film_volumes, kept_set_pressure)
 from .volumes import ControlVolumes, shift_rows
 from .jfo_steady import _film_solution, jfo_force, solve_jfo   # (re-exported)
 
@@ -204,7 +202,6 @@ class JFOFilm:
         the force). ``time`` [s]: of the fields and tilt (default the kept time). Returns
         ((F_r, F_t) [N], cavitated set on all nodes, for ``warm`` of the next call)."""
         op = self._operator(state)
-        full = ~self.cavitated
         mesh = op.mesh
         # held values on the fixed nodes, zero on the free ones
         P, _ = _boundary_values(self.bearing, mesh, self.grooves, self.ambient_pressure)
@@ -216,15 +213,7 @@ class JFOFilm:
             values, load = film_system(op, general_film(self.bearing, state, op, spec, tilt,
                                                         rate)[0], state.wedge_speed, state.eps)
             K = sp.csr_matrix((values, op.indices, op.indptr), shape=op.shape)
-        load = load - K @ P
-        keep = mesh.free[full[mesh.free]]
-        if len(keep) and np.any(load[keep]):
-            a0 = None if warm is None else warm[keep]
-            res = active_set(principal_block(K, keep), load[keep], active0=a0)
-            P[keep] = res.pressure
-        cav = ~full
-        cav[mesh.fixed] = False
-        cav[keep] |= P[keep] <= 0.0
+        P, cav = kept_set_pressure(K, load, P, mesh, self.cavitated, warm)
         ic, is_ = op.force_integrals(P)
         k = force_factor(self.bearing, mesh.half)
         return (k * float(ic), k * float(is_)), cav

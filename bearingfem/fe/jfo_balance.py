@@ -14,13 +14,15 @@ from ..bearing import Bearing, JournalState
 from ..errors import ConvergenceError
 from ..film import film_thickness, film_thickness_integral
 from ..scales import flow_factor
+from ..solvers.cavitation import active_set
 from ..solvers.jfo import FirstSet, JFOResult, solve_balance
+from ..solvers.linsolve import principal_block
 from .assembly import FilmOperator
 from .mesh import FilmMesh
 from .multilevel import coarse_level, free_interpolation, prolongation
 from .volumes import ControlVolumes, control_volumes, transport_matrix
 
-__all__ = ["film_volumes", "JFOFlows", "BalanceSolve", "FilmAdvance"]
+__all__ = ["film_volumes", "JFOFlows", "BalanceSolve", "FilmAdvance", "kept_set_pressure"]
 
 
 @lru_cache(maxsize=32)
@@ -93,6 +95,24 @@ def _boundary_values(bearing: Bearing, mesh: FilmMesh, grooves, ambient: float):
     P[mesh.end] = ambient / bearing.pressure_scale
     phi[mesh.end] = 1.0
     return P, phi
+
+
+def kept_set_pressure(K: sp.csr_matrix, load: np.ndarray, P: np.ndarray, mesh: FilmMesh,
+                      cavitated: np.ndarray, warm: np.ndarray | None):
+    """The instant film of a kept JFO film: Reynolds' film of this instant's motion on the
+    volumes full at the kept step (held values ``P`` on the fixed nodes), the others
+    cavities at zero pressure. ``warm``: the last call's cavitated set. Returns (P, the
+    cavitated set on all nodes); ``P`` is filled in place."""
+    load = load - K @ P
+    full = ~cavitated
+    keep = mesh.free[full[mesh.free]]
+    if len(keep) and np.any(load[keep]):
+        a0 = None if warm is None else warm[keep]
+        P[keep] = active_set(principal_block(K, keep), load[keep], active0=a0).pressure
+    cav = ~full
+    cav[mesh.fixed] = False
+    cav[keep] |= P[keep] <= 0.0
+    return P, cav
 
 
 def _solve(bearing: Bearing, op: FilmOperator, eps: float, T: sp.csr_matrix,

@@ -11,11 +11,9 @@ import scipy.sparse as sp
 
 from ..bearing import Bearing, JournalState
 from ..solution import FilmSolution
-from ..solvers.cavitation import active_set
-from ..solvers.linsolve import principal_block
 from .grooved import groove_operator_for, grooved_operator
 from .jfo import JFOFilm
-from .jfo_balance import FilmAdvance, _boundary_values
+from .jfo_balance import FilmAdvance, _boundary_values, kept_set_pressure
 from .jfo_grooved import _films, _force, grooved_jfo_solution
 
 __all__ = ["GroovedJFOFilm"]
@@ -52,16 +50,9 @@ class GroovedJFOFilm(JFOFilm):
         op = self._operator(state)
         gop = grooved_operator(op)
         mesh = op.mesh
-        full = ~self.cavitated
         P, _ = _boundary_values(self.bearing, mesh, self.grooves, self.ambient_pressure)
         K = sp.csr_matrix((gop.values(state.eps, state.gamma), op.indices, op.indptr),
                           shape=op.shape)
-        load = gop.load(state.eps, state.eps_dot, state.wedge_speed, state.gamma) - K @ P
-        keep = mesh.free[full[mesh.free]]
-        if len(keep) and np.any(load[keep]):
-            a0 = None if warm is None else warm[keep]
-            P[keep] = active_set(principal_block(K, keep), load[keep], active0=a0).pressure
-        cav = ~full
-        cav[mesh.fixed] = False
-        cav[keep] |= P[keep] <= 0.0
+        load = gop.load(state.eps, state.eps_dot, state.wedge_speed, state.gamma)
+        P, cav = kept_set_pressure(K, load, P, mesh, self.cavitated, warm)
         return _force(self.bearing, op, P, state.gamma), cav
