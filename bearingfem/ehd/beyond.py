@@ -23,8 +23,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from ..errors import ConvergenceError
-from .newton import EHDResult, _newton, solve_ehd
+from .newton import EHDResult, _newton, continuation, solve_ehd
 
 __all__ = ["solve_beyond", "check_opens", "START_EPS"]
 
@@ -72,22 +71,10 @@ def solve_beyond(film, rigid, cavitation: str, tol: float,
             return EHDResult(out[0], its, out[1], True, out[2], 1, 0)
     first = at_eps(film, START_EPS)
     res = solve_ehd(first, lambda: rigid(first), cavitation, tol)
-    P, done, increment = res.pressure, START_EPS, MAX_INCREMENT
-    iterations, steps, rejected = res.iterations, res.steps, res.rejected
-    while done < film.eps:
-        eps = min(film.eps, done + increment)
-        out, its = _newton(at_eps(film, eps), P, 1.0, free, cavitation, tol)
-        iterations += its
-        if out is None:
-            rejected += 1
-            increment *= 0.25
-            if increment < MIN_INCREMENT:
-                raise ConvergenceError(
-                    "EHD Newton (continuation in eps)", iterations, None,
-                    f"eps = {done:.6g}, increment below {MIN_INCREMENT}: the bush does not "
-                    "open the gap further (refine the mesh or stiffen the bush)")
-            continue
-        P, residual, active = out
-        steps += 1
-        done, increment = eps, min(MAX_INCREMENT, 2.0 * increment)
-    return EHDResult(P, iterations, residual, True, active, steps, rejected)
+    walk = continuation(lambda eps, P: _newton(at_eps(film, eps), P, 1.0, free, cavitation, tol),
+                        res.pressure, START_EPS, film.eps, MAX_INCREMENT, MIN_INCREMENT,
+                        "EHD Newton (continuation in eps)", "eps",
+                        "the bush does not open the gap further (refine the mesh or stiffen "
+                        "the bush)")
+    return replace(walk, iterations=res.iterations + walk.iterations,
+                   steps=res.steps + walk.steps, rejected=res.rejected + walk.rejected)

@@ -19,7 +19,7 @@ converged one doubles it. Below an increment of 1e-4 the solve raises Convergenc
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 import scipy.linalg as la
@@ -148,22 +148,33 @@ def solve_ehd(film, P0, cavitation: str, tol: float = 1e-10,
             P, residual, active = out
             return EHDResult(P, iterations, residual, True, active, 1, 0)
     P0 = P0() if callable(P0) else P0
-    P, done, increment = P0.copy(), 0.0, 1.0
-    steps = rejected = 0
-    while done < 1.0:
-        s = min(1.0, done + increment)
-        out, its = _newton(film, P, s, free, cavitation, tol)
+    res = continuation(lambda s, P: _newton(film, P, s, free, cavitation, tol), P0.copy(),
+                       0.0, 1.0, 1.0, MIN_INCREMENT, "EHD Newton (load continuation)",
+                       "coupling s", "refine the mesh or reduce the load")
+    return replace(res, iterations=res.iterations + iterations)
+
+
+def continuation(newton, P, done: float, target: float, max_increment: float,
+                 min_increment: float, what: str, parameter: str, hint: str) -> EHDResult:
+    """Walk a parameter from ``done`` to ``target``: ``newton(x, P)`` solves at x from P
+    (((P, residual, active) or None when it stalls, its iterations)). A stalled step is
+    retried with a quarter of the increment, a converged one doubles it (up to
+    ``max_increment``); below ``min_increment`` :class:`ConvergenceError` names ``what``,
+    the ``parameter`` reached and the ``hint``."""
+    increment, iterations, steps, rejected = max_increment, 0, 0, 0
+    while done < target:
+        x = min(target, done + increment)
+        out, its = newton(x, P)
         iterations += its
         if out is None:
             rejected += 1
             increment *= 0.25
-            if increment < MIN_INCREMENT:
-                raise ConvergenceError(
-                    "EHD Newton (load continuation)", iterations, None,
-                    f"coupling s = {done:.4g}, increment below {MIN_INCREMENT}: refine the "
-                    "mesh or reduce the load")
+            if increment < min_increment:
+                raise ConvergenceError(what, iterations, None,
+                                       f"{parameter} = {done:.6g}, increment below "
+                                       f"{min_increment}: {hint}")
             continue
         P, residual, active = out
         steps += 1
-        done, increment = s, min(1.0, 2.0 * increment)
+        done, increment = x, min(max_increment, 2.0 * increment)
     return EHDResult(P, iterations, residual, True, active, steps, rejected)
