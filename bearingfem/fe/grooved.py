@@ -142,14 +142,21 @@ def check_grading(grading) -> tuple | None:
     return angle, strength
 
 
+@lru_cache(maxsize=64)
+def _mesh_arcs(grooves: tuple) -> tuple:
+    """The grooves' arcs in the mesh angle, rounded to 1e-12 rad (the operator cache's key;
+    cached: a design asks for them at every film evaluation)."""
+    return tuple((float(np.round(lo, 12)), float(np.round(hi, 12)))
+                 for lo, hi in (g.arc(0.0) for g in grooves))
+
+
 def groove_operator_for(bearing: Bearing, n_theta: int, n_z: int, element: str,
                         grooves, grading=None) -> GroovedOperator:
     """The bearing-fixed grooved operator (half length) of ``grooves`` on this mesh;
     ``grading`` (angle, strength): theta cells concentrated towards the inertial ``angle``
     [rad] (e.g. where the heaviest load puts the minimum film), sized like
     1 - strength cos (:func:`~bearingfem.fe.mesh.film_mesh`); None: uniform per arc."""
-    arcs = tuple((float(np.round(lo, 12)), float(np.round(hi, 12)))
-                 for lo, hi in (g.arc(0.0) for g in grooves))
+    arcs = _mesh_arcs(tuple(grooves))
     grading = check_grading(grading)
     if grading is not None:     # the mesh angle is the film angle at gamma = 0
         grading = (float(np.round(np.mod(grading[0] - math.pi, 2.0 * math.pi), 12)),
@@ -239,11 +246,11 @@ def grooved_pressure(gop: GroovedOperator, bearing: Bearing, state: JournalState
     this very film (K/C after the film's solve). Every solve is kept as
     ``gop.last``."""
     from .reynolds import fe_pressure     # reynolds routes grooved films here
-    G = _held(bearing, gop, grooves)
-    values, load = _system(gop, state)
     key = _film_key(state, grooves, cavitation, method, tol)
     if reuse and gop.last.get("key") == key:
         return gop.last["result"]
+    G = _held(bearing, gop, grooves)
+    values, load = _system(gop, state)
     res = None
     if cavitation != "reynolds" or method != "active-set":
         res = fe_pressure(gop.op, state, cavitation, method, tol, dirichlet=G,
