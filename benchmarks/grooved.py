@@ -42,7 +42,7 @@ from bearingfem import Bearing, Groove, JournalState
 from bearingfem.design import coefficients, equilibrium
 from bearingfem.design.groups import load_from_sommerfeld
 from bearingfem.fe.assembly import film_operator
-from bearingfem.fe.grooved import bearing_fixed_operator, groove_operator_for
+from bearingfem.fe.grooved import _mesh_arcs, bearing_fixed_operator, groove_operator_for
 from bearingfem.fe.mesh import film_mesh
 from bearingfem.film import local_to_inertial
 from bearingfem.models import film_model
@@ -174,6 +174,7 @@ def clear_caches():
     film_operator.cache_clear()
     film_mesh.cache_clear()
     bearing_fixed_operator.cache_clear()
+    _mesh_arcs.cache_clear()
 
 
 def best(f, repeat, before=None, cpu=None):

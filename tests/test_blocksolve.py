@@ -73,3 +73,24 @@ def test_nested_start_needs_one_factorisation(eps):
     assert nested.factorisations == 1 and nested.iterations <= 4
     first = P0 < (K @ np.maximum(P0, 0) - b) / K.diagonal()
     assert np.count_nonzero(first != cold.active) <= BORDERED_MAX_CHANGES
+
+
+@pytest.mark.parametrize("left, joined", [(0, 0), (5, 0), (0, 7), (6, 9)])
+def test_bordered_solve_of_several_columns_is_each_columns_reduced_solve(left, joined):
+    """Several right-hand sides share one bordered solve (the grooved film's four partials):
+    every column is its own reduced solve. Fails when a column is taken from the wrong slot
+    (e.g. every column given the last one's answer, or the multipliers' correction applied
+    to the first column only)."""
+    op, s, K, b = _film()
+    inactive0 = ~fe_pressure(op, s, "reynolds").active[op.mesh.free]
+    rng = np.random.default_rng(3 + left + 10 * joined)
+    inactive = inactive0.copy()
+    inactive[rng.choice(np.flatnonzero(inactive0), left, replace=False)] = False
+    inactive[rng.choice(np.flatnonzero(~inactive0), joined, replace=False)] = True
+    factor = factorise(pinned(K, inactive0))
+    B = np.column_stack([b, rng.standard_normal(len(b)), -2.0 * b, rng.random(len(b))])
+    X = bordered_solve(factor, K, B, inactive0, inactive)
+    assert X.shape == B.shape and np.all(X[~inactive] == 0.0)
+    for j in range(B.shape[1]):
+        ref = _reduced(K, B[:, j], inactive)
+        np.testing.assert_allclose(X[:, j], ref, rtol=0, atol=1e-10 * np.abs(ref).max())

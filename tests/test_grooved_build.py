@@ -90,3 +90,18 @@ def test_a_small_films_coarse_level_is_built_from_its_second_cold_start():
                                atol=1e-12 * second.pressure.max())
     np.testing.assert_array_equal(first.active, second.active)
     assert film_operator.cache_info().currsize == 0
+
+
+def test_each_groove_set_gets_the_operator_of_its_own_arcs():
+    """The grooves' arcs are cached per groove set (a design asks at every evaluation):
+    alternating sets, and a set equal to an earlier one built anew, each get the mesh of
+    their own edges. Fails when the cache answers a set with another's arcs (e.g. keyed
+    by the number of grooves)."""
+    one = (Groove(angle=1.0, width=math.radians(30.0)),)
+    two = (Groove(angle=0.0, width=math.radians(20.0)),
+           Groove(angle=math.pi, width=math.radians(20.0)))
+    other_two = GROOVES[:2]
+    for grooves in (one, two, other_two, one, tuple(Groove(g.angle, g.width) for g in two)):
+        arcs = groove_operator_for(B, 24, 4, "P2", grooves).op.mesh.arcs
+        np.testing.assert_allclose(np.ravel(arcs), np.ravel([g.arc(0.0) for g in grooves]),
+                                   rtol=0, atol=1e-11)

@@ -9,7 +9,7 @@ is likewise b = a_sin b_sin + a_cos b_cos with the film's source coefficients.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import lru_cache
+from functools import cached_property, lru_cache
 
 import numpy as np
 import scipy.sparse as sp
@@ -17,6 +17,7 @@ from skfem import BilinearForm, LinearForm
 from skfem.helpers import dot, grad
 
 from ..film import cubed_thickness_coefficients, source_coefficients, theta_from_inertial
+from ..solvers.pattern import Pattern
 from .mesh import FilmMesh, film_mesh
 
 __all__ = ["FilmOperator", "film_operator", "fe_operator"]
@@ -83,13 +84,27 @@ class FilmOperator:
         t = self.terms
         return a[0] * t[0] + a[1] * t[1] + a[2] * t[2] + a[3] * t[3]
 
+    @cached_property
+    def pattern(self) -> Pattern:
+        """The stiffness pattern over all dofs (checked once, shared by every state)."""
+        return Pattern(self.indptr, self.indices, self.shape)
+
+    @cached_property
+    def free_pattern(self) -> Pattern:
+        """The pattern of the free-free block."""
+        n = len(self.mesh.free)
+        return Pattern(self.ff_indptr, self.ff_indices, (n, n))
+
+    def matrix(self, values: np.ndarray) -> sp.csr_matrix:
+        """The matrix of stiffness ``values`` on the pattern (e.g. a partial's)."""
+        return self.pattern.matrix(values)
+
     def stiffness(self, eps: float) -> sp.csr_matrix:
-        return sp.csr_matrix((self.values(eps), self.indices, self.indptr), shape=self.shape)
+        return self.matrix(self.values(eps))
 
     def free_stiffness(self, eps: float, values: np.ndarray | None = None) -> sp.csr_matrix:
         v = self.values(eps) if values is None else values
-        n = len(self.mesh.free)
-        return sp.csr_matrix((v[self.ff_select], self.ff_indices, self.ff_indptr), shape=(n, n))
+        return self.free_pattern.matrix(v[self.ff_select])
 
     def at_quadrature(self, P: np.ndarray) -> np.ndarray:
         """Values of nodal fields P (..., ndofs) at the quadrature points

@@ -43,7 +43,7 @@ from ..errors import ConvergenceError
 from ..film import cubed_thickness_coefficients, film_thickness, source_coefficients
 from ..scales import force_factor
 from ..solution import FilmSolution, ForceDerivatives
-from ..solvers.blocksolve import DENSE_DOFS
+from ..solvers.blocksolve import DENSE_DOFS, PinnedFactor, bordered_solve
 from ..solvers.cavitation import LCPResult
 from .assembly import FilmOperator
 from .general import general_assembly
@@ -142,14 +142,21 @@ def check_grading(grading) -> tuple | None:
     return angle, strength
 
 
+@lru_cache(maxsize=64)
+def _mesh_arcs(grooves: tuple) -> tuple:
+    """The grooves' arcs in the mesh angle, rounded to 1e-12 rad (the operator cache's key;
+    cached: a design asks for them at every film evaluation)."""
+    return tuple((float(np.round(lo, 12)), float(np.round(hi, 12)))
+                 for lo, hi in (g.arc(0.0) for g in grooves))
+
+
 def groove_operator_for(bearing: Bearing, n_theta: int, n_z: int, element: str,
                         grooves, grading=None) -> GroovedOperator:
     """The bearing-fixed grooved operator (half length) of ``grooves`` on this mesh;
     ``grading`` (angle, strength): theta cells concentrated towards the inertial ``angle``
     [rad] (e.g. where the heaviest load puts the minimum film), sized like
     1 - strength cos (:func:`~bearingfem.fe.mesh.film_mesh`); None: uniform per arc."""
-    arcs = tuple((float(np.round(lo, 12)), float(np.round(hi, 12)))
-                 for lo, hi in (g.arc(0.0) for g in grooves))
+    arcs = _mesh_arcs(tuple(grooves))
     grading = check_grading(grading)
     if grading is not None:     # the mesh angle is the film angle at gamma = 0
         grading = (float(np.round(np.mod(grading[0] - math.pi, 2.0 * math.pi), 12)),
@@ -214,7 +221,7 @@ def _coarse_active(gop, bearing, state, grooves, tol, values, load, G):
     free = op.mesh.free
     P0 = np.maximum(prolong @ res.pressure, 0.0)
     K = op.free_stiffness(0.0, values)
-    b = (load - sp.csr_matrix((values, op.indices, op.indptr), shape=op.shape) @ G)[free]
+    b = (load - op.matrix(values) @ G)[free]
     active = np.zeros(op.mesh.ndofs, bool)
     # the semismooth Newton step from P0, as the active set takes a start pressure
     active[free] = P0 < (K @ P0 - b) / K.diagonal()
@@ -239,11 +246,11 @@ def grooved_pressure(gop: GroovedOperator, bearing: Bearing, state: JournalState
     this very film (K/C after the film's solve). Every solve is kept as
     ``gop.last``."""
     from .reynolds import fe_pressure     # reynolds routes grooved films here
-    G = _held(bearing, gop, grooves)
-    values, load = _system(gop, state)
     key = _film_key(state, grooves, cavitation, method, tol)
     if reuse and gop.last.get("key") == key:
         return gop.last["result"]
+    G = _held(bearing, gop, grooves)
+    values, load = _system(gop, state)
     res = None
     if cavitation != "reynolds" or method != "active-set":
         res = fe_pressure(gop.op, state, cavitation, method, tol, dirichlet=G,
@@ -304,7 +311,7 @@ def grooved_derivatives(bearing: Bearing, state: JournalState, gop: GroovedOpera
     e, ed, w, g = state.eps, state.eps_dot, state.wedge_speed, state.gamma
 
     def dK(wrt):
-        return sp.csr_matrix((gop.values(e, g, wrt), op.indices, op.indptr), shape=op.shape)
+        return op.matrix(gop.values(e, g, wrt))
 
     # the source is linear in eps (wedge), eps_dot and w: unit values give its partials
     rhs = np.column_stack([gop.load(1.0, 0.0, w, g) - dK("eps") @ P, gop.load(e, 1.0, 0.0, g),
@@ -318,6 +325,12 @@ def grooved_derivatives(bearing: Bearing, state: JournalState, gop: GroovedOpera
         block = np.flatnonzero(inactive)
         dP[free[block]] = np.linalg.solve(K.toarray()[np.ix_(block, block)],
                                           rhs[free[block]])
+    elif isinstance(res.factor, PinnedFactor) and not np.array_equal(~res.factor.active,
+                                                                     inactive):
+        # the four columns in one bordered solve: the changed dofs' columns are solved once
+        # (the periodic film keeps its column-by-column solves, bit-identical)
+        dP[free] = bordered_solve(res.factor.lu, K, np.where(inactive[:, None], rhs[free], 0.0),
+                                  ~res.factor.active, inactive)
     else:
         dP[free] = _inactive_solve(K, res.factor, inactive, rhs[free])
     k = force_factor(bearing, True)

@@ -57,7 +57,7 @@ def fe_pressure(op: FilmOperator, state: JournalState, cavitation="reynolds",
     else:
         values, load = system
     if dirichlet is not None:      # pressures held on fixed dofs (grooves) enter the load
-        K_all = sp.csr_matrix((values, op.indices, op.indptr), shape=op.shape)
+        K_all = op.matrix(values)
         load = load - K_all @ dirichlet
     b = load[free]
     K = op.free_stiffness(state.eps, values)

@@ -59,7 +59,7 @@ def fe_force_derivatives(bearing: Bearing, state: JournalState, n_theta: int = 1
     P = res.pressure
     free = op.mesh.free
     e, w = state.eps, state.wedge_speed
-    dK = sp.csr_matrix((op.values(e, derivative=True), op.indices, op.indptr), shape=op.shape)
+    dK = op.matrix(op.values(e, derivative=True))
     # the source is linear in eps (wedge part), eps_dot and w: unit values give its partials
     rhs = np.column_stack([op.load(1.0, 0.0, w) - dK @ P, op.load(e, 1.0, 0.0),
                            op.load(e, 0.0, 1.0)])[free]

@@ -72,29 +72,33 @@ def bordered_solve(factor, K: sp.csr_matrix, b: np.ndarray, inactive0: np.ndarra
 
     With J the dofs inactive in both, R those that left and G those that joined:
     K_JJ^-1 is the old inverse with x_R held at zero by multipliers, and x_G solves the
-    (SPD) Schur complement K_GG - K_GJ K_JJ^-1 K_JG. One solve with k + 1 right-hand sides.
+    (SPD) Schur complement K_GG - K_GJ K_JJ^-1 K_JG. One solve with k + m right-hand
+    sides for ``b`` of shape (n,) (m = 1) or (n, m): the set-up serves every column.
     """
+    b = np.asarray(b)
+    B = b.reshape(len(b), -1)
+    m = B.shape[1]
     R = np.flatnonzero(inactive0 & ~inactive)
     G = np.flatnonzero(inactive & ~inactive0)
     J = inactive0 & inactive
     nR, nG = len(R), len(G)
-    rhs = np.zeros((len(b), nR + nG + 1))
+    rhs = np.zeros((len(b), nR + nG + m))
     rhs[R, np.arange(nR)] = 1.0
     KG = _dense_rows(K, G).T      # = K[:, G], K being symmetric
     rhs[:, nR:nR + nG] = np.where(J[:, None], KG, 0.0)
-    rhs[:, -1] = np.where(J, b, 0.0)
+    rhs[:, nR + nG:] = np.where(J[:, None], B, 0.0)
     Y = factor.solve(rhs)
     if nR:   # hold x_R = 0: subtract the response to the multipliers on R
         Y[:, nR:] -= Y[:, :nR] @ np.linalg.solve(Y[R, :nR], Y[R, nR:])
-    W, y = Y[:, nR:nR + nG], Y[:, -1]      # K_JJ^-1 K_JG and K_JJ^-1 b_J, zero off J
+    W, y = Y[:, nR:nR + nG], Y[:, nR + nG:]     # K_JJ^-1 K_JG and K_JJ^-1 b_J, zero off J
     x = y
     if nG:
         S = KG[G] - KG.T @ W
-        x_G = np.linalg.solve(S, b[G] - KG.T @ y)
+        x_G = np.linalg.solve(S, B[G] - KG.T @ y)
         x = y - W @ x_G
         x[G] = x_G
     x[~inactive] = 0.0   # exactly: x_R is zero only to round-off
-    return x
+    return x.reshape(b.shape)
 
 
 def _dense_rows(K: sp.csr_matrix, rows: np.ndarray) -> np.ndarray:

@@ -88,7 +88,7 @@ def active_set_iterations(K: sp.csr_matrix, b: np.ndarray, *,
     """At most ``max_iter`` iterations of :func:`active_set` (same arguments), returned
     whether or not the set settled (``converged`` says which): a guess to start another
     solve from (a finer mesh's, a JFO balance's first set), never a solution."""
-    K = sp.csr_matrix(K)
+    K = K if sp.isspmatrix_csr(K) else sp.csr_matrix(K)     # no re-wrap of a CSR K
     r_scale = max(float(np.abs(b).max(initial=0.0)), np.finfo(float).tiny)
     block = BlockSolver(K, b, factor, few_changes)
     if active0 is not None:

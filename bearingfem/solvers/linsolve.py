@@ -21,7 +21,8 @@ PCG_RTOL = 1e-12
 
 def factorise(A: sp.spmatrix):
     """SuperLU factors of a symmetric matrix (a symmetric ordering keeps the fill low)."""
-    return spla.splu(sp.csc_matrix(A), permc_spec="MMD_AT_PLUS_A",
+    A = A if sp.isspmatrix_csc(A) else sp.csc_matrix(A)     # pinned() hands CSC already
+    return spla.splu(A, permc_spec="MMD_AT_PLUS_A",
                      options=dict(SymmetricMode=True))
 
 
