@@ -160,7 +160,7 @@ def grooved_table(repeat=2, quick=False):
 
 STATIC = (0.6, -0.25 * math.pi)          # eps, journal angle [rad]: as benchmarks/ross31.py
 STATIC_MESHES = [(18, 4), (24, 4), (36, 6), (48, 8)]
-DESIGN_MESHES = [(16, 6), (20, 4), (24, 4), (30, 6), (36, 6), (48, 8)]
+DESIGN_MESHES = [(14, 4), (16, 6), (18, 4), (20, 4), (24, 4), (30, 6), (36, 6), (48, 8)]
 CHART_MESHES = [(24, 4), (36, 6), (48, 8)]
 CHART_REFERENCE = (144, 24)
 
