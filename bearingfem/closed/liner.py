@@ -67,19 +67,14 @@ class LinerLongBearing:
         return values[where].reshape(phi.shape)
 
 
-def _shoot(eps, K, flux_gap, stop_at_zero):
-    """The ODE from the supply line to 2 pi (``stop_at_zero``: to where P falls back to 0,
-    the Reynolds film's end)."""
-    def back_to_zero(phi, P):
-        return P[0]
-    back_to_zero.terminal, back_to_zero.direction = True, -1
-
+def _shoot_to(eps, K, flux_gap, phi_end):
+    """The ODE from the supply line to ``phi_end`` (stopped where the liner's gap closes
+    under suction)."""
     def gap_closes(phi, P):            # a full film's suction closing the liner's gap
         return 1.0 + eps * np.cos(phi) + K * P[0] - 0.25 * (1.0 - eps)
     gap_closes.terminal = True
     rate = LinerLongBearing(eps, K, "", flux_gap, 0.0).rate
-    sol = solve_ivp(rate, (0.0, 2.0 * np.pi), [0.0],
-                    events=[back_to_zero if stop_at_zero else gap_closes], **_TOL)
+    sol = solve_ivp(rate, (0.0, phi_end), [0.0], events=[gap_closes], **_TOL)
     if sol.status == -1:
         raise ConvergenceError("long liner film ODE", sol.nfev, where=sol.message)
     return sol
@@ -98,32 +93,30 @@ def liner_long_bearing(eps: float, compliance: float, cavitation: str = "reynold
         raise ValueError(f"compliance must be >= 0, got {compliance!r}")
     if cavitation not in ("none", "reynolds"):
         raise ValueError(f"cavitation must be 'none' or 'reynolds', got {cavitation!r}")
-    lo, hi = 1.0 - eps, 1.0 + eps          # H* lies between the rigid gap's extremes
     if cavitation == "none":
         def miss(flux_gap):
-            sol = _shoot(eps, K, flux_gap, False)
+            sol = _shoot_to(eps, K, flux_gap, 2.0 * np.pi)
             # the gap closing under suction: H* too large, P(2 pi) -> -infinity
             return sol.y[0, -1] if sol.status == 0 else -1.0 / K
-        flux_gap = brentq(miss, lo, hi, xtol=1e-14, rtol=1e-14)
+        # H* lies between the rigid gap's extremes
+        flux_gap = brentq(miss, 1.0 - eps, 1.0 + eps, xtol=1e-14, rtol=1e-14)
         return LinerLongBearing(eps, K, cavitation, flux_gap, 2.0 * np.pi)
 
-    def slope_at_end(flux_gap):
-        # dP/dphi where P is back to 0 is 6 (H - H*) / H^3 <= 0; a film that stays
-        # positive to 2 pi has H* too small: the bracket's other sign. The root is where
-        # the crossing becomes a touch (slope 0): Reynolds' condition.
-        sol = _shoot(eps, K, flux_gap, True)
-        if sol.status == 0:
-            return 1.0
-        return 1.0 + eps * np.cos(sol.t_events[0][0]) - flux_gap
-    # at H* = 1 + eps the film would end where it starts: the bracket stops at a film
-    # ending 0.2 rad before the supply line (the film ends past pi: 4.3 rad rigid, eps 0.6)
-    hi = 1.0 + eps * np.cos(0.2)
-    if slope_at_end(hi) >= 0.0:
+    # Reynolds' condition P = dP/dphi = 0 at the film's end phi_c: there H = 1 + eps
+    # cos(phi_c) (P = 0), and dP/dphi = 0 makes that the flux gap H*. So phi_c is the root
+    # of the pressure shot from the supply line to phi_c with H* = 1 + eps cos(phi_c): a
+    # smooth function of phi_c (shooting in H* for the touch of P = 0 is ill-conditioned:
+    # a shallow dip below zero goes unseen and the film ends early).
+    def end_pressure(phi_c):
+        sol = _shoot_to(eps, K, 1.0 + eps * np.cos(phi_c), phi_c)
+        # the suction closing the liner's gap: H* too large, P at the end far below 0
+        return sol.y[0, -1] if sol.status == 0 else -1.0 / max(K, 1e-300)
+    last = 2.0 * np.pi - 0.2       # a film ending 0.2 rad before the supply line
+    if end_pressure(last) >= 0.0:
         raise ValueError(f"the Reynolds film reaches the supply line at eps={eps!r}, "
                          f"compliance={K!r}: take a smaller compliance")
-    flux_gap = brentq(slope_at_end, lo, hi, xtol=1e-15, rtol=1e-15)
-    sol = _shoot(eps, K, flux_gap, True)
-    end = sol.t_events[0][0] if sol.status == 1 else 2.0 * np.pi
+    end = brentq(end_pressure, np.pi, last, xtol=1e-15, rtol=1e-15)
+    flux_gap = 1.0 + eps * np.cos(end)
     return LinerLongBearing(eps, K, cavitation, flux_gap, float(end))
 
 
