@@ -128,3 +128,13 @@ def test_a_warm_start_beyond_one_gives_the_cold_film():
     warm = solve(1.03, start=near)
     assert np.max(np.abs(warm.pressure - cold.pressure)) < 1e-7 * cold.pressure.max()
     assert np.allclose(warm.force_local, cold.force_local, rtol=1e-7)
+
+
+def test_a_warm_start_inside_the_circle_gives_the_cold_film():
+    """The same below eps = 1, where the warm start is tried at full coupling before the
+    load continuation (bearingfem.ehd.newton.solve_ehd). Fails with the warm Newton run at
+    a coupling s = 0.9 (only a benchmark's smoke test caught that before)."""
+    cold = solve(0.9)
+    warm = solve(0.9, start=solve(0.895))
+    assert np.max(np.abs(warm.pressure - cold.pressure)) < 1e-7 * cold.pressure.max()
+    assert np.allclose(warm.force_local, cold.force_local, rtol=1e-7)
