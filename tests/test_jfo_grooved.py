@@ -9,7 +9,7 @@ import pytest
 
 from bearingfem import Bearing, Groove, JournalState, solve_reynolds
 from bearingfem.fe.assembly import fe_operator
-from bearingfem.fe.jfo_steady import _steady
+from bearingfem.fe.jfo_steady import _film_solution, _steady
 from bearingfem.fe.reynolds import fe_force
 from bearingfem.film import film_thickness
 from bearingfem.scales import flow_factor, force_factor
@@ -25,16 +25,20 @@ MOVING = JournalState(0.6, 0.3, 1.3, 2.0, OMEGA)
 @pytest.mark.parametrize("gamma", [0.0, 1.3, -2.2])
 def test_the_bearing_fixed_jfo_film_is_the_moving_meshs(gamma):
     """The moving mesh (rebuilt per angle, grooves' edges on its lines) and the fixed one
-    are the same volumes turned by gamma: force, groove supply and leakage agree to the
-    solver's tolerance (measured <= 1e-13 relative). Fails with the gap's shift in the
-    volumes' content or faces turned the wrong way (cv.face + gamma), or the force rotated
-    the wrong way."""
+    are the same volumes turned by gamma: force, groove supply and leakage, friction and
+    cavitated area agree to the solver's tolerance (measured <= 1e-13 relative). Fails
+    with the gap's shift in the volumes' content or faces turned the wrong way (cv.face +
+    gamma), the force rotated the wrong way, the Couette shear taken over the whole gap
+    (not the oil's fraction phi) or the cavitated area halved in the fixed mesh's film."""
     s = replace(MOVING, gamma=gamma)
-    P, _, _, flows, op, _ = _steady(
+    P, phi, res, flows, op, _ = _steady(
         B, s, lambda nt, nz: fe_operator(B, s, nt, nz, "P1", None, True, GROOVES), 41, 8,
         GROOVES, 0.0)
     old = force_factor(B, True) * op.force_integrals(P)
     new = solve_reynolds(B, s, 41, 8, "P1", "jfo", grooves=GROOVES)
+    moving = _film_solution(B, s, op, P, phi, res, flows, "moving mesh")
+    assert new.friction_force == pytest.approx(moving.friction_force, rel=1e-9)
+    assert new.cavitated_fraction == pytest.approx(moving.cavitated_fraction, rel=1e-9)
     np.testing.assert_allclose(new.force_local, old, rtol=0, atol=1e-9 * np.abs(old).max())
     assert new.flow_in == pytest.approx(flows.flow_in, rel=1e-9)
     assert new.side_leakage == pytest.approx(flows.side_leakage, rel=1e-9)
