@@ -27,13 +27,13 @@ import numpy as np
 from ..bearing import Bearing, JournalState
 from ..errors import ConvergenceError
 from ..film import film_thickness, film_thickness_integral
-from ..scales import force_factor, shear_friction
+from ..scales import force_factor
 from ..solution import FilmSolution, film_solution
 from .assembly import FilmOperator
 from .grooved import GroovedOperator, _rotated, groove_operator_for, grooved_operator
 from .jfo_balance import _solve, film_volumes
 from .jfo_fields import BalanceFilm
-from .jfo_steady import COARSEST_FREE_NODES, _coarser, _prolonged_cavity
+from .jfo_steady import COARSEST_FREE_NODES, _coarser, _prolonged_cavity, jfo_shear
 
 __all__ = ["grooved_balance_film", "solve_grooved_jfo", "grooved_jfo_force",
            "grooved_jfo_solution"]
@@ -99,16 +99,9 @@ def grooved_jfo_solution(bearing: Bearing, state: JournalState, op: FilmOperator
                          method: str = "fem-P1/jfo") -> FilmSolution:
     """The whole film of the balance solve ``b`` on the bearing-fixed mesh ``op``, nodes
     reported at their film angles theta = phi - gamma."""
-    th = op.qp_theta - state.gamma
-    Hq = film_thickness(th, state.eps)
     P, phi = b.P, b.phi
-    Pq = op.at_quadrature(P)
-    dPq = np.asarray(op.mesh.basis.interpolate(P).grad[0])
-    friction = shear_friction(bearing, state.omega, op.qp_weight, Hq, dPq,
-                              couette_share=np.clip(op.at_quadrature(phi), 0.0, 1.0),
-                              poiseuille_share=Pq > 0.0, half=True)
-    cv = film_volumes(op.mesh)
-    cav_fraction = float(np.sum(cv.area * (1.0 - phi > 1e-12)) / np.sum(cv.area))
+    friction, cav_fraction = jfo_shear(bearing, state.omega, op, P, phi,
+                                       film_thickness(op.qp_theta - state.gamma, state.eps))
     return film_solution(
         bearing, state, P, op.mesh.theta - state.gamma, op.mesh.zeta,
         _force(bearing, op, P, state.gamma), friction=friction,

@@ -21,6 +21,20 @@ from .jfo_balance import (JFOFlows, _cos_integral, _prolongation, _solve, _trans
 __all__ = ["solve_jfo", "jfo_force"]
 
 
+def jfo_shear(bearing, omega: float, op: FilmOperator, P, phi, gap, viscosity=1.0):
+    """(friction, cavitated area fraction) of a JFO film: ``gap`` H and ``viscosity`` (ratio)
+    at the quadrature points. The Couette shear acts on the oil present (the fraction phi
+    of the gap, as streamers), the Poiseuille part where the film is full."""
+    Pq = op.at_quadrature(P)
+    dPq = np.asarray(op.mesh.basis.interpolate(P).grad[0])
+    friction = shear_friction(bearing, omega, op.qp_weight, gap, dPq,
+                              couette_share=np.clip(op.at_quadrature(phi), 0.0, 1.0),
+                              poiseuille_share=Pq > 0.0, viscosity=viscosity,
+                              half=op.mesh.half)
+    area = film_volumes(op.mesh).area
+    return friction, float(np.sum(area * (1.0 - phi > 1e-12)) / np.sum(area))
+
+
 def _film_solution(bearing, state, op: FilmOperator, P, phi, res: JFOResult,
                    flows: JFOFlows, method: str, film=None) -> FilmSolution:
     """Forces, friction and the rest of a JFO film (P >= 0 is the pressure everywhere);
@@ -29,22 +43,10 @@ def _film_solution(bearing, state, op: FilmOperator, P, phi, res: JFOResult,
     k = force_factor(bearing, op.mesh.half)
     ic, is_ = op.force_integrals(P)
     f_r, f_t = k * float(ic), k * float(is_)
-    wq, th = op.qp_weight, op.qp_theta
     fields = None if film is None else film.fields
-    Hq = film_thickness(th, state.eps) if fields is None else fields.gap
-    Pq = op.at_quadrature(P)
-    dPq = np.asarray(op.mesh.basis.interpolate(P).grad[0])
-    phiq = op.at_quadrature(phi)
-    full = Pq > 0.0
-    # Couette shear acts on the oil present (the fraction phi of the gap, as streamers);
-    # the Poiseuille part where the film is full.
-    friction = shear_friction(bearing, state.omega, wq, Hq, dPq,
-                              couette_share=np.clip(phiq, 0.0, 1.0), poiseuille_share=full,
-                              viscosity=1.0 if fields is None else fields.viscosity,
-                              half=op.mesh.half)
-    cv = film_volumes(op.mesh)
-    area = cv.area
-    cav_fraction = float(np.sum(area * (1.0 - phi > 1e-12)) / np.sum(area))
+    Hq = film_thickness(op.qp_theta, state.eps) if fields is None else fields.gap
+    friction, cav_fraction = jfo_shear(bearing, state.omega, op, P, phi, Hq,
+                                       1.0 if fields is None else fields.viscosity)
     return film_solution(
         bearing, state, P, op.mesh.theta, op.mesh.zeta, (f_r, f_t), friction=friction,
         leakage=flows.side_leakage, flow_in=flows.flow_in, cavitated_fraction=cav_fraction,
