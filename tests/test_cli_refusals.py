@@ -188,9 +188,13 @@ def test_frames_series_is_in_time_order(capsys, here, analytic_run):
 
 def test_ctrl_c_exits_130(here):
     """Old: an interrupted simulate exited 1 (a failure), its figure's axis still said
-    'recorded turn'."""
+    'recorded turn'. The scene runs 200 turns, so the interrupt always finds it running
+    (the shipped five turns could finish within the second on a quiet machine)."""
+    scene = (ROOT / "scenes" / "paper-long-fem.toml").read_text()
+    assert "turns = 5\n" in scene
+    (here / "long.toml").write_text(scene.replace("turns = 5\n", "turns = 200\n"))
     p = subprocess.Popen([sys.executable, "-m", "bearingfem_app", "simulate",
-                          "paper-long-fem", "-o", "out"], stdout=subprocess.PIPE,
+                          "long.toml", "-o", "out"], stdout=subprocess.PIPE,
                          stderr=subprocess.PIPE, env={**os.environ, "PYTHONPATH": str(ROOT)})
     p.stderr.read(1)                      # the progress bar has started: the run is on
     time.sleep(1.0)
