@@ -67,6 +67,16 @@ A film that carries the journal beyond the rigid clearance circle:
     eps in [0, 1)). A caller that integrates a journal (:mod:`mechanism`) then moves the
     wall from eps = 1 to the declared cap.
 
+A film whose memory is integrated with the journal:
+
+16. A run film may keep states of its own that the caller integrates with the journal
+    (e.g. a bush's modal deflection, :class:`~bearingfem.ehd.states.ModalStateEHD`): it
+    declares ``state_size`` n > 0 and gives ``rates(state, z, t) -> ((F_r, F_t), dz/dt)``
+    at a trial (state, z, t), changing nothing kept (rule 10); z starts at zero with the
+    run, and ``commit(state, t, z)`` replaces rule 11's commit. Its ``force`` is refused.
+    A run film without ``state_size`` (or with 0) has none, and every caller integrates
+    it as before.
+
 A steady model's :class:`RunFilm` (made by the registry) forwards ``force`` and commits
 nothing, so a caller treats every model the same way.
 """

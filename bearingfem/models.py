@@ -316,8 +316,9 @@ def _fem_jfo_compressible(bearing, state, n_theta, n_z, grooves, ambient_pressur
 
 
 def _fem_ehd(bearing, state, lubricant, bush, roughness, n_theta, n_z, modes, film_step=0.0,
-             cavitation="reynolds"):
-    """The steady EHD film's force, film plus asperity contact."""
+             cavitation="reynolds", coupling="kept", relaxation=1e-5):
+    """The steady EHD film's force, film plus asperity contact (``coupling`` and
+    ``relaxation`` are for time integration only)."""
     sol = ehd_model_solution(bearing, state, lubricant, bush, roughness, n_theta, n_z, modes,
                              cavitation=cavitation)
     f, c = sol.force_local, sol.asperity_force_local
@@ -327,7 +328,8 @@ def _fem_ehd(bearing, state, lubricant, bush, roughness, n_theta, n_z, modes, fi
 #: The "fem-ehd" model's own options: lubricant and bush objects (or None), modes the
 #: number of compliance vectors (0: the full compliance).
 EHD_RULES = {"lubricant": ("instance", (Lubricant,)), "bush": ("instance", (ElasticBush,)),
-             "modes": ("int", (0, None)), "cavitation": ("choice", ("reynolds", "jfo"))}
+             "modes": ("int", (0, None)), "cavitation": ("choice", ("reynolds", "jfo")),
+             "coupling": ("choice", ("kept", "states")), "relaxation": ("number", (1e-12, 1.0))}
 _MESH = dict(n_theta=48, n_z=8)
 #: Oil around the film at atmospheric pressure, the cavity near zero absolute: the default
 #: supply of the JFO model (it needs one; grooves add to it).
@@ -370,7 +372,8 @@ for _m in (
               # below 1e5 Pa (a gas's) nothing is an oil
               rules={"bulk_modulus": ("number", (1e5, None))}),
     FilmModel("fem-ehd", _fem_ehd, dict(_MESH, lubricant=None, bush=None, roughness=None,
-                                        modes=64, film_step=0.0, cavitation="reynolds"),
+                                        modes=64, film_step=0.0, cavitation="reynolds",
+                                        coupling="kept", relaxation=1e-5),
               numeric=True, solution=ehd_model_solution, transient=ehd_run_film, rules=EHD_RULES,
               beyond_clearance=ELASTIC_EPS_CAP),
 ):

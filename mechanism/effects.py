@@ -73,6 +73,11 @@ class FilmEffect:
         self.memory = self.film_model.memory
         self.history: list = []
         self.start: tuple | None = None
+        # a film whose memory is integrated with the joint (contract rule 16): its states
+        # z are set by the integrator before each force, their rates read after it
+        self.state_size = int(getattr(self.run, "state_size", 0))
+        self.z = np.zeros(self.state_size)
+        self.z_rate = np.zeros(self.state_size)
 
     @property
     def wall(self) -> float:
@@ -92,14 +97,18 @@ class FilmEffect:
         if self.start is None:              # the film begins at its first state
             self.start = (k.t,) + dataclasses.astuple(s)
             self.run.start(s, k.t)
-        f_r, f_t = self.run.force(s, k.t)
+        if self.state_size:
+            (f_r, f_t), self.z_rate = self.run.rates(s, self.z, k.t)
+        else:
+            f_r, f_t = self.run.force(s, k.t)
         return local_to_inertial(f_r, f_t, s.gamma)
 
     def commit(self, k: JointKinematics) -> None:
         """Advance the film to the accepted state ``k`` (at time k.t); a film step that
         fails raises and leaves the film and its history as they were. Returns whether a
         film step was taken (the force at ``k`` may then have changed)."""
-        step = self.run.commit(self._state(k), k.t)
+        step = (self.run.commit(self._state(k), k.t, self.z) if self.state_size
+                else self.run.commit(self._state(k), k.t))
         if step is not None:
             self.history.append(film_row(step))
         return step is not None

@@ -81,15 +81,20 @@ def simulate(scene: Scene, progress: bool | None = None) -> SimulationResult:
     bar = Progress(run.turns, f"{scene.name}", progress)
     n_rhs = [0]
 
+    n_film = film.state_size if film is not None else 0    # the film's own states
+
     def rhs(t, y):
         n_rhs[0] += 1
-        q, A, _, qd, Ad, _ = coordinates(m, y)
+        q, A, _, qd, Ad, _ = coordinates(m, y[:6])
+        if n_film:
+            film.z = y[6:]
         fx, fy = joint_force(effects, JointKinematics(y[1], y[2], y[4], y[5], -Ad, t))
         qdd, Add, Xdd = accelerations(m, q, A, qd, Ad, fx, fy, g,
                                       scene.crank_torque, scene.slider_force)
         exdd, eydd = eccentricity_accelerations(m, q, A, qd, Ad, qdd, Add, Xdd)
         bar.update((q - scene.crank_angle) / (2 * math.pi))
-        return [qd, y[4], y[5], qdd, exdd, eydd]
+        rates = [qd, y[4], y[5], qdd, exdd, eydd]
+        return rates + list(film.z_rate) if n_film else rates
 
     def ev_end(t, y):
         return y[0] - q_end
@@ -113,18 +118,21 @@ def simulate(scene: Scene, progress: bool | None = None) -> SimulationResult:
     events = [ev_end, None]
 
     def accept(t, y):        # each accepted step: a film with memory commits there
-        _, _, _, _, Ad, _ = coordinates(m, y)
+        _, _, _, _, Ad, _ = coordinates(m, y[:6])
+        if n_film:
+            film.z = y[6:]
         return film.commit(JointKinematics(y[1], y[2], y[4], y[5], -Ad, t))
 
     a_len = run.atol if run.atol is not None else 1e-4 * c
     w = scene.crank_speed
+    # the film's states (a bush's modal deflection [m]) at the joint's length tolerance
     atol = np.array([a_len / m.crank_length, a_len, a_len,
-                     a_len * w / m.crank_length, a_len * w, a_len * w])
+                     a_len * w / m.crank_length, a_len * w, a_len * w] + [a_len] * n_film)
     opts = dict(method=METHODS[run.integrator], rtol=run.rtol, atol=atol)
     if run.max_step is not None:
         opts["max_step"] = run.max_step
 
-    t, y = 0.0, _initial_state(scene)
+    t, y = 0.0, np.concatenate([_initial_state(scene), np.zeros(n_film)])
     in_contact = gap(t, y) > 0.0
     pieces, steps, message, partial, cuts = [], 0, "completed", False, []
     first_step = None

@@ -174,11 +174,21 @@ class TransientEHDJFO(TransientJFO):
 
 def ehd_run_film(bearing: Bearing, lubricant=None, bush=None, roughness=None,
                  n_theta: int = 48, n_z: int = 8, modes: int = 0, film_step: float = 0.0,
-                 cavitation: str = "reynolds"):
+                 cavitation: str = "reynolds", coupling: str = "kept",
+                 relaxation: float = 1e-5):
     """The "fem-ehd" model's RunFilm for its ``cavitation``: "reynolds" (Swift-Stieber,
     :class:`~bearingfem.ehd.transient.TransientEHD`) or "jfo" (:class:`TransientEHDJFO`,
-    oil around the film at the JFO models' 1e5 Pa)."""
+    oil around the film at the JFO models' 1e5 Pa); ``coupling`` "states": the bush's
+    modes integrated with the journal (:class:`~bearingfem.ehd.states.ModalStateEHD`,
+    Reynolds' condition, a bush, ``relaxation`` [s] its Kelvin-Voigt time)."""
     from .transient import TransientEHD
+    if coupling == "states":
+        from .states import ModalStateEHD
+        if cavitation != "reynolds" or not modes:
+            raise ValueError("coupling 'states' takes cavitation 'reynolds' and modes >= 1 "
+                             f"(got {cavitation!r}, modes {modes})")
+        return ModalStateEHD(bearing, lubricant, bush, n_theta, n_z, modes, relaxation,
+                             roughness)
     o = dict(lubricant=lubricant, bush=bush, roughness=roughness, n_theta=n_theta, n_z=n_z,
              modes=modes, film_step=film_step)
     if cavitation == "reynolds":
@@ -202,7 +212,8 @@ def ehd_jfo_solution(bearing: Bearing, state: JournalState, lubricant, bush, rou
 
 def ehd_model_solution(bearing: Bearing, state: JournalState, lubricant, bush, roughness,
                        n_theta: int, n_z: int, modes: int, film_step: float = 0.0,
-                       cavitation: str = "reynolds"):
+                       cavitation: str = "reynolds", coupling: str = "kept",
+                       relaxation: float = 1e-5):
     """The "fem-ehd" model's steady film for its ``cavitation`` (a cold full solve;
     ``film_step`` [s] is for time integration only): Reynolds' condition or EHD-JFO."""
     from .transient import ehd_solution

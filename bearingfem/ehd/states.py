@@ -1,0 +1,269 @@
+"""The EHD film with the bush's modal deflection as states of the time integration.
+
+:class:`~bearingfem.ehd.transient.TransientEHD` holds the bush's deflection between film
+steps; beyond the rigid clearance circle the gap is nearly all deflection, and that lag
+does not converge as the film step shrinks (docs/ehd.md). Here the deflection is w = L q
+on the bush's film grid (L the reduced compliance's left vectors, fixed in the bush's
+frame) and the modal coordinates q [m] are integrated with the journal: the integrator's
+own error control replaces the film step, and nothing lags.
+
+A purely quasi-static bush (q = S R^T p, S R^T the reduced compliance's other factor)
+leaves dq/dt undetermined wherever a mode sits in a cavity. The bush is therefore given a
+Kelvin-Voigt relaxation time ``relaxation`` tau [s] (material damping):
+
+    q + tau dq/dt = S R^T (p + p_a),
+
+and the film's squeeze carries the bush's motion, dH/dt = dH_rigid/dt + (L dq/dt) / c.
+Given the journal's state and q the gap is known; the unknowns are the pressure and dq/dt,
+and eliminating dq/dt = (S R^T p - q) / tau leaves the Reynolds residual with a rank-n
+term, R(P) = K P - load(P), solved by the EHD film's semismooth Newton
+(:mod:`bearingfem.ehd.newton`, Reynolds' condition, the lubricant's fields, exact
+Jacobian: sparse plus U V^T, U = G / tau, G the squeeze load of unit modal rates). As tau
+-> 0 the film tends to the quasi-static EHD film; a journal held still relaxes to the
+steady EHD solve (tests/test_ehd_states.py).
+"""
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+import scipy.sparse as sp
+
+from ..bearing import Bearing, JournalState
+from ..contract import FilmStep
+from ..errors import ConvergenceError
+from ..fields import FilmFields
+from ..film import film_thickness, inertial_from_theta, theta_from_inertial
+from ..scales import force_factor
+from ..solution import FilmSolution
+from .coupling import ehd_film
+from .newton import EHDResult, _newton, continuation
+from .transient import ehd_compliance
+
+__all__ = ["ModalStateEHD", "grid_interpolation"]
+
+#: Newton's tolerance on the film's residual (as the steady EHD solve's).
+TOL = 1e-10
+#: With roughness, the film's flow sees the gap floored at this many sigma.
+FLOW_FLOOR = 0.05
+
+
+def grid_interpolation(alpha: np.ndarray, zeta: np.ndarray, n_theta: int, n_z: int,
+                       half_width: float) -> sp.csr_matrix:
+    """Bilinear, periodic in alpha, interpolation from the bush's grid (n_theta x (n_z + 1)
+    nodes at inertial angles 2 pi j / n_theta, zeta = -h + 2 h k / n_z, flattened in C
+    order) to the points (alpha, zeta): a sparse matrix (points x grid)."""
+    m = n_z + 1
+    u = np.mod(alpha, 2 * np.pi) / (2 * np.pi) * n_theta
+    v = np.clip((zeta + half_width) / (2 * half_width) * n_z, 0, n_z)
+    j, k = np.floor(u).astype(int), np.minimum(np.floor(v).astype(int), n_z - 1)
+    a, b = u - j, v - k
+    j0, j1 = j % n_theta, (j + 1) % n_theta
+    rows = np.repeat(np.arange(alpha.size), 4)
+    cols = np.stack([j0 * m + k, j0 * m + k + 1, j1 * m + k, j1 * m + k + 1], axis=1).ravel()
+    vals = np.stack([(1 - a) * (1 - b), (1 - a) * b, a * (1 - b), a * b], axis=1).ravel()
+    return sp.csr_matrix((vals, (rows, cols)), shape=(alpha.size, n_theta * m))
+
+
+class _CoupledFilm:
+    """The EHD film of one journal state and one q, with dq/dt eliminated (module
+    docstring): what :func:`~bearingfem.ehd.newton._newton` asks of a film."""
+
+    def __init__(self, film, q, relaxation, to_grid, squeeze, modal, rigid_rate,
+                 contact=None):
+        self.film, self.op = film, film.op
+        self.contact = contact          # the summits' pressure at the film nodes [Pa] or None
+        self.q, self.tau = q, relaxation
+        self.to_grid = to_grid          # film nodes -> grid nodes (nodal values)
+        self.squeeze = squeeze          # (E*Q, n): d(dH/dt)/d(dq/dt) at the points [1/m]
+        self.modal = modal              # (n, grid): S R^T [m/Pa]
+        self.rigid_rate = rigid_rate    # (E, Q) dH/dt of the journal's motion [1/s]
+
+    def rates(self, P):
+        """dq/dt [m/s] at nodal P (dimensionless, p = scale P)."""
+        p = self.film.scale * P if self.contact is None else self.film.scale * P + self.contact
+        return (self.modal @ (self.to_grid @ p) - self.q) / self.tau
+
+    def _at(self, P):
+        qdot = self.rates(P)
+        rate = self.rigid_rate + (self.squeeze @ qdot).reshape(self.rigid_rate.shape)
+        return replace(self.film, base=replace(self.film.base, gap_rate=rate)), qdot
+
+    def evaluate(self, P, s=1.0):
+        film, _ = self._at(P)
+        return film.evaluate(P, s)
+
+    def jacobian(self, P, s, ev):
+        film, _ = self._at(P)
+        J, _, _ = film.jacobian(P, s, ev)
+        # the squeeze load of the bush's rate: d R_i / d(dH/dt)_q = 12 rho phi_i dx
+        rho = ev.fields.density
+        w = (12.0 * np.broadcast_to(rho, self.op.qp_weight.shape) * self.op.qp_weight).ravel()
+        G = self.op.qp_interp.T @ (w[:, None] * self.squeeze)
+        V = (self.film.scale / self.tau) * (self.to_grid.T @ self.modal.T)
+        return J, np.asarray(G), np.asarray(V)
+
+
+class ModalStateEHD:
+    """The "fem-ehd" film with the bush's modal coordinates as integration states (module
+    docstring): ``state_size`` = modes; :meth:`rates` gives the force and dq/dt.
+
+    Parameters: bearing; lubricant, bush (an :class:`~bearingfem.ElasticBush`), n_theta,
+    n_z, modes (>= 1) as "fem-ehd"; relaxation tau [s] > 0.
+    """
+
+    memory = True
+
+    def __init__(self, bearing: Bearing, lubricant=None, bush=None, n_theta: int = 48,
+                 n_z: int = 8, modes: int = 16, relaxation: float = 1e-5, roughness=None):
+        if bush is None:
+            raise ValueError("bush is required for the modal-state EHD film")
+        if not int(modes) >= 1:
+            raise ValueError(f"modes must be >= 1 for the modal-state EHD film, got {modes!r}")
+        if not (np.isfinite(relaxation) and relaxation > 0.0):
+            raise ValueError(f"relaxation must be > 0 [s], got {relaxation!r}")
+        self.bearing, self.lubricant, self.roughness = bearing, lubricant, roughness
+        self.n_theta, self.n_z = int(n_theta), int(n_z)
+        comp = ehd_compliance(bush, bearing.radius, bearing.length, self.n_theta, self.n_z,
+                              int(modes))
+        self.left = comp.left                                   # (grid, n) [1]
+        self.modal = comp.singular[:, None] * comp.right.T      # (n, grid) [m/Pa]
+        self.tau = float(relaxation)
+        self.state_size = comp.singular.size
+        self.steps = 0
+        self._P = None          # the last solve's pressure: a warm start only
+        self._start = None
+
+    # -- the film at (state, q) ---------------------------------------------------------
+    def _coupled(self, state: JournalState, q: np.ndarray) -> _CoupledFilm:
+        from ..fe.assembly import fe_operator
+        b = self.bearing
+        op = fe_operator(b, state, self.n_theta, self.n_z, "P1", None, False)
+        m = op.mesh
+        half_width = b.length / (2 * b.radius)
+        alpha = inertial_from_theta(m.theta, state.gamma)
+        to_film = grid_interpolation(alpha, m.zeta, self.n_theta, self.n_z, half_width)
+        # the grid's nodes in the film's angle: the film mesh's nodes are a tensor grid
+        # of the same spacing, turned by the journal's angle
+        g_alpha = np.repeat(2 * np.pi * np.arange(self.n_theta) / self.n_theta, self.n_z + 1)
+        g_zeta = np.tile(-half_width + 2 * half_width * np.arange(self.n_z + 1) / self.n_z,
+                         self.n_theta)
+        to_grid = _film_to_points(m, theta_from_inertial(g_alpha, state.gamma), g_zeta)
+        w = to_film @ (self.left @ q)                               # nodal deflection [m]
+        c = b.clearance
+        # the rigid gap, negative beyond the clearance circle where the bush opens it
+        # (an evaluation whose whole gap closes fails, and the integrator cuts its step)
+        th = op.qp_theta
+        gap_q = film_thickness(th, state.eps) + op.at_quadrature(w) / c
+        rigid_rate = state.eps_dot * np.cos(th)
+        gap0 = film_thickness(m.theta, state.eps) + w / c
+        contact, gap_nodes = None, gap0        # the gap as it is, reported (not floored)
+        if self.roughness is not None:
+            # the summits carry what the film cannot where the gap nearly closes: their
+            # pressure loads the bush and the journal; the film's flow sees a gap floored at
+            # FLOW_FLOOR sigma (a stand-in for the flow factors of a rough gap)
+            contact = self.roughness.pressure(c * gap0)
+            floor = FLOW_FLOOR * self.roughness.sigma / c
+            gap_q, gap0 = np.maximum(gap_q, floor), np.maximum(gap0, floor)
+        base = FilmFields(gap=gap_q, gap_rate=np.zeros_like(gap_q),
+                          viscosity=np.ones_like(gap_q), density=np.ones_like(gap_q),
+                          density_rate=np.zeros_like(gap_q))
+        film = ehd_film(b, state, op, base, gap0, self.lubricant, None)
+        squeeze = op.qp_interp @ (to_film @ self.left) / c
+        coupled = _CoupledFilm(film, q, self.tau, to_grid, np.asarray(squeeze), self.modal,
+                               rigid_rate, contact)
+        coupled.gap = gap_nodes
+        return coupled
+
+    def _solve(self, coupled: _CoupledFilm) -> EHDResult:
+        free = coupled.op.mesh.free
+        n = coupled.op.mesh.ndofs
+        if self._P is not None and self._P.shape == (n,):       # warm: Newton at s = 1
+            out, its = _newton(coupled, self._P.copy(), 1.0, free, "reynolds", TOL)
+            if out is not None:
+                return EHDResult(out[0], its, out[1], True, out[2], 1, 0)
+        # cold: the isoviscous film (s = 0) from no pressure, then the lubricant's fields
+        out, its = _newton(coupled, np.zeros(n), 0.0, free, "reynolds", TOL)
+        if out is None:
+            raise ConvergenceError("modal-state EHD film", its, None,
+                                   "the isoviscous start did not converge")
+        return continuation(lambda s, P: _newton(coupled, P, s, free, "reynolds", TOL),
+                            out[0], 0.0, 1.0, 1.0, 1e-3, "modal-state EHD film",
+                            "coupling s", "reduce the load or refine the mesh")
+
+    def rates(self, state: JournalState, q: np.ndarray, t: float = 0.0):
+        """((F_r, F_t) [N], dq/dt [m/s]) at the journal ``state`` and modal coordinates
+        ``q`` [m]; keeps nothing but a warm start."""
+        coupled = self._coupled(state, np.asarray(q, float))
+        P = self._solve(coupled).pressure
+        self._P = P
+        return self._force(coupled, P), coupled.rates(P)
+
+    def _force(self, coupled, P) -> tuple:
+        """(F_r, F_t) [N]: the film's and the summits' pressure on the journal."""
+        if coupled.contact is not None:
+            P = P + coupled.contact / coupled.film.scale
+        ic, is_ = coupled.op.force_integrals(P)
+        k = force_factor(self.bearing, False)
+        return k * float(ic), k * float(is_)
+
+    def solution(self, state: JournalState, q: np.ndarray) -> FilmSolution:
+        """The whole film at (``state``, ``q``): pressures, the elastic gap, friction."""
+        from ..fe.reynolds import _film_outputs
+        coupled = self._coupled(state, np.asarray(q, float))
+        res = self._solve(coupled)
+        self._P = res.pressure
+        ev = coupled.evaluate(res.pressure)
+        sol = _film_outputs(self.bearing, state, coupled.op, res, ev.values, ev.load,
+                            ev.fields, "reynolds", "full", (), "fem-P1/ehd-states",
+                            gap=coupled.gap)
+        if coupled.contact is None:
+            return sol
+        total = self._force(coupled, res.pressure)
+        return replace(sol, asperity_force_local=(total[0] - sol.force_local[0],
+                                                  total[1] - sol.force_local[1]))
+
+    # -- the RunFilm contract (rules 10-14, 16) -------------------------------------------
+    def start(self, state: JournalState, t: float) -> None:
+        self._start, self.steps, self._P = (float(t), state), 0, None
+
+    def force(self, state: JournalState, t: float) -> tuple:
+        raise ValueError("the modal-state EHD film needs its states: call rates(state, q, t)")
+
+    def commit(self, state: JournalState, t: float, q=None) -> FilmStep | None:
+        """The whole film at an accepted step (its record: force, least film, peak)."""
+        if q is None:
+            return None
+        sol = self.solution(state, q)
+        self.steps += 1
+        f, a = sol.force_local, sol.asperity_force_local
+        return FilmStep(float(t), state, (f[0] + a[0], f[1] + a[1]), sol)
+
+    def snapshot(self):
+        return (self.steps, self._P)
+
+    def restore(self, snapshot) -> None:
+        self.steps, self._P = snapshot
+
+    def replay(self, start, steps):
+        return iter(())
+
+
+def _film_to_points(mesh, theta: np.ndarray, zeta: np.ndarray) -> sp.csr_matrix:
+    """Linear-in-theta interpolation (the axial nodes coincide) from the periodic P1 film
+    mesh's nodes to points (theta in [0, 2 pi), zeta on the mesh's axial nodes)."""
+    n, nz = mesh.n_theta, mesh.n_z
+    h = 2 * np.pi / n
+    lam = mesh.length_ratio
+    j = np.rint(np.mod(mesh.theta, 2 * np.pi) / h).astype(int) % n
+    k = np.rint((mesh.zeta + lam) / (2 * lam) * nz).astype(int)
+    node = np.full((n, nz + 1), -1)
+    node[j, k] = np.arange(mesh.theta.size)
+    u = np.mod(theta, 2 * np.pi) / h
+    i0 = np.floor(u).astype(int) % n
+    a = u - np.floor(u)
+    kk = np.rint((zeta + lam) / (2 * lam) * nz).astype(int)
+    rows = np.repeat(np.arange(theta.size), 2)
+    cols = np.stack([node[i0, kk], node[(i0 + 1) % n, kk]], axis=1).ravel()
+    vals = np.stack([1 - a, a], axis=1).ravel()
+    return sp.csr_matrix((vals, (rows, cols)), shape=(theta.size, mesh.theta.size))

@@ -1,0 +1,74 @@
+"""The seed pin at 250 rad/s with the bush's modes integrated (fem-ehd coupling 'states').
+
+    python -m benchmarks.ehd_states [--turns 0.1] [--mesh 48 4] [--runs base rtol tau ...]
+
+A tenth of a turn from top dead centre (benchmarks/ehd_step.py's window), rough surfaces
+(sigma 0.2 um, E* 80.8 GPa, K 1e-3), one run per row: steps, CPU time, peak eps, least film
+(the gap itself: negative where the summits carry), peak film pressure, and the rigid JFO
+run of the same mesh for the cost ratio. docs/ehd-states.md has a table of it.
+"""
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import time
+
+from bearingfem.contact import Roughness
+from mechanism import load_scene, simulate
+
+from .ehd_run import scene
+from .ehd_step import OILS
+
+ROUGH = Roughness(sigma=0.2e-6, contact_modulus=80.8e9, elastic_factor=1e-3, friction=0.1)
+#: (name, rtol, relaxation [s], modes, oil)
+RUNS = {"base": (1e-6, 1e-5, 16, "iso"), "rtol": (1e-7, 1e-5, 16, "iso"),
+        "tau3": (1e-6, 3e-6, 16, "iso"), "tau1": (1e-6, 1e-6, 16, "iso"),
+        "roelands": (1e-6, 1e-5, 16, "roelands")}
+
+
+def states_run(turns, nt, nz, rtol, tau, modes, oil):
+    sc = scene("paper-short-ehd", 250.0, turns, n_theta=nt, n_z=nz, modes=modes,
+               film_step=0.0, lubricant=OILS[oil], coupling="states", relaxation=tau,
+               roughness=ROUGH)
+    sc = dataclasses.replace(sc, run=dataclasses.replace(sc.run, rtol=rtol))
+    t = time.process_time()
+    r = simulate(sc, progress=False)
+    return r, time.process_time() - t
+
+
+def rigid_jfo(turns, nt, nz):
+    sc = load_scene("paper-short-jfo")
+    lub = dataclasses.replace(sc.lubrication, options=dict(sc.lubrication.options,
+                                                           n_theta=nt, n_z=nz))
+    sc = dataclasses.replace(sc, lubrication=lub, run=dataclasses.replace(
+        sc.run, turns=turns, record_from_turn=0.0))
+    t = time.process_time()
+    simulate(sc, progress=False)
+    return time.process_time() - t
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--turns", type=float, default=0.1)
+    ap.add_argument("--mesh", type=int, nargs=2, default=(48, 4))
+    ap.add_argument("--runs", nargs="+", default=list(RUNS), choices=list(RUNS))
+    a = ap.parse_args(argv)
+    nt, nz = a.mesh
+    base = rigid_jfo(a.turns, nt, nz)
+    print(f"seed pin, 250 rad/s, {a.turns:g} turn, {nt} x {nz}; rigid JFO run {base:.2f} s CPU")
+    print(f"{'run':>9} {'rtol':>6} {'tau[s]':>7} {'modes':>5} {'oil':>8} {'steps':>6} "
+          f"{'CPU[s]':>7} {'x JFO':>6} {'peak eps':>9} {'h_min[um]':>9} {'p_max[MPa]':>10}")
+    for name in a.runs:
+        rtol, tau, modes, oil = RUNS[name]
+        r, cpu = states_run(a.turns, nt, nz, rtol, tau, modes, oil)
+        rec = r.film_record
+        p_max = rec[:, 3].max() / 1e6 if len(rec) else float("nan")
+        note = "" if not r.partial else f"  (stopped: {r.message[:60]})"
+        print(f"{name:>9} {rtol:6.0e} {tau:7.0e} {modes:5d} {oil:>8} {r.stats['steps']:6d} "
+              f"{cpu:7.1f} {cpu / base:6.1f} {r.eps.max() if len(r.eps) else float('nan'):9.4f} "
+              f"{1e6 * r.film_min.min() if len(r.eps) else float('nan'):9.3f} {p_max:10.1f}"
+              + note, flush=True)
+
+
+if __name__ == "__main__":
+    main()

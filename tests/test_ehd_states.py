@@ -1,0 +1,121 @@
+"""The EHD film with the bush's modal deflection integrated as states
+(bearingfem.ehd.states): its limits, its exact Jacobian, and the mechanism carrying the
+states (contract rule 16)."""
+import dataclasses
+
+import numpy as np
+import pytest
+from scipy.integrate import solve_ivp
+
+from bearingfem import Bearing, ElasticBush, JournalState, solve_reynolds
+from bearingfem.contact import Roughness
+from bearingfem.ehd.states import ModalStateEHD, grid_interpolation
+from bearingfem.ehd.transient import ehd_compliance
+from bearingfem.lubricant import Lubricant
+
+B = Bearing(radius=0.01, length=0.004, clearance=20e-6, viscosity=0.0117)
+SOLID = ElasticBush(outer_radius=0.016, modulus=110e9, poisson=0.34, model="solid")
+NT, NZ, M = 24, 4, 8
+
+
+def test_a_journal_held_still_relaxes_to_the_steady_ehd_film():
+    """A still journal (eps 0.9) from an undeflected bush: the modal states relax (dq/dt
+    -> 0) to the steady EHD solve with the same reduced compliance, force to 1e-8
+    (3e-12 measured; the grid is aligned with the film's nodes at gamma = pi). At q = 0
+    the bush's own squeeze first sucks the film down to 3 % of the rigid force. Fails
+    with the bush's squeeze term's sign flipped, or the modal load S R^T dropped."""
+    s = JournalState(eps=0.9, gamma=np.pi, omega=62.5)
+    film = ModalStateEHD(B, None, SOLID, NT, NZ, M, relaxation=1e-6)
+    F0, _ = film.rates(s, np.zeros(M))
+    rigid = solve_reynolds(B, s, NT, NZ, "P1", "reynolds", half=False).force_local
+    assert np.hypot(*F0) < 0.05 * np.hypot(*rigid)
+    sol = solve_ivp(lambda t, q: film.rates(s, q)[1], (0.0, 2e-2), np.zeros(M),
+                    method="BDF", rtol=1e-8, atol=1e-14)
+    F, qdot = film.rates(s, sol.y[:, -1])
+    steady = solve_reynolds(B, s, NT, NZ, "P1", "reynolds",
+                            bush=ehd_compliance(SOLID, B.radius, B.length, NT, NZ, M))
+    assert np.allclose(F, steady.force_local, rtol=1e-8, atol=0)
+    assert np.max(np.abs(qdot)) < 1e-10
+
+
+def test_a_stiff_bush_is_the_rigid_transient_film():
+    """A bush 1e10 times stiffer barely deflects: the force at q = 0 of a moving journal
+    (eps_dot, gamma_dot) is the rigid Reynolds-condition film's to 1e-8 (the bush's
+    squeeze at its relaxation rate is what is left: 1.7e-5 at 1e6 times stiffer, so
+    ~1e-9 here). Fails with the journal's own squeeze dropped from the gap rate."""
+    stiff = dataclasses.replace(SOLID, modulus=110e19)
+    s = JournalState(eps=0.7, eps_dot=30.0, gamma=0.4, gamma_dot=-5.0, omega=62.5)
+    film = ModalStateEHD(B, None, stiff, NT, NZ, M, relaxation=1e-6)
+    F, _ = film.rates(s, np.zeros(M))
+    rigid = solve_reynolds(B, s, NT, NZ, "P1", "reynolds", half=False).force_local
+    assert np.allclose(F, rigid, rtol=1e-8, atol=0)
+
+
+def test_the_coupled_jacobian_is_the_residuals_derivative():
+    """The film with dq/dt eliminated, R(P) = K P - load(P): its Jacobian (sparse + the
+    rank-n squeeze of the bush's rate, U V^T) against central differences, with a Barus
+    oil (2e-8 1/Pa) and a deflected bush, to 1e-6 of the largest entry. Fails with the
+    low-rank term dropped or its 12 rho weight halved."""
+    oil = Lubricant(viscosity=0.0117, barus=2e-8)
+    s = JournalState(eps=0.8, eps_dot=10.0, gamma=0.3, omega=62.5)
+    film = ModalStateEHD(B, oil, SOLID, 16, 2, 4, relaxation=1e-5)
+    q = 1e-7 * np.linspace(1.0, -0.5, film.state_size)
+    coupled = film._coupled(s, q)
+    P = np.maximum(np.asarray(solve_reynolds(B, s, 16, 2, "P1", "reynolds",
+                                             half=False).pressure) / B.pressure_scale, 0.0)
+    ev = coupled.evaluate(P)
+    J, U, V = coupled.jacobian(P, 1.0, ev)
+    full = J.toarray() + U @ V.T
+    h = 1e-6 * np.max(np.abs(P))
+    fd = np.empty_like(full)
+    for j in range(P.size):
+        d = np.zeros_like(P)
+        d[j] = h
+        fd[:, j] = (coupled.evaluate(P + d).residual - coupled.evaluate(P - d).residual) / (2 * h)
+    assert np.max(np.abs(full - fd)) < 1e-6 * np.max(np.abs(fd))
+
+
+def test_grid_interpolation_is_bilinear_and_periodic():
+    """Exact on a bilinear field, periodic in the angle (a point at 2 pi - h/2 mixes the
+    last and the first columns). Fails with the wrap to the first column dropped."""
+    n, nz, hw = 8, 2, 0.2
+    a = np.array([0.1, 2 * np.pi - np.pi / 8, 3.0])
+    z = np.array([-0.2, 0.05, 0.2])
+    I = grid_interpolation(a, z, n, nz, hw)
+    ga = np.repeat(2 * np.pi * np.arange(n) / n, nz + 1)
+    gz = np.tile(np.linspace(-hw, hw, nz + 1), n)
+    f = lambda al, ze: 1.0 + 2.0 * ze          # bilinear, periodic trivially
+    assert np.allclose(I @ f(ga, gz), f(a, z))
+    col = np.cos(ga)                           # at 2 pi - h/2: the mean of cos(2 pi - h), cos 0
+    assert np.isclose((I @ col)[1], 0.5 * (np.cos(2 * np.pi - np.pi / 4) + 1.0))
+
+
+def test_bad_input_is_named():
+    """Fails with the checks dropped."""
+    with pytest.raises(ValueError, match="relaxation"):
+        ModalStateEHD(B, None, SOLID, NT, NZ, M, relaxation=0.0)
+    with pytest.raises(ValueError, match="modes"):
+        ModalStateEHD(B, None, SOLID, NT, NZ, 0)
+    with pytest.raises(ValueError, match="bush"):
+        ModalStateEHD(B, None, None, NT, NZ, M)
+    from bearingfem.ehd.jfo_run import ehd_run_film
+    with pytest.raises(ValueError, match="coupling 'states'"):
+        ehd_run_film(B, bush=SOLID, modes=4, cavitation="jfo", coupling="states")
+
+
+def test_the_seed_pin_runs_past_the_circle_with_its_bush_integrated():
+    """Contract rule 16 in the mechanism: the seed pin at 250 rad/s, 1 % of a turn from a
+    centred start, 24 x 4, 8 modes, rough surfaces (sigma 0.2 um): the run completes,
+    passes eps = 1, records its film every accepted step, and its force and least film
+    are finite. Fails when the mechanism does not integrate the film's states (the bush
+    then never deflects and the gap closes past eps = 1)."""
+    from benchmarks.ehd_run import scene
+    from mechanism import simulate
+    rough = Roughness(sigma=0.2e-6, contact_modulus=80.8e9, elastic_factor=1e-3)
+    sc = scene("paper-short-ehd", 250.0, 0.01, n_theta=NT, n_z=NZ, modes=M, film_step=0.0,
+               lubricant=None, coupling="states", relaxation=1e-5, roughness=rough)
+    r = simulate(sc, progress=False)
+    assert not r.partial, r.message
+    assert r.eps.max() > 1.0
+    assert len(r.film_record) == r.stats["steps"]
+    assert np.all(np.isfinite(r.force_x)) and np.all(np.isfinite(r.film_min))
