@@ -23,7 +23,7 @@ ROUGH = Roughness(sigma=0.2e-6, contact_modulus=80.8e9, elastic_factor=1e-3, fri
 #: (name, rtol, relaxation [s], modes, oil)
 RUNS = {"base": (1e-6, 1e-5, 16, "iso"), "rtol": (1e-7, 1e-5, 16, "iso"),
         "tau3": (1e-6, 3e-6, 16, "iso"), "tau1": (1e-6, 1e-6, 16, "iso"),
-        "roelands": (1e-6, 1e-5, 16, "roelands")}
+        "modes32": (1e-6, 1e-5, 32, "iso"), "roelands": (1e-6, 1e-5, 16, "roelands")}
 
 
 def states_run(turns, nt, nz, rtol, tau, modes, oil):

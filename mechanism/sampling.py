@@ -57,8 +57,8 @@ def sample_run(scene, pieces, effects, g, stats, partial, message):
     live = [e for e in effects if not getattr(e, "memory", False)]
     recorded = [e.recorded_force(t) for e in effects if getattr(e, "memory", False)]
     for i in range(n):
-        q, A, X, qd, Ad, _ = coordinates(m, Y[:6, i])    # beyond 6: a film's own states
-        fx, fy = joint_force(live, joint_kinematics(m, Y[:6, i]))
+        q, A, X, qd, Ad, _ = coordinates(m, Y[:, i])
+        fx, fy = joint_force(live, joint_kinematics(m, Y[:, i]))
         for rx, ry in recorded:
             fx, fy = fx + float(rx[i]), fy + float(ry[i])
         out["force_x"][i], out["force_y"][i] = fx, fy

@@ -70,14 +70,15 @@ class _CoupledFilm:
     docstring): what :func:`~bearingfem.ehd.newton._newton` asks of a film."""
 
     def __init__(self, film, q, relaxation, to_grid, squeeze, modal, rigid_rate,
-                 contact=None):
+                 contact=None, gap=None):
         self.film, self.op = film, film.op
+        self.gap = gap                  # the nodal gap H as it is (not floored), reported
         self.contact = contact          # the summits' pressure at the film nodes [Pa] or None
         self.q, self.tau = q, relaxation
         self.to_grid = to_grid          # film nodes -> grid nodes (nodal values)
         self.squeeze = squeeze          # (E*Q, n): d(dH/dt)/d(dq/dt) at the points [1/m]
         self.modal = modal              # (n, grid): S R^T [m/Pa]
-        self.rigid_rate = rigid_rate    # (E, Q) dH/dt of the journal's motion [1/s]
+        self.rigid_rate = rigid_rate    # (E, Q) dH/dt at q's rate 0, film frame [1/s]
 
     def rates(self, P):
         """dq/dt [m/s] at nodal P (dimensionless, p = scale P)."""
@@ -155,7 +156,11 @@ class ModalStateEHD:
         # (an evaluation whose whole gap closes fails, and the integrator cuts its step)
         th = op.qp_theta
         gap_q = film_thickness(th, state.eps) + op.at_quadrature(w) / c
-        rigid_rate = state.eps_dot * np.cos(th)
+        # dH/dt at a film point with q held: the journal's squeeze, and the deflection
+        # (fixed in the bush) passing under the film's frame as the journal whirls:
+        # gamma_dot dw/dalpha (the wedge term's omega - 2 gamma_dot covers the rest)
+        dw = np.asarray(m.basis.interpolate(w).grad[0])
+        rigid_rate = state.eps_dot * np.cos(th) + state.gamma_dot * dw / c
         gap0 = film_thickness(m.theta, state.eps) + w / c
         contact, gap_nodes = None, gap0        # the gap as it is, reported (not floored)
         if self.roughness is not None:
@@ -170,10 +175,8 @@ class ModalStateEHD:
                           density_rate=np.zeros_like(gap_q))
         film = ehd_film(b, state, op, base, gap0, self.lubricant, None)
         squeeze = op.qp_interp @ (to_film @ self.left) / c
-        coupled = _CoupledFilm(film, q, self.tau, to_grid, np.asarray(squeeze), self.modal,
-                               rigid_rate, contact)
-        coupled.gap = gap_nodes
-        return coupled
+        return _CoupledFilm(film, q, self.tau, to_grid, np.asarray(squeeze), self.modal,
+                            rigid_rate, contact, gap_nodes)
 
     def _solve(self, coupled: _CoupledFilm) -> EHDResult:
         free = coupled.op.mesh.free
