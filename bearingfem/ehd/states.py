@@ -133,7 +133,6 @@ class ModalStateEHD:
         self.state_size = comp.singular.size
         self.steps = 0
         self._P = None          # the last solve's pressure: a warm start only
-        self._start = None
 
     # -- the film at (state, q) ---------------------------------------------------------
     def _coupled(self, state: JournalState, q: np.ndarray) -> _CoupledFilm:
@@ -228,7 +227,7 @@ class ModalStateEHD:
 
     # -- the RunFilm contract (rules 10-14, 16) -------------------------------------------
     def start(self, state: JournalState, t: float) -> None:
-        self._start, self.steps, self._P = (float(t), state), 0, None
+        self.steps, self._P = 0, None
 
     def force(self, state: JournalState, t: float) -> tuple:
         raise ValueError("the modal-state EHD film needs its states: call rates(state, q, t)")
@@ -249,6 +248,7 @@ class ModalStateEHD:
         self.steps, self._P = snapshot
 
     def replay(self, start, steps):
+        """Nothing: a step's film needs the states, which the film record does not keep."""
         return iter(())
 
 
