@@ -16,6 +16,8 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import signal
+import threading
 import time
 
 import numpy as np
@@ -59,6 +61,21 @@ def build_effects(scene: Scene):
     if scene.spring is not None:
         effects.append(LinearSpring(scene.spring.stiffness, scene.spring.damping))
     return effects, film, contact
+
+
+def _catch_sigint(hits: list):
+    """Count Ctrl-C in ``hits`` instead of raising at once (the run stops at its next step,
+    :func:`mechanism.stepping.integrate`); a second Ctrl-C raises at once. Returns the
+    function that puts the previous handler back (nothing to do off the main thread)."""
+    if threading.current_thread() is not threading.main_thread():
+        return lambda: None
+
+    def handler(signum, frame):
+        hits.append(signum)
+        if len(hits) > 1:
+            raise KeyboardInterrupt
+    previous = signal.signal(signal.SIGINT, handler)
+    return lambda: signal.signal(signal.SIGINT, previous)
 
 
 def _initial_state(scene: Scene):
@@ -137,6 +154,8 @@ def simulate(scene: Scene, progress: bool | None = None) -> SimulationResult:
     pieces, steps, message, partial, cuts = [], 0, "completed", False, []
     first_step = None
     start = time.perf_counter()
+    sigints = []
+    restore = _catch_sigint(sigints)
     try:
         while True:
             t_stop = min(t + 0.25 * turn_time, t_limit)
@@ -144,7 +163,8 @@ def simulate(scene: Scene, progress: bool | None = None) -> SimulationResult:
                 opts["first_step"] = min(first_step, t_stop - t)
             events[1] = ev_out if in_contact else ev_in
             sol = integrate(rhs, (t, t_stop), y, events=events,
-                            accept=accept if film is not None else None, **opts)
+                            accept=accept if film is not None else None,
+                            interrupted=lambda: bool(sigints), **opts)
             cuts.extend(sol.cuts)
             if sol.status == -1:
                 raise RunStopped(f"integrator failed at t = {sol.t[-1]:.6g} s: {sol.message}")
@@ -175,6 +195,8 @@ def simulate(scene: Scene, progress: bool | None = None) -> SimulationResult:
         partial, message = True, f"interrupted at t = {t:.6g} s"
     except (ValueError, ArithmeticError, np.linalg.LinAlgError, STEP_FAILURE) as err:
         partial, message = True, f"stopped at t = {t:.6g} s: {type(err).__name__}: {err}"
+    finally:
+        restore()
     wall = time.perf_counter() - start
     bar.close(message if partial else "done", complete=not partial)
     stats = {"wall_time": wall, "steps": steps, "rhs_evals": n_rhs[0],

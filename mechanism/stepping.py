@@ -63,7 +63,7 @@ class Segment:
 
 
 def integrate(fun, t_span, y0, method: str = "LSODA", events=(), accept=None,
-              max_cuts: int = 20, **options) -> Segment:
+              max_cuts: int = 20, interrupted=None, **options) -> Segment:
     """Integrate y' = fun(t, y) over ``t_span`` with the scipy method ``method`` (a name of
     ``solve_ivp``), ``events`` as ``solve_ivp`` takes them, ``accept(t, y)`` called at each
     accepted step (module docstring) and the solver's ``options`` (rtol, atol, max_step,
@@ -128,6 +128,10 @@ def integrate(fun, t_span, y0, method: str = "LSODA", events=(), accept=None,
             ys.append(y)
         if changed and status is None and hasattr(solver, "f"):
             solver.f = solver.fun(t, y)     # LSODA and BDF keep none (BDF: differences)
+        if interrupted is not None and interrupted():
+            # Ctrl-C seen by the caller's handler: stop here, between steps, in Python (an
+            # interrupt raised inside a compiled solver's callback can be lost)
+            raise KeyboardInterrupt
     message = MESSAGES.get(status, message)
     ts = np.array(ts)
     dense = OdeSolution(ts, interpolants, alt_segment=solver_class in (BDF, LSODA)) \
