@@ -187,8 +187,11 @@ class ModalStateEHD:
         # cold: the isoviscous film (s = 0) from no pressure, then the lubricant's fields
         out, its = _newton(coupled, np.zeros(n), 0.0, free, "reynolds", TOL)
         if out is None:
+            closed = float(np.min(coupled.gap)) <= 0.0
             raise ConvergenceError("modal-state EHD film", its, None,
-                                   "the isoviscous start did not converge")
+                                   "its isoviscous start" + (
+                                       " (the gap is closed at some nodes: without roughness "
+                                       "nothing carries that contact)" if closed else ""))
         return continuation(lambda s, P: _newton(coupled, P, s, free, "reynolds", TOL),
                             out[0], 0.0, 1.0, 1.0, 1e-3, "modal-state EHD film",
                             "coupling s", "reduce the load or refine the mesh")
