@@ -31,6 +31,7 @@ from .asperity import contact_deflection, deflection_factors
 from ..elastic import BushCompliance, ElasticBush, ReducedCompliance, bush_compliance
 from ..fields import FilmFields
 from ..fe.general import film_system
+from ..solvers.pattern import Pattern
 
 __all__ = ["EHDFilm", "ehd_film", "dof_compliance"]
 
@@ -120,6 +121,10 @@ class JacobianTables:
     value: np.ndarray      # (nb, E, Q) phi_j (no weight)
     dx: np.ndarray         # (E, Q) quadrature weights
     shape: tuple
+    pattern: Pattern       # the Jacobian's pattern (checked once)
+    rows: np.ndarray       # the row of each of its entries
+    diagonal: np.ndarray   # the place of each diagonal entry in it
+    stiffness_diagonal: np.ndarray   # the same in the operator's stiffness pattern
 
 
 @lru_cache(maxsize=16)
@@ -134,12 +139,19 @@ def jacobian_tables(op) -> JacobianTables:
     indptr = np.searchsorted(rows, np.arange(N + 1)).astype(np.int32)
     stiff_rows = np.repeat(np.arange(N, dtype=np.int64), np.diff(op.indptr))
     value = np.array([np.asarray(basis.basis[i][0]) for i in range(nb)])
+    diagonal = np.arange(N, dtype=np.int64) * (N + 1)
+    stiff_keys = stiff_rows * N + op.indices
+    if not (np.isin(diagonal, keys).all() and np.isin(diagonal, stiff_keys).all()):
+        raise ValueError("the film's patterns must hold every diagonal entry")
     return JacobianTables(
         indptr=indptr, indices=cols.astype(np.int32), positions=np.searchsorted(keys, local),
         from_stiffness=np.searchsorted(keys, stiff_rows * N + op.indices),
         phi=value * dx, dphi=np.array([np.asarray(basis.basis[i][0].grad) * dx
                                        for i in range(nb)]),
-        value=value, dx=np.asarray(dx), shape=(N, N))
+        value=value, dx=np.asarray(dx), shape=(N, N),
+        pattern=Pattern(indptr, cols.astype(np.int32), (N, N)), rows=rows,
+        diagonal=np.searchsorted(keys, diagonal),
+        stiffness_diagonal=np.searchsorted(stiff_keys, diagonal))
 
 
 @dataclass(frozen=True, eq=False)
@@ -238,9 +250,10 @@ class EHDFilm:
             if not np.all((field > 0.0) & np.isfinite(field)):
                 return None
         values, load = film_system(self.op, film, self.wedge, self.eps)
-        K = sp.csr_matrix((values, self.op.indices, self.op.indptr), shape=self.op.shape)
-        size = np.abs(K) @ np.abs(P) + np.abs(load)
-        return FilmState(film, slopes, values, load, K @ P - load, size, contact)
+        pattern = self.op.pattern
+        size = pattern.matrix(np.abs(values)) @ np.abs(P) + np.abs(load)
+        return FilmState(film, slopes, values, load, pattern.matrix(values) @ P - load, size,
+                         contact)
 
     def system(self, P: np.ndarray, s: float = 1.0):
         """(evaluated fields, stiffness values on the pattern, load) at pressure P, or
@@ -280,12 +293,11 @@ class EHDFilm:
             data += assemble(ds * (drho * H**3 / mu - rho * H**3 * dmu / mu**2),
                              ds * 6.0 * self.wedge * drho * H,
                              ds * -12.0 * drho * film.gap_rate)
-        J = sp.csc_matrix(sp.csr_matrix((data, t.indices, t.indptr), shape=t.shape))
+        J = t.pattern.matrix(data)
         if self.compliance is None:
             return J, None, None
         dsq_H = -12.0 * film.density_rate * np.ones_like(H)
-        TH = sp.csr_matrix((assemble(3.0 * rho * H**2 / mu, 6.0 * self.wedge * rho, dsq_H),
-                            t.indices, t.indptr), shape=t.shape)
+        TH = t.pattern.matrix(assemble(3.0 * rho * H**2 / mu, 6.0 * self.wedge * rho, dsq_H))
         k = s * self.scale / self.clearance
         c = self.compliance
         if ev.contact is not None:      # dw/dp through the summits' stiffness (asperity.py)

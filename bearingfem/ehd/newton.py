@@ -27,6 +27,7 @@ import scipy.sparse as sp
 from scipy.sparse.linalg import splu
 
 from ..errors import ConvergenceError
+from .coupling import jacobian_tables
 
 __all__ = ["EHDResult", "solve_ehd", "ConvergenceError"]
 
@@ -68,8 +69,8 @@ def _merit(film, P, s, free, cavitation):
     if cavitation != "reynolds":
         return R[free], scale, np.zeros(free.size, bool), ev
     # the stiffness diagonal: the pattern's diagonal entries
-    K = sp.csr_matrix((values, film.op.indices, film.op.indptr), shape=film.op.shape)
-    dP, Rf = K.diagonal()[free] * P[free], R[free]
+    d = values[jacobian_tables(film.op).stiffness_diagonal]
+    dP, Rf = d[free] * P[free], R[free]
     return np.minimum(dP, Rf), scale, dP < Rf, ev
 
 
@@ -79,24 +80,40 @@ def _newton_step(film, P, s, free, phi, held, ev):
     J, U, V = film.jacobian(P, s, ev)
     I, A = free[~held], free[held]
     dA = -P[A]
-    J_rows = J[I]
-    rhs = -phi[~held] - J_rows[:, A] @ dA
-    M = J_rows[:, I]
+    known = np.zeros_like(P)
+    known[A] = dA
+    rhs = -phi[~held] - (J @ known)[I]
+    block = _block(jacobian_tables(film.op), J.data, I, P.size)   # J[I][:, I], transposed
     if U is None:
-        dI = splu(M.tocsc()).solve(rhs)
+        dI = splu(block).solve(rhs, trans="T")
     elif V is None:                    # full compliance: one dense LU
         rhs = rhs - U[np.ix_(I, A)] @ dA
-        dI = la.solve(M.toarray() + U[np.ix_(I, I)], rhs, check_finite=False)
+        dI = la.solve(block.toarray().T + U[np.ix_(I, I)], rhs, check_finite=False)
     else:                              # reduced compliance: Woodbury on the sparse LU
         UI, VI = U[I], V[I]
         rhs = rhs - UI @ (V[A].T @ dA)
-        lu = splu(M.tocsc())
-        y, Z = lu.solve(rhs), lu.solve(UI)
+        lu = splu(block)
+        y, Z = lu.solve(rhs, trans="T"), lu.solve(UI, trans="T")
         small = np.eye(VI.shape[1]) + VI.T @ Z
         dI = y - Z @ la.solve(small, VI.T @ y, check_finite=False)
     step = np.zeros_like(P)
     step[I], step[A] = dI, dA
     return step
+
+
+def _block(tables, data, I, n):
+    """The block J[I][:, I] of the Jacobian with values ``data`` on ``tables``' pattern,
+    as the CSC matrix of its transpose (the CSR rows taken as columns: splu takes it
+    without conversion; solve with trans="T"). Built by masks on the pattern: scipy's
+    fancy slicing cost more than the factorisation on a coupled run's meshes."""
+    keep = np.zeros(n, bool)
+    keep[I] = True
+    number = np.cumsum(keep) - 1
+    cols = tables.pattern.indices
+    sel = keep[tables.rows] & keep[cols]
+    indptr = np.zeros(I.size + 1, np.int64)
+    np.cumsum(np.bincount(number[tables.rows[sel]], minlength=I.size), out=indptr[1:])
+    return sp.csc_matrix((data[sel], number[cols[sel]], indptr), shape=(I.size, I.size))
 
 
 def _newton(film, P, s, free, cavitation, tol):

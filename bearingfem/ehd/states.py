@@ -36,7 +36,7 @@ from ..fields import FilmFields
 from ..film import film_thickness, inertial_from_theta, theta_from_inertial
 from ..scales import force_factor
 from ..solution import FilmSolution
-from .coupling import ehd_film
+from .coupling import ehd_film, jacobian_tables
 from .newton import EHDResult, _newton, continuation
 from .transient import ehd_compliance
 
@@ -59,10 +59,9 @@ def grid_interpolation(alpha: np.ndarray, zeta: np.ndarray, n_theta: int, n_z: i
     j, k = np.floor(u).astype(int), np.minimum(np.floor(v).astype(int), n_z - 1)
     a, b = u - j, v - k
     j0, j1 = j % n_theta, (j + 1) % n_theta
-    rows = np.repeat(np.arange(alpha.size), 4)
     cols = np.stack([j0 * m + k, j0 * m + k + 1, j1 * m + k, j1 * m + k + 1], axis=1).ravel()
     vals = np.stack([(1 - a) * (1 - b), (1 - a) * b, a * (1 - b), a * b], axis=1).ravel()
-    return sp.csr_matrix((vals, (rows, cols)), shape=(alpha.size, n_theta * m))
+    return _rows_of(vals, cols, 4, n_theta * m)
 
 
 class _CoupledFilm:
@@ -79,6 +78,7 @@ class _CoupledFilm:
         self.squeeze = squeeze          # (E*Q, n): d(dH/dt)/d(dq/dt) at the points [1/m]
         self.modal = modal              # (n, grid): S R^T [m/Pa]
         self.rigid_rate = rigid_rate    # (E, Q) dH/dt at q's rate 0, film frame [1/s]
+        self._G = self._V = None        # the Jacobian's low-rank factors, kept per density
 
     def rates(self, P):
         """dq/dt [m/s] at nodal P (dimensionless, p = scale P)."""
@@ -98,11 +98,13 @@ class _CoupledFilm:
         film, _ = self._at(P)
         J, _, _ = film.jacobian(P, s, ev)
         # the squeeze load of the bush's rate: d R_i / d(dH/dt)_q = 12 rho phi_i dx
-        rho = ev.fields.density
-        w = (12.0 * np.broadcast_to(rho, self.op.qp_weight.shape) * self.op.qp_weight).ravel()
-        G = self.op.qp_interp.T @ (w[:, None] * self.squeeze)
-        V = (self.film.scale / self.tau) * (self.to_grid.T @ self.modal.T)
-        return J, np.asarray(G), np.asarray(V)
+        rho = np.broadcast_to(ev.fields.density, self.op.qp_weight.shape)
+        if self._G is None or not np.array_equal(rho, self._G[0]):
+            w = (12.0 * rho * self.op.qp_weight).ravel()
+            self._G = (rho, np.asarray(self.op.qp_interp.T @ (w[:, None] * self.squeeze)))
+        if self._V is None:     # the same at every pressure of this film
+            self._V = np.asarray((self.film.scale / self.tau) * (self.to_grid.T @ self.modal.T))
+        return J, self._G[1], self._V
 
 
 class ModalStateEHD:
@@ -158,7 +160,8 @@ class ModalStateEHD:
         # dH/dt at a film point with q held: the journal's squeeze, and the deflection
         # (fixed in the bush) passing under the film's frame as the journal whirls:
         # gamma_dot dw/dalpha (the wedge term's omega - 2 gamma_dot covers the rest)
-        dw = np.asarray(m.basis.interpolate(w).grad[0])
+        t = jacobian_tables(op)
+        dw = np.einsum("jeq,je->eq", t.dphi[:, 0], w[m.basis.element_dofs]) / t.dx
         rigid_rate = state.eps_dot * np.cos(th) + state.gamma_dot * dw / c
         gap0 = film_thickness(m.theta, state.eps) + w / c
         contact, gap_nodes = None, gap0        # the gap as it is, reported (not floored)
@@ -269,7 +272,15 @@ def _film_to_points(mesh, theta: np.ndarray, zeta: np.ndarray) -> sp.csr_matrix:
     i0 = np.floor(u).astype(int) % n
     a = u - np.floor(u)
     kk = np.rint((zeta + lam) / (2 * lam) * nz).astype(int)
-    rows = np.repeat(np.arange(theta.size), 2)
     cols = np.stack([node[i0, kk], node[(i0 + 1) % n, kk]], axis=1).ravel()
     vals = np.stack([1 - a, a], axis=1).ravel()
-    return sp.csr_matrix((vals, (rows, cols)), shape=(theta.size, mesh.theta.size))
+    return _rows_of(vals, cols, 2, mesh.theta.size)
+
+
+def _rows_of(vals, cols, per_row: int, n_cols: int) -> sp.csr_matrix:
+    """The CSR matrix with ``per_row`` entries (``vals`` at ``cols``, row after row) in
+    each row: built on its row pointer directly (a COO build sorts, and cost more than
+    the film's factorisation on a coupled run's meshes)."""
+    n_rows = cols.size // per_row
+    indptr = np.arange(0, cols.size + 1, per_row)
+    return sp.csr_matrix((vals, cols, indptr), shape=(n_rows, n_cols))
