@@ -54,6 +54,9 @@ def main(argv=None):
     ap.add_argument("--runs", nargs="+", default=list(RUNS), choices=list(RUNS))
     a = ap.parse_args(argv)
     nt, nz = a.mesh
+    # warm-up: the first run of a process builds the meshes' operators and tables
+    rigid_jfo(0.002, nt, nz)
+    states_run(0.002, nt, nz, *RUNS["base"])
     base = rigid_jfo(a.turns, nt, nz)
     print(f"seed pin, 250 rad/s, {a.turns:g} turn, {nt} x {nz}; rigid JFO run {base:.2f} s CPU")
     print(f"{'run':>9} {'rtol':>6} {'tau[s]':>7} {'modes':>5} {'oil':>8} {'steps':>6} "

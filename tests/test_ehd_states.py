@@ -9,7 +9,9 @@ from scipy.integrate import solve_ivp
 
 from bearingfem import Bearing, ElasticBush, JournalState, solve_reynolds
 from bearingfem.contact import Roughness
-from bearingfem.ehd.states import ModalStateEHD, grid_interpolation
+from bearingfem.ehd.states import FrameShift, ModalStateEHD, grid_interpolation, node_grid
+from bearingfem.fe.assembly import fe_operator
+from bearingfem.film import inertial_from_theta
 from bearingfem.ehd.transient import ehd_compliance
 from bearingfem.lubricant import Lubricant
 
@@ -88,6 +90,51 @@ def test_grid_interpolation_is_bilinear_and_periodic():
     assert np.allclose(I @ f(ga, gz), f(a, z))
     col = np.cos(ga)                           # at 2 pi - h/2: the mean of cos(2 pi - h), cos 0
     assert np.isclose((I @ col)[1], 0.5 * (np.cos(2 * np.pi - np.pi / 4) + 1.0))
+
+
+@pytest.mark.parametrize("gamma", [0.0, 0.3, -2.0, 2 * np.pi / 12 - np.pi, 5.9])
+def test_frame_shift_is_the_grid_interpolation_at_the_nodes(gamma):
+    """The film's shift between the bush's grid and its nodes (two blended rolls) against
+    the bilinear grid interpolation evaluated at the nodes' inertial angles, to round-off,
+    one angle on a whole cell (-pi + h); its to_grid is that matrix's transpose. Fails
+    with the shift's blend weights swapped or the shift one cell off."""
+    n, nz = 12, 3
+    op = fe_operator(B, JournalState(0.5, gamma=gamma), n, nz, "P1", None, False)
+    m = op.mesh
+    hw = B.length / (2 * B.radius)
+    I = grid_interpolation(inertial_from_theta(m.theta, gamma), m.zeta, n, nz, hw).toarray()
+    shift = FrameShift(node_grid(m), gamma)
+    G = np.random.default_rng(1).standard_normal((n * (nz + 1), 3))
+    assert np.allclose(shift.to_nodes(G), I @ G, rtol=0, atol=1e-13)
+    F = np.random.default_rng(2).standard_normal(m.theta.size)
+    assert np.allclose(shift.to_grid(F), I.T @ F, rtol=0, atol=1e-13)
+
+
+def test_chord_steps_on_the_kept_factorisation_give_the_newton_film(monkeypatch):
+    """A nearby state solved by chord steps on the last solve's factorisation (as a run's
+    right-hand sides are) equals a fresh film's Newton solve there: force and dq/dt to
+    1e-8 (the solve's tolerance is 1e-10 of the residual's terms). The chord path must be
+    the one taken. Fails with the chord's step sign flipped or its residual test loosened
+    (a step short of convergence kept)."""
+    import bearingfem.ehd.states as states
+    taken = []
+
+    def chord(*args, **kw):
+        out = states_chord(*args, **kw)
+        taken.append(out[0] is not None)
+        return out
+    states_chord = states._chord
+    monkeypatch.setattr(states, "_chord", chord)
+    q = 1e-7 * np.linspace(1.0, -0.5, M)
+    s1 = JournalState(eps=0.9, eps_dot=5.0, gamma=1.0, gamma_dot=1.0, omega=62.5)
+    s2 = dataclasses.replace(s1, eps=0.9005, gamma=1.0005)
+    film = ModalStateEHD(B, None, SOLID, NT, NZ, M, relaxation=1e-5)
+    film.rates(s1, q)
+    F, qdot = film.rates(s2, q)
+    assert taken == [True]
+    F0, qdot0 = ModalStateEHD(B, None, SOLID, NT, NZ, M, relaxation=1e-5).rates(s2, q)
+    assert np.allclose(F, F0, rtol=1e-8, atol=0)
+    assert np.allclose(qdot, qdot0, rtol=1e-8, atol=1e-8 * np.max(np.abs(qdot0)))
 
 
 def test_bad_input_is_named():

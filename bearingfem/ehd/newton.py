@@ -74,31 +74,46 @@ def _merit(film, P, s, free, cavitation):
     return np.minimum(dP, Rf), scale, dP < Rf, ev
 
 
-def _newton_step(film, P, s, free, phi, held, ev):
-    """The Newton (semismooth) step on all dofs (zero on fixed dofs): held rows step to
-    P = 0, the others take the Newton row of R (= Phi there); ``ev`` is the film at P."""
-    J, U, V = film.jacobian(P, s, ev)
-    I, A = free[~held], free[held]
-    dA = -P[A]
-    known = np.zeros_like(P)
-    known[A] = dA
-    rhs = -phi[~held] - (J @ known)[I]
-    block = _block(jacobian_tables(film.op), J.data, I, P.size)   # J[I][:, I], transposed
-    if U is None:
-        dI = splu(block).solve(rhs, trans="T")
-    elif V is None:                    # full compliance: one dense LU
-        rhs = rhs - U[np.ix_(I, A)] @ dA
-        dI = la.solve(block.toarray().T + U[np.ix_(I, I)], rhs, check_finite=False)
-    else:                              # reduced compliance: Woodbury on the sparse LU
-        UI, VI = U[I], V[I]
-        rhs = rhs - UI @ (V[A].T @ dA)
-        lu = splu(block)
-        y, Z = lu.solve(rhs, trans="T"), lu.solve(UI, trans="T")
-        small = np.eye(VI.shape[1]) + VI.T @ Z
-        dI = y - Z @ la.solve(small, VI.T @ y, check_finite=False)
-    step = np.zeros_like(P)
-    step[I], step[A] = dI, dA
-    return step
+class _Factor:
+    """The semismooth Newton system at one pressure, factorised: rows held cavitated
+    (``held``, over the free dofs) step to P = 0, the others take the Newton row of R.
+    :meth:`step` gives the step for a residual Phi; at another pressure of a nearby film
+    with the same held rows it is a chord step (the old Jacobian, :func:`_chord`)."""
+
+    def __init__(self, film, P, s, free, held, ev):
+        J, U, V = film.jacobian(P, s, ev)
+        self.held, self.J, self.U, self.V = held, J, U, V
+        self.I, self.A = free[~held], free[held]
+        I = self.I
+        block = _block(jacobian_tables(film.op), J.data, I, P.size)   # J[I][:, I]^T
+        if U is None:
+            self.lu = splu(block)
+        elif V is None:                # full compliance: one dense LU
+            self.dense = la.lu_factor(block.toarray().T + U[np.ix_(I, I)], check_finite=False)
+        else:                          # reduced compliance: Woodbury on the sparse LU
+            self.lu = splu(block)
+            self.UI, self.VI = U[I], V[I]
+            self.Z = self.lu.solve(self.UI, trans="T")
+            self.small = la.lu_factor(np.eye(V.shape[1]) + self.VI.T @ self.Z,
+                                      check_finite=False)
+
+    def step(self, P, phi):
+        """The step on all dofs (zero on fixed dofs) for Phi ``phi`` at ``P``."""
+        I, A, U, V = self.I, self.A, self.U, self.V
+        dA = -P[A]
+        known = np.zeros_like(P)
+        known[A] = dA
+        rhs = -phi[~self.held] - (self.J @ known)[I]
+        if U is None:
+            dI = self.lu.solve(rhs, trans="T")
+        elif V is None:
+            dI = la.lu_solve(self.dense, rhs - U[np.ix_(I, A)] @ dA, check_finite=False)
+        else:
+            y = self.lu.solve(rhs - self.UI @ (V[A].T @ dA), trans="T")
+            dI = y - self.Z @ la.lu_solve(self.small, self.VI.T @ y, check_finite=False)
+        step = np.zeros_like(P)
+        step[I], step[A] = dI, dA
+        return step
 
 
 def _block(tables, data, I, n):
@@ -116,9 +131,10 @@ def _block(tables, data, I, n):
     return sp.csc_matrix((data[sel], number[cols[sel]], indptr), shape=(I.size, I.size))
 
 
-def _newton(film, P, s, free, cavitation, tol):
+def _newton(film, P, s, free, cavitation, tol, keep=None):
     """Damped (semismooth) Newton at coupling s from P: ((P, residual, active) or None
-    when it stalls, the iterations it took)."""
+    when it stalls, the iterations it took). ``keep`` (a list): the last step's
+    factorisation is put in it, for :func:`_chord` at a nearby film."""
     phi, scale, held, ev = _merit(film, P, s, free, cavitation)
     if phi is None:
         return None, 0
@@ -131,9 +147,12 @@ def _newton(film, P, s, free, cavitation, tol):
         if it == MAX_NEWTON:
             return None, it
         try:
-            step = _newton_step(film, P, s, free, phi, held, ev)
+            factor = _Factor(film, P, s, free, held, ev)
+            step = factor.step(P, phi)
         except (RuntimeError, la.LinAlgError):       # singular Jacobian: treat as a stall
             return None, it
+        if keep is not None:
+            keep[:] = [factor]
         norm = float(np.linalg.norm(phi))
         alpha = 1.0
         while alpha >= 1.0 / 64:
@@ -148,6 +167,30 @@ def _newton(film, P, s, free, cavitation, tol):
         else:
             return None, it + 1
     return None, MAX_NEWTON
+
+
+def _chord(film, P, s, free, tol, factor, max_steps=4, rate=0.1):
+    """Chord steps at coupling s from P with a kept factorisation ``factor`` (of a nearby
+    film: the last right-hand side's in a run): ((P, residual, active), steps) when the
+    residual test of :func:`_newton` passes, (None, steps) as soon as the held rows differ
+    from the factor's, a step fails to cut max |Phi| by ``rate`` or ``max_steps`` pass
+    (then Newton takes over). Swift-Stieber films ("reynolds") only."""
+    phi, scale, held, _ = _merit(film, P, s, free, "reynolds")
+    last = np.inf
+    for it in range(max_steps + 1):
+        if phi is None:
+            return None, it
+        res = float(np.max(np.abs(phi), initial=0.0)) / scale
+        if res <= tol:
+            active = np.zeros(P.size, bool)
+            active[free[held]] = True
+            return (P, res, active), it
+        if it == max_steps or res > rate * last or not np.array_equal(held, factor.held):
+            return None, it
+        last = res
+        P = P + factor.step(P, phi)
+        phi, scale, held, _ = _merit(film, P, s, free, "reynolds")
+    return None, max_steps
 
 
 def solve_ehd(film, P0, cavitation: str, tol: float = 1e-10,

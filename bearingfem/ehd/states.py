@@ -25,6 +25,7 @@ steady EHD solve (tests/test_ehd_states.py).
 from __future__ import annotations
 
 from dataclasses import replace
+from functools import lru_cache
 
 import numpy as np
 import scipy.sparse as sp
@@ -33,14 +34,14 @@ from ..bearing import Bearing, JournalState
 from ..contract import FilmStep
 from ..errors import ConvergenceError
 from ..fields import FilmFields
-from ..film import film_thickness, inertial_from_theta, theta_from_inertial
+from ..film import film_thickness, inertial_from_theta
 from ..scales import force_factor
 from ..solution import FilmSolution
 from .coupling import ehd_film, jacobian_tables
-from .newton import EHDResult, _newton, continuation
+from .newton import EHDResult, _chord, _newton, continuation
 from .transient import ehd_compliance
 
-__all__ = ["ModalStateEHD", "grid_interpolation"]
+__all__ = ["ModalStateEHD", "FrameShift", "grid_interpolation"]
 
 #: Newton's tolerance on the film's residual (as the steady EHD solve's).
 TOL = 1e-10
@@ -68,13 +69,13 @@ class _CoupledFilm:
     """The EHD film of one journal state and one q, with dq/dt eliminated (module
     docstring): what :func:`~bearingfem.ehd.newton._newton` asks of a film."""
 
-    def __init__(self, film, q, relaxation, to_grid, squeeze, modal, rigid_rate,
+    def __init__(self, film, q, relaxation, shift, squeeze, modal, rigid_rate,
                  contact=None, gap=None):
         self.film, self.op = film, film.op
         self.gap = gap                  # the nodal gap H as it is (not floored), reported
         self.contact = contact          # the summits' pressure at the film nodes [Pa] or None
         self.q, self.tau = q, relaxation
-        self.to_grid = to_grid          # film nodes -> grid nodes (nodal values)
+        self.shift = shift              # film nodes <-> grid nodes (a FrameShift)
         self.squeeze = squeeze          # (E*Q, n): d(dH/dt)/d(dq/dt) at the points [1/m]
         self.modal = modal              # (n, grid): S R^T [m/Pa]
         self.rigid_rate = rigid_rate    # (E, Q) dH/dt at q's rate 0, film frame [1/s]
@@ -83,7 +84,7 @@ class _CoupledFilm:
     def rates(self, P):
         """dq/dt [m/s] at nodal P (dimensionless, p = scale P)."""
         p = self.film.scale * P if self.contact is None else self.film.scale * P + self.contact
-        return (self.modal @ (self.to_grid @ p) - self.q) / self.tau
+        return (self.modal @ self.shift.to_grid(p) - self.q) / self.tau
 
     def _at(self, P):
         qdot = self.rates(P)
@@ -103,7 +104,8 @@ class _CoupledFilm:
             w = (12.0 * rho * self.op.qp_weight).ravel()
             self._G = (rho, np.asarray(self.op.qp_interp.T @ (w[:, None] * self.squeeze)))
         if self._V is None:     # the same at every pressure of this film
-            self._V = np.asarray((self.film.scale / self.tau) * (self.to_grid.T @ self.modal.T))
+            # to_grid's transpose is to_nodes (both blend the same two shifts)
+            self._V = (self.film.scale / self.tau) * self.shift.to_nodes(self.modal.T)
         return J, self._G[1], self._V
 
 
@@ -135,6 +137,7 @@ class ModalStateEHD:
         self.state_size = comp.singular.size
         self.steps = 0
         self._P = None          # the last solve's pressure: a warm start only
+        self._factor = []       # its last Newton factorisation: chord steps from it
 
     # -- the film at (state, q) ---------------------------------------------------------
     def _coupled(self, state: JournalState, q: np.ndarray) -> _CoupledFilm:
@@ -142,16 +145,9 @@ class ModalStateEHD:
         b = self.bearing
         op = fe_operator(b, state, self.n_theta, self.n_z, "P1", None, False)
         m = op.mesh
-        half_width = b.length / (2 * b.radius)
-        alpha = inertial_from_theta(m.theta, state.gamma)
-        to_film = grid_interpolation(alpha, m.zeta, self.n_theta, self.n_z, half_width)
-        # the grid's nodes in the film's angle: the film mesh's nodes are a tensor grid
-        # of the same spacing, turned by the journal's angle
-        g_alpha = np.repeat(2 * np.pi * np.arange(self.n_theta) / self.n_theta, self.n_z + 1)
-        g_zeta = np.tile(-half_width + 2 * half_width * np.arange(self.n_z + 1) / self.n_z,
-                         self.n_theta)
-        to_grid = _film_to_points(m, theta_from_inertial(g_alpha, state.gamma), g_zeta)
-        w = to_film @ (self.left @ q)                               # nodal deflection [m]
+        shift = FrameShift(node_grid(m), state.gamma)
+        left = shift.to_nodes(self.left)                            # (nodes, n) [1]
+        w = left @ q                                                # nodal deflection [m]
         c = b.clearance
         # the rigid gap, negative beyond the clearance circle where the bush opens it
         # (an evaluation whose whole gap closes fails, and the integrator cuts its step)
@@ -176,26 +172,33 @@ class ModalStateEHD:
                           viscosity=np.ones_like(gap_q), density=np.ones_like(gap_q),
                           density_rate=np.zeros_like(gap_q))
         film = ehd_film(b, state, op, base, gap0, self.lubricant, None)
-        squeeze = op.qp_interp @ (to_film @ self.left) / c
-        return _CoupledFilm(film, q, self.tau, to_grid, np.asarray(squeeze), self.modal,
+        squeeze = op.qp_interp @ left / c
+        return _CoupledFilm(film, q, self.tau, shift, np.asarray(squeeze), self.modal,
                             rigid_rate, contact, gap_nodes)
 
     def _solve(self, coupled: _CoupledFilm) -> EHDResult:
         free = coupled.op.mesh.free
         n = coupled.op.mesh.ndofs
-        if self._P is not None and self._P.shape == (n,):       # warm: Newton at s = 1
-            out, its = _newton(coupled, self._P.copy(), 1.0, free, "reynolds", TOL)
+        if self._P is not None and self._P.shape == (n,):
+            if self._factor:     # chord steps on the last solve's factorisation
+                out, its = _chord(coupled, self._P.copy(), 1.0, free, TOL, self._factor[0])
+                if out is not None:
+                    return EHDResult(out[0], its, out[1], True, out[2], 1, 0)
+            # warm: Newton at s = 1
+            out, its = _newton(coupled, self._P.copy(), 1.0, free, "reynolds", TOL,
+                               self._factor)
             if out is not None:
                 return EHDResult(out[0], its, out[1], True, out[2], 1, 0)
         # cold: the isoviscous film (s = 0) from no pressure, then the lubricant's fields
-        out, its = _newton(coupled, np.zeros(n), 0.0, free, "reynolds", TOL)
+        out, its = _newton(coupled, np.zeros(n), 0.0, free, "reynolds", TOL, self._factor)
         if out is None:
             closed = float(np.min(coupled.gap)) <= 0.0
             raise ConvergenceError("modal-state EHD film", its, None,
                                    "its isoviscous start" + (
                                        " (the gap is closed at some nodes: without roughness "
                                        "nothing carries that contact)" if closed else ""))
-        return continuation(lambda s, P: _newton(coupled, P, s, free, "reynolds", TOL),
+        return continuation(lambda s, P: _newton(coupled, P, s, free, "reynolds", TOL,
+                                                 self._factor),
                             out[0], 0.0, 1.0, 1.0, 1e-3, "modal-state EHD film",
                             "coupling s", "reduce the load or refine the mesh")
 
@@ -233,7 +236,7 @@ class ModalStateEHD:
 
     # -- the RunFilm contract (rules 10-14, 16) -------------------------------------------
     def start(self, state: JournalState, t: float) -> None:
-        self.steps, self._P = 0, None
+        self.steps, self._P, self._factor = 0, None, []
 
     def force(self, state: JournalState, t: float) -> tuple:
         raise ValueError("the modal-state EHD film needs its states: call rates(state, q, t)")
@@ -258,9 +261,10 @@ class ModalStateEHD:
         return iter(())
 
 
-def _film_to_points(mesh, theta: np.ndarray, zeta: np.ndarray) -> sp.csr_matrix:
-    """Linear-in-theta interpolation (the axial nodes coincide) from the periodic P1 film
-    mesh's nodes to points (theta in [0, 2 pi), zeta on the mesh's axial nodes)."""
+@lru_cache(maxsize=16)
+def node_grid(mesh) -> np.ndarray:
+    """(n_theta, n_z + 1): the periodic P1 film mesh's node at angle index j (theta = j h)
+    and axial index k."""
     n, nz = mesh.n_theta, mesh.n_z
     h = 2 * np.pi / n
     lam = mesh.length_ratio
@@ -268,13 +272,45 @@ def _film_to_points(mesh, theta: np.ndarray, zeta: np.ndarray) -> sp.csr_matrix:
     k = np.rint((mesh.zeta + lam) / (2 * lam) * nz).astype(int)
     node = np.full((n, nz + 1), -1)
     node[j, k] = np.arange(mesh.theta.size)
-    u = np.mod(theta, 2 * np.pi) / h
-    i0 = np.floor(u).astype(int) % n
-    a = u - np.floor(u)
-    kk = np.rint((zeta + lam) / (2 * lam) * nz).astype(int)
-    cols = np.stack([node[i0, kk], node[(i0 + 1) % n, kk]], axis=1).ravel()
-    vals = np.stack([1 - a, a], axis=1).ravel()
-    return _rows_of(vals, cols, 2, mesh.theta.size)
+    if np.any(node < 0) or mesh.theta.size != node.size:
+        raise ValueError("the modal-state film needs a whole periodic P1 mesh")
+    return node
+
+
+class FrameShift:
+    """Interpolation between the bush's grid and the film's nodes at journal angle gamma.
+
+    Both are tensor grids of spacing h = 2 pi / n_theta with the same axial nodes; film
+    node j sits at the inertial angle j h + gamma + pi, i.e. g = (gamma + pi) / h grid
+    cells on: linear interpolation in the angle is a blend of two shifts, (1 - a) by
+    floor(g) and a by floor(g) + 1 cells (a = g - floor(g)). Equal to
+    :func:`grid_interpolation` at the nodes (tests/test_ehd_states.py), without a sparse
+    matrix per state.
+    """
+
+    def __init__(self, node: np.ndarray, gamma: float):
+        self.node = node
+        g = np.mod(gamma + np.pi, 2 * np.pi) / (2 * np.pi) * node.shape[0]
+        self.whole = int(np.floor(g))
+        self.frac = g - self.whole
+
+    def to_nodes(self, G: np.ndarray) -> np.ndarray:
+        """Grid values (grid, ...) (C order, angle first) -> film nodal values (nodes, ...)."""
+        G = np.asarray(G)
+        n, m = self.node.shape
+        G2 = G.reshape((n, m) + G.shape[1:])
+        X = ((1 - self.frac) * np.roll(G2, -self.whole, axis=0)
+             + self.frac * np.roll(G2, -self.whole - 1, axis=0))
+        out = np.empty_like(X, shape=(n * m,) + G.shape[1:])
+        out[self.node.ravel()] = X.reshape((n * m,) + G.shape[1:])
+        return out
+
+    def to_grid(self, F: np.ndarray) -> np.ndarray:
+        """Film nodal values (nodes, ...) -> grid values (grid, ...): to_nodes' transpose."""
+        F2 = np.asarray(F)[self.node]
+        Y = (self.frac * np.roll(F2, self.whole + 1, axis=0)
+             + (1 - self.frac) * np.roll(F2, self.whole, axis=0))
+        return Y.reshape((-1,) + F2.shape[2:])
 
 
 def _rows_of(vals, cols, per_row: int, n_cols: int) -> sp.csr_matrix:
