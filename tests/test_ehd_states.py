@@ -137,6 +137,29 @@ def test_chord_steps_on_the_kept_factorisation_give_the_newton_film(monkeypatch)
     assert np.allclose(qdot, qdot0, rtol=1e-8, atol=1e-8 * np.max(np.abs(qdot0)))
 
 
+@pytest.mark.parametrize("rough", [False, True])
+def test_the_isoviscous_film_is_affine_in_the_pressure(rough):
+    """Without a lubricant the residual is built once per film as K P - load_0 + G dq/dt(P);
+    against the film built whole at each P (two pressures, deflected bush, whirling
+    journal, with and without the summits): residual and load to 1e-12 of their terms.
+    Fails with G's sign flipped or the load at dq/dt = 0 taken at q's own rate."""
+    s = JournalState(eps=0.95, eps_dot=20.0, gamma=0.7, gamma_dot=40.0, omega=62.5)
+    film = ModalStateEHD(B, None, SOLID, NT, NZ, M, relaxation=1e-5,
+                         roughness=Roughness(sigma=0.2e-6, contact_modulus=80.8e9,
+                                             elastic_factor=1e-3) if rough else None)
+    q = 2e-7 * np.linspace(1.0, -0.5, M)
+    coupled = film._coupled(s, q)
+    rng = np.random.default_rng(3)
+    for _ in range(2):
+        P = np.abs(rng.standard_normal(coupled.op.mesh.ndofs))
+        P[~np.isin(np.arange(P.size), coupled.op.mesh.free)] = 0.0
+        fast, whole = coupled.evaluate(P), coupled.film_state(P)
+        scale = np.max(whole.size)
+        assert np.max(np.abs(fast.residual - whole.residual)) < 1e-12 * scale
+        assert np.max(np.abs(fast.load - whole.load)) < 1e-12 * scale
+        assert np.allclose(fast.size, whole.size, rtol=1e-12, atol=0)
+
+
 def test_bad_input_is_named():
     """Fails with the checks dropped."""
     with pytest.raises(ValueError, match="relaxation"):

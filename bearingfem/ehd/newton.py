@@ -78,14 +78,15 @@ class _Factor:
     """The semismooth Newton system at one pressure, factorised: rows held cavitated
     (``held``, over the free dofs) step to P = 0, the others take the Newton row of R.
     :meth:`step` gives the step for a residual Phi; at another pressure of a nearby film
-    with the same held rows it is a chord step (the old Jacobian, :func:`_chord`)."""
+    it is a chord step (the old Jacobian, :func:`_chord`), and :meth:`with_held` factorises
+    the same Jacobian with other held rows."""
 
-    def __init__(self, film, P, s, free, held, ev):
-        J, U, V = film.jacobian(P, s, ev)
+    def __init__(self, J, U, V, tables, free, held):
         self.held, self.J, self.U, self.V = held, J, U, V
+        self.tables, self.free = tables, free
         self.I, self.A = free[~held], free[held]
         I = self.I
-        block = _block(jacobian_tables(film.op), J.data, I, P.size)   # J[I][:, I]^T
+        block = _block(tables, J.data, I, J.shape[0])       # J[I][:, I], transposed
         if U is None:
             self.lu = splu(block)
         elif V is None:                # full compliance: one dense LU
@@ -96,6 +97,16 @@ class _Factor:
             self.Z = self.lu.solve(self.UI, trans="T")
             self.small = la.lu_factor(np.eye(V.shape[1]) + self.VI.T @ self.Z,
                                       check_finite=False)
+
+    @classmethod
+    def at(cls, film, P, s, free, held, ev):
+        """The factorised system of ``film`` at P (``ev`` its evaluation)."""
+        J, U, V = film.jacobian(P, s, ev)
+        return cls(J, U, V, jacobian_tables(film.op), free, held)
+
+    def with_held(self, held):
+        """The same Jacobian with other held rows (no Jacobian built)."""
+        return _Factor(self.J, self.U, self.V, self.tables, self.free, held)
 
     def step(self, P, phi):
         """The step on all dofs (zero on fixed dofs) for Phi ``phi`` at ``P``."""
@@ -147,7 +158,7 @@ def _newton(film, P, s, free, cavitation, tol, keep=None):
         if it == MAX_NEWTON:
             return None, it
         try:
-            factor = _Factor(film, P, s, free, held, ev)
+            factor = _Factor.at(film, P, s, free, held, ev)
             step = factor.step(P, phi)
         except (RuntimeError, la.LinAlgError):       # singular Jacobian: treat as a stall
             return None, it
@@ -169,12 +180,14 @@ def _newton(film, P, s, free, cavitation, tol, keep=None):
     return None, MAX_NEWTON
 
 
-def _chord(film, P, s, free, tol, factor, max_steps=4, rate=0.1):
-    """Chord steps at coupling s from P with a kept factorisation ``factor`` (of a nearby
-    film: the last right-hand side's in a run): ((P, residual, active), steps) when the
-    residual test of :func:`_newton` passes, (None, steps) as soon as the held rows differ
-    from the factor's, a step fails to cut max |Phi| by ``rate`` or ``max_steps`` pass
-    (then Newton takes over). Swift-Stieber films ("reynolds") only."""
+def _chord(film, P, s, free, tol, keep, max_steps=6, rate=0.3):
+    """Chord steps at coupling s from P with a kept factorisation (``keep``, a list holding
+    it: the last right-hand side's in a run): ((P, residual, active), steps) when the
+    residual test of :func:`_newton` passes, (None, steps) as soon as a step fails to cut
+    max |Phi| by ``rate`` or ``max_steps`` pass (then Newton takes over). Where the held
+    rows differ from the factor's, the same Jacobian is factorised again with them (kept
+    in ``keep``). Swift-Stieber films ("reynolds") only."""
+    factor = keep[0]
     phi, scale, held, _ = _merit(film, P, s, free, "reynolds")
     last = np.inf
     for it in range(max_steps + 1):
@@ -185,8 +198,14 @@ def _chord(film, P, s, free, tol, factor, max_steps=4, rate=0.1):
             active = np.zeros(P.size, bool)
             active[free[held]] = True
             return (P, res, active), it
-        if it == max_steps or res > rate * last or not np.array_equal(held, factor.held):
+        if it == max_steps or res > rate * last:
             return None, it
+        if not np.array_equal(held, factor.held):
+            try:
+                factor = factor.with_held(held)
+            except RuntimeError:                    # singular: Newton takes over
+                return None, it
+            keep[:] = [factor]
         last = res
         P = P + factor.step(P, phi)
         phi, scale, held, _ = _merit(film, P, s, free, "reynolds")

@@ -37,7 +37,7 @@ from ..fields import FilmFields
 from ..film import film_thickness, inertial_from_theta
 from ..scales import force_factor
 from ..solution import FilmSolution
-from .coupling import ehd_film, jacobian_tables
+from .coupling import FilmState, ehd_film, jacobian_tables
 from .newton import EHDResult, _chord, _newton, continuation
 from .transient import ehd_compliance
 
@@ -80,6 +80,8 @@ class _CoupledFilm:
         self.modal = modal              # (n, grid): S R^T [m/Pa]
         self.rigid_rate = rigid_rate    # (E, Q) dH/dt at q's rate 0, film frame [1/s]
         self._G = self._V = None        # the Jacobian's low-rank factors, kept per density
+        self._J = self._affine = None   # without a lubricant: the sparse Jacobian, load_0
+        self._last = None               # with one: (P, s, the film at P), the last evaluated
 
     def rates(self, P):
         """dq/dt [m/s] at nodal P (dimensionless, p = scale P)."""
@@ -91,22 +93,58 @@ class _CoupledFilm:
         rate = self.rigid_rate + (self.squeeze @ qdot).reshape(self.rigid_rate.shape)
         return replace(self.film, base=replace(self.film.base, gap_rate=rate)), qdot
 
-    def evaluate(self, P, s=1.0):
+    def film_state(self, P, s=1.0):
+        """The film at P built whole (fields, stiffness, load): what :meth:`evaluate`
+        gives, on any lubricant."""
         film, _ = self._at(P)
         return film.evaluate(P, s)
 
-    def jacobian(self, P, s, ev):
-        film, _ = self._at(P)
-        J, _, _ = film.jacobian(P, s, ev)
-        # the squeeze load of the bush's rate: d R_i / d(dH/dt)_q = 12 rho phi_i dx
+    def evaluate(self, P, s=1.0):
+        """The film at P. Isoviscous and incompressible (no lubricant), the gap does not
+        depend on P and dq/dt is affine in it, so the residual is affine,
+        R(P) = K P - load_0 + G dq/dt(P) (load_0 the load at dq/dt = 0, G the squeeze load
+        of unit modal rates, as in :meth:`jacobian`): K and load_0 are built once per film
+        (tested against :meth:`film_state`)."""
+        if self.film.lubricant is not None:
+            # the last evaluation again when asked at the same P (Newton after a failed
+            # chord starts where the chord did)
+            if self._last is not None and self._last[1] == s and np.array_equal(self._last[0], P):
+                return self._last[2]
+            ev = self.film_state(P, s)
+            self._last = (P.copy(), s, ev)
+            return ev
+        if self._affine is None:
+            film = replace(self.film, base=replace(self.film.base, gap_rate=self.rigid_rate))
+            ev0 = film.evaluate(np.zeros_like(P), s)
+            self._affine = (ev0, None if ev0 is None else self.op.pattern.matrix(ev0.values))
+        ev0, K = self._affine
+        if ev0 is None:
+            return None
+        load = ev0.load - self.squeeze_load(ev0) @ self.rates(P)
+        size = self.op.pattern.matrix(np.abs(ev0.values)) @ np.abs(P) + np.abs(load)
+        return FilmState(ev0.fields, None, ev0.values, load, K @ P - load, size)
+
+    def squeeze_load(self, ev):
+        """G (nodes, n): d R / d(dq/dt), the squeeze load of unit modal rates,
+        d R_i / d(dH/dt)_q = 12 rho phi_i dx (kept per density)."""
         rho = np.broadcast_to(ev.fields.density, self.op.qp_weight.shape)
         if self._G is None or not np.array_equal(rho, self._G[0]):
             w = (12.0 * rho * self.op.qp_weight).ravel()
             self._G = (rho, np.asarray(self.op.qp_interp.T @ (w[:, None] * self.squeeze)))
+        return self._G[1]
+
+    def jacobian(self, P, s, ev):
+        if self.film.lubricant is None and self._J is not None:
+            J = self._J         # the affine film's: the same at every P
+        else:
+            film, _ = self._at(P)
+            J, _, _ = film.jacobian(P, s, ev)
+            if self.film.lubricant is None:
+                self._J = J
         if self._V is None:     # the same at every pressure of this film
             # to_grid's transpose is to_nodes (both blend the same two shifts)
             self._V = (self.film.scale / self.tau) * self.shift.to_nodes(self.modal.T)
-        return J, self._G[1], self._V
+        return J, self.squeeze_load(ev), self._V
 
 
 class ModalStateEHD:
@@ -181,7 +219,7 @@ class ModalStateEHD:
         n = coupled.op.mesh.ndofs
         if self._P is not None and self._P.shape == (n,):
             if self._factor:     # chord steps on the last solve's factorisation
-                out, its = _chord(coupled, self._P.copy(), 1.0, free, TOL, self._factor[0])
+                out, its = _chord(coupled, self._P.copy(), 1.0, free, TOL, self._factor)
                 if out is not None:
                     return EHDResult(out[0], its, out[1], True, out[2], 1, 0)
             # warm: Newton at s = 1
@@ -224,7 +262,7 @@ class ModalStateEHD:
         coupled = self._coupled(state, np.asarray(q, float))
         res = self._solve(coupled)
         self._P = res.pressure
-        ev = coupled.evaluate(res.pressure)
+        ev = coupled.film_state(res.pressure)
         sol = _film_outputs(self.bearing, state, coupled.op, res, ev.values, ev.load,
                             ev.fields, "reynolds", "full", (), "fem-P1/ehd-states",
                             gap=coupled.gap)
@@ -289,28 +327,29 @@ class FrameShift:
     """
 
     def __init__(self, node: np.ndarray, gamma: float):
-        self.node = node
-        g = np.mod(gamma + np.pi, 2 * np.pi) / (2 * np.pi) * node.shape[0]
-        self.whole = int(np.floor(g))
-        self.frac = g - self.whole
+        n, m = node.shape
+        g = np.mod(gamma + np.pi, 2 * np.pi) / (2 * np.pi) * n
+        whole = int(np.floor(g))
+        self.frac = g - whole
+        j, k = np.arange(n)[:, None], np.arange(m)[None, :]
+        # to_nodes: film node (j, k) from grid nodes j + whole and j + whole + 1 (flat)
+        self._from0 = np.empty(n * m, int)
+        self._from1 = np.empty(n * m, int)
+        self._from0[node.ravel()] = (((j + whole) % n) * m + k).ravel()
+        self._from1[node.ravel()] = (((j + whole + 1) % n) * m + k).ravel()
+        # to_grid: grid node (J, k) from film nodes J - whole and J - whole - 1
+        self._to0 = node[(j - whole) % n, k].ravel()
+        self._to1 = node[(j - whole - 1) % n, k].ravel()
 
     def to_nodes(self, G: np.ndarray) -> np.ndarray:
         """Grid values (grid, ...) (C order, angle first) -> film nodal values (nodes, ...)."""
         G = np.asarray(G)
-        n, m = self.node.shape
-        G2 = G.reshape((n, m) + G.shape[1:])
-        X = ((1 - self.frac) * np.roll(G2, -self.whole, axis=0)
-             + self.frac * np.roll(G2, -self.whole - 1, axis=0))
-        out = np.empty_like(X, shape=(n * m,) + G.shape[1:])
-        out[self.node.ravel()] = X.reshape((n * m,) + G.shape[1:])
-        return out
+        return (1 - self.frac) * G[self._from0] + self.frac * G[self._from1]
 
     def to_grid(self, F: np.ndarray) -> np.ndarray:
         """Film nodal values (nodes, ...) -> grid values (grid, ...): to_nodes' transpose."""
-        F2 = np.asarray(F)[self.node]
-        Y = (self.frac * np.roll(F2, self.whole + 1, axis=0)
-             + (1 - self.frac) * np.roll(F2, self.whole, axis=0))
-        return Y.reshape((-1,) + F2.shape[2:])
+        F = np.asarray(F)
+        return (1 - self.frac) * F[self._to0] + self.frac * F[self._to1]
 
 
 def _rows_of(vals, cols, per_row: int, n_cols: int) -> sp.csr_matrix:
