@@ -84,6 +84,11 @@ class FilmSolution:
     density: np.ndarray | None = field(default=None, repr=False)  # compressible JFO: rho/rho0
 
     @property
+    def asperity_load(self) -> float:
+        """|asperity force| [N]: what the summits carry (0 without roughness)."""
+        return float(np.hypot(*self.asperity_force_local))
+
+    @property
     def total_force(self) -> tuple:
         """(F_x, F_y) [N]: film plus asperity contact, what carries the load."""
         return tuple(float(f + a) for f, a in zip(self.force, self.asperity_force))

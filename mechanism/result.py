@@ -27,13 +27,14 @@ DENSE = ("dense_t", "dense_e_x", "dense_e_y", "film_record", "step_t")
 FILM_COLUMNS = {"t": "s", "force_x": "N", "force_y": "N", "pressure_max": "Pa",
                 "cavitated_fraction": "1", "friction_force": "N", "mass_balance": "m^3/s",
                 "eps": "1", "eps_dot": "1/s", "gamma": "rad", "gamma_dot": "rad/s",
-                "omega": "rad/s", "film_min": "m"}
+                "omega": "rad/s", "film_min": "m", "asperity_load": "N"}
 _COLUMN = {name: i for i, name in enumerate(FILM_COLUMNS)}
 _STATE_FIELDS = tuple(f.name for f in dataclasses.fields(JournalState))
 #: film_min: the whole film's own minimum (an EHD film's includes the bush's deflection,
 #: unlike the run's rigid c (1 - eps), which is 0 beyond the clearance circle)
+#: asperity_load: |the summits' force| (mixed lubrication; 0 without roughness)
 _SOLUTION_FIELDS = ("pressure_max", "cavitated_fraction", "friction_force", "mass_balance",
-                    "film_min")
+                    "film_min", "asperity_load")
 
 
 def film_row(step: FilmStep) -> tuple:

@@ -93,7 +93,7 @@ def test_film_history_replays_a_film_with_memory(tmp_path):
     from mechanism.film_history import film_history
     sc = scene(turns=0.1)
     r = simulate(sc, progress=False)
-    assert r.film_record.shape[1] == 13 and len(r.film_record) == r.stats["film_steps"]
+    assert r.film_record.shape[1] == 14 and len(r.film_record) == r.stats["film_steps"]
     frames = film_history(load_result(r.save(tmp_path)), sc, [10, 20, 30])
     assert len(frames) == 3
     for f in frames:

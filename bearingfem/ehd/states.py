@@ -34,7 +34,7 @@ from ..bearing import Bearing, JournalState
 from ..contract import FilmStep
 from ..errors import ConvergenceError
 from ..fields import FilmFields
-from ..film import film_thickness, inertial_from_theta
+from ..film import film_thickness, local_to_inertial
 from ..scales import force_factor
 from ..solution import FilmSolution
 from .coupling import FilmState, ehd_film, jacobian_tables
@@ -269,8 +269,9 @@ class ModalStateEHD:
         if coupled.contact is None:
             return sol
         total = self._force(coupled, res.pressure)
-        return replace(sol, asperity_force_local=(total[0] - sol.force_local[0],
-                                                  total[1] - sol.force_local[1]))
+        local = (total[0] - sol.force_local[0], total[1] - sol.force_local[1])
+        return replace(sol, asperity_force_local=local,
+                       asperity_force=tuple(map(float, local_to_inertial(*local, state.gamma))))
 
     # -- the RunFilm contract (rules 10-14, 16) -------------------------------------------
     def start(self, state: JournalState, t: float) -> None:
