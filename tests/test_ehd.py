@@ -141,3 +141,34 @@ def test_gumbel_film_is_refused_with_a_lubricant():
     unclipped suction. Refused before any work (fails when 'gumbel' is let through)."""
     with pytest.raises(ValueError, match="cavitation 'none' or 'reynolds'"):
         solve_reynolds(B, S, 24, 4, cavitation="gumbel", lubricant=Lubricant(viscosity=0.01))
+
+
+def test_a_singular_newton_matrix_is_a_stall_without_a_step():
+    """A film whose full-compliance Jacobian J + U vanishes: the Newton solve stops at
+    once as stalled (None after 0 iterations, no LAPACK warning, no inf step tried), as
+    scipy's solve did before the factorised step. Fails with the singular check of the
+    dense LU dropped (lu_factor only warns; the line search then meets an inf step)."""
+    import warnings
+
+    from bearingfem.ehd import newton
+    from bearingfem.ehd.coupling import ehd_film
+    from bearingfem.fe.assembly import fe_operator
+    st = JournalState(eps=0.6, omega=250.0)
+    op = fe_operator(B, st, 12, 2, "P1", None, False)
+    base, gap = general_film(B, st, op, BUMP)
+    film = ehd_film(B, st, op, base, gap, None, None)
+    P = np.zeros(op.mesh.ndofs)
+    J, _, _ = film.jacobian(P)
+
+    class Singular:
+        op = film.op
+
+        def evaluate(self, P, s=1.0):
+            return film.evaluate(P, s)
+
+        def jacobian(self, P, s, ev):
+            return J, -J.toarray(), None
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert newton._newton(Singular(), P, 1.0, op.mesh.free, "none", 1e-10) == (None, 0)

@@ -19,6 +19,7 @@ converged one doubles it. Below an increment of 1e-4 the solve raises Convergenc
 """
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -90,13 +91,12 @@ class _Factor:
         if U is None:
             self.lu = splu(block)
         elif V is None:                # full compliance: one dense LU
-            self.dense = la.lu_factor(block.toarray().T + U[np.ix_(I, I)], check_finite=False)
+            self.dense = _lu(block.toarray().T + U[np.ix_(I, I)])
         else:                          # reduced compliance: Woodbury on the sparse LU
             self.lu = splu(block)
             self.UI, self.VI = U[I], V[I]
             self.Z = self.lu.solve(self.UI, trans="T")
-            self.small = la.lu_factor(np.eye(V.shape[1]) + self.VI.T @ self.Z,
-                                      check_finite=False)
+            self.small = _lu(np.eye(V.shape[1]) + self.VI.T @ self.Z)
 
     @classmethod
     def at(cls, film, P, s, free, held, ev):
@@ -125,6 +125,17 @@ class _Factor:
         step = np.zeros_like(P)
         step[I], step[A] = dI, dA
         return step
+
+
+def _lu(M):
+    """LAPACK's LU of the dense M; a singular M raises LinAlgError (as la.solve did), where
+    lu_factor only warns."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", la.LinAlgWarning)
+        lu = la.lu_factor(M, check_finite=False)
+    if not np.all(np.isfinite(lu[0])) or np.any(np.diag(lu[0]) == 0.0):
+        raise la.LinAlgError("singular Newton matrix")
+    return lu
 
 
 def _block(tables, data, I, n):
@@ -182,34 +193,35 @@ def _newton(film, P, s, free, cavitation, tol, keep=None):
 
 def _chord(film, P, s, free, tol, keep, max_steps=6, rate=0.3):
     """Chord steps at coupling s from P with a kept factorisation (``keep``, a list holding
-    it: the last right-hand side's in a run): ((P, residual, active), steps) when the
-    residual test of :func:`_newton` passes, (None, steps) as soon as a step fails to cut
-    max |Phi| by ``rate`` or ``max_steps`` pass (then Newton takes over). Where the held
-    rows differ from the factor's, the same Jacobian is factorised again with them (kept
-    in ``keep``). Swift-Stieber films ("reynolds") only."""
+    it: the last right-hand side's in a run): ((P, residual, active), steps, P) when the
+    residual test of :func:`_newton` passes; (None, steps, the iterate of least residual)
+    as soon as a step fails to cut max |Phi| by ``rate`` or ``max_steps`` pass (then
+    Newton takes over from that iterate). Where the held rows differ from the factor's,
+    the same Jacobian is factorised again with them (kept in ``keep``). Swift-Stieber
+    films ("reynolds") only."""
     factor = keep[0]
     phi, scale, held, _ = _merit(film, P, s, free, "reynolds")
-    last = np.inf
+    best, last = P, np.inf
     for it in range(max_steps + 1):
         if phi is None:
-            return None, it
+            return None, it, best
         res = float(np.max(np.abs(phi), initial=0.0)) / scale
         if res <= tol:
             active = np.zeros(P.size, bool)
             active[free[held]] = True
-            return (P, res, active), it
+            return (P, res, active), it, P
         if it == max_steps or res > rate * last:
-            return None, it
+            return None, it, P if res < last else best
         if not np.array_equal(held, factor.held):
             try:
                 factor = factor.with_held(held)
             except RuntimeError:                    # singular: Newton takes over
-                return None, it
+                return None, it, P
             keep[:] = [factor]
-        last = res
+        best, last = P, res
         P = P + factor.step(P, phi)
         phi, scale, held, _ = _merit(film, P, s, free, "reynolds")
-    return None, max_steps
+    return None, max_steps, best
 
 
 def solve_ehd(film, P0, cavitation: str, tol: float = 1e-10,

@@ -107,7 +107,7 @@ class _CoupledFilm:
         (tested against :meth:`film_state`)."""
         if self.film.lubricant is not None:
             # the last evaluation again when asked at the same P (Newton after a failed
-            # chord starts where the chord did)
+            # chord starts from the chord's iterate of least residual, often its last)
             if self._last is not None and self._last[1] == s and np.array_equal(self._last[0], P):
                 return self._last[2]
             ev = self.film_state(P, s)
@@ -218,15 +218,15 @@ class ModalStateEHD:
         free = coupled.op.mesh.free
         n = coupled.op.mesh.ndofs
         if self._P is not None and self._P.shape == (n,):
+            start, chord_steps = self._P.copy(), 0
             if self._factor:     # chord steps on the last solve's factorisation
-                out, its = _chord(coupled, self._P.copy(), 1.0, free, TOL, self._factor)
+                out, chord_steps, start = _chord(coupled, start, 1.0, free, TOL, self._factor)
                 if out is not None:
-                    return EHDResult(out[0], its, out[1], True, out[2], 1, 0)
-            # warm: Newton at s = 1
-            out, its = _newton(coupled, self._P.copy(), 1.0, free, "reynolds", TOL,
-                               self._factor)
+                    return EHDResult(out[0], chord_steps, out[1], True, out[2], 1, 0)
+            # warm: Newton at s = 1, from where the chord got to
+            out, its = _newton(coupled, start, 1.0, free, "reynolds", TOL, self._factor)
             if out is not None:
-                return EHDResult(out[0], its, out[1], True, out[2], 1, 0)
+                return EHDResult(out[0], chord_steps + its, out[1], True, out[2], 1, 0)
         # cold: the isoviscous film (s = 0) from no pressure, then the lubricant's fields
         out, its = _newton(coupled, np.zeros(n), 0.0, free, "reynolds", TOL, self._factor)
         if out is None:
@@ -270,8 +270,14 @@ class ModalStateEHD:
             return sol
         total = self._force(coupled, res.pressure)
         local = (total[0] - sol.force_local[0], total[1] - sol.force_local[1])
+        # the summits' Coulomb friction on their load, int p_a dA (as asperity_contact)
+        r = self.bearing.radius
+        load = r * r * float(np.sum(coupled.op.at_quadrature(coupled.contact)
+                                    * coupled.op.qp_weight))
+        friction = self.roughness.friction * load * float(np.sign(state.omega))
         return replace(sol, asperity_force_local=local,
-                       asperity_force=tuple(map(float, local_to_inertial(*local, state.gamma))))
+                       asperity_force=tuple(map(float, local_to_inertial(*local, state.gamma))),
+                       asperity_friction_torque=friction * r)
 
     # -- the RunFilm contract (rules 10-14, 16) -------------------------------------------
     def start(self, state: JournalState, t: float) -> None:
