@@ -4,6 +4,7 @@ a rigid film still stops at eps = 1 (tests/test_mechanism.py keeps that stop's m
 import numpy as np
 
 from mechanism import parse_scene, simulate
+from mechanism.result import film_column
 
 
 def seed_pin(lubrication):
@@ -33,7 +34,7 @@ def test_the_ehd_film_carries_the_seed_pin_through_the_clearance_circle():
     # a film step falls on a sample (fails with the rigid column kept: 0 where eps > 1)
     beyond = r.eps > 1.0
     assert beyond.any() and np.all(r.film_min[beyond] > 0.0)
-    rec_t, rec_h = r.film_record[:, 0], r.film_record[:, -1]
+    rec_t, rec_h = film_column(r.film_record, "t"), film_column(r.film_record, "film_min")
     assert np.allclose(np.interp(rec_t, r.t, r.film_min), rec_h, rtol=0.2)
 
 
