@@ -1,6 +1,7 @@
 """The seed pin at 250 rad/s with the bush's modes integrated (fem-ehd coupling 'states').
 
     python -m benchmarks.ehd_states [--turns 0.1] [--mesh 48 4] [--runs base rtol tau ...]
+        [--progress]
 
 A tenth of a turn from top dead centre (benchmarks/ehd_step.py's window), rough surfaces
 (sigma 0.2 um, E* 80.8 GPa, K 1e-3), one run per row: steps, CPU time, peak eps, least film
@@ -26,13 +27,13 @@ RUNS = {"base": (1e-6, 1e-5, 16, "iso"), "rtol": (1e-7, 1e-5, 16, "iso"),
         "modes32": (1e-6, 1e-5, 32, "iso"), "roelands": (1e-6, 1e-5, 16, "roelands")}
 
 
-def states_run(turns, nt, nz, rtol, tau, modes, oil):
+def states_run(turns, nt, nz, rtol, tau, modes, oil, progress=False):
     sc = scene("paper-short-ehd", 250.0, turns, n_theta=nt, n_z=nz, modes=modes,
                film_step=0.0, lubricant=OILS[oil], coupling="states", relaxation=tau,
                roughness=ROUGH)
     sc = dataclasses.replace(sc, run=dataclasses.replace(sc.run, rtol=rtol))
     t = time.process_time()
-    r = simulate(sc, progress=False)
+    r = simulate(sc, progress=progress)
     return r, time.process_time() - t
 
 
@@ -52,6 +53,8 @@ def main(argv=None):
     ap.add_argument("--turns", type=float, default=0.1)
     ap.add_argument("--mesh", type=int, nargs=2, default=(48, 4))
     ap.add_argument("--runs", nargs="+", default=list(RUNS), choices=list(RUNS))
+    ap.add_argument("--progress", action="store_true",
+                    help="each run's progress on stderr (five turns take minutes to hours)")
     a = ap.parse_args(argv)
     nt, nz = a.mesh
     # warm-up: the first run of a process builds the meshes' operators and tables
@@ -63,7 +66,7 @@ def main(argv=None):
           f"{'CPU[s]':>7} {'x JFO':>6} {'peak eps':>9} {'h_min[um]':>9} {'p_max[MPa]':>10}")
     for name in a.runs:
         rtol, tau, modes, oil = RUNS[name]
-        r, cpu = states_run(a.turns, nt, nz, rtol, tau, modes, oil)
+        r, cpu = states_run(a.turns, nt, nz, rtol, tau, modes, oil, a.progress)
         rec = r.film_record
         p_max = rec[:, 3].max() / 1e6 if len(rec) else float("nan")
         note = "" if not r.partial else f"  (stopped: {r.message[:60]})"
