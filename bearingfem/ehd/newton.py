@@ -215,7 +215,7 @@ def _chord(film, P, s, free, tol, keep, max_steps=6, rate=0.3):
         if not np.array_equal(held, factor.held):
             try:
                 factor = factor.with_held(held)
-            except RuntimeError:                    # singular: Newton takes over
+            except (RuntimeError, la.LinAlgError):  # singular: Newton takes over
                 return None, it, P
             keep[:] = [factor]
         best, last = P, res
