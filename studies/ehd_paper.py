@@ -16,8 +16,9 @@ peak film pressure (at the film steps of a film with memory, at 72 instants othe
 asperity load share (the summits' largest share of the force over the recorded film steps;
 zero on smooth surfaces: the rigid films and the "kept" coupling here), friction power
 (the film's Newtonian shear: no limiting shear stress bounds it under a piezoviscous
-oil), crank speed range, peak slider acceleration, wall time and cost per turn; a run that stopped says where and why. Writes ``ehd_paper.csv`` and renders the
-bush's deflection and the film pressure at the EHD run's peak film force (its film step
+oil), crank speed range, peak slider acceleration, wall time and cost per turn; a run
+that stopped says where and why. Writes ``ehd_paper.csv`` and renders the bush's
+deflection and the film pressure at the EHD run's peak film force (its film step
 there, up to where it stopped) to
 ``docs/img/ehd_deflection.png`` (``--figure`` elsewhere).
 """
