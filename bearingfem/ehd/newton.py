@@ -163,9 +163,7 @@ def _newton(film, P, s, free, cavitation, tol, keep=None):
     for it in range(MAX_NEWTON + 1):
         res = float(np.max(np.abs(phi), initial=0.0)) / scale
         if res <= tol:
-            active = np.zeros(P.size, bool)
-            active[free[held]] = True
-            return (P, res, active), it
+            return (P, res, _held_nodes(P.size, free, held)), it
         if it == MAX_NEWTON:
             return None, it
         try:
@@ -191,6 +189,13 @@ def _newton(film, P, s, free, cavitation, tol, keep=None):
     return None, MAX_NEWTON
 
 
+def _held_nodes(n, free, held):
+    """The nodes held cavitated (over all n nodes) of the held rows over the free dofs."""
+    active = np.zeros(n, bool)
+    active[free[held]] = True
+    return active
+
+
 def _chord(film, P, s, free, tol, keep, max_steps=6, rate=0.3):
     """Chord steps at coupling s from P with a kept factorisation (``keep``, a list holding
     it: the last right-hand side's in a run): ((P, residual, active), steps, P) when the
@@ -207,9 +212,7 @@ def _chord(film, P, s, free, tol, keep, max_steps=6, rate=0.3):
             return None, it, best
         res = float(np.max(np.abs(phi), initial=0.0)) / scale
         if res <= tol:
-            active = np.zeros(P.size, bool)
-            active[free[held]] = True
-            return (P, res, active), it, P
+            return (P, res, _held_nodes(P.size, free, held)), it, P
         if it == max_steps or res > rate * last:
             return None, it, P if res < last else best
         if not np.array_equal(held, factor.held):

@@ -60,9 +60,10 @@ def grid_interpolation(alpha: np.ndarray, zeta: np.ndarray, n_theta: int, n_z: i
     j, k = np.floor(u).astype(int), np.minimum(np.floor(v).astype(int), n_z - 1)
     a, b = u - j, v - k
     j0, j1 = j % n_theta, (j + 1) % n_theta
+    rows = np.repeat(np.arange(alpha.size), 4)
     cols = np.stack([j0 * m + k, j0 * m + k + 1, j1 * m + k, j1 * m + k + 1], axis=1).ravel()
     vals = np.stack([(1 - a) * (1 - b), (1 - a) * b, a * (1 - b), a * b], axis=1).ravel()
-    return _rows_of(vals, cols, 4, n_theta * m)
+    return sp.csr_matrix((vals, (rows, cols)), shape=(alpha.size, n_theta * m))
 
 
 class _CoupledFilm:
@@ -357,12 +358,3 @@ class FrameShift:
         """Film nodal values (nodes, ...) -> grid values (grid, ...): to_nodes' transpose."""
         F = np.asarray(F)
         return (1 - self.frac) * F[self._to0] + self.frac * F[self._to1]
-
-
-def _rows_of(vals, cols, per_row: int, n_cols: int) -> sp.csr_matrix:
-    """The CSR matrix with ``per_row`` entries (``vals`` at ``cols``, row after row) in
-    each row: built on its row pointer directly (a COO build sorts, and cost more than
-    the film's factorisation on a coupled run's meshes)."""
-    n_rows = cols.size // per_row
-    indptr = np.arange(0, cols.size + 1, per_row)
-    return sp.csr_matrix((vals, cols, indptr), shape=(n_rows, n_cols))
