@@ -72,6 +72,7 @@ class FilmEffect:
         self.run = self.film_model.along_run(self.bearing, self.options)
         self.memory = self.film_model.memory
         self.history: list = []
+        self.z_history: list = []       # the film's own states z at each history row
         self.start: tuple | None = None
         # a film whose memory is integrated with the joint (contract rule 16): its states
         # z are set by the integrator before each force, their rates read after it
@@ -111,6 +112,8 @@ class FilmEffect:
                 else self.run.commit(self._state(k), k.t))
         if step is not None:
             self.history.append(film_row(step))
+            if self.state_size:
+                self.z_history.append(np.array(self.z, float))
         return step is not None
 
     @property

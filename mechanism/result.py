@@ -19,7 +19,7 @@ __all__ = ["SimulationResult", "load_result", "provenance", "FIELDS", "FILM_COLU
 
 FIELDS = ("t", "crank_angle", "crank_speed", "rod_angle", "slider_position",
           "slider_acceleration", "eps", "e_x", "e_y", "film_min", "force_x", "force_y")
-DENSE = ("dense_t", "dense_e_x", "dense_e_y", "film_record", "step_t")
+DENSE = ("dense_t", "dense_e_x", "dense_e_y", "film_record", "film_z", "step_t")
 #: Columns of ``film_record`` (a film with memory: one row per committed film step), by
 #: name with their units: what the step gave, then the journal state it was taken at
 #: (the fields of :class:`bearingfem.JournalState`: enough to replay the film). A model
@@ -100,6 +100,11 @@ class SimulationResult:
     dense_e_y: np.ndarray = field(default_factory=lambda: np.empty(0))
     #: a film with memory: one row per committed step, columns FILM_COLUMNS
     film_record: np.ndarray = field(default_factory=lambda: np.empty((0, len(FILM_COLUMNS))))
+    #: a film whose states are integrated with the joint (contract rule 16, e.g. the bush's
+    #: modal coordinates [m] of the "states" coupling): its states z at each film_record
+    #: row, (rows, state_size); (0, 0) for every other film. With the row's state they
+    #: give the film that step took (the run film's ``solution(state, z)``)
+    film_z: np.ndarray = field(default_factory=lambda: np.empty((0, 0)))
     #: where the integrator's accepted steps end [s] (the whole run, not only the
     #: recorded turns): where a run spends its steps, e.g. per crank angle
     step_t: np.ndarray = field(default_factory=lambda: np.empty(0))

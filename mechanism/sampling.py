@@ -67,8 +67,11 @@ def sample_run(scene, pieces, effects, g, stats, partial, message):
             m, q, A, qd, Ad, fx, fy, g, scene.crank_torque, scene.slider_force)[2]
     stats["output_film_solves"] = int(sum(getattr(e, "solves", 0) for e in effects)
                                       - sum(solves_before))
-    record = next((np.array(e.history).reshape(-1, len(FILM_COLUMNS)) for e in effects
-                   if getattr(e, "memory", False)), np.empty((0, len(FILM_COLUMNS))))
+    memory = next((e for e in effects if getattr(e, "memory", False)), None)
+    record = np.empty((0, len(FILM_COLUMNS))) if memory is None else \
+        np.array(memory.history).reshape(-1, len(FILM_COLUMNS))
+    film_z = np.empty((0, 0)) if memory is None or not getattr(memory, "state_size", 0) \
+        else np.array(memory.z_history).reshape(-1, memory.state_size)
     eps = np.hypot(Y[1], Y[2]) / c
     film_min = np.maximum(c * (1.0 - eps), 0.0)
     if any(getattr(e, "wall", 1.0) > 1.0 for e in effects) and len(record):
@@ -85,5 +88,5 @@ def sample_run(scene, pieces, effects, g, stats, partial, message):
         e_y=Y[2], film_min=film_min, force_x=out["force_x"],
         force_y=out["force_y"], scene=scene.name, partial=partial, message=message,
         stats=stats, provenance=provenance(scene), dense_t=td, dense_e_x=Yd[1],
-        dense_e_y=Yd[2], film_record=record,
+        dense_e_y=Yd[2], film_record=record, film_z=film_z,
         step_t=np.concatenate([p.ts[1:] for p in pieces]))

@@ -115,13 +115,34 @@ def record_friction_power(r, rec, radius: float) -> float:
     return float(np.trapezoid(power, t) / (t[-1] - t[0]))
 
 
-def render_deflection(sc, state: JournalState, path: Path):
-    """The EHD film at ``state`` (bush deflection and film pressure over the unwrapped
-    film) to ``path``; returns the solution."""
-    import matplotlib.pyplot as plt
+def peak_film(sc, r, speed: float):
+    """The EHD run's film at its peak film force (its film step there, up to where it
+    stopped): the state and the :class:`FilmSolution` of that step. The "states" coupling's
+    is the run film's own at the step's state and modal coordinates (``r.film_z``); the
+    "kept" coupling's the steady EHD film at the step's state (what its film step solves).
+    Without a film step: the steady film at the rigid Reynolds run's peak eccentricity."""
+    from bearingfem.models import film_model
     o = sc.lubrication.options
-    sol = ehd_solution(sc.bearing, state, o["lubricant"], o["bush"], None, o["n_theta"],
-                       o["n_z"], o["modes"])
+    rec = r.film_record
+    if len(rec):
+        j = int(np.argmax(np.hypot(film_column(rec, "force_x"), film_column(rec, "force_y"))))
+        state = ElasticJournalState(**{n: float(film_column(rec, n)[j])
+                                       for n in ("eps", "eps_dot", "gamma", "gamma_dot",
+                                                 "omega")})
+        if r.film_z.shape[0]:
+            film = film_model(sc.lubrication.model).along_run(sc.bearing, dict(o))
+            return state, film.solution(state, r.film_z[j])
+    else:
+        i = int(np.argmax(np.hypot(r.force_x, r.force_y)))
+        state = JournalState(eps=min(float(r.eps[i]), 0.995), gamma=0.0, omega=speed)
+    return state, ehd_solution(sc.bearing, state, o["lubricant"], o["bush"], None,
+                               o["n_theta"], o["n_z"], o["modes"])
+
+
+def render_deflection(sol, state: JournalState, path: Path) -> None:
+    """The bush deflection and film pressure of ``sol`` over the unwrapped film to
+    ``path``."""
+    import matplotlib.pyplot as plt
     theta, z = np.degrees(np.asarray(sol.theta)), 1e3 * np.asarray(sol.z)
     fig, ax = plt.subplots(2, 1, figsize=(7, 5), sharex=True)
     for a, v, label in ((ax[0], 1e6 * sol.deformation, "bush deflection w [um]"),
@@ -135,7 +156,6 @@ def render_deflection(sc, state: JournalState, path: Path):
     path.parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(path, dpi=110)
     plt.close(fig)
-    return sol
 
 
 def main(argv=None):
@@ -167,24 +187,9 @@ def main(argv=None):
         if w["message"]:
             print(f"  ({w['film']} stopped: {w['message']})")
     write_csv(rows, out / "ehd_paper.csv")
-    if a.coupling == "states":
-        # the film record keeps the journal's state, not the bush's modal coordinates, so
-        # the run's own deflection is not at hand; a steady EHD solve there is not it
-        print("no render with --coupling states: the record keeps no modal states")
-        return rows
-    # the peak joint load of the EHD run (its film steps; up to where it stopped), or the
-    # rigid Reynolds run's eccentricity at its peak if the EHD run took no film step
     _, sc_ehd, r_ehd = runs[2]
-    rec = r_ehd.film_record
-    if len(rec):
-        j = int(np.argmax(np.hypot(film_column(rec, "force_x"), film_column(rec, "force_y"))))
-        state = ElasticJournalState(**{n: float(film_column(rec, n)[j])
-                                for n in ("eps", "eps_dot", "gamma", "gamma_dot", "omega")})
-    else:
-        r = runs[0][2]
-        i = int(np.argmax(np.hypot(r.force_x, r.force_y)))
-        state = JournalState(eps=min(float(r.eps[i]), 0.995), gamma=0.0, omega=a.speed)
-    sol = render_deflection(sc_ehd, state, Path(a.figure))
+    state, sol = peak_film(sc_ehd, r_ehd, a.speed)
+    render_deflection(sol, state, Path(a.figure))
     print(f"deflection at the peak load (eps {state.eps:.4f}): max "
           f"{1e6 * np.max(sol.deformation):.3f} um, peak pressure "
           f"{sol.pressure_max / 1e6:.1f} MPa -> {a.figure}")

@@ -38,6 +38,10 @@ def test_a_journal_held_still_relaxes_to_the_steady_ehd_film():
                             bush=ehd_compliance(SOLID, B.radius, B.length, NT, NZ, M))
     assert np.allclose(F, steady.force_local, rtol=1e-8, atol=0)
     assert np.max(np.abs(qdot)) < 1e-10
+    # the relaxed modes' deflection is the steady film's C p (same nodes: gamma = pi)
+    w = film.solution(s, sol.y[:, -1]).deformation
+    assert np.allclose(w, steady.deformation, rtol=0,
+                       atol=1e-7 * np.max(np.abs(steady.deformation)))
 
 
 def test_a_stiff_bush_is_the_rigid_transient_film():
@@ -189,6 +193,32 @@ def test_the_seed_pin_runs_past_the_circle_with_its_bush_integrated():
     assert r.eps.max() > 1.0
     assert len(r.film_record) == r.stats["steps"]
     assert np.all(np.isfinite(r.force_x)) and np.all(np.isfinite(r.film_min))
+
+
+def test_the_run_keeps_the_modal_states_of_each_film_step(tmp_path):
+    """The run's ``film_z`` holds the modal coordinates of each film record row: the run
+    film's solution at a row's state and those coordinates gives that row's recorded force
+    (to 1e-8; measured 1e-11 at the peak row) and a deflection of the bush; a saved run
+    loads them back. Fails when the states kept are not the ones the step took (the film
+    then solves another gap)."""
+    from benchmarks.ehd_run import scene
+    from mechanism import simulate
+    from mechanism.result import film_column
+    from studies.ehd_paper import peak_film
+    rough = Roughness(sigma=0.2e-6, contact_modulus=80.8e9, elastic_factor=1e-3)
+    sc = scene("paper-short-ehd", 250.0, 0.01, n_theta=NT, n_z=NZ, modes=M, film_step=0.0,
+               lubricant=None, coupling="states", relaxation=1e-5, roughness=rough)
+    r = simulate(sc, progress=False)
+    rec = r.film_record
+    assert r.film_z.shape == (len(rec), M)
+    state, sol = peak_film(sc, r, 250.0)
+    j = int(np.argmax(np.hypot(film_column(rec, "force_x"), film_column(rec, "force_y"))))
+    recorded = np.array([film_column(rec, "force_x")[j], film_column(rec, "force_y")[j]])
+    total = np.add(sol.force, sol.asperity_force)
+    assert np.allclose(total, recorded, rtol=1e-8, atol=0)
+    assert np.max(sol.deformation) > 1e-6            # microns: the bush opens the film
+    from mechanism.result import load_result
+    assert np.array_equal(load_result(r.save(tmp_path)).film_z, r.film_z)
 
 
 def test_a_deflection_that_shifts_the_bush_is_a_rigid_journal_elsewhere():

@@ -267,6 +267,8 @@ class ModalStateEHD:
         sol = _film_outputs(self.bearing, state, coupled.op, res, ev.values, ev.load,
                             ev.fields, "reynolds", "full", (), "fem-P1/ehd-states",
                             gap=coupled.gap)
+        # the bush's radial deflection at the film nodes [m] (it opens the gap)
+        sol = replace(sol, deformation=coupled.shift.to_nodes(self.left) @ np.asarray(q, float))
         if coupled.contact is None:
             return sol
         total = self._force(coupled, res.pressure)
