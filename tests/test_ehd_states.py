@@ -199,8 +199,8 @@ def test_the_run_keeps_the_modal_states_of_each_film_step(tmp_path):
     """The run's ``film_z`` holds the modal coordinates of each film record row: the run
     film's solution at a row's state and those coordinates gives that row's recorded force
     (to 1e-8; measured 1e-11 at the peak row) and a deflection of the bush; a saved run
-    loads them back. Fails when the states kept are not the ones the step took (the film
-    then solves another gap)."""
+    loads them back, and the film history's frames come from them. Fails when the states
+    kept are not the ones the step took (the film then solves another gap)."""
     from benchmarks.ehd_run import scene
     from mechanism import simulate
     from mechanism.result import film_column
@@ -219,6 +219,11 @@ def test_the_run_keeps_the_modal_states_of_each_film_step(tmp_path):
     assert np.max(sol.deformation) > 1e-6            # microns: the bush opens the film
     from mechanism.result import load_result
     assert np.array_equal(load_result(r.save(tmp_path)).film_z, r.film_z)
+    # the film history solves the frames from the kept states, each checked against the
+    # record (film_history raises past 1e-9 of the peak force)
+    from mechanism.film_history import film_history
+    frames = film_history(r, sc, n_frames=3)
+    assert len(frames) >= 2 and all(f.solution.deformation is not None for f in frames)
 
 
 def test_a_deflection_that_shifts_the_bush_is_a_rigid_journal_elsewhere():

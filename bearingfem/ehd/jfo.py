@@ -21,7 +21,7 @@ Unknowns: one universal variable u per free volume, P = max(u, 0), phi = 1 + min
 is semismooth; its generalised Jacobian is exact: the columns of dR/dP (K, the viscosity
 slopes and the bush through K and T: sparse plus the compliance's dense or low-rank part)
 where u > 0 and of dR/dphi = T + S where u <= 0. Newton steps are damped by backtracking
-on |R|_2; converged when max |R| <= tol x the largest size of the terms the residual sums
+on |R|_2 after a watchdog (:meth:`_Newton.run`); converged when max |R| <= tol x the largest size of the terms the residual sums
 (|K||P| + |T||phi| + |S phi|), the EHD film's test.
 
 Load continuation as in :mod:`bearingfem.ehd.newton`: the coupling s in [0, 1] scales the
@@ -35,7 +35,9 @@ complementarity formulation to study lubricant films in the presence of cavitati
 J. Tribol. 132 (2010) 041702; C. Bertocchi, D. Dini, M. Giacopini, M.T. Fowell,
 A. Baldini, Fluid film lubrication in the presence of cavitation: a mass-conserving
 two-dimensional formulation for compressible, piezoviscous and non-Newtonian fluids,
-Tribol. Int. 67 (2013) 61-71.
+Tribol. Int. 67 (2013) 61-71; the watchdog: R.M. Chamberlain, M.J.D. Powell,
+C. Lemarechal, H.C. Pedersen, The watchdog technique for forcing convergence in algorithms
+for constrained optimization, Math. Programming Study 16 (1982) 1-17.
 """
 from __future__ import annotations
 
@@ -57,6 +59,7 @@ from ..scales import flow_factor
 from ..solvers.jfo import JFOResult
 from ..fe.volumes import transport_matrix
 from .coupling import EHDFilm, ehd_film
+from .newton import _block
 
 __all__ = ["JFOCoupling", "FaceMaps", "jfo_coupling", "solve_ehd_jfo", "check_ehd_jfo",
            "EHDJFOSolve"]
@@ -173,7 +176,7 @@ class JFOCoupling:
         """(dR/dP sparse, U, V, dR/dphi) with dR/dP = sparse + U V^T (U, V None without a
         bush; V None: U is the dense full product)."""
         J, U, V = self.poiseuille.jacobian(P, s, state.ev)
-        A = (state.T + sp.diags(self.storage)).tocsc()
+        A = state.T + sp.diags(self.storage, format="csr")
         f = self.poiseuille
         if f.compliance is None:
             return J, None, None, A
@@ -227,6 +230,19 @@ class EHDJFOSolve:
     flows: JFOFlows
 
 
+def _on_pattern(tables, A) -> np.ndarray:
+    """The values of the sparse ``A`` on the Jacobian pattern of ``tables`` (the
+    transport's couplings are between neighbouring nodes, so they lie in it)."""
+    A = sp.csr_matrix(A)
+    n = A.shape[0]
+    keys = tables.rows * n + tables.pattern.indices
+    wanted = np.repeat(np.arange(n), np.diff(A.indptr)) * n + A.indices
+    at = np.searchsorted(keys, wanted)
+    if not np.array_equal(keys[np.minimum(at, keys.size - 1)], wanted):
+        raise ValueError("the balance's couplings must lie in the film's Jacobian pattern")
+    return np.bincount(at, A.data, minlength=keys.size)
+
+
 def _split(u, can):
     """(P, phi) of the universal variable on the free volumes."""
     P = np.where(can, np.maximum(u, 0.0), u)
@@ -255,20 +271,26 @@ class _Newton:
         return st.residual[self.free], scale, st
 
     def step(self, u, s, R, st):
+        """The Newton step on the free volumes: the columns of dR/dP where P is free
+        (u > 0, or a volume whose content cannot change), of dR/dphi elsewhere."""
         free, film = self.free, self.film
         P, phi = self.nodal(u)
         J, U, V, A = film.jacobian(P, phi, s, st)
         pos = (u > 0.0) | ~self.can
-        cols = sp.diags(pos.astype(float))
-        M = (J[free][:, free] @ cols + A[free][:, free] @ sp.diags((~pos).astype(float)))
+        t = film.poiseuille.tables
+        n = J.shape[0]
+        from_P = np.ones(n, bool)
+        from_P[free] = pos
+        data = np.where(from_P[t.pattern.indices], J.data, _on_pattern(t, A))
+        block = _block(t, data, free, n)        # the free block, transposed (solve "T")
         if U is None:
-            return splu(M.tocsc()).solve(-R)
+            return splu(block).solve(-R, trans="T")
         if V is None:
-            return la.solve(M.toarray() + U[np.ix_(free, free)] * pos, -R,
+            return la.solve(block.toarray().T + U[np.ix_(free, free)] * pos, -R,
                             check_finite=False)
         Uf, Vf = U[free], V[free] * pos[:, None]
-        lu = splu(M.tocsc())
-        y, Z = lu.solve(-R), lu.solve(Uf)
+        lu = splu(block)
+        y, Z = lu.solve(-R, trans="T"), lu.solve(Uf, trans="T")
         small = np.eye(Vf.shape[1]) + Vf.T @ Z
         return y - Z @ la.solve(small, Vf.T @ y, check_finite=False)
 

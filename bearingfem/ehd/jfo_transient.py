@@ -64,7 +64,7 @@ class StepCoupling(JFOCoupling):
     def jacobian(self, P, phi, s, state):
         J, U, V, A = super().jacobian(P, phi, s, state)
         dQ = self.rate * (self.maps.content @ self.gap_departure(P, s))
-        return J, U, V, (A + sp.diags(dQ)).tocsc()
+        return J, U, V, A + sp.diags(dQ, format="csr")
 
 
 @dataclass(frozen=True)

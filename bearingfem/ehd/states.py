@@ -305,7 +305,8 @@ class ModalStateEHD:
         self.steps, self._P = snapshot
 
     def replay(self, start, steps):
-        """Nothing: a step's film needs the states, which the film record does not keep."""
+        """Nothing: a step's film needs its states, which a replay is not given; the run
+        keeps them (its ``film_z``) and :meth:`solution` solves a step's film from them."""
         return iter(())
 
 
