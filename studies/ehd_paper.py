@@ -12,14 +12,16 @@ allows less) on the same mesh, at crank speed ``--speed`` [rad/s] (the seed's 25
 film carries the pin centre past the rigid clearance circle, docs/ehd.md). Prints one line
 per film: peak eccentricity, minimum film (of the film steps for a film with memory: the
 EHD film's includes the bush's deflection),
-peak film pressure (at the film steps of a film with memory, at 72 instants otherwise),
+peak film pressure (at the recorded film steps of a film with memory, at 72 instants
+otherwise),
 asperity load share (the summits' largest share of the force over the recorded film steps;
 zero on smooth surfaces: the rigid films and the "kept" coupling here), friction power
-(the film's Newtonian shear: no limiting shear stress bounds it under a piezoviscous
+(the film's Newtonian shear at 72 instants, or over every recorded film step for a film
+whose states the run integrates: no limiting shear stress bounds it under a piezoviscous
 oil), crank speed range, peak slider acceleration, wall time and cost per turn; a run
 that stopped says where and why. Writes ``ehd_paper.csv`` and renders the bush's
-deflection and the film pressure at the EHD run's peak film force (its film step
-there, up to where it stopped) to
+deflection and the film pressure at the EHD run's peak film force in the recorded turn
+(its film step there, up to where it stopped) to
 ``docs/img/ehd_deflection.png`` (``--figure`` elsewhere).
 """
 from __future__ import annotations
@@ -76,11 +78,13 @@ def row(label, sc, r, turns):
                wall_time_s=r.stats["wall_time"], cost_per_turn_s=r.stats["wall_time"] / turns)
     if len(r.t) < 3:
         return out
-    frames = film_history(r, sc, n_frames=72) if not r.partial else []
     rec = r.film_record
-    p_max = (np.nanmax(film_column(rec, "pressure_max")) if len(rec) else
-             max(f.solution.pressure_max for f in frames))
+    # a film whose states the run integrated has its every step in the record (its
+    # friction from there); the others' films at 72 crank angles (replayed with memory)
+    frames = film_history(r, sc, n_frames=72) if not (r.partial or r.film_z.shape[1]) else []
     recorded = film_column(rec, "t") >= r.t[0] if len(rec) else []
+    p_max = (np.nanmax(film_column(rec, "pressure_max")[recorded]) if np.any(recorded)
+             else max((f.solution.pressure_max for f in frames), default=float("nan")))
     h_min = (np.nanmin(film_column(rec, "film_min")[recorded]) if np.any(recorded)
              else float(r.film_min.min()))
     # the summits' largest share of the film + summits force over the recorded steps (0
@@ -115,26 +119,33 @@ def record_friction_power(r, rec, radius: float) -> float:
     return float(np.trapezoid(power, t) / (t[-1] - t[0]))
 
 
-def peak_film(sc, r, speed: float):
-    """The EHD run's film at its peak film force (its film step there, up to where it
-    stopped): the state and the :class:`FilmSolution` of that step. The "states" coupling's
-    is the run film's own at the step's state and modal coordinates (``r.film_z``); the
-    "kept" coupling's the steady EHD film at the step's state (what its film step solves).
-    Without a film step: the steady film at the rigid Reynolds run's peak eccentricity."""
+def peak_film(sc, r, rigid, speed: float):
+    """The EHD run's film at its peak film force over the recorded turn (its film step
+    there, up to where it stopped): the state and the :class:`FilmSolution` of that step.
+    The "states" coupling's is the run film's own at the step's state and modal
+    coordinates (``r.film_z``); the "kept" coupling's the steady EHD film at the step's
+    state (what its film step solves). A "kept" run without a recorded film step: the
+    steady film at the peak eccentricity of the ``rigid`` Reynolds run (a "states" run
+    without one raises: no steady film is its film)."""
     from bearingfem.models import film_model
     o = sc.lubrication.options
     rec = r.film_record
-    if len(rec):
-        j = int(np.argmax(np.hypot(film_column(rec, "force_x"), film_column(rec, "force_y"))))
+    recorded = np.flatnonzero(film_column(rec, "t") >= r.t[0]) if len(r.t) else []
+    if len(recorded):
+        force = np.hypot(film_column(rec, "force_x"), film_column(rec, "force_y"))
+        j = int(recorded[np.argmax(force[recorded])])
         state = ElasticJournalState(**{n: float(film_column(rec, n)[j])
                                        for n in ("eps", "eps_dot", "gamma", "gamma_dot",
                                                  "omega")})
-        if r.film_z.shape[0]:
+        if o.get("coupling") == "states":
             film = film_model(sc.lubrication.model).along_run(sc.bearing, dict(o))
             return state, film.solution(state, r.film_z[j])
+    elif o.get("coupling") == "states":
+        raise ValueError("the EHD run has no film step in its recorded turn: no film of "
+                         "its own to render")
     else:
-        i = int(np.argmax(np.hypot(r.force_x, r.force_y)))
-        state = JournalState(eps=min(float(r.eps[i]), 0.995), gamma=0.0, omega=speed)
+        i = int(np.argmax(np.hypot(rigid.force_x, rigid.force_y)))
+        state = JournalState(eps=min(float(rigid.eps[i]), 0.995), gamma=0.0, omega=speed)
     return state, ehd_solution(sc.bearing, state, o["lubricant"], o["bush"], None,
                                o["n_theta"], o["n_z"], o["modes"])
 
@@ -188,7 +199,7 @@ def main(argv=None):
             print(f"  ({w['film']} stopped: {w['message']})")
     write_csv(rows, out / "ehd_paper.csv")
     _, sc_ehd, r_ehd = runs[2]
-    state, sol = peak_film(sc_ehd, r_ehd, a.speed)
+    state, sol = peak_film(sc_ehd, r_ehd, runs[0][2], a.speed)
     render_deflection(sol, state, Path(a.figure))
     print(f"deflection at the peak load (eps {state.eps:.4f}): max "
           f"{1e6 * np.max(sol.deformation):.3f} um, peak pressure "

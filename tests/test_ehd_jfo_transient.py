@@ -72,20 +72,29 @@ def test_oil_balance_per_step_with_the_bush_moving():
         assert np.max(np.abs(a.deformation)) > 1e-8
 
 
-def test_steps_warm_from_the_kept_film_need_no_continuation():
+def test_steps_warm_from_the_kept_film_need_no_continuation(monkeypatch):
     """Each step of a journal moving out and turning (the film-step benchmark's sequence,
-    bronze ring bush, 8 modes, 24 x 2) converges by Newton at s = 1 from the kept film:
-    at most 6 iterations a step (measured 3-5), where a fallback to the load continuation
-    takes 20 or more. Fails without the watchdog of the Newton's line search: step 11
-    then moves two volumes across the cavity's boundary, |R| rises, the backtracking creeps
-    and stalls, and the step takes 29 iterations."""
+    bronze ring bush, 8 modes, 24 x 2) converges by Newton at s = 1 from the kept film
+    (the solve's ``warm``), in at most 6 iterations (measured 3-5), where a fallback to
+    the load continuation takes 20 or more. Fails without the watchdog of the Newton's
+    line search: step 11 then moves two volumes across the cavity's boundary, |R| rises,
+    the backtracking creeps and stalls, and the step takes 29 iterations."""
+    import bearingfem.ehd.jfo_transient as transient
     from benchmarks.ehd_jfo_run import DT as BENCH_DT, RING as BENCH_RING, state
     from bearingfem.bearing import Bearing
     from bearingfem.elastic import bush_compliance
+    warm, original = [], transient.solve_ehd_jfo
+
+    def solve(*args, **kwargs):
+        out = original(*args, **kwargs)
+        warm.append(out.warm)
+        return out
+    monkeypatch.setattr(transient, "solve_ehd_jfo", solve)
     b = Bearing(radius=0.01, length=0.01, clearance=20e-6, viscosity=0.0117)
     modes = bush_compliance(BENCH_RING, b.radius, b.length, 24, 3).reduced(8)
     e = EHDJFOFilm(b, state(0), 24, 2, modes, ambient_pressure=AMBIENT)
     iterations = [e.advance(state(i), BENCH_DT).iterations for i in range(1, 13)]
+    assert all(warm) and len(warm) == 12, warm
     assert max(iterations) <= 6, iterations
     assert e.fraction.min() < 0.9            # a cavity is there
 

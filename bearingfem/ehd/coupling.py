@@ -123,6 +123,7 @@ class JacobianTables:
     shape: tuple
     pattern: Pattern       # the Jacobian's pattern (checked once)
     rows: np.ndarray       # the row of each of its entries
+    keys: np.ndarray       # row * N + column of each entry (sorted): where (i, j) sits
     diagonal: np.ndarray   # the place of each diagonal entry in it
     stiffness_diagonal: np.ndarray   # the same in the operator's stiffness pattern
 
@@ -149,7 +150,7 @@ def jacobian_tables(op) -> JacobianTables:
         phi=value * dx, dphi=np.array([np.asarray(basis.basis[i][0].grad) * dx
                                        for i in range(nb)]),
         value=value, dx=np.asarray(dx), shape=(N, N),
-        pattern=Pattern(indptr, cols.astype(np.int32), (N, N)), rows=rows,
+        pattern=Pattern(indptr, cols.astype(np.int32), (N, N)), rows=rows, keys=keys,
         diagonal=np.searchsorted(keys, diagonal),
         stiffness_diagonal=np.searchsorted(stiff_keys, diagonal))
 

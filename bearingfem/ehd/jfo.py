@@ -220,7 +220,8 @@ def jfo_coupling(bearing, state, op, lubricant, bush, grooves, ambient: float) -
 class EHDJFOSolve:
     """The converged EHD-JFO film: P, phi on all nodes, the solver's record (a
     :class:`~bearingfem.solvers.jfo.JFOResult`: Newton iterations over all continuation
-    steps), continuation steps and rejected attempts, and the flows."""
+    steps), continuation steps and rejected attempts, the flows, and whether the warm
+    start converged by itself."""
 
     P: np.ndarray
     phi: np.ndarray
@@ -228,14 +229,14 @@ class EHDJFOSolve:
     steps: int
     rejected: int
     flows: JFOFlows
+    warm: bool = False      # the warm start converged (no load continuation was needed)
 
 
 def _on_pattern(tables, A) -> np.ndarray:
     """The values of the sparse ``A`` on the Jacobian pattern of ``tables`` (the
     transport's couplings are between neighbouring nodes, so they lie in it)."""
     A = sp.csr_matrix(A)
-    n = A.shape[0]
-    keys = tables.rows * n + tables.pattern.indices
+    n, keys = A.shape[0], tables.keys
     wanted = np.repeat(np.arange(n), np.diff(A.indptr)) * n + A.indices
     at = np.searchsorted(keys, wanted)
     if not np.array_equal(keys[np.minimum(at, keys.size - 1)], wanted):
@@ -302,7 +303,8 @@ class _Newton:
         close: backtracking alone then creeps (measured on the seed pin's heavy state,
         192 x 8: |R| 0.13 -> 0.065 -> 0.063 -> ... until the line search gives up)."""
         tR, _, tst = trial
-        if tR is None or not np.any((t > 0.0) != (u > 0.0)):
+        # a volume whose content cannot change keeps its dR/dP column (as in step)
+        if tR is None or not np.any(((t > 0.0) != (u > 0.0)) & self.can):
             return None
         try:
             t2 = t + self.step(t, s, tR, tst)
@@ -338,7 +340,7 @@ class _Newton:
             if trial[0] is not None and np.linalg.norm(trial[0]) < (1 - 1e-4) * norm:
                 u, (R, scale, st) = t, trial
                 continue
-            ahead = self.lookahead(u, t, s, trial)
+            ahead = self.lookahead(u, t, s, trial) if it < MAX_NEWTON else None
             if ahead is not None:
                 it += 1
                 t2, trial2 = ahead
@@ -371,14 +373,14 @@ def solve_ehd_jfo(bearing, film: JFOCoupling, P0, phi0=None, tol: float = 1e-10,
     can = A.diagonal()[free] > 0.0        # a volume whose content can leave or change
     newton = _Newton(film, free, can)
     done, increment, iterations, steps, rejected = 0.0, 1.0, 0, 0, 0
-    residual = 0.0
+    residual, warm = 0.0, False
     if start is not None:
         Ps, phis = start
         out, iterations = newton.run(np.where(phis[free] < 1.0, phis[free] - 1.0,
                                               Ps[free]), 1.0, tol)
         if out is not None:
             done, (u, residual) = 1.0, out
-            steps = 1
+            steps, warm = 1, True
     if done < 1.0:
         if callable(P0):
             P0, phi0 = P0()
@@ -407,7 +409,7 @@ def solve_ehd_jfo(bearing, film: JFOCoupling, P0, phi0=None, tol: float = 1e-10,
     flows = JFOFlows(flow_in=-k * float(np.sum(inflow[feed])),
                      side_leakage=k * float(np.sum(inflow[op.mesh.end])),
                      storage=k * float(np.sum(film.storage[free] * phi[free])))
-    return EHDJFOSolve(P, phi, res, steps, rejected, flows)
+    return EHDJFOSolve(P, phi, res, steps, rejected, flows, warm)
 
 
 def balance_film(film: JFOCoupling, P: np.ndarray) -> BalanceFilm:

@@ -71,9 +71,10 @@ class _CoupledFilm:
     docstring): what :func:`~bearingfem.ehd.newton._newton` asks of a film."""
 
     def __init__(self, film, q, relaxation, shift, squeeze, modal, rigid_rate,
-                 contact=None, gap=None):
+                 contact=None, gap=None, deflection=None):
         self.film, self.op = film, film.op
         self.gap = gap                  # the nodal gap H as it is (not floored), reported
+        self.deflection = deflection    # the bush's nodal deflection w = L q [m]
         self.contact = contact          # the summits' pressure at the film nodes [Pa] or None
         self.q, self.tau = q, relaxation
         self.shift = shift              # film nodes <-> grid nodes (a FrameShift)
@@ -213,7 +214,7 @@ class ModalStateEHD:
         film = ehd_film(b, state, op, base, gap0, self.lubricant, None)
         squeeze = op.qp_interp @ left / c
         return _CoupledFilm(film, q, self.tau, shift, np.asarray(squeeze), self.modal,
-                            rigid_rate, contact, gap_nodes)
+                            rigid_rate, contact, gap_nodes, w)
 
     def _solve(self, coupled: _CoupledFilm) -> EHDResult:
         free = coupled.op.mesh.free
@@ -267,8 +268,7 @@ class ModalStateEHD:
         sol = _film_outputs(self.bearing, state, coupled.op, res, ev.values, ev.load,
                             ev.fields, "reynolds", "full", (), "fem-P1/ehd-states",
                             gap=coupled.gap)
-        # the bush's radial deflection at the film nodes [m] (it opens the gap)
-        sol = replace(sol, deformation=coupled.shift.to_nodes(self.left) @ np.asarray(q, float))
+        sol = replace(sol, deformation=coupled.deflection)     # [m], opening the gap
         if coupled.contact is None:
             return sol
         total = self._force(coupled, res.pressure)
