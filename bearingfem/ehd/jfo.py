@@ -21,8 +21,9 @@ Unknowns: one universal variable u per free volume, P = max(u, 0), phi = 1 + min
 is semismooth; its generalised Jacobian is exact: the columns of dR/dP (K, the viscosity
 slopes and the bush through K and T: sparse plus the compliance's dense or low-rank part)
 where u > 0 and of dR/dphi = T + S where u <= 0. Newton steps are damped by backtracking
-on |R|_2 after a watchdog (:meth:`_Newton.run`); converged when max |R| <= tol x the largest size of the terms the residual sums
-(|K||P| + |T||phi| + |S phi|), the EHD film's test.
+on |R|_2 after a watchdog (:meth:`_Newton.run`); converged when max |R| <= tol x the
+largest size of the terms the residual sums (|K||P| + |T||phi| + |S phi|), the EHD
+film's test.
 
 Load continuation as in :mod:`bearingfem.ehd.newton`: the coupling s in [0, 1] scales the
 deflection (s C p) and the pressure the lubricant sees (s p); s = 0 is the rigid JFO film,
