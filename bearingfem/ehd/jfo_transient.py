@@ -13,7 +13,7 @@ change holds the deflection's rate (w_{n+1} - w_n) / (c dt) through Q: the squee
 the bush, which the steady and the Reynolds EHD films leave out. The Couette content
 moves at omega/2 relative to the bearing (transport 6 omega, the rigid step's).
 
-Solved by the steady EHD-JFO film's Newton (:func:`~bearingfem.ehd.jfo.solve_ehd_jfo`:
+Solved by the steady EHD-JFO film's Newton (:func:`~bearingfem.ehd.jfo_newton.solve_ehd_jfo`:
 universal variable, exact Jacobian, load continuation from the rigid step), warm started
 from the kept (P, phi). Its content term 12 Q(H) phi / dt enters the Jacobian by the
 storage 12 Q / dt (dR/dphi) and 12 phi / dt dQ/dH (dR/dP through the compliance).
@@ -33,7 +33,8 @@ from ..fe.assembly import fe_operator
 from ..fe.jfo_balance import _step_balance, film_volumes
 from ..fe.volumes import shift_rows
 from ..scales import force_factor
-from .jfo import JFOCoupling, check_ehd_jfo, jfo_coupling, solve_ehd_jfo
+from .jfo import JFOCoupling, check_ehd_jfo, jfo_coupling
+from .jfo_newton import solve_ehd_jfo
 
 __all__ = ["StepCoupling", "EHDJFOFilm", "EHDJFOStep"]
 

@@ -88,15 +88,9 @@ class _Factor:
         self.I, self.A = free[~held], free[held]
         I = self.I
         block = _block(tables, J.data, I, J.shape[0])       # J[I][:, I], transposed
-        if U is None:
-            self.lu = splu(block)
-        elif V is None:                # full compliance: one dense LU
-            self.dense = _lu(block.toarray().T + U[np.ix_(I, I)])
-        else:                          # reduced compliance: Woodbury on the sparse LU
-            self.lu = splu(block)
-            self.UI, self.VI = U[I], V[I]
-            self.Z = self.lu.solve(self.UI, trans="T")
-            self.small = _lu(np.eye(V.shape[1]) + self.VI.T @ self.Z)
+        self.lu = (_BlockLU(block) if U is None else
+                   _BlockLU(block, U[np.ix_(I, I)]) if V is None else
+                   _BlockLU(block, U[I], V[I]))
 
     @classmethod
     def at(cls, film, P, s, free, held, ev):
@@ -115,16 +109,38 @@ class _Factor:
         known = np.zeros_like(P)
         known[A] = dA
         rhs = -phi[~self.held] - (self.J @ known)[I]
-        if U is None:
-            dI = self.lu.solve(rhs, trans="T")
-        elif V is None:
-            dI = la.lu_solve(self.dense, rhs - U[np.ix_(I, A)] @ dA, check_finite=False)
-        else:
-            y = self.lu.solve(rhs - self.UI @ (V[A].T @ dA), trans="T")
-            dI = y - self.Z @ la.lu_solve(self.small, self.VI.T @ y, check_finite=False)
+        if U is not None:              # the held rows' known step through the bush
+            rhs = rhs - (U[np.ix_(I, A)] @ dA if V is None else U[I] @ (V[A].T @ dA))
+        dI = self.lu.solve(rhs)
         step = np.zeros_like(P)
         step[I], step[A] = dI, dA
         return step
+
+
+class _BlockLU:
+    """A Newton matrix on the free rows and columns, M = B + U V^T, factorised: B sparse,
+    given as the CSC of its transpose (:func:`_block`), and the bush's part U V^T (none
+    without U; V None: U is the dense product). One sparse LU, with Woodbury for a low
+    rank, or one dense LU for the full compliance; a singular M raises LinAlgError (or
+    splu's RuntimeError)."""
+
+    def __init__(self, block, U=None, V=None):
+        self.V = V
+        if U is not None and V is None:
+            self.dense = _lu(block.toarray().T + U)
+            return
+        self.dense, self.lu = None, splu(block)
+        if V is not None:
+            self.Z = self.lu.solve(U, trans="T")
+            self.small = _lu(np.eye(V.shape[1]) + V.T @ self.Z)
+
+    def solve(self, rhs: np.ndarray) -> np.ndarray:
+        if self.dense is not None:
+            return la.lu_solve(self.dense, rhs, check_finite=False)
+        y = self.lu.solve(rhs, trans="T")
+        if self.V is None:
+            return y
+        return y - self.Z @ la.lu_solve(self.small, self.V.T @ y, check_finite=False)
 
 
 def _lu(M):
