@@ -210,6 +210,35 @@ def test_warm_start_finds_the_cold_film():
         solve_reynolds(SEED, STATE, 24, 4, bush=SOFT, start=near, **SUPPLY)
 
 
+def test_cold_start_at_the_heavy_state_needs_no_continuation(monkeypatch):
+    """The seed pin's heaviest state (eps 0.995, 128 x 8, bronze ring, 64 modes): from the
+    rigid JFO film (1.9 GPa peak; the bush opens it to ~60 MPa) the nonmonotone line
+    search converges at full coupling, one continuation step and no rejected attempt,
+    to the film a monotone search reaches by load continuation (3 steps, one rejected):
+    P to 1e-8 of its peak, phi to 1e-8, the same Newton test. Fails with a monotone
+    search (MEMORY = 1: |R|_2 must fall at every step; the first attempt stalls)."""
+    from bearingfem.ehd import jfo_newton
+    from bearingfem.ehd.jfo_newton import solve_ehd_jfo
+    from bearingfem.fe.jfo_steady import _steady
+    heavy, n = JournalState(eps=0.995, omega=250.0), (128, 8)
+
+    def whole(nt, nz):
+        return fe_operator(SEED, heavy, nt, nz, "P1", None, False, ())
+    comp = bush_compliance(RING, SEED.radius, SEED.length, n[0], n[1] + 1).reduced(64)
+    film = jfo_coupling(SEED, heavy, whole(*n), None, comp, (), 1e5)
+
+    def rigid():
+        return _steady(SEED, heavy, whole, *n, (), 1e5)[:2]
+    cold = solve_ehd_jfo(SEED, film, rigid)
+    assert (cold.steps, cold.rejected) == (1, 0)
+    monkeypatch.setattr(jfo_newton, "MEMORY", 1)
+    walked = solve_ehd_jfo(SEED, film, rigid)
+    assert walked.steps > 1                    # the monotone search needs the continuation
+    assert np.max(np.abs(cold.P - walked.P)) <= 1e-8 * np.max(cold.P)
+    assert np.max(np.abs(cold.phi - walked.phi)) <= 1e-8
+    assert walked.phi.min() < 0.5 and np.max(cold.P) * SEED.pressure_scale < 2e8
+
+
 def test_constant_viscosity_lubricant_scales_the_jfo_film():
     """A lubricant of twice the bearing's viscosity (no pressure law) on the rigid gap,
     supply line at ambient 0: the JFO balance K P / mu + T phi = 0 has P doubled and phi

@@ -5,8 +5,8 @@ Unknowns: one universal variable u per free volume, P = max(u, 0), phi = 1 + min
 (Giacopini et al. 2010; the rigid solver's variable, :mod:`bearingfem.solvers.jfo`). R(u)
 is semismooth; its generalised Jacobian is exact: the columns of dR/dP (K, the viscosity
 slopes and the bush through K and T: sparse plus the compliance's dense or low-rank part)
-where u > 0 and of dR/dphi = T + S where u <= 0. Newton steps are damped by backtracking
-on |R|_2 after a watchdog (:meth:`_Newton.run`); converged when max |R| <= tol x the
+where u > 0 and of dR/dphi = T + S where u <= 0. Newton steps are damped by a nonmonotone
+backtracking on |R|_2 after a watchdog (:meth:`_Newton.run`); converged when max |R| <= tol x the
 largest size of the terms the residual sums (|K||P| + |T||phi| + |S phi|), the EHD
 film's test.
 
@@ -20,10 +20,13 @@ References: M. Giacopini, M.T. Fowell, D. Dini, A. Strozzi, A mass-conserving
 complementarity formulation to study lubricant films in the presence of cavitation,
 J. Tribol. 132 (2010) 041702; the watchdog: R.M. Chamberlain, M.J.D. Powell,
 C. Lemarechal, H.C. Pedersen, The watchdog technique for forcing convergence in algorithms
-for constrained optimization, Math. Programming Study 16 (1982) 1-17.
+for constrained optimization, Math. Programming Study 16 (1982) 1-17; the nonmonotone
+line search: L. Grippo, F. Lampariello, S. Lucidi, A nonmonotone line search technique
+for Newton's method, SIAM J. Numer. Anal. 23 (1986) 707-716.
 """
 from __future__ import annotations
 
+from collections import deque
 from dataclasses import dataclass
 
 import numpy as np
@@ -40,6 +43,9 @@ __all__ = ["solve_ehd_jfo", "EHDJFOSolve"]
 
 MIN_INCREMENT = 1e-4
 MAX_NEWTON = 40
+#: A step is measured against the largest |R|_2 of this many last iterates (Grippo et al.
+#: 1986): a cold start's path may rise for a few steps where cavities open and close.
+MEMORY = 10
 
 
 @dataclass(frozen=True)
@@ -144,6 +150,7 @@ class _Newton:
         if R is None:
             return None, 0
         it = 0
+        recent = deque(maxlen=MEMORY)
         while True:
             res = float(np.max(np.abs(R), initial=0.0)) / scale
             if res <= tol:
@@ -156,23 +163,25 @@ class _Newton:
                 return None, it
             it += 1
             norm = float(np.linalg.norm(R))
+            recent.append(norm)
+            ref = max(recent)
             t = u + du
             trial = self.merit(t, s)
-            if trial[0] is not None and np.linalg.norm(trial[0]) < (1 - 1e-4) * norm:
+            if trial[0] is not None and np.linalg.norm(trial[0]) < ref - 1e-4 * norm:
                 u, (R, scale, st) = t, trial
                 continue
             ahead = self.lookahead(u, t, s, trial) if it < MAX_NEWTON else None
             if ahead is not None:
                 it += 1
                 t2, trial2 = ahead
-                if trial2[0] is not None and np.linalg.norm(trial2[0]) < (1 - 1e-4) * norm:
+                if trial2[0] is not None and np.linalg.norm(trial2[0]) < ref - 1e-4 * norm:
                     u, (R, scale, st) = t2, trial2
                     continue
             alpha = 0.5
             while alpha >= 1.0 / 256:
                 t = u + alpha * du
                 tR, tscale, tst = self.merit(t, s)
-                if tR is not None and np.linalg.norm(tR) < (1 - 1e-4 * alpha) * norm:
+                if tR is not None and np.linalg.norm(tR) < ref - 1e-4 * alpha * norm:
                     u, R, scale, st = t, tR, tscale, tst
                     break
                 alpha *= 0.5
