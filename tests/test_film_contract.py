@@ -184,6 +184,51 @@ def _viscous_short(bearing, state, viscosity_ratio=1.0):
                                state)
 
 
+def test_a_cut_step_grows_back():
+    """A solve that fails at one instant (the first eight calls past t = 5 of y' = -y +
+    sin t over 0-20 raise ConvergenceError) is cut (up to eight times: a solver's
+    restart evaluates f too), each cut's largest step at
+    most half the last one's (half the failed step), and the step grows back once past
+    it: the run takes
+    at most the failure-free run's steps plus the 20 accepted steps each fourfold raise
+    waits (bounded at 3 times the steps plus ten raises' 20; the late steps as long as
+    the failure-free run's, to half their median), and ends on the exact
+    solution (rtol 1e-6 run, 1e-5 asserted). Fails with the cut's limit held to the end
+    of the call (102335 steps with LSODA against 160); a solve that fails every time past
+    t = 5 still stops the run after 20 cuts in a row."""
+    from mechanism.stepping import RELAX_AFTER
+    calls = [0]
+
+    def f(t, y):
+        if t > 5.0 and calls[0] < 8:
+            calls[0] += 1
+            raise ConvergenceError("toy solve", 1, None, "planted")
+        return [-y[0] + math.sin(t)]
+
+    def exact(t):            # y(0) = 0
+        return 0.5 * (math.sin(t) - math.cos(t) + math.exp(-t))
+    for method in ("LSODA", "BDF", "RK45"):
+        calls[0] = 0
+        clean = integrate(lambda t, y: [-y[0] + math.sin(t)], (0.0, 20.0), [0.0], method,
+                          rtol=1e-6, atol=1e-9)
+        got = integrate(f, (0.0, 20.0), [0.0], method, rtol=1e-6, atol=1e-9)
+        assert calls[0] == 8 and 1 <= len(got.cuts) <= 8, method
+        limits = [c.max_step for c in got.cuts]
+        assert np.all(np.array(limits[1:]) <= 0.5000001 * np.array(limits[:-1])), method
+        assert len(got.t) <= 3 * len(clean.t) + 10 * RELAX_AFTER, method
+        late = got.t > 15.0                  # the step is the solver's own again
+        assert np.median(np.diff(got.t)[late[1:]]) >= 0.5 * np.median(
+            np.diff(clean.t)[(clean.t > 15.0)[1:]]), method
+        assert got.y[0, -1] == pytest.approx(exact(20.0), rel=1e-5), method
+
+    def stuck(t, y):
+        if t > 5.0:
+            raise ConvergenceError("toy solve", 1, None, "always")
+        return [-y[0] + math.sin(t)]
+    with pytest.raises(ConvergenceError):
+        integrate(stuck, (0.0, 20.0), [0.0], "LSODA", rtol=1e-6, atol=1e-9)
+
+
 def test_a_new_model_needs_no_edit_of_the_registry_callers():
     """A model registered from outside is solved by solve_film (its own ``solution``),
     checked by its own rules, linearised by the designer functions and refused an option
