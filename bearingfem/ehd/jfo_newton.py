@@ -37,15 +37,12 @@ from ..errors import ConvergenceError
 from ..fe.jfo_balance import JFOFlows
 from ..scales import flow_factor
 from ..solvers.jfo import JFOResult
-from .newton import _block, _BlockLU
+from .newton import MEMORY, _block, _BlockLU
 
 __all__ = ["solve_ehd_jfo", "EHDJFOSolve"]
 
 MIN_INCREMENT = 1e-4
 MAX_NEWTON = 40
-#: A step is measured against the largest |R|_2 of this many last iterates (Grippo et al.
-#: 1986): a cold start's path may rise for a few steps where cavities open and close.
-MEMORY = 10
 
 
 @dataclass(frozen=True)

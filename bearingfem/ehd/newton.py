@@ -6,8 +6,10 @@ clip is applied afterwards as on the rigid film) solve R(P) = 0. Swift-Stieber f
 (primal-dual active-set) Newton method on Phi = min(d P, R), d the stiffness diagonal,
 so both arguments are in the residual's units (Hintermueller, Ito & Kunisch, SIAM J.
 Optim. 13 (2002) 865-888): rows with d P < R are held cavitated (step -P), the others take
-the Newton row of R. Every step is damped by backtracking on |Phi|_2 and rejected where
-the gap would close.
+the Newton row of R. Every step is damped by a nonmonotone backtracking on |Phi|_2 (a
+step is accepted below the largest |Phi|_2 of the last :data:`MEMORY` iterates, less
+1e-4 of its share: L. Grippo, F. Lampariello, S. Lucidi, SIAM J. Numer. Anal. 23 (1986)
+707-716) and rejected where the gap would close.
 
 Convergence test: max |Phi| <= tol * max_i (|K| |P| + |load|)_i over the free dofs, the
 size of the terms the residual sums (so tol is relative to round-off of the assembly).
@@ -20,6 +22,7 @@ converged one doubles it. Below an increment of 1e-4 the solve raises Convergenc
 from __future__ import annotations
 
 import warnings
+from collections import deque
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -34,6 +37,10 @@ __all__ = ["EHDResult", "solve_ehd", "ConvergenceError"]
 
 MIN_INCREMENT = 1e-4
 MAX_NEWTON = 30
+#: A step is measured against the largest |Phi|_2 of this many last iterates (a
+#: nonmonotone line search, Grippo et al. 1986): a path that rises for a few steps where
+#: nodes leave or join the cavity is not cut short.
+MEMORY = 10
 
 
 @dataclass(frozen=True, eq=False)
@@ -176,6 +183,7 @@ def _newton(film, P, s, free, cavitation, tol, keep=None):
     phi, scale, held, ev = _merit(film, P, s, free, cavitation)
     if phi is None:
         return None, 0
+    recent = deque(maxlen=MEMORY)
     for it in range(MAX_NEWTON + 1):
         res = float(np.max(np.abs(phi), initial=0.0)) / scale
         if res <= tol:
@@ -190,12 +198,14 @@ def _newton(film, P, s, free, cavitation, tol, keep=None):
         if keep is not None:
             keep[:] = [factor]
         norm = float(np.linalg.norm(phi))
+        recent.append(norm)
+        ref = max(recent)
         alpha = 1.0
         while alpha >= 1.0 / 64:
             trial = P + alpha * step
             t_phi, t_scale, t_held, t_ev = _merit(film, trial, s, free, cavitation)
             with np.errstate(over="ignore"):
-                better = t_phi is not None and np.linalg.norm(t_phi) < (1 - 1e-4 * alpha) * norm
+                better = t_phi is not None and np.linalg.norm(t_phi) < ref - 1e-4 * alpha * norm
             if better:
                 P, phi, scale, held, ev = trial, t_phi, t_scale, t_held, t_ev
                 break
