@@ -5,8 +5,9 @@
 
 A tenth of a turn from top dead centre (benchmarks/ehd_step.py's window), rough surfaces
 (sigma 0.2 um, E* 80.8 GPa, K 1e-3), one run per row: steps, CPU time, peak eps, least film
-(the gap itself: negative where the summits carry), peak film pressure, and the rigid JFO
-run of the same mesh for the cost ratio. docs/ehd-states.md has a table of it.
+(the gap itself: negative where the summits carry), peak film pressure, the steps the
+integration loop cut where a film solve failed, and the rigid JFO run of the same mesh for
+the cost ratio. docs/ehd-states.md has a table of it.
 """
 from __future__ import annotations
 
@@ -24,7 +25,9 @@ ROUGH = Roughness(sigma=0.2e-6, contact_modulus=80.8e9, elastic_factor=1e-3, fri
 #: (name, rtol, relaxation [s], modes, oil)
 RUNS = {"base": (1e-6, 1e-5, 16, "iso"), "rtol": (1e-7, 1e-5, 16, "iso"),
         "tau3": (1e-6, 3e-6, 16, "iso"), "tau1": (1e-6, 1e-6, 16, "iso"),
-        "modes32": (1e-6, 1e-5, 32, "iso"), "roelands": (1e-6, 1e-5, 16, "roelands")}
+        "modes8": (1e-6, 1e-5, 8, "iso"), "modes24": (1e-6, 1e-5, 24, "iso"),
+        "modes32": (1e-6, 1e-5, 32, "iso"), "modes48": (1e-6, 1e-5, 48, "iso"),
+        "roelands": (1e-6, 1e-5, 16, "roelands")}
 
 
 def states_run(turns, nt, nz, rtol, tau, modes, oil, progress=False):
@@ -63,7 +66,8 @@ def main(argv=None):
     base = rigid_jfo(a.turns, nt, nz)
     print(f"seed pin, 250 rad/s, {a.turns:g} turn, {nt} x {nz}; rigid JFO run {base:.2f} s CPU")
     print(f"{'run':>9} {'rtol':>6} {'tau[s]':>7} {'modes':>5} {'oil':>8} {'steps':>6} "
-          f"{'CPU[s]':>7} {'x JFO':>6} {'peak eps':>9} {'h_min[um]':>9} {'p_max[MPa]':>10}")
+          f"{'CPU[s]':>7} {'x JFO':>6} {'peak eps':>9} {'h_min[um]':>9} {'p_max[MPa]':>10} "
+          f"{'cuts':>4}")
     for name in a.runs:
         rtol, tau, modes, oil = RUNS[name]
         r, cpu = states_run(a.turns, nt, nz, rtol, tau, modes, oil, a.progress)
@@ -72,8 +76,8 @@ def main(argv=None):
         note = "" if not r.partial else f"  (stopped: {r.message[:60]})"
         print(f"{name:>9} {rtol:6.0e} {tau:7.0e} {modes:5d} {oil:>8} {r.stats['steps']:6d} "
               f"{cpu:7.1f} {cpu / base:6.1f} {r.eps.max() if len(r.eps) else float('nan'):9.4f} "
-              f"{1e6 * r.film_min.min() if len(r.eps) else float('nan'):9.3f} {p_max:10.1f}"
-              + note, flush=True)
+              f"{1e6 * r.film_min.min() if len(r.eps) else float('nan'):9.3f} {p_max:10.1f} "
+              f"{len(r.stats.get('step_cuts', ())):4d}" + note, flush=True)
 
 
 if __name__ == "__main__":
