@@ -6,9 +6,9 @@ Unknowns: one universal variable u per free volume, P = max(u, 0), phi = 1 + min
 is semismooth; its generalised Jacobian is exact: the columns of dR/dP (K, the viscosity
 slopes and the bush through K and T: sparse plus the compliance's dense or low-rank part)
 where u > 0 and of dR/dphi = T + S where u <= 0. Newton steps are damped by a nonmonotone
-backtracking on |R|_2 after a watchdog (:meth:`_Newton.run`); converged when max |R| <= tol x the
-largest size of the terms the residual sums (|K||P| + |T||phi| + |S phi|), the EHD
-film's test.
+backtracking on |R|_2 after a watchdog (:meth:`_Newton.run`); converged when max |R| <=
+tol x the largest size of the terms the residual sums (|K||P| + |T||phi| + |S phi|), the
+EHD film's test.
 
 Load continuation as in :mod:`bearingfem.ehd.newton`: the coupling s in [0, 1] scales the
 deflection (s C p) and the pressure the lubricant sees (s p); s = 0 is the rigid JFO film,
@@ -139,10 +139,12 @@ class _Newton:
     def run(self, u, s, tol):
         """((u, residual) or None when it stalls, iterations).
 
-        Each step is damped by backtracking on |R|_2, after a watchdog (Chamberlain et
-        al. 1982): a full step that fails the decrease but moves a cavity's boundary is
-        followed by one more Newton step, kept if that point decreases |R|_2 from u
-        (:meth:`lookahead`; the pair counts as two iterations)."""
+        Each step is damped by backtracking on |R|_2, measured against the largest |R|_2
+        of the last :data:`~bearingfem.ehd.newton.MEMORY` iterates (Grippo et al. 1986),
+        after a watchdog (Chamberlain et al. 1982): a full step that fails the decrease
+        but moves a cavity's boundary is followed by one more Newton step, kept if that
+        point passes the same test (:meth:`lookahead`; the pair counts as two
+        iterations)."""
         R, scale, st = self.merit(u, s)
         if R is None:
             return None, 0

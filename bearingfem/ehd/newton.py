@@ -205,7 +205,8 @@ def _newton(film, P, s, free, cavitation, tol, keep=None):
             trial = P + alpha * step
             t_phi, t_scale, t_held, t_ev = _merit(film, trial, s, free, cavitation)
             with np.errstate(over="ignore"):
-                better = t_phi is not None and np.linalg.norm(t_phi) < ref - 1e-4 * alpha * norm
+                better = (t_phi is not None
+                          and np.linalg.norm(t_phi) < ref - 1e-4 * alpha * norm)
             if better:
                 P, phi, scale, held, ev = trial, t_phi, t_scale, t_held, t_ev
                 break
