@@ -1,19 +1,22 @@
 """The seed pin at 250 rad/s with the bush's modes integrated (fem-ehd coupling 'states').
 
     python -m benchmarks.ehd_states [--turns 0.1] [--mesh 48 4] [--runs base rtol tau ...]
-        [--progress]
+        [--modes 16 24 ...] [--progress]
 
 A tenth of a turn from top dead centre (benchmarks/ehd_step.py's window), rough surfaces
 (sigma 0.2 um, E* 80.8 GPa, K 1e-3), one run per row: steps, CPU time, peak eps, least film
 (the gap itself: negative where the summits carry), peak film pressure, the steps the
-integration loop cut where a film solve failed, and the rigid JFO run of the same mesh for
-the cost ratio. docs/ehd-states.md has a table of it.
+integration loop cut where a film solve failed, the least film and peak pressure over the
+last whole turn (the periodic state), and the rigid JFO run of the same mesh for the cost
+ratio. docs/ehd-states.md has a table of it.
 """
 from __future__ import annotations
 
 import argparse
 import dataclasses
 import time
+
+import numpy as np
 
 from bearingfem.contact import Roughness
 from mechanism import load_scene, simulate
@@ -51,11 +54,26 @@ def rigid_jfo(turns, nt, nz):
     return time.process_time() - t
 
 
+def last_turn(r, turns):
+    """(least film [um], peak film pressure [MPa]) over the run's last whole crank turn
+    (the periodic state the seed records; NaN for a run under one turn)."""
+    if turns < 1 or not len(r.eps):
+        return float("nan"), float("nan")
+    start = 2 * np.pi * (np.floor(turns) - 1)
+    on = r.crank_angle >= start
+    rec = r.film_record
+    t0 = r.t[np.argmax(on)]
+    return (1e6 * float(np.min(r.film_min[on])),
+            float(np.max(rec[rec[:, 0] >= t0, 3], initial=-np.inf)) / 1e6)
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--turns", type=float, default=0.1)
     ap.add_argument("--mesh", type=int, nargs=2, default=(48, 4))
     ap.add_argument("--runs", nargs="+", default=list(RUNS), choices=list(RUNS))
+    ap.add_argument("--modes", type=int, nargs="+", default=None,
+                    help="run each selected row at each of these numbers of modes")
     ap.add_argument("--progress", action="store_true",
                     help="each run's progress on stderr (five turns take minutes to hours)")
     a = ap.parse_args(argv)
@@ -67,17 +85,20 @@ def main(argv=None):
     print(f"seed pin, 250 rad/s, {a.turns:g} turn, {nt} x {nz}; rigid JFO run {base:.2f} s CPU")
     print(f"{'run':>9} {'rtol':>6} {'tau[s]':>7} {'modes':>5} {'oil':>8} {'steps':>6} "
           f"{'CPU[s]':>7} {'x JFO':>6} {'peak eps':>9} {'h_min[um]':>9} {'p_max[MPa]':>10} "
-          f"{'cuts':>4}")
-    for name in a.runs:
-        rtol, tau, modes, oil = RUNS[name]
+          f"{'cuts':>4} {'last turn: h_min[um]':>20} {'p_max[MPa]':>10}")
+    rows = [(name, m) for name in a.runs for m in (a.modes or [RUNS[name][2]])]
+    for name, modes in rows:
+        rtol, tau, _, oil = RUNS[name]
         r, cpu = states_run(a.turns, nt, nz, rtol, tau, modes, oil, a.progress)
         rec = r.film_record
         p_max = rec[:, 3].max() / 1e6 if len(rec) else float("nan")
         note = "" if not r.partial else f"  (stopped: {r.message[:60]})"
+        h_last, p_last = last_turn(r, a.turns)
         print(f"{name:>9} {rtol:6.0e} {tau:7.0e} {modes:5d} {oil:>8} {r.stats['steps']:6d} "
               f"{cpu:7.1f} {cpu / base:6.1f} {r.eps.max() if len(r.eps) else float('nan'):9.4f} "
               f"{1e6 * r.film_min.min() if len(r.eps) else float('nan'):9.3f} {p_max:10.1f} "
-              f"{len(r.stats.get('step_cuts', ())):4d}" + note, flush=True)
+              f"{len(r.stats.get('step_cuts', ())):4d} {h_last:20.3f} {p_last:10.1f}" + note,
+              flush=True)
 
 
 if __name__ == "__main__":
