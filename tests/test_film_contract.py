@@ -186,16 +186,14 @@ def _viscous_short(bearing, state, viscosity_ratio=1.0):
 
 def test_a_cut_step_grows_back():
     """A solve that fails at one instant (the first eight calls past t = 5 of y' = -y +
-    sin t over 0-20 raise ConvergenceError) is cut (up to eight times: a solver's
-    restart evaluates f too), each cut's largest step at
-    most half the last one's (half the failed step), and the step grows back once past
-    it: the run takes
-    at most the failure-free run's steps plus the 20 accepted steps each fourfold raise
-    waits (bounded at 3 times the steps plus ten raises' 20; the late steps as long as
-    the failure-free run's, to half their median), and ends on the exact
-    solution (rtol 1e-6 run, 1e-5 asserted). Fails with the cut's limit held to the end
-    of the call (102335 steps with LSODA against 160); a solve that fails every time past
-    t = 5 still stops the run after 20 cuts in a row."""
+    sin t over 0-20 raise ConvergenceError; LSODA, BDF, RK45) is cut, up to eight times
+    (a solver's restart evaluates f too), each cut's largest step at most half the last
+    one's, and the step grows back once past it: at most 3 times the failure-free run's
+    steps plus ten fourfold raises' 20 accepted steps, the late steps (t > 15) at least
+    half the failure-free run's median, and the end on the exact solution (rtol 1e-6 run,
+    1e-5 asserted). Fails with the cut's limit held to the end of the call (102335 steps
+    with LSODA against 160). A solve that fails every time past t = 5 still stops the
+    run, after 20 cuts in a row."""
     from mechanism.stepping import RELAX_AFTER
     calls = [0]
 
