@@ -83,6 +83,7 @@ def integrate(fun, t_span, y0, method: str = "LSODA", events=(), accept=None,
     free = {k: v for k, v in options.items() if k != "first_step"}   # a restart's options
     top = options.get("max_step", np.inf)
     limit, in_row, since = None, 0, 0      # the cut's largest step, cuts in a row, steps
+    tried = options.get("first_step")      # the first step of the latest (re)start
     events, max_events, event_dir = prepare_events(events)
     event_count = np.zeros(len(events))
     g = [event(t0, y0) for event in events]
@@ -117,15 +118,16 @@ def integrate(fun, t_span, y0, method: str = "LSODA", events=(), accept=None,
                 raise
             t_last, y_last = ts[-1], ys[-1]
             # the step that failed, or (a solver that failed its first step has none) the
-            # limit of the last cut: each cut halves what the one before allowed
-            h = solver.step_size or (limit if limit is not None else abs(tf - t_last))
+            # first step it was started with: each cut halves what was last tried
+            h = solver.step_size or tried or abs(tf - t_last)
             limit, in_row, since = min(top, 0.5 * h), in_row + 1, 0
+            tried = min(limit, abs(tf - t_last))
             cuts.append(StepCut(float(t_last), limit, f"{type(err).__name__}: {err}"))
             status = None
             # the limit as the first step too: a solver's own first-step choice (RK45,
             # BDF) evaluates fun ahead, where it failed
             solver = solver_class(fun, t_last, y_last, tf, vectorized=False,
-                                  **dict(free, max_step=limit, first_step=limit))
+                                  **dict(free, max_step=limit, first_step=tried))
             continue
         # the step is accepted: keep it (solve_ivp's bookkeeping)
         if active_events.size > 0:
@@ -148,11 +150,11 @@ def integrate(fun, t_span, y0, method: str = "LSODA", events=(), accept=None,
                 h = solver.step_size or limit
                 raised = 4.0 * limit if h >= 0.5 * limit and 4.0 * limit < top else None
                 since = 0
-                go_on = dict(free, first_step=min(h, tf - t))     # the step it had reached
+                go_on = dict(free, first_step=min(h, abs(tf - t)))  # the step it had reached
                 try:
                     solver = solver_class(fun, t, y, tf, vectorized=False, **(
                         go_on if raised is None else dict(go_on, max_step=raised)))
-                    limit, in_row = raised, 0
+                    limit, in_row, tried = raised, 0, go_on["first_step"]
                 except STEP_FAILURE:        # the solve fails here still: keep the solver
                     pass
         if interrupted is not None and interrupted():

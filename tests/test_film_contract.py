@@ -227,6 +227,25 @@ def test_a_cut_step_grows_back():
         integrate(stuck, (0.0, 20.0), [0.0], "LSODA", rtol=1e-6, atol=1e-9)
 
 
+@pytest.mark.parametrize("method", ["LSODA", "BDF", "RK45"])
+@pytest.mark.parametrize("tf", [20.0, 19.95])
+def test_a_cut_in_the_last_step_ends_the_run(method, tf):
+    """A solve that fails once within 1e-3 of the span's end is cut and the run ends on
+    the exact solution (1e-5). Fails with the cut's first step longer than what is left
+    of the span (scipy refuses it: ValueError)."""
+    calls = [0]
+
+    def f(t, y):
+        if t > tf - 1e-3 and calls[0] < 1:
+            calls[0] += 1
+            raise ConvergenceError("toy solve", 1, None, "planted")
+        return [-y[0] + math.sin(t)]
+    got = integrate(f, (0.0, tf), [0.0], method, rtol=1e-6, atol=1e-9)
+    assert calls[0] == 1 and len(got.cuts) == 1 and got.t[-1] == tf
+    exact = 0.5 * (math.sin(tf) - math.cos(tf) + math.exp(-tf))
+    assert got.y[0, -1] == pytest.approx(exact, rel=1e-5)
+
+
 def test_a_new_model_needs_no_edit_of_the_registry_callers():
     """A model registered from outside is solved by solve_film (its own ``solution``),
     checked by its own rules, linearised by the designer functions and refused an option
