@@ -82,6 +82,13 @@ def integrate(fun, t_span, y0, method: str = "LSODA", events=(), accept=None,
     ts, ys, interpolants, cuts = [t0], [y0], [], []
     free = {k: v for k, v in options.items() if k != "first_step"}   # a restart's options
     top = options.get("max_step", np.inf)
+
+    def restart(t, y, first_step, max_step=None):
+        """The solver started again at (t, y): the caller's options, this first step and
+        (None: the caller's) largest step."""
+        extra = {} if max_step is None else {"max_step": max_step}
+        return solver_class(fun, t, y, tf, vectorized=False,
+                            **dict(free, first_step=first_step, **extra))
     limit, in_row, since = None, 0, 0      # the cut's largest step, cuts in a row, steps
     tried = options.get("first_step")      # the first step of the latest (re)start
     events, max_events, event_dir = prepare_events(events)
@@ -126,8 +133,7 @@ def integrate(fun, t_span, y0, method: str = "LSODA", events=(), accept=None,
             status = None
             # the limit as the first step too: a solver's own first-step choice (RK45,
             # BDF) evaluates fun ahead, where it failed
-            solver = solver_class(fun, t_last, y_last, tf, vectorized=False,
-                                  **dict(free, max_step=limit, first_step=tried))
+            solver = restart(t_last, y_last, tried, limit)
             continue
         # the step is accepted: keep it (solve_ivp's bookkeeping)
         if active_events.size > 0:
@@ -150,11 +156,10 @@ def integrate(fun, t_span, y0, method: str = "LSODA", events=(), accept=None,
                 h = solver.step_size or limit
                 raised = 4.0 * limit if h >= 0.5 * limit and 4.0 * limit < top else None
                 since = 0
-                go_on = dict(free, first_step=min(h, abs(tf - t)))  # the step it had reached
+                first = min(h, abs(tf - t))             # the step it had reached
                 try:
-                    solver = solver_class(fun, t, y, tf, vectorized=False, **(
-                        go_on if raised is None else dict(go_on, max_step=raised)))
-                    limit, in_row, tried = raised, 0, go_on["first_step"]
+                    solver = restart(t, y, first, raised)
+                    limit, in_row, tried = raised, 0, first
                 except STEP_FAILURE:        # the solve fails here still: keep the solver
                     pass
         if interrupted is not None and interrupted():
