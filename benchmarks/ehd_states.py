@@ -20,6 +20,7 @@ import numpy as np
 
 from bearingfem.contact import Roughness
 from mechanism import load_scene, simulate
+from mechanism.result import film_column
 
 from .ehd_run import scene
 from .ehd_step import OILS
@@ -61,10 +62,9 @@ def last_turn(r, turns):
         return float("nan"), float("nan")
     start = 2 * np.pi * (np.floor(turns) - 1)
     on = r.crank_angle >= start
-    rec = r.film_record
     t0 = r.t[np.argmax(on)]
-    return (1e6 * float(np.min(r.film_min[on])),
-            float(np.max(rec[rec[:, 0] >= t0, 3], initial=-np.inf)) / 1e6)
+    p = film_column(r.film_record, "pressure_max")[film_column(r.film_record, "t") >= t0]
+    return 1e6 * float(np.min(r.film_min[on])), float(np.max(p, initial=-np.inf)) / 1e6
 
 
 def main(argv=None):
@@ -90,8 +90,8 @@ def main(argv=None):
     for name, modes in rows:
         rtol, tau, _, oil = RUNS[name]
         r, cpu = states_run(a.turns, nt, nz, rtol, tau, modes, oil, a.progress)
-        rec = r.film_record
-        p_max = rec[:, 3].max() / 1e6 if len(rec) else float("nan")
+        p = film_column(r.film_record, "pressure_max")
+        p_max = p.max() / 1e6 if p.size else float("nan")
         note = "" if not r.partial else f"  (stopped: {r.message[:60]})"
         h_last, p_last = last_turn(r, a.turns)
         print(f"{name:>9} {rtol:6.0e} {tau:7.0e} {modes:5d} {oil:>8} {r.stats['steps']:6d} "
