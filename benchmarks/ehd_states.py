@@ -1,7 +1,7 @@
 """The seed pin at 250 rad/s with the bush's modes integrated (fem-ehd coupling 'states').
 
     python -m benchmarks.ehd_states [--turns 0.1] [--mesh 48 4] [--runs base rtol tau ...]
-        [--modes 16 24 ...] [--progress]
+        [--modes 16 24 ...] [--progress] [--save DIR]
 
 A tenth of a turn from top dead centre (benchmarks/ehd_step.py's window), rough surfaces
 (sigma 0.2 um, E* 80.8 GPa, K 1e-3), one run per row: steps, CPU time, peak eps, least film
@@ -76,6 +76,9 @@ def main(argv=None):
                     help="run each selected row at each of these numbers of modes")
     ap.add_argument("--progress", action="store_true",
                     help="each run's progress on stderr (five turns take minutes to hours)")
+    ap.add_argument("--save", metavar="DIR", default=None,
+                    help="write each run's result to DIR/<run>-<modes>modes (its film record "
+                         "and modal states, for a look at where the least film falls)")
     a = ap.parse_args(argv)
     nt, nz = a.mesh
     # warm-up: the first run of a process builds the meshes' operators and tables
@@ -94,6 +97,8 @@ def main(argv=None):
         p_max = p.max() / 1e6 if p.size else float("nan")
         note = "" if not r.partial else f"  (stopped: {r.message[:60]})"
         h_last, p_last = last_turn(r, a.turns)
+        if a.save:
+            r.save(f"{a.save}/{name}-{modes}modes")
         print(f"{name:>9} {rtol:6.0e} {tau:7.0e} {modes:5d} {oil:>8} {r.stats['steps']:6d} "
               f"{cpu:7.1f} {cpu / base:6.1f} {r.eps.max() if len(r.eps) else float('nan'):9.4f} "
               f"{1e6 * r.film_min.min() if len(r.eps) else float('nan'):9.3f} {p_max:10.1f} "
