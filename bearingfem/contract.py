@@ -76,6 +76,13 @@ A film whose memory is integrated with the journal:
     run, and ``commit(state, t, z)`` replaces rule 11's commit. Its ``force`` is refused.
     A run film without ``state_size`` (or with 0) has none, and every caller integrates
     it as before.
+17. Such a film may also give ``tangent()``: its force and dz/dt of the last ``rates``
+    call differentiated in z with the journal's state held, a record with
+    ``force_local`` (2, n) [N/m] and ``rates`` (n, n) [1/s]
+    (:class:`~bearingfem.ehd.states.StateTangent`). A caller with an implicit
+    integrator then builds its Jacobian from it instead of n film solves by differences
+    (:class:`mechanism.simulate.JointEquations`); without it, the integrator's own
+    differences.
 
 A steady model's :class:`RunFilm` (made by the registry) forwards ``force`` and commits
 nothing, so a caller treats every model the same way.

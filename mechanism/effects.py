@@ -100,9 +100,22 @@ class FilmEffect:
             self.run.start(s, k.t)
         if self.state_size:
             (f_r, f_t), self.z_rate = self.run.rates(s, self.z, k.t)
+            self._gamma = s.gamma
         else:
             f_r, f_t = self.run.force(s, k.t)
         return local_to_inertial(f_r, f_t, s.gamma)
+
+    @property
+    def has_tangent(self) -> bool:
+        """The film's own states come with their derivatives (contract rule 17)."""
+        return bool(self.state_size) and hasattr(self.run, "tangent")
+
+    def tangent(self):
+        """(d(F_x, F_y)/dz (2, n) [N/m], d(dz/dt)/dz (n, n) [1/s]) at the last force's
+        kinematics and z, the journal's state held (contract rule 17)."""
+        t = self.run.tangent()
+        fx, fy = local_to_inertial(t.force_local[0], t.force_local[1], self._gamma)
+        return np.vstack([fx, fy]), t.rates
 
     def commit(self, k: JointKinematics) -> None:
         """Advance the film to the accepted state ``k`` (at time k.t); a film step that

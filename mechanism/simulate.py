@@ -34,7 +34,82 @@ from .sampling import sample_run
 from .scene import Scene
 from .stepping import STEP_FAILURE, integrate
 
-__all__ = ["simulate", "build_effects"]
+#: Relative step of the joint states' forward differences in the Jacobian (sqrt of the
+#: double precision's unit roundoff, as LSODA's own).
+DIFFERENCE = 1.5e-8
+
+__all__ = ["simulate", "build_effects", "JointEquations"]
+
+
+class JointEquations:
+    """y' = f(t, y) of the clearance joint's slider-crank: the joint's six states (crank
+    angle, pin eccentricity e_x, e_y, crank speed, de_x/dt, de_y/dt) and the film's own
+    states z (contract rule 16), and df/dy for an implicit integrator.
+
+    scene; effects and film as :func:`build_effects` gives them; ``scale`` (6 + n) the
+    size below which a state counts as zero in the Jacobian's differences (atol / rtol);
+    ``bar`` a :class:`~mechanism.progress.Progress` or None.
+    """
+
+    def __init__(self, scene: Scene, effects, film, scale, bar=None):
+        self.scene, self.effects, self.film, self.bar = scene, effects, film, bar
+        self.n_film = film.state_size if film is not None else 0
+        self.scale = np.asarray(scale, float)
+        self.gravity = GRAVITY if scene.gravity else 0.0
+        self.calls = 0              # rhs calls, the Jacobian's included
+        self.jacobians = 0
+        self.force = (0.0, 0.0)     # the joint force of the last rhs call [N]
+
+    @property
+    def has_jacobian(self) -> bool:
+        """The film's states come with their tangent (contract rule 17), so the Jacobian
+        costs 7 film solves, not 6 + n."""
+        return bool(self.n_film) and self.film.has_tangent
+
+    def motion(self, y, coords, fx: float, fy: float) -> list:
+        """The joint's six rates at joint force (fx, fy) [N] (affine in it)."""
+        m, sc = self.scene.mechanism, self.scene
+        q, A, _, qd, Ad, _ = coords
+        qdd, Add, Xdd = accelerations(m, q, A, qd, Ad, fx, fy, self.gravity,
+                                      sc.crank_torque, sc.slider_force)
+        exdd, eydd = eccentricity_accelerations(m, q, A, qd, Ad, qdd, Add, Xdd)
+        return [qd, y[4], y[5], qdd, exdd, eydd]
+
+    def rhs(self, t: float, y) -> list:
+        self.calls += 1
+        coords = coordinates(self.scene.mechanism, y[:6])
+        if self.n_film:
+            self.film.z = y[6:]
+        self.force = joint_force(self.effects,
+                                 JointKinematics(y[1], y[2], y[4], y[5], -coords[4], t))
+        if self.bar is not None:
+            self.bar.update((coords[0] - self.scene.crank_angle) / (2 * math.pi))
+        rates = self.motion(y, coords, *self.force)
+        return rates + list(self.film.z_rate) if self.n_film else rates
+
+    def jacobian(self, t: float, y) -> np.ndarray:
+        """df/dy: forward differences in the joint's six states (films solved), and in
+        the film's own states its tangent (contract rule 17) through the motion's response
+        to the joint force."""
+        self.jacobians += 1
+        y = np.asarray(y, float)
+        f0 = np.asarray(self.rhs(t, y), float)
+        dF, d_rates = self.film.tangent()
+        fx, fy = self.force
+        J = np.empty((y.size, y.size))
+        for j in range(6):
+            h = DIFFERENCE * max(abs(y[j]), self.scale[j])
+            yj = y.copy()
+            yj[j] += h
+            J[:, j] = (np.asarray(self.rhs(t, yj), float) - f0) / h
+        coords = coordinates(self.scene.mechanism, y[:6])
+        base = np.asarray(self.motion(y, coords, fx, fy))
+        unit = max(1.0, math.hypot(fx, fy))
+        by_x = (np.asarray(self.motion(y, coords, fx + unit, fy)) - base) / unit
+        by_y = (np.asarray(self.motion(y, coords, fx, fy + unit)) - base) / unit
+        J[:6, 6:] = np.outer(by_x, dF[0]) + np.outer(by_y, dF[1])
+        J[6:, 6:] = d_rates
+        return J
 
 
 class RunStopped(Exception):
@@ -96,22 +171,14 @@ def simulate(scene: Scene, progress: bool | None = None) -> SimulationResult:
     q_end = scene.crank_angle + 2 * math.pi * run.turns
     t_limit = 4.0 * run.turns * turn_time
     bar = Progress(run.turns, f"{scene.name}", progress)
-    n_rhs = [0]
-
     n_film = film.state_size if film is not None else 0    # the film's own states
-
-    def rhs(t, y):
-        n_rhs[0] += 1
-        q, A, _, qd, Ad, _ = coordinates(m, y[:6])
-        if n_film:
-            film.z = y[6:]
-        fx, fy = joint_force(effects, JointKinematics(y[1], y[2], y[4], y[5], -Ad, t))
-        qdd, Add, Xdd = accelerations(m, q, A, qd, Ad, fx, fy, g,
-                                      scene.crank_torque, scene.slider_force)
-        exdd, eydd = eccentricity_accelerations(m, q, A, qd, Ad, qdd, Add, Xdd)
-        bar.update((q - scene.crank_angle) / (2 * math.pi))
-        rates = [qd, y[4], y[5], qdd, exdd, eydd]
-        return rates + list(film.z_rate) if n_film else rates
+    a_len = run.atol if run.atol is not None else 1e-4 * c
+    w = scene.crank_speed
+    # the film's states (a bush's modal deflection [m]) at the joint's length tolerance
+    atol = np.array([a_len / m.crank_length, a_len, a_len,
+                     a_len * w / m.crank_length, a_len * w, a_len * w] + [a_len] * n_film)
+    eq = JointEquations(scene, effects, film, atol / run.rtol, bar)
+    rhs = eq.rhs
 
     def ev_end(t, y):
         return y[0] - q_end
@@ -140,12 +207,9 @@ def simulate(scene: Scene, progress: bool | None = None) -> SimulationResult:
             film.z = y[6:]
         return film.commit(JointKinematics(y[1], y[2], y[4], y[5], -Ad, t))
 
-    a_len = run.atol if run.atol is not None else 1e-4 * c
-    w = scene.crank_speed
-    # the film's states (a bush's modal deflection [m]) at the joint's length tolerance
-    atol = np.array([a_len / m.crank_length, a_len, a_len,
-                     a_len * w / m.crank_length, a_len * w, a_len * w] + [a_len] * n_film)
     opts = dict(method=METHODS[run.integrator], rtol=run.rtol, atol=atol)
+    if eq.has_jacobian and opts["method"] in ("LSODA", "BDF", "Radau"):
+        opts["jac"] = eq.jacobian
     if run.max_step is not None:
         opts["max_step"] = run.max_step
 
@@ -199,8 +263,8 @@ def simulate(scene: Scene, progress: bool | None = None) -> SimulationResult:
         restore()
     wall = time.perf_counter() - start
     bar.close(message if partial else "done", complete=not partial)
-    stats = {"wall_time": wall, "steps": steps, "rhs_evals": n_rhs[0],
-             "film_solves": film.solves if film else 0,
+    stats = {"wall_time": wall, "steps": steps, "rhs_evals": eq.calls,
+             "jacobians": eq.jacobians, "film_solves": film.solves if film else 0,
              "film_steps": film.steps if film is not None else 0,
              "contact_evals": contact.evaluations if contact else 0,
              "integrator": run.integrator, "rtol": run.rtol, "atol_length": a_len,

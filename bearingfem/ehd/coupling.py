@@ -268,6 +268,43 @@ class EHDFilm:
         ev = self.evaluate(P, s)
         return (None, None, None) if ev is None else (ev.residual, ev.size, ev.values)
 
+    def _assembler(self, P: np.ndarray):
+        """assemble(dk, dc, dsq): the values on the pattern of the residual's derivative
+        sum_q B_iq (coefficient derivative)_q phi_j(q), given the derivatives of the
+        stiffness coefficient (dk), the Couette content (dc) and the squeeze source (dsq)
+        at the points in a nodal quantity interpolated there, at pressure P."""
+        t = self.tables
+        dofs = self.op.mesh.basis.element_dofs                              # (nb, E)
+        gradP = np.einsum("jceq,je->ceq", t.dphi, P[dofs]) / t.dx          # grad P
+        Bk = np.einsum("iceq,ceq->ieq", t.dphi, gradP)                      # grad P.grad phi dx
+        Bc = t.dphi[:, 0]                                                   # dphi/dtheta dx
+        Bs = t.phi
+
+        def assemble(dk, dc, dsq):
+            g = Bk * dk - Bc * dc - Bs * dsq                                # (nb, E, Q)
+            local = np.einsum("ieq,jeq->eij", g, t.value).reshape(g.shape[1], -1)
+            return np.bincount(t.positions.ravel(), local.ravel(),
+                               minlength=len(t.indices))
+        return assemble
+
+    def _gap_slope(self, assemble, ev: FilmState, where=None) -> sp.csr_matrix:
+        film = ev.fields
+        rho, mu, H = film.density, film.viscosity, film.gap
+        coef = (3.0 * rho * H**2 / mu, 6.0 * self.wedge * rho,
+                -12.0 * film.density_rate * np.ones_like(H))
+        if where is not None:
+            coef = tuple(c * where for c in coef)
+        return self.tables.pattern.matrix(assemble(*coef))
+
+    def gap_slope(self, P: np.ndarray, s: float = 1.0, state: FilmState | None = None,
+                  where=None) -> sp.csr_matrix:
+        """dR/dH (nodes x nodes): the residual's derivative in the nodal gap H
+        (dimensionless; the gap at the points interpolated from it) at P, the fields held.
+        ``where`` (elements x points): 0 at points whose gap does not follow the nodes'
+        (a floor), 1 elsewhere."""
+        ev = self.evaluate(P, s) if state is None else state
+        return self._gap_slope(self._assembler(P), ev, where)
+
     def jacobian(self, P: np.ndarray, s: float = 1.0, state: FilmState | None = None):
         """(J_sparse, U, V) with dR/dP = J_sparse + U V^T (U, V None without a bush; for
         the full compliance V is the identity, given as None and U dense N x N), at P
@@ -276,17 +313,7 @@ class EHDFilm:
         ev = self.evaluate(P, s) if state is None else state
         film, slopes, t = ev.fields, ev.slopes, self.tables
         rho, mu, H = film.density, film.viscosity, film.gap
-        dofs = self.op.mesh.basis.element_dofs                              # (nb, E)
-        gradP = np.einsum("jceq,je->ceq", t.dphi, P[dofs]) / t.dx          # grad P
-        Bk = np.einsum("iceq,ceq->ieq", t.dphi, gradP)                      # grad P.grad phi dx
-        Bc = t.dphi[:, 0]                                                   # dphi/dtheta dx
-        Bs = t.phi
-
-        def assemble(dk, dc, dsq):     # sum_q B_iq (coefficient derivative)_q phi_j(q)
-            g = Bk * dk - Bc * dc - Bs * dsq                                # (nb, E, Q)
-            local = np.einsum("ieq,jeq->eij", g, t.value).reshape(g.shape[1], -1)
-            return np.bincount(t.positions.ravel(), local.ravel(),
-                               minlength=len(t.indices))
+        assemble = self._assembler(P)
         data = np.bincount(t.from_stiffness, ev.values, minlength=len(t.indices))
         if slopes is not None:
             drho, dmu = slopes
@@ -297,8 +324,7 @@ class EHDFilm:
         J = t.pattern.matrix(data)
         if self.compliance is None:
             return J, None, None
-        dsq_H = -12.0 * film.density_rate * np.ones_like(H)
-        TH = t.pattern.matrix(assemble(3.0 * rho * H**2 / mu, 6.0 * self.wedge * rho, dsq_H))
+        TH = self._gap_slope(assemble, ev)
         k = s * self.scale / self.clearance
         c = self.compliance
         if ev.contact is not None:      # dw/dp through the summits' stiffness (asperity.py)

@@ -24,7 +24,7 @@ steady EHD solve (tests/test_ehd_states.py).
 """
 from __future__ import annotations
 
-from dataclasses import replace
+from dataclasses import dataclass, replace
 from functools import lru_cache
 
 import numpy as np
@@ -38,15 +38,25 @@ from ..film import film_thickness, local_to_inertial
 from ..scales import force_factor
 from ..solution import FilmSolution
 from .coupling import FilmState, ehd_film, jacobian_tables
-from .newton import EHDResult, _chord, _newton, continuation
+from .newton import EHDResult, _chord, _Factor, _newton, continuation
 from .transient import ehd_compliance
 
-__all__ = ["ModalStateEHD", "FrameShift", "grid_interpolation"]
+__all__ = ["ModalStateEHD", "StateTangent", "FrameShift", "grid_interpolation"]
 
 #: Newton's tolerance on the film's residual (as the steady EHD solve's).
 TOL = 1e-10
 #: With roughness, the film's flow sees the gap floored at this many sigma.
 FLOW_FLOOR = 0.05
+
+
+@dataclass(frozen=True, eq=False)
+class StateTangent:
+    """A film's force and state rates differentiated in its own states z (n of them), the
+    journal's state held: force_local (2, n) [N/m], d(F_r, F_t)/dz; rates (n, n) [1/s],
+    d(dz/dt)/dz."""
+
+    force_local: np.ndarray
+    rates: np.ndarray
 
 
 def grid_interpolation(alpha: np.ndarray, zeta: np.ndarray, n_theta: int, n_z: int,
@@ -70,18 +80,21 @@ class _CoupledFilm:
     """The EHD film of one journal state and one q, with dq/dt eliminated (module
     docstring): what :func:`~bearingfem.ehd.newton._newton` asks of a film."""
 
-    def __init__(self, film, q, relaxation, shift, squeeze, modal, rigid_rate,
-                 contact=None, gap=None, deflection=None):
+    def __init__(self, film, q, relaxation, frame, modal, rigid_rate,
+                 contact=None, gap=None, deflection=None, moving=None, gamma_dot=0.0):
         self.film, self.op = film, film.op
+        self.gamma_dot = gamma_dot      # the journal's whirl speed [rad/s]
+        self.moving = moving            # (E, Q) 1 where the flow's gap follows w, 0 where floored
         self.gap = gap                  # the nodal gap H as it is (not floored), reported
         self.deflection = deflection    # the bush's nodal deflection w = L q [m]
         self.contact = contact          # the summits' pressure at the film nodes [Pa] or None
         self.q, self.tau = q, relaxation
-        self.shift = shift              # film nodes <-> grid nodes (a FrameShift)
-        self.squeeze = squeeze          # (E*Q, n): d(dH/dt)/d(dq/dt) at the points [1/m]
+        self.frame = frame              # what depends on gamma only (a _Frame)
+        self.shift = frame.shift        # film nodes <-> grid nodes (a FrameShift)
+        self.squeeze = frame.squeeze    # (E*Q, n): d(dH/dt)/d(dq/dt) at the points [1/m]
         self.modal = modal              # (n, grid): S R^T [m/Pa]
         self.rigid_rate = rigid_rate    # (E, Q) dH/dt at q's rate 0, film frame [1/s]
-        self._G = self._V = None        # the Jacobian's low-rank factors, kept per density
+        self._G = None                  # the Jacobian's squeeze factor, kept per density
         self._J = self._affine = None   # without a lubricant: the sparse Jacobian, load_0
         self._last = None               # with one: (P, s, the film at P), the last evaluated
 
@@ -131,9 +144,15 @@ class _CoupledFilm:
         d R_i / d(dH/dt)_q = 12 rho phi_i dx (kept per density)."""
         rho = np.broadcast_to(ev.fields.density, self.op.qp_weight.shape)
         if self._G is None or not np.array_equal(rho, self._G[0]):
-            w = (12.0 * rho * self.op.qp_weight).ravel()
-            self._G = (rho, np.asarray(self.op.qp_interp.T @ (w[:, None] * self.squeeze)))
+            self._G = (rho, self.rate_load(ev, self.squeeze))
         return self._G[1]
+
+    def rate_load(self, ev, M: np.ndarray) -> np.ndarray:
+        """d R / da (nodes, k) for dH/dt at the points moving by M (E*Q, k) [1/s] per unit
+        of a: d R_i / d(dH/dt)_q = 12 rho phi_i dx."""
+        rho = np.broadcast_to(ev.fields.density, self.op.qp_weight.shape)
+        w = (12.0 * rho * self.op.qp_weight).ravel()
+        return np.asarray(self.op.qp_interp.T @ (w[:, None] * M))
 
     def jacobian(self, P, s, ev):
         if self.film.lubricant is None and self._J is not None:
@@ -143,10 +162,29 @@ class _CoupledFilm:
             J, _, _ = film.jacobian(P, s, ev)
             if self.film.lubricant is None:
                 self._J = J
-        if self._V is None:     # the same at every pressure of this film
+        return J, self.squeeze_load(ev), self.frame.rates_factor(self.film.scale, self.tau)
+
+
+class _Frame:
+    """What depends on the journal angle gamma alone, on one film mesh: the frame shift,
+    the modes' nodal shapes L (nodes, n) [1], their squeeze d(dH/dt)/d(dq/dt) at the
+    points (E*Q, n) [1/m], and the rates' factor V (:meth:`rates_factor`). Kept while gamma
+    holds: the integrator's difference Jacobian moves the modal coordinates and the
+    speeds at the same gamma."""
+
+    def __init__(self, op, gamma: float, left_grid, modal, clearance: float):
+        self.op, self.gamma, self.modal = op, gamma, modal
+        self.shift = FrameShift(node_grid(op.mesh), gamma)
+        self.left = self.shift.to_nodes(left_grid)
+        self.squeeze = np.asarray(op.qp_interp @ self.left / clearance)
+        self._V = None
+
+    def rates_factor(self, scale: float, relaxation: float) -> np.ndarray:
+        """V (nodes, n) with d(dq/dt)/dP = V^T: the same at every pressure and q."""
+        if self._V is None:
             # to_grid's transpose is to_nodes (both blend the same two shifts)
-            self._V = (self.film.scale / self.tau) * self.shift.to_nodes(self.modal.T)
-        return J, self.squeeze_load(ev), self._V
+            self._V = (scale / relaxation) * self.shift.to_nodes(self.modal.T)
+        return self._V
 
 
 class ModalStateEHD:
@@ -178,6 +216,7 @@ class ModalStateEHD:
         self.steps = 0
         self._P = None          # the last solve's pressure: a warm start only
         self._factor = []       # its last Newton factorisation: chord steps from it
+        self._frame = None      # the last journal angle's _Frame
 
     # -- the film at (state, q) ---------------------------------------------------------
     def _coupled(self, state: JournalState, q: np.ndarray) -> _CoupledFilm:
@@ -185,10 +224,11 @@ class ModalStateEHD:
         b = self.bearing
         op = fe_operator(b, state, self.n_theta, self.n_z, "P1", None, False)
         m = op.mesh
-        shift = FrameShift(node_grid(m), state.gamma)
-        left = shift.to_nodes(self.left)                            # (nodes, n) [1]
-        w = left @ q                                                # nodal deflection [m]
         c = b.clearance
+        frame = self._frame
+        if frame is None or frame.op is not op or frame.gamma != state.gamma:
+            frame = self._frame = _Frame(op, state.gamma, self.left, self.modal, c)
+        w = frame.left @ q                                          # nodal deflection [m]
         # the rigid gap, negative beyond the clearance circle where the bush opens it
         # (an evaluation whose whole gap closes fails, and the integrator cuts its step)
         th = op.qp_theta
@@ -200,21 +240,21 @@ class ModalStateEHD:
         dw = np.einsum("jeq,je->eq", t.dphi[:, 0], w[m.basis.element_dofs]) / t.dx
         rigid_rate = state.eps_dot * np.cos(th) + state.gamma_dot * dw / c
         gap0 = film_thickness(m.theta, state.eps) + w / c
-        contact, gap_nodes = None, gap0        # the gap as it is, reported (not floored)
+        contact, gap_nodes, moving = None, gap0, None   # the gap as it is (not floored)
         if self.roughness is not None:
             # the summits carry what the film cannot where the gap nearly closes: their
             # pressure loads the bush and the journal; the film's flow sees a gap floored at
             # FLOW_FLOOR sigma (a stand-in for the flow factors of a rough gap)
             contact = self.roughness.pressure(c * gap0)
             floor = FLOW_FLOOR * self.roughness.sigma / c
+            moving = (gap_q > floor).astype(float)
             gap_q, gap0 = np.maximum(gap_q, floor), np.maximum(gap0, floor)
         base = FilmFields(gap=gap_q, gap_rate=np.zeros_like(gap_q),
                           viscosity=np.ones_like(gap_q), density=np.ones_like(gap_q),
                           density_rate=np.zeros_like(gap_q))
         film = ehd_film(b, state, op, base, gap0, self.lubricant, None)
-        squeeze = op.qp_interp @ left / c
-        return _CoupledFilm(film, q, self.tau, shift, np.asarray(squeeze), self.modal,
-                            rigid_rate, contact, gap_nodes, w)
+        return _CoupledFilm(film, q, self.tau, frame, self.modal, rigid_rate, contact,
+                            gap_nodes, w, moving, state.gamma_dot)
 
     def _solve(self, coupled: _CoupledFilm) -> EHDResult:
         free = coupled.op.mesh.free
@@ -244,11 +284,49 @@ class ModalStateEHD:
 
     def rates(self, state: JournalState, q: np.ndarray, t: float = 0.0):
         """((F_r, F_t) [N], dq/dt [m/s]) at the journal ``state`` and modal coordinates
-        ``q`` [m]; keeps nothing but a warm start."""
+        ``q`` [m]; keeps nothing but a warm start (and this film, for :meth:`tangent`)."""
         coupled = self._coupled(state, np.asarray(q, float))
-        P = self._solve(coupled).pressure
-        self._P = P
+        res = self._solve(coupled)
+        P = self._P = res.pressure
+        self._rated = (coupled, res)
         return self._force(coupled, P), coupled.rates(P)
+
+    def tangent(self) -> StateTangent:
+        """The force and dq/dt of the last :meth:`rates` call differentiated in q, with the
+        journal's state held (contract rule 17): what an implicit integrator's Jacobian
+        needs, at the cost of one factorisation and one n-column solve.
+
+        q moves the flow's gap (H = H_rigid + L q / c, where not floored), the whirl's
+        squeeze gamma_dot d(L q)/dalpha / c, dq/dt's -q / tau, and the summits' pressure
+        (p_a at the gap c H): dR/dq at the converged pressure, the fields held. The pressure
+        follows by the implicit function theorem, dP/dq = -M^-1 dR/dq with M the Newton
+        matrix on the rows not held cavitated (those keep P = 0): exact while no node
+        leaves or joins the cavity."""
+        coupled, res = self._rated
+        op, frame, film = coupled.op, coupled.frame, coupled.film
+        c, P, n = self.bearing.clearance, res.pressure, self.state_size
+        ev = coupled.evaluate(P)
+        L = frame.left                                               # (nodes, n) [1]
+        dR = film.gap_slope(P, 1.0, ev, coupled.moving) @ (L / c)
+        t = jacobian_tables(op)
+        dofs = op.mesh.basis.element_dofs
+        whirl = np.einsum("jeq,jen->eqn", t.dphi[:, 0], L[dofs]) / t.dx[..., None]
+        gamma_dot = coupled.gamma_dot
+        if gamma_dot:
+            dR += coupled.rate_load(ev, (gamma_dot / c) * whirl.reshape(-1, n))
+        dpa = (np.zeros_like(L) if coupled.contact is None else
+               self.roughness.pressure_derivative(c * coupled.gap)[:, None] * L)   # [Pa/m]
+        rates_q = (self.modal @ frame.shift.to_grid(dpa) - np.eye(n)) / self.tau
+        G = coupled.squeeze_load(ev)
+        dR += G @ rates_q
+        free = op.mesh.free
+        factor = _Factor.at(coupled, P, 1.0, free, res.active[free], ev)
+        dP = np.zeros_like(L)
+        dP[factor.I] = factor.lu.solve(-dR[factor.I])
+        V = frame.rates_factor(film.scale, self.tau)
+        k = force_factor(self.bearing, False)
+        ic, is_ = op.force_integrals((dP + dpa / film.scale).T)
+        return StateTangent(force_local=k * np.vstack([ic, is_]), rates=rates_q + V.T @ dP)
 
     def _force(self, coupled, P) -> tuple:
         """(F_r, F_t) [N]: the film's and the summits' pressure on the journal."""
