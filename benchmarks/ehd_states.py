@@ -1,18 +1,21 @@
 """The seed pin at 250 rad/s with the bush's modes integrated (fem-ehd coupling 'states').
 
     python -m benchmarks.ehd_states [--turns 0.1] [--mesh 48 4] [--runs base rtol tau ...]
-        [--modes 16 24 ...] [--progress] [--save DIR]
+        [--modes 16 24 ...] [--progress] [--save DIR] [--differences]
 
 A tenth of a turn from top dead centre (benchmarks/ehd_step.py's window), rough surfaces
 (sigma 0.2 um, E* 80.8 GPa, K 1e-3), one run per row: steps, CPU time, peak eps, least film
 (the gap itself: negative where the summits carry), peak film pressure, the steps the
 integration loop cut where a film solve failed, the least film and peak pressure over the
 last whole turn (the periodic state), and the rigid JFO run of the same mesh for the cost
-ratio. docs/ehd-states.md has a table of it.
+ratio. With ``--differences`` each row runs again with the integrator's own difference
+Jacobian (the film's tangent hidden, contract rule 17), in the same process: the
+tangent's saving. docs/ehd-states.md has a table of it.
 """
 from __future__ import annotations
 
 import argparse
+import contextlib
 import dataclasses
 import time
 
@@ -20,6 +23,7 @@ import numpy as np
 
 from bearingfem.contact import Roughness
 from mechanism import load_scene, simulate
+from mechanism.effects import FilmEffect
 from mechanism.result import film_column
 
 from .ehd_run import scene
@@ -32,6 +36,17 @@ RUNS = {"base": (1e-6, 1e-5, 16, "iso"), "rtol": (1e-7, 1e-5, 16, "iso"),
         "modes8": (1e-6, 1e-5, 8, "iso"), "modes24": (1e-6, 1e-5, 24, "iso"),
         "modes32": (1e-6, 1e-5, 32, "iso"), "modes48": (1e-6, 1e-5, 48, "iso"),
         "roelands": (1e-6, 1e-5, 16, "roelands")}
+
+
+@contextlib.contextmanager
+def without_tangent():
+    """The film's tangent hidden: the integrator forms the Jacobian by differences."""
+    kept = FilmEffect.has_tangent
+    FilmEffect.has_tangent = property(lambda self: False)
+    try:
+        yield
+    finally:
+        FilmEffect.has_tangent = kept
 
 
 def states_run(turns, nt, nz, rtol, tau, modes, oil, progress=False):
@@ -76,6 +91,8 @@ def main(argv=None):
                     help="run each selected row at each of these numbers of modes")
     ap.add_argument("--progress", action="store_true",
                     help="each run's progress on stderr (five turns take minutes to hours)")
+    ap.add_argument("--differences", action="store_true",
+                    help="each row again with the integrator's difference Jacobian")
     ap.add_argument("--save", metavar="DIR", default=None,
                     help="write each run's result to DIR/<run>-<modes>modes (its film record "
                          "and modal states, for a look at where the least film falls)")
@@ -87,20 +104,24 @@ def main(argv=None):
     base = rigid_jfo(a.turns, nt, nz)
     print(f"seed pin, 250 rad/s, {a.turns:g} turn, {nt} x {nz}; rigid JFO run {base:.2f} s CPU")
     print(f"{'run':>9} {'rtol':>6} {'tau[s]':>7} {'modes':>5} {'oil':>8} {'steps':>6} "
-          f"{'CPU[s]':>7} {'x JFO':>6} {'peak eps':>9} {'h_min[um]':>9} {'p_max[MPa]':>10} "
-          f"{'cuts':>4} {'last turn: h_min[um]':>20} {'p_max[MPa]':>10}")
-    rows = [(name, m) for name in a.runs for m in (a.modes or [RUNS[name][2]])]
-    for name, modes in rows:
+          f"{'rhs':>6} {'CPU[s]':>7} {'x JFO':>6} {'peak eps':>9} {'h_min[um]':>9} "
+          f"{'p_max[MPa]':>10} {'cuts':>4} {'last turn: h_min[um]':>20} {'p_max[MPa]':>10}")
+    rows = [(name, m, diff) for name in a.runs for m in (a.modes or [RUNS[name][2]])
+            for diff in ((False, True) if a.differences else (False,))]
+    for name, modes, diff in rows:
         rtol, tau, _, oil = RUNS[name]
-        r, cpu = states_run(a.turns, nt, nz, rtol, tau, modes, oil, a.progress)
+        with without_tangent() if diff else contextlib.nullcontext():
+            r, cpu = states_run(a.turns, nt, nz, rtol, tau, modes, oil, a.progress)
         p = film_column(r.film_record, "pressure_max")
         p_max = p.max() / 1e6 if p.size else float("nan")
         note = "" if not r.partial else f"  (stopped: {r.message[:60]})"
         h_last, p_last = last_turn(r, a.turns)
+        label = name + ("/diff" if diff else "")
         if a.save:
-            r.save(f"{a.save}/{name}-{modes}modes")
-        print(f"{name:>9} {rtol:6.0e} {tau:7.0e} {modes:5d} {oil:>8} {r.stats['steps']:6d} "
-              f"{cpu:7.1f} {cpu / base:6.1f} {r.eps.max() if len(r.eps) else float('nan'):9.4f} "
+            r.save(f"{a.save}/{name}-{modes}modes" + ("-differences" if diff else ""))
+        print(f"{label:>9} {rtol:6.0e} {tau:7.0e} {modes:5d} {oil:>8} {r.stats['steps']:6d} "
+              f"{r.stats['rhs_evals']:6d} {cpu:7.1f} {cpu / base:6.1f} "
+              f"{r.eps.max() if len(r.eps) else float('nan'):9.4f} "
               f"{1e6 * r.film_min.min() if len(r.eps) else float('nan'):9.3f} {p_max:10.1f} "
               f"{len(r.stats.get('step_cuts', ())):4d} {h_last:20.3f} {p_last:10.1f}" + note,
               flush=True)
