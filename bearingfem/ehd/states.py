@@ -84,7 +84,7 @@ class _CoupledFilm:
                  contact=None, gap=None, deflection=None, moving=None, gamma_dot=0.0):
         self.film, self.op = film, film.op
         self.gamma_dot = gamma_dot      # the journal's whirl speed [rad/s]
-        self.moving = moving            # (E, Q) 1 where the flow's gap follows w, 0 where floored
+        self.moving = moving            # (E, Q): 1 where the flow's gap follows w, 0 floored
         self.gap = gap                  # the nodal gap H as it is (not floored), reported
         self.deflection = deflection    # the bush's nodal deflection w = L q [m]
         self.contact = contact          # the summits' pressure at the film nodes [Pa] or None
@@ -217,6 +217,7 @@ class ModalStateEHD:
         self._P = None          # the last solve's pressure: a warm start only
         self._factor = []       # its last Newton factorisation: chord steps from it
         self._frame = None      # the last journal angle's _Frame
+        self._rated = None      # the last rates call's (film, solve): what tangent() takes
 
     # -- the film at (state, q) ---------------------------------------------------------
     def _coupled(self, state: JournalState, q: np.ndarray) -> _CoupledFilm:
@@ -302,18 +303,19 @@ class ModalStateEHD:
         follows by the implicit function theorem, dP/dq = -M^-1 dR/dq with M the Newton
         matrix on the rows not held cavitated (those keep P = 0): exact while no node
         leaves or joins the cavity."""
+        if self._rated is None:
+            raise ValueError("tangent() differentiates the last rates() call: call rates first")
         coupled, res = self._rated
         op, frame, film = coupled.op, coupled.frame, coupled.film
         c, P, n = self.bearing.clearance, res.pressure, self.state_size
         ev = coupled.evaluate(P)
         L = frame.left                                               # (nodes, n) [1]
         dR = film.gap_slope(P, 1.0, ev, coupled.moving) @ (L / c)
-        t = jacobian_tables(op)
-        dofs = op.mesh.basis.element_dofs
-        whirl = np.einsum("jeq,jen->eqn", t.dphi[:, 0], L[dofs]) / t.dx[..., None]
-        gamma_dot = coupled.gamma_dot
-        if gamma_dot:
-            dR += coupled.rate_load(ev, (gamma_dot / c) * whirl.reshape(-1, n))
+        if coupled.gamma_dot:
+            t = jacobian_tables(op)
+            dL = np.einsum("jeq,jen->eqn", t.dphi[:, 0], L[op.mesh.basis.element_dofs])
+            dR += coupled.rate_load(ev, (coupled.gamma_dot / c) * (dL / t.dx[..., None])
+                                    .reshape(-1, n))
         dpa = (np.zeros_like(L) if coupled.contact is None else
                self.roughness.pressure_derivative(c * coupled.gap)[:, None] * L)   # [Pa/m]
         rates_q = (self.modal @ frame.shift.to_grid(dpa) - np.eye(n)) / self.tau
@@ -362,7 +364,7 @@ class ModalStateEHD:
 
     # -- the RunFilm contract (rules 10-14, 16) -------------------------------------------
     def start(self, state: JournalState, t: float) -> None:
-        self.steps, self._P, self._factor = 0, None, []
+        self.steps, self._P, self._factor, self._rated = 0, None, [], None
 
     def force(self, state: JournalState, t: float) -> tuple:
         raise ValueError("the modal-state EHD film needs its states: call rates(state, q, t)")
