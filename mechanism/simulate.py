@@ -46,9 +46,10 @@ class JointEquations:
     angle, pin eccentricity e_x, e_y, crank speed, de_x/dt, de_y/dt) and the film's own
     states z (contract rule 16), and df/dy for an implicit integrator.
 
-    scene; effects and film as :func:`build_effects` gives them; ``scale`` (6 + n) the
-    size below which a state counts as zero in the Jacobian's differences (atol / rtol);
-    ``bar`` a :class:`~mechanism.progress.Progress` or None.
+    scene; effects and film as :func:`build_effects` gives them; ``scale`` (6 + n): per
+    state, the size below which it counts as zero in the Jacobian's differences (atol /
+    rtol; only the joint's six are differenced); ``bar`` a
+    :class:`~mechanism.progress.Progress` or None.
     """
 
     def __init__(self, scene: Scene, effects, film, scale, bar=None):
