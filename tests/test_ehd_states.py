@@ -9,9 +9,8 @@ from scipy.integrate import solve_ivp
 
 from bearingfem import Bearing, ElasticBush, JournalState, solve_reynolds
 from bearingfem.contact import Roughness
-from bearingfem.ehd.states import FrameShift, ModalStateEHD, grid_interpolation, node_grid
-from bearingfem.fe.assembly import fe_operator
-from bearingfem.film import inertial_from_theta, local_to_inertial
+from bearingfem.ehd.states import ModalStateEHD
+from bearingfem.film import local_to_inertial
 from bearingfem.ehd.transient import ehd_compliance
 from bearingfem.lubricant import Lubricant
 
@@ -79,39 +78,6 @@ def test_the_coupled_jacobian_is_the_residuals_derivative():
         d[j] = h
         fd[:, j] = (coupled.evaluate(P + d).residual - coupled.evaluate(P - d).residual) / (2 * h)
     assert np.max(np.abs(full - fd)) < 1e-6 * np.max(np.abs(fd))
-
-
-def test_grid_interpolation_is_bilinear_and_periodic():
-    """Exact on a bilinear field, periodic in the angle (a point at 2 pi - h/2 mixes the
-    last and the first columns). Fails with the wrap to the first column dropped."""
-    n, nz, hw = 8, 2, 0.2
-    a = np.array([0.1, 2 * np.pi - np.pi / 8, 3.0])
-    z = np.array([-0.2, 0.05, 0.2])
-    I = grid_interpolation(a, z, n, nz, hw)
-    ga = np.repeat(2 * np.pi * np.arange(n) / n, nz + 1)
-    gz = np.tile(np.linspace(-hw, hw, nz + 1), n)
-    f = lambda al, ze: 1.0 + 2.0 * ze          # bilinear, periodic trivially
-    assert np.allclose(I @ f(ga, gz), f(a, z))
-    col = np.cos(ga)                           # at 2 pi - h/2: the mean of cos(2 pi - h), cos 0
-    assert np.isclose((I @ col)[1], 0.5 * (np.cos(2 * np.pi - np.pi / 4) + 1.0))
-
-
-@pytest.mark.parametrize("gamma", [0.0, 0.3, -2.0, 2 * np.pi / 12 - np.pi, 5.9])
-def test_frame_shift_is_the_grid_interpolation_at_the_nodes(gamma):
-    """The film's shift between the bush's grid and its nodes (two blended rolls) against
-    the bilinear grid interpolation evaluated at the nodes' inertial angles, to round-off,
-    one angle on a whole cell (-pi + h); its to_grid is that matrix's transpose. Fails
-    with the shift's blend weights swapped or the shift one cell off."""
-    n, nz = 12, 3
-    op = fe_operator(B, JournalState(0.5, gamma=gamma), n, nz, "P1", None, False)
-    m = op.mesh
-    hw = B.length / (2 * B.radius)
-    I = grid_interpolation(inertial_from_theta(m.theta, gamma), m.zeta, n, nz, hw).toarray()
-    shift = FrameShift(node_grid(m), gamma)
-    G = np.random.default_rng(1).standard_normal((n * (nz + 1), 3))
-    assert np.allclose(shift.to_nodes(G), I @ G, rtol=0, atol=1e-13)
-    F = np.random.default_rng(2).standard_normal(m.theta.size)
-    assert np.allclose(shift.to_grid(F), I.T @ F, rtol=0, atol=1e-13)
 
 
 def test_chord_steps_on_the_kept_factorisation_give_the_newton_film(monkeypatch):
@@ -316,35 +282,7 @@ STALLED_Q = [8.186035980059215e-07, -1.113441045147666e-06, -9.820708785141343e-
              -7.36464481365951e-07, 6.952040820693769e-13, -6.095143338808372e-07]
 
 
-def test_nonmonotone_newton_solves_where_a_monotone_one_stalled():
-    """At :data:`STALLED_Q` the film's cold Newton converges with the nonmonotone line
-    search (the last 10 merits), and to the same film from other starts: its pressure
-    perturbed by 20 % noise (five draws) gives back the force and dq/dt to 1e-9 relative
-    (measured 1e-15 and 6e-14). Fails with a monotone search (MEMORY = 1 in
-    bearingfem.ehd.newton): the film raises ConvergenceError there, and from most of the
-    perturbed starts (the state is where the monotone search stalled in the run; whether
-    it does hangs on round-off, so the test asserts the convergence, not the old stall)."""
-    from bearingfem import ElasticJournalState
-    state = ElasticJournalState(eps=1.0173895031337534, eps_dot=-31.85916587452895,
-                                gamma=0.2613119896931125, gamma_dot=-39.118469493646735,
-                                omega=-2.256261384742247)
-    oil = Lubricant(viscosity=B.viscosity, density="dowson-higginson")
-    rough = Roughness(sigma=0.2e-6, contact_modulus=80.8e9, elastic_factor=1e-3)
-
-    def film():
-        return ModalStateEHD(B, oil, SOLID, 48, 4, 24, 1e-5, rough)
-    one = film()
-    force, rate = one.rates(state, STALLED_Q)
-    P = one._P.copy()
-    for seed in range(5):
-        noise = np.random.default_rng(seed).standard_normal(P.size)
-        one._P, one._factor = P * (1 + 0.2 * noise), []
-        again, rate_again = one.rates(state, STALLED_Q)
-        assert np.max(np.abs(np.subtract(again, force))) <= 1e-9 * np.max(np.abs(force))
-        assert np.max(np.abs(rate_again - rate)) <= 1e-9 * np.max(np.abs(rate))
-
-
-def _stalled_film():
+def stalled_film():
     """The film and journal state of :data:`STALLED_Q` (24 modes, 48 x 4, rough)."""
     from bearingfem import ElasticJournalState
     state = ElasticJournalState(eps=1.0173895031337534, eps_dot=-31.85916587452895,
@@ -355,101 +293,20 @@ def _stalled_film():
     return ModalStateEHD(B, oil, SOLID, 48, 4, 24, 1e-5, rough), state
 
 
-def _closed_film():
-    """An undeflected bush nearly (q ~ 1e-7 m) past the circle, eps 1.1: the rigid gap is
-    closed on an arc, where the summits carry and the flow's gap is floored."""
-    from bearingfem import ElasticJournalState
-    state = ElasticJournalState(eps=1.1, eps_dot=5.0, gamma=0.4, gamma_dot=-20.0,
-                                omega=62.5)
-    rough = Roughness(sigma=0.2e-6, contact_modulus=80.8e9, elastic_factor=1e-3)
-    film = ModalStateEHD(B, None, SOLID, NT, NZ, M, 1e-5, rough)
-    return film, state, 1e-7 * np.linspace(1.0, -0.5, M)
-
-
-@pytest.mark.parametrize("case", ["stalled", "closed"])
-def test_the_tangent_is_the_films_derivative_in_its_states(case):
-    """Contract rule 17: the force and dq/dt differentiated in q by the implicit function
-    theorem (one factorisation, one n-column solve) against central differences of the
-    film solved at q +- h (h 3e-10 m, where the differences' error is least: 3e-8 of the
-    largest entry at STALLED_Q, 4e-7 at 1e-9 m and 2e-6 at 3e-11 m), asserted to 1e-6.
-    Two states: :data:`STALLED_Q` (past the clearance circle, summits carrying,
-    cavitated, whirling, a Dowson-Higginson oil) and a closed gap (the flow's gap floored
-    on an arc; 3e-8, 9e-8 measured there). Fails with the whirl's squeeze
-    (gamma_dot dw/dalpha; 1e-3 at STALLED_Q), the summits' pressure or dq/dt's pressure
-    term (V^T dP) dropped. Not with the floored points moving: at both states they lie
-    in the cavity, held at P = 0, so no row the tangent solves sees them."""
-    if case == "stalled":
-        film, state = _stalled_film()
-        q = np.asarray(STALLED_Q)
-    else:
-        film, state, q = _closed_film()
-    film.rates(state, q)
-    tangent = film.tangent()
-    h = 3e-10
-    dF = np.empty((2, q.size))
-    d_rates = np.empty((q.size, q.size))
-    for k in range(q.size):
-        e = np.zeros(q.size)
-        e[k] = h
-        (fp, rp), (fm, rm) = film.rates(state, q + e), film.rates(state, q - e)
-        dF[:, k] = (np.subtract(fp, fm)) / (2 * h)
-        d_rates[:, k] = (rp - rm) / (2 * h)
-    assert np.max(np.abs(tangent.force_local - dF)) < 1e-6 * np.max(np.abs(dF))
-    assert np.max(np.abs(tangent.rates - d_rates)) < 1e-6 * np.max(np.abs(d_rates))
-
-
-def test_the_joints_jacobian_is_its_equations_derivative():
-    """The Jacobian the mechanism gives its implicit integrator when the film has a tangent
-    (contract rule 17: forward differences in the joint's six states, the film's tangent
-    through the motion's response to the joint force in its eight modal states) against
-    central differences of the same equations with every film solved (24 x 4, 8 modes,
-    rough, eps 0.9 at 2 rad, a moving journal, a deflected bush), each row relative to
-    its largest entry: modal columns 6e-11 measured, asserted 1e-8; the joint's columns
-    9e-8, asserted 1e-5. Fails with the tangent's force left in the film's frame (not
-    turned by gamma), or the motion's responses to F_x and F_y swapped."""
-    from benchmarks.ehd_run import scene
-    from mechanism.simulate import JointEquations, build_effects
-    rough = Roughness(sigma=0.2e-6, contact_modulus=80.8e9, elastic_factor=1e-3)
-    sc = scene("paper-short-ehd", 250.0, 0.01, n_theta=NT, n_z=NZ, modes=M, film_step=0.0,
-               lubricant=None, coupling="states", relaxation=1e-5, roughness=rough)
-    effects, film, _ = build_effects(sc)
-    c = sc.bearing.clearance
-    scale = np.array([1e-3, 1e-3 * c, 1e-3 * c, 1.0, 0.25 * c, 0.25 * c] + [1e-3 * c] * M)
-    eq = JointEquations(sc, effects, film, scale)
-    assert eq.has_jacobian
-    y = np.r_[1.0, 0.9 * c * np.cos(2.0), 0.9 * c * np.sin(2.0), 250.0, 0.004, -0.003,
-              1e-7 * np.linspace(1.0, -0.5, M)]
-    J = eq.jacobian(0.0, y)
-    fd = np.empty_like(J)
-    for j in range(y.size):
-        h = 3e-10 if j >= 6 else 1e-6 * max(abs(y[j]), scale[j])
-        e = np.zeros(y.size)
-        e[j] = h
-        fd[:, j] = (np.subtract(eq.rhs(0.0, y + e), eq.rhs(0.0, y - e))) / (2 * h)
-    err = np.abs(J - fd) / np.max(np.abs(fd), axis=1, keepdims=True)
-    assert np.max(err[:, 6:]) < 1e-8
-    assert np.max(err[:, :6]) < 1e-5
-
-
-def test_a_run_with_the_films_tangent_is_the_run_without(monkeypatch):
-    """The seed pin (5 % of a turn, 24 x 4, 8 modes, rough) integrated by LSODA with the
-    joint's Jacobian from the film's tangent, and with LSODA's own differences (the
-    tangent hidden): the same run to the integrator's tolerance (rtol 1e-6): eps 1.4e-7,
-    least film 1.6e-7 and force 7.8e-7 of their largest measured, asserted 1e-5. Fails
-    when the mechanism does not hand the Jacobian to the integrator (no Jacobian
-    counted)."""
-    from benchmarks.ehd_run import scene
-    from mechanism import simulate
-    from mechanism.effects import FilmEffect
-    rough = Roughness(sigma=0.2e-6, contact_modulus=80.8e9, elastic_factor=1e-3)
-    sc = scene("paper-short-ehd", 250.0, 0.05, n_theta=NT, n_z=NZ, modes=M, film_step=0.0,
-               lubricant=None, coupling="states", relaxation=1e-5, roughness=rough)
-    a = simulate(sc, progress=False)
-    monkeypatch.setattr(FilmEffect, "has_tangent", property(lambda self: False))
-    b = simulate(sc, progress=False)
-    assert not a.partial and not b.partial
-    assert a.stats["jacobians"] > 0 and b.stats["jacobians"] == 0
-    assert a.eps.shape == b.eps.shape
-    assert np.max(np.abs(a.eps - b.eps)) < 1e-5
-    for x, y in ((a.film_min, b.film_min), (a.force_x, b.force_x), (a.force_y, b.force_y)):
-        assert np.max(np.abs(x - y)) < 1e-5 * np.max(np.abs(x))
+def test_nonmonotone_newton_solves_where_a_monotone_one_stalled():
+    """At :data:`STALLED_Q` the film's cold Newton converges with the nonmonotone line
+    search (the last 10 merits), and to the same film from other starts: its pressure
+    perturbed by 20 % noise (five draws) gives back the force and dq/dt to 1e-9 relative
+    (measured 1e-15 and 6e-14). Fails with a monotone search (MEMORY = 1 in
+    bearingfem.ehd.newton): the film raises ConvergenceError there, and from most of the
+    perturbed starts (the state is where the monotone search stalled in the run; whether
+    it does hangs on round-off, so the test asserts the convergence, not the old stall)."""
+    one, state = stalled_film()
+    force, rate = one.rates(state, STALLED_Q)
+    P = one._P.copy()
+    for seed in range(5):
+        noise = np.random.default_rng(seed).standard_normal(P.size)
+        one._P, one._factor = P * (1 + 0.2 * noise), []
+        again, rate_again = one.rates(state, STALLED_Q)
+        assert np.max(np.abs(np.subtract(again, force))) <= 1e-9 * np.max(np.abs(force))
+        assert np.max(np.abs(rate_again - rate)) <= 1e-9 * np.max(np.abs(rate))
