@@ -72,8 +72,6 @@ class _CoupledFilm:
         self.contact = contact          # the summits' pressure at the film nodes [Pa] or None
         self.q, self.tau = q, relaxation
         self.frame = frame              # what depends on gamma only (a _Frame)
-        self.shift = frame.shift        # film nodes <-> grid nodes (a FrameShift)
-        self.squeeze = frame.squeeze    # (E*Q, n): d(dH/dt)/d(dq/dt) at the points [1/m]
         self.modal = modal              # (n, grid): S R^T [m/Pa]
         self.rigid_rate = rigid_rate    # (E, Q) dH/dt at q's rate 0, film frame [1/s]
         self._G = None                  # the Jacobian's squeeze factor, kept per density
@@ -83,11 +81,11 @@ class _CoupledFilm:
     def rates(self, P):
         """dq/dt [m/s] at nodal P (dimensionless, p = scale P)."""
         p = self.film.scale * P if self.contact is None else self.film.scale * P + self.contact
-        return (self.modal @ self.shift.to_grid(p) - self.q) / self.tau
+        return (self.modal @ self.frame.shift.to_grid(p) - self.q) / self.tau
 
     def _at(self, P):
         qdot = self.rates(P)
-        rate = self.rigid_rate + (self.squeeze @ qdot).reshape(self.rigid_rate.shape)
+        rate = self.rigid_rate + (self.frame.squeeze @ qdot).reshape(self.rigid_rate.shape)
         return replace(self.film, base=replace(self.film.base, gap_rate=rate)), qdot
 
     def film_state(self, P, s=1.0):
@@ -126,7 +124,7 @@ class _CoupledFilm:
         d R_i / d(dH/dt)_q = 12 rho phi_i dx (kept per density)."""
         rho = np.broadcast_to(ev.fields.density, self.op.qp_weight.shape)
         if self._G is None or not np.array_equal(rho, self._G[0]):
-            self._G = (rho, self.rate_load(ev, self.squeeze))
+            self._G = (rho, self.rate_load(ev, self.frame.squeeze))
         return self._G[1]
 
     def rate_load(self, ev, M: np.ndarray) -> np.ndarray:
