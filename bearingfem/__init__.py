@@ -2,7 +2,8 @@
 
 film -> mesh -> assembly -> cavitation solve -> forces, with a finite-volume reference and
 the closed-form short (Frene) and long (Pinkus-Sternlicht) bearing models; every model
-registered by name in :mod:`bearingfem.models`; the designer's numbers (equilibrium,
+registered by name in :mod:`bearingfem.models`, every film solved through the route
+table of :mod:`bearingfem.routes`; the designer's numbers (equilibrium,
 stiffness and damping, stability) in :mod:`bearingfem.design`.
 """
 from .bearing import Bearing, ElasticJournalState, Groove, JournalState
@@ -12,8 +13,7 @@ from .closed.short_bearing import short_bearing_exact_force, short_bearing_force
 from .design import coefficients, equilibrium
 from .elastic import ElasticBush
 from .errors import ConvergenceError
-from .fe.reynolds import solve_reynolds
-from .fv.fvm import fvm_reynolds
+from .reynolds import fvm_reynolds, solve_reynolds
 from .lubricant import Lubricant
 from .ehl import line_contact, point_contact
 from .solution import FilmSolution
@@ -22,4 +22,4 @@ __all__ = ["Bearing", "JournalState", "ElasticJournalState", "Groove", "solve_re
            "short_bearing_force", "long_bearing_force", "short_bearing_exact_force",
            "long_bearing_exact_force", "equilibrium", "coefficients", "ElasticBush",
            "Lubricant", "line_contact", "point_contact", "ConvergenceError", "Roughness"]
-__version__ = "0.1.0"
+from .version import __version__  # noqa: F401  (the package version)

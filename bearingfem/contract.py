@@ -4,41 +4,48 @@ The mechanism (:mod:`mechanism`), the designer functions (:mod:`bearingfem.desig
 sweeps and the command line reach a film model only through :class:`FilmContract`
 (:class:`bearingfem.models.FilmModel` keeps it; the registry is
 :data:`bearingfem.models.FILM_MODELS`). Along a time integration they reach it through the
-:class:`RunFilm` the model makes for that run. No caller branches on a model's name.
+:class:`RunFilm` the model makes for that run. No caller branches on a model's name, and
+none probes for an attribute: every member below is typed, with its default.
+
+One vocabulary: a caller calls ``film_force``, ``force_derivatives``, ``film_solution``,
+``along_run`` and ``run_notes``; a model writes the hooks of the same names with a
+leading underscore (``_film_force`` ...), which the public methods call with the options
+filled in and checked (:class:`bearingfem.models.FilmModel`).
 
 Rules for writing a new film model
 ----------------------------------
 A steady film (its force is a function of the journal state alone):
 
-1. ``force(bearing, state, **options) -> (F_r, F_t)`` [N]: the film's force on the journal
+1. ``film_force(bearing, state, **options) -> (F_r, F_t)`` [N]: the film's force on the journal
    in the local frame of :class:`~bearingfem.JournalState` (r̂ along the eccentricity,
    t̂ turned +90°). Plain floats, finite for 0 <= eps < 1; bad input raises ValueError
    naming the parameter before any work; a solve that does not converge raises (it never
    returns an unconverged force).
 2. ``defaults``: every option the model takes, with its default. Nothing else reaches
-   ``force``: the registry fills the defaults in and rejects unknown names.
+   ``film_force``: the registry fills the defaults in and rejects unknown names.
 3. Each option is checked by a rule, ``("int" | "number", (lo, hi))``, ``("choice",
    names)`` or ``("grooves", None)``: the shared ones are
    :data:`bearingfem.models.OPTION_RULES`; a model adds its own in ``rules``. An option
    without a rule is refused when the model is made.
-4. ``derivatives(bearing, state, **options) -> ForceDerivatives``: the partials in
-   (eps, eps_dot, w) where the model has them exactly; leave it None and central
-   differences of ``force`` are taken (:func:`bearingfem.differentiate.central_differences`).
-5. ``solution(bearing, state, **options) -> FilmSolution``: the whole film (pressures,
+4. ``force_derivatives(bearing, state, **options) -> ForceDerivatives``: the partials in
+   (eps, eps_dot, w) where the model has them exactly (``exact_derivatives`` is then
+   True); a model without them gets central differences of its force (:func:`bearingfem.differentiate.central_differences`).
+5. ``film_solution(bearing, state, **options) -> FilmSolution``: the whole film (pressures,
    friction, flows) where the model has one; None for force-only models (closed forms,
    tables). :func:`bearingfem.models.solve_film` calls it, whatever the model's name.
 6. ``numeric``: True when the force is solved on a mesh (finite at the wall only with eps
    capped: scenes then default to eps_max = 0.999).
-7. ``warm`` (optional): a factory of a force function for one integration that may keep
-   what it learnt between calls (a factorisation, a cavitated set). Its answers must equal
-   ``force``'s to the solver tolerance; only the cost may change.
-8. ``notes(bearing, **options) -> dict`` (optional): numbers a run should record about the
+7. ``along_run(bearing, options) -> RunFilm``: a steady model's run film forwards its
+   force (:class:`SteadyRun`); it may keep what it learnt between calls (a
+   factorisation, a cavitated set), its answers equal to ``film_force``'s to the solver
+   tolerance: only the cost may change.
+8. ``run_notes(bearing, options) -> dict`` (optional): numbers a run should record about the
    model (e.g. a table's measured mesh error); they go into the run's statistics.
 
 A film with memory (its state carries the past, e.g. the JFO film fraction) adds:
 
-9. ``transient(bearing, **options) -> RunFilm``: a fresh film for one integration, keeping
-   :class:`RunFilm`. The model's ``memory`` is then True, its ``force`` is the steady film
+9. ``along_run(bearing, options) -> RunFilm``: a fresh film for one integration, keeping
+   :class:`RunFilm`. The model's ``memory`` is then True, its ``film_force`` is the steady film
    (what a design calculation or a start uses), and force derivatives at a state alone are
    refused (a linearisation needs an orbit).
 10. ``RunFilm.start(state, t)`` begins the film at the first state; ``force(state, t)``
@@ -69,18 +76,17 @@ A film that carries the journal beyond the rigid clearance circle:
 
 A film whose memory is integrated with the journal:
 
-16. A run film may keep states of its own that the caller integrates with the journal
-    (e.g. a bush's modal deflection, :class:`~bearingfem.ehd.states.ModalStateEHD`): it
-    declares ``state_size`` n > 0 and gives ``rates(state, z, t) -> ((F_r, F_t), dz/dt)``
-    at a trial (state, z, t), changing nothing kept (rule 10); z starts at zero with the
-    run, and ``commit(state, t, z)`` replaces rule 11's commit. Its ``force`` is refused.
-    A run film without ``state_size`` (or with 0) has none, and every caller integrates
-    it as before.
-17. Such a film may also give ``tangent()``: its force and dz/dt of the last ``rates``
-    call differentiated in z with the journal's state held, a record with
-    ``force_local`` (2, n) [N/m] and ``rates`` (n, n) [1/s]
-    (:class:`~bearingfem.ehd.states.StateTangent`). A caller with an implicit
-    integrator then builds its Jacobian from it instead of n film solves by differences
+16. Every run film declares ``state_size`` (0 for most). A run film may keep n > 0
+    states of its own that the caller integrates with the journal (e.g. a bush's modal
+    deflection, :class:`~bearingfem.ehd.states.ModalStateEHD`): it gives
+    ``rates(state, z, t) -> ((F_r, F_t), dz/dt)`` at a trial (state, z, t), changing
+    nothing kept (rule 10); z starts at zero with the run, and ``commit(state, t, z)``
+    replaces rule 11's commit. Its ``force`` is refused. With ``state_size`` 0 every
+    caller integrates it as before.
+17. Every run film declares ``has_tangent`` (False for most). With True, ``tangent()``
+    gives its force and dz/dt of the last ``rates`` call differentiated in z with the
+    journal's state held (:class:`StateTangent`). A caller with an implicit integrator
+    then builds its Jacobian from it instead of n film solves by differences
     (:class:`mechanism.simulate.JointEquations`); without it, the integrator's own
     differences.
 
@@ -92,12 +98,15 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Callable, Iterator, Mapping, Protocol, runtime_checkable
 
+import numpy as np
+
 from .bearing import Bearing, JournalState
 from .solution import FilmSolution, ForceDerivatives
 
 from .errors import ConvergenceError   # a solve that did not converge
 
-__all__ = ["FilmContract", "RunFilm", "FilmStep", "SteadyRun", "ConvergenceError"]
+__all__ = ["FilmContract", "RunFilm", "FilmStep", "SteadyRun", "StatelessRun", "StateTangent",
+           "ConvergenceError"]
 
 
 @dataclass(frozen=True)
@@ -112,12 +121,24 @@ class FilmStep:
     solution: FilmSolution | None = None
 
 
+@dataclass(frozen=True, eq=False)
+class StateTangent:
+    """A film's force and state rates differentiated in its own states z (n of them), the
+    journal's state held (rule 17): force_local (2, n) [N/m], d(F_r, F_t)/dz; rates
+    (n, n) [1/s], d(dz/dt)/dz."""
+
+    force_local: np.ndarray
+    rates: np.ndarray
+
+
 @runtime_checkable
 class RunFilm(Protocol):
-    """A film along one time integration (rules 10-14 of the module)."""
+    """A film along one time integration (rules 10-17 of the module)."""
 
     memory: bool
     steps: int
+    state_size: int
+    has_tangent: bool
 
     def start(self, state: JournalState, t: float) -> None: ...
 
@@ -131,6 +152,10 @@ class RunFilm(Protocol):
 
     def replay(self, start: tuple, steps) -> Iterator[tuple]: ...
 
+    def rates(self, state: JournalState, z: np.ndarray, t: float) -> tuple: ...
+
+    def tangent(self) -> StateTangent: ...
+
 
 @runtime_checkable
 class FilmContract(Protocol):
@@ -139,9 +164,9 @@ class FilmContract(Protocol):
     name: str
     defaults: Mapping
     numeric: bool
-
-    @property
-    def memory(self) -> bool: ...
+    memory: bool
+    beyond_clearance: float
+    exact_derivatives: bool
 
     def options(self, options: Mapping | None = None, where: str = "") -> dict: ...
 
@@ -158,7 +183,22 @@ class FilmContract(Protocol):
     def run_notes(self, bearing: Bearing, options: Mapping | None = None) -> dict: ...
 
 
-class SteadyRun:
+class StatelessRun:
+    """What a run film without states of its own declares (rules 16-17): a base for the
+    run films; ``rates`` and ``tangent`` are refused."""
+
+    state_size = 0
+    has_tangent = False
+
+    def rates(self, state: JournalState, z, t: float):
+        raise ValueError(f"{type(self).__name__} has no states of its own (state_size 0): "
+                         "ask its force")
+
+    def tangent(self) -> StateTangent:
+        raise ValueError(f"{type(self).__name__} has no tangent (has_tangent False)")
+
+
+class SteadyRun(StatelessRun):
     """A steady film along a run: the force of the state alone; nothing to keep."""
 
     memory = False

@@ -11,7 +11,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from .bearing import Bearing, JournalState
-from .contract import FilmStep
+from .contract import FilmStep, StatelessRun
 from .errors import ConvergenceError
 from .fe.jfo import JFOFilm, JFOSnapshot
 from .fe.jfo_fields import FilmSpec
@@ -54,7 +54,7 @@ class TransientSnapshot:
     steps: int
 
 
-class TransientJFO:
+class TransientJFO(StatelessRun):
     """The "fem-jfo" model along one integration: a :class:`~bearingfem.fe.jfo.JFOFilm`
     whose content advances only at the integrator's accepted steps.
 

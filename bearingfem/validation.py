@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import math
 
-from .bearing import Bearing, JournalState, check_finite
+from .bearing import Bearing, Groove, JournalState, check_finite
 
 #: Cavitation models of the Reynolds family (pressure alone) and the mass-conserving one.
 REYNOLDS_FAMILY = ("none", "gumbel", "reynolds")
@@ -46,7 +46,6 @@ def check_supply_angle(value):
 def check_grooves(grooves, supply_angle=None, mass_conserving: bool = False) -> tuple:
     """A tuple of :class:`Groove`; refuses what the Reynolds-condition films cannot do
     (a starved groove needs ``mass_conserving``, the JFO film)."""
-    from .bearing import Groove
     grooves = tuple(grooves or ())
     for g in grooves:
         if not isinstance(g, Groove):

@@ -87,7 +87,7 @@ def _model_options(args):
         takes = ", ".join(MODEL_OPTIONS[k] for k in m.defaults if k in MODEL_OPTIONS)
         raise ValueError(f"{', '.join(refused)} {'does' if len(refused) == 1 else 'do'} not "
                          f"apply to --model {args.model} (its options: {takes or 'none'})")
-    if args.model == "fem-table":      # tables are built once and kept: the cache must take them
+    if m.disk_cache:      # tables are built once and kept: the cache must take them
         _check_cache()
     given = {k: getattr(args, k) for k in MODEL_OPTIONS}
     return args.model, {k: v for k, v in given.items()
@@ -284,6 +284,7 @@ def command_convergence(args):
 def command_render(args):
     from bearingfem import solve_reynolds
     from bearingfem.outputs.render import FIELDS, SURFACES, render_film
+    from bearingfem.models import film_model
     from bearingfem.validation import check_choice
     check_choice("--field", args.field, tuple(FIELDS))
     check_choice("--surface", args.surface, SURFACES)
@@ -352,13 +353,16 @@ def command_frames(args):
                              f"{args.result!r} was made from ({', '.join(differ[:4])})")
     angles = parse_angles(args.angles) if args.angles else None
     from bearingfem.outputs.render import FIELDS, SURFACES
+    from bearingfem.models import film_model
     from bearingfem.validation import check_choice
     check_choice("--field", args.field, tuple(FIELDS))
     check_choice("--surface", args.surface, SURFACES)
-    model = scene.lubrication.model if scene.lubrication is not None else None
-    if args.field == "fraction" and model != "fem-jfo":
-        raise ValueError(f"--field fraction is the JFO film's fraction: the run's film is "
-                         f"{model or 'none'}, not fem-jfo (fields: pressure, film_thickness)")
+    lub = scene.lubrication
+    fields = () if lub is None else film_model(lub.model).film_fields(lub.options)
+    if args.field not in fields:
+        raise ValueError(f"--field {args.field}: the run's film "
+                         f"({'none' if lub is None else lub.model}) records "
+                         f"{', '.join(fields) or 'no film fields'}")
     check_writable(args.output, "-o/--output")
     frames = film_history(result, scene, angles, args.frames,
                           progress=lambda k, n: print(f"  film {k}/{n}", flush=True))

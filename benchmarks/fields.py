@@ -31,7 +31,7 @@ from bearingfem import solve_reynolds
 from bearingfem.fe.general import film_system, general_assembly
 from bearingfem.fe.jfo import solve_jfo
 from bearingfem.fe.jfo_fields import balance_films
-from bearingfem.fe.reynolds import fe_operator, fe_pressure
+from bearingfem.fe.kernel import fe_operator, fe_pressure
 from bearingfem.fields import FilmFields
 
 from .film_solve import best_time

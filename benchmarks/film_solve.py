@@ -28,7 +28,7 @@ import numpy as np
 from bearingfem import JournalState
 from bearingfem.bearing import seed_bearing
 from bearingfem.solvers.cavitation import active_set, graph_colouring, psor as psor_solve
-from bearingfem.fe.reynolds import fe_operator, fe_pressure
+from bearingfem.fe.kernel import fe_operator, fe_pressure
 
 BEARING = seed_bearing(1.0)
 

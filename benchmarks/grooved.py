@@ -36,7 +36,9 @@ import time
 import numpy as np
 from scipy.optimize import brentq, root
 
-import bearingfem.fe.reynolds as fe_reynolds
+import bearingfem.fe.grooved as fe_grooved
+import bearingfem.fe.kernel as fe_kernel
+from bearingfem.routes import fe_force
 import bearingfem.fe.sensitivity as fe_sensitivity
 from bearingfem import Bearing, Groove, JournalState
 from bearingfem.design import coefficients, equilibrium
@@ -61,17 +63,19 @@ class SolveCounter:
 
     def __init__(self):
         self.n = 0
-        self._orig = fe_reynolds.fe_pressure
+        self._orig = fe_kernel.fe_pressure
 
     def __enter__(self):
         def counted(*a, **k):
             self.n += 1
             return self._orig(*a, **k)
-        fe_reynolds.fe_pressure = fe_sensitivity.fe_pressure = counted
+        # every module that calls the kernel's pressure solve by name
+        fe_kernel.fe_pressure = fe_grooved.fe_pressure = fe_sensitivity.fe_pressure = counted
         return self
 
     def __exit__(self, *exc):
-        fe_reynolds.fe_pressure = fe_sensitivity.fe_pressure = self._orig
+        fe_kernel.fe_pressure = fe_grooved.fe_pressure = fe_sensitivity.fe_pressure = \
+            self._orig
 
 
 def root_search(opts):
@@ -82,7 +86,7 @@ def root_search(opts):
     W = math.hypot(*LOAD)
 
     def force(eps, gamma, oo):
-        return m.force(BEARING, JournalState(eps, omega=OMEGA, gamma=gamma), **oo)
+        return m.film_force(BEARING, JournalState(eps, omega=OMEGA, gamma=gamma), **oo)
 
     math.hypot(*force(0.99, 0.0, periodic))         # the capacity check it made
     eps = brentq(lambda e: math.hypot(*force(e, 0.0, periodic)) - W, 0.0, 0.99,
@@ -213,7 +217,7 @@ def static_force(mesh, state=None):
 def moving_mesh_force(mesh, state):
     """The route before the bearing-fixed mesh: the grooves' mesh and operator built for
     this journal angle, then the film solve (fe_operator caches per angle)."""
-    from bearingfem.fe.reynolds import fe_operator, fe_pressure, groove_pressures
+    from bearingfem.fe.kernel import fe_operator, fe_pressure, groove_pressures
     from bearingfem.scales import force_factor
     op = fe_operator(BEARING, state, mesh[0], mesh[1], "P2", None, True, GROOVES)
     res = fe_pressure(op, state, "reynolds", dirichlet=groove_pressures(BEARING, op, GROOVES))
@@ -261,9 +265,8 @@ def ours_rows(quick=False, repeat=3):
         last = [None]
 
         def force(state, warm=False):
-            (f_r, f_t), res = fe_reynolds.fe_force(BEARING, state, mesh[0], mesh[1], "P2",
-                                                   "reynolds", grooves=GROOVES,
-                                                   warm=last[0] if warm else None)
+            (f_r, f_t), res = fe_force(BEARING, state, mesh[0], mesh[1], "P2", "reynolds",
+                                       grooves=GROOVES, warm=last[0] if warm else None)
             last[0] = res
             return np.asarray(local_to_inertial(f_r, f_t, state.gamma))
 

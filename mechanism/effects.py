@@ -19,7 +19,7 @@ from bearingfem.models import film_model
 
 from .result import FILM_COLUMNS, film_column, film_row
 
-__all__ = ["JointKinematics", "FilmEffect", "HertzContact", "CoulombFriction", "LinearSpring",
+__all__ = ["JointKinematics", "Effect", "FilmEffect", "HertzContact", "CoulombFriction", "LinearSpring",
            "hertz_stiffness"]
 
 
@@ -41,8 +41,20 @@ class JointKinematics:
         return math.hypot(self.e_x, self.e_y)
 
 
+class Effect:
+    """What every joint effect declares, with its default: ``force(k)`` (F_x, F_y) [N];
+    ``memory`` (a film with a state of its own, recorded at its committed steps),
+    ``solves`` (film solves so far), ``state_size`` (states integrated with the joint)
+    and ``wall`` (the eps where the journal meets the bush)."""
+
+    memory = False
+    solves = 0
+    state_size = 0
+    wall = 1.0
+
+
 @dataclass
-class FilmEffect:
+class FilmEffect(Effect):
     """Hydrodynamic film force from a bearingfem model, through the film-model contract
     (:mod:`bearingfem.contract`): the model makes the film for this run
     (:meth:`~bearingfem.models.FilmModel.along_run`), which gives the force at each trial
@@ -76,7 +88,7 @@ class FilmEffect:
         self.start: tuple | None = None
         # a film whose memory is integrated with the joint (contract rule 16): its states
         # z are set by the integrator before each force, their rates read after it
-        self.state_size = int(getattr(self.run, "state_size", 0))
+        self.state_size = int(self.run.state_size)
         self.z = np.zeros(self.state_size)
         self.z_rate = np.zeros(self.state_size)
 
@@ -108,7 +120,7 @@ class FilmEffect:
     @property
     def has_tangent(self) -> bool:
         """The film's own states come with their derivatives (contract rule 17)."""
-        return bool(self.state_size) and hasattr(self.run, "tangent")
+        return bool(self.state_size) and self.run.has_tangent
 
     def tangent(self):
         """(d(F_x, F_y)/dz (2, n) [N/m], d(dz/dt)/dz (n, n) [1/s]) at the last force's
@@ -150,7 +162,7 @@ def hertz_stiffness(radius, clearance, young_modulus, poisson):
 
 
 @dataclass
-class HertzContact:
+class HertzContact(Effect):
     """Hertz contact with Lankarani-Nikravesh hysteresis damping when e > c.
 
     F_n = K d^n (1 + 3 (1 - c_e^2) / 4 * d_dot / v_impact), d = e - c, acting along -r_hat
@@ -186,7 +198,7 @@ class HertzContact:
 
 
 @dataclass
-class CoulombFriction:
+class CoulombFriction(Effect):
     """Coulomb friction at the contact, regularised: F_t = -mu_f F_n tanh(v_t / v_reg).
 
     v_t = e gamma_dot + omega R is the sliding speed of the pin surface over the bush at the
@@ -210,7 +222,7 @@ class CoulombFriction:
 
 
 @dataclass
-class LinearSpring:
+class LinearSpring(Effect):
     """A linear spring-damper joint, F = -k e - d e_dot: as k grows the clearance joint
     tends to the ideal joint (a verification device, not a bearing model)."""
 

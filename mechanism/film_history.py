@@ -120,7 +120,7 @@ def _replayed(result, scene, model, crank_angles_deg, progress=None):
     peak = float(np.max(np.hypot(force[:, 0], force[:, 1]))) or 1.0
     frames = {}
     film = model.along_run(scene.bearing, scene.lubrication.options)
-    if getattr(film, "state_size", 0):
+    if film.state_size:
         steps = _from_states(result, film, film_states(rec[:last + 1]), wanted)
     else:
         steps = enumerate(film.replay((float(start[0]),

@@ -52,10 +52,10 @@ def sample_run(scene, pieces, effects, g, stats, partial, message):
     n = len(t)
     out = {k: np.empty(n) for k in ("slider_acceleration", "force_x", "force_y", "rod_angle",
                                     "slider_position")}
-    solves_before = [getattr(e, "solves", 0) for e in effects]
+    solves_before = [e.solves for e in effects]
     # a film with memory cannot be re-solved at a sample: its committed steps give it
-    live = [e for e in effects if not getattr(e, "memory", False)]
-    recorded = [e.recorded_force(t) for e in effects if getattr(e, "memory", False)]
+    live = [e for e in effects if not e.memory]
+    recorded = [e.recorded_force(t) for e in effects if e.memory]
     for i in range(n):
         q, A, X, qd, Ad, _ = coordinates(m, Y[:, i])
         fx, fy = joint_force(live, joint_kinematics(m, Y[:, i]))
@@ -65,16 +65,16 @@ def sample_run(scene, pieces, effects, g, stats, partial, message):
         out["rod_angle"][i], out["slider_position"][i] = A, X
         out["slider_acceleration"][i] = accelerations(
             m, q, A, qd, Ad, fx, fy, g, scene.crank_torque, scene.slider_force)[2]
-    stats["output_film_solves"] = int(sum(getattr(e, "solves", 0) for e in effects)
+    stats["output_film_solves"] = int(sum(e.solves for e in effects)
                                       - sum(solves_before))
-    memory = next((e for e in effects if getattr(e, "memory", False)), None)
+    memory = next((e for e in effects if e.memory), None)
     record = np.empty((0, len(FILM_COLUMNS))) if memory is None else \
         np.array(memory.history).reshape(-1, len(FILM_COLUMNS))
-    film_z = np.empty((0, 0)) if memory is None or not getattr(memory, "state_size", 0) \
+    film_z = np.empty((0, 0)) if memory is None or not memory.state_size \
         else np.array(memory.z_history).reshape(-1, memory.state_size)
     eps = np.hypot(Y[1], Y[2]) / c
     film_min = np.maximum(c * (1.0 - eps), 0.0)
-    if any(getattr(e, "wall", 1.0) > 1.0 for e in effects) and len(record):
+    if any(e.wall > 1.0 for e in effects) and len(record):
         # an elastic film's gap is the rigid one plus the bush's deflection (0 beyond the
         # clearance circle rigidly): its own minimum, committed per film step, between steps
         # linearly (the deflection is kept between film steps)

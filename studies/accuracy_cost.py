@@ -26,7 +26,7 @@ from bearingfem import JournalState
 from bearingfem.bearing import seed_bearing
 from bearingfem.fe.force_table import table_force
 from bearingfem.fv.fvm import fvm_force
-from bearingfem.fe.reynolds import fe_force
+from bearingfem.routes import fe_force
 from bearingfem import long_bearing_exact_force, long_bearing_force
 from bearingfem import short_bearing_exact_force, short_bearing_force
 from mechanism import load_scene, simulate

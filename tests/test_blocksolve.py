@@ -9,7 +9,7 @@ from bearingfem.solvers.blocksolve import (BORDERED_MAX_CHANGES, _dense_rows, bo
 from bearingfem.solvers.cavitation import active_set
 from bearingfem.solvers.linsolve import factorise
 from bearingfem.fe.multilevel import coarse_guess
-from bearingfem.fe.reynolds import fe_operator, fe_pressure
+from bearingfem.fe.kernel import fe_operator, fe_pressure
 from conftest import table1_bearing
 
 

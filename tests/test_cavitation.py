@@ -61,7 +61,7 @@ def test_reynolds_pressure_is_complementary(state):
 @pytest.mark.parametrize("supply", [None, 0.0])
 def test_nested_start_gives_the_cold_start_answer_in_fewer_iterations(supply):
     from bearingfem.solvers.cavitation import active_set
-    from bearingfem.fe.reynolds import fe_operator, fe_pressure
+    from bearingfem.fe.kernel import fe_operator, fe_pressure
     b = table1_bearing(1.0)
     s = JournalState(0.9, 5.0, 0.0, 0.0, 250.0)
     op = fe_operator(b, s, 240, 40, "P1", supply)

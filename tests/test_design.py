@@ -12,7 +12,7 @@ from bearingfem.differentiate import central_differences
 from bearingfem.film import local_to_inertial
 from bearingfem.closed.long_bearing import long_bearing_derivatives, long_bearing_force
 from bearingfem.models import FILM_MODELS
-from bearingfem.fe.reynolds import fe_force
+from bearingfem.routes import fe_force
 from bearingfem.fe.sensitivity import fe_force_derivatives
 from bearingfem.closed.short_bearing import short_bearing_derivatives, short_bearing_force
 

@@ -7,7 +7,7 @@ from bearingfem import Bearing, JournalState, solve_reynolds
 from bearingfem.closed.long_bearing import long_bearing_pressure
 from bearingfem.ehd import ConvergenceError
 from bearingfem.ehd.coupling import ehd_film
-from bearingfem.fe.reynolds import fe_operator, general_film
+from bearingfem.fe.kernel import fe_operator, general_film
 from bearingfem.fields import FilmFields
 from bearingfem.lubricant import Lubricant
 

@@ -138,7 +138,7 @@ def test_bad_input_is_named():
         ModalStateEHD(B, None, SOLID, NT, NZ, 0)
     with pytest.raises(ValueError, match="bush"):
         ModalStateEHD(B, None, None, NT, NZ, M)
-    from bearingfem.ehd.jfo_run import ehd_run_film
+    from bearingfem.models.ehd import ehd_run_film
     with pytest.raises(ValueError, match="coupling 'states'"):
         ehd_run_film(B, bush=SOLID, modes=4, cavitation="jfo", coupling="states")
 

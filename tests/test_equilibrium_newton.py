@@ -38,7 +38,7 @@ def hybrid_root(b, load, opts, q0):
 
     def residual(q):
         eps, gamma = math.hypot(*q), math.atan2(q[1], q[0])
-        f = m.force(b, JournalState(eps, omega=OMEGA, gamma=gamma), **m.options(opts))
+        f = m.film_force(b, JournalState(eps, omega=OMEGA, gamma=gamma), **m.options(opts))
         return np.add(local_to_inertial(*f, gamma), load) / W
 
     sol = root(residual, q0, method="hybr", options=dict(xtol=1e-12))

@@ -8,7 +8,7 @@ from skfem.helpers import dot, grad
 
 from bearingfem import Bearing, JournalState, solve_reynolds
 from bearingfem.fe.general import film_system
-from bearingfem.fe.reynolds import fe_operator, fe_pressure
+from bearingfem.fe.kernel import fe_operator, fe_pressure
 from bearingfem.fields import FilmFields
 
 B = Bearing(radius=0.01, length=0.01, clearance=20e-6, viscosity=0.0117)

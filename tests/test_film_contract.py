@@ -9,13 +9,13 @@ from scipy.integrate import solve_ivp
 
 from bearingfem import JournalState, coefficients
 from bearingfem.bearing import seed_bearing
-from bearingfem.contract import ConvergenceError, FilmContract, FilmStep, RunFilm
+from bearingfem.contract import ConvergenceError, FilmContract, FilmStep, RunFilm, StatelessRun
 from bearingfem.models import FILM_MODELS, FilmModel, film_model, register, solve_film
 from mechanism import parse_scene, simulate
 from mechanism.stepping import integrate
 
 
-class CountingSpring:
+class CountingSpring(StatelessRun):
     """A linear spring-damper "film" with memory, written from the contract's rules 9-14:
     F = -k e - d e_dot on the journal, in the local frame F_r = -k c eps - d c eps_dot,
     F_t = -d c eps gamma_dot. Its memory is the list of times it committed at; it can be
@@ -86,7 +86,7 @@ def toy():
              "fail_after": ("number", (0.0, None)), "fail_in": ("choice", ("commit", "force"))}
     register(FilmModel("toy-spring", _steady_spring,
                        dict(stiffness=K, damping=D, fail_after=1e9, fail_in="commit"),
-                       transient=transient, rules=rules))
+                       along_run=transient, rules=rules))
     yield made
     del FILM_MODELS["toy-spring"]
 
@@ -255,7 +255,7 @@ def test_a_new_model_needs_no_edit_of_the_registry_callers():
     fem = film_model("fem")
     model = FilmModel("fem-hot", lambda bb, ss, viscosity_ratio: fem.film_force(bb, ss),
                       dict(viscosity_ratio=1.0),
-                      solution=lambda bb, ss, viscosity_ratio: fem.film_solution(bb, ss),
+                      film_solution=lambda bb, ss, viscosity_ratio: fem.film_solution(bb, ss),
                       rules={"viscosity_ratio": ("number", (0.0, None))})
     register(model)
     try:

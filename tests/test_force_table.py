@@ -12,7 +12,7 @@ import pytest
 from bearingfem import JournalState
 from bearingfem.fe.force_table import (build_force_table, cache_dir, force_table,
                                     squeeze_weight, table_force)
-from bearingfem.fe.reynolds import fe_force
+from bearingfem.routes import fe_force
 from conftest import table1_bearing
 
 MESH = dict(n_theta=96, n_z=16, element="P1")
@@ -111,7 +111,7 @@ def test_disk_cache_reuses_and_rebuilds_when_stale(monkeypatch, tmp_path):
     assert np.array_equal(t1.g_r, t2.g_r) and t2.key == t1.key
     # another toolkit version makes the file stale: it is rebuilt, not trusted
     monkeypatch.setattr(ft, "build_force_table", build_force_table)
-    monkeypatch.setattr("bearingfem.__version__", "0.0.0-other")
+    monkeypatch.setattr(ft, "__version__", "0.0.0-other")
     ft.force_table.cache_clear()
     t3 = force_table(*args)
     assert t3.key["version"] == "0.0.0-other"

@@ -8,7 +8,7 @@ import pytest
 from bearingfem import Bearing, JournalState
 from bearingfem.fe.general import film_system
 from bearingfem.fe.jfo import JFOFilm
-from bearingfem.fe.reynolds import fe_operator, fe_pressure
+from bearingfem.fe.kernel import fe_operator, fe_pressure
 from bearingfem.fields import FilmFields
 from bearingfem.film import film_thickness
 from bearingfem.fv.fvm import _assemble, _assemble_gap, _jfo, fvm_grid

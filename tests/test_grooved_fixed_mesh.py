@@ -11,7 +11,8 @@ from skfem.helpers import dot, grad
 from bearingfem import Bearing, Groove, JournalState, solve_reynolds
 from bearingfem.fe.assembly import fe_operator, film_operator
 from bearingfem.fe.grooved import groove_operator_for, grooved_derivatives, grooved_force
-from bearingfem.fe.reynolds import fe_force, fe_pressure, groove_pressures
+from bearingfem.fe.kernel import fe_pressure, groove_pressures
+from bearingfem.routes import fe_force
 from bearingfem.scales import force_factor
 
 B = Bearing(radius=0.05, length=0.1, clearance=100e-6, viscosity=0.02)

@@ -7,7 +7,7 @@ import pytest
 from bearingfem import Bearing, Groove, JournalState, fvm_reynolds, solve_reynolds
 from bearingfem.fe.jfo import solve_jfo
 from bearingfem.fe.jfo_fields import balance_films, field_balance_film, rigid_balance_film
-from bearingfem.fe.reynolds import fe_operator
+from bearingfem.fe.kernel import fe_operator
 from bearingfem.fields import FilmFields
 
 B = Bearing(radius=0.01, length=0.01, clearance=20e-6, viscosity=0.0117)

@@ -10,7 +10,7 @@ import pytest
 from bearingfem import Bearing, Groove, JournalState, solve_reynolds
 from bearingfem.fe.assembly import fe_operator
 from bearingfem.fe.jfo_steady import _film_solution, _steady
-from bearingfem.fe.reynolds import fe_force
+from bearingfem.routes import fe_force
 from bearingfem.film import film_thickness
 from bearingfem.scales import flow_factor, force_factor
 

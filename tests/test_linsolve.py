@@ -6,7 +6,8 @@ import pytest
 from bearingfem import JournalState
 from bearingfem.solvers.cavitation import active_set
 from bearingfem.solvers.linsolve import factorise, pcg, solve_spd
-from bearingfem.fe.reynolds import fe_force, fe_operator, fe_pressure
+from bearingfem.fe.kernel import fe_operator, fe_pressure
+from bearingfem.routes import fe_force
 from conftest import table1_bearing
 
 

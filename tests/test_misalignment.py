@@ -8,7 +8,7 @@ import scipy.sparse.linalg as spla
 
 from bearingfem import Bearing, JournalState, fvm_reynolds, solve_reynolds
 from bearingfem.fe.general import film_system
-from bearingfem.fe.reynolds import fe_operator, fe_pressure, film_moment
+from bearingfem.fe.kernel import fe_operator, fe_pressure, film_moment
 from bearingfem.fields import FilmFields, tilted_gap
 
 B = Bearing(radius=0.01, length=0.01, clearance=20e-6, viscosity=0.0117)
@@ -127,7 +127,7 @@ def test_equilibrium_with_a_prescribed_misalignment():
     assert np.add(plus.solution.moment, minus.solution.moment) == pytest.approx(
         (0.0, 0.0), abs=1e-9 * np.abs(plus.solution.moment).max())
     assert plus.film_min < aligned.film_min
-    with pytest.raises(ValueError, match="tilt needs model 'fem'"):
+    with pytest.raises(ValueError, match="tilt needs a model that solves a tilted journal"):
         equilibrium(B, W, 250.0, "short", tilt=(0.0, 1e-3))
 
 

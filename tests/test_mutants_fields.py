@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from bearingfem import JournalState, solve_reynolds
-from bearingfem.fe.reynolds import fe_operator
+from bearingfem.fe.kernel import fe_operator
 from bearingfem.fields import FilmFields, tilted_gap
 from conftest import table1_bearing
 

@@ -1,10 +1,10 @@
-"""The FE Reynolds film (bearingfem.fe.reynolds): a mutant of the film at rest survived the
+"""The FE Reynolds film (bearingfem.fe.kernel): a mutant of the film at rest survived the
 manufactured, FE-vs-FV and cavitation tests (docs/mutation.md)."""
 import numpy as np
 import pytest
 
 from bearingfem import JournalState, fvm_reynolds, solve_reynolds
-from bearingfem.fe.reynolds import fe_force
+from bearingfem.routes import fe_force
 from conftest import table1_bearing
 
 B = table1_bearing(1.0)

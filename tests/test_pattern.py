@@ -4,7 +4,7 @@ import pytest
 import scipy.sparse as sp
 
 from bearingfem import JournalState
-from bearingfem.fe.reynolds import fe_operator
+from bearingfem.fe.kernel import fe_operator
 from bearingfem.solvers.linsolve import factorise
 from bearingfem.solvers.pattern import Pattern
 from conftest import table1_bearing

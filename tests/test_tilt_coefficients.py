@@ -5,7 +5,7 @@ import pytest
 
 from bearingfem import Bearing, JournalState, solve_reynolds
 from bearingfem.fe.general import film_system
-from bearingfem.fe.reynolds import fe_operator, fe_pressure, general_film
+from bearingfem.fe.kernel import fe_operator, fe_pressure, general_film
 from bearingfem.fe.sensitivity import (fe_tilt_coefficients, gap_sensitivities,
                                        generalised_forces)
 

@@ -72,7 +72,7 @@ TESTS = {
     "bearingfem/fe/assembly.py":
         "tests/test_manufactured.py tests/test_fe_vs_fvm.py tests/test_cavitation.py "
         "tests/test_mutants_assembly.py",
-    "bearingfem/fe/reynolds.py":
+    "bearingfem/fe/kernel.py":
         "tests/test_manufactured.py tests/test_fe_vs_fvm.py tests/test_cavitation.py "
         "tests/test_mutants_reynolds.py",
     "bearingfem/fe/general.py":

@@ -10,7 +10,7 @@ with E* the contact modulus (1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2), eta the su
 [1/m^2], beta the summit radius [m] and F_5/2 from :mod:`bearingfem.contact.gaussian`.
 Coulomb friction with coefficient ``friction`` acts on the asperity pressure.
 
-Forces follow the film's convention (:mod:`bearingfem.film`, bearingfem.fe.reynolds): theta
+Forces follow the film's convention (:mod:`bearingfem.film`, bearingfem.fe.kernel): theta
 from the maximum film, the surface point at theta has outward journal normal
 n = -(cos theta r_hat + sin theta t_hat), and the force on the journal is
 F = integral of -p n dA, so (F_r, F_t) = integral of p (cos theta, sin theta) dA. A film
@@ -126,7 +126,7 @@ class AsperityContact:
 def surface_force_local(pressure, area, theta) -> tuple:
     """(F_r, F_t) = sum of p (cos theta, sin theta) dA [N]: a normal pressure [Pa] at film
     angles theta [rad] over area weights dA [m^2] on the journal, the force on the journal
-    in the line-of-centres frame (the same integral bearingfem.fe.reynolds takes)."""
+    in the line-of-centres frame (the same integral bearingfem.fe.kernel takes)."""
     pa = np.asarray(pressure, dtype=float) * np.asarray(area, dtype=float)
     return float(np.sum(pa * np.cos(theta))), float(np.sum(pa * np.sin(theta)))
 

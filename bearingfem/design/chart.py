@@ -108,7 +108,7 @@ def design_chart(bearing: Bearing, omega: float, sommerfeld=CHART_SOMMERFELD,
     """
     m = film_model(model)
     opts = m.options(options)
-    if m.derivatives is None or m.memory:
+    if not m.exact_derivatives or m.memory:
         raise ValueError(f"design_chart needs a model with exact partials (Newton's method), "
                          f"got model={model!r}")
     omega = check_finite("omega", omega)
@@ -127,13 +127,14 @@ def design_chart(bearing: Bearing, omega: float, sommerfeld=CHART_SOMMERFELD,
 
     def partials(eps, gamma):
         count[0] += 1
-        return m.derivatives(bearing, JournalState(eps, omega=omega, gamma=gamma), **opts)
+        return m.force_derivatives(bearing, JournalState(eps, omega=omega, gamma=gamma),
+                                   **opts)
 
     def capacity():     # asked only when a load looks too heavy: the periodic film's
         o = {**opts, "grooves": ()} if opts.get("grooves") else dict(opts)
         if o.get("grading") is not None:      # a grading is for the grooved mesh
             o["grading"] = None
-        return math.hypot(*m.force(bearing, JournalState(eps_max, omega=omega), **o))
+        return math.hypot(*m.film_force(bearing, JournalState(eps_max, omega=omega), **o))
 
     film = polar_linearisation(partials)
     u = np.array([math.cos(direction), math.sin(direction)])

@@ -26,7 +26,7 @@ from scipy.optimize import brentq, root
 
 from ..bearing import Bearing, JournalState, check_finite
 from ..errors import ConvergenceError
-from ..fe.reynolds import solve_reynolds
+from ..reynolds import solve_reynolds
 from ..fe.sensitivity import fe_tilt_coefficients
 from ..fields import check_tilt
 from ..film import local_to_inertial
@@ -132,9 +132,10 @@ def equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
         film's own shear integral
     """
     tilt = check_tilt("tilt", options.pop("tilt", (0.0, 0.0)))
-    if any(tilt) and model != "fem":
-        raise ValueError(f"tilt needs model 'fem' (a misaligned film), got model={model!r}")
     m = film_model(model)
+    if any(tilt) and not m.tilts:
+        raise ValueError(f"tilt needs a model that solves a tilted journal (model 'fem'), "
+                         f"got model={model!r}")
     opts = m.options(options)
     if any(tilt) and opts.get("roughness") is not None:
         raise ValueError("tilt with roughness is not supported: give one of them")
@@ -151,7 +152,7 @@ def equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
     if not 0.0 < eps_max < 1.0:
         raise ValueError(f"eps_max must lie in (0, 1), got {eps_max!r}")
     # the dry limit (omega = 0, asperities alone) has no closed-form start: Brent's route
-    newton = m.derivatives is not None and not m.memory and omega != 0.0
+    newton = m.exact_derivatives and not m.memory and omega != 0.0
     if start is not None and not newton:
         raise ValueError(f"start needs a model with exact partials (Newton's method) and "
                          f"omega != 0, got model={model!r}, omega={omega!r}")
@@ -165,7 +166,7 @@ def equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
 
     def force(eps, gamma=0.0, o=periodic):
         calls[0] += 1
-        return m.force(bearing, JournalState(eps, omega=omega, gamma=gamma), **o)
+        return m.film_force(bearing, JournalState(eps, omega=omega, gamma=gamma), **o)
 
     f_max = math.hypot(*force(eps_max))
     if not f_max >= W:
@@ -251,7 +252,8 @@ def _newton_equilibrium(m, bearing, omega, load, opts, q0, eps_max, rtol, model,
 
     def partials(eps, gamma):
         calls[0] += 1
-        return m.derivatives(bearing, JournalState(eps, omega=omega, gamma=gamma), **opts)
+        return m.force_derivatives(bearing, JournalState(eps, omega=omega, gamma=gamma),
+                                   **opts)
 
     def tilted(q):
         calls[0] += 1
@@ -270,11 +272,11 @@ def _newton_equilibrium(m, bearing, omega, load, opts, q0, eps_max, rtol, model,
             return math.hypot(*film(shrink_inside(q0 / math.hypot(*q0) * 2.0, d_end,
                                                   eps_max))[0])
         o = {**opts, "grooves": ()} if opts.get("grooves") else opts
-        return math.hypot(*m.force(bearing, JournalState(eps_max, omega=omega), **o))
+        return math.hypot(*m.film_force(bearing, JournalState(eps_max, omega=omega), **o))
 
     eps, gamma = newton_position(film, load, q0, eps_max, rtol, capacity, model, d_end)
     state = JournalState(eps, omega=omega, gamma=gamma)
-    if opts.get("grooves") and not any(tilt) and model == "fem":
+    if opts.get("grooves") and not any(tilt):
         # the film there with its partials, warm from Newton's last cavitated set: the
         # grooved operator keeps both, so the solution below and coefficients() at this
         # state take them instead of a cold solve (bearingfem.fe.grooved)
@@ -284,7 +286,7 @@ def _newton_equilibrium(m, bearing, omega, load, opts, q0, eps_max, rtol, model,
            else solve_film(model, bearing, state, opts))
     calls[0] += 1
     # the model's force: the film's and, with roughness, the asperities' (mixed lubrication)
-    f_loc = m.force(bearing, state, **opts) if sol is None else tuple(
+    f_loc = m.film_force(bearing, state, **opts) if sol is None else tuple(
         np.add(sol.force_local, sol.asperity_force_local))
     residual = np.hypot(*(np.add(local_to_inertial(*f_loc, gamma), load))) / math.hypot(*load)
     # Newton stops on a step below sqrt(rtol) |q|: the force is then off by about rtol

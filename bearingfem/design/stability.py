@@ -231,7 +231,7 @@ def journal_orbit(bearing: Bearing, eq: Equilibrium, mass: float, model: str = "
 
     def rhs(t, y):
         s = JournalState.from_eccentricity(y[0], y[1], y[2], y[3], c, omega, eps_max=0.999)
-        fx, fy = local_to_inertial(*m.force(bearing, s, **opts), s.gamma)
+        fx, fy = local_to_inertial(*m.film_force(bearing, s, **opts), s.gamma)
         return [y[2], y[3], (fx + wx) / mass, (fy + wy) / mass]
 
     start = x0 + kick * c * np.array([wx, wy]) / W

@@ -1,19 +1,21 @@
-"""The EHD journal film: the route of ``solve_reynolds(..., lubricant=, bush=)``."""
+"""The EHD journal film (Reynolds' condition or no cavitation): what
+``solve_reynolds(..., lubricant=, bush=)`` solves (:mod:`bearingfem.routes.ehd`)."""
 from __future__ import annotations
 
 from dataclasses import replace
 
 import numpy as np
 
-from ..fe.general import film_system
+from ..fe.assembly import fe_operator
+from ..fe.general import film_system, general_film
 from ..fe.mixed import film_contact, with_contact
-from ..fe.reynolds import _film_outputs, fe_pressure
+from ..fe.kernel import fe_pressure, film_outputs, groove_pressures
 from ..lubricant import Lubricant
 from .coupling import ehd_film
 from .beyond import solve_beyond
 from .newton import solve_ehd
 
-__all__ = ["solve_ehd_film", "check_ehd"]
+__all__ = ["solve_elastic_film", "solve_ehd_film", "check_ehd"]
 
 
 def check_ehd(lubricant, bush, fields, element: str, cavitation: str):
@@ -74,7 +76,7 @@ def solve_ehd_film(bearing, state, op, base, gap0, lubricant, bush, cavitation, 
     P = res.pressure
     fields, values, load = film.system(P)
     deformation = film.deflection(P)
-    sol = _film_outputs(bearing, state, op, res, values, load, fields, cavitation,
+    sol = film_outputs(bearing, state, op, res, values, load, fields, cavitation,
                         cavitated_shear, grooves, "fem-P1/ehd-newton"
                         if op.mesh.basis.Nbfun == 3 else "fem-P2/ehd-newton",
                         gap0 + deformation / bearing.clearance)
@@ -83,3 +85,19 @@ def solve_ehd_film(bearing, state, op, base, gap0, lubricant, bush, cavitation, 
         return sol
     # the summits on the deformed gap, at the quadrature points (the rigid mixed film's rule)
     return with_contact(sol, film_contact(bearing, state, op, roughness, fields.gap))
+
+
+def solve_elastic_film(bearing, state, n_theta: int, n_z: int, cavitation: str = "reynolds",
+                       *, element: str = "P1", method: str = "active-set", tol: float = 1e-10,
+                       supply_angle=None, cavitated_shear: str = "full", grooves=(),
+                       fields=None, tilt=(0.0, 0.0), tilt_rate=(0.0, 0.0), lubricant=None,
+                       bush=None, roughness=None, start=None):
+    """The EHD film on an (n_theta, n_z) mesh of the whole length (arguments as
+    :func:`bearingfem.solve_reynolds`'s, checked there): the film on its fields, then
+    :func:`solve_ehd_film`."""
+    check_ehd(lubricant, bush, fields, element, cavitation)
+    op = fe_operator(bearing, state, n_theta, n_z, element, supply_angle, False, grooves)
+    film, gap = general_film(bearing, state, op, fields, tilt, tilt_rate)
+    return solve_ehd_film(bearing, state, op, film, gap, lubricant, bush, cavitation, method,
+                          tol, groove_pressures(bearing, op, grooves), cavitated_shear,
+                          grooves, start, roughness)

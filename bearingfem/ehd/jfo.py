@@ -35,17 +35,19 @@ import numpy as np
 import scipy.sparse as sp
 
 from ..errors import ConvergenceError
+from ..fe.assembly import fe_operator
 from ..fe.jfo_balance import _boundary_values, _cos_integral, film_volumes
 from ..fe.jfo_fields import BalanceFilm, _halves, _zeta_extent, rigid_balance_film
 from ..fe.multilevel import prolongation
 from ..fields import FilmFields
 from ..lubricant import Lubricant
+from ..fe.jfo_steady import _film_solution, _steady
 from ..fe.volumes import transport_matrix
 from .coupling import EHDFilm, ehd_film
 from .jfo_newton import EHDJFOSolve, solve_ehd_jfo
 
 __all__ = ["JFOCoupling", "FaceMaps", "jfo_coupling", "solve_ehd_jfo", "check_ehd_jfo",
-           "EHDJFOSolve"]
+           "EHDJFOSolve", "solve_elastic_jfo_film"]
 
 
 def check_ehd_jfo(lubricant, fields, tilt, tilt_rate):
@@ -213,7 +215,6 @@ def solve_ehd_jfo_film(bearing, state, operator, n_theta: int, n_z: int, lubrica
     JFO film on ``operator(n_theta, n_z)`` (whole length), then the EHD-JFO Newton; a
     :class:`FilmSolution` with ``fraction``, ``deformation`` [m] and the deformed ``gap``.
     ``start``: a previous EHD-JFO FilmSolution on the same mesh (warm start)."""
-    from ..fe.jfo_steady import _film_solution, _steady
     op = operator(n_theta, n_z)
     film = jfo_coupling(bearing, state, op, lubricant, bush, grooves, ambient)
 
@@ -233,3 +234,14 @@ def solve_ehd_jfo_film(bearing, state, operator, n_theta: int, n_z: int, lubrica
     sol = _film_solution(bearing, state, op, out.P, out.phi, out.result, out.flows,
                          "fem-P1/jfo-ehd-newton", balance_film(film, out.P))
     return replace(sol, deformation=film.poiseuille.deflection(out.P))
+
+
+def solve_elastic_jfo_film(bearing, state, n_theta: int, n_z: int, *, lubricant=None,
+                           bush=None, grooves=(), ambient_pressure: float = 0.0,
+                           tol: float = 1e-10, supply_angle=None, start=None):
+    """The EHD-JFO film on an (n_theta, n_z) mesh of the whole length (arguments as
+    :func:`bearingfem.solve_reynolds`'s, checked there): :func:`solve_ehd_jfo_film`."""
+    def whole(nt, nz):
+        return fe_operator(bearing, state, nt, nz, "P1", supply_angle, False, grooves)
+    return solve_ehd_jfo_film(bearing, state, whole, n_theta, n_z, lubricant, bush, grooves,
+                              ambient_pressure, tol, start)

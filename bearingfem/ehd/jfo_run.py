@@ -24,6 +24,7 @@ from ..fe.general import film_system
 from ..fe.jfo_balance import JFOFlows, _boundary_values, film_volumes, kept_set_pressure
 from ..fe.jfo_steady import _film_solution
 from ..fields import FilmFields
+from ..film import inertial_from_theta
 from ..scales import flow_factor, force_factor
 from ..transient import TransientJFO
 from ..fe.jfo_fields import rigid_balance_film
@@ -31,7 +32,7 @@ from .jfo import check_ehd_jfo, face_maps
 from .jfo_transient import EHDJFOFilm
 from .transient import ehd_compliance, kept_film
 
-__all__ = ["KeptEHDJFO", "TransientEHDJFO", "ehd_run_film", "ehd_jfo_solution", "ehd_model_solution"]
+__all__ = ["KeptEHDJFO", "TransientEHDJFO"]
 
 
 @dataclass(frozen=True)
@@ -96,7 +97,6 @@ class KeptEHDJFO:
 
     def _departure(self, state, op) -> np.ndarray:
         """Nodal kept w / c at ``state``'s mesh (read in the bush's frame)."""
-        from ..film import inertial_from_theta
         k = self.kept
         return k.at(k.deflection, inertial_from_theta(op.mesh.theta, state.gamma), op.mesh.zeta)
 
@@ -170,57 +170,3 @@ class TransientEHDJFO(TransientJFO):
         self.film = KeptEHDJFO(self.bearing, state, **self._ehd)
         self.t = float(t)
         self._warm, self._jump, self._fade, self.steps = None, (0.0, 0.0), 1.0, 0
-
-
-def ehd_run_film(bearing: Bearing, lubricant=None, bush=None, roughness=None,
-                 n_theta: int = 48, n_z: int = 8, modes: int = 0, film_step: float = 0.0,
-                 cavitation: str = "reynolds", coupling: str = "kept",
-                 relaxation: float = 1e-5):
-    """The "fem-ehd" model's RunFilm for its ``cavitation``: "reynolds" (Swift-Stieber,
-    :class:`~bearingfem.ehd.transient.TransientEHD`) or "jfo" (:class:`TransientEHDJFO`,
-    oil around the film at the JFO models' 1e5 Pa); ``coupling`` "states": the bush's
-    modes integrated with the journal (:class:`~bearingfem.ehd.states.ModalStateEHD`,
-    Reynolds' condition, a bush, ``relaxation`` [s] its Kelvin-Voigt time)."""
-    from .transient import TransientEHD
-    if coupling == "states":
-        from .states import ModalStateEHD
-        if cavitation != "reynolds" or not modes:
-            raise ValueError("coupling 'states' takes cavitation 'reynolds' and modes >= 1 "
-                             f"(got {cavitation!r}, modes {modes})")
-        return ModalStateEHD(bearing, lubricant, bush, n_theta, n_z, modes, relaxation,
-                             roughness)
-    o = dict(lubricant=lubricant, bush=bush, roughness=roughness, n_theta=n_theta, n_z=n_z,
-             modes=modes, film_step=film_step)
-    if cavitation == "reynolds":
-        return TransientEHD(bearing, **o)
-    if cavitation == "jfo":
-        return TransientEHDJFO(bearing, **o, ambient_pressure=JFO_AMBIENT)
-    raise ValueError(f"cavitation must be 'reynolds' or 'jfo', got {cavitation!r}")
-
-
-def ehd_jfo_solution(bearing: Bearing, state: JournalState, lubricant, bush, roughness,
-                     n_theta: int, n_z: int, modes: int):
-    """The steady EHD-JFO film of "fem-ehd" with ``cavitation="jfo"`` (whole length, oil
-    around it at :data:`JFO_AMBIENT`)."""
-    from ..fe.reynolds import solve_reynolds      # the film route imports this package
-    comp = None if bush is None else ehd_compliance(bush, bearing.radius, bearing.length,
-                                                     n_theta, n_z, modes)
-    return solve_reynolds(bearing, state, n_theta, n_z, "P1", "jfo", half=False,
-                          lubricant=lubricant, bush=comp, roughness=roughness,
-                          ambient_pressure=JFO_AMBIENT)
-
-
-def ehd_model_solution(bearing: Bearing, state: JournalState, lubricant, bush, roughness,
-                       n_theta: int, n_z: int, modes: int, film_step: float = 0.0,
-                       cavitation: str = "reynolds", coupling: str = "kept",
-                       relaxation: float = 1e-5):
-    """The "fem-ehd" model's steady film for its ``cavitation`` (a cold full solve;
-    ``film_step`` [s] is for time integration only): Reynolds' condition or EHD-JFO."""
-    from .transient import ehd_solution
-    if cavitation == "jfo":
-        return ehd_jfo_solution(bearing, state, lubricant, bush, roughness, n_theta, n_z, modes)
-    return ehd_solution(bearing, state, lubricant, bush, roughness, n_theta, n_z, modes)
-
-
-#: Oil around the film [Pa] (the "fem-jfo" model's default supply).
-JFO_AMBIENT = 1e5

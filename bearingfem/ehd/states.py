@@ -29,8 +29,10 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ..bearing import Bearing, JournalState
-from ..contract import FilmStep
+from ..contract import FilmStep, StateTangent
 from ..errors import ConvergenceError
+from ..fe.assembly import fe_operator
+from ..fe.kernel import film_outputs
 from ..fields import FilmFields
 from ..film import film_thickness, local_to_inertial
 from ..scales import force_factor
@@ -46,16 +48,6 @@ __all__ = ["ModalStateEHD", "StateTangent"]
 TOL = 1e-10
 #: With roughness, the film's flow sees the gap floored at this many sigma.
 FLOW_FLOOR = 0.05
-
-
-@dataclass(frozen=True, eq=False)
-class StateTangent:
-    """A film's force and state rates differentiated in its own states z (n of them), the
-    journal's state held: force_local (2, n) [N/m], d(F_r, F_t)/dz; rates (n, n) [1/s],
-    d(dz/dt)/dz."""
-
-    force_local: np.ndarray
-    rates: np.ndarray
 
 
 class _CoupledFilm:
@@ -176,6 +168,7 @@ class ModalStateEHD:
     """
 
     memory = True
+    has_tangent = True       # contract rule 17: tangent() after a rates call
 
     def __init__(self, bearing: Bearing, lubricant=None, bush=None, n_theta: int = 48,
                  n_z: int = 8, modes: int = 16, relaxation: float = 1e-5, roughness=None):
@@ -201,7 +194,6 @@ class ModalStateEHD:
 
     # -- the film at (state, q) ---------------------------------------------------------
     def _coupled(self, state: JournalState, q: np.ndarray) -> _CoupledFilm:
-        from ..fe.assembly import fe_operator
         b = self.bearing
         op = fe_operator(b, state, self.n_theta, self.n_z, "P1", None, False)
         m = op.mesh
@@ -320,14 +312,13 @@ class ModalStateEHD:
 
     def solution(self, state: JournalState, q: np.ndarray) -> FilmSolution:
         """The whole film at (``state``, ``q``): pressures, the elastic gap, friction."""
-        from ..fe.reynolds import _film_outputs
         coupled = self._coupled(state, np.asarray(q, float))
         res = self._solve(coupled)
         self._P = res.pressure
         ev = coupled.film_state(res.pressure)
-        sol = _film_outputs(self.bearing, state, coupled.op, res, ev.values, ev.load,
-                            ev.fields, "reynolds", "full", (), "fem-P1/ehd-states",
-                            gap=coupled.gap)
+        sol = film_outputs(self.bearing, state, coupled.op, res, ev.values, ev.load,
+                           ev.fields, "reynolds", "full", (), "fem-P1/ehd-states",
+                           gap=coupled.gap)
         sol = replace(sol, deformation=coupled.deflection)     # [m], opening the gap
         if coupled.contact is None:
             return sol

@@ -8,7 +8,7 @@ therefore solves the full EHD film at accepted integrator steps only, spaced by
 the lubricant's viscosity and density ratios, held in the bush's (inertial) frame. At a
 trial state the force is the Reynolds film (Swift-Stieber cavitation) of the rigid gap of
 that state plus the kept deflection, with the kept viscosity and density: one
-general-field film solve (:func:`~bearingfem.fe.reynolds.solve_reynolds` with ``fields``),
+general-field film solve (:func:`~bearingfem.solve_reynolds` with ``fields``),
 a few milliseconds. The kept fields lag the journal by one film step (an explicit
 coupling): the force's error is O(film_step). Beyond the rigid clearance circle the gap is
 almost all deflection, so that lag moves the gap by about as much as the gap itself
@@ -28,22 +28,22 @@ from functools import lru_cache
 import numpy as np
 
 from ..bearing import Bearing, JournalState
-from ..contract import FilmStep
+from ..contract import FilmStep, StatelessRun
 from ..errors import ConvergenceError
 from ..elastic import ElasticBush, bush_compliance
+from ..fe.assembly import fe_operator
+from ..fe.general import film_system
+from ..fe.kernel import fe_pressure, solve_film
+from ..fe.mixed import film_contact, with_contact
 from ..fields import FilmFields
+from ..scales import force_factor
 from ..film import film_thickness, inertial_from_theta
 from ..solution import FilmSolution
 from ..transient import faded_force, since_film_step
+from .film import solve_elastic_film
 
 __all__ = ["TransientEHD", "EHDSnapshot", "KeptFilm", "kept_film", "ehd_solution",
-           "ehd_compliance", "check_ehd_model", "state_coordinates"]
-
-def check_ehd_model(bush, roughness):
-    """ValueError for option pairs the EHD film cannot take, before any work."""
-    # (roughness with a bush is the mixed EHD film, bearingfem.ehd.asperity: no pair is
-    # refused today; the check stays the one place for such pairs)
-
+           "ehd_compliance", "state_coordinates"]
 
 @lru_cache(maxsize=8)
 def ehd_compliance(bush: ElasticBush, radius: float, length: float, n_theta: int, n_z: int,
@@ -64,14 +64,15 @@ def ehd_solution(bearing: Bearing, state: JournalState, lubricant, bush, roughne
                  ) -> FilmSolution:
     """The full EHD film at ``state`` (P1, Swift-Stieber cavitation; ``start`` a previous
     solution of the same mesh for a warm start)."""
-    from ..fe.reynolds import solve_reynolds      # the film route imports this package
-    check_ehd_model(bush, roughness)
     comp = None if bush is None else ehd_compliance(
         bush, bearing.radius, bearing.length, n_theta, n_z, modes)
-    if comp is None and lubricant is None:
-        start = None                  # the rigid isoviscous film: nothing to iterate
-    return solve_reynolds(bearing, state, n_theta, n_z, "P1", "reynolds", lubricant=lubricant,
-                          bush=comp, roughness=roughness, start=start)
+    if comp is None and lubricant is None:      # the rigid isoviscous film: no Newton
+        op = fe_operator(bearing, state, n_theta, n_z, "P1", None, True)
+        sol = solve_film(bearing, state, op, "P1", "reynolds")
+        return sol if roughness is None else with_contact(
+            sol, film_contact(bearing, state, op, roughness))
+    return solve_elastic_film(bearing, state, n_theta, n_z, "reynolds", lubricant=lubricant,
+                              bush=comp, roughness=roughness, start=start)
 
 
 def total_force(sol: FilmSolution) -> tuple:
@@ -190,7 +191,7 @@ class EHDSnapshot:
     origin: np.ndarray | None = None
 
 
-class TransientEHD:
+class TransientEHD(StatelessRun):
     """The "fem-ehd" model along one integration (see the module docstring).
 
     Parameters
@@ -204,7 +205,6 @@ class TransientEHD:
 
     def __init__(self, bearing: Bearing, lubricant=None, bush=None, roughness=None,
                  n_theta: int = 48, n_z: int = 8, modes: int = 0, film_step: float = 0.0):
-        check_ehd_model(bush, roughness)
         self.bearing = bearing
         self._film = dict(lubricant=lubricant, bush=bush, roughness=roughness,
                           n_theta=n_theta, n_z=n_z, modes=modes)
@@ -246,11 +246,6 @@ class TransientEHD:
         integrator's trial states: the film's system, its pressure (active set started
         from the last call's cavitated set: the same answer to the solver's tolerance)
         and force, no other outputs."""
-        from ..fe.assembly import fe_operator
-        from ..fe.general import film_system
-        from ..fe.mixed import film_contact
-        from ..fe.reynolds import fe_pressure
-        from ..scales import force_factor
         f = self._film
         op = fe_operator(self.bearing, state, f["n_theta"], f["n_z"], "P1", None, False)
         fields = (kept or self._kept).fields(self.bearing, state, op, f["lubricant"])

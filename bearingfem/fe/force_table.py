@@ -31,11 +31,14 @@ from pathlib import Path
 import numpy as np
 from scipy.interpolate import RectBivariateSpline
 
+from ..bearing import Bearing, JournalState
 from ..scales import half_film_factor
 from ..solvers.cavitation import active_set
 from ..solvers.linsolve import factorise
 from ..validation import CAVITATION, check_choice, check_int
-from .assembly import film_operator
+from ..version import __version__
+from .assembly import fe_operator, film_operator
+from .kernel import rigid_force
 from .mesh import ELEMENTS, MIN_N_THETA, MIN_N_Z
 
 __all__ = ["ForceTable", "build_force_table", "force_table", "table_force", "cache_dir",
@@ -150,24 +153,27 @@ def build_force_table(length_ratio: float, n_theta=_D["n_theta"], n_z=_D["n_z"],
     return ForceTable(key, eps, phi, g[0], g[1], error)
 
 
+def _force(bearing, state, n_theta, n_z, element, cavitation) -> tuple:
+    """(F_r, F_t) [N] of the rigid FE film (half length, film frame): the table's own."""
+    op = fe_operator(bearing, state, n_theta, n_z, element, None, True)
+    return rigid_force(bearing, state, op, cavitation)[0]
+
+
 def _mesh_error(length_ratio, n_theta, n_z, element, cavitation, eps_max) -> float:
     """Largest relative force gap between the table's mesh and one twice as fine, over
     wedge, squeeze and mixed states at eps 0.3 to 0.9 (a dozen solves)."""
-    from ..bearing import Bearing, JournalState
-    from .reynolds import fe_force
     b = Bearing(radius=1.0, length=2.0 * length_ratio, clearance=1e-3, viscosity=1.0)
     gaps = []
     for e in (0.3, 0.6, min(0.9, eps_max)):
         for ed, w in ((0.0, 1.0), (1.0, 0.0), (0.5, 1.0), (-0.5, 1.0)):
             s = JournalState(e, ed, 0.0, 0.0, w)
-            coarse = np.array(fe_force(b, s, n_theta, n_z, element, cavitation)[0])
-            fine = np.array(fe_force(b, s, 2 * n_theta, 2 * n_z, element, cavitation)[0])
+            coarse = np.array(_force(b, s, n_theta, n_z, element, cavitation))
+            fine = np.array(_force(b, s, 2 * n_theta, 2 * n_z, element, cavitation))
             gaps.append(np.linalg.norm(coarse - fine) / max(np.linalg.norm(fine), 1e-300))
     return float(max(gaps))
 
 
 def _key(length_ratio, n_theta, n_z, element, cavitation, n_eps, n_phi, eps_max) -> dict:
-    from .. import __version__
     return dict(format=FORMAT, version=__version__, length_ratio=float(length_ratio),
                 n_theta=int(n_theta), n_z=int(n_z), element=str(element),
                 cavitation=str(cavitation), n_eps=int(n_eps), n_phi=int(n_phi),

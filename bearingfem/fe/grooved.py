@@ -36,17 +36,18 @@ from dataclasses import dataclass, field
 from functools import lru_cache
 
 import numpy as np
-import scipy.sparse as sp
 
 from ..bearing import Bearing, JournalState
 from ..errors import ConvergenceError
 from ..film import cubed_thickness_coefficients, film_thickness, source_coefficients
 from ..scales import force_factor
 from ..solution import FilmSolution, ForceDerivatives
-from ..solvers.blocksolve import DENSE_DOFS, PinnedFactor, bordered_solve
+from ..solvers.blocksolve import DENSE_DOFS, PinnedFactor, bordered_solve, inactive_solve
 from ..solvers.cavitation import LCPResult
+from ..fields import FilmFields
 from .assembly import FilmOperator
 from .general import general_assembly
+from .kernel import fe_pressure, film_outputs
 from .grooved_build import build_grooved_tables, harmonic_weights
 from .mesh import film_mesh
 from .multilevel import coarse_shape, prolongation
@@ -245,7 +246,6 @@ def grooved_pressure(gop: GroovedOperator, bearing: Bearing, state: JournalState
     tolerance. With ``reuse`` the last solve on this operator is returned when it was of
     this very film (K/C after the film's solve). Every solve is kept as
     ``gop.last``."""
-    from .reynolds import fe_pressure     # reynolds routes grooved films here
     key = _film_key(state, grooves, cavitation, method, tol)
     if reuse and gop.last.get("key") == key:
         return gop.last["result"]
@@ -298,7 +298,6 @@ def grooved_derivatives(bearing: Bearing, state: JournalState, gop: GroovedOpera
     path (Newton's steps, K/C, charts): the solve starts from the operator's last
     cavitated set, and at the state of the last solve takes its film; asked again at
     the state of the last partials (K/C at a Newton equilibrium) returns them."""
-    from .sensitivity import _inactive_solve
     key = _film_key(state, grooves, cavitation)
     kept = gop.last.get("derivatives")
     if kept is not None and kept[0] == key and gop.last.get("key") == key:
@@ -332,7 +331,7 @@ def grooved_derivatives(bearing: Bearing, state: JournalState, gop: GroovedOpera
         dP[free] = bordered_solve(res.factor.lu, K, np.where(inactive[:, None], rhs[free], 0.0),
                                   ~res.factor.active, inactive)
     else:
-        dP[free] = _inactive_solve(K, res.factor, inactive, rhs[free])
+        dP[free] = inactive_solve(K, res.factor, inactive, rhs[free])
     k = force_factor(bearing, True)
     where = op.at_quadrature(P) > 0.0 if cavitation == "gumbel" else None
     I = op.force_integrals(np.concatenate([P[None], dP.T]), where=where)    # (2, 5)
@@ -350,13 +349,11 @@ def grooved_derivatives(bearing: Bearing, state: JournalState, gop: GroovedOpera
 def grooved_solution(bearing: Bearing, state: JournalState, gop: GroovedOperator, grooves,
                      cavitation: str, method: str, tol: float, cavitated_shear: str,
                      element: str) -> FilmSolution:
-    """The whole grooved film (:func:`~bearingfem.fe.reynolds.solve_reynolds`'s outputs),
+    """The whole grooved film (:func:`~bearingfem.solve_reynolds`'s outputs),
     nodes reported at their film angles theta = phi - gamma; a cold solve (the active set
     from the coarser levels, never from an earlier call's set), except that the film of the
     designer's last partials (:func:`grooved_derivatives`) is taken when it was this very
     film (an equilibrium's answer: the same film to the solver's tolerance)."""
-    from ..fields import FilmFields
-    from .reynolds import _film_outputs
     op = gop.op
     kept = gop.last.get("derivatives")
     designer = kept is not None and kept[0] == _film_key(state, grooves, cavitation, method,
@@ -365,8 +362,8 @@ def grooved_solution(bearing: Bearing, state: JournalState, gop: GroovedOperator
                            reuse=designer)
     values, load = _system(gop, state)
     film = FilmFields(gap=film_thickness(gop.film_angle(state.gamma), state.eps))
-    return _film_outputs(bearing, state, op, res, values, load, film, cavitation,
-                         cavitated_shear, grooves,
-                         f"fem-{element}" + (f"/{method}" if cavitation == "reynolds" else ""),
-                         force=_force(bearing, gop, res.pressure, state.gamma, cavitation),
-                         theta=op.mesh.theta - state.gamma)
+    return film_outputs(bearing, state, op, res, values, load, film, cavitation,
+                        cavitated_shear, grooves,
+                        f"fem-{element}" + (f"/{method}" if cavitation == "reynolds" else ""),
+                        force=_force(bearing, gop, res.pressure, state.gamma, cavitation),
+                        theta=op.mesh.theta - state.gamma)

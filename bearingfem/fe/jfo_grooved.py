@@ -113,7 +113,7 @@ def grooved_jfo_solution(bearing: Bearing, state: JournalState, op: FilmOperator
 def solve_grooved_jfo(bearing: Bearing, state: JournalState, n_theta: int, n_z: int,
                       grooves, ambient_pressure: float = 0.0) -> FilmSolution:
     """The steady grooved JFO film (half length, arguments checked by
-    :func:`~bearingfem.fe.reynolds.solve_reynolds`)."""
+    :func:`~bearingfem.solve_reynolds`)."""
     b, op = _steady(bearing, state, n_theta, n_z, grooves, ambient_pressure)
     return grooved_jfo_solution(bearing, state, op, b)
 

@@ -25,12 +25,11 @@ from ..bearing import Bearing, JournalState
 from ..fields import check_tilt
 from ..scales import force_factor
 from ..solution import ForceDerivatives
-from ..solvers.blocksolve import PinnedFactor, bordered_solve, pinned
-from ..solvers.linsolve import factorise
+from ..solvers.blocksolve import inactive_solve
 from ..validation import check_film_solve
 from .general import film_system, general_assembly, reference_load_partial
 from .grooved import groove_operator_for, grooved_derivatives
-from .reynolds import fe_operator, fe_pressure, general_film, groove_pressures
+from .kernel import fe_operator, fe_pressure, general_film, groove_pressures
 
 __all__ = ["fe_force_derivatives", "TiltCoefficients", "fe_tilt_coefficients",
            "gap_sensitivities", "generalised_forces"]
@@ -45,7 +44,7 @@ def fe_force_derivatives(bearing: Bearing, state: JournalState, n_theta: int = 1
                          grooves=()) -> ForceDerivatives:
     """(F_r, F_t) [N] of the FE film and its exact partials in (eps, eps_dot, w).
 
-    Same film as :func:`~bearingfem.fe.reynolds.solve_reynolds` (half domain). With
+    Same film as :func:`~bearingfem.solve_reynolds` (half domain). With
     ``grooves`` (held pressures enter through P, which carries them on the fixed dofs) the
     film is solved on the bearing-fixed mesh of :mod:`bearingfem.fe.grooved`, which also
     gives the partial in gamma (the grooves moving against the film) exactly.
@@ -65,7 +64,7 @@ def fe_force_derivatives(bearing: Bearing, state: JournalState, n_theta: int = 1
                            op.load(e, 0.0, 1.0)])[free]
     inactive = ~res.active[free] if cavitation == "reynolds" else np.ones(len(free), bool)
     dP = np.zeros((op.mesh.ndofs, 3))
-    dP[free] = _inactive_solve(op.free_stiffness(e), res.factor, inactive, rhs)
+    dP[free] = inactive_solve(op.free_stiffness(e), res.factor, inactive, rhs)
 
     k = force_factor(bearing, op.mesh.half)
     fields = np.concatenate([P[None], dP.T])
@@ -74,29 +73,6 @@ def fe_force_derivatives(bearing: Bearing, state: JournalState, n_theta: int = 1
     F = k * op.force_integrals(fields, where=where)
     col = [tuple(float(x) for x in F[:, j]) for j in range(4)]
     return ForceDerivatives(col[0], col[1], col[2], col[3], "exact-sensitivity")
-
-
-def _inactive_solve(K: sp.csr_matrix, factor, inactive: np.ndarray, rhs: np.ndarray):
-    """Solve K_II X_I = rhs_I (X = 0 elsewhere) with the factors of the film solve.
-
-    ``factor`` is LU of K itself (full film), a :class:`PinnedFactor` of some cavitated set
-    (the Reynolds solve's last factorisation: exact bordered solves correct the few dofs
-    where its set differs from the final one), or None for films small enough to be solved
-    densely, which are factorised here.
-    """
-    rhs = np.where(inactive[:, None], rhs, 0.0)
-    if isinstance(factor, PinnedFactor):
-        if np.array_equal(~factor.active, inactive):
-            X = factor.solve(rhs)
-        else:
-            X = np.column_stack([bordered_solve(factor.lu, K, rhs[:, j], ~factor.active,
-                                                inactive) for j in range(rhs.shape[1])])
-    elif factor is not None and inactive.all():
-        X = factor.solve(rhs)
-    else:
-        X = factorise(pinned(sp.csr_matrix(K), inactive)).solve(rhs)
-    X[~inactive] = 0.0
-    return X
 
 
 @dataclass(frozen=True)
@@ -191,7 +167,7 @@ def fe_tilt_coefficients(bearing: Bearing, state: JournalState, tilt=(0.0, 0.0),
     free = op.mesh.free
     inactive = ~res.active[free] if cavitation == "reynolds" else np.ones(len(free), bool)
     dP = np.zeros((op.mesh.ndofs, 8))
-    dP[free] = _inactive_solve(op.free_stiffness(state.eps, values), res.factor, inactive,
+    dP[free] = inactive_solve(op.free_stiffness(state.eps, values), res.factor, inactive,
                                np.column_stack(rhs)[free])
     where = op.at_quadrature(P) > 0.0 if cavitation == "gumbel" else None
     Q = generalised_forces(bearing, state, op, P, clip=cavitation == "gumbel")

@@ -23,14 +23,13 @@ import scipy.sparse.linalg as spla
 
 from ..bearing import Bearing, JournalState
 from ..film import film_thickness, reynolds_source_integral, theta_from_inertial
-from ..fields import check_tilt, tilted_gap
+from ..fields import tilted_gap
 from ..scales import flow_factor, force_factor, moment_factor, shear_friction
 from ..solution import FilmSolution, film_solution
 from ..solvers.cavitation import LCPResult, active_set, psor
 from ..solvers.jfo import solve_balance, upwind_transport
-from ..validation import check_film_solve, check_grooves, check_jfo_supply
 
-__all__ = ["fvm_reynolds", "FVMGrid", "fvm_grid"]
+__all__ = ["solve_fv", "fvm_force", "FVMGrid", "fvm_grid"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -281,12 +280,13 @@ def _force(bearing: Bearing, g: FVMGrid, P: np.ndarray):
     return k * float(Pg @ np.cos(g.theta_c)), k * float(Pg @ np.sin(g.theta_c))
 
 
-def fvm_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z: int = 20,
-                 cavitation: str = "reynolds", *, method: str = "active-set",
-                 supply_angle=None, tol: float = 1e-10, grooves=(),
-                 ambient_pressure: float = 0.0, tilt=(0.0, 0.0),
-                 tilt_rate=(0.0, 0.0)) -> FilmSolution:
-    """Finite-volume Reynolds solution; same inputs and result type as ``solve_reynolds``.
+def solve_fv(bearing: Bearing, state: JournalState, n_theta: int, n_z: int,
+             cavitation: str, method: str = "active-set", supply_angle=None,
+             tol: float = 1e-10, grooves=(), ambient_pressure: float = 0.0,
+             tilt=(0.0, 0.0), tilt_rate=(0.0, 0.0)) -> FilmSolution:
+    """Finite-volume Reynolds solution (arguments checked by
+    :func:`bearingfem.fvm_reynolds`, whose front this is); same result type as
+    ``solve_reynolds``.
 
     ``cavitation="jfo"`` is the mass-conserving film on the cells (upwind transport of
     the content across the theta faces), with grooves, a supply line or
@@ -299,13 +299,8 @@ def fvm_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z:
     every cavitation model): the balance on its gap field and ``moment`` (M_x, M_y)
     [N m], midpoint sums as the force.
     """
-    n_theta, n_z, supply_angle = check_film_solve(bearing, state, n_theta, n_z, cavitation,
-                                                  method, supply_angle, tol)
     theta0 = None if supply_angle is None else float(theta_from_inertial(supply_angle,
                                                                          state.gamma))
-    grooves = check_grooves(grooves, supply_angle, mass_conserving=cavitation == "jfo")
-    ambient_pressure = check_jfo_supply(cavitation, grooves, supply_angle, ambient_pressure)
-    tilt, tilt_rate = check_tilt("tilt", tilt), check_tilt("tilt_rate", tilt_rate)
     tilted = any(tilt) or any(tilt_rate)
     g = fvm_grid(n_theta, n_z, bearing.length_ratio, theta0)
     system = gap = None

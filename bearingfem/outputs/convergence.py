@@ -15,8 +15,7 @@ from pathlib import Path
 import numpy as np
 
 from ..bearing import Bearing, JournalState
-from ..fe.reynolds import solve_reynolds
-from ..fv.fvm import fvm_reynolds
+from ..reynolds import fvm_reynolds, solve_reynolds
 from ..validation import check_int
 from .tables import write_csv
 

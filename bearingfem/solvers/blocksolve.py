@@ -19,7 +19,7 @@ import scipy.sparse as sp
 
 from .linsolve import factorise, pcg, solve_spd
 
-__all__ = ["BlockSolver", "PinnedFactor", "pinned", "bordered_solve", "dense_block_solve",
+__all__ = ["BlockSolver", "PinnedFactor", "pinned", "bordered_solve", "inactive_solve", "dense_block_solve",
            "DENSE_DOFS", "BORDERED_MAX_CHANGES"]
 
 #: Up to this many dofs, dense LAPACK solves of the inactive block beat sparse factors.
@@ -189,3 +189,26 @@ class BlockSolver:
     def factor(self):
         """The factors to hand to a later solve (with the set they pin), or None."""
         return None if self.lu is None else PinnedFactor(self.lu, self.factored)
+
+
+def inactive_solve(K: sp.csr_matrix, factor, inactive: np.ndarray, rhs: np.ndarray):
+    """Solve K_II X_I = rhs_I (X = 0 elsewhere) with the factors of the film solve.
+
+    ``factor`` is LU of K itself (full film), a :class:`PinnedFactor` of some cavitated set
+    (the Reynolds solve's last factorisation: exact bordered solves correct the few dofs
+    where its set differs from the final one), or None for films small enough to be solved
+    densely, which are factorised here.
+    """
+    rhs = np.where(inactive[:, None], rhs, 0.0)
+    if isinstance(factor, PinnedFactor):
+        if np.array_equal(~factor.active, inactive):
+            X = factor.solve(rhs)
+        else:
+            X = np.column_stack([bordered_solve(factor.lu, K, rhs[:, j], ~factor.active,
+                                                inactive) for j in range(rhs.shape[1])])
+    elif factor is not None and inactive.all():
+        X = factor.solve(rhs)
+    else:
+        X = factorise(pinned(sp.csr_matrix(K), inactive)).solve(rhs)
+    X[~inactive] = 0.0
+    return X

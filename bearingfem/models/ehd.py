@@ -1,0 +1,102 @@
+"""The elastohydrodynamic film of the mechanism ("fem-ehd"): a pressure-dependent oil, an
+elastic bush and the summits' contact, with Reynolds' condition or the JFO film; along a
+run its bush held between film steps ("kept"), moved along its tangent ("tangent") or its
+modes integrated with the journal ("states")."""
+from __future__ import annotations
+
+from ..bearing import ELASTIC_EPS_CAP
+from ..ehd.jfo_run import TransientEHDJFO
+from ..ehd.states import ModalStateEHD
+from ..ehd.tangent import TangentEHD
+from ..ehd.transient import TransientEHD, ehd_compliance, ehd_solution
+from ..elastic import ElasticBush
+from ..lubricant import Lubricant
+from ..reynolds import solve_reynolds
+from .jfo import JFO_AMBIENT
+from .registry import FilmModel, register
+
+__all__ = ["EHDModel", "ehd_model_solution", "ehd_jfo_solution", "ehd_run_film"]
+
+#: Bush relaxation time's range [s] (Kelvin-Voigt, for coupling "states").
+RELAXATION = (1e-12, 1.0)
+
+
+def ehd_jfo_solution(bearing, state, lubricant, bush, roughness, n_theta: int, n_z: int,
+                     modes: int):
+    """The steady EHD-JFO film of "fem-ehd" with ``cavitation="jfo"`` (whole length, oil
+    around it at :data:`~bearingfem.models.jfo.JFO_AMBIENT`)."""
+    comp = None if bush is None else ehd_compliance(bush, bearing.radius, bearing.length,
+                                                     n_theta, n_z, modes)
+    return solve_reynolds(bearing, state, n_theta, n_z, "P1", "jfo", half=False,
+                          lubricant=lubricant, bush=comp, roughness=roughness,
+                          ambient_pressure=JFO_AMBIENT)
+
+
+def ehd_model_solution(bearing, state, lubricant, bush, roughness, n_theta: int, n_z: int,
+                       modes: int, film_step: float = 0.0, cavitation: str = "reynolds",
+                       coupling: str = "kept", relaxation: float = 1e-5):
+    """The "fem-ehd" model's steady film for its ``cavitation`` (a cold full solve;
+    ``film_step``, ``coupling`` and ``relaxation`` are for time integration only)."""
+    if cavitation == "jfo":
+        return ehd_jfo_solution(bearing, state, lubricant, bush, roughness, n_theta, n_z, modes)
+    return ehd_solution(bearing, state, lubricant, bush, roughness, n_theta, n_z, modes)
+
+
+def ehd_run_film(bearing, lubricant=None, bush=None, roughness=None, n_theta: int = 48,
+                 n_z: int = 8, modes: int = 0, film_step: float = 0.0,
+                 cavitation: str = "reynolds", coupling: str = "kept",
+                 relaxation: float = 1e-5):
+    """The "fem-ehd" model's RunFilm for its ``cavitation``: "reynolds" (Swift-Stieber,
+    :class:`~bearingfem.ehd.transient.TransientEHD`, or with ``coupling`` "tangent"
+    :class:`~bearingfem.ehd.tangent.TangentEHD`) or "jfo" (:class:`TransientEHDJFO`, oil
+    around the film at 1e5 Pa); ``coupling`` "states": the bush's modes integrated with
+    the journal (:class:`~bearingfem.ehd.states.ModalStateEHD`, Reynolds' condition, a
+    bush, ``relaxation`` [s] its Kelvin-Voigt time)."""
+    if coupling == "states":
+        if cavitation != "reynolds" or not modes:
+            raise ValueError("coupling 'states' takes cavitation 'reynolds' and modes >= 1 "
+                             f"(got {cavitation!r}, modes {modes})")
+        return ModalStateEHD(bearing, lubricant, bush, n_theta, n_z, modes, relaxation,
+                             roughness)
+    o = dict(lubricant=lubricant, bush=bush, roughness=roughness, n_theta=n_theta, n_z=n_z,
+             modes=modes, film_step=film_step)
+    if cavitation == "jfo":
+        if coupling == "tangent":
+            raise ValueError("coupling 'tangent' takes cavitation 'reynolds', got 'jfo'")
+        return TransientEHDJFO(bearing, **o, ambient_pressure=JFO_AMBIENT)
+    return (TangentEHD if coupling == "tangent" else TransientEHD)(bearing, **o)
+
+
+class EHDModel(FilmModel):
+    """Options: ``lubricant`` and ``bush`` objects (or None), ``modes`` the number of
+    compliance vectors (0: the full compliance), ``roughness``, the mesh, ``film_step``
+    [s], ``cavitation``, ``coupling`` and ``relaxation`` [s] (:func:`ehd_run_film`)."""
+
+    name = "fem-ehd"
+    defaults = dict(n_theta=48, n_z=8, lubricant=None, bush=None, roughness=None, modes=64,
+                    film_step=0.0, cavitation="reynolds", coupling="kept", relaxation=1e-5)
+    rules = {"lubricant": ("instance", (Lubricant,)), "bush": ("instance", (ElasticBush,)),
+             "modes": ("int", (0, None)), "cavitation": ("choice", ("reynolds", "jfo")),
+             "coupling": ("choice", ("kept", "tangent", "states")),
+             "relaxation": ("number", RELAXATION)}
+    numeric = True
+    memory = True
+    beyond_clearance = ELASTIC_EPS_CAP
+
+    def _film_solution(self, bearing, state, **options):
+        return ehd_model_solution(bearing, state, **options)
+
+    def _film_force(self, bearing, state, **options):
+        """The steady film's force, film plus asperity contact."""
+        sol = ehd_model_solution(bearing, state, **options)
+        f, c = sol.force_local, sol.asperity_force_local
+        return float(f[0] + c[0]), float(f[1] + c[1])
+
+    def _along_run(self, bearing, **options):
+        return ehd_run_film(bearing, **options)
+
+    def _mass_conserving(self, options) -> bool:
+        return options["cavitation"] == "jfo"
+
+
+register(EHDModel())

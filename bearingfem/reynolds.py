@@ -1,0 +1,94 @@
+"""The film's public fronts: :func:`solve_reynolds` (finite elements) and
+:func:`fvm_reynolds` (finite volumes), both over the route table of
+:mod:`bearingfem.routes`."""
+from __future__ import annotations
+
+from .bearing import Bearing, JournalState
+from .fields import FilmFields
+from .routes import film_problem, solve
+from .solution import FilmSolution
+
+__all__ = ["solve_reynolds", "fvm_reynolds"]
+
+
+def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z: int = 20,
+                   element: str = "P1", cavitation: str = "reynolds", *,
+                   method: str = "active-set", supply_angle=None, half: bool = True,
+                   tol: float = 1e-10, cavitated_shear: str = "full",
+                   grooves=(), ambient_pressure: float = 0.0, fields: FilmFields | None = None,
+                   tilt=(0.0, 0.0), tilt_rate=(0.0, 0.0), lubricant=None,
+                   bush=None, roughness=None, start=None, grading=None) -> FilmSolution:
+    """Solve the Reynolds equation on a finite-element mesh of the unwrapped film.
+
+    The options make a :class:`~bearingfem.routes.FilmProblem`; its kind picks the route
+    (:data:`bearingfem.routes.ROUTES`), which refuses by name any option it does not use.
+
+    Parameters
+    ----------
+    bearing, state : :class:`Bearing`, :class:`JournalState`
+    n_theta : cells around the circumference (>= 8)
+    n_z : cells along the length (>= 2); with ``half=True`` only z >= 0 is meshed,
+        with ceil(n_z/2) cells, which the symmetry of an aligned journal allows (films on
+        fields, tilted or elastic are meshed over the whole length)
+    element : "P1" or "P2" triangles
+    cavitation : "none" (full Sommerfeld), "gumbel" (negative pressure set to ambient after
+        the solve), "reynolds" (Swift-Stieber complementarity, projected iteration), "jfo"
+        (mass-conserving Jakobsson-Floberg-Olsson film; P1 only; needs a supply: grooves,
+        supply_angle or ambient_pressure > 0)
+    method : "active-set" (default) or "psor", the projected iteration of "reynolds"
+    supply_angle : inertial angle [rad] of an axial supply line at ambient pressure, or None
+        for a fully periodic film
+    tol : tolerance of the projected iteration (and of an EHD film's Newton test)
+    cavitated_shear : "full" - Couette shear mu omega R / h acts over the whole cavitated
+        area (a full film of oil that carries no pressure); "none" - no shear there
+    grooves : axial supply grooves (:class:`~bearingfem.bearing.Groove`), fixed in the
+        inertial frame and flooded at their pressure; with ``cavitation="none"``
+        ``flow_in`` is the flow they feed [m^3/s]; with ``cavitation="jfo"`` a groove may
+        be starved (``fraction`` < 1)
+    ambient_pressure : JFO films: pressure at the axial ends and a supply line above the
+        cavitation pressure [Pa] (>= 0)
+    fields : :class:`~bearingfem.fields.FilmFields`: gap, its rate, viscosity and density
+        fields of the film; None is the rigid cylinder
+    tilt, tilt_rate : (tilt_x, tilt_y) [rad] and their rates [rad/s]: the journal axis
+        turned about the inertial x and y axes through the bearing centre
+        (:func:`~bearingfem.fields.tilted_gap`); ``moment`` is then the film's moment
+    lubricant : :class:`~bearingfem.lubricant.Lubricant`: viscosity and density following
+        the pressure (the EHD film, solved by Newton); with ``cavitation="jfo"`` a
+        lubricant with a ``bulk_modulus`` (constant viscosity) is the compressible
+        Elrod-type JFO film
+    bush : :class:`~bearingfem.elastic.ElasticBush` or a prebuilt compliance on the
+        (n_theta, n_z + 1) grid: the gap becomes c (1 + eps cos theta) + deformation
+        (P1; cavitation "none", "reynolds" or "jfo"; quasi-static)
+    roughness : :class:`~bearingfem.contact.Roughness`: the Greenwood-Tripp asperity
+        contact of the gap is added as ``asperity_force`` / ``asperity_friction_torque``
+        (with a bush the summits' pressure deforms the bush too)
+    start : the EHD film: a previous :class:`FilmSolution` of the same mesh to start
+        Newton from (the same answer to ``tol``)
+    grading : grooved films: (angle [rad], strength in [0, 0.99]) of a bearing-fixed mesh
+        whose theta cells concentrate towards the inertial ``angle`` (where the film is
+        thin); None: uniform cells
+
+    Returns
+    -------
+    FilmSolution
+    """
+    return solve(film_problem(
+        bearing, state, n_theta, n_z, cavitation, element=element, method=method,
+        supply_angle=supply_angle, half=half, tol=tol, cavitated_shear=cavitated_shear,
+        grooves=grooves, ambient_pressure=ambient_pressure, fields=fields, tilt=tilt,
+        tilt_rate=tilt_rate, lubricant=lubricant, bush=bush, roughness=roughness,
+        start=start, grading=grading))
+
+
+def fvm_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z: int = 20,
+                 cavitation: str = "reynolds", *, method: str = "active-set",
+                 supply_angle=None, tol: float = 1e-10, grooves=(),
+                 ambient_pressure: float = 0.0, tilt=(0.0, 0.0),
+                 tilt_rate=(0.0, 0.0)) -> FilmSolution:
+    """Finite-volume Reynolds solution: the same inputs (those it takes) and result type
+    as :func:`solve_reynolds` (:mod:`bearingfem.fv`; forces are the midpoint sums of seed
+    Eq. 16, second order)."""
+    return solve(film_problem(
+        bearing, state, n_theta, n_z, cavitation, discretisation="fv", method=method,
+        supply_angle=supply_angle, tol=tol, grooves=grooves,
+        ambient_pressure=ambient_pressure, tilt=tilt, tilt_rate=tilt_rate))

@@ -1,0 +1,97 @@
+"""The route table: each problem goes to the route of its kind, and each route refuses,
+by name and before any work, every option it does not use (rule 2 of
+bearingfem.routes.base). Each refusal test fails with the route's ``uses`` widened to all
+options (the option is then ignored in silence, as it was before the table)."""
+import numpy as np
+import pytest
+
+from bearingfem import (Bearing, ElasticBush, Groove, JournalState, Lubricant, Roughness,
+                        fvm_reynolds, solve_reynolds)
+from bearingfem.fields import FilmFields
+from bearingfem.routes import OPTION_DEFAULTS, ROUTES, fe_force, film_problem, route_for
+
+B = Bearing(radius=0.01, length=0.01, clearance=20e-6, viscosity=0.0117)
+S = JournalState(eps=0.6, eps_dot=0.0, gamma=0.3, gamma_dot=0.0, omega=250.0)
+G = (Groove(angle=np.pi / 2, width=0.2, pressure=1e5),)
+OIL = Lubricant(viscosity=0.0117, barus=2e-8)
+ELRODE = Lubricant(viscosity=0.0117, bulk_modulus=1e9)
+RING = ElasticBush(outer_radius=0.016, modulus=110e9, poisson=0.34, model="ring")
+ROUGH = Roughness(sigma=0.31e-6, contact_modulus=53.3e9, elastic_factor=1e-3)
+
+#: (cavitation, options) -> the route that must take it
+KINDS = [
+    ("reynolds", {}, "rigid"),
+    ("gumbel", dict(supply_angle=0.2), "rigid"),
+    ("reynolds", dict(grooves=G, half=False), "rigid"),
+    ("reynolds", dict(grooves=G), "grooved"),
+    ("none", dict(grooves=G, grading=(np.pi, 0.5)), "grooved"),
+    ("reynolds", dict(tilt=(0.0, 1e-4)), "general"),
+    ("none", dict(fields=FilmFields(viscosity=2.0)), "general"),
+    ("reynolds", dict(lubricant=OIL), "ehd"),
+    ("none", dict(bush=RING), "ehd"),
+    ("jfo", dict(ambient_pressure=1e5), "jfo"),
+    ("jfo", dict(grooves=G, roughness=ROUGH), "jfo"),
+    ("jfo", dict(grooves=G), "jfo-grooved"),
+    ("jfo", dict(ambient_pressure=1e5, lubricant=ELRODE), "jfo-compressible"),
+    ("jfo", dict(ambient_pressure=1e5, bush=RING), "ehd-jfo"),
+]
+
+
+@pytest.mark.parametrize("cavitation, options, route", KINDS)
+def test_each_problem_takes_the_route_of_its_kind(cavitation, options, route):
+    assert route_for(film_problem(B, S, 24, 4, cavitation, **options)).name == route
+
+
+def test_every_route_is_in_the_table_and_takes_a_known_option():
+    assert {r for _, _, r in KINDS} | {"fv"} == set(ROUTES)
+    for route in ROUTES.values():
+        assert route.uses <= set(OPTION_DEFAULTS), route.name
+
+
+#: An option each route does not use, given away from its default: refused by name.
+UNUSED = [
+    ("reynolds", dict(supply_angle=0.2), "start", None),
+    ("reynolds", dict(grooves=G), "start", None),
+    ("gumbel", {}, "ambient_pressure", 1e5),         # refused by the shared JFO check
+    ("reynolds", dict(tilt=(0.0, 1e-4)), "grading", (np.pi, 0.5)),
+    ("reynolds", {}, "grading", (np.pi, 0.5)),
+    ("jfo", dict(ambient_pressure=1e5), "method", "psor"),
+    ("jfo", dict(ambient_pressure=1e5), "cavitated_shear", "none"),
+    ("jfo", dict(ambient_pressure=1e5), "tol", 1e-8),
+    ("jfo", dict(grooves=G), "start", None),
+    ("jfo", dict(ambient_pressure=1e5, lubricant=ELRODE), "tilt", (0.0, 1e-4)),
+    ("jfo", dict(ambient_pressure=1e5, bush=RING), "roughness", ROUGH),
+    ("jfo", dict(ambient_pressure=1e5, bush=RING), "cavitated_shear", "none"),
+    ("reynolds", dict(lubricant=OIL), "grading", (np.pi, 0.5)),
+]
+
+
+@pytest.mark.parametrize("cavitation, options, name, value", UNUSED,
+                         ids=[f"{c}-{n}" for c, _, n, _ in UNUSED])
+def test_a_route_refuses_an_option_it_does_not_use(cavitation, options, name, value):
+    value = {"tilt_rate": (1e-3, 0.0), "start": object(), "supply_angle": 0.2}.get(
+        name, value) if value is None else value
+    if name == "tilt_rate":            # a tilt rate makes the film general: use the FV film
+        with pytest.raises(ValueError, match="tilt_rate|grading"):
+            fvm_reynolds(B, S, 24, 4, cavitation, grading=(np.pi, 0.5))
+        return
+    with pytest.raises(ValueError, match=name):
+        solve_reynolds(B, S, 24, 4, "P1", cavitation, **{**options, name: value})
+
+
+def test_the_finite_volume_film_refuses_a_finite_element_option():
+    route = ROUTES["fv"]
+    with pytest.raises(ValueError, match="element.*'fv'"):
+        route.check(film_problem(B, S, 24, 4, "reynolds", discretisation="fv",
+                                 element="P2"))
+
+
+@pytest.mark.parametrize("cavitation, options", [
+    ("reynolds", {}), ("gumbel", dict(grooves=G)), ("jfo", dict(ambient_pressure=1e5)),
+    ("jfo", dict(grooves=G))])
+def test_the_light_path_is_the_whole_film(cavitation, options):
+    """fe_force (time integration's light path) gives the whole solve's force: the same
+    route, the same discrete problem (1e-9: the solver's tolerance)."""
+    light = fe_force(B, S, 24, 4, "P1", cavitation, **options)[0]
+    whole = solve_reynolds(B, S, 24, 4, "P1", cavitation, **options).force_local
+    assert np.allclose(light, whole, rtol=1e-9, atol=0.0)
