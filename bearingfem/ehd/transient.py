@@ -23,11 +23,11 @@ EHD film), and the bush has no mass.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import lru_cache
 
 import numpy as np
 
 from ..bearing import Bearing, JournalState
+from ..caches import cached
 from ..contract import FilmStep
 from ..errors import ConvergenceError
 from ..elastic import ElasticBush, bush_compliance
@@ -45,7 +45,7 @@ def check_ehd_model(bush, roughness):
     # refused today; the check stays the one place for such pairs)
 
 
-@lru_cache(maxsize=8)
+@cached(maxsize=8)
 def ehd_compliance(bush: ElasticBush, radius: float, length: float, n_theta: int, n_z: int,
                    modes: int):
     """The bush's compliance on the film grid: full (``modes`` 0) or its best rank-modes

@@ -5,12 +5,12 @@ for :mod:`bearingfem.fe.jfo`.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import lru_cache
 
 import numpy as np
 import scipy.sparse as sp
 
 from ..bearing import Bearing, JournalState
+from ..caches import cached
 from ..errors import ConvergenceError
 from ..film import film_thickness, film_thickness_integral
 from ..scales import flow_factor
@@ -25,7 +25,7 @@ from .volumes import ControlVolumes, control_volumes, transport_matrix
 __all__ = ["film_volumes", "JFOFlows", "BalanceSolve", "FilmAdvance", "kept_set_pressure"]
 
 
-@lru_cache(maxsize=32)
+@cached(maxsize=32)
 def film_volumes(mesh: FilmMesh) -> ControlVolumes:
     """Control volumes of the nodes of a P1 film mesh (theta is the sliding direction)."""
     th, ze = mesh.axes
@@ -141,7 +141,7 @@ def _solve(bearing: Bearing, op: FilmOperator, eps: float, T: sp.csr_matrix,
     return BalanceSolve(P, phi, res, flows)
 
 
-@lru_cache(maxsize=32)
+@cached(maxsize=32)
 def _prolongation(coarse: FilmMesh, fine: FilmMesh) -> sp.csr_matrix:
     return prolongation(coarse, fine.theta, fine.zeta)
 
