@@ -61,6 +61,19 @@ class JFOFlows:
     def balance(self) -> float:
         return self.flow_in - self.side_leakage - self.storage
 
+    @classmethod
+    def from_inflow(cls, bearing: Bearing, mesh, inflow: np.ndarray,
+                    content_rate: np.ndarray) -> "JFOFlows":
+        """The flows of a balance solve from its dimensionless nodal ``inflow`` (what each
+        held node takes in): the feed through the held nodes other than the ends (supply
+        line, grooves), the leakage out of the ends, and the film's rate of change summed
+        over ``content_rate`` (per free node, dimensionless)."""
+        feed = np.setdiff1d(mesh.fixed, mesh.end)
+        k = flow_factor(bearing, mesh.half)
+        return cls(flow_in=-k * float(np.sum(inflow[feed])),
+                   side_leakage=k * float(np.sum(inflow[mesh.end])),
+                   storage=k * float(np.sum(content_rate)))
+
 
 @dataclass(frozen=True)
 class BalanceSolve:
@@ -132,12 +145,9 @@ def _solve(bearing: Bearing, op: FilmOperator, eps: float, T: sp.csr_matrix,
                                         P_fix, phi_fix, cavitated0,
                                         op.free_stiffness(eps, values), warm_iterations,
                                         start)
-    feed_nodes = np.setdiff1d(mesh.fixed, mesh.end)
-    k = flow_factor(bearing, mesh.half)
     free = mesh.free
-    flows = JFOFlows(flow_in=-k * float(np.sum(inflow[feed_nodes])),
-                     side_leakage=k * float(np.sum(inflow[mesh.end])),
-                     storage=k * float(np.sum(storage[free] * phi[free] - source[free])))
+    flows = JFOFlows.from_inflow(bearing, mesh, inflow,
+                                 storage[free] * phi[free] - source[free])
     return BalanceSolve(P, phi, res, flows)
 
 
