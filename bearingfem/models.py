@@ -21,6 +21,7 @@ from .closed.short_bearing import (short_bearing_derivatives, short_bearing_exac
 from .differentiate import central_differences
 from .contract import RunFilm, SteadyRun
 from .fe.assembly import fe_operator
+from .fe.jfo_balance import JFO_AMBIENT
 from .fe.grooved import (check_grading, groove_operator_for, grooved_derivatives,
                          grooved_force, grooved_solution)
 from .fe.force_table import TABLE_DEFAULTS, force_table, table_force
@@ -331,9 +332,6 @@ EHD_RULES = {"lubricant": ("instance", (Lubricant,)), "bush": ("instance", (Elas
              "modes": ("int", (0, None)), "cavitation": ("choice", ("reynolds", "jfo")),
              "coupling": ("choice", ("kept", "states")), "relaxation": ("number", (1e-12, 1.0))}
 _MESH = dict(n_theta=48, n_z=8)
-#: Oil around the film at atmospheric pressure, the cavity near zero absolute: the default
-#: supply of the JFO model (it needs one; grooves add to it).
-JFO_AMBIENT = 1e5
 FILM_MODELS: dict = {}
 
 

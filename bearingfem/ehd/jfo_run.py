@@ -21,7 +21,8 @@ import scipy.sparse as sp
 from ..bearing import Bearing, JournalState
 from ..fe.assembly import fe_operator
 from ..fe.general import film_system
-from ..fe.jfo_balance import JFOFlows, _boundary_values, film_volumes, kept_set_pressure
+from ..fe.jfo_balance import (JFO_AMBIENT, JFOFlows, _boundary_values, film_volumes,
+                              kept_set_pressure)
 from ..fe.jfo_steady import _film_solution
 from ..fields import FilmFields
 from ..film import film_thickness
@@ -221,7 +222,3 @@ def ehd_model_solution(bearing: Bearing, state: JournalState, lubricant, bush, r
     if cavitation == "jfo":
         return ehd_jfo_solution(bearing, state, lubricant, bush, roughness, n_theta, n_z, modes)
     return ehd_solution(bearing, state, lubricant, bush, roughness, n_theta, n_z, modes)
-
-
-#: Oil around the film [Pa] (the "fem-jfo" model's default supply).
-JFO_AMBIENT = 1e5

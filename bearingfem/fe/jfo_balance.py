@@ -22,7 +22,12 @@ from .mesh import FilmMesh
 from .multilevel import coarse_level, free_interpolation, prolongation
 from .volumes import ControlVolumes, control_volumes, transport_matrix
 
-__all__ = ["film_volumes", "JFOFlows", "BalanceSolve", "FilmAdvance", "kept_set_pressure"]
+__all__ = ["film_volumes", "JFOFlows", "BalanceSolve", "FilmAdvance", "kept_set_pressure",
+           "JFO_AMBIENT"]
+
+#: Oil around the film at atmospheric pressure [Pa], the cavity near zero absolute: the
+#: default supply of the JFO models (they need one; grooves add to it).
+JFO_AMBIENT = 1e5
 
 
 @cached(maxsize=32)
