@@ -7,6 +7,7 @@ table of :mod:`bearingfem.routes`; the designer's numbers (equilibrium,
 stiffness and damping, stability) in :mod:`bearingfem.design`.
 """
 from .bearing import Bearing, ElasticJournalState, Groove, JournalState
+from .caches import clear_caches  # empties every cache of the library (cold timings)
 from .contact import Roughness  # Greenwood-Tripp asperity contact (mixed lubrication)
 from .closed.long_bearing import long_bearing_exact_force, long_bearing_force
 from .closed.short_bearing import short_bearing_exact_force, short_bearing_force
@@ -21,5 +22,6 @@ from .solution import FilmSolution
 __all__ = ["Bearing", "JournalState", "ElasticJournalState", "Groove", "solve_reynolds", "fvm_reynolds", "FilmSolution",
            "short_bearing_force", "long_bearing_force", "short_bearing_exact_force",
            "long_bearing_exact_force", "equilibrium", "coefficients", "ElasticBush",
-           "Lubricant", "line_contact", "point_contact", "ConvergenceError", "Roughness"]
+           "Lubricant", "line_contact", "point_contact", "ConvergenceError", "Roughness",
+           "clear_caches"]
 from .version import __version__  # noqa: F401  (the package version)

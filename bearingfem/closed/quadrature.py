@@ -6,16 +6,16 @@ Gauss-Legendre rule accurate to ~1e-10 up to eps = 0.999 (tests/test_closed_form
 """
 from __future__ import annotations
 
-from functools import lru_cache
-
 import numpy as np
+
+from ..caches import cached
 
 __all__ = ["theta_nodes"]
 
 _GL_X, _GL_W = np.polynomial.legendre.leggauss(24)
 
 
-@lru_cache(maxsize=256)
+@cached(maxsize=256)
 def _graded_breaks(eps_key: float) -> np.ndarray:
     """Breakpoints on [0, 2 pi] graded toward pi on the scale sqrt(1 - eps)."""
     width = max(np.sqrt(max(1.0 - eps_key, 1e-16)), 1e-8)

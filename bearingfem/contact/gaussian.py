@@ -29,10 +29,10 @@ Against mpmath.pcfd at 30 digits the result is within 3e-13 relative over l in [
 """
 from __future__ import annotations
 
-from functools import lru_cache
-
 import numpy as np
 from scipy.special import binom, factorial2, gamma, hyp1f1, roots_genlaguerre
+
+from ..caches import cached
 
 __all__ = ["tail_moment", "tail_moment_derivative"]
 
@@ -46,7 +46,7 @@ UNDERFLOW_FROM = 39.0
 MOMENT_TERMS = 12
 
 
-@lru_cache(maxsize=8)
+@cached(maxsize=8)
 def _laguerre_rule(order: float):
     u, w = roots_genlaguerre(LAGUERRE_POINTS, order)
     return u, w

@@ -22,11 +22,11 @@ EHD film (the load continuation of :mod:`bearingfem.ehd.newton`).
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import lru_cache
 
 import numpy as np
 import scipy.sparse as sp
 
+from ..caches import cached
 from .asperity import contact_deflection, deflection_factors
 from ..elastic import BushCompliance, ElasticBush, ReducedCompliance, bush_compliance
 from ..fields import FilmFields
@@ -51,7 +51,7 @@ class DofCompliance:
         return self.left @ (self.singular * (self.right.T @ p))
 
 
-@lru_cache(maxsize=8)
+@cached(maxsize=8)
 def _cached_compliance(bush: ElasticBush, radius: float, length: float, n_theta: int,
                        n_z: int) -> BushCompliance:
     return bush_compliance(bush, radius, length, n_theta, n_z)
@@ -128,7 +128,7 @@ class JacobianTables:
     stiffness_diagonal: np.ndarray   # the same in the operator's stiffness pattern
 
 
-@lru_cache(maxsize=16)
+@cached(maxsize=16)
 def jacobian_tables(op) -> JacobianTables:
     basis = op.mesh.basis
     dx = basis.dx

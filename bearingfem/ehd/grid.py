@@ -8,10 +8,10 @@ along the bush's: :class:`FrameShift` interpolates between them by two index gat
 """
 from __future__ import annotations
 
-from functools import lru_cache
-
 import numpy as np
 import scipy.sparse as sp
+
+from ..caches import cached
 
 __all__ = ["FrameShift", "grid_interpolation", "node_grid"]
 
@@ -33,7 +33,7 @@ def grid_interpolation(alpha: np.ndarray, zeta: np.ndarray, n_theta: int, n_z: i
     return sp.csr_matrix((vals, (rows, cols)), shape=(alpha.size, n_theta * m))
 
 
-@lru_cache(maxsize=16)
+@cached(maxsize=16)
 def node_grid(mesh) -> np.ndarray:
     """(n_theta, n_z + 1): the periodic P1 film mesh's node at angle index j (theta = j h)
     and axial index k."""

@@ -29,11 +29,11 @@ Tribol. Int. 67 (2013) 61-71.
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
-from functools import lru_cache
 
 import numpy as np
 import scipy.sparse as sp
 
+from ..caches import cached
 from ..errors import ConvergenceError
 from ..fe.assembly import fe_operator
 from ..fe.jfo_balance import _boundary_values, _cos_integral, film_volumes
@@ -76,7 +76,7 @@ class FaceMaps:
     content: sp.csr_matrix
 
 
-@lru_cache(maxsize=16)
+@cached(maxsize=16)
 def face_maps(op) -> FaceMaps:
     mesh = op.mesh
     cv = film_volumes(mesh)

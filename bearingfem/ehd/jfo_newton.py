@@ -33,15 +33,15 @@ import numpy as np
 import scipy.linalg as la
 import scipy.sparse as sp
 
-from ..errors import ConvergenceError
 from ..fe.jfo_balance import JFOFlows
-from ..scales import flow_factor
+from ..solvers.continuation import Increments
 from ..solvers.jfo import JFOResult
 from .newton import MEMORY, _block, _BlockLU
 
 __all__ = ["solve_ehd_jfo", "EHDJFOSolve"]
 
-MIN_INCREMENT = 1e-4
+#: The load continuation's steps in the coupling s (as :mod:`bearingfem.ehd.newton`'s).
+STEPS = Increments(1.0, 1e-4)
 MAX_NEWTON = 40
 
 
@@ -201,41 +201,26 @@ def solve_ehd_jfo(bearing, film, P0, phi0=None, tol: float = 1e-10,
     A = (st0.T + sp.diags(film.storage)).tocsc()
     can = A.diagonal()[free] > 0.0        # a volume whose content can leave or change
     newton = _Newton(film, free, can)
-    done, increment, iterations, steps, rejected = 0.0, 1.0, 0, 0, 0
-    residual, warm = 0.0, False
+    iterations, steps, rejected, out = 0, 0, 0, None
     if start is not None:
         Ps, phis = start
         out, iterations = newton.run(np.where(phis[free] < 1.0, phis[free] - 1.0,
                                               Ps[free]), 1.0, tol)
-        if out is not None:
-            done, (u, residual) = 1.0, out
-            steps, warm = 1, True
-    if done < 1.0:
+    warm = out is not None
+    if warm:
+        (u, residual), steps = out, 1
+    else:
         if callable(P0):
             P0, phi0 = P0()
         u = np.where(phi0[free] < 1.0, phi0[free] - 1.0, P0[free])
-    while done < 1.0:
-        s = min(1.0, done + increment)
-        out, its = newton.run(u, s, tol)
-        iterations += its
-        if out is None:
-            rejected += 1
-            increment *= 0.25
-            if increment < MIN_INCREMENT:
-                raise ConvergenceError("EHD-JFO Newton (load continuation)", iterations,
-                                       None, f"coupling s = {done:.4g}, increment below "
-                                       f"{MIN_INCREMENT}: refine the mesh or reduce the load")
-            continue
-        u, residual = out
-        steps += 1
-        done, increment = s, min(1.0, 2.0 * increment)
+        walk = STEPS.walk(lambda s, out: newton.run(out[0], s, tol), (u, 0.0), 0.0, 1.0,
+                          "EHD-JFO Newton (load continuation)", "coupling s",
+                          "refine the mesh or reduce the load")
+        (u, residual), steps, rejected = walk.state, walk.steps, walk.rejected
+        iterations += walk.iterations
     P, phi = newton.nodal(u)
     st = film.evaluate(P, phi, 1.0)
     inflow = -(st.K @ P + st.T @ phi)
     res = JFOResult(P[free], phi[free], phi[free] < 1.0, iterations, residual, True, 0)
-    feed = np.setdiff1d(op.mesh.fixed, op.mesh.end)
-    k = flow_factor(bearing, op.mesh.half)
-    flows = JFOFlows(flow_in=-k * float(np.sum(inflow[feed])),
-                     side_leakage=k * float(np.sum(inflow[op.mesh.end])),
-                     storage=k * float(np.sum(film.storage[free] * phi[free])))
+    flows = JFOFlows.from_inflow(bearing, op.mesh, inflow, film.storage[free] * phi[free])
     return EHDJFOSolve(P, phi, res, steps, rejected, flows, warm)

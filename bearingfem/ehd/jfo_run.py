@@ -24,7 +24,7 @@ from ..fe.general import film_system
 from ..fe.jfo_balance import JFOFlows, _boundary_values, film_volumes, kept_set_pressure
 from ..fe.jfo_steady import _film_solution
 from ..fields import FilmFields
-from ..film import inertial_from_theta
+from ..film import film_thickness, inertial_from_theta
 from ..scales import flow_factor, force_factor
 from ..transient import TransientJFO
 from ..fe.jfo_fields import rigid_balance_film
@@ -105,7 +105,7 @@ class KeptEHDJFO:
         op = self._op(state)
         mesh = op.mesh
         if self.kept is None:
-            fields = FilmFields(gap=op.qp_theta * 0.0 + 1.0 + state.eps * np.cos(op.qp_theta))
+            fields = FilmFields(gap=film_thickness(op.qp_theta, state.eps))
         else:
             fields = self.kept.fields(self.bearing, state, op, self.lubricant)
         if not np.all(fields.gap > 0.0):

@@ -31,6 +31,7 @@ import scipy.sparse as sp
 from scipy.sparse.linalg import splu
 
 from ..errors import ConvergenceError
+from ..solvers.continuation import Increments
 from .coupling import jacobian_tables
 
 __all__ = ["EHDResult", "solve_ehd", "ConvergenceError"]
@@ -277,25 +278,12 @@ def solve_ehd(film, P0, cavitation: str, tol: float = 1e-10,
 
 def continuation(newton, P, done: float, target: float, max_increment: float,
                  min_increment: float, what: str, parameter: str, hint: str) -> EHDResult:
-    """Walk a parameter from ``done`` to ``target``: ``newton(x, P)`` solves at x from P
-    (((P, residual, active) or None when it stalls, its iterations)). A stalled step is
-    retried with a quarter of the increment, a converged one doubles it (up to
-    ``max_increment``); below ``min_increment`` :class:`ConvergenceError` names ``what``,
-    the ``parameter`` reached and the ``hint``."""
-    increment, iterations, steps, rejected = max_increment, 0, 0, 0
-    while done < target:
-        x = min(target, done + increment)
-        out, its = newton(x, P)
-        iterations += its
-        if out is None:
-            rejected += 1
-            increment *= 0.25
-            if increment < min_increment:
-                raise ConvergenceError(what, iterations, None,
-                                       f"{parameter} = {done:.6g}, increment below "
-                                       f"{min_increment}: {hint}")
-            continue
-        P, residual, active = out
-        steps += 1
-        done, increment = x, min(max_increment, 2.0 * increment)
-    return EHDResult(P, iterations, residual, True, active, steps, rejected)
+    """Walk a parameter from ``done`` to ``target`` by :class:`~bearingfem.solvers.
+    continuation.Increments` (``max_increment`` the first and largest, ``min_increment``
+    the smallest): ``newton(x, P)`` solves at x from P (((P, residual, active) or None when
+    it stalls, its iterations)); ConvergenceError names ``what``, the ``parameter``
+    reached and the ``hint``."""
+    walk = Increments(max_increment, min_increment).walk(
+        lambda x, out: newton(x, out[0]), (P, None, None), done, target, what, parameter, hint)
+    P, residual, active = walk.state
+    return EHDResult(P, walk.iterations, residual, True, active, walk.steps, walk.rejected)

@@ -23,11 +23,11 @@ EHD film), and the bush has no mass.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import lru_cache
 
 import numpy as np
 
 from ..bearing import Bearing, JournalState
+from ..caches import cached
 from ..contract import FilmStep, StatelessRun
 from ..errors import ConvergenceError
 from ..elastic import ElasticBush, bush_compliance
@@ -45,7 +45,8 @@ from .film import solve_elastic_film
 __all__ = ["TransientEHD", "EHDSnapshot", "KeptFilm", "kept_film", "ehd_solution",
            "ehd_compliance", "state_coordinates"]
 
-@lru_cache(maxsize=8)
+
+@cached(maxsize=8)
 def ehd_compliance(bush: ElasticBush, radius: float, length: float, n_theta: int, n_z: int,
                    modes: int):
     """The bush's compliance on the film grid: full (``modes`` 0) or its best rank-modes

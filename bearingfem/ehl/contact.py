@@ -12,6 +12,7 @@ import numpy as np
 
 from ..lubricant import Lubricant
 from ..errors import ConvergenceError
+from ..solvers.continuation import Ratios
 from .fits import (MARTIN_LOAD, hertz_line, moes_parameters, pan_hamrock,
                    rigid_isoviscous_pressure)
 from .halfspace import LineCompliance
@@ -25,6 +26,8 @@ __all__ = ["LineContact", "line_contact", "DEFAULT_NODES"]
 DEFAULT_NODES = 1500
 NODES_RANGE = (64, 6000)
 COARSEST = 200
+#: The load ramp: the fraction doubles; a failed ratio is cut to its square root, down to 1.02.
+LOAD_STEPS = Ratios(2.0, 1.02)
 
 
 @dataclass(frozen=True)
@@ -180,33 +183,28 @@ def _solve_with_continuation(prob, H_guess, tol):
         failure = cold
     # continuation in load: in the target's Hertz units a load fraction f only changes the
     # load balance (dX sum P = f pi/2), so each converged state starts the next
-    # (the film thickens as w^-0.13 in EHL, as 1/w when rigid: the first guess takes 1/sqrt)
-    f, ratio, steps, iterations = 0.25, 2.0, 0, 0
-    P, H0 = _start(prob, f, H_guess / math.sqrt(f))
-    converged_f = None
-    while True:
-        try:
-            record = solve_dimensionless(prob, P, H0, tol=tol, load=f)
-        except ConvergenceError as err:
-            failure = err
-            if converged_f is None:
-                f /= 4
-                if f < 1e-4:
-                    break
-                P, H0 = _start(prob, f, H_guess / math.sqrt(f))
-                continue
-            ratio = math.sqrt(ratio)
-            if ratio < 1.02:
-                break
-            f = min(1.0, converged_f * ratio)
-            continue
-        steps += 1
-        iterations += record.iterations
-        if f == 1.0:
-            return record, steps, iterations
-        converged_f = f
-        P, H0 = record.pressure, record.approach
-        f = min(1.0, f * ratio)
-    raise ConvergenceError("EHL line contact load continuation",
-                           getattr(failure, "iterations", 0), getattr(failure, "residual", None),
-                           f"last converged load fraction {converged_f}; {failure}")
+    # (the film thickens as w^-0.13 in EHL, as 1/w when rigid: the first guess takes 1/sqrt).
+    # The lightest start: f = 1/4, else a quarter of that, ... down to 1e-4.
+    f = 0.25
+    first, _ = _attempt(prob, _start(prob, f, H_guess / math.sqrt(f)), f, tol)
+    while first is None:
+        f /= 4
+        if f < 1e-4:
+            raise ConvergenceError("EHL line contact load continuation", 0, None,
+                                   f"no load fraction down to {4 * f:.3g} converges from "
+                                   f"Hertz; cold start: {failure}")
+        first, _ = _attempt(prob, _start(prob, f, H_guess / math.sqrt(f)), f, tol)
+    walk = LOAD_STEPS.walk(lambda x, record: _attempt(prob, (record.pressure, record.approach),
+                                                      x, tol),
+                           first, f, 1.0, "EHL line contact load continuation",
+                           "load fraction", f"cold start: {failure}")
+    return walk.state, 1 + walk.steps, first.iterations + walk.iterations
+
+
+def _attempt(prob, start, f, tol):
+    """(the film at load fraction f from ``start`` = (P, H0), or None; its iterations)."""
+    try:
+        record = solve_dimensionless(prob, *start, tol=tol, load=f)
+    except ConvergenceError:
+        return None, 0
+    return record, record.iterations

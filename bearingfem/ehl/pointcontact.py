@@ -13,6 +13,7 @@ import numpy as np
 
 from ..errors import ConvergenceError
 from ..lubricant import Lubricant
+from ..solvers.continuation import Ratios
 from .contact import _positive, _pressure_laws
 from .fits import FilmFit
 from .point import DimensionlessPoint, solve_point
@@ -23,6 +24,8 @@ __all__ = ["PointContact", "point_contact", "HertzPoint", "hertz_point", "hamroc
 DEFAULT_POINT_NODES = 33        # along the rolling direction; ~1 s (docs/ehl.md)
 POINT_NODES_RANGE = (17, 97)    # the dense Newton Jacobian grows as nodes^4
 SIDE = 2.0                      # [a] the domain spans |Y| <= SIDE
+#: The load ramp from a quarter: the fraction doubles; a failed step is not retried.
+LOAD_STEPS = Ratios(2.0, 2.0)
 
 
 @dataclass(frozen=True)
@@ -154,18 +157,22 @@ def _solve_with_continuation(prob, H_c, tol):
         return record, 1, record.iterations
     except ConvergenceError as cold:
         failure = cold
-    f, steps, iterations = 0.25, 0, 0
-    P, H0 = _start(prob, f, H_c / f**0.07)
-    while True:
-        try:
-            record = solve_point(prob, P, H0, tol=tol, load=f)
-        except ConvergenceError as err:
-            raise ConvergenceError("EHL point contact load continuation", iterations,
-                                   getattr(err, "residual", None),
-                                   f"failed at load fraction {f}; cold start: {failure}") from err
-        steps += 1
-        iterations += record.iterations
-        if f == 1.0:
-            return record, steps, iterations
-        P, H0 = record.pressure * 1.0, record.approach
-        f = min(1.0, 2.0 * f)
+    f = 0.25
+    first, _ = _attempt(prob, _start(prob, f, H_c / f**0.07), f, tol)
+    if first is None:
+        raise ConvergenceError("EHL point contact load continuation", 0, None,
+                               f"failed at load fraction {f}; cold start: {failure}")
+    walk = LOAD_STEPS.walk(lambda x, record: _attempt(prob, (record.pressure * 1.0,
+                                                             record.approach), x, tol),
+                           first, f, 1.0, "EHL point contact load continuation",
+                           "load fraction", f"cold start: {failure}")
+    return walk.state, 1 + walk.steps, first.iterations + walk.iterations
+
+
+def _attempt(prob, start, f, tol):
+    """(the contact at load fraction f from ``start`` = (P, H0), or None; its iterations)."""
+    try:
+        record = solve_point(prob, *start, tol=tol, load=f)
+    except ConvergenceError:
+        return None, 0
+    return record, record.iterations

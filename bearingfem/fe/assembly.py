@@ -9,13 +9,14 @@ is likewise b = a_sin b_sin + a_cos b_cos with the film's source coefficients.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import cached_property, lru_cache
+from functools import cached_property
 
 import numpy as np
 import scipy.sparse as sp
 from skfem import BilinearForm, LinearForm
 from skfem.helpers import dot, grad
 
+from ..caches import cached
 from ..film import cubed_thickness_coefficients, source_coefficients, theta_from_inertial
 from ..solvers.pattern import Pattern
 from .mesh import FilmMesh, film_mesh
@@ -172,7 +173,7 @@ def _interpolation_matrix(basis) -> sp.csr_matrix:
                          shape=(n_el * n_qp, basis.N))
 
 
-@lru_cache(maxsize=32)
+@cached(maxsize=32)
 def film_operator(n_theta: int, n_z: int, element: str, length_ratio: float,
                   theta0: float | None = None, half: bool = True,
                   arcs: tuple = (), grading: tuple | None = None) -> FilmOperator:

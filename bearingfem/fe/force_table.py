@@ -25,13 +25,13 @@ import hashlib
 import json
 import os
 from dataclasses import dataclass, field
-from functools import lru_cache
 from pathlib import Path
 
 import numpy as np
 from scipy.interpolate import RectBivariateSpline
 
 from ..bearing import Bearing, JournalState
+from ..caches import cached
 from ..scales import half_film_factor
 from ..solvers.cavitation import active_set
 from ..solvers.linsolve import factorise
@@ -199,7 +199,7 @@ def _save(path: Path, table: ForceTable) -> None:
     os.replace(tmp, path)                        # atomic: readers never see half a file
 
 
-@lru_cache(maxsize=16)
+@cached(maxsize=16)
 def force_table(length_ratio: float, n_theta=_D["n_theta"], n_z=_D["n_z"],
                 element=_D["element"], cavitation=_D["cavitation"], n_eps=_D["n_eps"],
                 n_phi=_D["n_phi"], eps_max=0.999) -> ForceTable:

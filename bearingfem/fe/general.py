@@ -18,11 +18,11 @@ paths share the free-free selection and the solvers.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import lru_cache
 
 import numpy as np
 
 from ..bearing import Bearing, JournalState
+from ..caches import cached
 from ..fields import FilmFields, tilted_gap
 from ..film import film_thickness
 from ..scales import moment_factor
@@ -108,7 +108,7 @@ def element_tables(basis) -> ElementTables:
                          dofs=np.ascontiguousarray(basis.element_dofs.T))
 
 
-@lru_cache(maxsize=16)
+@cached(maxsize=16)
 def general_assembly(op: FilmOperator) -> GeneralAssembly:
     """The tables of ``op``'s mesh (cached per operator)."""
     t = element_tables(op.mesh.basis)

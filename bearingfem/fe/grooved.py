@@ -33,11 +33,11 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from functools import lru_cache
 
 import numpy as np
 
 from ..bearing import Bearing, JournalState
+from ..caches import cached
 from ..errors import ConvergenceError
 from ..film import cubed_thickness_coefficients, film_thickness, source_coefficients
 from ..scales import force_factor
@@ -109,7 +109,7 @@ class GroovedOperator:
         return self.op.qp_theta - gamma
 
 
-@lru_cache(maxsize=16)
+@cached(maxsize=16)
 def grooved_operator(op: FilmOperator) -> GroovedOperator:
     """The harmonic tables of ``op``'s mesh (cached per operator)."""
     ga = general_assembly(op)
@@ -117,7 +117,7 @@ def grooved_operator(op: FilmOperator) -> GroovedOperator:
                                          for w in harmonic_weights(op.qp_theta)]))
 
 
-@lru_cache(maxsize=16)
+@cached(maxsize=16)
 def bearing_fixed_operator(n_theta: int, n_z: int, element: str, length_ratio: float,
                            arcs: tuple, grading: tuple | None = None) -> GroovedOperator:
     """The grooved operator of the bearing-fixed mesh (half length, from the first groove's
@@ -143,7 +143,7 @@ def check_grading(grading) -> tuple | None:
     return angle, strength
 
 
-@lru_cache(maxsize=64)
+@cached(maxsize=64)
 def _mesh_arcs(grooves: tuple) -> tuple:
     """The grooves' arcs in the mesh angle, rounded to 1e-12 rad (the operator cache's key;
     cached: a design asks for them at every film evaluation)."""

@@ -5,12 +5,12 @@ for :mod:`bearingfem.fe.jfo`.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import lru_cache
 
 import numpy as np
 import scipy.sparse as sp
 
 from ..bearing import Bearing, JournalState
+from ..caches import cached
 from ..errors import ConvergenceError
 from ..film import film_thickness, film_thickness_integral
 from ..scales import flow_factor
@@ -22,10 +22,15 @@ from .mesh import FilmMesh
 from .multilevel import coarse_level, free_interpolation, prolongation
 from .volumes import ControlVolumes, control_volumes, transport_matrix
 
-__all__ = ["film_volumes", "JFOFlows", "BalanceSolve", "FilmAdvance", "kept_set_pressure"]
+__all__ = ["film_volumes", "JFOFlows", "BalanceSolve", "FilmAdvance", "kept_set_pressure",
+           "JFO_AMBIENT"]
+
+#: Oil around the film at atmospheric pressure [Pa], the cavity near zero absolute: the
+#: default supply of the JFO models (they need one; grooves add to it).
+JFO_AMBIENT = 1e5
 
 
-@lru_cache(maxsize=32)
+@cached(maxsize=32)
 def film_volumes(mesh: FilmMesh) -> ControlVolumes:
     """Control volumes of the nodes of a P1 film mesh (theta is the sliding direction)."""
     th, ze = mesh.axes
@@ -60,6 +65,19 @@ class JFOFlows:
     @property
     def balance(self) -> float:
         return self.flow_in - self.side_leakage - self.storage
+
+    @classmethod
+    def from_inflow(cls, bearing: Bearing, mesh, inflow: np.ndarray,
+                    content_rate: np.ndarray) -> "JFOFlows":
+        """The flows of a balance solve from its dimensionless nodal ``inflow`` (what each
+        held node takes in): the feed through the held nodes other than the ends (supply
+        line, grooves), the leakage out of the ends, and the film's rate of change summed
+        over ``content_rate`` (per free node, dimensionless)."""
+        feed = np.setdiff1d(mesh.fixed, mesh.end)
+        k = flow_factor(bearing, mesh.half)
+        return cls(flow_in=-k * float(np.sum(inflow[feed])),
+                   side_leakage=k * float(np.sum(inflow[mesh.end])),
+                   storage=k * float(np.sum(content_rate)))
 
 
 @dataclass(frozen=True)
@@ -132,16 +150,13 @@ def _solve(bearing: Bearing, op: FilmOperator, eps: float, T: sp.csr_matrix,
                                         P_fix, phi_fix, cavitated0,
                                         op.free_stiffness(eps, values), warm_iterations,
                                         start)
-    feed_nodes = np.setdiff1d(mesh.fixed, mesh.end)
-    k = flow_factor(bearing, mesh.half)
     free = mesh.free
-    flows = JFOFlows(flow_in=-k * float(np.sum(inflow[feed_nodes])),
-                     side_leakage=k * float(np.sum(inflow[mesh.end])),
-                     storage=k * float(np.sum(storage[free] * phi[free] - source[free])))
+    flows = JFOFlows.from_inflow(bearing, mesh, inflow,
+                                 storage[free] * phi[free] - source[free])
     return BalanceSolve(P, phi, res, flows)
 
 
-@lru_cache(maxsize=32)
+@cached(maxsize=32)
 def _prolongation(coarse: FilmMesh, fine: FilmMesh) -> sp.csr_matrix:
     return prolongation(coarse, fine.theta, fine.zeta)
 

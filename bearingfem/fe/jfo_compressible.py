@@ -42,7 +42,7 @@ import scipy.sparse as sp
 from ..bearing import Bearing, JournalState, check_positive
 from ..errors import ConvergenceError
 from ..lubricant import Lubricant
-from ..scales import flow_factor, force_factor
+from ..scales import force_factor
 from ..solution import FilmSolution
 from ..solvers.cavitation import active_set
 from ..solvers.jfo import JFOResult, solve_balance
@@ -109,12 +109,9 @@ def _balance(bearing: Bearing, op: FilmOperator, eps: float, T: sp.csr_matrix,
     Q, phi, res, inflow = solve_balance(K, T, storage, source, mesh.free, Q_fix, phi_fix,
                                         cavitated0, None, warm_iterations)
     density = phi + Q / beta
-    feed = np.setdiff1d(mesh.fixed, mesh.end)
-    k = flow_factor(bearing, mesh.half)
     free = mesh.free
-    flows = JFOFlows(flow_in=-k * float(np.sum(inflow[feed])),
-                     side_leakage=k * float(np.sum(inflow[mesh.end])),
-                     storage=k * float(np.sum(storage[free] * density[free] - source[free])))
+    flows = JFOFlows.from_inflow(bearing, mesh, inflow,
+                                 storage[free] * density[free] - source[free])
     return CompressibleSolve(beta * np.log1p(Q / beta), phi, density, res, flows)
 
 

@@ -21,11 +21,11 @@ from __future__ import annotations
 import logging
 from contextlib import contextmanager
 from dataclasses import dataclass
-from functools import lru_cache
 
 import numpy as np
 from skfem import Basis, ElementTriP1, ElementTriP2, MeshTri1, MeshTri1DG
 
+from ..caches import cached
 from ..validation import MIN_N_THETA, MIN_N_Z
 
 __all__ = ["FilmMesh", "film_mesh", "ELEMENTS", "MIN_N_THETA", "MIN_N_Z"]
@@ -183,7 +183,7 @@ def _mirrored_tensor(th: np.ndarray, ze: np.ndarray) -> MeshTri1:
     return MeshTri1(mesh.p, t)
 
 
-@lru_cache(maxsize=32)
+@cached(maxsize=32)
 def film_mesh(n_theta: int, n_z: int, element: str, length_ratio: float,
               theta0: float | None = None, half: bool = True, arcs: tuple = (),
               grading: tuple | None = None) -> FilmMesh:

@@ -13,11 +13,11 @@ system, iterates to convergence.
 """
 from __future__ import annotations
 
-from functools import lru_cache
 
 import numpy as np
 import scipy.sparse as sp
 
+from ..caches import cached
 from ..solvers.cavitation import active_set, active_set_iterations
 from .assembly import FilmOperator, film_operator
 from .mesh import MIN_N_THETA, MIN_N_Z
@@ -111,7 +111,7 @@ def coarse_shape(mesh) -> tuple[int, int] | None:
     return n_theta, n_z
 
 
-@lru_cache(maxsize=32)
+@cached(maxsize=32)
 def coarse_level(op: FilmOperator) -> tuple[FilmOperator, sp.csr_matrix] | None:
     """The P1 operator on a mesh half as fine as ``op``'s (:func:`coarse_shape`) and the
     interpolation from its dofs to ``op``'s free dofs; None when ``op`` is coarse enough

@@ -12,7 +12,6 @@ the content is balanced on the nodes' control volumes (:mod:`bearingfem.fe.volum
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
-from functools import lru_cache
 
 import numpy as np
 import scipy.sparse as sp
@@ -20,6 +19,7 @@ from skfem import Basis, BilinearForm, ElementTriP1, MeshTri1, MeshTri1DG
 from skfem.helpers import dot, grad
 
 from ..bearing import check_positive
+from ..caches import cached
 from ..errors import ConvergenceError
 from ..planar import PlanarFilm
 from ..solvers.jfo import FirstSet, JFOResult, solve_balance
@@ -48,7 +48,7 @@ class PlanarMesh:
     qp: tuple                 # (x, y) at the quadrature points
 
 
-@lru_cache(maxsize=16)
+@cached(maxsize=16)
 def planar_mesh(length: float, width: float, n_x: int, n_y: int, sides: str) -> PlanarMesh:
     """Tensor P1 mesh of the rectangle with its inlet/outlet nodes and control volumes."""
     xa = np.linspace(0.0, length, n_x + 1)
@@ -198,7 +198,7 @@ MAX_CUTS = 3
 COARSEST_CELLS = 25
 
 
-@lru_cache(maxsize=64)
+@cached(maxsize=64)
 def _interpolation(length: float, width: float, n_x: int, n_y: int, sides: str,
                    fine_x: int, fine_y: int) -> sp.csr_matrix:
     """Bilinear interpolation from the nodes of the (n_x, n_y) planar mesh to those of

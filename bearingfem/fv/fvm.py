@@ -15,13 +15,13 @@ The matrix is assembled by vectorised index arithmetic; cavitation reuses
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import lru_cache
 
 import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from ..bearing import Bearing, JournalState
+from ..caches import cached
 from ..film import film_thickness, reynolds_source_integral, theta_from_inertial
 from ..fields import tilted_gap
 from ..scales import flow_factor, force_factor, moment_factor, shear_friction
@@ -59,7 +59,7 @@ class FVMGrid:
         return self.n_theta * self.n_z
 
 
-@lru_cache(maxsize=32)
+@cached(maxsize=32)
 def fvm_grid(n_theta: int, n_z: int, length_ratio: float, theta0: float | None) -> FVMGrid:
     lam = float(length_ratio)
     t0 = 0.0 if theta0 is None else float(theta0)

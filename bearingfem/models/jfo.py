@@ -3,6 +3,7 @@
 run (its film fraction carried by the flow: :class:`~bearingfem.transient.TransientJFO`)."""
 from __future__ import annotations
 
+from ..fe.jfo_balance import JFO_AMBIENT   # the JFO models' default supply [Pa]
 from ..lubricant import Lubricant
 from ..reynolds import solve_reynolds
 from ..transient import TransientJFO
@@ -11,9 +12,6 @@ from .registry import FilmModel, register
 
 __all__ = ["JFOModel", "CompressibleJFOModel", "JFO_AMBIENT"]
 
-#: Oil around the film at atmospheric pressure, the cavity near zero absolute: the default
-#: supply of the JFO models (they need one; grooves add to it) [Pa].
-JFO_AMBIENT = 1e5
 _MESH = dict(n_theta=48, n_z=8)
 
 
