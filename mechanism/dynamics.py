@@ -32,7 +32,7 @@ def pin_velocity(m: Mechanism, q, A, qd, Ad):
     return -R * np.sin(q) * qd - L * np.sin(A) * Ad, R * np.cos(q) * qd - L * np.cos(A) * Ad
 
 
-def _mass_terms(m: Mechanism, q, A):
+def mass_terms(m: Mechanism, q, A):
     R = m.crank_length
     U, V = m.rod_cm
     MB = m.rod_mass
@@ -43,7 +43,7 @@ def _mass_terms(m: Mechanism, q, A):
     return m11, m12, m22, s
 
 
-def _gravity_terms(m: Mechanism, q, A, g):
+def gravity_terms(m: Mechanism, q, A, g):
     Um, Vm = m.crank_cm
     U, V = m.rod_cm
     gq = g * (m.crank_mass * (-Um * np.sin(q) - Vm * np.cos(q))
@@ -58,8 +58,8 @@ def accelerations(m: Mechanism, q, A, qd, Ad, F_x, F_y, g=0.0, torque=0.0, slide
     ``slider_force`` is F_ext of seed Eq. 1 (positive pushes the slider toward -X).
     """
     R, L = m.crank_length, m.rod_length
-    m11, m12, m22, s = _mass_terms(m, q, A)
-    gq, gA = _gravity_terms(m, q, A, g)
+    m11, m12, m22, s = mass_terms(m, q, A)
+    gq, gA = gravity_terms(m, q, A, g)
     Qq = F_y * R * np.cos(q) - F_x * R * np.sin(q) + torque - s * Ad * Ad - gq
     QA = -F_y * L * np.cos(A) - F_x * L * np.sin(A) - s * qd * qd - gA
     det = m11 * m22 - m12 * m12
@@ -71,7 +71,7 @@ def accelerations(m: Mechanism, q, A, qd, Ad, F_x, F_y, g=0.0, torque=0.0, slide
 
 def energy(m: Mechanism, q, A, qd, Ad, Xd, X=0.0, g=0.0):
     """Kinetic plus gravitational energy [J] (X measured along the slider axis, up)."""
-    m11, m12, m22, _ = _mass_terms(m, q, A)
+    m11, m12, m22, _ = mass_terms(m, q, A)
     T = 0.5 * (m11 * qd * qd + 2 * m12 * qd * Ad + m22 * Ad * Ad) + 0.5 * m.slider_mass * Xd * Xd
     Um, Vm = m.crank_cm
     U, V = m.rod_cm

@@ -5,7 +5,7 @@ import time
 
 import numpy as np
 
-from .dynamics import _gravity_terms, _mass_terms
+from .dynamics import gravity_terms, mass_terms
 from .joint import METHODS
 from .parameters import GRAVITY
 from .result import SimulationResult, provenance
@@ -35,8 +35,8 @@ def simulate_ideal(scene: Scene, progress=None) -> SimulationResult:
     Xdd = X1 * qdd + X2 * qd * qd
     # Joint reaction on the pin: F_x from the slider's equation, F_y from the rod's.
     Fx = -(m.slider_mass * Xdd + scene.slider_force + g * m.slider_mass)
-    m11, m12, m22, s = _mass_terms(m, q, A)
-    _, gA = _gravity_terms(m, q, A, g)
+    m11, m12, m22, s = mass_terms(m, q, A)
+    _, gA = gravity_terms(m, q, A, g)
     L = m.rod_length
     Fy = -(m12 * qdd + m22 * Add + s * qd * qd + gA + Fx * L * np.sin(A)) / (L * np.cos(A))
     z = np.zeros_like(t)

@@ -9,7 +9,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from .dynamics import _gravity_terms, _mass_terms
+from .dynamics import gravity_terms, mass_terms
 from .parameters import Mechanism
 
 __all__ = ["rigid_kinematics", "rigid_rhs", "integrate_rigid", "simulate_rigid"]
@@ -34,8 +34,8 @@ def rigid_rhs(m: Mechanism, g=0.0, torque=0.0, slider_force=0.0):
     def rhs(t, y):
         q, qd = y
         A, A1, A2, X, X1, X2 = rigid_kinematics(m, q)
-        m11, m12, m22, s = _mass_terms(m, q, A)
-        gq, gA = _gravity_terms(m, q, A, g)
+        m11, m12, m22, s = mass_terms(m, q, A)
+        gq, gA = gravity_terms(m, q, A, g)
         Ad = A1 * qd
         meff = m11 + 2 * m12 * A1 + m22 * A1 * A1 + m.slider_mass * X1 * X1
         # generalized forces minus velocity terms, for each coordinate

@@ -17,27 +17,27 @@ def test_set_changes_solved_by_low_rank_correction_equal_a_new_factorisation(see
     factorisation; beyond BORDERED_MAX_CHANGES volumes it factorises again."""
     import scipy.sparse as sp
     import scipy.sparse.linalg as spla
-    from bearingfem.fe.jfo_balance import _transport, film_volumes
+    from bearingfem.fe.jfo_balance import transport, film_volumes
     from bearingfem.solvers.blocksolve import BORDERED_MAX_CHANGES
-    from bearingfem.solvers.jfo import _SetSolver, _set_matrix
+    from bearingfem.solvers.jfo import SetSolver, set_matrix
     from bearingfem.solvers.linsolve import principal_block
     from bearingfem.fe.assembly import fe_operator
     state = JournalState(eps=0.6, omega=250.0)
     op = fe_operator(seed, state, 48, 8, "P1", None, True, ())
     free = op.mesh.free
     K = op.free_stiffness(state.eps)          # CSR, as the balance gives them
-    A = (principal_block(_transport(film_volumes(op.mesh), state.eps, state.wedge_speed),
+    A = (principal_block(transport(film_volumes(op.mesh), state.eps, state.wedge_speed),
                          free) + 0.3 * sp.eye(len(free))).tocsr()
     rng = np.random.default_rng(1)
     rhs = rng.standard_normal(len(free))
     base = rng.random(len(free)) < 0.4
-    sets = _SetSolver(K, A)
+    sets = SetSolver(K, A)
     sets.solve(base, rhs)
     for k in (1, 5, BORDERED_MAX_CHANGES):
         cav = base.copy()
         cav[rng.choice(len(free), k, replace=False)] ^= True
         x = sets.solve(cav, rhs)
-        exact = spla.spsolve(_set_matrix(sets.K, sets.A, cav), rhs)
+        exact = spla.spsolve(set_matrix(sets.K, sets.A, cav), rhs)
         assert np.max(np.abs(x - exact)) < 1e-10 * np.max(np.abs(exact))
     assert sets.factorisations == 1
     cav = base.copy()
@@ -65,13 +65,13 @@ def test_balance_is_refined_to_round_off(seed):
     1e-7 s film step of the long seed bearing is 3e-7 of the throughput)."""
     import scipy.sparse as sp
     from bearingfem.fe.assembly import fe_operator
-    from bearingfem.fe.jfo_balance import _transport, film_volumes
+    from bearingfem.fe.jfo_balance import transport, film_volumes
     from bearingfem.solvers.jfo import jfo_solve
     from bearingfem.solvers.linsolve import principal_block
     state = JournalState(eps=0.6, omega=250.0)
     op = fe_operator(seed, state, 48, 8, "P1", None, True, ())
     free = op.mesh.free
-    T = principal_block(_transport(film_volumes(op.mesh), state.eps, state.wedge_speed),
+    T = principal_block(transport(film_volumes(op.mesh), state.eps, state.wedge_speed),
                         free)
     rng = np.random.default_rng(2)
     n = len(free)

@@ -8,7 +8,7 @@ from bearingfem.bearing import seed_bearing
 from bearingfem.errors import ConvergenceError
 from bearingfem.fe import jfo
 from bearingfem.fe.jfo import JFOFilm
-from bearingfem.fe.jfo_balance import _between
+from bearingfem.fe.jfo_balance import state_between
 
 B = seed_bearing(1.0)
 S0 = JournalState(0.5, 0.0, 0.3, 0.0, 250.0)
@@ -21,17 +21,17 @@ def test_cut_journal_step_is_two_half_steps(monkeypatch):
     one two explicit half steps give, the first to the state halfway, to round-off.
     Fails with the second half taking the whole step (jfo.py:302)."""
     film, ref = (JFOFilm(B, S0, 48, 4, ambient_pressure=1e5) for _ in range(2))
-    real, calls = jfo._step_balance, []
+    real, calls = jfo.step_balance, []
 
     def fails_once(*args, **kw):
         calls.append(1)
         if len(calls) == 1:
             raise ConvergenceError("test balance", 1, 1.0)
         return real(*args, **kw)
-    monkeypatch.setattr(jfo, "_step_balance", fails_once)
+    monkeypatch.setattr(jfo, "step_balance", fails_once)
     s = film.step(S1, DT)
-    monkeypatch.setattr(jfo, "_step_balance", real)
-    ref.step(_between(S0, S1), 0.5 * DT)
+    monkeypatch.setattr(jfo, "step_balance", real)
+    ref.step(state_between(S0, S1), 0.5 * DT)
     r = ref.step(S1, 0.5 * DT)
     assert film.substeps == 2 and film.time == pytest.approx(DT, rel=1e-14)
     assert np.allclose(s.pressure, r.pressure, rtol=1e-12, atol=1e-9 * r.pressure.max())
@@ -55,7 +55,7 @@ def test_half_way_state_by_hand():
     pins the helper itself. Fails with a mean's 1/2 divided in (jfo_balance.py:125)."""
     a = JournalState(0.2, -4.0, 0.1, 3.0, 100.0)
     b = JournalState(0.6, 10.0, 2 * np.pi - 0.1, 5.0, 300.0)
-    mid = _between(a, b)
+    mid = state_between(a, b)
     assert (mid.eps, mid.eps_dot, mid.gamma_dot, mid.omega) == pytest.approx(
         (0.4, 3.0, 4.0, 200.0), rel=1e-15)
     assert mid.gamma == pytest.approx(0.0, abs=1e-15)

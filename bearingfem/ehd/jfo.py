@@ -36,8 +36,8 @@ import scipy.sparse as sp
 from ..caches import cached
 from ..errors import ConvergenceError
 from ..fe.assembly import fe_operator
-from ..fe.jfo_balance import _boundary_values, _cos_integral, film_volumes
-from ..fe.jfo_fields import BalanceFilm, _halves, _zeta_extent, rigid_balance_film
+from ..fe.jfo_balance import boundary_values, cos_integral, film_volumes
+from ..fe.jfo_fields import BalanceFilm, halves, zeta_extent, rigid_balance_film
 from ..fe.multilevel import prolongation
 from ..fields import FilmFields
 from ..lubricant import Lubricant
@@ -81,12 +81,12 @@ def face_maps(op) -> FaceMaps:
     mesh = op.mesh
     cv = film_volumes(mesh)
     n = len(cv.down)
-    ys, wy = _halves(*_zeta_extent(op, cv))
+    ys, wy = halves(*zeta_extent(op, cv))
     th = np.broadcast_to(cv.face[:, None], ys.shape)
     rows = np.repeat(np.arange(n), ys.shape[1])
     face = sp.csr_matrix((wy.ravel(), (rows, np.arange(rows.size))), shape=(n, rows.size)) \
         @ prolongation(mesh, th.ravel(), ys.ravel())
-    xs, wx = _halves(cv.x_lo, mesh.axes[0][cv.column], cv.x_hi)
+    xs, wx = halves(cv.x_lo, mesh.axes[0][cv.column], cv.x_hi)
     TH = np.broadcast_to(xs[:, :, None], xs.shape + (ys.shape[1],))
     ZE = np.broadcast_to(ys[:, None, :], TH.shape)
     W = wx[:, :, None] * wy[:, None, :]
@@ -191,10 +191,10 @@ def jfo_coupling(bearing, state, op, lubricant, bush, grooves, ambient: float) -
     poiseuille = replace(ehd_film(bearing, state, op, base, gap0, lubricant, bush),
                          wedge=0.0, eps=0.0)
     cv = film_volumes(op.mesh)
-    P_fix, phi_fix = _boundary_values(bearing, op.mesh, grooves, ambient)
+    P_fix, phi_fix = boundary_values(bearing, op.mesh, grooves, ambient)
     rb = rigid_balance_film(op, state)
     return JFOCoupling(poiseuille, state.wedge_speed,
-                       12.0 * state.eps_dot * _cos_integral(cv), P_fix, phi_fix,
+                       12.0 * state.eps_dot * cos_integral(cv), P_fix, phi_fix,
                        face_maps(op), rb.face, rb.content)
 
 

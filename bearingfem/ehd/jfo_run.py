@@ -21,7 +21,7 @@ import scipy.sparse as sp
 from ..bearing import Bearing, JournalState
 from ..fe.assembly import fe_operator
 from ..fe.general import film_system
-from ..fe.jfo_balance import JFOFlows, _boundary_values, film_volumes, kept_set_pressure
+from ..fe.jfo_balance import JFOFlows, boundary_values, film_volumes, kept_set_pressure
 from ..fe.jfo_steady import _film_solution
 from ..fields import FilmFields
 from ..film import film_thickness, inertial_from_theta
@@ -118,7 +118,7 @@ class KeptEHDJFO:
                             density_rate=np.zeros(shape))
         values, load = film_system(op, fields, state.wedge_speed, state.eps)
         K = sp.csr_matrix((values, op.indices, op.indptr), shape=op.shape)
-        P, _ = _boundary_values(self.bearing, mesh, (), self.ambient)
+        P, _ = boundary_values(self.bearing, mesh, (), self.ambient)
         P, cav = kept_set_pressure(K, load, P, mesh, self.cavitated, warm)
         ic, is_ = op.force_integrals(P)
         k = force_factor(self.bearing, mesh.half)

@@ -30,7 +30,7 @@ import scipy.sparse as sp
 from ..bearing import Bearing, JournalState, check_positive
 from ..errors import ConvergenceError
 from ..fe.assembly import fe_operator
-from ..fe.jfo_balance import _step_balance, film_volumes
+from ..fe.jfo_balance import step_balance, film_volumes
 from ..fe.volumes import shift_rows
 from ..scales import force_factor
 from .jfo import JFOCoupling, check_ehd_jfo, jfo_coupling
@@ -137,7 +137,7 @@ class EHDJFOFilm:
         P0, phi0 = shift_rows(cv, np.stack([self.P, self.fraction]), cells)
 
         def rigid():
-            b = _step_balance(self.bearing, op, state, dt, old, None, (), self.ambient).solve
+            b = step_balance(self.bearing, op, state, dt, old, None, (), self.ambient).solve
             return b.P, b.phi
         try:
             out = solve_ehd_jfo(self.bearing, film, rigid, None, self.tol,

@@ -24,7 +24,7 @@ steady EHD solve (tests/test_ehd_states.py).
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import replace
 
 import numpy as np
 

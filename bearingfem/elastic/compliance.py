@@ -26,7 +26,7 @@ from .surface import FilmGrid
 __all__ = ["BushCompliance", "ReducedCompliance", "bush_compliance", "discretise"]
 
 
-def _check_pressure(pressure, shape) -> np.ndarray:
+def check_pressure(pressure, shape) -> np.ndarray:
     p = np.asarray(pressure, dtype=float)
     if p.shape != shape:
         raise ValueError(f"pressure must have the film grid's shape {shape}, got {p.shape}")
@@ -64,7 +64,7 @@ class BushCompliance:
 
     def deflection(self, pressure) -> np.ndarray:
         """Nodal radial deflection [m] (n_theta, n_z) under nodal pressure [Pa]."""
-        p = _check_pressure(pressure, self.shape)
+        p = check_pressure(pressure, self.shape)
         harmonics = np.einsum("mlk,mk->ml", self.spectrum, np.fft.rfft(p, axis=0))
         return np.fft.irfft(harmonics, n=self.shape[0], axis=0)
 
@@ -133,7 +133,7 @@ class ReducedCompliance:
 
     def deflection(self, pressure) -> np.ndarray:
         """Nodal radial deflection [m] from the retained vectors only (cost N k)."""
-        p = _check_pressure(pressure, self.shape).ravel()
+        p = check_pressure(pressure, self.shape).ravel()
         return (self.left @ (self.singular * (self.right.T @ p))).reshape(self.shape)
 
 

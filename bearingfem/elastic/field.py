@@ -6,7 +6,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .compliance import _check_pressure, discretise
+from .compliance import check_pressure, discretise
 from .solid import solid_system
 
 __all__ = ["BushField", "bush_field"]
@@ -86,7 +86,7 @@ def bush_field(bush, radius: float, length: float, pressure, refine_theta: int =
         raise ValueError(f"pressure must be an (n_theta, n_z) array, got shape {shape}")
     d = discretise(bush, radius, length, shape[0], shape[1], refine_theta, refine_z,
                    n_radial, grading)
-    p = _check_pressure(pressure, shape)
+    p = check_pressure(pressure, shape)
     system = solid_system(bush, d.radius, d.film, d.refine_theta, d.refine_z, d.n_radial,
                           d.grading)
     solution = system.solve([lambda x: d.film.interpolate(p, x)])[:, 0]

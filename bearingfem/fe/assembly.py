@@ -156,10 +156,10 @@ def build_operator(mesh: FilmMesh) -> FilmOperator:
         b_sin=_load_sin.assemble(basis), b_cos=_load_cos.assemble(basis),
         qp_theta=np.array(basis.global_coordinates()[0]),
         qp_zeta=np.array(basis.global_coordinates()[1]), qp_weight=np.array(basis.dx),
-        qp_interp=_interpolation_matrix(basis))
+        qp_interp=interpolation_matrix(basis))
 
 
-def _interpolation_matrix(basis) -> sp.csr_matrix:
+def interpolation_matrix(basis) -> sp.csr_matrix:
     """Sparse map from nodal values to values at quadrature points: one mat-vec replaces
     the basis's interpolation inside time integration."""
     n_el, n_qp = basis.dx.shape

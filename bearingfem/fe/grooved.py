@@ -270,7 +270,7 @@ def grooved_pressure(gop: GroovedOperator, bearing: Bearing, state: JournalState
     return res
 
 
-def _rotated(I: np.ndarray, gamma: float) -> np.ndarray:
+def rotated(I: np.ndarray, gamma: float) -> np.ndarray:
     """(F_r, F_t) / k from (int P cos phi, int P sin phi) (leading axis of I)."""
     c, s = np.cos(gamma), np.sin(gamma)
     return np.stack([c * I[0] + s * I[1], c * I[1] - s * I[0]])
@@ -279,7 +279,7 @@ def _rotated(I: np.ndarray, gamma: float) -> np.ndarray:
 def _force(bearing, gop, P, gamma, cavitation):
     I = gop.op.force_integrals(P, cavitation == "gumbel")
     k = force_factor(bearing, True)
-    return tuple(float(f) for f in k * _rotated(I, gamma))
+    return tuple(float(f) for f in k * rotated(I, gamma))
 
 
 def grooved_force(bearing: Bearing, state: JournalState, gop: GroovedOperator, grooves,
@@ -335,7 +335,7 @@ def grooved_derivatives(bearing: Bearing, state: JournalState, gop: GroovedOpera
     k = force_factor(bearing, True)
     where = op.at_quadrature(P) > 0.0 if cavitation == "gumbel" else None
     I = op.force_integrals(np.concatenate([P[None], dP.T]), where=where)    # (2, 5)
-    F = k * _rotated(I, g)
+    F = k * rotated(I, g)
     # turning the journal also turns the frame the force is read in: d/dgamma of the
     # rotation is (F_t, -F_r)
     d_gamma = F[:, 4] + np.array([F[1, 0], -F[0, 0]])

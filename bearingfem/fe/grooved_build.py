@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .assembly import FilmOperator, _interpolation_matrix
+from .assembly import FilmOperator, interpolation_matrix
 from .general import element_tables
 from .mesh import FilmMesh
 
@@ -78,5 +78,5 @@ def build_grooved_tables(mesh: FilmMesh) -> tuple[FilmOperator, np.ndarray]:
         ff_indices=renumber[cols[ff]].astype(np.int32), ff_select=ff,
         b_sin=load(weights[2]), b_cos=load(weights[1]), qp_theta=qp_theta,
         qp_zeta=np.array(qp[1]), qp_weight=np.array(basis.dx),
-        qp_interp=_interpolation_matrix(basis))
+        qp_interp=interpolation_matrix(basis))
     return op, tables

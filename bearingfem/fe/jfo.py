@@ -45,8 +45,8 @@ from ..solvers.jfo import JFOResult
 from .assembly import FilmOperator, fe_operator
 from .general import film_system, general_film
 from .jfo_fields import FilmSpec, balance_films
-from .jfo_balance import (BalanceSolve, FilmAdvance, JFOFlows, _between, _boundary_values,
-                          _content, _step_balance, film_volumes, kept_set_pressure)
+from .jfo_balance import (BalanceSolve, FilmAdvance, JFOFlows, state_between, boundary_values,
+                          _content, step_balance, film_volumes, kept_set_pressure)
 from .volumes import ControlVolumes, shift_rows
 from .jfo_steady import _film_solution, jfo_force, solve_jfo   # (re-exported)
 
@@ -204,7 +204,7 @@ class JFOFilm:
         op = self._operator(state)
         mesh = op.mesh
         # held values on the fixed nodes, zero on the free ones
-        P, _ = _boundary_values(self.bearing, mesh, self.grooves, self.ambient_pressure)
+        P, _ = boundary_values(self.bearing, mesh, self.grooves, self.ambient_pressure)
         if self._film_spec is None:
             K = op.stiffness(state.eps)
             load = op.load(state.eps, state.eps_dot, state.wedge_speed)
@@ -227,7 +227,7 @@ class JFOFilm:
                 if u is not None]
         old, *sets = self._carried(cv, state, self.content, *sets)
         first = tuple(u < 0.0 for u in sets)
-        return _step_balance(self.bearing, op, state, dt, old, first, self.grooves,
+        return step_balance(self.bearing, op, state, dt, old, first, self.grooves,
                              self.ambient_pressure, self._films(state, self.time + dt))
 
     def _predicted(self, dt: float) -> np.ndarray | None:
@@ -285,7 +285,7 @@ class JFOFilm:
                 raise
         kept = self.snapshot()
         try:
-            _, first = self._cut_step(_between(self.state, state), 0.5 * dt, cuts - 1)
+            _, first = self._cut_step(state_between(self.state, state), 0.5 * dt, cuts - 1)
             sol, last = self._cut_step(state, 0.5 * dt, cuts - 1)
         except ConvergenceError:
             self.restore(kept)

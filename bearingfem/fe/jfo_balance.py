@@ -42,12 +42,12 @@ def _content(cv: ControlVolumes, eps: float) -> np.ndarray:
     return cv.width * film_thickness_integral(cv.x_lo, cv.x_hi, eps)
 
 
-def _cos_integral(cv: ControlVolumes) -> np.ndarray:
+def cos_integral(cv: ControlVolumes) -> np.ndarray:
     """Integral of cos(theta) = dH/d(eps) over each volume: a squeeze's storage rate."""
     return cv.width * film_thickness_integral(cv.x_lo, cv.x_hi, 1.0) - cv.area
 
 
-def _transport(cv: ControlVolumes, eps: float, speed: float) -> sp.csr_matrix:
+def transport(cv: ControlVolumes, eps: float, speed: float) -> sp.csr_matrix:
     """Upwind transport of 6 x speed x phi H across the volumes' theta faces."""
     return transport_matrix(cv, 6.0 * speed * film_thickness(cv.face, eps) * cv.width)
 
@@ -101,7 +101,7 @@ class FilmAdvance:
     content: np.ndarray
 
 
-def _boundary_values(bearing: Bearing, mesh: FilmMesh, grooves, ambient: float):
+def boundary_values(bearing: Bearing, mesh: FilmMesh, grooves, ambient: float):
     """Pressure and film fraction held on the fixed nodes: the ends and a supply line at
     ``ambient`` (flooded), each groove at its pressure and fraction."""
     P = np.zeros(mesh.ndofs)
@@ -142,7 +142,7 @@ def _solve(bearing: Bearing, op: FilmOperator, eps: float, T: sp.csr_matrix,
     the Poiseuille stiffness on the operator's pattern (None: the rigid cylinder's of
     ``eps``)."""
     mesh = op.mesh
-    P_fix, phi_fix = _boundary_values(bearing, mesh, grooves, ambient)
+    P_fix, phi_fix = boundary_values(bearing, mesh, grooves, ambient)
     if values is None:
         values = op.values(eps)
     K = sp.csr_matrix((values, op.indices, op.indptr), shape=op.shape)
@@ -161,7 +161,7 @@ def _prolongation(coarse: FilmMesh, fine: FilmMesh) -> sp.csr_matrix:
     return prolongation(coarse, fine.theta, fine.zeta)
 
 
-def _between(a: JournalState, b: JournalState) -> JournalState:
+def state_between(a: JournalState, b: JournalState) -> JournalState:
     """The journal state half way from ``a`` to ``b`` (linear; the attitude the short way)."""
     turn = float(np.mod(b.gamma - a.gamma + np.pi, 2.0 * np.pi) - np.pi)
     return JournalState(eps=0.5 * (a.eps + b.eps), eps_dot=0.5 * (a.eps_dot + b.eps_dot),
@@ -169,7 +169,7 @@ def _between(a: JournalState, b: JournalState) -> JournalState:
                         omega=0.5 * (a.omega + b.omega))
 
 
-def _step_balance(bearing: Bearing, op: FilmOperator, state: JournalState, dt: float,
+def step_balance(bearing: Bearing, op: FilmOperator, state: JournalState, dt: float,
                   old: np.ndarray, cavitated: np.ndarray, grooves,
                   ambient: float, film=None) -> FilmAdvance:
     """One backward-Euler step of the content on ``op``'s mesh from the content ``old``
@@ -182,7 +182,7 @@ def _step_balance(bearing: Bearing, op: FilmOperator, state: JournalState, dt: f
     the rigid cylinder's)."""
     cv = film_volumes(op.mesh)
     f = None if film is None else film(op)
-    T = _transport(cv, state.eps, state.omega) if f is None else f.transport(cv, state.omega)
+    T = transport(cv, state.eps, state.omega) if f is None else f.transport(cv, state.omega)
     H = _content(cv, state.eps) if f is None else f.content
     level = coarse_level(op)
     start = None
@@ -196,7 +196,7 @@ def _step_balance(bearing: Bearing, op: FilmOperator, state: JournalState, dt: f
                   else film(coarse).content)
             try:
                 # no first set there: the previous one already failed on this mesh
-                b = _step_balance(bearing, coarse, state, dt, (down @ (old / H)) * Hc,
+                b = step_balance(bearing, coarse, state, dt, (down @ (old / H)) * Hc,
                                   None, grooves, ambient, film).solve
             except ConvergenceError:
                 return None

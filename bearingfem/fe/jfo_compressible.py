@@ -49,9 +49,9 @@ from ..solvers.jfo import JFOResult, solve_balance
 from ..solvers.linsolve import principal_block
 from .assembly import FilmOperator
 from .jfo import JFOFilm
-from .jfo_steady import COARSEST_FREE_NODES, _film_solution, _coarser, _prolonged_cavity
-from .jfo_balance import (FilmAdvance, JFOFlows, _boundary_values, _content,
-                          _cos_integral, _transport, film_volumes)
+from .jfo_steady import COARSEST_FREE_NODES, _film_solution, coarser_mesh, prolonged_cavity
+from .jfo_balance import (FilmAdvance, JFOFlows, boundary_values, _content,
+                          cos_integral, transport, film_volumes)
 
 __all__ = ["CompressibleSolve", "CompressibleJFOFilm", "solve_compressible_jfo",
            "compressible_jfo_force", "is_elrod", "check_elrod"]
@@ -99,7 +99,7 @@ def _balance(bearing: Bearing, op: FilmOperator, eps: float, T: sp.csr_matrix,
     """K Q + T r + storage r = source on the free volumes, r = phi + Q / beta; the fixed
     nodes hold their pressure p (Q = beta (exp(p / B) - 1)) and fraction."""
     mesh = op.mesh
-    P_fix, phi_fix = _boundary_values(bearing, mesh, grooves, ambient)
+    P_fix, phi_fix = boundary_values(bearing, mesh, grooves, ambient)
     Q_fix = beta * np.expm1(P_fix / beta)
     on_free = np.zeros(mesh.ndofs)
     on_free[mesh.free] = storage[mesh.free]
@@ -121,13 +121,13 @@ def _steady(bearing: Bearing, state: JournalState, operator, n_theta: int, n_z: 
     takes its first set from the same film on a mesh half as fine (recursively)."""
     op = operator(n_theta, n_z)
     cv = film_volumes(op.mesh)
-    T = _transport(cv, state.eps, state.wedge_speed)
-    storage = 12.0 * state.eps_dot * _cos_integral(cv)
+    T = transport(cv, state.eps, state.wedge_speed)
+    storage = 12.0 * state.eps_dot * cos_integral(cv)
     warm = 3
     if cavitated0 is None and len(op.mesh.free) > COARSEST_FREE_NODES:
-        c, opc = _steady(bearing, state, operator, *_coarser(n_theta, n_z), grooves,
+        c, opc = _steady(bearing, state, operator, *coarser_mesh(n_theta, n_z), grooves,
                          ambient, beta)
-        cavitated0 = _prolonged_cavity(opc, op, c.P, c.phi)
+        cavitated0 = prolonged_cavity(opc, op, c.P, c.phi)
         warm = 12
     try:
         s = _balance(bearing, op, state.eps, T, storage, np.zeros(op.mesh.ndofs), grooves,
@@ -199,7 +199,7 @@ class CompressibleJFOFilm(JFOFilm):
         cv = film_volumes(op.mesh)
         old, = self._carried(cv, state, self.content)
         H = _content(cv, state.eps)
-        s = _balance(self.bearing, op, state.eps, _transport(cv, state.eps, state.omega),
+        s = _balance(self.bearing, op, state.eps, transport(cv, state.eps, state.omega),
                      12.0 * H / dt, 12.0 * old / dt, self.grooves, self.ambient_pressure,
                      self.beta, self.cavitated)
         return FilmAdvance(op, s, s.density * H)
@@ -225,7 +225,7 @@ class CompressibleJFOFilm(JFOFilm):
         op = self._operator(state)
         mesh = op.mesh
         H = _content(film_volumes(mesh), state.eps)
-        P0, _ = _boundary_values(self.bearing, mesh, self.grooves, self.ambient_pressure)
+        P0, _ = boundary_values(self.bearing, mesh, self.grooves, self.ambient_pressure)
         closed = self.cavitated & (self.content > H)
         closed[mesh.fixed] = False
         full = ~self.cavitated

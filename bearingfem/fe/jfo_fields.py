@@ -31,7 +31,7 @@ from ..fields import FilmFields, check_tilt, tilted_gap
 from ..film import film_thickness
 from .assembly import FilmOperator
 from .general import film_system, general_film
-from .jfo_balance import _content, _cos_integral, film_volumes
+from .jfo_balance import _content, cos_integral, film_volumes
 from .multilevel import prolongation
 from .volumes import ControlVolumes, transport_matrix
 
@@ -75,10 +75,10 @@ def rigid_balance_film(op: FilmOperator, state: JournalState) -> BalanceFilm:
     cv = film_volumes(op.mesh)
     return BalanceFilm(values=op.values(state.eps), content=_content(cv, state.eps),
                        face=film_thickness(cv.face, state.eps) * cv.width,
-                       squeeze=state.eps_dot * _cos_integral(cv))
+                       squeeze=state.eps_dot * cos_integral(cv))
 
 
-def _halves(lo, node, hi):
+def halves(lo, node, hi):
     """Gauss points and weights (nodes x 2 GAUSS) of [lo, node] and [node, hi]."""
     x, w = np.polynomial.legendre.leggauss(GAUSS)
     pts, wts = [], []
@@ -88,7 +88,7 @@ def _halves(lo, node, hi):
     return np.hstack(pts), np.hstack(wts)
 
 
-def _zeta_extent(op: FilmOperator, cv: ControlVolumes):
+def zeta_extent(op: FilmOperator, cv: ControlVolumes):
     """(lower, node, upper) zeta of each control volume."""
     ze = op.mesh.axes[1]
     j = cv.row
@@ -132,8 +132,8 @@ def field_balance_film(bearing: Bearing, op: FilmOperator, state: JournalState,
     rigid = rigid_balance_film(op, state)
     cv = film_volumes(op.mesh)
     departure = _Departure(bearing, op, state, spec, tilt, tilt_rate)
-    xs, wx = _halves(cv.x_lo, op.mesh.axes[0][cv.column], cv.x_hi)
-    ys, wy = _halves(*_zeta_extent(op, cv))
+    xs, wx = halves(cv.x_lo, op.mesh.axes[0][cv.column], cv.x_hi)
+    ys, wy = halves(*zeta_extent(op, cv))
     TH = np.broadcast_to(xs[:, :, None], xs.shape + (ys.shape[1],))
     ZE = np.broadcast_to(ys[:, None, :], TH.shape)
     W = wx[:, :, None] * wy[:, None, :]

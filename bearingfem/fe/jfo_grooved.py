@@ -30,10 +30,10 @@ from ..film import film_thickness, film_thickness_integral
 from ..scales import force_factor
 from ..solution import FilmSolution, film_solution
 from .assembly import FilmOperator
-from .grooved import GroovedOperator, _rotated, groove_operator_for, grooved_operator
+from .grooved import GroovedOperator, rotated, groove_operator_for, grooved_operator
 from .jfo_balance import _solve, film_volumes
 from .jfo_fields import BalanceFilm
-from .jfo_steady import COARSEST_FREE_NODES, _coarser, _prolonged_cavity, jfo_shear
+from .jfo_steady import COARSEST_FREE_NODES, coarser_mesh, prolonged_cavity, jfo_shear
 
 __all__ = ["grooved_balance_film", "solve_grooved_jfo", "grooved_jfo_force",
            "grooved_jfo_solution"]
@@ -68,8 +68,8 @@ def _steady(bearing, state, n_theta, n_z, grooves, ambient, cavitated0=None):
     cv = film_volumes(op.mesh)
     warm = 3
     if cavitated0 is None and len(op.mesh.free) > COARSEST_FREE_NODES:
-        bc, opc = _steady(bearing, state, *_coarser(n_theta, n_z), grooves, ambient)
-        cavitated0 = _prolonged_cavity(opc, op, bc.P, bc.phi)
+        bc, opc = _steady(bearing, state, *coarser_mesh(n_theta, n_z), grooves, ambient)
+        cavitated0 = prolonged_cavity(opc, op, bc.P, bc.phi)
         warm = 12
     try:
         b = _solve(bearing, op, state.eps, f.transport(cv, state.wedge_speed),
@@ -83,7 +83,7 @@ def _steady(bearing, state, n_theta, n_z, grooves, ambient, cavitated0=None):
 
 def _force(bearing: Bearing, op: FilmOperator, P: np.ndarray, gamma: float) -> tuple:
     """(F_r, F_t) [N]: the integrals in phi rotated into the line of centres."""
-    F = force_factor(bearing, True) * _rotated(op.force_integrals(P), gamma)
+    F = force_factor(bearing, True) * rotated(op.force_integrals(P), gamma)
     return float(F[0]), float(F[1])
 
 

@@ -13,7 +13,7 @@ from ..bearing import Bearing, JournalState
 from ..solution import FilmSolution
 from .grooved import groove_operator_for, grooved_operator
 from .jfo import JFOFilm
-from .jfo_balance import FilmAdvance, _boundary_values, kept_set_pressure
+from .jfo_balance import FilmAdvance, boundary_values, kept_set_pressure
 from .jfo_grooved import _films, _force, grooved_jfo_solution
 
 __all__ = ["GroovedJFOFilm"]
@@ -50,7 +50,7 @@ class GroovedJFOFilm(JFOFilm):
         op = self._operator(state)
         gop = grooved_operator(op)
         mesh = op.mesh
-        P, _ = _boundary_values(self.bearing, mesh, self.grooves, self.ambient_pressure)
+        P, _ = boundary_values(self.bearing, mesh, self.grooves, self.ambient_pressure)
         K = sp.csr_matrix((gop.values(state.eps, state.gamma), op.indices, op.indptr),
                           shape=op.shape)
         load = gop.load(state.eps, state.eps_dot, state.wedge_speed, state.gamma)

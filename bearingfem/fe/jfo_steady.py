@@ -15,7 +15,7 @@ from ..solution import FilmSolution, film_solution
 from ..solvers.jfo import JFOResult
 from .assembly import FilmOperator
 from .general import film_moment
-from .jfo_balance import (JFOFlows, _cos_integral, _prolongation, _solve, _transport,
+from .jfo_balance import (JFOFlows, cos_integral, _prolongation, _solve, transport,
                           film_volumes)
 
 __all__ = ["solve_jfo", "jfo_force"]
@@ -60,12 +60,12 @@ def _film_solution(bearing, state, op: FilmOperator, P, phi, res: JFOResult,
 COARSEST_FREE_NODES = 500
 
 
-def _coarser(n_theta: int, n_z: int) -> tuple:
+def coarser_mesh(n_theta: int, n_z: int) -> tuple:
     """(n_theta, n_z) of the mesh half as fine a cold start takes its cavity from."""
     return max(8, n_theta // 2), max(2, n_z // 2)
 
 
-def _prolonged_cavity(coarse: FilmOperator, fine: FilmOperator, P, phi):
+def prolonged_cavity(coarse: FilmOperator, fine: FilmOperator, P, phi):
     """Cavitated set (bool per node) on ``fine`` from the film (P, phi) solved on
     ``coarse``: where the prolonged universal variable P - (1 - phi) is < 0."""
     return (_prolongation(coarse.mesh, fine.mesh) @ (P - (1.0 - phi))) < 0.0
@@ -82,15 +82,15 @@ def _steady(bearing: Bearing, state: JournalState, operator, n_theta, n_z, groov
     cv = film_volumes(op.mesh)
     f = None if film is None else film(op)
     if f is None:
-        T = _transport(cv, state.eps, state.wedge_speed)
-        storage = 12.0 * state.eps_dot * _cos_integral(cv)
+        T = transport(cv, state.eps, state.wedge_speed)
+        storage = 12.0 * state.eps_dot * cos_integral(cv)
     else:
         T, storage = f.transport(cv, state.wedge_speed), 12.0 * f.squeeze
     warm = 3
     if cavitated0 is None and len(op.mesh.free) > COARSEST_FREE_NODES:
-        Pc, phic, _, _, opc, _ = _steady(bearing, state, operator, *_coarser(n_theta, n_z),
+        Pc, phic, _, _, opc, _ = _steady(bearing, state, operator, *coarser_mesh(n_theta, n_z),
                                          grooves, ambient, film=film)
-        cavitated0 = _prolonged_cavity(opc, op, Pc, phic)
+        cavitated0 = prolonged_cavity(opc, op, Pc, phic)
         warm = 12
     try:
         b = _solve(bearing, op, state.eps, T, storage, np.zeros(op.mesh.ndofs), grooves,

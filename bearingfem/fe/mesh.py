@@ -76,7 +76,7 @@ class FilmMesh:
 
 
 @contextmanager
-def _quiet_skfem():
+def quiet_skfem():
     """scikit-fem logs that it copies large coordinate arrays to C order: harmless here."""
     log = logging.getLogger("skfem")
     level = log.level
@@ -205,7 +205,7 @@ def film_mesh(n_theta: int, n_z: int, element: str, length_ratio: float,
     """
     lam = float(length_ratio)
     th, ze = _axes(n_theta, n_z, lam, theta0, half, arcs, grading)
-    with _quiet_skfem():
+    with quiet_skfem():
         mesh = _mirrored_tensor(th, ze)
         if theta0 is None:      # as MeshTri1DG.init_tensor(th, ze, periodic=[0])
             lo = mesh.nodes_satisfying(lambda x: x[0] == th.min())

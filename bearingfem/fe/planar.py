@@ -24,7 +24,7 @@ from ..errors import ConvergenceError
 from ..planar import PlanarFilm
 from ..solvers.jfo import FirstSet, JFOResult, solve_balance
 from ..validation import check_int
-from .mesh import _quiet_skfem
+from .mesh import quiet_skfem
 from .multilevel import free_interpolation
 from .volumes import ControlVolumes, control_volumes, transport_matrix
 
@@ -53,7 +53,7 @@ def planar_mesh(length: float, width: float, n_x: int, n_y: int, sides: str) -> 
     """Tensor P1 mesh of the rectangle with its inlet/outlet nodes and control volumes."""
     xa = np.linspace(0.0, length, n_x + 1)
     ya = np.linspace(0.0, width, n_y + 1)
-    with _quiet_skfem():
+    with quiet_skfem():
         if sides == "periodic":
             mesh = MeshTri1DG.init_tensor(xa, ya, periodic=[1])
         else:

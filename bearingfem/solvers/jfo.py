@@ -26,7 +26,7 @@ import scipy.sparse as sp
 
 from ..errors import ConvergenceError
 from .cavitation import active_set_iterations
-from .jfo_sets import _SetSolver, _lu, _set_matrix  # noqa: F401 (tests import them here)
+from .jfo_sets import SetSolver, _lu, set_matrix  # noqa: F401 (tests import them here)
 from .linsolve import principal_block
 
 __all__ = ["JFOResult", "FirstSet", "jfo_solve", "solve_balance", "upwind_transport"]
@@ -167,7 +167,7 @@ def jfo_solve(K: sp.spmatrix, A: sp.spmatrix, b: np.ndarray, *,
     it = lus = 0
     P, phi = np.zeros(n), np.ones(n)
     converged = warm_near = False
-    sets = _SetSolver(K, A)
+    sets = SetSolver(K, A)
     for first, limit, near_limit in tries:
         if near_limit is not None and warm_near:
             continue
@@ -227,7 +227,7 @@ def _first_sets(cavitated0) -> list:
     return [np.asarray(cavitated0, bool)]
 
 
-def _active_set(sets: _SetSolver, A, b, cav, can_cavitate, max_iter, near_iter=None):
+def _active_set(sets: SetSolver, A, b, cav, can_cavitate, max_iter, near_iter=None):
     """Semismooth Newton on the universal variable from the set ``cav`` (module text):
     ``max_iter`` iterations. With ``near_iter`` (a warm set: the kept or extrapolated
     one) the set must be near the answer: its first iteration changes fewer volumes than
@@ -299,7 +299,7 @@ def _filled_ahead(G: sp.csr_matrix, A: sp.csc_matrix, cav: np.ndarray, phi: np.n
     return filled & ~over
 
 
-def _refined(sets: _SetSolver, A, b, cav, P, phi, passes: int = 4):
+def _refined(sets: SetSolver, A, b, cav, P, phi, passes: int = 4):
     """Iterative refinement on the same factors while it gains: the balance of flows to
     round-off. A corrected solve of a changed set reaches ~1e-10 of |b|, and |b| grows as
     1/dt with the storage of a short time step while the flows do not: on the squeeze film

@@ -23,7 +23,7 @@ def _lu(J: sp.csc_matrix):
                      options=dict(SymmetricMode=True, DiagPivotThresh=0.1))
 
 
-def _set_matrix(K: sp.csc_matrix, A: sp.csc_matrix, cavitated: np.ndarray,
+def set_matrix(K: sp.csc_matrix, A: sp.csc_matrix, cavitated: np.ndarray,
                 stacked=None) -> sp.csc_matrix:
     """Columns of K off the set and of A on it: the Jacobian of R for that set, gathered
     from the CSC arrays directly (no sparse products or format conversions).
@@ -41,7 +41,7 @@ def _stacked(K: sp.csc_matrix, A: sp.csc_matrix):
     return np.concatenate([K.data, A.data]), np.concatenate([K.indices, A.indices])
 
 
-class _SetSolver:
+class SetSolver:
     """Solves J(C) x = r for the sets C of one balance. J(C) has the columns of K off C
     and of A on C, so the matrices of two sets differ only in the k columns of the volumes
     where the sets differ: J(C) = J(C0) + U E^T with U those columns' differences and E
@@ -82,7 +82,7 @@ class _SetSolver:
                 x = self._corrected(cavitated, changed, rhs)
                 if x is not None:
                     return x
-        self.lu = _lu(_set_matrix(self.K, self.A, cavitated, self.stacked))
+        self.lu = _lu(set_matrix(self.K, self.A, cavitated, self.stacked))
         self.base = cavitated.copy()
         self.factorisations += 1
         return self.lu.solve(rhs)
