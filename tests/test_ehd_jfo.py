@@ -219,7 +219,7 @@ def test_cold_start_at_the_heavy_state_needs_no_continuation(monkeypatch):
     search (MEMORY = 1: |R|_2 must fall at every step; the first attempt stalls)."""
     from bearingfem.ehd import jfo_newton
     from bearingfem.ehd.jfo_newton import solve_ehd_jfo
-    from bearingfem.fe.jfo_steady import _steady
+    from bearingfem.fe.jfo_steady import steady_jfo
     heavy, n = JournalState(eps=0.995, omega=250.0), (128, 8)
 
     def whole(nt, nz):
@@ -228,7 +228,7 @@ def test_cold_start_at_the_heavy_state_needs_no_continuation(monkeypatch):
     film = jfo_coupling(SEED, heavy, whole(*n), None, comp, (), 1e5)
 
     def rigid():
-        return _steady(SEED, heavy, whole, *n, (), 1e5)[:2]
+        return steady_jfo(SEED, heavy, whole, *n, (), 1e5)[:2]
     cold = solve_ehd_jfo(SEED, film, rigid)
     assert (cold.steps, cold.rejected) == (1, 0)
     monkeypatch.setattr(jfo_newton, "MEMORY", 1)

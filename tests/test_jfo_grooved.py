@@ -9,7 +9,7 @@ import pytest
 
 from bearingfem import Bearing, Groove, JournalState, solve_reynolds
 from bearingfem.fe.assembly import fe_operator
-from bearingfem.fe.jfo_steady import _film_solution, _steady
+from bearingfem.fe.jfo_steady import jfo_film_solution, steady_jfo
 from bearingfem.routes import fe_force
 from bearingfem.film import film_thickness
 from bearingfem.scales import flow_factor, force_factor
@@ -31,12 +31,12 @@ def test_the_bearing_fixed_jfo_film_is_the_moving_meshs(gamma):
     gamma), the force rotated the wrong way, the Couette shear taken over the whole gap
     (not the oil's fraction phi) or the cavitated area halved in the fixed mesh's film."""
     s = replace(MOVING, gamma=gamma)
-    P, phi, res, flows, op, _ = _steady(
+    P, phi, res, flows, op, _ = steady_jfo(
         B, s, lambda nt, nz: fe_operator(B, s, nt, nz, "P1", None, True, GROOVES), 41, 8,
         GROOVES, 0.0)
     old = force_factor(B, True) * op.force_integrals(P)
     new = solve_reynolds(B, s, 41, 8, "P1", "jfo", grooves=GROOVES)
-    moving = _film_solution(B, s, op, P, phi, res, flows, "moving mesh")
+    moving = jfo_film_solution(B, s, op, P, phi, res, flows, "moving mesh")
     assert new.friction_force == pytest.approx(moving.friction_force, rel=1e-9)
     assert new.cavitated_fraction == pytest.approx(moving.cavitated_fraction, rel=1e-9)
     np.testing.assert_allclose(new.force_local, old, rtol=0, atol=1e-9 * np.abs(old).max())

@@ -69,11 +69,11 @@ def test_full_content_sums_to_the_film_volume(half):
     volume holds between (1 - eps) and (1 + eps) times its area. Fails with the content
     negated (jfo_balance.py:35)."""
     from bearingfem.fe.assembly import fe_operator
-    from bearingfem.fe.jfo_balance import _content, film_volumes
+    from bearingfem.fe.jfo_balance import full_content, film_volumes
 
     op = fe_operator(B, S1, 48, 8, "P1", None, half)
     cv = film_volumes(op.mesh)
-    content = _content(cv, S1.eps)
+    content = full_content(cv, S1.eps)
     lam = B.length / (2 * B.radius)
     assert content.sum() == pytest.approx(2 * np.pi * lam * (1 if half else 2), rel=1e-12)
     assert np.all(content >= (1 - S1.eps) * cv.area) and np.all(content <= (1 + S1.eps) * cv.area)

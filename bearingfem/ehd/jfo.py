@@ -41,7 +41,7 @@ from ..fe.jfo_fields import BalanceFilm, halves, zeta_extent, rigid_balance_film
 from ..fe.multilevel import prolongation
 from ..fields import FilmFields
 from ..lubricant import Lubricant
-from ..fe.jfo_steady import _film_solution, _steady
+from ..fe.jfo_steady import jfo_film_solution, steady_jfo
 from ..fe.volumes import transport_matrix
 from .coupling import EHDFilm, ehd_film
 from .jfo_newton import EHDJFOSolve, solve_ehd_jfo
@@ -219,7 +219,7 @@ def solve_ehd_jfo_film(bearing, state, operator, n_theta: int, n_z: int, lubrica
     film = jfo_coupling(bearing, state, op, lubricant, bush, grooves, ambient)
 
     def rigid():
-        return _steady(bearing, state, operator, n_theta, n_z, grooves, ambient)[:2]
+        return steady_jfo(bearing, state, operator, n_theta, n_z, grooves, ambient)[:2]
     warm = None
     if start is not None:
         P, phi = getattr(start, "pressure", None), getattr(start, "fraction", None)
@@ -231,7 +231,7 @@ def solve_ehd_jfo_film(bearing, state, operator, n_theta: int, n_z: int, lubrica
         out = solve_ehd_jfo(bearing, film, rigid, None, tol, warm)
     except ConvergenceError as e:
         raise e.at(f"steady EHD-JFO film {n_theta}x{n_z}, eps = {state.eps:.6g}") from None
-    sol = _film_solution(bearing, state, op, out.P, out.phi, out.result, out.flows,
+    sol = jfo_film_solution(bearing, state, op, out.P, out.phi, out.result, out.flows,
                          "fem-P1/jfo-ehd-newton", balance_film(film, out.P))
     return replace(sol, deformation=film.poiseuille.deflection(out.P))
 

@@ -22,7 +22,7 @@ from ..bearing import Bearing, JournalState
 from ..fe.assembly import fe_operator
 from ..fe.general import film_system
 from ..fe.jfo_balance import JFOFlows, boundary_values, film_volumes, kept_set_pressure
-from ..fe.jfo_steady import _film_solution
+from ..fe.jfo_steady import jfo_film_solution
 from ..fields import FilmFields
 from ..film import film_thickness, inertial_from_theta
 from ..scales import flow_factor, force_factor
@@ -131,7 +131,7 @@ class KeptEHDJFO:
         a = self.film.advance(state, dt)
         k = flow_factor(self.bearing, False)
         flows = JFOFlows(flow_in=k * a.inflow, side_leakage=0.0, storage=k * a.content_rate)
-        sol = _film_solution(self.bearing, state, op, a.P, a.fraction, a.result, flows,
+        sol = jfo_film_solution(self.bearing, state, op, a.P, a.fraction, a.result, flows,
                              "fem-P1/jfo-ehd-transient")
         sol = replace(sol, deformation=a.deformation)
         self.kept = kept_film(self.bearing, state, sol, *self.n)

@@ -46,9 +46,9 @@ from .assembly import FilmOperator, fe_operator
 from .general import film_system, general_film
 from .jfo_fields import FilmSpec, balance_films
 from .jfo_balance import (BalanceSolve, FilmAdvance, JFOFlows, state_between, boundary_values,
-                          _content, step_balance, film_volumes, kept_set_pressure)
+                          full_content, step_balance, film_volumes, kept_set_pressure)
 from .volumes import ControlVolumes, shift_rows
-from .jfo_steady import _film_solution, jfo_force, solve_jfo   # (re-exported)
+from .jfo_steady import jfo_film_solution, jfo_force, solve_jfo   # (re-exported)
 
 __all__ = ["JFOFilm", "JFOSnapshot", "BalanceSolve", "FilmAdvance", "solve_jfo", "jfo_force",
            "film_volumes", "JFOFlows"]
@@ -173,7 +173,7 @@ class JFOFilm:
     def _full_content(self, op: FilmOperator, state: JournalState, time: float):
         """The content of the full film per volume at ``state`` and ``time``."""
         films = self._films(state, time)
-        return _content(film_volumes(op.mesh), state.eps) if films is None else \
+        return full_content(film_volumes(op.mesh), state.eps) if films is None else \
             films(op).content
 
     def refilled(self, state: JournalState, time: float | None = None) -> bool:
@@ -245,7 +245,7 @@ class JFOFilm:
     def _solution(self, state: JournalState, a: FilmAdvance, dt: float) -> FilmSolution:
         b = a.solve
         films = self._films(state, self.time + dt)
-        return _film_solution(self.bearing, state, a.op, b.P, b.phi, b.result, b.flows,
+        return jfo_film_solution(self.bearing, state, a.op, b.P, b.phi, b.result, b.flows,
                               "fem-P1/jfo", None if films is None else films(a.op))
 
     def _where(self, state: JournalState, dt: float) -> str:

@@ -37,7 +37,7 @@ def film_volumes(mesh: FilmMesh) -> ControlVolumes:
     return control_volumes(mesh.theta, mesh.zeta, th, ze, mesh.periodic)
 
 
-def _content(cv: ControlVolumes, eps: float) -> np.ndarray:
+def full_content(cv: ControlVolumes, eps: float) -> np.ndarray:
     """Exact integral of H over each volume (its content when full)."""
     return cv.width * film_thickness_integral(cv.x_lo, cv.x_hi, eps)
 
@@ -133,7 +133,7 @@ def kept_set_pressure(K: sp.csr_matrix, load: np.ndarray, P: np.ndarray, mesh: F
     return P, cav
 
 
-def _solve(bearing: Bearing, op: FilmOperator, eps: float, T: sp.csr_matrix,
+def solve_film_balance(bearing: Bearing, op: FilmOperator, eps: float, T: sp.csr_matrix,
            storage: np.ndarray, source: np.ndarray, grooves, ambient: float,
            cavitated0=None, warm_iterations: int = 3, start=None,
            values: np.ndarray | None = None) -> BalanceSolve:
@@ -157,7 +157,7 @@ def _solve(bearing: Bearing, op: FilmOperator, eps: float, T: sp.csr_matrix,
 
 
 @cached(maxsize=32)
-def _prolongation(coarse: FilmMesh, fine: FilmMesh) -> sp.csr_matrix:
+def mesh_prolongation(coarse: FilmMesh, fine: FilmMesh) -> sp.csr_matrix:
     return prolongation(coarse, fine.theta, fine.zeta)
 
 
@@ -183,16 +183,16 @@ def step_balance(bearing: Bearing, op: FilmOperator, state: JournalState, dt: fl
     cv = film_volumes(op.mesh)
     f = None if film is None else film(op)
     T = transport(cv, state.eps, state.omega) if f is None else f.transport(cv, state.omega)
-    H = _content(cv, state.eps) if f is None else f.content
+    H = full_content(cv, state.eps) if f is None else f.content
     level = coarse_level(op)
     start = None
     if level is not None:
         coarse = level[0]
 
         def start():
-            down = _prolongation(op.mesh, coarse.mesh)
-            up = free_interpolation(_prolongation(coarse.mesh, op.mesh), coarse.mesh.free)
-            Hc = (_content(film_volumes(coarse.mesh), state.eps) if film is None
+            down = mesh_prolongation(op.mesh, coarse.mesh)
+            up = free_interpolation(mesh_prolongation(coarse.mesh, op.mesh), coarse.mesh.free)
+            Hc = (full_content(film_volumes(coarse.mesh), state.eps) if film is None
                   else film(coarse).content)
             try:
                 # no first set there: the previous one already failed on this mesh
@@ -202,6 +202,6 @@ def step_balance(bearing: Bearing, op: FilmOperator, state: JournalState, dt: fl
                 return None
             return FirstSet(up @ (b.P - (1.0 - b.phi)) < 0.0, b.result.iterations,
                             b.result.factorisations)
-    b = _solve(bearing, op, state.eps, T, 12.0 * H / dt, 12.0 * old / dt, grooves, ambient,
+    b = solve_film_balance(bearing, op, state.eps, T, 12.0 * H / dt, 12.0 * old / dt, grooves, ambient,
                cavitated, start=start, values=None if f is None else f.values)
     return FilmAdvance(op, b, b.phi * H)

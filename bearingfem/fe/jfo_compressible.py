@@ -49,8 +49,8 @@ from ..solvers.jfo import JFOResult, solve_balance
 from ..solvers.linsolve import principal_block
 from .assembly import FilmOperator
 from .jfo import JFOFilm
-from .jfo_steady import COARSEST_FREE_NODES, _film_solution, coarser_mesh, prolonged_cavity
-from .jfo_balance import (FilmAdvance, JFOFlows, boundary_values, _content,
+from .jfo_steady import COARSEST_FREE_NODES, jfo_film_solution, coarser_mesh, prolonged_cavity
+from .jfo_balance import (FilmAdvance, JFOFlows, boundary_values, full_content,
                           cos_integral, transport, film_volumes)
 
 __all__ = ["CompressibleSolve", "CompressibleJFOFilm", "solve_compressible_jfo",
@@ -139,7 +139,7 @@ def _steady(bearing: Bearing, state: JournalState, operator, n_theta: int, n_z: 
 
 
 def _solution(bearing, state, op, s: CompressibleSolve, method: str) -> FilmSolution:
-    sol = _film_solution(bearing, state, op, s.P, s.phi, s.result, s.flows, method)
+    sol = jfo_film_solution(bearing, state, op, s.P, s.phi, s.result, s.flows, method)
     return replace(sol, density=s.density)
 
 
@@ -198,7 +198,7 @@ class CompressibleJFOFilm(JFOFilm):
         op = self._operator(state)
         cv = film_volumes(op.mesh)
         old, = self._carried(cv, state, self.content)
-        H = _content(cv, state.eps)
+        H = full_content(cv, state.eps)
         s = _balance(self.bearing, op, state.eps, transport(cv, state.eps, state.omega),
                      12.0 * H / dt, 12.0 * old / dt, self.grooves, self.ambient_pressure,
                      self.beta, self.cavitated)
@@ -224,7 +224,7 @@ class CompressibleJFOFilm(JFOFilm):
         fields), which this film does not take."""
         op = self._operator(state)
         mesh = op.mesh
-        H = _content(film_volumes(mesh), state.eps)
+        H = full_content(film_volumes(mesh), state.eps)
         P0, _ = boundary_values(self.bearing, mesh, self.grooves, self.ambient_pressure)
         closed = self.cavitated & (self.content > H)
         closed[mesh.fixed] = False

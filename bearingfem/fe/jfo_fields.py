@@ -31,7 +31,7 @@ from ..fields import FilmFields, check_tilt, tilted_gap
 from ..film import film_thickness
 from .assembly import FilmOperator
 from .general import film_system, general_film
-from .jfo_balance import _content, cos_integral, film_volumes
+from .jfo_balance import full_content, cos_integral, film_volumes
 from .multilevel import prolongation
 from .volumes import ControlVolumes, transport_matrix
 
@@ -73,7 +73,7 @@ class BalanceFilm:
 def rigid_balance_film(op: FilmOperator, state: JournalState) -> BalanceFilm:
     """The rigid cylinder's film of ``state`` (exact integrals)."""
     cv = film_volumes(op.mesh)
-    return BalanceFilm(values=op.values(state.eps), content=_content(cv, state.eps),
+    return BalanceFilm(values=op.values(state.eps), content=full_content(cv, state.eps),
                        face=film_thickness(cv.face, state.eps) * cv.width,
                        squeeze=state.eps_dot * cos_integral(cv))
 

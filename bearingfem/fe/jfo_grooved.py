@@ -31,7 +31,7 @@ from ..scales import force_factor
 from ..solution import FilmSolution, film_solution
 from .assembly import FilmOperator
 from .grooved import GroovedOperator, rotated, groove_operator_for, grooved_operator
-from .jfo_balance import _solve, film_volumes
+from .jfo_balance import solve_film_balance, film_volumes
 from .jfo_fields import BalanceFilm
 from .jfo_steady import COARSEST_FREE_NODES, coarser_mesh, prolonged_cavity, jfo_shear
 
@@ -51,7 +51,7 @@ def grooved_balance_film(gop: GroovedOperator, state: JournalState) -> BalanceFi
                        squeeze=state.eps_dot * cos_integral)
 
 
-def _films(state: JournalState):
+def grooved_films(state: JournalState):
     """op -> the balance film of ``state`` on that bearing-fixed mesh (tables cached)."""
     return lambda op: grooved_balance_film(grooved_operator(op), state)
 
@@ -64,7 +64,7 @@ def _steady(bearing, state, n_theta, n_z, grooves, ambient, cavitated0=None):
     """(BalanceSolve, op) of the steady film; a cold start takes its first cavitated set
     from the same film on a mesh half as fine (recursively), as the moving mesh's does."""
     op = _operator(bearing, grooves)(n_theta, n_z)
-    f = _films(state)(op)
+    f = grooved_films(state)(op)
     cv = film_volumes(op.mesh)
     warm = 3
     if cavitated0 is None and len(op.mesh.free) > COARSEST_FREE_NODES:
@@ -72,16 +72,17 @@ def _steady(bearing, state, n_theta, n_z, grooves, ambient, cavitated0=None):
         cavitated0 = prolonged_cavity(opc, op, bc.P, bc.phi)
         warm = 12
     try:
-        b = _solve(bearing, op, state.eps, f.transport(cv, state.wedge_speed),
-                   12.0 * f.squeeze, np.zeros(op.mesh.ndofs), grooves, ambient, cavitated0,
-                   warm, values=f.values)
+        b = solve_film_balance(bearing, op, state.eps, f.transport(cv, state.wedge_speed),
+                               12.0 * f.squeeze, np.zeros(op.mesh.ndofs), grooves, ambient, cavitated0,
+                               warm, values=f.values)
     except ConvergenceError as e:
         raise e.at(f"steady grooved JFO film {n_theta}x{n_z}, eps = {state.eps:.6g}") \
             from None
     return b, op
 
 
-def _force(bearing: Bearing, op: FilmOperator, P: np.ndarray, gamma: float) -> tuple:
+def grooved_jfo_force_of(bearing: Bearing, op: FilmOperator, P: np.ndarray,
+                         gamma: float) -> tuple:
     """(F_r, F_t) [N]: the integrals in phi rotated into the line of centres."""
     F = force_factor(bearing, True) * rotated(op.force_integrals(P), gamma)
     return float(F[0]), float(F[1])
@@ -92,7 +93,7 @@ def grooved_jfo_force(bearing: Bearing, state: JournalState, n_theta: int, n_z: 
     """(F_r, F_t) [N] of the steady grooved JFO film and its solve record (light path);
     ``cavitated0``: a nearby state's cavitated set on this mesh."""
     b, op = _steady(bearing, state, n_theta, n_z, grooves, ambient_pressure, cavitated0)
-    return _force(bearing, op, b.P, state.gamma), b.result
+    return grooved_jfo_force_of(bearing, op, b.P, state.gamma), b.result
 
 
 def grooved_jfo_solution(bearing: Bearing, state: JournalState, op: FilmOperator, b,
@@ -104,7 +105,7 @@ def grooved_jfo_solution(bearing: Bearing, state: JournalState, op: FilmOperator
                                        film_thickness(op.qp_theta - state.gamma, state.eps))
     return film_solution(
         bearing, state, P, op.mesh.theta - state.gamma, op.mesh.zeta,
-        _force(bearing, op, P, state.gamma), friction=friction,
+        grooved_jfo_force_of(bearing, op, P, state.gamma), friction=friction,
         leakage=b.flows.side_leakage, flow_in=b.flows.flow_in,
         cavitated_fraction=cav_fraction, record=b.result, method=method, cavitation="jfo",
         half=True, mesh=op.mesh, fraction=phi, mass_balance=b.flows.balance)

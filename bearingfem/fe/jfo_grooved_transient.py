@@ -14,7 +14,7 @@ from ..solution import FilmSolution
 from .grooved import groove_operator_for, grooved_operator
 from .jfo import JFOFilm
 from .jfo_balance import FilmAdvance, boundary_values, kept_set_pressure
-from .jfo_grooved import _films, _force, grooved_jfo_solution
+from .jfo_grooved import grooved_films, grooved_jfo_force_of, grooved_jfo_solution
 
 __all__ = ["GroovedJFOFilm"]
 
@@ -38,7 +38,7 @@ class GroovedJFOFilm(JFOFilm):
         self.content = self.fraction * self._full_content(op, state, self.time)
 
     def _films(self, state: JournalState, time: float):
-        return _films(state)
+        return grooved_films(state)
 
     def _solution(self, state: JournalState, a: FilmAdvance, dt: float) -> FilmSolution:
         return grooved_jfo_solution(self.bearing, state, a.op, a.solve)
@@ -55,4 +55,4 @@ class GroovedJFOFilm(JFOFilm):
                           shape=op.shape)
         load = gop.load(state.eps, state.eps_dot, state.wedge_speed, state.gamma)
         P, cav = kept_set_pressure(K, load, P, mesh, self.cavitated, warm)
-        return _force(self.bearing, op, P, state.gamma), cav
+        return grooved_jfo_force_of(self.bearing, op, P, state.gamma), cav

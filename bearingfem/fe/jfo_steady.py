@@ -15,7 +15,7 @@ from ..solution import FilmSolution, film_solution
 from ..solvers.jfo import JFOResult
 from .assembly import FilmOperator
 from .general import film_moment
-from .jfo_balance import (JFOFlows, cos_integral, _prolongation, _solve, transport,
+from .jfo_balance import (JFOFlows, cos_integral, mesh_prolongation, solve_film_balance, transport,
                           film_volumes)
 
 __all__ = ["solve_jfo", "jfo_force"]
@@ -35,7 +35,7 @@ def jfo_shear(bearing, omega: float, op: FilmOperator, P, phi, gap, viscosity=1.
     return friction, float(np.sum(area * (1.0 - phi > 1e-12)) / np.sum(area))
 
 
-def _film_solution(bearing, state, op: FilmOperator, P, phi, res: JFOResult,
+def jfo_film_solution(bearing, state, op: FilmOperator, P, phi, res: JFOResult,
                    flows: JFOFlows, method: str, film=None) -> FilmSolution:
     """Forces, friction and the rest of a JFO film (P >= 0 is the pressure everywhere);
     ``film``: its :class:`~bearingfem.fe.jfo_fields.BalanceFilm` on fields (None: the
@@ -68,10 +68,10 @@ def coarser_mesh(n_theta: int, n_z: int) -> tuple:
 def prolonged_cavity(coarse: FilmOperator, fine: FilmOperator, P, phi):
     """Cavitated set (bool per node) on ``fine`` from the film (P, phi) solved on
     ``coarse``: where the prolonged universal variable P - (1 - phi) is < 0."""
-    return (_prolongation(coarse.mesh, fine.mesh) @ (P - (1.0 - phi))) < 0.0
+    return (mesh_prolongation(coarse.mesh, fine.mesh) @ (P - (1.0 - phi))) < 0.0
 
 
-def _steady(bearing: Bearing, state: JournalState, operator, n_theta, n_z, grooves,
+def steady_jfo(bearing: Bearing, state: JournalState, operator, n_theta, n_z, grooves,
             ambient, cavitated0=None, film=None):
     """Steady film on the mesh ``operator(n_theta, n_z)``. A cold start takes its first
     cavitated set from the same film on a mesh half as fine (recursively): the fronts then
@@ -88,12 +88,12 @@ def _steady(bearing: Bearing, state: JournalState, operator, n_theta, n_z, groov
         T, storage = f.transport(cv, state.wedge_speed), 12.0 * f.squeeze
     warm = 3
     if cavitated0 is None and len(op.mesh.free) > COARSEST_FREE_NODES:
-        Pc, phic, _, _, opc, _ = _steady(bearing, state, operator, *coarser_mesh(n_theta, n_z),
+        Pc, phic, _, _, opc, _ = steady_jfo(bearing, state, operator, *coarser_mesh(n_theta, n_z),
                                          grooves, ambient, film=film)
         cavitated0 = prolonged_cavity(opc, op, Pc, phic)
         warm = 12
     try:
-        b = _solve(bearing, op, state.eps, T, storage, np.zeros(op.mesh.ndofs), grooves,
+        b = solve_film_balance(bearing, op, state.eps, T, storage, np.zeros(op.mesh.ndofs), grooves,
                    ambient, cavitated0, warm, values=None if f is None else f.values)
     except ConvergenceError as e:
         raise e.at(f"steady JFO film {n_theta}x{n_z}, eps = {state.eps:.6g}") from None
@@ -106,15 +106,15 @@ def solve_jfo(bearing: Bearing, state: JournalState, operator, n_theta: int, n_z
     film operator of a mesh; arguments checked by ``solve_reynolds``); ``film``: a
     function of the operator giving the film on fields
     (:func:`~bearingfem.fe.jfo_fields.field_balance_film`), None the rigid cylinder."""
-    P, phi, res, flows, op, f = _steady(bearing, state, operator, n_theta, n_z, grooves,
+    P, phi, res, flows, op, f = steady_jfo(bearing, state, operator, n_theta, n_z, grooves,
                                         ambient_pressure, film=film)
-    return _film_solution(bearing, state, op, P, phi, res, flows, "fem-P1/jfo", f)
+    return jfo_film_solution(bearing, state, op, P, phi, res, flows, "fem-P1/jfo", f)
 
 
 def jfo_force(bearing: Bearing, state: JournalState, operator, n_theta: int, n_z: int,
               grooves=(), ambient_pressure: float = 0.0, cavitated0=None):
     """(F_r, F_t) [N] of the steady JFO film and its solve record (light path)."""
-    P, _, res, _, op, _ = _steady(bearing, state, operator, n_theta, n_z, grooves,
+    P, _, res, _, op, _ = steady_jfo(bearing, state, operator, n_theta, n_z, grooves,
                                   ambient_pressure, cavitated0)
     ic, is_ = op.force_integrals(P)
     k = force_factor(bearing, op.mesh.half)

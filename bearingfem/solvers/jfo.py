@@ -26,7 +26,7 @@ import scipy.sparse as sp
 
 from ..errors import ConvergenceError
 from .cavitation import active_set_iterations
-from .jfo_sets import SetSolver, _lu, set_matrix  # noqa: F401 (tests import them here)
+from .jfo_sets import SetSolver, set_lu, set_matrix  # noqa: F401 (tests import them here)
 from .linsolve import principal_block
 
 __all__ = ["JFOResult", "FirstSet", "jfo_solve", "solve_balance", "upwind_transport"]
@@ -110,7 +110,7 @@ def _fischer_burmeister(K: sp.csc_matrix, A: sp.csc_matrix, b: np.ndarray, P: np
         rhs = -F1 * b_scale \
             - A @ np.where(p_type, F2 / np.where(p_type, beta, 1.0), 0.0) \
             + K @ np.where(p_type, 0.0, F2 / np.where(p_type, 1.0, alpha))
-        x = _lu(J).solve(rhs)
+        x = set_lu(J).solve(rhs)
         dP = np.where(p_type, x, (beta * x - F2) / np.where(p_type, 1.0, alpha))
         dphi = np.where(p_type, (alpha * x + F2) / np.where(p_type, beta, 1.0), x)
         step = 1.0

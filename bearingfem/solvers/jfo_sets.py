@@ -14,7 +14,7 @@ from .blocksolve import BORDERED_MAX_CHANGES
 __all__: list = []
 
 
-def _lu(J: sp.csc_matrix):
+def set_lu(J: sp.csc_matrix):
     """LU of a set's matrix. Its columns are those of K (an M-matrix) or of the transport
     and storage (positive diagonal, column sums >= 0): diagonally dominant by columns, so
     diagonal pivots are stable and the symmetric fill-reducing ordering of the film
@@ -82,7 +82,7 @@ class SetSolver:
                 x = self._corrected(cavitated, changed, rhs)
                 if x is not None:
                     return x
-        self.lu = _lu(set_matrix(self.K, self.A, cavitated, self.stacked))
+        self.lu = set_lu(set_matrix(self.K, self.A, cavitated, self.stacked))
         self.base = cavitated.copy()
         self.factorisations += 1
         return self.lu.solve(rhs)
