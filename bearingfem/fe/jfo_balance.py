@@ -202,6 +202,7 @@ def step_balance(bearing: Bearing, op: FilmOperator, state: JournalState, dt: fl
                 return None
             return FirstSet(up @ (b.P - (1.0 - b.phi)) < 0.0, b.result.iterations,
                             b.result.factorisations)
-    b = solve_film_balance(bearing, op, state.eps, T, 12.0 * H / dt, 12.0 * old / dt, grooves, ambient,
-               cavitated, start=start, values=None if f is None else f.values)
+    b = solve_film_balance(bearing, op, state.eps, T, 12.0 * H / dt, 12.0 * old / dt,
+                           grooves, ambient, cavitated, start=start,
+                           values=None if f is None else f.values)
     return FilmAdvance(op, b, b.phi * H)

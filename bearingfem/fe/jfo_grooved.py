@@ -73,8 +73,8 @@ def _steady(bearing, state, n_theta, n_z, grooves, ambient, cavitated0=None):
         warm = 12
     try:
         b = solve_film_balance(bearing, op, state.eps, f.transport(cv, state.wedge_speed),
-                               12.0 * f.squeeze, np.zeros(op.mesh.ndofs), grooves, ambient, cavitated0,
-                               warm, values=f.values)
+                               12.0 * f.squeeze, np.zeros(op.mesh.ndofs), grooves, ambient,
+                               cavitated0, warm, values=f.values)
     except ConvergenceError as e:
         raise e.at(f"steady grooved JFO film {n_theta}x{n_z}, eps = {state.eps:.6g}") \
             from None

@@ -19,8 +19,8 @@ import scipy.sparse as sp
 
 from .linsolve import factorise, pcg, solve_spd
 
-__all__ = ["BlockSolver", "PinnedFactor", "pinned", "bordered_solve", "inactive_solve", "dense_block_solve",
-           "DENSE_DOFS", "BORDERED_MAX_CHANGES"]
+__all__ = ["BlockSolver", "PinnedFactor", "pinned", "bordered_solve", "inactive_solve",
+           "dense_block_solve", "DENSE_DOFS", "BORDERED_MAX_CHANGES"]
 
 #: Up to this many dofs, dense LAPACK solves of the inactive block beat sparse factors.
 DENSE_DOFS = 128
