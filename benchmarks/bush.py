@@ -14,14 +14,13 @@ shared: compare ratios within one run).
 from __future__ import annotations
 
 import argparse
-import time
 
 import numpy as np
 
 from bearingfem import ElasticBush
 from bearingfem.elastic import bush_compliance
 
-from .film_solve import best_time
+from .common import best_of
 
 RADIUS, LENGTH = 0.010, 0.004
 BRONZE = dict(outer_radius=0.016, modulus=110e9, poisson=0.34)
@@ -46,9 +45,9 @@ def main(argv=None):
           f"{'w end [um]':>11}")
     built = {}
     for model in ("ring", "solid"):
-        t = time.perf_counter()
-        c = bush_compliance(ElasticBush(**BRONZE, model=model), RADIUS, LENGTH, n_theta, n_z)
-        build = time.perf_counter() - t
+        t = best_of(lambda: bush_compliance(ElasticBush(**BRONZE, model=model), RADIUS, LENGTH,
+                                            n_theta, n_z))
+        c, build = t.out, t.wall
         w = c.deflection(p)
         built[model] = (c, w)
         print(f"{model:6} {build:10.2f} {w.max() * 1e6:11.2f} {w[0, n_z // 2] * 1e6:11.2f} "
@@ -58,15 +57,15 @@ def main(argv=None):
     c, w = built["solid"]
     n = n_theta * n_z
     dense = c.matrix()
-    t_fft = best_time(lambda: c.deflection(p), args.repeat)[0]
-    t_dense = best_time(lambda: dense @ p.ravel(), args.repeat)[0]
+    t_fft = best_of(lambda: c.deflection(p), args.repeat).wall
+    t_dense = best_of(lambda: dense @ p.ravel(), args.repeat).wall
     print(f"\nsolid, full operator (N = {n}): FFT apply {t_fft * 1e6:.0f} us, dense "
           f"matvec {t_dense * 1e6:.0f} us (ratio {t_dense / t_fft:.1f})")
     print(f"{'vectors':>8} {'operator':>10} {'error':>10} {'apply/FFT':>10}")
     for k in sorted({8, 16, 32, 64, 128, 256, 512, n // 2, n} & set(range(1, n + 1))):
         reduced = c.reduced(k)
         err = np.abs(reduced.deflection(p) - w).max() / np.abs(w).max()
-        t_red = best_time(lambda: reduced.deflection(p), args.repeat)[0]
+        t_red = best_of(lambda: reduced.deflection(p), args.repeat).wall
         print(f"{reduced.n_vectors:8d} {reduced.operator_error:10.2e} {err:10.2e} "
               f"{t_red / t_fft:10.2f}")
         rows.append(dict(model="solid-reduced", vectors=reduced.n_vectors,

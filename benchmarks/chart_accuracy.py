@@ -1,5 +1,5 @@
 """Accuracy against time of the grooved design chart (Lund & Thomsen's two-groove bearing,
-S 10 .. 0.01, 20 points; benchmarks/grooved.py's bearing).
+S 10 .. 0.01, 20 points; benchmarks/grooved.py's bearing, in benchmarks/common.py).
 
     python -m benchmarks.chart_accuracy [--quick]
 
@@ -15,13 +15,12 @@ a theta-graded mesh (the "fem" model's ``grading``, from
 from __future__ import annotations
 
 import argparse
-import time
 
 import numpy as np
 
-from bearingfem.design import chart_grading, design_chart
+from bearingfem.design import chart_grading
 
-from . import grooved
+from .common import TWO_GROOVE_BEARING, TWO_GROOVE_OMEGA, best_of, two_groove_chart
 
 MESHES = [(24, 4), (48, 8), (96, 8), (96, 16), (192, 8), (192, 16)]
 #: theta-graded meshes (:func:`bearingfem.design.chart_grading`: cells towards the heavy
@@ -31,11 +30,9 @@ REFERENCE = (384, 32)
 
 
 def chart(mesh, grading=None):
-    grooved.clear_caches()
-    c0 = time.process_time()
-    ch = design_chart(grooved.BEARING, grooved.OMEGA, model="fem", grading=grading,
-                      **grooved.fe_options(mesh))
-    return ch, time.process_time() - c0
+    """(the chart on ``mesh``, its cold CPU time [s])."""
+    t = best_of(lambda: two_groove_chart(mesh, grading=grading), cold=True)
+    return t.out, t.cpu
 
 
 def errors(ch, ref):
@@ -63,7 +60,7 @@ def main(argv=None):
     print(f"{'mesh':10s} {'CPU [s]':>8s} {'pos. all':>9s} {'pos. S<.1':>9s} {'K,B all':>9s} "
           f"{'K,B S<.1':>9s} {'K,B S>=.1':>9s}")
     rows = []
-    grading = chart_grading(grooved.BEARING, grooved.OMEGA)
+    grading = chart_grading(TWO_GROOVE_BEARING, TWO_GROOVE_OMEGA)
     runs = [(m, None) for m in meshes] + [(m, grading) for m in
                                           (GRADED[:2] if args.quick else GRADED)]
     for mesh, g in runs:

@@ -17,34 +17,17 @@ iterations over all continuation steps.
 from __future__ import annotations
 
 import argparse
-import time
 
 import numpy as np
 
-from bearingfem import ElasticBush, JournalState, solve_reynolds
+from bearingfem import ElasticBush, solve_reynolds
 from bearingfem.bearing import seed_bearing
 from bearingfem.elastic import bush_compliance
 from bearingfem.lubricant import Lubricant
 
-BRONZE = dict(outer_radius=0.016, modulus=110e9, poisson=0.34)
+from .common import BRONZE, HEAVY, NEAR, best_of, mid_film
+
 OIL = Lubricant(viscosity=0.0117, barus=2e-8, density="dowson-higginson")
-HEAVY = JournalState(eps=0.995, gamma=0.0, omega=250.0)
-NEAR = JournalState(eps=0.9955, gamma=-0.01, omega=250.0)
-
-
-def timed(fn, repeat=1):
-    """(result, best wall time [s] of ``repeat`` calls)."""
-    best = np.inf
-    for _ in range(repeat):
-        t = time.perf_counter()
-        out = fn()
-        best = min(best, time.perf_counter() - t)
-    return out, best
-
-
-def mid_film(sol):
-    """Least film thickness at the mid-plane [m]."""
-    return float(np.min(sol.film_thickness[np.abs(sol.z) < 1e-12]))
 
 
 def main(argv=None):
@@ -56,9 +39,10 @@ def main(argv=None):
     models = ("ring", "solid") if args.solid else ("ring",)
     vectors = (32,) if args.quick else (64, 256)
     b = seed_bearing(0.2)
-    jfo, t_jfo = timed(lambda: solve_reynolds(b, HEAVY, n_theta, n_z, cavitation="jfo",
-                                              ambient_pressure=1e5), repeat=5)
-    rigid, t_rigid = timed(lambda: solve_reynolds(b, HEAVY, n_theta, n_z), repeat=5)
+    t_jfo = best_of(lambda: solve_reynolds(b, HEAVY, n_theta, n_z, cavitation="jfo",
+                                           ambient_pressure=1e5), 5).wall
+    timed = best_of(lambda: solve_reynolds(b, HEAVY, n_theta, n_z), 5)
+    rigid, t_rigid = timed.out, timed.wall
     print(f"seed pin, {n_theta} x {n_z} cells, eps {HEAVY.eps}: rigid JFO solve "
           f"{t_jfo * 1e3:.1f} ms, rigid Reynolds (half mesh) {t_rigid * 1e3:.1f} ms")
     print(f"{'bush':>6} {'compliance':>11} {'oil':>5} {'build[s]':>9} {'cold[s]':>8} "
@@ -67,16 +51,19 @@ def main(argv=None):
     rows = []
     for model in models:
         bush = ElasticBush(model=model, **BRONZE)
-        full, build = timed(lambda: bush_compliance(bush, b.radius, b.length, n_theta,
-                                                    n_z + 1))
+        timed = best_of(lambda: bush_compliance(bush, b.radius, b.length, n_theta,
+                                                n_z + 1))
+        full, build = timed.out, timed.wall
         for kind, comp in [("full", full)] + [(f"modes {k}", full.reduced(k))
                                               for k in vectors]:
             for oil in (None, OIL):
                 kw = dict(bush=comp, lubricant=oil)
-                near, _ = timed(lambda: solve_reynolds(b, NEAR, n_theta, n_z, **kw))
-                cold, t_cold = timed(lambda: solve_reynolds(b, HEAVY, n_theta, n_z, **kw))
-                warm, t_warm = timed(lambda: solve_reynolds(b, HEAVY, n_theta, n_z,
-                                                            start=near, **kw), repeat=3)
+                near = solve_reynolds(b, NEAR, n_theta, n_z, **kw)
+                timed = best_of(lambda: solve_reynolds(b, HEAVY, n_theta, n_z, **kw))
+                cold, t_cold = timed.out, timed.wall
+                timed = best_of(lambda: solve_reynolds(b, HEAVY, n_theta, n_z,
+                                                       start=near, **kw), 3)
+                warm, t_warm = timed.out, timed.wall
                 w = float(np.max(warm.deformation))
                 rows.append(dict(bush=model, compliance=kind, oil=oil is not None,
                                  cold=t_cold, warm=t_warm, ratio=t_warm / t_jfo,

@@ -24,7 +24,7 @@ from bearingfem import ElasticBush, solve_reynolds
 from bearingfem.bearing import seed_bearing
 from bearingfem.elastic import bush_compliance
 
-from .ehd import BRONZE, HEAVY, NEAR, mid_film, timed
+from .common import BRONZE, HEAVY, NEAR, best_of, mid_film
 
 
 def main(argv=None):
@@ -36,10 +36,11 @@ def main(argv=None):
     repeat = 1 if args.quick else 3
     b = seed_bearing(0.2)
     supply = dict(cavitation="jfo", ambient_pressure=1e5)
-    jfo, t_jfo = timed(lambda: solve_reynolds(b, HEAVY, n_theta, n_z, half=False, **supply),
-                       repeat=repeat + 2)
-    _, t_fast = timed(lambda: solve_reynolds(b, HEAVY, n_theta, n_z, **supply),
-                      repeat=repeat + 2)
+    timed = best_of(lambda: solve_reynolds(b, HEAVY, n_theta, n_z, half=False, **supply),
+                    repeat + 2)
+    jfo, t_jfo = timed.out, timed.wall
+    t_fast = best_of(lambda: solve_reynolds(b, HEAVY, n_theta, n_z, **supply),
+                     repeat + 2).wall
     full = bush_compliance(ElasticBush(model="ring", **BRONZE), b.radius, b.length, n_theta,
                            n_z + 1)
     print(f"seed pin, {n_theta} x {n_z} cells, eps {HEAVY.eps}: rigid JFO whole length "
@@ -60,7 +61,8 @@ def main(argv=None):
             ("EHD-JFO warm", lambda: solve_reynolds(b, HEAVY, n_theta, n_z, bush=comp,
                                                     start=near_jfo, **supply)))
         for name, fn in runs:
-            sol, t = timed(fn, repeat=repeat)
+            timed = best_of(fn, repeat)
+            sol, t = timed.out, timed.wall
             rows.append(dict(film=name, compliance=kind, time=t, ratio=t / t_jfo,
                              iterations=sol.iterations, pressure_max=sol.pressure_max,
                              film_mid=mid_film(sol), cavitated=sol.cavitated_fraction,

@@ -26,13 +26,12 @@ import argparse
 
 import numpy as np
 
-from bearingfem import ElasticBush, JournalState, Roughness, solve_reynolds
+from bearingfem import ElasticBush, Roughness, solve_reynolds
 from bearingfem.bearing import seed_bearing
 from bearingfem.elastic import bush_compliance
 
-from .ehd import BRONZE, timed
+from .common import BRONZE, HEAVY, best_of
 
-HEAVY = JournalState(eps=0.995, gamma=0.0, omega=250.0)
 CONTACT_MODULUS = 80.8e9
 SUMMIT_PRODUCT, SUMMIT_RATIO = 0.04, 1e-3      # sigma eta beta, sigma / beta
 
@@ -69,12 +68,13 @@ def main(argv=None):
     kinds = ((("modes 32", full.reduced(32)),) if args.quick else
              (("modes 64", full.reduced(64)), ("full", full)))
     for kind, comp in kinds:
-        ehd, t_ehd = timed(lambda: solve_reynolds(b, HEAVY, n_theta, n_z, bush=comp),
-                           repeat=2)
+        timed = best_of(lambda: solve_reynolds(b, HEAVY, n_theta, n_z, bush=comp), 2)
+        ehd, t_ehd = timed.out, timed.wall
         for sigma in sigmas:
             rough = roughness(sigma)
-            mixed, t_mixed = timed(lambda: solve_reynolds(b, HEAVY, n_theta, n_z, bush=comp,
-                                                          roughness=rough), repeat=2)
+            timed = best_of(lambda: solve_reynolds(b, HEAVY, n_theta, n_z, bush=comp,
+                                                   roughness=rough), 2)
+            mixed, t_mixed = timed.out, timed.wall
             rigid = solve_reynolds(b, HEAVY, n_theta, n_z, roughness=rough)
             row = dict(compliance=kind, sigma=sigma, ehd=t_ehd, mixed=t_mixed,
                        ratio=t_mixed / t_ehd, share=share(mixed), rigid_share=share(rigid),

@@ -17,7 +17,6 @@ from __future__ import annotations
 import argparse
 import contextlib
 import dataclasses
-import time
 
 import numpy as np
 
@@ -26,8 +25,7 @@ from mechanism import load_scene, simulate
 from mechanism.effects import FilmEffect
 from mechanism.result import film_column
 
-from .ehd_run import scene
-from .ehd_step import OILS
+from .common import OILS, best_of, scene
 
 ROUGH = Roughness(sigma=0.2e-6, contact_modulus=80.8e9, elastic_factor=1e-3, friction=0.1)
 #: (name, rtol, relaxation [s], modes, oil)
@@ -54,9 +52,8 @@ def states_run(turns, nt, nz, rtol, tau, modes, oil, progress=False):
                film_step=0.0, lubricant=OILS[oil], coupling="states", relaxation=tau,
                roughness=ROUGH)
     sc = dataclasses.replace(sc, run=dataclasses.replace(sc.run, rtol=rtol))
-    t = time.process_time()
-    r = simulate(sc, progress=progress)
-    return r, time.process_time() - t
+    t = best_of(lambda: simulate(sc, progress=progress))
+    return t.out, t.cpu
 
 
 def rigid_jfo(turns, nt, nz):
@@ -65,9 +62,7 @@ def rigid_jfo(turns, nt, nz):
                                                            n_theta=nt, n_z=nz))
     sc = dataclasses.replace(sc, lubrication=lub, run=dataclasses.replace(
         sc.run, turns=turns, record_from_turn=0.0))
-    t = time.process_time()
-    simulate(sc, progress=False)
-    return time.process_time() - t
+    return best_of(lambda: simulate(sc, progress=False)).cpu
 
 
 def last_turn(r, turns):

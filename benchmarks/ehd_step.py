@@ -20,17 +20,12 @@ import dataclasses
 
 import numpy as np
 
-from bearingfem import Lubricant
 from bearingfem.ehd.tangent import TangentEHD
 from bearingfem.models import film_model, register
+from mechanism import simulate
 from mechanism.result import film_column
 
-from .ehd_run import scene, timed_run
-
-MU0 = 0.0117
-OILS = {"barus": Lubricant(viscosity=MU0, barus=2e-8, density="dowson-higginson"),
-        "roelands": Lubricant(viscosity=MU0, roelands=0.751, density="dowson-higginson"),
-        "iso": Lubricant(viscosity=MU0, density="dowson-higginson")}
+from .common import OILS, best_of, scene
 
 
 #: The "fem-ehd" film with the kept film moved along its tangent (registered here only:
@@ -45,7 +40,7 @@ def run(oil, film_step, turns, nt, nz, modes, coupling="kept", speed=250.0):
                film_step=film_step, lubricant=OILS[oil])
     sc = dataclasses.replace(sc, lubrication=dataclasses.replace(
         sc.lubrication, model=COUPLINGS[coupling]))
-    return timed_run(sc)
+    return best_of(lambda: simulate(sc, progress=False))
 
 
 def distance(fine, coarse, x, y):
@@ -75,8 +70,8 @@ def main(argv=None):
     for oil in a.oils:
         runs = []
         for fs in a.steps:
-            r, t = run(oil, fs, a.turns, nt, nz, a.modes, a.coupling)
-            runs.append((fs, r, t))
+            t = run(oil, fs, a.turns, nt, nz, a.modes, a.coupling)
+            runs.append((fs, t.out, t.wall))
         for i, (fs, r, t) in enumerate(runs):
             rec = r.film_record
             p = float(np.nanmax(film_column(rec, "pressure_max"))) if len(rec) else np.nan

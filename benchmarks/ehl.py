@@ -17,7 +17,7 @@ import numpy as np
 from bearingfem import Lubricant, line_contact
 from bearingfem.ehl.halfspace import LineCompliance
 
-from .film_solve import best_time
+from .common import best_of
 
 OIL = Lubricant(viscosity=0.0117, barus=2e-8, density="dowson-higginson")
 CONTACT = dict(radius=0.02, reduced_modulus=2.26e11, lubricant=OIL, mean_speed=1.0)
@@ -27,7 +27,8 @@ def nodes_rows(loads, grids, repeat):
     rows = []
     for w in loads:
         for n in grids:
-            t, r = best_time(lambda: line_contact(**CONTACT, load_per_length=w, nodes=n), repeat)
+            timed = best_of(lambda: line_contact(**CONTACT, load_per_length=w, nodes=n), repeat)
+            t, r = timed.wall, timed.out
             rows.append(dict(load=w, nodes=n, M=r.moes_M, L=r.moes_L, time=t,
                              iterations=r.iterations, steps=r.continuation_steps,
                              h_c=r.film_central, h_min=r.film_min,
@@ -41,8 +42,8 @@ def deflection_rows(sizes, repeat):
         c = LineCompliance(n, 6.0 / n)
         P = np.random.default_rng(0).random(n)
         K = c.matrix()
-        t_fft, _ = best_time(lambda: c.deflection(P), repeat * 5)
-        t_dense, _ = best_time(lambda: K @ P, repeat * 5)
+        t_fft = best_of(lambda: c.deflection(P), repeat * 5).wall
+        t_dense = best_of(lambda: K @ P, repeat * 5).wall
         rows.append(dict(nodes=n, fft=t_fft, dense=t_dense))
     return rows
 

@@ -34,7 +34,7 @@ from bearingfem.fe.jfo_fields import balance_films
 from bearingfem.fe.kernel import fe_operator, fe_pressure
 from bearingfem.fields import FilmFields
 
-from .film_solve import best_time
+from .common import best_of
 
 BEARING = seed_bearing(1.0)
 STATE = JournalState(eps=0.6, omega=100.0)
@@ -49,11 +49,13 @@ def row(n_theta, n_z, element, repeat):
         system = film_system(op, spec.on(op, STATE), STATE.wedge_speed, STATE.eps)
         return fe_pressure(op, STATE, "reynolds", system=system)
 
-    t_fast, fast = best_time(lambda: fe_pressure(op, STATE, "reynolds"), repeat)
-    t_gen, gen = best_time(general, repeat)
-    t_asm, _ = best_time(lambda: film_system(op, spec.on(op, STATE), STATE.wedge_speed,
-                                               STATE.eps),
-                         repeat)
+    timed = best_of(lambda: fe_pressure(op, STATE, "reynolds"), repeat)
+    t_fast, fast = timed.wall, timed.out
+    timed = best_of(general, repeat)
+    t_gen, gen = timed.wall, timed.out
+    t_asm = best_of(lambda: film_system(op, spec.on(op, STATE), STATE.wedge_speed,
+                                          STATE.eps),
+                    repeat).wall
     gap = float(np.max(np.abs(gen.pressure - fast.pressure)) / np.max(fast.pressure))
     return dict(mesh=f"{n_theta}x{n_z}", element=element, dofs=op.mesh.ndofs,
                 fast=t_fast, general=t_gen, assembly=t_asm, ratio=t_gen / t_fast, gap=gap)
@@ -73,11 +75,13 @@ def jfo_row(n_theta, n_z, repeat):
         film = balance_films(BEARING, STATE, fine, spec)
         return solve_jfo(BEARING, STATE, operator, n_theta, n_z, (), AMBIENT, film)
 
-    t_fast, fast = best_time(lambda: solve_reynolds(
+    timed = best_of(lambda: solve_reynolds(
         BEARING, STATE, n_theta, n_z, cavitation="jfo", ambient_pressure=AMBIENT,
         half=False), repeat)
-    t_gen, gen = best_time(general, repeat)
-    t_asm, _ = best_time(lambda: balance_films(BEARING, STATE, fine, spec), repeat)
+    t_fast, fast = timed.wall, timed.out
+    timed = best_of(general, repeat)
+    t_gen, gen = timed.wall, timed.out
+    t_asm = best_of(lambda: balance_films(BEARING, STATE, fine, spec), repeat).wall
     gap = float(np.max(np.abs(gen.pressure - fast.pressure)) / fast.pressure_max)
     return dict(mesh=f"{n_theta}x{n_z}", element="JFO", dofs=fine.mesh.ndofs, fast=t_fast,
                 general=t_gen, assembly=t_asm, ratio=t_gen / t_fast, gap=gap)

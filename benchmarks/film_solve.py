@@ -21,7 +21,6 @@ from __future__ import annotations
 import argparse
 import subprocess
 import sys
-import time
 
 import numpy as np
 
@@ -30,16 +29,9 @@ from bearingfem.bearing import seed_bearing
 from bearingfem.solvers.cavitation import active_set, graph_colouring, psor as psor_solve
 from bearingfem.fe.kernel import fe_operator, fe_pressure
 
+from .common import best_of
+
 BEARING = seed_bearing(1.0)
-
-
-def best_time(f, repeat):
-    times = []
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        out = f()
-        times.append(time.perf_counter() - t0)
-    return min(times), out
 
 
 PSOR_OMEGAS = (1.8, 1.9, 1.95, 1.97)
@@ -51,12 +43,15 @@ def measure(n_theta, n_z, eps, repeat=3, psor=True):
     op = fe_operator(BEARING, s, n_theta, n_z)
     K = op.free_stiffness(eps)
     b = op.load(eps, 0.0, s.wedge_speed)[op.mesh.free]
-    t_lin, _ = best_time(lambda: fe_pressure(op, s, "none"), repeat)
-    t_cold, cold = best_time(lambda: active_set(K, b), repeat)
-    t_nest, nest = best_time(lambda: fe_pressure(op, s, "reynolds"), repeat)
+    t_lin = best_of(lambda: fe_pressure(op, s, "none"), repeat).wall
+    timed = best_of(lambda: active_set(K, b), repeat)
+    t_cold, cold = timed.wall, timed.out
+    timed = best_of(lambda: fe_pressure(op, s, "reynolds"), repeat)
+    t_nest, nest = timed.wall, timed.out
     prev = fe_pressure(op, near, "reynolds")
-    t_warm, warm = best_time(lambda: fe_pressure(op, s, "reynolds", active0=prev.active,
-                                                 factor=prev.factor), repeat)
+    timed = best_of(lambda: fe_pressure(op, s, "reynolds", active0=prev.active,
+                                        factor=prev.factor), repeat)
+    t_warm, warm = timed.wall, timed.out
     row = dict(mesh=f"{n_theta}x{n_z}", eps=eps, dofs=len(op.mesh.free), linear_ms=1e3 * t_lin,
                cold_ms=1e3 * t_cold, cold_it=cold.iterations, nested_ms=1e3 * t_nest,
                nested_it=nest.iterations, nested_fact=nest.factorisations,
@@ -65,13 +60,13 @@ def measure(n_theta, n_z, eps, repeat=3, psor=True):
         colours = graph_colouring(K)    # once per mesh, like the assembly: not timed
         runs = {}
         for omega in PSOR_OMEGAS if psor == "all" else PSOR_OMEGAS[:1]:
-            runs[omega] = best_time(lambda: psor_solve(K, b, omega=omega, colours=colours), 1)
-        t_psor, ps = runs[PSOR_OMEGAS[0]]
-        best = min(runs, key=lambda om: runs[om][0])
+            runs[omega] = best_of(lambda: psor_solve(K, b, omega=omega, colours=colours))
+        t_psor, ps = runs[PSOR_OMEGAS[0]].wall, runs[PSOR_OMEGAS[0]].out
+        best = min(runs, key=lambda om: runs[om].wall)
         row.update(psor_ms=1e3 * t_psor, psor_it=ps.iterations, psor_res=ps.residual,
                    psor_gap=float(np.max(np.abs(ps.pressure - nest.pressure[op.mesh.free]))
                                   / nest.pressure.max()),
-                   psor_best_ms=1e3 * runs[best][0], psor_best_omega=best)
+                   psor_best_ms=1e3 * runs[best].wall, psor_best_omega=best)
     for key in ("cold_ms", "nested_ms", "warm_ms"):
         row[key.replace("_ms", "/lin")] = row[key] / row["linear_ms"]
     if psor:
@@ -90,8 +85,12 @@ def print_table(rows):
 
 def peak_memory(n_theta, n_z):
     """Peak resident memory [MB] of a fresh process doing one cavitated solve."""
-    code = ("import resource; from benchmarks.film_solve import *; "
-            f"s = JournalState(0.8, 0.0, 0.0, 0.0, 100.0); op = fe_operator(BEARING, s, {n_theta}, {n_z}); "
+    # the toolkit's solve alone: the benchmarks' shared module (mechanism, design) not loaded
+    code = ("import resource; from bearingfem import JournalState; "
+            "from bearingfem.bearing import seed_bearing; "
+            "from bearingfem.fe.kernel import fe_operator, fe_pressure; "
+            f"s = JournalState(0.8, 0.0, 0.0, 0.0, 100.0); "
+            f"op = fe_operator(seed_bearing(1.0), s, {n_theta}, {n_z}); "
             "r = fe_pressure(op, s, 'reynolds'); "
             "print(len(op.mesh.free), r.iterations, resource.getrusage(resource.RUSAGE_SELF).ru_maxrss)")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)

@@ -19,7 +19,7 @@ from bearingfem import Groove, JournalState, fvm_reynolds, solve_reynolds
 from bearingfem.bearing import seed_bearing
 from bearingfem.outputs.tables import write_csv
 
-from .film_solve import best_time
+from .common import best_of
 
 MESHES = ((120, 20), (240, 40), (480, 80))
 
@@ -40,10 +40,11 @@ def main(argv=None):
     for nt, nz in MESHES[:1] if a.quick else MESHES:
         solve = lambda cav: solve_reynolds(b, s, nt, nz, cavitation=cav, grooves=g)  # noqa
         solve("jfo")       # assemble the operators once (cached), for every method alike
-        t_lin, _ = best_time(lambda: solve("none"), a.repeat)
-        t_rey, _ = best_time(lambda: solve("reynolds"), a.repeat)
-        t_jfo, sol = best_time(lambda: solve("jfo"), a.repeat)
-        t_fv, _ = best_time(lambda: fvm_reynolds(b, s, nt, nz, "jfo", grooves=g), a.repeat)
+        t_lin = best_of(lambda: solve("none"), a.repeat).wall
+        t_rey = best_of(lambda: solve("reynolds"), a.repeat).wall
+        timed = best_of(lambda: solve("jfo"), a.repeat)
+        t_jfo, sol = timed.wall, timed.out
+        t_fv = best_of(lambda: fvm_reynolds(b, s, nt, nz, "jfo", grooves=g), a.repeat).wall
         rows.append(dict(mesh=f"{nt}x{nz}", linear_ms=1e3 * t_lin, reynolds_ms=1e3 * t_rey,
                          jfo_ms=1e3 * t_jfo, jfo_over_linear=t_jfo / t_lin,
                          jfo_iterations=sol.iterations, fv_jfo_ms=1e3 * t_fv))

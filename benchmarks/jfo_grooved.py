@@ -17,17 +17,17 @@ from __future__ import annotations
 
 import argparse
 import math
-import time
 
 import numpy as np
 
 from bearingfem import Bearing, Groove, JournalState
-from bearingfem.fe.assembly import fe_operator, film_operator
+from bearingfem.fe.assembly import fe_operator
 from bearingfem.fe.jfo_steady import jfo_force
 from bearingfem.fe.jfo import JFOFilm
 from bearingfem.fe.jfo_grooved import grooved_jfo_force
 from bearingfem.fe.jfo_grooved_transient import GroovedJFOFilm
-from bearingfem.fe.mesh import film_mesh
+
+from .common import best_of
 
 BEARING = Bearing(radius=0.05, length=0.1, clearance=100e-6, viscosity=0.02)
 OMEGA = 3000.0 * math.pi / 30.0
@@ -46,10 +46,10 @@ def fixed(state, nt, nz):
     return grooved_jfo_force(BEARING, state, nt, nz, GROOVES)[0]
 
 
-def timed(route, states, nt, nz):
-    t = time.perf_counter()
-    forces = [route(s, nt, nz) for s in states]
-    return (time.perf_counter() - t) / len(states), np.array(forces)
+def per_state(route, states, nt, nz):
+    """(mean wall time [s] of a new angle, the forces)."""
+    t = best_of(lambda: np.array([route(s, nt, nz) for s in states]))
+    return t.wall / len(states), t.out
 
 
 def main(argv=None):
@@ -63,16 +63,13 @@ def main(argv=None):
           "| moving / fixed | max |dF| / |F| |")
     print("|---|---|---|---|---|---|")
     for nt, nz in MESHES[:1] if a.quick else MESHES:
-        film_operator.cache_clear()
-        film_mesh.cache_clear()
-        t0 = time.perf_counter()
-        fixed(JournalState(eps=0.6, gamma=-0.5, omega=OMEGA), nt, nz)
-        build = time.perf_counter() - t0
+        build = best_of(lambda: fixed(JournalState(eps=0.6, gamma=-0.5, omega=OMEGA), nt, nz),
+                        cold=True).wall
         # angles not seen before by either route (the moving mesh's cache keys on them)
         gammas = -0.4 + 0.37 * np.arange(n_angles) + 1e-3 * nt
         states = [JournalState(eps=0.6, gamma=float(g), omega=OMEGA) for g in gammas]
-        t_fix, f_fix = timed(fixed, states, nt, nz)
-        t_mov, f_mov = timed(moving, states, nt, nz)
+        t_fix, f_fix = per_state(fixed, states, nt, nz)
+        t_mov, f_mov = per_state(moving, states, nt, nz)
         dev = float(np.max(np.abs(f_fix - f_mov)) / np.abs(f_mov).max())
         rows.append(dict(mesh=f"{nt}x{nz}", build_ms=1e3 * build, fixed_ms=1e3 * t_fix,
                          moving_ms=1e3 * t_mov, ratio=t_mov / t_fix, deviation=dev))
@@ -99,9 +96,8 @@ def stepped(film_class, nt, nz, steps, dt=2e-4):
                       grooves=GROOVES)
     states = [JournalState(0.5 + 0.2 * math.sin(60 * k * dt), 12 * math.cos(60 * k * dt),
                            1.0 + 40 * k * dt, 40.0, OMEGA) for k in range(1, steps + 1)]
-    t = time.perf_counter()
-    forces = [film.step(s, dt).force_local for s in states]
-    return (time.perf_counter() - t) / steps, np.array(forces)
+    t = best_of(lambda: np.array([film.step(s, dt).force_local for s in states]))
+    return t.wall / steps, t.out
 
 
 if __name__ == "__main__":

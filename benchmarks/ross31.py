@@ -24,10 +24,10 @@ the newest public source of the engine ROSS 3.1 ships; built once by
   grooves, Reynolds' condition; ROSS's plain bore is one 360 deg land.
 
 Both codes solve Reynolds' equation with Reynolds' (Swift-Stieber) condition, isoviscous.
-Times: one run, wall and CPU of the run with the best wall time of ``--repeat`` (both codes
+Times: one run, the best wall and the best CPU time of ``--repeat`` (both codes
 single-threaded: on a loaded machine CPU time is the cost). Our rows are
-:func:`benchmarks.grooved.ours_rows` (the grooved cases) and the plain bearing's here
-("cold": caches cleared). ROSS's time is the bearing object built and solved as a user
+:func:`benchmarks.common.two_groove_rows` (the grooved cases) and the plain bearing's here
+("cold": the library's caches cleared). ROSS's time is the bearing object built and solved as a user
 does it (for the static film less the K/C solves it always runs); its film solve alone
 (meshes built) is the "warm" column; numba's first call (compile or cache load) is
 printed apart.
@@ -39,64 +39,25 @@ import json
 import math
 import os
 import subprocess
-import time
 from pathlib import Path
 
 import numpy as np
 
-from bearingfem import Bearing
 from bearingfem.design import coefficients, equilibrium
 from bearingfem.design.chart import CHART_SOMMERFELD
 from bearingfem.design.groups import load_from_sommerfeld
-from bearingfem.fe.assembly import film_operator
-from bearingfem.fe.grooved import bearing_fixed_operator
-from bearingfem.fe.mesh import film_mesh
 
 from . import _ross31_env
-from . import design as plain
-from . import grooved
+from .common import (CHART_REFERENCE, PLAIN_BEARING, PLAIN_LOAD, PLAIN_OMEGA, STATIC,
+                     TWO_GROOVE_BEARING, TWO_GROOVE_LOAD, TWO_GROOVE_OMEGA, TWO_GROOVES,
+                     best_of, design_error, design_numbers, force_error, two_groove_chart,
+                     two_groove_rows)
 
-STATIC = (0.6, -0.25 * math.pi)                 # eps, journal angle [rad]
 DESIGN_TARGET = 0.002          # equilibrium + K/C error the comparison asks for
 OURS_PLAIN = [(24, 4), (48, 8), (96, 16)]
 REFERENCE = (192, 32)
 ROSS_STATIC = [(40, 20), (80, 40), (160, 80)]   # elements around each land x axially
 ROSS_DESIGN = [(40, 20), (80, 40)]
-PLAIN = Bearing(radius=0.05, length=0.03, clearance=0.1e-3, viscosity=0.1)
-
-
-def fe_options(mesh, grooves):
-    return dict(n_theta=mesh[0], n_z=mesh[1], element="P2", cavitation="reynolds",
-                grooves=grooves)
-
-
-def clear_caches():
-    film_operator.cache_clear()
-    film_mesh.cache_clear()
-    bearing_fixed_operator.cache_clear()
-
-
-def best_time(f, repeat, cold):
-    """(wall, CPU) [s] of the run with the best wall time, and its result. Our film is
-    single-threaded here (OMP_NUM_THREADS=1), as ROSS's engine is: on a loaded machine CPU
-    time is the cost, wall time what one waits."""
-    best, out = (math.inf, math.inf), None
-    for _ in range(repeat):
-        if cold:
-            clear_caches()
-        t0, c0 = time.perf_counter(), time.process_time()
-        out = f()
-        t = (time.perf_counter() - t0, time.process_time() - c0)
-        best = min(best, t)
-    return best, out
-
-
-def design_numbers(bearing, load, omega, mesh, grooves):
-    """eps, journal angle [rad], K, C (inertial) at equilibrium."""
-    opts = fe_options(mesh, grooves)
-    eq = equilibrium(bearing, load, omega, "fem", **opts)
-    kc = coefficients(bearing, eq.state, "fem", **opts)
-    return eq.eps, eq.state.gamma, np.asarray(kc.K), np.asarray(kc.C)
 
 
 def plain_short_bearing():
@@ -107,16 +68,6 @@ def plain_short_bearing():
     return eq.eps, eq.state.gamma, np.asarray(kc.K), np.asarray(kc.C)
 
 
-def design_error(out, ref):
-    (e, g, K, C), (e0, g0, K0, C0) = out, ref
-    return max(abs(e - e0) / e0, abs(math.remainder(g - g0, 2 * math.pi)),
-               np.abs(K - K0).max() / np.abs(K0).max(), np.abs(C - C0).max() / np.abs(C0).max())
-
-
-def force_error(F, F0):
-    return float(np.linalg.norm(np.subtract(F, F0)) / np.linalg.norm(F0))
-
-
 def ross_design(row):
     """ROSS's design row as (eps, journal angle, K, C) in our inertial frame (the same x, y:
     x horizontal, y up, rotation counter-clockwise; stiffness -dF/dx in both)."""
@@ -125,14 +76,14 @@ def ross_design(row):
 
 
 CASES = dict(
-    two_groove=dict(bearing=grooved.BEARING, load=grooved.LOAD, omega=grooved.OMEGA,
-                    grooves=grooved.GROOVES, pad_centres=[0.5 * math.pi, 1.5 * math.pi],
+    two_groove=dict(bearing=TWO_GROOVE_BEARING, load=TWO_GROOVE_LOAD, omega=TWO_GROOVE_OMEGA,
+                    grooves=TWO_GROOVES, pad_centres=[0.5 * math.pi, 1.5 * math.pi],
                     pad_arcs=[math.radians(160.0)] * 2),
-    plain=dict(bearing=PLAIN, load=plain.LOAD, omega=plain.OMEGA, grooves=(),
+    plain=dict(bearing=PLAIN_BEARING, load=PLAIN_LOAD, omega=PLAIN_OMEGA, grooves=(),
                pad_centres=[math.pi], pad_arcs=[2 * math.pi]),
     # ROSS only, against our periodic film: one 350 deg land, its 10 deg groove at the top,
     # inside the film's cavitated zone under this load (a full-Reynolds plain bore in ROSS)
-    plain_land=dict(bearing=PLAIN, load=plain.LOAD, omega=plain.OMEGA, grooves=(),
+    plain_land=dict(bearing=PLAIN_BEARING, load=PLAIN_LOAD, omega=PLAIN_OMEGA, grooves=(),
                     pad_centres=[1.5 * math.pi], pad_arcs=[math.radians(350.0)], ref="plain"),
 )
 
@@ -168,29 +119,28 @@ def ross_rows(quick, repeat):
 
 def ours_rows(quick, repeat):
     """Our rows and references: the two-groove static film, equilibrium + K/C and chart
-    from :func:`benchmarks.grooved.ours_rows` (the static film at a new journal angle,
+    from :func:`benchmarks.common.two_groove_rows` (the static film at a new journal angle,
     the design and chart with the caches cleared), the plain bearing's here."""
     ref_mesh = (96, 16) if quick else REFERENCE
-    rows, refs = grooved.ours_rows(quick, repeat)
+    rows, refs = two_groove_rows(quick, repeat)
     for r in rows:
         r["code"] = "bearingfem"
         if r["case"] == "two-groove chart":     # ROSS's chart is compared on position only
             r["error"] = r["error_position"]
         r.setdefault("warm_cpu_s", math.nan)   # static: warm_s is wall time
-    refs["chart"] = grooved.chart((48, 8) if quick else grooved.CHART_REFERENCE)
+    refs["chart"] = two_groove_chart((48, 8) if quick else CHART_REFERENCE)
     for name, meshes in (("plain", OURS_PLAIN),):
         c = CASES[name]
         args = (c["bearing"], c["load"], c["omega"])
         refs[name] = design_numbers(*args, ref_mesh, c["grooves"])
         for mesh in meshes[:1] if quick else meshes:
-            cold, out = best_time(lambda: design_numbers(*args, mesh, c["grooves"]), repeat,
-                                  cold=True)
-            warm, _ = best_time(lambda: design_numbers(*args, mesh, c["grooves"]), repeat,
-                                cold=False)
+            cold = best_of(lambda: design_numbers(*args, mesh, c["grooves"]), repeat,
+                           cold=True)
+            warm = best_of(lambda: design_numbers(*args, mesh, c["grooves"]), repeat)
             rows.append(dict(case=f"{name.replace('_', '-')} design", code="bearingfem",
                              mesh=f"P2 {mesh[0]}x{mesh[1]}",
-                             error=design_error(out, refs[name]), time_s=cold[0],
-                             cpu_s=cold[1], warm_cpu_s=warm[1]))
+                             error=design_error(cold.out, refs[name]), time_s=cold.wall,
+                             cpu_s=cold.cpu, warm_cpu_s=warm.cpu))
     return rows, refs
 
 

@@ -13,7 +13,6 @@ import argparse
 import dataclasses
 import importlib
 import statistics
-import time
 from pathlib import Path
 
 import numpy as np
@@ -21,6 +20,8 @@ from scipy.integrate import solve_ivp
 
 from mechanism import load_scene, simulate
 from mechanism.stepping import Segment
+
+from .common import best_of
 
 #: the module (``mechanism.simulate`` as an attribute is the function)
 sim = importlib.import_module("mechanism.simulate")
@@ -50,9 +51,9 @@ def main(argv=None):
         for name, loop in (("own loop", own), ("solve_ivp", _solve_ivp_segment)):
             sim.integrate = loop
             try:
-                start = time.perf_counter()
-                results[name] = simulate(scene, progress=False)
-                times[name].append(time.perf_counter() - start)
+                t = best_of(lambda: simulate(scene, progress=False))
+                results[name] = t.out
+                times[name].append(t.wall)
             finally:
                 sim.integrate = own
     a, b = results["own loop"], results["solve_ivp"]

@@ -24,17 +24,12 @@ What it shows (``python -m studies.lund_thomsen -o out``, table + CSV + figure):
 """
 from __future__ import annotations
 
-import argparse
 import math
-from dataclasses import replace
-from pathlib import Path
 
-import numpy as np
+from .published_coefficients import (K_NAMES, Published, axial_grooves, case,
+                                     largest_entry_error)
 
-from bearingfem import Bearing, Groove
-from bearingfem.design import coefficients, equilibrium
-from bearingfem.design.groups import load_from_sommerfeld
-from bearingfem.outputs.tables import write_csv
+__all__ = ["TABLE", "LUND_THOMSEN", "table_case", "largest_entry_error"]
 
 #: L/D -> rows (S, eps, phi [deg], Kxx, Kxy, Kyx, Kyy, Bxx, Bxy, Byy), as published
 TABLE = {
@@ -49,62 +44,7 @@ TABLE = {
           (0.159, 0.559, 44.33, 2.73, 3.36, -0.48, 1.48, 6.94, 1.78, 1.74),
           (0.108, 0.650, 39.72, 3.45, 3.34, -0.23, 1.44, 6.89, 1.72, 1.43)],
 }
-K_NAMES = ("Kxx", "Kxy", "Kyx", "Kyy")
 B_NAMES = ("Bxx", "Bxy", "Byy")
-GROOVE_WIDTH = math.radians(20.0)
-LOAD_DIRECTION = -0.5 * math.pi          # the load pulls the journal down (-y)
-#: the grooves at the horizontal split, across the load
-GROOVES = (Groove(angle=0.0, width=GROOVE_WIDTH), Groove(angle=math.pi, width=GROOVE_WIDTH))
-OMEGA = 100.0                            # [rad/s]; the groups make the answer independent
-
-
-def bearing(ld: float) -> Bearing:
-    """Any bearing of this L/D: the dimensionless groups do not see the others."""
-    return Bearing(radius=0.05, length=0.1 * ld, clearance=1e-4, viscosity=0.01)
-
-
-def mesh(ld: float, n_theta: int, element: str = "P1") -> dict:
-    """FE options with cells of about equal sides (n_z over the whole length)."""
-    return dict(grooves=GROOVES, n_theta=n_theta, n_z=max(4, round(n_theta * ld / 3)),
-                element=element, cavitation="reynolds")
-
-
-def table_case(ld: float, sommerfeld: float, n_theta: int = 144,
-               element: str = "P1") -> dict:
-    """eps, attitude [deg], dimensionless K (grooves fixed in the bearing), K of grooves
-    turning with the line of centres, and B (Bxx, Bxy, Byy), load frame, at ``sommerfeld``."""
-    b = bearing(ld)
-    opts = mesh(ld, n_theta, element)
-    eq = equilibrium(b, load_from_sommerfeld(b, sommerfeld, OMEGA), OMEGA, "fem",
-                     direction=LOAD_DIRECTION, **opts)
-    kc = coefficients(b, eq.state, "fem", frame="load", **opts)
-    K, B = kc.dimensionless()
-    K_t, _ = replace(kc, K=kc.K - kc.K_groove_shift).dimensionless()
-    return dict(eps=eq.eps, phi=math.degrees(eq.attitude), K=K.ravel(),
-                K_turning=K_t.ravel(), B=B.ravel()[[0, 1, 3]])
-
-
-def largest_entry_error(ours, table) -> float:
-    """max |ours - table| / max |table| over a matrix's entries (Kyx near zero makes
-    per-entry relative errors meaningless)."""
-    return float(np.max(np.abs(np.subtract(ours, table))) / np.max(np.abs(table)))
-
-
-def compare(ld: float, n_theta: int = 144, element: str = "P1", progress=print):
-    rows = []
-    for S, eps0, phi0, *ref in TABLE[ld]:
-        r = table_case(ld, S, n_theta, element)
-        rows.append(dict(ld=ld, S=S, eps_table=eps0, eps=r["eps"], phi_table=phi0,
-                         phi=r["phi"],
-                         **{f"{n}_table": v for n, v in zip(K_NAMES + B_NAMES, ref)},
-                         **dict(zip(K_NAMES, r["K"])),
-                         **{f"{n}_turning": v for n, v in zip(K_NAMES, r["K_turning"])},
-                         **dict(zip(B_NAMES, r["B"])),
-                         K_error=largest_entry_error(r["K"], ref[:4]),
-                         K_turning_error=largest_entry_error(r["K_turning"], ref[:4]),
-                         B_error=largest_entry_error(r["B"], ref[4:])))
-        progress(_line(rows[-1]))
-    return rows
 
 
 def _line(r) -> str:
@@ -113,56 +53,25 @@ def _line(r) -> str:
             f"  B {100 * r['B_error']:5.2f} %  | turning K {100 * r['K_turning_error']:6.1f} %")
 
 
-def convergence(ld: float = 0.5, rows=(0, 4), meshes=(72, 144, 288)):
-    """eps, phi, K and B at three meshes (multiples of 18: the grooves' edges on nodes)."""
-    out = []
-    for i in rows:
-        S = TABLE[ld][i][0]
-        for n in meshes:
-            r = table_case(ld, S, n)
-            out.append((ld, S, n, r["eps"], r["phi"], *r["K"], *r["B"]))
-    return out
+LUND_THOMSEN = Published(
+    name="lund_thomsen", source="Lund & Thomsen (1978)", table=TABLE,
+    grooves=axial_grooves(math.radians(20.0)), b_names=B_NAMES, tag="table", other="turning",
+    errors=True, line=_line,
+    header="ours (table); K, B: largest entry error; turning K: kc.K - kc.K_groove_shift",
+    convergence_rows=(0, 4), convergence_column=0, panels=K_NAMES + B_NAMES + ("phi",),
+    title=("Two-axial-groove bearing (20 deg grooves): K c / W, B c omega / W, load frame;"
+           " solid: grooves fixed in the bearing (kc.K)"))
 
 
-def figure(rows, path):
-    import matplotlib.pyplot as plt
-    fig, axes = plt.subplots(2, 4, figsize=(14, 6.5), sharex=True)
-    for ax, n in zip(axes.ravel(), K_NAMES + B_NAMES + ("phi",)):
-        for ld, colour in ((0.5, "C0"), (1.0, "C1")):
-            sel = [r for r in rows if r["ld"] == ld]
-            eps = [r["eps"] for r in sel]
-            ax.plot(eps, [r[n] for r in sel], "-", color=colour, label=f"ours, L/D = {ld:g}")
-            if n in K_NAMES:
-                ax.plot(eps, [r[n + "_turning"] for r in sel], ":", color=colour,
-                        label="ours, grooves turning with the line of centres")
-            ax.plot([r["eps_table"] for r in sel], [r[n + "_table"] for r in sel], "o",
-                    mfc="none", color=colour, label=f"Lund & Thomsen (1978), L/D = {ld:g}")
-        ax.set_title(n if n != "phi" else "attitude [deg]")
-        ax.grid(alpha=0.3)
-    for ax in axes[1]:
-        ax.set_xlabel("eccentricity ratio")
-    axes[0, 0].legend(fontsize=7)
-    fig.suptitle("Two-axial-groove bearing (20 deg grooves): K c / W, B c omega / W, load frame;"
-                 " solid: grooves fixed in the bearing (kc.K)")
-    fig.tight_layout()
-    fig.savefig(path, dpi=100)
-    plt.close(fig)
+def table_case(ld: float, sommerfeld: float, n_theta: int = 144,
+               element: str = "P1") -> dict:
+    """eps, attitude [deg], dimensionless K (grooves fixed in the bearing), K of grooves
+    turning with the line of centres, and B (Bxx, Bxy, Byy), load frame, at ``sommerfeld``."""
+    return case(ld, sommerfeld, n_theta, LUND_THOMSEN.grooves, element, B_NAMES)
 
 
 def main(argv=None):
-    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    p.add_argument("-o", "--out", type=Path, default=Path("results/lund_thomsen"))
-    p.add_argument("--n-theta", type=int, default=144, help="cells around the film")
-    a = p.parse_args(argv)
-    a.out.mkdir(parents=True, exist_ok=True)
-    print("ours (table); K, B: largest entry error; turning K: kc.K - kc.K_groove_shift")
-    rows = compare(0.5, a.n_theta) + compare(1.0, a.n_theta)
-    write_csv(rows, a.out / "lund_thomsen.csv")
-    print("\nmesh convergence (L/D 0.5): S, n_theta, eps, phi, K (fixed grooves), B")
-    for c in convergence():
-        print(" ".join(f"{v:9.4f}" if isinstance(v, float) else f"{v:>5}" for v in c))
-    figure(rows, a.out / "lund_thomsen.png")
-    print(f"wrote {a.out / 'lund_thomsen.csv'} and {a.out / 'lund_thomsen.png'}")
+    LUND_THOMSEN.main(argv, __doc__.splitlines()[0])
 
 
 if __name__ == "__main__":

@@ -29,17 +29,12 @@ What it shows (``python -m studies.someya -o out``, table + CSV + figure):
 """
 from __future__ import annotations
 
-import argparse
 import math
-from dataclasses import replace
-from pathlib import Path
 
-import numpy as np
+from .published_coefficients import (B_NAMES, K_NAMES, Published, axial_grooves,
+                                     largest_entry_error)
 
-from bearingfem import Bearing, Groove
-from bearingfem.design import coefficients, equilibrium
-from bearingfem.design.groups import load_from_sommerfeld
-from bearingfem.outputs.tables import write_csv
+__all__ = ["TABLE", "SOMEYA", "databook_case", "largest_entry_error"]
 
 #: L/D -> rows (S, eps, phi [deg], Kxx, Kxy, Kyx, Kyy, Bxx, Bxy, Byx, Byy)
 TABLE = {
@@ -69,55 +64,7 @@ TABLE = {
           (0.0195, 0.900, 25.0, 11.9, 5.28, 1.32, 1.80, 10.1, 2.06, 2.06, 0.916),
           (0.00866, 0.950, 18.0, 24.0, 7.81, 2.79, 2.01, 14.2, 2.44, 2.44, 0.791)],
 }
-NAMES = ("Kxx", "Kxy", "Kyx", "Kyy", "Bxx", "Bxy", "Byx", "Byy")
-GROOVE_WIDTH = math.radians(10.0)
-LOAD_DIRECTION = -0.5 * math.pi          # the load pulls the journal down (-y)
-GROOVES = (Groove(angle=0.0, width=GROOVE_WIDTH), Groove(angle=math.pi, width=GROOVE_WIDTH))
-OMEGA = 100.0                            # [rad/s]; the groups make the answer independent
-
-
-def bearing(ld: float) -> Bearing:
-    return Bearing(radius=0.05, length=0.1 * ld, clearance=1e-4, viscosity=0.01)
-
-
-def mesh(ld: float, n_theta: int) -> dict:
-    """FE options with cells of about equal sides (n_z over the half length)."""
-    return dict(grooves=GROOVES, n_theta=n_theta, n_z=max(4, round(n_theta * ld / 3)),
-                cavitation="reynolds")
-
-
-def databook_case(ld: float, sommerfeld: float, n_theta: int = 144) -> dict:
-    """eps, attitude [deg] and dimensionless K (grooves fixed in the bearing), K with the
-    grooves turning with the line of centres, and B, all in the load frame, at the load
-    that gives ``sommerfeld``."""
-    b = bearing(ld)
-    opts = mesh(ld, n_theta)
-    eq = equilibrium(b, load_from_sommerfeld(b, sommerfeld, OMEGA), OMEGA, "fem",
-                     direction=LOAD_DIRECTION, **opts)
-    kc = coefficients(b, eq.state, "fem", frame="load", **opts)
-    K, B = kc.dimensionless()
-    K_t, _ = replace(kc, K=kc.K - kc.K_groove_shift).dimensionless()
-    return dict(eps=eq.eps, phi=math.degrees(eq.attitude), K=K.ravel(), K_turning=K_t.ravel(),
-                B=B.ravel())
-
-
-def largest_entry_error(ours, book) -> float:
-    """max |ours - book| / max |book| over a matrix's entries: entries near zero (Kyx by
-    eps 0.7) make per-entry relative errors meaningless."""
-    return float(np.max(np.abs(np.subtract(ours, book))) / np.max(np.abs(book)))
-
-
-def compare(ld: float, n_theta: int = 144, progress=print):
-    rows = []
-    for S, eps0, phi0, *ref in TABLE[ld]:
-        r = databook_case(ld, S, n_theta)
-        rows.append(dict(ld=ld, S=S, eps_book=eps0, eps=r["eps"], phi_book=phi0, phi=r["phi"],
-                         **{f"{n}_book": v for n, v in zip(NAMES, ref)},
-                         **{n: v for n, v in zip(NAMES[:4], r["K_turning"])},
-                         **{f"{n}_fixed": v for n, v in zip(NAMES[:4], r["K"])},
-                         **{n: v for n, v in zip(NAMES[4:], r["B"])}))
-        progress(_line(rows[-1]))
-    return rows
+NAMES = K_NAMES + B_NAMES
 
 
 def _line(r) -> str:
@@ -130,59 +77,26 @@ def _line(r) -> str:
             f"  d_phi {r['phi'] - r['phi_book']:+6.2f} deg | {err} | fixed {fixed}")
 
 
-def convergence(ld: float = 0.5, rows=(4, 6, 9), meshes=(72, 144, 288)):
-    """Our numbers at three meshes for a few rows (how far the mesh moves them)."""
-    out = []
-    for i in rows:
-        S = TABLE[ld][i][0]
-        for n in meshes:
-            r = databook_case(ld, S, n)
-            out.append((ld, TABLE[ld][i][1], n, r["eps"], r["phi"], *r["K_turning"], *r["B"]))
-    return out
+SOMEYA = Published(
+    name="someya", source="Someya (1989)", table=TABLE,
+    grooves=axial_grooves(math.radians(10.0)), tag="book", other="fixed", line=_line,
+    header=("errors against the book [%]: " + " ".join(f"{n:>6}" for n in NAMES)
+            + " | K with the grooves fixed: " + " ".join(f"{n:>6}" for n in NAMES[:4])),
+    convergence_rows=(4, 6, 9), convergence_column=1, panels=NAMES,
+    symlog=tuple(n for n in NAMES if n not in ("Bxy", "Byx")),
+    title=("Two-axial-groove bearing: K c / W, B c omega / W in the load frame; "
+           "solid: grooves turning with the line of centres (the book's linearisation)"))
 
 
-def figure(rows, path):
-    import matplotlib.pyplot as plt
-    fig, axes = plt.subplots(2, 4, figsize=(14, 6.5), sharex=True)
-    for ax, n in zip(axes.ravel(), NAMES):
-        for ld, colour in ((0.5, "C0"), (1.0, "C1")):
-            sel = [r for r in rows if r["ld"] == ld]
-            eps = [r["eps"] for r in sel]
-            ax.plot(eps, [r[n] for r in sel], "-", color=colour, label=f"ours, L/D = {ld:g}")
-            if n in NAMES[:4]:
-                ax.plot(eps, [r[n + "_fixed"] for r in sel], ":", color=colour,
-                        label="ours, grooves fixed in the bearing")
-            ax.plot([r["eps_book"] for r in sel], [r[n + "_book"] for r in sel], "o",
-                    mfc="none", color=colour, label=f"Someya (1989), L/D = {ld:g}")
-        ax.set_title(n)
-        if n not in ("Bxy", "Byx"):
-            ax.set_yscale("symlog", linthresh=1.0)
-        ax.grid(alpha=0.3)
-    for ax in axes[1]:
-        ax.set_xlabel("eccentricity ratio")
-    axes[0, 0].legend(fontsize=7)
-    fig.suptitle("Two-axial-groove bearing: K c / W, B c omega / W in the load frame; "
-                 "solid: grooves turning with the line of centres (the book's linearisation)")
-    fig.tight_layout()
-    fig.savefig(path, dpi=100)
-    plt.close(fig)
+def databook_case(ld: float, sommerfeld: float, n_theta: int = 144) -> dict:
+    """eps, attitude [deg] and dimensionless K (grooves fixed in the bearing), K with the
+    grooves turning with the line of centres, and B, all in the load frame, at the load
+    that gives ``sommerfeld``."""
+    return SOMEYA.case(ld, sommerfeld, n_theta)
 
 
 def main(argv=None):
-    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    p.add_argument("-o", "--out", type=Path, default=Path("results/someya"))
-    p.add_argument("--n-theta", type=int, default=144, help="cells around the film")
-    a = p.parse_args(argv)
-    a.out.mkdir(parents=True, exist_ok=True)
-    print("errors against the book [%]:", " ".join(f"{n:>6}" for n in NAMES),
-          "| K with the grooves fixed:", " ".join(f"{n:>6}" for n in NAMES[:4]))
-    rows = compare(0.5, a.n_theta) + compare(1.0, a.n_theta)
-    write_csv(rows, a.out / "someya.csv")
-    print("\nmesh convergence (L/D 0.5): eps_book, n_theta, eps, phi, K (turning grooves), B")
-    for c in convergence():
-        print(" ".join(f"{v:9.4f}" if isinstance(v, float) else f"{v:>5}" for v in c))
-    figure(rows, a.out / "someya.png")
-    print(f"wrote {a.out / 'someya.csv'} and {a.out / 'someya.png'}")
+    SOMEYA.main(argv, __doc__.splitlines()[0])
 
 
 if __name__ == "__main__":
