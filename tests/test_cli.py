@@ -134,3 +134,29 @@ def test_solve_jfo_prints_fraction_and_balance(tmp_path):
             "--n-z", "8", "-o", str(tmp_path / "film.vtu"))
     assert r.returncode == 0, r.stderr
     assert "JFO film fraction" in r.stdout and "mass balance" in r.stdout
+
+
+def test_coefficients_gamma_is_degrees(tmp_path):
+    """--gamma is in degrees (its help says so): the command's inertial K and C equal the
+    Python API's at the state's attitude in radians, and differ from those at gamma = 0
+    by the rotation through it. Fails with --gamma taken as radians."""
+    import math
+
+    import numpy as np
+
+    from bearingfem import Bearing, JournalState
+    from bearingfem.design import coefficients
+    r = run("coefficients", "--model", "short", "--eps", "0.5", "--gamma", "30",
+            "-o", str(tmp_path / "kc.json"))
+    assert r.returncode == 0, r.stderr
+    got = json.loads((tmp_path / "kc.json").read_text())
+    b = Bearing(radius=0.01, length=0.02, clearance=20e-6, viscosity=0.0117)
+    kc = coefficients(b, JournalState(0.5, omega=250.0, gamma=math.radians(30)), "short")
+    for name, value in zip(("xx", "xy", "yx", "yy"), kc.K.ravel()):
+        assert got[f"K_{name}"]["value"] == pytest.approx(value, rel=1e-6)
+    for name, value in zip(("xx", "xy", "yx", "yy"), kc.C.ravel()):
+        assert got[f"C_{name}"]["value"] == pytest.approx(value, rel=1e-6)
+    k0 = coefficients(b, JournalState(0.5, omega=250.0), "short").K   # the same film at 0
+    c, s = math.cos(math.radians(30)), math.sin(math.radians(30))
+    rot = np.array([[c, -s], [s, c]])
+    assert np.allclose(kc.K, rot @ k0 @ rot.T, rtol=1e-9, atol=1e-9 * abs(k0).max())
