@@ -11,6 +11,7 @@ import os
 import re
 from pathlib import Path
 
+from bearingfem.bearing import check_surface_speed, plausibility_errors
 from bearingfem.validation import MIN_N_THETA, MIN_N_Z
 
 __all__ = ["check_numbers", "given_options", "check_writable", "parse_angles",
@@ -64,6 +65,25 @@ def check_numbers(args) -> None:
                           else f"{name} must be {rule}, got {v!r}")
     if errors:
         raise ValueError("; ".join(errors))
+    check_plausible(args)
+
+
+#: the bearing's options as typed, for the plausibility messages
+BEARING_OPTIONS = ("--diameter", "--length-ratio/--ld (L/D)", "--clearance", "--viscosity")
+
+
+def check_plausible(args) -> None:
+    """The bearing the options describe lies in the range of any journal bearing
+    (:data:`bearingfem.bearing.PLAUSIBLE`); else ValueError naming the likely unit mistake."""
+    values = [getattr(args, k, None) for k in ("diameter", "length_ratio", "clearance",
+                                                "viscosity")]
+    if any(v is None for v in values):
+        return
+    errors = plausibility_errors(*values, names=BEARING_OPTIONS)
+    if errors:
+        raise ValueError("; ".join(errors))
+    if getattr(args, "omega", None) is not None:
+        check_surface_speed(args.diameter / 2, args.omega, "--omega")
 
 
 def given_options(subparser, argv) -> set:

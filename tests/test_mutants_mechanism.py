@@ -40,3 +40,39 @@ def test_coulomb_friction_dissipates_and_is_bounded():
         assert abs(fx * rx + fy * ry) <= 1e-12 * (1 + fn)
     powers = np.array(powers)
     assert np.all(powers <= 0.0) and np.mean(powers < 0) > 0.9
+
+
+def test_joint_omega_is_the_rods_rotation_from_the_geometry():
+    """The journal's speed relative to the bearing is the rod's counter-clockwise rotation
+    (the slider does not turn): here the rate of the angle of the line crank pin -> piston
+    pin, by central differences along the motion. Fails with omega = +A' (joint.py)."""
+    from mechanism.dynamics import pin_position, rod_from_eccentricity
+    from mechanism.joint import joint_kinematics
+    from mechanism.parameters import Mechanism
+    m = Mechanism()
+    rng = np.random.default_rng(5)
+    for _ in range(20):
+        y = np.array([rng.uniform(0, 2 * np.pi), 1e-5, rng.uniform(-1e-5, 1e-5),
+                      rng.uniform(100, 400), 1e-3, rng.uniform(-0.01, 0.01)])
+
+        def rod_angle(dt):
+            q, ey = y[0] + y[3] * dt, y[2] + y[5] * dt
+            A, _ = rod_from_eccentricity(m, q, y[3], ey, y[5])
+            px, py = pin_position(m, q, A)
+            r = m.crank_length
+            return math.atan2(py - r * math.sin(q), px - r * math.cos(q))
+
+        h = 1e-7
+        rate = (rod_angle(h) - rod_angle(-h)) / (2 * h)
+        assert joint_kinematics(m, y).omega == pytest.approx(rate, rel=1e-5)
+
+
+def test_film_frames_take_the_nearest_sample_across_360_deg():
+    """A frame asked at 359.9 deg is the sample at 0 deg (0.1 deg away across the turn),
+    not the one at 359.5 deg (0.4 deg away). Fails with the distance not wrapped
+    (film_history.py, _sample_indices)."""
+    from types import SimpleNamespace
+
+    from mechanism.film_history import _sample_indices
+    result = SimpleNamespace(crank_angle=np.radians(np.arange(0.0, 360.0, 0.5)))
+    assert _sample_indices(result, [359.9, 0.2, 180.1]) == [0, 0, 360]
