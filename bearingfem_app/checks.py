@@ -24,6 +24,7 @@ RULES = {
     "clearance": ("--clearance", 0.0, False, None, False),
     "viscosity": ("--viscosity", 0.0, False, None, False),
     "omega": ("--omega", None, False, None, False),
+    "rpm": ("--rpm", None, False, None, False),
     "eps": ("--eps: eps", 0.0, True, 1.0, False),
     "eps_dot": ("--eps-dot", None, False, None, False),
     "ambient_pressure": ("--ambient-pressure", 0.0, True, None, False),
