@@ -67,13 +67,15 @@ class Anderson:
 class ThermalRecord:
     """What a thermal solve found besides the film: the energy balance [W], the journal's
     temperature [K], each groove's (or the supply line's) inlet temperature [K], the
-    nodal viscosity [Pa s], the fixed point's iterations and last changes (temperature
-    [K], pressure relative to its peak)."""
+    viscosity [Pa s] at the nodes and at the film's quadrature points (the field the film
+    was solved with), the fixed point's iterations and last changes (temperature [K],
+    pressure relative to its peak)."""
 
     balance: EnergyBalance
     journal_temperature: float
     inlet_temperatures: tuple
     viscosity: np.ndarray
+    viscosity_quadrature: np.ndarray
     iterations: int
     temperature_change: float
     pressure_change: float
@@ -236,6 +238,7 @@ def solve_thd(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z: in
                            journal_temperature=energy.journal_temperature,
                            inlet_temperatures=tuple(float(T[d[0]]) for d in edges.inflow),
                            viscosity=lubricant.viscosity_at(sol.pressure, temperature=T),
+                           viscosity_quadrature=mu_q,
                            iterations=it, temperature_change=change, pressure_change=dp)
     return replace(sol, temperature=T, temperature_max=float(np.max(T)), thermal=record,
                    method=sol.method + "/thd")
