@@ -218,3 +218,19 @@ def test_bad_input_names_the_parameter(kwargs, name):
 def test_bad_thermal_spec_names_the_parameter(kwargs, name):
     with pytest.raises(ValueError, match=name):
         Thermal(**kwargs)
+
+
+def test_temperature_renders_and_exports(tmp_path):
+    """render_film(field="temperature") draws the thermal film; an isothermal film is
+    refused with a message naming the field; the export carries the temperature."""
+    from bearingfem.outputs.export import to_meshio
+    from bearingfem.outputs.render import render_film
+    sol = solve_thd(BEARING, STATE, 48, 8, lubricant=VG32, thermal=Thermal(SUPPLY),
+                    grooves=GROOVES)
+    path = render_film(sol, tmp_path / "t.png", field="temperature", surface="unwrapped")
+    assert path.stat().st_size > 1000
+    np.testing.assert_array_equal(to_meshio(sol, "journal").point_data["temperature"],
+                                  sol.temperature)
+    with pytest.raises(ValueError, match="temperature"):
+        render_film(solve_reynolds(BEARING, STATE, 48, 8, grooves=GROOVES),
+                    tmp_path / "i.png", field="temperature", surface="unwrapped")
