@@ -39,7 +39,7 @@ import time
 
 import numpy as np
 
-from bearingfem import Bearing, Groove, Lubricant
+from bearingfem import Bearing, Groove, Lubricant, solve_reynolds
 from bearingfem.design import coefficients, equilibrium
 from bearingfem.thermal import Thermal
 
@@ -172,7 +172,12 @@ def main(argv=None):
             r, eq = ours(bearing, load, omega, grooves, oil, thermals[ours_name], mesh)
             label = f"ours {ours_name} {mesh[0]}x{mesh[1]}"
             print(f"{label:<30} " + fmt(r), flush=True)
-            if eq.solution.thermal is not None:
+            if eq.solution.thermal is None:      # ROSS scales the cavity's shear
+                dry = solve_reynolds(bearing, eq.state, mesh[0], mesh[1], grooves=grooves,
+                                     cavitated_shear="none")
+                print(f"{'':<30}   power loss without shear in the cavity "
+                      f"{abs(dry.friction_torque * omega):.0f} W", flush=True)
+            else:
                 rec = eq.solution.thermal
                 print(f"{'':<30}   inlets {', '.join(f'{t:.1f}' for t in rec.inlet_temperatures)}"
                       f" K; journal {rec.journal_temperature:.1f} K; balance residual "

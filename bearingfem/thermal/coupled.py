@@ -18,8 +18,12 @@ is below ``temperature_tol`` [K] and the pressure's largest change below
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
+from functools import lru_cache
 
 import numpy as np
+from scipy.sparse.linalg import splu
+from skfem import LinearForm
+from skfem.models.poisson import mass
 
 from ..bearing import Bearing, JournalState
 from ..errors import ConvergenceError
@@ -35,6 +39,11 @@ from .spec import Thermal
 __all__ = ["solve_thd", "ThermalRecord", "groove_mixing"]
 
 CAVITATION = ("reynolds", "jfo")
+
+
+@LinearForm
+def _value_form(v, w):
+    return w["f"] * v
 ANDERSON_DEPTH = 3     # past iterates Anderson's mixing combines
 
 
@@ -107,12 +116,21 @@ def check_thermal(lubricant, thermal, state, cavitation, element):
         raise ValueError(f"element must be 'P1' with cavitation 'jfo', got {element!r}")
 
 
+@lru_cache(maxsize=16)
+def _projector(mesh):
+    """L2 projection onto the film's nodes of values at its quadrature points (the mass
+    matrix factorised once per mesh)."""
+    basis = mesh.basis
+    lu = splu(mass.assemble(basis).tocsc())
+    return lambda values: lu.solve(_value_form.assemble(basis, f=values))
+
+
 def _column_flows(bearing, state, mesh, edges, P, fraction, mu_nodal):
     """Nodal q_theta [m^2/s] (Couette + Poiseuille, dp/dtheta projected on the nodes) and
     each arc column's flow int q_theta dz [m^3/s]."""
     R, c = bearing.radius, bearing.clearance
     basis = mesh.basis
-    dP = basis.project(np.asarray(basis.interpolate(P).grad[0]))
+    dP = _projector(mesh)(np.asarray(basis.interpolate(P).grad[0]))
     h = c * film_thickness(mesh.theta, state.eps)
     q = (0.5 * state.omega * R * fraction * h
          - h ** 3 / (12.0 * mu_nodal) * bearing.pressure_scale / R * dP)

@@ -46,6 +46,7 @@ Reference: A.N. Brooks and T.J.R. Hughes, Comput. Methods Appl. Mech. Eng. 32 (1
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 import scipy.sparse as sp
@@ -129,9 +130,10 @@ def _same_angle(a, b, tol=1e-9):
     return (d < tol) | (d > 2.0 * np.pi - tol)
 
 
+@lru_cache(maxsize=16)
 def film_edges(mesh) -> FilmEdges:
     """The :class:`FilmEdges` of a film mesh with grooves or a supply line (not periodic:
-    a thermal film needs fresh oil)."""
+    a thermal film needs fresh oil); cached per mesh (the meshes are cached)."""
     if mesh.periodic:
         raise ValueError("a thermal film needs an oil supply: give grooves or a "
                          "supply_angle")
@@ -236,8 +238,10 @@ def _value_load(v, w):
     return w["R"] ** 2 * w["f"] * v
 
 
+@lru_cache(maxsize=16)
 def arc_basis(mesh, edges: FilmEdges):
-    """The film's basis restricted to the arcs' elements, with the film's dof numbering."""
+    """The film's basis restricted to the arcs' elements, with the film's dof numbering
+    (cached per mesh)."""
     b = mesh.basis
     return Basis(b.mesh, b.elem, intorder=4 if mesh.basis.Nbfun == 3 else 6,
                  elements=edges.elements, dofs=b.dofs)
