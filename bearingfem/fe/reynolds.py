@@ -140,7 +140,7 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
                    tol: float = 1e-10, cavitated_shear: str = "full",
                    grooves=(), ambient_pressure: float = 0.0, fields: FilmFields | None = None,
                    tilt=(0.0, 0.0), tilt_rate=(0.0, 0.0), lubricant=None,
-                   bush=None, roughness=None, start=None) -> FilmSolution:
+                   bush=None, roughness=None, start=None, thermal=None) -> FilmSolution:
     """Solve the Reynolds equation on a finite-element mesh of the unwrapped film.
 
     Parameters
@@ -198,10 +198,16 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
     ``moment`` is the film's moment on the journal; fields that are the rigid cylinder's
     are solved by the rigid film's fast path (the same discrete problem).
 
+    thermal : :class:`~bearingfem.thermal.Thermal`: the thermal (THD) film of
+        :func:`bearingfem.thermal.solve_thd` with this ``lubricant`` (its temperature law)
+
     Returns
     -------
     FilmSolution
     """
+    if thermal is not None:      # the thermal film (bearingfem.thermal), its own route
+        from ..thermal.coupled import solve_thd
+        return solve_thd(bearing, state, n_theta, n_z, lubricant=lubricant, thermal=thermal, grooves=grooves, cavitation=cavitation, element=element, supply_angle=supply_angle, tol=tol, start=start)
     n_theta, n_z, supply_angle = check_film_solve(
         bearing, state, n_theta, n_z, cavitation, method, supply_angle, tol,
         element=(element, tuple(ELEMENTS)), cavitated_shear=(cavitated_shear, SHEAR))

@@ -27,7 +27,8 @@ __all__ = ["render_film", "unwrapped_figure", "film_map", "FIELDS", "SURFACES"]
 SURFACES = ("journal", "unwrapped")
 FIELDS = {"pressure": ("pressure", 1e-6, "pressure [MPa]"),
           "film_thickness": ("film_thickness", 1e6, "film thickness [um]"),
-          "fraction": ("fraction", 1.0, "film fraction [1] (JFO)")}
+          "fraction": ("fraction", 1.0, "film fraction [1] (JFO)"),
+          "temperature": ("temperature", 1.0, "film temperature [K] (thermal film)")}
 #: Share of the peak pressure below which a node counts as cavitated in pictures (the
 #: complementarity solution is exactly 0 there; Gumbel's clip too).
 CAVITY_LEVEL = 1e-6
@@ -128,7 +129,9 @@ def unwrapped_figure(sol: FilmSolution, field: str = "pressure", clim=None, titl
     label = FIELDS[field][2]
     fig, ax = plt.subplots(figsize=size, constrained_layout=True)
     top = float(np.max(vals)) if clim is None else float(clim[1])
-    lo = 0.0 if clim is None else float(clim[0])
+    # a temperature's scale starts at its coolest node (0 K would flatten the map)
+    lo = float(clim[0]) if clim is not None else (
+        float(np.min(vals)) if field == "temperature" else 0.0)
     levels = np.linspace(lo, top if top > lo else lo + 1.0, 41)
     if field == "fraction":
         # interpolated shading: the full film (fraction 1) takes the top colour (filled
@@ -184,6 +187,8 @@ def render_film(sol: FilmSolution, path, *, field: str = "pressure", surface: st
     _check(field, surface)
     if field == "fraction" and sol.fraction is None:
         raise ValueError("field 'fraction' needs a JFO film (cavitation='jfo')")
+    if field == "temperature" and sol.temperature is None:
+        raise ValueError("field 'temperature' needs a thermal film (thermal=Thermal(...))")
     if surface == "unwrapped":
         dpi = 100
         fig = unwrapped_figure(sol, field, clim, title,
