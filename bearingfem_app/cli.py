@@ -13,7 +13,7 @@ from bearingfem.bearing import SEED_TABLE1
 from bearingfem.models import FILM_MODELS
 from mechanism.scene import shipped_scenes
 
-from .checks import check_numbers, given_options
+from .checks import check_numbers, given_options, oil_viscosity
 
 from .commands import (command_coefficients, command_convergence, command_design,
                        command_equilibrium, command_frames, command_render,
@@ -21,7 +21,7 @@ from .commands import (command_coefficients, command_convergence, command_design
 
 EXAMPLES = """examples:
   bearingfem simulate scenes/paper-short-fem.toml -o results/short-fem
-  bearingfem design --diameter 0.05 --ld 0.5 --clearance 50e-6 --viscosity 0.028 \
+  bearingfem design --diameter 0.05 --ld 0.5 --clearance 50e-6 --oil 'ISO VG 32' \
       --rpm 3000 --load 2000
   bearingfem solve --ld 1.0 --eps 0.6 --cavitation reynolds --supply-angle max-film
   bearingfem render --ld 1.0 --eps 0.6 --cavitation reynolds -o film.png
@@ -63,8 +63,13 @@ def _bearing_args(p, film=True):
     p.add_argument("--clearance", type=float, default=SEED_TABLE1["clearance"],
                    help="radial clearance c [m], bush radius minus journal radius "
                         "(seed Table 1)")
-    p.add_argument("--viscosity", type=float, default=SEED_TABLE1["viscosity"],
-                   help="dynamic viscosity [Pa s] (seed Table 1)")
+    oil = p.add_mutually_exclusive_group()
+    oil.add_argument("--viscosity", type=float, default=SEED_TABLE1["viscosity"],
+                     help="dynamic viscosity [Pa s] (seed Table 1)")
+    oil.add_argument("--oil", help="the oil by grade, e.g. 'ISO VG 32' (a VI 100 mineral "
+                     "oil, ISO 3448), instead of --viscosity")
+    p.add_argument("--oil-temperature", type=float, default=None,
+                   help="the --oil's temperature [degC] (default 40)")
     p.add_argument("--cavitation", default="reynolds",
                    help="none | gumbel | reynolds | jfo (mass-conserving; needs a supply: "
                         "--ambient-pressure > 0 or --supply-angle)" if film else
@@ -261,6 +266,18 @@ def _speed(args) -> None:
         args.omega = DEFAULT_OMEGA
 
 
+def _oil(args) -> None:
+    """--oil GRADE at --oil-temperature [degC] -> args.viscosity [Pa s]."""
+    if getattr(args, "oil", None) is None:
+        if getattr(args, "oil_temperature", None) is not None:
+            raise ValueError("--oil-temperature is the --oil's temperature: give --oil "
+                             "(e.g. 'ISO VG 32'), or the viscosity at that temperature "
+                             "with --viscosity")
+        return
+    temperature = 40.0 if args.oil_temperature is None else args.oil_temperature
+    args.viscosity = oil_viscosity(args.oil, temperature)
+
+
 def main(argv=None):
     argv = sys.argv[1:] if argv is None else list(argv)
     parser = build_parser()
@@ -274,6 +291,7 @@ def main(argv=None):
         _old_spellings(args)
         args.element_given = "element" in args.given
         _speed(args)
+        _oil(args)
         check_numbers(args)
         return args.func(args)
     except ValueError as err:

@@ -234,6 +234,13 @@ def command_coefficients(args):
     return 0
 
 
+def _oil_words(args) -> str:
+    if getattr(args, "oil", None) is None:
+        return ""
+    t = 40.0 if args.oil_temperature is None else args.oil_temperature
+    return f" ({args.oil} at {t:g} degC)"
+
+
 def command_design(args):
     """The designer's question in one command: where the journal sits under the load
     (least film, attitude, friction power, flow) and the film's K, C there in the load
@@ -252,7 +259,7 @@ def command_design(args):
                ("whirl frequency ratio", st.whirl_ratio, "-")]
     print(f"design point, {model} {opts or ''}: D {b.diameter * 1e3:g} mm, L/D "
           f"{b.length_ratio:g}, radial clearance {b.clearance * 1e6:g} um, viscosity "
-          f"{b.viscosity:g} Pa s, {args.omega:g} rad/s ({args.omega * 30 / math.pi:g} rpm), "
+          f"{b.viscosity:.4g} Pa s{_oil_words(args)}, {args.omega:g} rad/s ({args.omega * 30 / math.pi:g} rpm), "
           f"load {args.load:g} N toward {args.direction:g} deg (inertial)")
     _print_rows(eq_rows)
     print(f"  K, C ({kc.method}); {axes}")

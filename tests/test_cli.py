@@ -221,3 +221,23 @@ def test_old_spelling_is_taken_with_a_note_and_typos_get_a_suggestion():
     typo = run("solve", "--modl", "fvm")
     assert typo.returncode == 2 and "did you mean --model?" in typo.stderr
     assert "usage: bearingfem solve" in typo.stderr
+
+
+def test_oil_by_grade_is_its_viscosity_at_the_temperature():
+    """--oil 'ISO VG 32' at 40 degC is 32 mm^2/s (the grade's midpoint, ISO 3448) times
+    870 kg/m^3 = 0.02784 Pa s, by hand; a warmer oil is thinner; a grade that does not
+    exist, both --oil and --viscosity, or a temperature without an oil are refused."""
+    a = run("solve", "--oil", "ISO VG 32", "--oil-temperature", "40", "--model", "fvm",
+            "--n-theta", "24", "--n-z", "4")
+    b = run("solve", "--viscosity", repr(32e-6 * 870), "--model", "fvm", "--n-theta", "24",
+            "--n-z", "4")
+    assert a.returncode == 0 and a.stdout == b.stdout
+    hot = run("solve", "--oil", "VG32", "--oil-temperature", "80", "--model", "fvm",
+              "--n-theta", "24", "--n-z", "4")
+    f = [float(r.stdout.split("|F| ")[1].split()[0]) for r in (a, hot)]
+    assert f[1] < 0.5 * f[0]
+    for argv, needle in ((("--oil", "ISO VG 33"), "--oil must be an ISO VG grade"),
+                         (("--oil", "VG 32", "--viscosity", "0.03"), "not allowed with"),
+                         (("--oil-temperature", "60"), "--oil-temperature is the --oil's")):
+        r = run("equilibrium", "--load", "100", *argv)
+        assert r.returncode == 2 and needle in r.stderr
