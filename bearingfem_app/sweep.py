@@ -19,6 +19,7 @@ interrupted sweep loses nothing and a rerun skips what is done. ``DIR/results.cs
 """
 from __future__ import annotations
 
+import difflib
 import hashlib
 import itertools
 import json
@@ -54,8 +55,10 @@ class Sweep:
 def _checked(kind, key, value, where):
     params = KINDS[kind]
     if key not in params:
-        raise ValueError(f"{where}.{key} is not a {kind} sweep parameter "
-                         f"(parameters: {', '.join(sorted(params))})")
+        near = difflib.get_close_matches(key, sorted(params), n=1, cutoff=0.7)
+        raise ValueError(f"{where}.{key} is not a {kind} sweep parameter"
+                         + (f" (did you mean {near[0]}?)" if near else "")
+                         + f" (parameters: {', '.join(sorted(params))})")
     typ = params[key][1]
     if typ is str:
         if not isinstance(value, str):

@@ -29,6 +29,8 @@ def test_cases_are_the_product_with_stable_ids():
     ({"kind": "rotor"}, "sweep.kind must be one of"),
     ({"vary": {"eps": []}}, r"sweep.vary.eps must be a non-empty list"),
     ({"vary": {"speed": [1.0]}}, r"sweep.vary.speed is not a film sweep parameter"),
+    ({"vary": {"lenght_ratio": [1.0]}}, r"lenght_ratio is not a film sweep parameter "
+                                        r"\(did you mean length_ratio\?\)"),
     ({"vary": {"model": ["fem", "magic"]}}, r"sweep.vary.model must be one of"),
     ({"base": {"n_theta": 12.5}}, r"sweep.base.n_theta must be an integer"),
     ({"vary": {}}, "must list at least one parameter"),
@@ -240,3 +242,12 @@ def test_design_summary_shows_every_promised_output_and_plain_log_ticks(tmp_path
                         "vary": {"clearance": [15e-6, 20e-6]}})
     title = _film_named(mech)
     assert "the scene" not in title and "fem" in title and "gumbel" in title
+
+
+def test_a_bearing_no_journal_bearing_has_stops_the_sweep_before_it_starts(tmp_path):
+    """A diameter typed in mm (50) is refused by name before any case runs."""
+    sw = parse_sweep({**SWEEP, "base": {"diameter": 50.0}})
+    with pytest.raises(ValueError, match=r"diameter .*50 m is larger than any journal "
+                                         r"bearing.*typed in mm"):
+        run_sweep(sw, tmp_path / "out", workers=1, progress=False)
+    assert not (tmp_path / "out").exists()
