@@ -226,6 +226,11 @@ def _negative_values(argv):
     return out
 
 
+#: words a user may try for an option spelt otherwise here
+SYNONYMS = {"--speed": "--omega [rad/s] or --rpm [1/min]", "--mu": "--viscosity",
+            "--method": "--model", "--length": "--ld (L/D)", "--oil-temp": "--oil-temperature"}
+
+
 def _unrecognized(sub, unknown) -> str:
     """argparse's message for options a command does not take, with the nearest of its
     own options for each (difflib), so that a typo names its fix."""
@@ -233,7 +238,9 @@ def _unrecognized(sub, unknown) -> str:
              and a.help != argparse.SUPPRESS]
     parts = []
     for u in unknown:
-        near = difflib.get_close_matches(u.split("=", 1)[0], known, n=1, cutoff=0.6) \
+        name = u.split("=", 1)[0]
+        near = ([SYNONYMS[name]] if name in SYNONYMS else
+                difflib.get_close_matches(name, known, n=1, cutoff=0.6)) \
             if u.startswith("-") else []
         parts.append(f"{u} (did you mean {near[0]}?)" if near else u)
     return "unrecognized arguments: " + " ".join(parts)

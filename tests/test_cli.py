@@ -218,6 +218,8 @@ def test_old_spelling_is_taken_with_a_note_and_typos_get_a_suggestion():
     new = run("solve", "--model", "fvm", "--n-theta", "24", "--n-z", "4")
     assert old.returncode == 0 and old.stdout == new.stdout
     assert "note: --method is now --model" in old.stderr
+    speed = run("equilibrium", "--load", "100", "--speed", "300")
+    assert speed.returncode == 2 and "did you mean --omega [rad/s] or --rpm" in speed.stderr
     typo = run("solve", "--modl", "fvm")
     assert typo.returncode == 2 and "did you mean --model?" in typo.stderr
     assert "usage: bearingfem solve" in typo.stderr
