@@ -28,3 +28,22 @@ def test_sweep_case_attitude_and_sommerfeld_by_hand(kind, eps):
     assert row["attitude_deg"] == pytest.approx(phi, rel=1e-9)
     assert row["load"] == pytest.approx(W, rel=1e-9)
     assert row["sommerfeld"] == pytest.approx(S, rel=1e-9)
+
+
+def test_design_case_coefficients_keep_their_indices():
+    """K_ij, C_ij of a design case are the load-frame coefficients' [i-1, j-1] (K_12 is
+    the force along axis 1 from a displacement along axis 2; the short film's K is far
+    from symmetric). Fails with the indices swapped (cases.py)."""
+    import numpy as np
+
+    from bearingfem import Bearing, JournalState
+    from bearingfem.design import coefficients
+    row = run_case("design", dict(SEED, eps=0.5, model="short"))
+    b = Bearing(radius=0.01, length=0.005, clearance=20e-6, viscosity=0.0117)
+    k, c = coefficients(b, JournalState(0.5, omega=250.0), "short",
+                        frame="load").dimensionless()
+    assert abs(k[0, 1] - k[1, 0]) > 0.1 * np.abs(k).max()
+    for (i, j), v in np.ndenumerate(k):
+        assert row[f"K{i + 1}{j + 1}"] == pytest.approx(v, rel=1e-12)
+    for (i, j), v in np.ndenumerate(c):
+        assert row[f"C{i + 1}{j + 1}"] == pytest.approx(v, rel=1e-12)
