@@ -18,10 +18,11 @@ from .reynolds import fvm_reynolds, solve_reynolds
 from .lubricant import Lubricant
 from .ehl import line_contact, point_contact
 from .solution import FilmSolution
+from .thermal import Thermal
 
 __all__ = ["Bearing", "JournalState", "ElasticJournalState", "Groove", "solve_reynolds", "fvm_reynolds", "FilmSolution",
            "short_bearing_force", "long_bearing_force", "short_bearing_exact_force",
            "long_bearing_exact_force", "equilibrium", "coefficients", "ElasticBush",
            "Lubricant", "line_contact", "point_contact", "ConvergenceError", "Roughness",
-           "clear_caches"]
+           "clear_caches", "Thermal"]
 from .version import __version__  # noqa: F401  (the package version)

@@ -11,7 +11,8 @@ from dataclasses import dataclass
 from .film import theta_from_inertial
 
 __all__ = ["Bearing", "JournalState", "Groove", "seed_bearing", "SEED_TABLE1",
-           "check_positive", "check_finite"]
+           "check_positive", "check_finite", "plausibility_errors", "PLAUSIBLE",
+           "check_surface_speed"]
 
 
 def check_finite(name: str, value) -> float:
@@ -33,6 +34,64 @@ def check_positive(name: str, value) -> float:
     return v
 
 
+#: The range every hydrodynamic journal bearing lies in (from hard-disk spindles to
+#: turbine bearings): outside it a number was almost surely typed in the wrong unit.
+#: diameter [m], clearance ratio c/R, L/D, viscosity [Pa s] (gases to cold heavy oil),
+#: surface speed omega R [m/s].
+PLAUSIBLE = dict(diameter=(0.5e-3, 5.0), clearance_ratio=(1e-5, 0.05),
+                 length_ratio=(0.01, 10.0), viscosity=(1e-6, 10.0), surface_speed=300.0)
+
+
+def plausibility_errors(diameter, length_ratio, clearance, viscosity,
+                        names=("diameter", "L/D", "clearance", "viscosity")) -> list:
+    """Messages for the inputs outside :data:`PLAUSIBLE`, each naming the likely unit
+    mistake (``names``: how the caller spells the four inputs)."""
+    n_d, n_ld, n_c, n_mu = names
+    lo, hi = PLAUSIBLE["diameter"]
+    out = []
+    if diameter > hi:
+        out.append(f"{n_d} {diameter:g} m is larger than any journal bearing's (<= {hi:g} m): "
+                   f"typed in mm? ({diameter:g} mm = {diameter / 1e3:g} m)")
+    elif diameter < lo:
+        out.append(f"{n_d} {diameter:g} m is smaller than any journal bearing's "
+                   f"(>= {lo * 1e3:g} mm): give it in m")
+    ratio = clearance / (diameter / 2)
+    lo, hi = PLAUSIBLE["clearance_ratio"]
+    if not out and ratio > hi:
+        out.append(f"{n_c} {clearance:g} m is {ratio:.3g} of the radius (a journal bearing's "
+                   f"radial clearance is {lo:g} to {hi:g} of it): typed in mm? "
+                   f"({clearance:g} mm = {clearance / 1e3:g} m)")
+    elif not out and ratio < lo:
+        out.append(f"{n_c} {clearance:g} m is {ratio:.3g} of the radius (a journal bearing's "
+                   f"radial clearance is {lo:g} to {hi:g} of it): {n_d} typed in mm, or the "
+                   f"clearance in um? (the clearance is radial, in m: 20 um = 20e-6)")
+    lo, hi = PLAUSIBLE["length_ratio"]
+    if not lo <= length_ratio <= hi:
+        out.append(f"{n_ld} {length_ratio:g} is outside any journal bearing's ({lo:g} to "
+                   f"{hi:g}): the length over the diameter, in the same unit")
+    lo, hi = PLAUSIBLE["viscosity"]
+    if viscosity > hi:
+        out.append(f"{n_mu} {viscosity:g} Pa s is more than any lubricant's (<= {hi:g} Pa s): "
+                   f"typed in cSt (mm^2/s) or mPa s? ({viscosity:g} mPa s = "
+                   f"{viscosity / 1e3:g} Pa s; {viscosity:g} cSt of oil ~ "
+                   f"{viscosity * 0.87e-3:.3g} Pa s)")
+    elif viscosity < lo:
+        out.append(f"{n_mu} {viscosity:g} Pa s is less than any fluid's (>= {lo:g} Pa s): "
+                   f"give the dynamic viscosity in Pa s")
+    return out
+
+
+def check_surface_speed(radius: float, omega: float, name: str = "omega") -> None:
+    """ValueError when the journal's surface speed |omega| R passes any journal bearing's
+    (:data:`PLAUSIBLE`): a speed in rpm given as rad/s times a diameter in mm, say."""
+    v, vmax = abs(omega) * radius, PLAUSIBLE["surface_speed"]
+    if v > vmax:
+        raise ValueError(f"{name} {omega:g} rad/s gives a surface speed of {v:.4g} m/s at "
+                         f"radius {radius:g} m, above any journal bearing's ({vmax:g} m/s): "
+                         f"a speed in rpm given as rad/s ({omega:g} rpm = "
+                         f"{omega * 3.141592653589793 / 30:.4g} rad/s), or the diameter in mm?")
+
+
 @dataclass(frozen=True)
 class Bearing:
     """A plain cylindrical journal bearing.
@@ -43,6 +102,10 @@ class Bearing:
     length : axial length L [m]
     clearance : radial clearance c [m]
     viscosity : dynamic viscosity mu [Pa s]
+
+    Values outside the range of any journal bearing (:data:`PLAUSIBLE`: a diameter of
+    0.5 mm to 5 m, c/R 1e-5 to 0.05, L/D 0.01 to 10, mu 1e-6 to 10 Pa s) are refused with
+    a ValueError naming the likely unit mistake.
     """
 
     radius: float
@@ -57,6 +120,11 @@ class Bearing:
             raise ValueError(
                 f"clearance must be smaller than radius (thin film), got "
                 f"clearance={self.clearance!r} >= radius={self.radius!r}")
+        bad = plausibility_errors(self.diameter, self.length_ratio, self.clearance,
+                                  self.viscosity, ("diameter (2 radius)", "L/D (length / "
+                                                   "diameter)", "clearance", "viscosity"))
+        if bad:
+            raise ValueError("; ".join(bad))
 
     @property
     def diameter(self) -> float:

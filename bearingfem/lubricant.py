@@ -1,44 +1,87 @@
-"""Lubricant: how the oil's viscosity and density follow the film pressure.
+"""Lubricant: how the oil's viscosity and density follow the film pressure and temperature.
 
-Pressures are gauge pressures [Pa] (zero at ambient), as in the films. Viscosity
-(one of, or neither for a constant-viscosity oil):
+Pressures are gauge pressures [Pa] (zero at ambient), as in the films; temperatures are
+in kelvin. Viscosity against pressure (one of, or neither for a constant-viscosity oil):
 
-* Barus (1893): mu = mu0 exp(alpha p), ``barus=alpha`` [1/Pa].
+* Barus (1893): mu = mu_T exp(alpha p), ``barus=alpha`` [1/Pa].
 * Roelands (1966), in the form of Houpert (1985):
-  mu = mu0 exp((ln mu0 + 9.67) (-1 + (1 + 5.1e-9 p)^Z)), ``roelands=Z``, mu0 in Pa s.
-  Its slope at ambient is the equivalent Barus alpha* = 5.1e-9 Z (ln mu0 + 9.67).
+  mu = mu_T exp((ln mu_T + 9.67) (-1 + (1 + 5.1e-9 p)^Z)), ``roelands=Z``, mu_T in Pa s.
+  Its slope at ambient is the equivalent Barus alpha* = 5.1e-9 Z (ln mu_T + 9.67).
 
-Density (one of, or neither for an incompressible oil):
+mu_T is the viscosity at ambient pressure and the temperature T: ``viscosity`` (mu0) at
+the reference temperature ``temperature`` (T0), and against temperature (one of, or
+neither for an oil at one temperature):
+
+* Walther's equation as ASTM D341 writes it: log10 log10(nu + 0.7) = A - B log10 T, nu the
+  kinematic viscosity mu/rho in mm^2/s, T in K, ``walther=(A, B)``. D341 holds it for
+  nu >= 2 mm^2/s (below, its correction terms add less than 1e-3 mm^2/s at 2 mm^2/s and
+  are left out). The straight line of the D341 chart through two measured viscosities.
+* The exponential law mu_T = mu0 exp(-beta (T - T0)), ``temperature_exponent=beta``
+  [1/K]: the law of ROSS's fluid-film bearings and of many THD codes.
+
+Both laws keep the density ``mass_density`` [kg/m^3] at every temperature (a liquid's
+thermal expansion, ~7e-4 1/K, moves a film far less than its viscosity does, and an
+incompressible film keeps its mass balance); ``specific_heat`` cp [J/(kg K)] and
+``conductivity`` k [W/(m K)] complete the oil for the energy equation
+(:mod:`bearingfem.thermal`).
+
+Presets: :meth:`Lubricant.two_point` (two measured viscosities) and
+:meth:`Lubricant.iso_vg` (an ISO 3448 grade: its 40 C kinematic viscosity midpoint and the
+100 C viscosity that gives viscosity index 100, ASTM D2270).
+
+Density against pressure (one of, or neither for an incompressible oil):
 
 * ``density="dowson-higginson"`` (Dowson & Higginson 1966):
   rho/rho0 = 1 + 0.6e-9 p / (1 + 1.7e-9 p), tending to 1 + 0.6/1.7 = 1.353 as p -> inf.
 * ``bulk_modulus=B`` [Pa]: a constant bulk modulus B = rho dp/drho, so
   rho/rho0 = exp(p/B), the law of Elrod's (1981) compressible cavitation algorithm.
 
-Temperature is not modelled: every property is at the one reference temperature of
-``viscosity``. A thermal model would add a ``temperature`` argument to
-:meth:`Lubricant.viscosity_at` and :meth:`Lubricant.density_at` (e.g. Roelands'
-temperature term, or mu0(T) of Vogel) with the pressure laws here unchanged.
-
 References: C. Barus, Am. J. Sci. 45 (1893) 87-96. C.J.A. Roelands, Correlational
 aspects of the viscosity-temperature-pressure relationship of lubricating oils, PhD
 thesis, TU Delft (1966). L. Houpert, J. Tribol. 107 (1985) 241-248. D. Dowson and
 G.R. Higginson, Elasto-hydrodynamic lubrication, Pergamon (1966). H.G. Elrod, J. Lubr.
-Technol. 103 (1981) 350-354.
+Technol. 103 (1981) 350-354. C. Walther, Erdoel und Teer 7 (1931) 382-384. ASTM D341-20,
+Standard practice for viscosity-temperature equations and charts for liquid petroleum
+or hydrocarbon products. ASTM D2270-10, Standard practice for calculating viscosity index
+from kinematic viscosity at 40 and 100 C (Table 1). ISO 3448:1992, Industrial liquid
+lubricants - ISO viscosity classification. M.M. Khonsari and E.R. Booser, Applied
+Tribology, 3rd ed., Wiley (2017), ch. 2 (mineral oil density, specific heat and
+conductivity).
 """
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
-__all__ = ["Lubricant"]
+__all__ = ["Lubricant", "ISO_VG"]
 
 ROELANDS_P0 = 1.0 / 5.1e-9        # [Pa] Roelands' reference pressure, 196 MPa
 ROELANDS_LN_MU_INF = -9.67         # ln(mu_inf / (1 Pa s)), mu_inf = 6.31e-5 Pa s
 DH_A, DH_B = 0.6e-9, 1.7e-9        # [1/Pa] Dowson-Higginson constants
 DENSITY_MODELS = (None, "dowson-higginson")
+WALTHER_SHIFT = 0.7                # [mm^2/s] ASTM D341's Z = nu + 0.7
+WALTHER_LEAST = 2.0                # [mm^2/s] D341's simple form holds from here up
+CELSIUS = 273.15                   # [K]
+TEMPERATURE_LAWS = ("walther", "exponential")
+
+# ISO 3448 grades: the 40 C kinematic viscosity midpoint [mm^2/s] (the grade's number, but
+# for VG 7) and the 100 C viscosity [mm^2/s] of an oil of viscosity index 100 with that
+# midpoint: the Y at which ASTM D2270's Table 1 H (the 40 C viscosity of the VI 100
+# reference oil) equals the midpoint, by the table's linear interpolation (every grade's
+# Y is below the table's end, 70 mm^2/s). VG 2, 3 and 5 have no VI 100 oil (Y < 2 mm^2/s,
+# where D2270 defines no index).
+ISO_VG = {
+    7: (6.8, 2.0812), 10: (10.0, 2.6585), 15: (15.0, 3.4096), 22: (22.0, 4.2940),
+    32: (32.0, 5.3619), 46: (46.0, 6.7604), 68: (68.0, 8.7313), 100: (100.0, 11.3837),
+    150: (150.0, 15.0200), 220: (220.0, 19.4353), 320: (320.0, 24.9538),
+    460: (460.0, 31.7752), 680: (680.0, 41.1360), 1000: (1000.0, 52.7651),
+    1500: (1500.0, 68.3333),
+}
+# Mineral oil at bearing temperatures (Khonsari & Booser, ch. 2): density 0.87 g/cm^3,
+# specific heat 1.95 kJ/(kg K), conductivity 0.13 W/(m K), taken the same for every grade.
+ISO_VG_DENSITY, ISO_VG_SPECIFIC_HEAT, ISO_VG_CONDUCTIVITY = 870.0, 1950.0, 0.13
 
 
 def _positive(name: str, value, *, allowed: str) -> float:
@@ -50,18 +93,47 @@ def _positive(name: str, value, *, allowed: str) -> float:
     return value
 
 
+def _finite(name: str, value) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float, np.floating, np.integer)):
+        raise ValueError(f"{name} must be a finite number, got {value!r}")
+    if not math.isfinite(float(value)):
+        raise ValueError(f"{name} must be a finite number, got {value!r}")
+    return float(value)
+
+
+def walther_constants(t1: float, nu1: float, t2: float, nu2: float) -> tuple:
+    """(A, B) of log10 log10(nu + 0.7) = A - B log10 T through (T1 [K], nu1 [mm^2/s]) and
+    (T2, nu2): the D341 chart's straight line through two measured points."""
+    y1 = math.log10(math.log10(nu1 + WALTHER_SHIFT))
+    y2 = math.log10(math.log10(nu2 + WALTHER_SHIFT))
+    b = (y1 - y2) / (math.log10(t2) - math.log10(t1))
+    return y1 + b * math.log10(t1), b
+
+
 @dataclass(frozen=True)
 class Lubricant:
-    """A Newtonian oil with pressure-dependent viscosity and density.
+    """A Newtonian oil whose viscosity follows the pressure and the temperature.
 
     Parameters
     ----------
-    viscosity : dynamic viscosity at ambient pressure mu0 [Pa s], > 0.
+    viscosity : dynamic viscosity mu0 at ambient pressure and ``temperature`` [Pa s], > 0.
     barus : Barus pressure-viscosity coefficient alpha [1/Pa], >= 0 (0: constant).
     roelands : Roelands pressure-viscosity index Z [-], in (0, 2]; exclusive with barus.
-    density : ``None`` (incompressible) or ``"dowson-higginson"``.
+    density : ``None`` (incompressible) or ``"dowson-higginson"`` (rho/rho0 against p).
     bulk_modulus : constant bulk modulus B [Pa], > 0; rho/rho0 = exp(p/B). Exclusive with
         ``density``.
+    temperature : reference temperature T0 [K] of ``viscosity`` (> 0); needed by a
+        temperature law.
+    walther : (A, B) of ASTM D341's log10 log10(nu + 0.7) = A - B log10 T (nu in mm^2/s,
+        T in K), B > 0; needs ``mass_density``. Its value at T0 sets mu0: give
+        ``viscosity`` consistent with it (:meth:`two_point` does).
+    temperature_exponent : beta [1/K] of mu = mu0 exp(-beta (T - T0)), >= 0; exclusive
+        with ``walther``.
+    mass_density : rho [kg/m^3] at ambient pressure, > 0, the same at every temperature.
+    specific_heat : cp [J/(kg K)], > 0.
+    conductivity : k [W/(m K)], > 0.
+
+    An oil without a temperature law has its viscosity at every temperature.
     """
 
     viscosity: float
@@ -69,6 +141,12 @@ class Lubricant:
     roelands: float | None = None
     density: str | None = None
     bulk_modulus: float | None = None
+    temperature: float | None = None
+    walther: tuple | None = None
+    temperature_exponent: float | None = None
+    mass_density: float | None = None
+    specific_heat: float | None = None
+    conductivity: float | None = None
 
     def __post_init__(self):
         _positive("viscosity", self.viscosity, allowed="> 0 [Pa s]")
@@ -87,36 +165,191 @@ class Lubricant:
             _positive("bulk_modulus", self.bulk_modulus, allowed="> 0 [Pa]")
             if self.density is not None:
                 raise ValueError("give density or bulk_modulus, not both (one density law)")
+        for name in ("temperature", "mass_density", "specific_heat", "conductivity"):
+            value = getattr(self, name)
+            if value is not None:
+                _positive(name, value, allowed={"temperature": "> 0 [K]",
+                                                "mass_density": "> 0 [kg/m^3]",
+                                                "specific_heat": "> 0 [J/(kg K)]",
+                                                "conductivity": "> 0 [W/(m K)]"}[name])
+        if self.walther is not None and self.temperature_exponent is not None:
+            raise ValueError("give walther or temperature_exponent, not both (one "
+                             "temperature-viscosity law)")
+        if self.temperature_exponent is not None and self.temperature_exponent != 0.0:
+            _positive("temperature_exponent", self.temperature_exponent,
+                      allowed=">= 0 [1/K]")
+        if self.walther is not None:
+            try:
+                a, b = self.walther
+            except (TypeError, ValueError):
+                raise ValueError(f"walther must be a pair (A, B), got {self.walther!r}") \
+                    from None
+            _finite("walther[0]", a)
+            _positive("walther[1]", b, allowed="> 0 (viscosity falls as T rises)")
+            if self.mass_density is None:
+                raise ValueError("walther needs mass_density [kg/m^3] (D341 is a law of "
+                                 "the kinematic viscosity)")
+        if self.is_thermal and self.temperature is None:
+            raise ValueError("a temperature law needs temperature, the reference "
+                             "temperature T0 [K] of viscosity")
+        if self.walther is not None:
+            mu0 = float(self._viscosity_ambient(self.temperature)[0])
+            if not math.isclose(mu0, self.viscosity, rel_tol=1e-9):
+                raise ValueError(f"viscosity {self.viscosity!r} Pa s must be walther's "
+                                 f"value at temperature {self.temperature!r} K, "
+                                 f"{mu0!r} Pa s")
+
+    # -- presets -------------------------------------------------------------------------
+    @classmethod
+    def two_point(cls, point1, point2, *, density: float, specific_heat: float,
+                  conductivity: float, law: str = "walther", **pressure_laws) -> "Lubricant":
+        """An oil through two measured viscosities (T1 [K], mu1 [Pa s]) and (T2, mu2).
+
+        ``law="walther"``: ASTM D341 through the kinematic viscosities mu/density (each
+        >= 2 mm^2/s, D341's range); ``"exponential"``: mu = mu1 exp(-beta (T - T1)).
+        ``density`` [kg/m^3], ``specific_heat`` [J/(kg K)], ``conductivity`` [W/(m K)];
+        further keywords (``barus``, ``roelands``, ``bulk_modulus``, ...) are the
+        pressure laws, applied at each temperature. The reference temperature is T1.
+        """
+        if law not in TEMPERATURE_LAWS:
+            raise ValueError(f"law must be one of {TEMPERATURE_LAWS}, got {law!r}")
+        points = []
+        for k, point in enumerate((point1, point2), start=1):
+            try:
+                t, mu = point
+            except (TypeError, ValueError):
+                raise ValueError(f"point{k} must be a pair (temperature [K], viscosity "
+                                 f"[Pa s]), got {point!r}") from None
+            points.append((_positive(f"point{k} temperature", t, allowed="> 0 [K]"),
+                           _positive(f"point{k} viscosity", mu, allowed="> 0 [Pa s]")))
+        (t1, mu1), (t2, mu2) = points
+        rho = _positive("density", density, allowed="> 0 [kg/m^3]")
+        if t1 == t2:
+            raise ValueError(f"point1 and point2 need two temperatures, got {t1!r} twice")
+        if (mu2 - mu1) * (t2 - t1) >= 0.0:
+            raise ValueError(f"the viscosity must fall as the temperature rises, got "
+                             f"{mu1!r} Pa s at {t1!r} K and {mu2!r} Pa s at {t2!r} K")
+        common = dict(temperature=t1, mass_density=rho, specific_heat=specific_heat,
+                      conductivity=conductivity, **pressure_laws)
+        if law == "exponential":
+            return cls(mu1, temperature_exponent=math.log(mu1 / mu2) / (t2 - t1), **common)
+        nu1, nu2 = 1e6 * mu1 / rho, 1e6 * mu2 / rho
+        if min(nu1, nu2) < WALTHER_LEAST:
+            raise ValueError(f"law 'walther' (ASTM D341) holds for kinematic viscosities "
+                             f">= {WALTHER_LEAST} mm^2/s, got {min(nu1, nu2):.4g} mm^2/s; "
+                             f"use law='exponential'")
+        return cls(mu1, walther=walther_constants(t1, nu1, t2, nu2), **common)
+
+    @classmethod
+    def iso_vg(cls, grade: int, *, density: float = ISO_VG_DENSITY,
+               specific_heat: float = ISO_VG_SPECIFIC_HEAT,
+               conductivity: float = ISO_VG_CONDUCTIVITY, **pressure_laws) -> "Lubricant":
+        """An ISO 3448 grade (VG 7 .. 1500) as a mineral oil of viscosity index 100.
+
+        Its kinematic viscosity is the grade's midpoint at 40 C and, at 100 C, the value
+        that gives VI 100 by ASTM D2270 (:data:`ISO_VG`); Walther's equation (D341)
+        through the two. Density 870 kg/m^3, cp 1950 J/(kg K), k 0.13 W/(m K) unless
+        given (the same at every temperature). The reference temperature is 40 C.
+        """
+        if isinstance(grade, bool) or grade not in ISO_VG:
+            raise ValueError(f"grade must be an ISO VG grade with a VI 100 oil, one of "
+                             f"{sorted(ISO_VG)}, got {grade!r}")
+        rho = _positive("density", density, allowed="> 0 [kg/m^3]")
+        nu40, nu100 = ISO_VG[grade]
+        return cls.two_point((40.0 + CELSIUS, 1e-6 * nu40 * rho),
+                             (100.0 + CELSIUS, 1e-6 * nu100 * rho), density=rho,
+                             specific_heat=specific_heat, conductivity=conductivity,
+                             law="walther", **pressure_laws)
+
+    @property
+    def is_thermal(self) -> bool:
+        """True when the viscosity follows the temperature (a temperature law is given)."""
+        return self.walther is not None or self.temperature_exponent is not None
+
+    def at_temperature(self, temperature: float) -> "Lubricant":
+        """The same oil held at ``temperature`` [K]: viscosity mu(T) as its mu0, the same
+        pressure laws and properties, no temperature law (what an isothermal film
+        takes)."""
+        t = _positive("temperature", temperature, allowed="> 0 [K]")
+        mu = float(self.viscosity_at(0.0, temperature=t))
+        return replace(self, viscosity=mu, temperature=t, walther=None,
+                       temperature_exponent=None)
 
     # -- viscosity ---------------------------------------------------------------------
     @property
     def pressure_viscosity(self) -> float:
-        """d ln(mu)/dp at ambient [1/Pa]: alpha for Barus, alpha* for Roelands, 0 else."""
+        """d ln(mu)/dp at ambient and the reference temperature [1/Pa]: alpha for Barus,
+        alpha* for Roelands, 0 else."""
         if self.roelands is not None:
             return self.roelands * (math.log(self.viscosity) - ROELANDS_LN_MU_INF) / ROELANDS_P0
         return float(self.barus or 0.0)
 
-    def _log_viscosity_ratio(self, p: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """ln(mu/mu0) and its derivative d/dp at gauge pressure p."""
+    def _viscosity_ambient(self, temperature) -> tuple[np.ndarray, np.ndarray]:
+        """mu_T [Pa s] at ambient pressure and d ln(mu_T)/dT [1/K] at ``temperature``."""
+        if temperature is None or not self.is_thermal:
+            shape = np.shape(temperature) if temperature is not None else ()
+            return np.full(shape, self.viscosity), np.zeros(shape)
+        t = np.asarray(temperature, dtype=float)
+        if self.temperature_exponent is not None:
+            beta = self.temperature_exponent
+            return self.viscosity * np.exp(-beta * (t - self.temperature)), \
+                np.full_like(t, -beta)
+        a, b = self.walther
+        # nu + 0.7 = 10^(10^(A - B log10 T)); mu = rho nu
+        inner = 10.0 ** (a - b * np.log10(t))
+        z = 10.0 ** inner
+        nu = z - WALTHER_SHIFT
+        mu = 1e-6 * self.mass_density * nu
+        # d nu/dT = z ln10 * inner ln10 * (-B / (T ln10))
+        dnu = -z * math.log(10.0) * inner * b / t
+        return mu, dnu / nu
+
+    def _log_viscosity_ratio(self, p: np.ndarray, mu_t) -> tuple[np.ndarray, np.ndarray]:
+        """ln(mu/mu_T) and its derivative d/dp at gauge pressure p, mu_T the ambient
+        viscosity at the temperature."""
         if self.roelands is not None:
             z = self.roelands
-            c = math.log(self.viscosity) - ROELANDS_LN_MU_INF
+            c = np.log(mu_t) - ROELANDS_LN_MU_INF
             # below -p0 the law has no meaning; clip so a Newton iterate cannot make NaN
             s = np.maximum(1.0 + p / ROELANDS_P0, 1e-12)
             return c * (s**z - 1.0), c * z * s**(z - 1.0) / ROELANDS_P0
         alpha = float(self.barus or 0.0)
         return alpha * p, np.full_like(p, alpha)
 
-    def viscosity_at(self, p) -> np.ndarray:
-        """Viscosity mu(p) [Pa s] at gauge pressure p [Pa] (array or scalar)."""
+    def viscosity_at(self, p=0.0, *, temperature=None) -> np.ndarray:
+        """Viscosity mu(p, T) [Pa s] at gauge pressure p [Pa] and ``temperature`` [K]
+        (arrays broadcast, or scalars; None: the reference temperature)."""
+        mu_t, _ = self._viscosity_ambient(temperature)
         p = np.asarray(p, dtype=float)
-        return self.viscosity * np.exp(self._log_viscosity_ratio(p)[0])
+        p = p + np.zeros_like(mu_t)
+        return mu_t * np.exp(self._log_viscosity_ratio(p, mu_t)[0])
 
-    def viscosity_derivative(self, p) -> np.ndarray:
-        """d mu / d p [Pa s / Pa] at gauge pressure p [Pa]."""
+    def viscosity_derivative(self, p=0.0, *, temperature=None) -> np.ndarray:
+        """d mu / d p [Pa s / Pa] at gauge pressure p [Pa] and ``temperature`` [K]."""
+        mu_t, _ = self._viscosity_ambient(temperature)
         p = np.asarray(p, dtype=float)
-        log_ratio, slope = self._log_viscosity_ratio(p)
-        return self.viscosity * np.exp(log_ratio) * slope
+        p = p + np.zeros_like(mu_t)
+        log_ratio, slope = self._log_viscosity_ratio(p, mu_t)
+        return mu_t * np.exp(log_ratio) * slope
+
+    def viscosity_temperature_derivative(self, temperature, p=0.0) -> np.ndarray:
+        """d mu / d T [Pa s / K] at ``temperature`` [K] and gauge pressure p [Pa]
+        (0 for an oil without a temperature law)."""
+        mu_t, dlog = self._viscosity_ambient(np.asarray(temperature, dtype=float))
+        p = np.asarray(p, dtype=float) + np.zeros_like(mu_t)
+        log_ratio, _ = self._log_viscosity_ratio(p, mu_t)
+        mu = mu_t * np.exp(log_ratio)
+        if self.roelands is not None:     # Roelands' exponent grows with ln mu_T
+            s = np.maximum(1.0 + p / ROELANDS_P0, 1e-12)
+            return mu * dlog * s**self.roelands
+        return mu * dlog
+
+    def kinematic_viscosity_at(self, temperature=None) -> np.ndarray:
+        """Kinematic viscosity mu/rho [m^2/s] at ambient pressure and ``temperature`` [K];
+        needs ``mass_density``."""
+        if self.mass_density is None:
+            raise ValueError("kinematic_viscosity_at needs the oil's mass_density [kg/m^3]")
+        return self._viscosity_ambient(temperature)[0] / self.mass_density
 
     # -- density -----------------------------------------------------------------------
     def density_at(self, p) -> np.ndarray:

@@ -17,7 +17,8 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
                    tol: float = 1e-10, cavitated_shear: str = "full",
                    grooves=(), ambient_pressure: float = 0.0, fields: FilmFields | None = None,
                    tilt=(0.0, 0.0), tilt_rate=(0.0, 0.0), lubricant=None,
-                   bush=None, roughness=None, start=None, grading=None) -> FilmSolution:
+                   bush=None, roughness=None, start=None, grading=None,
+                   thermal=None) -> FilmSolution:
     """Solve the Reynolds equation on a finite-element mesh of the unwrapped film.
 
     The options make a :class:`~bearingfem.routes.FilmProblem`; its kind picks the route
@@ -67,6 +68,10 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
     grading : grooved films: (angle [rad], strength in [0, 0.99]) of a bearing-fixed mesh
         whose theta cells concentrate towards the inertial ``angle`` (where the film is
         thin); None: uniform cells
+    thermal : :class:`~bearingfem.thermal.Thermal`: the thermal (THD) film, the energy
+        equation coupled to the film through the ``lubricant``'s viscosity against
+        temperature (:mod:`bearingfem.routes.thd`); ``temperature`` and
+        ``temperature_max`` [K] are then given
 
     Returns
     -------
@@ -77,7 +82,7 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
         supply_angle=supply_angle, half=half, tol=tol, cavitated_shear=cavitated_shear,
         grooves=grooves, ambient_pressure=ambient_pressure, fields=fields, tilt=tilt,
         tilt_rate=tilt_rate, lubricant=lubricant, bush=bush, roughness=roughness,
-        start=start, grading=grading))
+        start=start, grading=grading, thermal=thermal))
 
 
 def fvm_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z: int = 20,

@@ -46,6 +46,10 @@ class FilmSolution:
     asperity_force_local : the same in the local frame (F_r, F_t) [N]
     asperity_friction_torque : the summits' Coulomb friction torque [N m], the film's
         convention (opposing positive omega); ``friction_torque`` stays the film's shear
+    temperature, temperature_max : a thermal film's nodal temperature and its largest [K]
+        (:mod:`bearingfem.thermal`); None for an isothermal film
+    thermal : a thermal film's :class:`~bearingfem.thermal.ThermalRecord` (energy
+        balance, journal and inlet temperatures, viscosity, iterations)
     """
 
     force_local: tuple
@@ -82,6 +86,9 @@ class FilmSolution:
     asperity_force_local: tuple = (0.0, 0.0)   # (F_r, F_t) [N]
     asperity_friction_torque: float = 0.0      # [N m]
     density: np.ndarray | None = field(default=None, repr=False)  # compressible JFO: rho/rho0
+    temperature: np.ndarray | None = field(default=None, repr=False)  # thermal film: nodal [K]
+    temperature_max: float | None = None       # thermal film: the film's hottest node [K]
+    thermal: object = field(default=None, repr=False)  # thermal film: its ThermalRecord
 
     @property
     def asperity_load(self) -> float:

@@ -11,10 +11,11 @@ import os
 import re
 from pathlib import Path
 
+from bearingfem.bearing import check_surface_speed, plausibility_errors
 from bearingfem.validation import MIN_N_THETA, MIN_N_Z
 
 __all__ = ["check_numbers", "given_options", "check_writable", "parse_angles",
-           "check_scheduler_address", "RULES"]
+           "check_scheduler_address", "oil_viscosity", "RULES"]
 
 #: dest -> (option as typed, low, low included, high, high included); None: open end.
 RULES = {
@@ -23,6 +24,7 @@ RULES = {
     "clearance": ("--clearance", 0.0, False, None, False),
     "viscosity": ("--viscosity", 0.0, False, None, False),
     "omega": ("--omega", None, False, None, False),
+    "rpm": ("--rpm", None, False, None, False),
     "eps": ("--eps: eps", 0.0, True, 1.0, False),
     "eps_dot": ("--eps-dot", None, False, None, False),
     "ambient_pressure": ("--ambient-pressure", 0.0, True, None, False),
@@ -64,6 +66,25 @@ def check_numbers(args) -> None:
                           else f"{name} must be {rule}, got {v!r}")
     if errors:
         raise ValueError("; ".join(errors))
+    check_plausible(args)
+
+
+#: the bearing's options as typed, for the plausibility messages
+BEARING_OPTIONS = ("--diameter", "--length-ratio/--ld (L/D)", "--clearance", "--viscosity")
+
+
+def check_plausible(args) -> None:
+    """The bearing the options describe lies in the range of any journal bearing
+    (:data:`bearingfem.bearing.PLAUSIBLE`); else ValueError naming the likely unit mistake."""
+    values = [getattr(args, k, None) for k in ("diameter", "length_ratio", "clearance",
+                                                "viscosity")]
+    if any(v is None for v in values):
+        return
+    errors = plausibility_errors(*values, names=BEARING_OPTIONS)
+    if errors:
+        raise ValueError("; ".join(errors))
+    if getattr(args, "omega", None) is not None:
+        check_surface_speed(args.diameter / 2, args.omega, "--omega")
 
 
 def given_options(subparser, argv) -> set:
@@ -102,6 +123,24 @@ def parse_angles(text: str) -> list:
         shown = ", ".join(f"{a:g}" for a in bad)
         raise ValueError(f"--angles must lie in [0, 360) deg, got {shown}")
     return sorted(set(angles))
+
+
+_GRADE = re.compile(r"^\s*(?:ISO)?\s*(?:VG)?\s*(\d+)\s*$", re.IGNORECASE)
+
+
+def oil_viscosity(grade: str, temperature_c: float) -> float:
+    """``--oil`` 'ISO VG 32' (or 'VG32', '32') at ``temperature_c`` [degC] -> its dynamic
+    viscosity [Pa s] (:meth:`bearingfem.lubricant.Lubricant.iso_vg`)."""
+    from bearingfem.lubricant import ISO_VG, Lubricant
+    m = _GRADE.match(grade)
+    if not m or int(m.group(1)) not in ISO_VG:
+        raise ValueError(f"--oil must be an ISO VG grade, one of "
+                         f"{', '.join(f'ISO VG {g}' for g in sorted(ISO_VG))}, got {grade!r}")
+    if not (math.isfinite(temperature_c) and -50.0 <= temperature_c <= 200.0):
+        raise ValueError(f"--oil-temperature must lie in [-50, 200] degC (an oil film's), "
+                         f"got {temperature_c!r}")
+    oil = Lubricant.iso_vg(int(m.group(1)))
+    return float(oil.viscosity_at(0.0, temperature=temperature_c + 273.15))
 
 
 _ADDRESS = re.compile(r"^(?:(tcp|tls|ws|wss|ucx)://)?(\[[0-9a-fA-F:]+\]|[\w.-]+):(\d{1,5})$")

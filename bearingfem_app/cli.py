@@ -2,22 +2,27 @@
 from __future__ import annotations
 
 import argparse
+import difflib
 import functools
+import math
 import os
 import re
 import sys
 
 from bearingfem.bearing import SEED_TABLE1
 from bearingfem.models import FILM_MODELS
+from mechanism.scene import shipped_scenes
 
-from .checks import check_numbers, given_options
+from .checks import check_numbers, given_options, oil_viscosity
 
-from .commands import (command_coefficients, command_convergence, command_equilibrium,
-                       command_frames, command_render, command_simulate, command_solve,
-                       command_sweep)
+from .commands import (command_coefficients, command_convergence, command_design,
+                       command_equilibrium, command_frames, command_render,
+                       command_simulate, command_solve, command_sweep)
 
 EXAMPLES = """examples:
   bearingfem simulate scenes/paper-short-fem.toml -o results/short-fem
+  bearingfem design --diameter 0.05 --ld 0.5 --clearance 50e-6 --oil 'ISO VG 32' \
+      --rpm 3000 --load 2000
   bearingfem solve --ld 1.0 --eps 0.6 --cavitation reynolds --supply-angle max-film
   bearingfem render --ld 1.0 --eps 0.6 --cavitation reynolds -o film.png
   bearingfem convergence --ld 1.0 --eps 0.6 -o results/convergence
@@ -28,16 +33,43 @@ EXAMPLES = """examples:
 """
 
 
+#: the journal speed when neither --omega nor --rpm is given [rad/s]
+DEFAULT_OMEGA = 250.0
+
+
+class _HelpFormatter(argparse.ArgumentDefaultsHelpFormatter):
+    """Shows an option's default where it has one that its help does not already state
+    (no "(default: None)" on required options or options whose absence means something)."""
+
+    def _get_help_string(self, action):
+        text = action.help or ""
+        if (action.required or action.default is None or action.default is False
+                or action.default == argparse.SUPPRESS
+                or "default" in text or not action.option_strings):
+            return text
+        return super()._get_help_string(action)
+
+
 def _bearing_args(p, film=True):
     p.add_argument("--length-ratio", "--ld", dest="length_ratio", type=float, default=1.0,
                    help="L/D, the bearing's length over its diameter")
-    p.add_argument("--omega", type=float, default=250.0, help="journal speed [rad/s]")
+    speed = p.add_mutually_exclusive_group()
+    speed.add_argument("--omega", type=float, default=None,
+                       help=f"journal speed [rad/s] (default {DEFAULT_OMEGA:g})")
+    speed.add_argument("--rpm", type=float, default=None,
+                       help="journal speed [1/min], instead of --omega")
     p.add_argument("--diameter", type=float, default=SEED_TABLE1["diameter"],
-                   help="[m] (seed Table 1)")
+                   help="journal diameter D [m] (seed Table 1)")
     p.add_argument("--clearance", type=float, default=SEED_TABLE1["clearance"],
-                   help="[m] (seed Table 1)")
-    p.add_argument("--viscosity", type=float, default=SEED_TABLE1["viscosity"],
-                   help="[Pa s] (seed Table 1)")
+                   help="radial clearance c [m], bush radius minus journal radius "
+                        "(seed Table 1)")
+    oil = p.add_mutually_exclusive_group()
+    oil.add_argument("--viscosity", type=float, default=SEED_TABLE1["viscosity"],
+                     help="dynamic viscosity [Pa s] (seed Table 1)")
+    oil.add_argument("--oil", help="the oil by grade, e.g. 'ISO VG 32' (a VI 100 mineral "
+                     "oil, ISO 3448), instead of --viscosity")
+    p.add_argument("--oil-temperature", type=float, default=None,
+                   help="the --oil's temperature [degC] (default 40)")
     p.add_argument("--cavitation", default="reynolds",
                    help="none | gumbel | reynolds | jfo (mass-conserving; needs a supply: "
                         "--ambient-pressure > 0 or --supply-angle)" if film else
@@ -66,7 +98,8 @@ def _load_args(p, required):
                    help="load magnitude [N], > 0" + ("" if required else
                                                 ": K, C at the equilibrium under it"))
     p.add_argument("--direction", type=float, default=-90.0,
-                   help="load direction [deg], inertial (-90: downward)")
+                   help="load direction [deg], inertial, counter-clockwise from x "
+                        "(-90: downward)")
 
 
 def _design_args(p):
@@ -83,18 +116,20 @@ def build_parser():
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = p.add_subparsers(dest="command", required=True)
     add = functools.partial(sub.add_parser,   # every option shows its default in --help
-                            formatter_class=argparse.ArgumentDefaultsHelpFormatter)
+                            formatter_class=_HelpFormatter)
     s = add("simulate", help="integrate a scene; write result and figure",
             epilog="example: bearingfem simulate scenes/paper-long-fem.toml -o out")
-    s.add_argument("scene", help="scene TOML file")
+    s.add_argument("scene", help="scene TOML file, or the name of a shipped scene ("
+                   + ", ".join(shipped_scenes()) + ")")
     s.add_argument("-o", "--output", required=True, help="output directory")
     s.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
     s.set_defaults(func=command_simulate)
     f = add("solve", help="one film solve; print forces, optionally export VTU",
             epilog="example: bearingfem solve --ld 0.5 --eps 0.8 -o film.vtu")
     _film_args(f)
-    f.add_argument("--method", default="fem", choices=["fem", "fvm"],
-                   help="finite elements or finite volumes")
+    f.add_argument("--model", default="fem", choices=["fem", "fvm"],
+                   help="film model: finite elements or finite volumes")
+    f.add_argument("--method", choices=["fem", "fvm"], help=argparse.SUPPRESS)   # old name
     f.add_argument("-o", "--output", help="write the film (.vtu, .xdmf)")
     f.set_defaults(func=command_solve)
     c = add("convergence", help="mesh-convergence study: CSV table + log-log PNG",
@@ -129,7 +164,8 @@ def build_parser():
     fr = add("frames", help="the film along a saved run: VTU series (.pvd), PNG frames, GIF",
              epilog="example: bearingfem frames scenes/paper-long-fem.toml "
                     "results/long-fem -o frames --angles 0,90")
-    fr.add_argument("scene", help="the scene TOML the run was made from")
+    fr.add_argument("scene", help="the scene the run was made from (a TOML file or a "
+                    "shipped scene's name)")
     fr.add_argument("result", help="directory written by 'bearingfem simulate'")
     fr.add_argument("-o", "--output", required=True, help="output directory")
     fr.add_argument("--angles", help="crank angles [deg] in [0, 360), comma-separated; "
@@ -162,6 +198,13 @@ def build_parser():
     k.add_argument("--frame", default="inertial", choices=["inertial", "local", "load"],
                    help="axes of K and C")
     k.set_defaults(func=command_coefficients)
+    d = add("design", help="a design point in one go: least film, attitude, friction power, "
+                           "flow, K and C in the load frame, stability",
+            epilog="example: bearingfem design --diameter 0.05 --ld 0.5 --clearance 50e-6 "
+                   "--viscosity 0.028 --rpm 3000 --load 2000")
+    _design_args(d)
+    _load_args(d, required=True)
+    d.set_defaults(func=command_design)
     return p
 
 
@@ -183,15 +226,79 @@ def _negative_values(argv):
     return out
 
 
+#: words a user may try for an option spelt otherwise here
+SYNONYMS = {"--speed": "--omega [rad/s] or --rpm [1/min]", "--mu": "--viscosity",
+            "--method": "--model", "--length": "--ld (L/D)", "--oil-temp": "--oil-temperature"}
+
+
+def _unrecognized(sub, unknown) -> str:
+    """argparse's message for options a command does not take, with the nearest of its
+    own options for each (difflib), so that a typo names its fix."""
+    known = [o for a in sub._actions for o in a.option_strings if o.startswith("--")
+             and a.help != argparse.SUPPRESS]
+    parts = []
+    for u in unknown:
+        name = u.split("=", 1)[0]
+        near = ([SYNONYMS[name]] if name in SYNONYMS else
+                difflib.get_close_matches(name, known, n=1, cutoff=0.6)) \
+            if u.startswith("-") else []
+        parts.append(f"{u} (did you mean {near[0]}?)" if near else u)
+    return "unrecognized arguments: " + " ".join(parts)
+
+
+#: old option -> the one that now carries its idea, per command
+OLD_SPELLINGS = {"solve": {"method": "model"}}
+
+
+def _old_spellings(args) -> None:
+    """An old option name is taken as its new one, with a note on stderr."""
+    for old, new in OLD_SPELLINGS.get(args.command, {}).items():
+        if old in args.given:
+            if new in args.given:
+                raise ValueError(f"--{old} is the old name of --{new}: give one of them")
+            setattr(args, new, getattr(args, old))
+            args.given = (args.given - {old}) | {new}
+            print(f"bearingfem: note: --{old} is now --{new}", file=sys.stderr)
+
+
+def _speed(args) -> None:
+    """--rpm [1/min] -> args.omega [rad/s]; neither: the default speed."""
+    if not hasattr(args, "omega"):
+        return
+    if getattr(args, "rpm", None) is not None:
+        if not math.isfinite(args.rpm):
+            raise ValueError(f"--rpm must be finite, got {args.rpm!r}")
+        args.omega = args.rpm * math.pi / 30.0
+    elif args.omega is None:
+        args.omega = DEFAULT_OMEGA
+
+
+def _oil(args) -> None:
+    """--oil GRADE at --oil-temperature [degC] -> args.viscosity [Pa s]."""
+    if getattr(args, "oil", None) is None:
+        if getattr(args, "oil_temperature", None) is not None:
+            raise ValueError("--oil-temperature is the --oil's temperature: give --oil "
+                             "(e.g. 'ISO VG 32'), or the viscosity at that temperature "
+                             "with --viscosity")
+        return
+    temperature = 40.0 if args.oil_temperature is None else args.oil_temperature
+    args.viscosity = oil_viscosity(args.oil, temperature)
+
+
 def main(argv=None):
     argv = sys.argv[1:] if argv is None else list(argv)
     parser = build_parser()
-    args = parser.parse_args(_negative_values(argv))
+    args, unknown = parser.parse_known_args(_negative_values(argv))
     # options whose meaning depends on others: was it typed, or is it the default?
     sub = parser._subparsers._group_actions[0].choices[args.command]
+    if unknown:
+        sub.error(_unrecognized(sub, unknown))
     args.given = given_options(sub, argv)
-    args.element_given = "element" in args.given
     try:
+        _old_spellings(args)
+        args.element_given = "element" in args.given
+        _speed(args)
+        _oil(args)
         check_numbers(args)
         return args.func(args)
     except ValueError as err:

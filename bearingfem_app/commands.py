@@ -14,7 +14,8 @@ from .checks import check_writable, parse_angles
 INTERRUPTED = 130
 
 __all__ = ["command_simulate", "command_solve", "command_render", "command_convergence",
-           "command_sweep", "command_frames", "command_equilibrium", "command_coefficients"]
+           "command_sweep", "command_frames", "command_equilibrium", "command_coefficients",
+           "command_design"]
 
 
 def command_simulate(args):
@@ -153,14 +154,9 @@ def _print_rows(rows):
         print(f"  {name:24s} {v:>14s} {unit}")
 
 
-def command_equilibrium(args):
-    from bearingfem.design import equilibrium
-    out = _check_output(args.output, (".json", ".csv"))
-    model, opts = _model_options(args)
-    b = _bearing(args)
-    eq = equilibrium(b, args.load, args.omega, model, direction=math.radians(args.direction),
-                     **opts)
-    rows = [("eccentricity ratio", eq.eps, "-"),
+def _equilibrium_rows(eq, b):
+    """What the designer reads of an equilibrium: (name, value, unit) rows."""
+    return [("eccentricity ratio", eq.eps, "-"),
             ("attitude angle", math.degrees(eq.attitude), "deg"),
             ("Sommerfeld number", eq.sommerfeld, "-"),
             ("minimum film", eq.film_min, "m"),
@@ -173,6 +169,35 @@ def command_equilibrium(args):
             ("power loss", eq.power_loss, "W"),
             ("side leakage", eq.side_leakage, "m^3/s"),
             ("inflow", eq.flow_in, "m^3/s")]
+
+
+#: the axes of K and C in each frame, in words
+FRAME_AXES = {
+    "inertial": (("x", "y"), "x, y inertial (y up: --direction -90 is downward)"),
+    "local": (("r", "t"), "r along the eccentricity (journal centre from bearing centre), "
+                          "t = r turned +90 deg"),
+    "load": (("1", "2"), "1 along the load, 2 = 1 turned +90 deg (counter-clockwise)")}
+
+
+def _coefficient_rows(kc, frame):
+    """K, C in ``frame`` as rows, and one line naming the frame's axes."""
+    (a, b), words = FRAME_AXES[frame]
+    names = (a + a, a + b, b + a, b + b)
+    rows = ([(f"K_{n}", float(v), "N/m") for n, v in zip(names, kc.K.ravel())]
+            + [(f"C_{n}", float(v), "N s/m") for n, v in zip(names, kc.C.ravel())])
+    angles = [round(math.degrees(math.atan2(q[1], q[0])), 9) + 0.0 for q in kc.axes]
+    return rows, (f"axes: {words}; axis {a} at {angles[0]:.4g} deg, axis {b} at "
+                  f"{angles[1]:.4g} deg (inertial, counter-clockwise from x)")
+
+
+def command_equilibrium(args):
+    from bearingfem.design import equilibrium
+    out = _check_output(args.output, (".json", ".csv"))
+    model, opts = _model_options(args)
+    b = _bearing(args)
+    eq = equilibrium(b, args.load, args.omega, model, direction=math.radians(args.direction),
+                     **opts)
+    rows = _equilibrium_rows(eq, b)
     print(f"equilibrium, {model} {opts or ''}: load {args.load:g} N toward "
           f"{args.direction:g} deg (inertial), {args.omega:g} rad/s, L/D {args.length_ratio:g}")
     _print_rows(rows)
@@ -196,17 +221,51 @@ def command_coefficients(args):
         state = JournalState(args.eps, omega=args.omega, gamma=math.radians(args.gamma))
     kc = coefficients(b, state, model, frame=args.frame, **opts)
     st = lund_stability(kc)
-    names = ("xx", "xy", "yx", "yy") if args.frame == "inertial" else (
-        ("rr", "rt", "tr", "tt") if args.frame == "local" else ("11", "12", "21", "22"))
-    rows = ([(f"K_{n}", float(v), "N/m") for n, v in zip(names, kc.K.ravel())]
-            + [(f"C_{n}", float(v), "N s/m") for n, v in zip(names, kc.C.ravel())]
-            + [("eccentricity ratio", state.eps, "-"), ("load carried", kc.load, "N"),
-               ("critical mass", st.critical_mass, "kg"),
-               ("whirl frequency ratio", st.whirl_ratio, "-")])
+    rows, axes = _coefficient_rows(kc, args.frame)
+    rows += [("eccentricity ratio", state.eps, "-"), ("load carried", kc.load, "N"),
+             ("critical mass", st.critical_mass, "kg"),
+             ("whirl frequency ratio", st.whirl_ratio, "-")]
     print(f"coefficients, {model} {opts or ''}, {args.frame} frame ({kc.method}):")
+    print(f"  {axes}")
     _print_rows(rows)
-    print(f"  stability (Lund, rigid journal): {st.describe()}")
+    print(f"  {st}")
     rows.append(("stability", st.verdict.value, "-"))
+    _write_numbers(out, rows)
+    return 0
+
+
+def _oil_words(args) -> str:
+    if getattr(args, "oil", None) is None:
+        return ""
+    t = 40.0 if args.oil_temperature is None else args.oil_temperature
+    return f" ({args.oil} at {t:g} degC)"
+
+
+def command_design(args):
+    """The designer's question in one command: where the journal sits under the load
+    (least film, attitude, friction power, flow) and the film's K, C there in the load
+    frame, with Lund's stability of a rigid journal."""
+    from bearingfem.design import coefficients, equilibrium, lund_stability
+    out = _check_output(args.output, (".json", ".csv"))
+    model, opts = _model_options(args)
+    b = _bearing(args)
+    eq = equilibrium(b, args.load, args.omega, model, direction=math.radians(args.direction),
+                     **opts)
+    kc = coefficients(b, eq.state, model, frame="load", **opts)
+    st = lund_stability(kc)
+    eq_rows = _equilibrium_rows(eq, b)
+    k_rows, axes = _coefficient_rows(kc, "load")
+    k_rows += [("critical mass", st.critical_mass, "kg"),
+               ("whirl frequency ratio", st.whirl_ratio, "-")]
+    print(f"design point, {model} {opts or ''}: D {b.diameter * 1e3:g} mm, L/D "
+          f"{b.length_ratio:g}, radial clearance {b.clearance * 1e6:g} um, viscosity "
+          f"{b.viscosity:.4g} Pa s{_oil_words(args)}, {args.omega:g} rad/s ({args.omega * 30 / math.pi:g} rpm), "
+          f"load {args.load:g} N toward {args.direction:g} deg (inertial)")
+    _print_rows(eq_rows)
+    print(f"  K, C ({kc.method}); {axes}")
+    _print_rows(k_rows)
+    print(f"  {st}")
+    rows = eq_rows + k_rows + [("stability", st.verdict.value, "-")]
     _write_numbers(out, rows)
     return 0
 
@@ -218,20 +277,20 @@ IMAGE_FORMATS = (".png", ".jpg", ".jpeg", ".bmp", ".tif", ".tiff")
 
 
 def _element(args, method="fem"):
-    """--element belongs to the finite elements: refused when given with --method fvm."""
+    """--element belongs to the finite elements: refused when given with --model fvm."""
     if method == "fvm" and args.element_given:
-        raise ValueError("--element applies to --method fem only (finite volumes have no "
-                         f"element), got --element {args.element} with --method fvm")
+        raise ValueError("--element applies to --model fem only (finite volumes have no "
+                         f"element), got --element {args.element} with --model fvm")
     return args.element
 
 
 def command_solve(args):
     from bearingfem import fvm_reynolds, solve_reynolds
-    element = _element(args, args.method)
+    element = _element(args, args.model)
     _check_output(args.output, FILM_FORMATS)
     b, s = _film_state(args)
     supply = _supply_angle(args, s.gamma)
-    if args.method == "fvm":
+    if args.model == "fvm":
         sol = fvm_reynolds(b, s, args.n_theta, args.n_z, args.cavitation,
                            ambient_pressure=_ambient(args), supply_angle=supply)
     else:
@@ -284,7 +343,6 @@ def command_convergence(args):
 def command_render(args):
     from bearingfem import solve_reynolds
     from bearingfem.outputs.render import FIELDS, SURFACES, render_film
-    from bearingfem.models import film_model
     from bearingfem.validation import check_choice
     check_choice("--field", args.field, tuple(FIELDS))
     check_choice("--surface", args.surface, SURFACES)
@@ -353,16 +411,16 @@ def command_frames(args):
                              f"{args.result!r} was made from ({', '.join(differ[:4])})")
     angles = parse_angles(args.angles) if args.angles else None
     from bearingfem.outputs.render import FIELDS, SURFACES
-    from bearingfem.models import film_model
     from bearingfem.validation import check_choice
+    from mechanism.film_history import history_fields
     check_choice("--field", args.field, tuple(FIELDS))
     check_choice("--surface", args.surface, SURFACES)
-    lub = scene.lubrication
-    fields = () if lub is None else film_model(lub.model).film_fields(lub.options)
+    fields = history_fields(scene)
     if args.field not in fields:
-        raise ValueError(f"--field {args.field}: the run's film "
-                         f"({'none' if lub is None else lub.model}) records "
-                         f"{', '.join(fields) or 'no film fields'}")
+        model = scene.lubrication.model if scene.lubrication is not None else "none"
+        raise ValueError(f"--field {args.field}: the frames of this run (film {model}) "
+                         f"carry {', '.join(fields)}; the film fraction needs a "
+                         f"mass-conserving film (model fem-jfo)")
     check_writable(args.output, "-o/--output")
     frames = film_history(result, scene, angles, args.frames,
                           progress=lambda k, n: print(f"  film {k}/{n}", flush=True))

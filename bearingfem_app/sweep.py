@@ -19,6 +19,7 @@ interrupted sweep loses nothing and a rerun skips what is done. ``DIR/results.cs
 """
 from __future__ import annotations
 
+import difflib
 import hashlib
 import itertools
 import json
@@ -54,8 +55,10 @@ class Sweep:
 def _checked(kind, key, value, where):
     params = KINDS[kind]
     if key not in params:
-        raise ValueError(f"{where}.{key} is not a {kind} sweep parameter "
-                         f"(parameters: {', '.join(sorted(params))})")
+        near = difflib.get_close_matches(key, sorted(params), n=1, cutoff=0.7)
+        raise ValueError(f"{where}.{key} is not a {kind} sweep parameter"
+                         + (f" (did you mean {near[0]}?)" if near else "")
+                         + f" (parameters: {', '.join(sorted(params))})")
     typ = params[key][1]
     if typ is str:
         if not isinstance(value, str):
@@ -258,14 +261,19 @@ def gather(out, sweep: Sweep | None = None) -> list[dict]:
 
 #: How each sweep parameter is shown: (display scale, label with units).
 DISPLAY = {"diameter": (1e3, "diameter [mm]"), "length_ratio": (1.0, "L/D [-]"),
-           "clearance": (1e6, "clearance [um]"), "viscosity": (1.0, "viscosity [Pa s]"),
+           "clearance": (1e6, "clearance [\u00b5m]"), "viscosity": (1.0, "viscosity [Pa s]"),
            "omega": (1.0, "omega [rad/s]"), "eps": (1.0, "eccentricity ratio [-]"),
            "eps_dot": (1.0, "eps_dot [1/s]"), "crank_speed": (1.0, "crank speed [rad/s]"),
            "turns": (1.0, "turns [-]"), "n_theta": (1.0, "n_theta [-]"), "n_z": (1.0, "n_z [-]")}
 #: What each kind of sweep plots: (result column, label with units, log scale).
 OUTPUTS = {"film": [("load", "load capacity |F| [N]", True)],
-           "design": [("sommerfeld", "Sommerfeld number S [-]", True)],
-           "mechanism": [("min_film_um", "minimum film [um]", True),
+           "design": [("sommerfeld", "Sommerfeld number S [-]", True),
+                      ("attitude_deg", "attitude angle [deg]", False),
+                      ("friction_variable", "friction variable (R/c) f [-]", True),
+                      ("flow_variable", "flow variable Q / (R c N L) [-]", False)]
+           + [(f"{m}{i}{j}", f"{m}_{i}{j} {'c / W' if m == 'K' else 'c omega / W'} [-] "
+               "(load frame)", False) for m in "KC" for i in (1, 2) for j in (1, 2)],
+           "mechanism": [("min_film_um", "minimum film [\u00b5m]", True),
                          ("peak_eps", "peak eccentricity ratio [-]", False)]}
 
 
@@ -285,8 +293,13 @@ def _film_named(sweep: Sweep) -> str:
             return ", ".join(map(str, sweep.vary[key])) + " (varied)"
         return str(sweep.base.get(key, default))
     if sweep.kind == "mechanism":
-        return (f"film model {said('model', 'the scene')}; "
-                f"cavitation {said('cavitation', 'the scene')}")
+        from mechanism import load_scene
+        scene = load_scene(sweep.base.get("scene", MECHANISM_PARAMS["scene"][0]))
+        lub = scene.lubrication
+        model = lub.model if lub is not None else "none"
+        cav = lub.options.get("cavitation", "the model's") if lub is not None else "-"
+        return (f"film model {said('model', model)}; cavitation {said('cavitation', cav)} "
+                f"(scene {scene.name})")
     return (f"film model {said('model', 'fem')}; cavitation "
             f"{said('cavitation', 'each model default')} (closed forms: half film)")
 
@@ -297,11 +310,16 @@ def plot_summary(rows, sweep: Sweep, path) -> None:
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+
+    from mechanism.figures import label_log_axis
     x_key = next(iter(sweep.vary))
     others = [k for k in sweep.vary if k != x_key]
     outputs = OUTPUTS[sweep.kind]
     xscale, xlabel = DISPLAY.get(x_key, (1.0, x_key))
-    fig, axes = plt.subplots(1, len(outputs), figsize=(7 * len(outputs), 4.5),
+    cols = min(len(outputs), 4)
+    rows_n = -(-len(outputs) // cols)
+    size = (7, 4.5) if cols < 3 else (4.6, 3.4)
+    fig, axes = plt.subplots(rows_n, cols, figsize=(size[0] * cols, size[1] * rows_n + 0.6),
                              constrained_layout=True, squeeze=False)
     # one sequential colormap over the first numeric parameter of the lines (its order
     # reads from the colour), the others by marker and line style
@@ -312,7 +330,7 @@ def plot_summary(rows, sweep: Sweep, path) -> None:
     styles = sorted({tuple(r.get(k) for k in styled) for r in rows}, key=str)
     cmap = plt.get_cmap("viridis")
     markers, lines = "os^Dv<>p", ["-", "--", ":", "-."]
-    for ax, (y_key, ylabel, log) in zip(axes[0], outputs):
+    for ax, (y_key, ylabel, log) in zip(axes.ravel(), outputs):
         groups = {}
         for r in rows:
             if r.get(y_key, "") != "":
@@ -330,8 +348,12 @@ def plot_summary(rows, sweep: Sweep, path) -> None:
                     marker=markers[j % len(markers)], ls=lines[j % len(lines)], label=label)
         ax.set(xlabel=xlabel, ylabel=ylabel, yscale="log" if log else "linear")
         ax.grid(True, alpha=0.3)
-        if len(groups) > 1:
+        if log and groups:      # one way of writing every tick (not 6x10^0 beside 10^1)
+            label_log_axis(ax.yaxis)
+        if len(groups) > 1 and ax is axes.ravel()[0]:    # one legend: the lines are shared
             ax.legend(fontsize=7)
+    for ax in axes.ravel()[len(outputs):]:
+        ax.set_visible(False)
     fixed = ", ".join(_shown(k, v) for k, v in sorted(sweep.base.items())
                       if k not in ("scene", "model", "element", "cavitation"))
     fig.suptitle(f"sweep {sweep.name} ({sweep.kind}): {len(rows)} cases"

@@ -13,6 +13,12 @@ __all__ = ["plot_run", "plot_comparison", "label_log_axis"]
 
 #: Films thinner than this [um] (contact) are drawn at it on the log axis.
 FILM_FLOOR_UM = 1e-3
+#: One look per curve of a comparison: colour, line style, width (the first widest, so a
+#: curve drawn over it leaves it visible) and marker.
+COLOURS = ("0.25", "tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple")
+STYLES = ("-", "--", ":", "-.")
+WIDTHS = (3.0, 1.8, 1.4, 1.2)
+MARKERS = ("", "o", "x", "s", "^", "D")
 
 
 def label_log_axis(axis) -> None:
@@ -23,6 +29,7 @@ def label_log_axis(axis) -> None:
     lo, hi = sorted(axis.get_view_interval())
     if hi / lo < 10.0:
         ticks = [t for t in ticker.MaxNLocator(6).tick_values(lo, hi) if lo <= t <= hi and t > 0]
+        axis.set_minor_locator(ticker.NullLocator())   # log minor ticks here: unlabelled
     else:
         ticks = [t for t in ticker.LogLocator(subs=(1.0, 2.0, 5.0)).tick_values(lo, hi)
                  if lo <= t <= hi]
@@ -43,27 +50,34 @@ def plot_comparison(results, labels, clearance, title="", path=None):
     """Seed Figs. 2-7 style: film thickness, orbit, forces X/Y, crank speed, slider
     acceleration, one curve per result, against crank angle over the recorded turn."""
     fig, ax = plt.subplots(2, 3, figsize=(15, 8.5))
-    styles = ["-", "--", ":", "-."]
     for i, (r, lab) in enumerate(zip(results, labels)):
         if len(r.t) == 0:
             continue
-        ls = styles[i % len(styles)]
         deg = _crank_deg(r)
         lab = lab + (" (partial)" if r.partial else "")
+        # curves that agree lie on top of each other: each its own colour, width and
+        # markers at its own crank angles, so that each stays visible where they overlap
+        n = max(len(deg), 1)
+        every = max(n // 12, 1)
+        style = dict(color=COLOURS[i % len(COLOURS)], ls=STYLES[i % len(STYLES)],
+                     lw=WIDTHS[i % len(WIDTHS)], marker=MARKERS[i % len(MARKERS)], ms=5,
+                     markevery=(min(i * every // max(len(results), 1), n - 1), every),
+                     label=lab)
         # log scale: 0.1-0.25 um near the wall must stay readable beside 10 um
-        ax[0, 0].plot(deg, np.maximum(r.film_min * 1e6, FILM_FLOOR_UM), ls, label=lab)
+        ax[0, 0].plot(deg, np.maximum(r.film_min * 1e6, FILM_FLOOR_UM), **style)
         dense = len(r.dense_t) > len(r.t)      # the integrator's own interpolant
         ex, ey = (r.dense_e_x, r.dense_e_y) if dense else (r.e_x, r.e_y)
-        ax[0, 1].plot(ex / clearance, ey / clearance, ls, label=lab)
-        ax[0, 2].plot(deg, r.force_x, ls, label=lab)
-        ax[1, 0].plot(deg, r.force_y, ls, label=lab)
-        ax[1, 1].plot(deg, r.crank_speed, ls, label=lab)
-        ax[1, 2].plot(deg, r.slider_acceleration, ls, label=lab)
+        ax[0, 1].plot(ex / clearance, ey / clearance,
+                      **{**style, "markevery": max(len(ex) // 12, 1)})
+        ax[0, 2].plot(deg, r.force_x, **style)
+        ax[1, 0].plot(deg, r.force_y, **style)
+        ax[1, 1].plot(deg, r.crank_speed, **style)
+        ax[1, 2].plot(deg, r.slider_acceleration, **style)
     circle = np.linspace(0, 2 * np.pi, 361)
     ax[0, 1].plot(np.cos(circle), np.sin(circle), "k", lw=0.8)
     ax[0, 1].set_aspect("equal")
     ax[0, 1].set(xlabel="e_x / c (slider axis)", ylabel="e_y / c", title="pin orbit in the clearance")
-    ax[0, 0].set(ylabel="minimum film thickness [um] (log)", title="film thickness",
+    ax[0, 0].set(ylabel="minimum film thickness [\u00b5m] (log)", title="film thickness",
                  yscale="log")
     ax[0, 2].set(ylabel="joint force on pin F_x [N]", title="force, X (slider axis)")
     ax[1, 0].set(ylabel="joint force on pin F_y [N]", title="force, Y")

@@ -25,7 +25,7 @@ import numpy as np
 from bearingfem import JournalState, solve_reynolds
 from bearingfem.models import film_model
 
-__all__ = ["FilmFrame", "film_history", "write_history", "render_history"]
+__all__ = ["FilmFrame", "film_history", "history_fields", "write_history", "render_history"]
 
 
 @dataclass(frozen=True)
@@ -43,6 +43,17 @@ def _sample_indices(result, crank_angles_deg):
         d = np.abs((q - a + 180.0) % 360.0 - 180.0)
         out.append(int(np.argmin(d)))
     return out
+
+
+def history_fields(scene) -> tuple:
+    """The nodal fields the frames of :func:`film_history` carry for ``scene``: a film with
+    memory is replayed (its model's own fields, the fraction of a mass-conserving one);
+    any other is solved again on the FE film (pressure and film thickness)."""
+    lub = scene.lubrication
+    model = None if lub is None else film_model(lub.model, "lubrication.model")
+    if model is not None and model.memory:
+        return model.film_fields(lub.options)
+    return ("pressure", "film_thickness")
 
 
 def film_history(result, scene, crank_angles_deg=None, n_frames=12, n_theta=None, n_z=None,

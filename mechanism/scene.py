@@ -16,6 +16,7 @@ except ModuleNotFoundError:  # Python < 3.11
     import tomli as tomllib
 
 from bearingfem import Bearing, ElasticBush, Roughness
+from bearingfem.bearing import plausibility_errors
 from bearingfem.lubricant import Lubricant
 from bearingfem.models import film_model
 from .parameters import Mechanism
@@ -169,6 +170,12 @@ def _bearing(t: _Table) -> Bearing:
     c = t.number("clearance", required=True, lo=0.0, hi=0.1 * D, lo_open=True)
     mu = t.number("viscosity", required=True, lo=0.0, lo_open=True)
     t.done()
+    ld, ld_name = (ratio, "length_ratio") if length is None else (length / D,
+                                                                   "length / diameter")
+    names = tuple(f"{t.where}.{k}" for k in ("diameter", ld_name, "clearance", "viscosity"))
+    bad = plausibility_errors(D, ld, c, mu, names)
+    if bad:
+        raise ValueError("; ".join(bad))
     return Bearing(radius=D / 2, length=length if length is not None else ratio * D,
                    clearance=c, viscosity=mu)
 
@@ -212,6 +219,17 @@ def _roughness(t: _Table) -> Roughness:
         raise ValueError(f"{t.where}: {err}") from None
 
 
+def _crank_speed(t: _Table) -> float:
+    """crank_speed [rad/s] or rpm [1/min] (one of them; default 250 rad/s)."""
+    speed = t.number("crank_speed", None, lo=0.0, lo_open=True)
+    rpm = t.number("rpm", None, lo=0.0, lo_open=True)
+    if speed is not None and rpm is not None:
+        raise ValueError(f"{t.where} takes one of crank_speed [rad/s] or rpm [1/min], "
+                         f"got both")
+    return 250.0 if speed is None and rpm is None else (
+        speed if rpm is None else rpm * math.pi / 30.0)
+
+
 def parse_scene(data: dict, name: str = "scene") -> Scene:
     """Validate a scene given as a dict (the parsed TOML)."""
     top = _Table(data, "scene")
@@ -222,7 +240,7 @@ def parse_scene(data: dict, name: str = "scene") -> Scene:
     bt = top.table("bearing")
     init = top.table("initial") or _Table({}, "scene.initial")
     crank_angle = init.number("crank_angle", 0.0)
-    crank_speed = init.number("crank_speed", 250.0, lo=0.0, lo_open=True)
+    crank_speed = _crank_speed(init)
     init.done()
     rt = top.table("run") or _Table({}, "scene.run")
     run = Run(

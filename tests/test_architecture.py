@@ -14,7 +14,7 @@ LAYERS = [
     {"solvers", "closed", "elastic", "ehl"},        # solvers, closed forms, the bush
     {"fe", "fv"},                                   # discretisations
     {"transient", "transient_compressible"},        # the JFO film along a run
-    {"ehd"},                                        # the elastic film
+    {"ehd", "thermal"},                             # the elastic film, the energy equation
     {"routes"},                                     # one way into the film
     {"reynolds"},                                   # its public fronts
     {"models", "outputs"},                          # film models by name; outputs

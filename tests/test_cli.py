@@ -86,7 +86,7 @@ def test_sweep_command_runs_and_resumes(tmp_path):
 
 
 @pytest.mark.parametrize("args,needle", [
-    (("solve", "--method", "fvm", "--element", "P2"), "--element applies to --method fem only"),
+    (("solve", "--model", "fvm", "--element", "P2"), "--element applies to --model fem only"),
     (("solve", "-o", "film.csv"), "-o/--output must end in .vtu or .xdmf or .vtk"),
     (("render", "-o", "film.pdf"), "-o/--output must end in .png"),
     (("render", "-o", "/proc/no/film.png"), "-o/--output: cannot create folder"),
@@ -134,3 +134,112 @@ def test_solve_jfo_prints_fraction_and_balance(tmp_path):
             "--n-z", "8", "-o", str(tmp_path / "film.vtu"))
     assert r.returncode == 0, r.stderr
     assert "JFO film fraction" in r.stdout and "mass balance" in r.stdout
+
+
+def test_coefficients_gamma_is_degrees(tmp_path):
+    """--gamma is in degrees (its help says so): the command's inertial K and C equal the
+    Python API's at the state's attitude in radians, and differ from those at gamma = 0
+    by the rotation through it. Fails with --gamma taken as radians."""
+    import math
+
+    import numpy as np
+
+    from bearingfem import Bearing, JournalState
+    from bearingfem.design import coefficients
+    r = run("coefficients", "--model", "short", "--eps", "0.5", "--gamma", "30",
+            "-o", str(tmp_path / "kc.json"))
+    assert r.returncode == 0, r.stderr
+    got = json.loads((tmp_path / "kc.json").read_text())
+    b = Bearing(radius=0.01, length=0.02, clearance=20e-6, viscosity=0.0117)
+    kc = coefficients(b, JournalState(0.5, omega=250.0, gamma=math.radians(30)), "short")
+    for name, value in zip(("xx", "xy", "yx", "yy"), kc.K.ravel()):
+        assert got[f"K_{name}"]["value"] == pytest.approx(value, rel=1e-6)
+    for name, value in zip(("xx", "xy", "yx", "yy"), kc.C.ravel()):
+        assert got[f"C_{name}"]["value"] == pytest.approx(value, rel=1e-6)
+    k0 = coefficients(b, JournalState(0.5, omega=250.0), "short").K   # the same film at 0
+    c, s = math.cos(math.radians(30)), math.sin(math.radians(30))
+    rot = np.array([[c, -s], [s, c]])
+    assert np.allclose(kc.K, rot @ k0 @ rot.T, rtol=1e-9, atol=1e-9 * abs(k0).max())
+
+
+def test_design_answers_the_designers_question_in_one_command(tmp_path):
+    """50 mm, L/D 0.5, c 50 um, 0.028 Pa s, 3000 rpm, 2 kN: least film, attitude, friction
+    power, flow, K and C in the load frame with its axes named, and stability, in one
+    command; the numbers are the Python API's at 3000 rpm = 100 pi rad/s (converted here)."""
+    import math
+
+    from bearingfem import Bearing
+    from bearingfem.design import coefficients, equilibrium
+    r = run("design", "--diameter", "0.05", "--ld", "0.5", "--clearance", "50e-6",
+            "--viscosity", "0.028", "--rpm", "3000", "--load", "2000", "--model", "short",
+            "-o", str(tmp_path / "d.json"))
+    assert r.returncode == 0, r.stderr
+    for words in ("minimum film", "attitude angle", "power loss", "side leakage", "K_11",
+                  "C_22", "axis 1 at -90 deg", "1 along the load", "critical mass",
+                  "Lund stability of a rigid journal"):
+        assert words in r.stdout
+    got = json.loads((tmp_path / "d.json").read_text())
+    b = Bearing(radius=0.025, length=0.025, clearance=50e-6, viscosity=0.028)
+    eq = equilibrium(b, 2000.0, 100 * math.pi, "short", direction=-math.pi / 2)
+    kc = coefficients(b, eq.state, "short", frame="load")
+    assert got["minimum film"]["value"] == pytest.approx(eq.film_min, rel=1e-9)
+    assert got["power loss"]["value"] == pytest.approx(eq.power_loss, rel=1e-9)
+    assert got["K_12"]["value"] == pytest.approx(kc.K[0, 1], rel=1e-9)
+    assert got["C_21"]["value"] == pytest.approx(kc.C[1, 0], rel=1e-9)
+
+
+def test_rpm_is_the_speed_in_revolutions_per_minute():
+    """--rpm 3000 is --omega 100 pi (the same film), and one of the two is given."""
+    import math
+    a = run("solve", "--rpm", "3000", "--model", "fvm", "--n-theta", "24", "--n-z", "4")
+    b = run("solve", "--omega", repr(100 * math.pi), "--model", "fvm", "--n-theta", "24",
+            "--n-z", "4")
+    assert a.returncode == 0 and a.stdout == b.stdout
+    c = run("equilibrium", "--load", "100", "--rpm", "3000", "--omega", "3")
+    assert c.returncode == 2 and "not allowed with argument" in c.stderr
+
+
+def test_help_states_defaults_truthfully():
+    """No '(default: None)' on required options or options whose absence means something,
+    and no default said twice (old: '(default 1e5) (default: None)'); simulate's scene
+    may be a shipped scene's name."""
+    for cmd in ("simulate", "solve", "convergence", "render", "sweep", "frames",
+                "equilibrium", "coefficients", "design"):
+        text = " ".join(run(cmd, "--help").stdout.split())
+        assert "(default: None)" not in text, cmd
+        assert "default 1e5) (default" not in text and "default 0) (default" not in text
+    assert "paper-short-fem" in run("simulate", "--help").stdout
+
+
+def test_old_spelling_is_taken_with_a_note_and_typos_get_a_suggestion():
+    """`solve --method fvm` (old) is `solve --model fvm`, with a note; `--modl` names
+    --model (old: the top-level usage, no suggestion)."""
+    old = run("solve", "--method", "fvm", "--n-theta", "24", "--n-z", "4")
+    new = run("solve", "--model", "fvm", "--n-theta", "24", "--n-z", "4")
+    assert old.returncode == 0 and old.stdout == new.stdout
+    assert "note: --method is now --model" in old.stderr
+    speed = run("equilibrium", "--load", "100", "--speed", "300")
+    assert speed.returncode == 2 and "did you mean --omega [rad/s] or --rpm" in speed.stderr
+    typo = run("solve", "--modl", "fvm")
+    assert typo.returncode == 2 and "did you mean --model?" in typo.stderr
+    assert "usage: bearingfem solve" in typo.stderr
+
+
+def test_oil_by_grade_is_its_viscosity_at_the_temperature():
+    """--oil 'ISO VG 32' at 40 degC is 32 mm^2/s (the grade's midpoint, ISO 3448) times
+    870 kg/m^3 = 0.02784 Pa s, by hand; a warmer oil is thinner; a grade that does not
+    exist, both --oil and --viscosity, or a temperature without an oil are refused."""
+    a = run("solve", "--oil", "ISO VG 32", "--oil-temperature", "40", "--model", "fvm",
+            "--n-theta", "24", "--n-z", "4")
+    b = run("solve", "--viscosity", repr(32e-6 * 870), "--model", "fvm", "--n-theta", "24",
+            "--n-z", "4")
+    assert a.returncode == 0 and a.stdout == b.stdout
+    hot = run("solve", "--oil", "VG32", "--oil-temperature", "80", "--model", "fvm",
+              "--n-theta", "24", "--n-z", "4")
+    f = [float(r.stdout.split("|F| ")[1].split()[0]) for r in (a, hot)]
+    assert f[1] < 0.5 * f[0]
+    for argv, needle in ((("--oil", "ISO VG 33"), "--oil must be an ISO VG grade"),
+                         (("--oil", "VG 32", "--viscosity", "0.03"), "not allowed with"),
+                         (("--oil-temperature", "60"), "--oil-temperature is the --oil's")):
+        r = run("equilibrium", "--load", "100", *argv)
+        assert r.returncode == 2 and needle in r.stderr

@@ -217,3 +217,32 @@ def test_provenance_names_the_git_commit(analytic_run):
     assert re.fullmatch(r"[0-9a-f]{40}(-dirty)?", prov["git_commit"])
     from mechanism.result import _git_commit
     assert _git_commit(Path("/")) is None          # no checkout: the version says it
+
+
+@pytest.mark.parametrize("argv, needles", [
+    (("equilibrium", "--diameter", "50", "--load", "2000", "--omega", "314"),
+     ("--diameter 50 m", "typed in mm", "0.05 m")),
+    (("equilibrium", "--viscosity", "32", "--load", "2000"), ("--viscosity 32", "cSt")),
+    (("solve", "--clearance", "0.05"), ("--clearance 0.05", "typed in mm")),
+    (("solve", "--diameter", "0.05", "--omega", "30000"), ("--omega", "surface speed", "rpm")),
+    (("coefficients", "--eps", "0.5", "--ld", "50"), ("--length-ratio/--ld (L/D) 50",)),
+])
+def test_a_bearing_no_journal_bearing_has_is_refused_naming_the_unit(capsys, here, argv,
+                                                                      needles):
+    """Old: --diameter 50 ended in a root finder's 'f(a) and f(b) must have different
+    signs'; --viscosity 32 (cSt) ran silently to a friction coefficient of 19.7."""
+    line = refused(capsys, *argv, "-o", "out/numbers.json") if argv[0] != "solve" else \
+        refused(capsys, *argv, "-o", "out/film.vtu")
+    for n in needles:
+        assert n in line
+    assert not (here / "out").exists()
+
+
+def test_a_scene_no_journal_bearing_has_is_refused_and_leaves_nothing(capsys, here):
+    """Old: a scene with diameter = 20 (mm) ran, LSODA failed at t = 0 and an output
+    folder with an empty result was left behind."""
+    text = (ROOT / "scenes" / "paper-short-fem.toml").read_text()
+    (here / "d20.toml").write_text(text.replace("diameter = 0.020", "diameter = 20"))
+    line = refused(capsys, "simulate", "d20.toml", "-o", "out")
+    assert "scene.bearing.diameter 20 m" in line and "typed in mm" in line
+    assert not (here / "out").exists()

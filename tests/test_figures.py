@@ -29,3 +29,34 @@ def test_run_figure_reads_at_a_glance(tmp_path):
     assert len(r.step_t) == r.stats["steps"] and np.all(np.diff(r.step_t) > 0)
     assert r.t[-1] <= r.step_t[-1] < r.t[-1] + 2 * np.pi / sc.crank_speed / sc.run.samples_per_turn
     np.testing.assert_array_equal(back.step_t, r.step_t)
+
+
+def test_curves_that_agree_stay_apart(tmp_path):
+    """Two runs that agree (FE and FV films: the curves overlap) are drawn each in its own
+    colour, width and markers at its own crank angles, so that both can be told apart
+    (old: a dashed and a dotted line of the default cycle on top of each other); the film
+    axis says um as \u00b5m and has no unlabelled tick."""
+    from mechanism import load_result
+    sc = load_scene("paper-short-analytic")
+    sc = replace(sc, run=replace(sc.run, turns=0.5, record_from_turn=0.0))
+    r = simulate(sc, progress=False)
+    fig = plot_comparison([r, r, r], ["analytic", "fem", "fvm"], sc.bearing.clearance)
+    film = fig.axes[0]
+    a, b, c = film.lines[:3]
+    assert len({ln.get_color() for ln in (a, b, c)}) == 3
+    assert len({ln.get_linewidth() for ln in (a, b, c)}) == 3
+    assert b.get_marker() not in ("", "None") and c.get_marker() not in ("", "None")
+    assert b.get_marker() != c.get_marker() and b.get_markevery() != c.get_markevery()
+    assert "\u00b5m" in film.get_ylabel()
+    fig.canvas.draw()
+    assert all(t.get_text() for t in film.get_yticklabels())
+    import matplotlib.pyplot as plt
+
+    from mechanism.figures import label_log_axis
+    fig, ax = plt.subplots()                 # within one decade: labelled ticks only
+    ax.set(yscale="log", ylim=(10.02, 20.7))
+    label_log_axis(ax.yaxis)
+    fig.canvas.draw()
+    assert len(ax.yaxis.get_minorticklocs()) == 0
+    assert [t.get_text() for t in ax.get_yticklabels()] == ["12", "14", "16", "18", "20"]
+    plt.close("all")

@@ -136,3 +136,114 @@ def test_vectorised_shapes():
 def test_bad_input_names_the_parameter(kwargs, name):
     with pytest.raises(ValueError, match=name):
         Lubricant(**kwargs)
+
+
+# -- temperature ------------------------------------------------------------------------
+# ASTM D2270-10 Table 1: rows (Y, H) bracketing each grade's 100 C viscosity [mm^2/s]
+# (H: 40 C viscosity of the VI 100 reference oil with 100 C viscosity Y)
+D2270_ROWS = {32: ((5.3, 31.40), (5.4, 32.37)), 46: ((6.7, 45.33), (6.8, 46.44)),
+              68: ((8.7, 67.64), (8.8, 68.79)), 100: ((11.3, 98.97), (11.4, 100.2)),
+              220: ((19.4, 219.4), (19.5, 221.1)), 1500: ((68.0, 1488.0), (68.5, 1506.0))}
+
+
+@pytest.mark.parametrize("grade", sorted(D2270_ROWS))
+def test_iso_vg_is_vi_100_by_d2270(grade):
+    """The preset's 40 C viscosity is the ISO 3448 midpoint and its 100 C viscosity Y is
+    where D2270's Table 1 (linear interpolation, as the standard says) puts H = the
+    midpoint: VI 100 (Procedure A: VI = 100 (L - U)/(L - H) is 100 iff U = H). Fails with
+    a grade's 100 C value off by 0.01 mm^2/s (H moves by ~0.1)."""
+    oil = Lubricant.iso_vg(grade)
+    nu40 = oil.kinematic_viscosity_at(313.15) * 1e6
+    y = oil.kinematic_viscosity_at(373.15) * 1e6
+    assert nu40 == pytest.approx(grade, rel=1e-12)
+    (y0, h0), (y1, h1) = D2270_ROWS[grade]
+    assert y0 <= y <= y1
+    h = h0 + (h1 - h0) * (y - y0) / (y1 - y0)
+    assert h == pytest.approx(grade, abs=0.005)
+
+
+def test_walther_is_the_d341_straight_line():
+    """log10 log10(nu + 0.7) is linear in log10 T through both given points: checked at
+    five temperatures against the line drawn from the points by hand (fails with the
+    0.7 shift dropped or natural logs); ISO VG 32 halves its viscosity between 40 and
+    about 58 C, as the issue's VG 32 does."""
+    t1, t2, mu1, mu2, rho = 313.15, 373.15, 0.0278, 0.00466, 870.0
+    oil = Lubricant.two_point((t1, mu1), (t2, mu2), density=rho, specific_heat=1950.0,
+                              conductivity=0.13)
+    ll = lambda nu: math.log10(math.log10(nu + 0.7))
+    n1, n2 = 1e6 * mu1 / rho, 1e6 * mu2 / rho
+    for t in (300.0, 313.15, 333.0, 353.0, 373.15):
+        f = (math.log10(t) - math.log10(t1)) / (math.log10(t2) - math.log10(t1))
+        expected = 10 ** 10 ** (ll(n1) + f * (ll(n2) - ll(n1))) - 0.7
+        assert oil.kinematic_viscosity_at(t) * 1e6 == pytest.approx(expected, rel=1e-11)
+    assert oil.viscosity_at(temperature=t1) == pytest.approx(mu1, rel=1e-12)
+    vg32 = Lubricant.iso_vg(32)
+    half = vg32.viscosity_at(temperature=313.15) / 2
+    assert vg32.viscosity_at(temperature=331.0) > half > vg32.viscosity_at(temperature=332.0)
+
+
+def test_exponential_law_through_both_points():
+    """mu1 exp(-beta (T - T1)) with beta = ln(mu1/mu2)/(T2 - T1): both points and the
+    geometric mean at the middle temperature (ROSS's law; fails with beta's sign)."""
+    oil = Lubricant.two_point((323.0, 0.0190), (353.0, 0.00772), density=855.0,
+                              specific_heat=1951.5, conductivity=0.15, law="exponential")
+    mu = oil.viscosity_at(temperature=np.array([323.0, 338.0, 353.0]))
+    np.testing.assert_allclose(mu, [0.0190, math.sqrt(0.0190 * 0.00772), 0.00772],
+                               rtol=1e-13)
+    assert oil.temperature_exponent == pytest.approx(math.log(0.0190 / 0.00772) / 30.0)
+
+
+@pytest.mark.parametrize("law", ["walther", "exponential"])
+@pytest.mark.parametrize("pressure", [{}, {"barus": 2e-8}, {"roelands": 0.6}])
+def test_pressure_and_temperature_together(law, pressure):
+    """mu(p, T) = mu_T(T) times the pressure law with mu_T as its mu0, so mu(p, T) equals
+    the oil held at T (at_temperature) at p; d mu/dT against a central difference (fails
+    if Roelands' exponent kept the reference mu0 or the Walther chain rule slips)."""
+    oil = Lubricant.two_point((313.15, 0.0278), (373.15, 0.00466), density=870.0,
+                              specific_heat=1950.0, conductivity=0.13, law=law, **pressure)
+    p = np.array([0.0, 1e6, 5e7, 3e8])
+    for t in (300.0, 330.0, 360.0):
+        held = oil.at_temperature(t)
+        np.testing.assert_allclose(oil.viscosity_at(p, temperature=t), held.viscosity_at(p),
+                                   rtol=1e-12)
+        np.testing.assert_allclose(oil.viscosity_derivative(p, temperature=t),
+                                   held.viscosity_derivative(p), rtol=1e-12)
+        d = 1e-3
+        fd = (oil.viscosity_at(p, temperature=t + d) - oil.viscosity_at(p, temperature=t - d)) / (2 * d)
+        np.testing.assert_allclose(oil.viscosity_temperature_derivative(t, p), fd, rtol=1e-6)
+    # no temperature argument: the reference temperature, as before the temperature laws
+    np.testing.assert_allclose(oil.viscosity_at(p), oil.viscosity_at(p, temperature=313.15),
+                               rtol=1e-12)
+
+
+def test_oil_without_temperature_law_ignores_temperature():
+    oil = Lubricant(0.0117, barus=2e-8)
+    np.testing.assert_array_equal(oil.viscosity_at(1e8, temperature=[300.0, 400.0]),
+                                  oil.viscosity_at(1e8))
+    assert not oil.is_thermal and Lubricant.iso_vg(46).is_thermal
+
+
+@pytest.mark.parametrize("call, name", [
+    (lambda: Lubricant.iso_vg(5), "grade"),
+    (lambda: Lubricant.iso_vg(33), "grade"),
+    (lambda: Lubricant.two_point((323.0, 0.019), (323.0, 0.008), density=855.0,
+                                 specific_heat=1950.0, conductivity=0.15), "point"),
+    (lambda: Lubricant.two_point((323.0, 0.008), (353.0, 0.019), density=855.0,
+                                 specific_heat=1950.0, conductivity=0.15), "fall"),
+    (lambda: Lubricant.two_point((323.0, 0.019), (353.0, 0.008), density=-1.0,
+                                 specific_heat=1950.0, conductivity=0.15), "density"),
+    (lambda: Lubricant.two_point((323.0, 0.019), (353.0, 0.008), density=855.0,
+                                 specific_heat=0.0, conductivity=0.15), "specific_heat"),
+    (lambda: Lubricant.two_point((323.0, 0.019), (353.0, 0.008), density=855.0,
+                                 specific_heat=1950.0, conductivity=0.15, law="vogel"), "law"),
+    (lambda: Lubricant.two_point((323.0, 1e-3), (353.0, 5e-4), density=855.0,
+                                 specific_heat=1950.0, conductivity=0.15), "walther"),
+    (lambda: Lubricant(0.01, temperature_exponent=0.03), "temperature"),
+    (lambda: Lubricant(0.01, temperature=323.0, walther=(9.5, 3.7)), "mass_density"),
+    (lambda: Lubricant(0.01, temperature=323.0, walther=(9.5, 3.7), mass_density=870.0),
+     "walther"),
+    (lambda: Lubricant.iso_vg(32).at_temperature(-5.0), "temperature"),
+])
+def test_bad_thermal_input_names_the_parameter(call, name):
+    with pytest.raises(ValueError, match=name):
+        call()

@@ -97,3 +97,22 @@ def test_a_series_shares_one_colour_scale(monkeypatch, tmp_path):
     top = max(s.pressure_max for s in sols) * 1e-6
     assert [kw["clim"] for kw in seen] == [(0.0, pytest.approx(top))] * 2
     assert seen[0]["camera_angle"] == seen[1]["camera_angle"] is not None
+
+
+def test_cavity_is_shaded_over_the_end_rows():
+    """The cavitated region runs to the ends of the map: the end nodes take their inside
+    neighbour's value for the picture, so the shading covers the end rows (old: left out,
+    they showed as dark bands across the cavity, clearest on a whole-length film with few
+    rows)."""
+    from bearingfem.outputs.render import _cavity, film_map
+    sol = solve_reynolds(table1_bearing(1.0), JournalState(0.6, omega=250.0), 48, 4)
+    tri, vals = film_map(sol, "pressure")
+    fine, fine_vals, edge = _cavity(sol, tri, vals)
+    zmax = float(np.max(np.abs(tri.y)))
+    inside = np.sort(np.unique(np.round(np.abs(tri.y), 9)))[-2]
+    deep = np.abs(fine.x - 270.0) < 20.0            # the cavity's middle (eps 0.6)
+    end_rows = np.abs(fine.y) > 0.5 * (inside + zmax)
+    assert np.any(deep & end_rows)
+    assert np.all(fine_vals[deep & end_rows] <= edge)
+    full = np.abs(fine.x - 150.0) < 10.0            # the full film: no boundary on the ends
+    assert np.all(fine_vals[full & end_rows] > edge)

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from bearingfem import (Bearing, ElasticBush, Groove, JournalState, Lubricant, Roughness,
-                        fvm_reynolds, solve_reynolds)
+                        Thermal, solve_reynolds)
 from bearingfem.fields import FilmFields
 from bearingfem.routes import OPTION_DEFAULTS, ROUTES, fe_force, film_problem, route_for
 
@@ -15,6 +15,8 @@ S = JournalState(eps=0.6, eps_dot=0.0, gamma=0.3, gamma_dot=0.0, omega=250.0)
 G = (Groove(angle=np.pi / 2, width=0.2, pressure=1e5),)
 OIL = Lubricant(viscosity=0.0117, barus=2e-8)
 ELRODE = Lubricant(viscosity=0.0117, bulk_modulus=1e9)
+VG32 = Lubricant.iso_vg(32)
+HOT = Thermal(supply_temperature=323.0)
 RING = ElasticBush(outer_radius=0.016, modulus=110e9, poisson=0.34, model="ring")
 ROUGH = Roughness(sigma=0.31e-6, contact_modulus=53.3e9, elastic_factor=1e-3)
 
@@ -34,6 +36,8 @@ KINDS = [
     ("jfo", dict(grooves=G), "jfo-grooved"),
     ("jfo", dict(ambient_pressure=1e5, lubricant=ELRODE), "jfo-compressible"),
     ("jfo", dict(ambient_pressure=1e5, bush=RING), "ehd-jfo"),
+    ("reynolds", dict(grooves=G, lubricant=VG32, thermal=HOT), "thd"),
+    ("jfo", dict(grooves=G, lubricant=VG32, thermal=HOT), "thd"),
 ]
 
 
@@ -63,6 +67,8 @@ UNUSED = [
     ("jfo", dict(ambient_pressure=1e5, bush=RING), "roughness", ROUGH),
     ("jfo", dict(ambient_pressure=1e5, bush=RING), "cavitated_shear", "none"),
     ("reynolds", dict(lubricant=OIL), "grading", (np.pi, 0.5)),
+    ("reynolds", dict(grooves=G, lubricant=VG32, thermal=HOT), "tilt", (0.0, 1e-4)),
+    ("reynolds", dict(grooves=G, lubricant=VG32, thermal=HOT), "roughness", ROUGH),
 ]
 
 

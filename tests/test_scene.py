@@ -95,3 +95,26 @@ def test_misspelt_keys_are_named_with_the_likely_intent():
     with pytest.raises(ValueError, match=r"scene.run has unknown key\(s\): rtoll "
                                          r"\(did you mean rtol\?\)"):
         parse_scene(d)
+
+
+@pytest.mark.parametrize("bearing, needle", [
+    ({"diameter": 20}, "scene.bearing.diameter 20 m is larger than any journal bearing"),
+    ({"viscosity": 46.0}, "scene.bearing.viscosity 46 Pa s"),
+    ({"length_ratio": 40.0}, "scene.bearing.length_ratio 40"),
+])
+def test_a_bearing_no_journal_bearing_has_is_refused(bearing, needle):
+    d = copy.deepcopy(BASE)
+    d["bearing"].update(bearing)
+    with pytest.raises(ValueError, match=needle):
+        parse_scene(d)
+
+
+def test_crank_speed_in_rpm():
+    """initial.rpm: the crank speed in 1/min (3000 rpm = 100 pi rad/s); one of the two."""
+    import math
+    assert parse_scene(_with(("initial", "rpm"), 3000)).crank_speed == pytest.approx(
+        100 * math.pi, rel=1e-15)
+    d = _with(("initial", "rpm"), 3000)
+    d["initial"]["crank_speed"] = 250.0
+    with pytest.raises(ValueError, match="one of crank_speed"):
+        parse_scene(d)

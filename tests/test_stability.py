@@ -127,7 +127,7 @@ def test_cli_names_the_verdict_at_the_centre(capsys):
     from bearingfem_app.cli import main
     assert main(["coefficients", "--ld", "1", "--eps", "0", "--model", "short"]) == 0
     out = capsys.readouterr().out
-    assert "stability (Lund, rigid journal): unstable for any mass" in out
+    assert "rigid journal at eps 0, 250 rad/s: unstable for any mass" in out
     assert "inf" not in out
 
 
@@ -141,3 +141,17 @@ def test_reynolds_condition_whirls_at_half_speed_in_the_mesh_limit():
                                          n_theta=n_theta, n_z=n_z, cavitation="reynolds"))
         gaps.append(abs(st.whirl_ratio - 0.5))
     assert gaps[1] < 0.3 * gaps[0] and gaps[1] < 1e-3
+
+
+def test_stability_prints_as_a_sentence():
+    """print(lund_stability(kc)) is one sentence with the verdict, the critical mass and
+    the whirl (old: a 15-line dataclass repr)."""
+    from bearingfem import JournalState
+    from bearingfem.bearing import seed_bearing
+    from bearingfem.design import coefficients, lund_stability
+    st = lund_stability(coefficients(seed_bearing(0.5), JournalState(0.5, omega=250.0),
+                                     "short"))
+    text = str(st)
+    assert len(text.splitlines()) == 1 and not text.startswith("Stability(")
+    assert st.verdict.value in text and f"{st.critical_mass:.6g} kg" in text
+    assert f"{st.whirl_ratio:.3g} of the running speed" in text

@@ -29,6 +29,8 @@ def test_cases_are_the_product_with_stable_ids():
     ({"kind": "rotor"}, "sweep.kind must be one of"),
     ({"vary": {"eps": []}}, r"sweep.vary.eps must be a non-empty list"),
     ({"vary": {"speed": [1.0]}}, r"sweep.vary.speed is not a film sweep parameter"),
+    ({"vary": {"lenght_ratio": [1.0]}}, r"lenght_ratio is not a film sweep parameter "
+                                        r"\(did you mean length_ratio\?\)"),
     ({"vary": {"model": ["fem", "magic"]}}, r"sweep.vary.model must be one of"),
     ({"base": {"n_theta": 12.5}}, r"sweep.base.n_theta must be an integer"),
     ({"vary": {}}, "must list at least one parameter"),
@@ -200,9 +202,52 @@ def test_summary_plots_what_the_sweep_promises_with_units(tmp_path, monkeypatch)
             for c in (15e-6, 20e-6) for v in (0.0117, 0.03)]
     plot_summary(rows, sw, tmp_path / "s.png")
     fig = saved[0]
-    assert [a.get_ylabel() for a in fig.axes] == ["minimum film [um]",
+    assert [a.get_ylabel() for a in fig.axes] == ["minimum film [\u00b5m]",
                                                   "peak eccentricity ratio [-]"]
-    assert fig.axes[0].get_xlabel() == "clearance [um]"
+    assert fig.axes[0].get_xlabel() == "clearance [\u00b5m]"
     assert fig.axes[0].lines[0].get_xdata()[0] == pytest.approx(15.0)
     legend = [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
     assert legend == ["viscosity 0.0117 Pa s", "viscosity 0.03 Pa s"]
+
+
+def test_design_summary_shows_every_promised_output_and_plain_log_ticks(tmp_path, monkeypatch):
+    """The design chart's summary plots what its sweep file promises: S, attitude,
+    friction and flow variables, and the four K and four C (old: only S against eps);
+    log-axis ticks are written one way (old: '6x10^0' beside '10^1'); the mechanism
+    sweep's title names the scene's film model and cavitation (old: 'the scene')."""
+    import matplotlib.figure
+    from bearingfem_app.sweep import OUTPUTS, _film_named, plot_summary
+    saved = []
+    monkeypatch.setattr(matplotlib.figure.Figure, "savefig",
+                        lambda self, *a, **k: saved.append(self))
+    sw = parse_sweep({"name": "d", "kind": "design", "base": {"model": "short"},
+                      "vary": {"eps": [0.2, 0.5, 0.8], "length_ratio": [0.5, 1.0]}})
+    keys = [k for k, _, _ in OUTPUTS["design"]]
+    rows = [dict(eps=e, length_ratio=ld, **{k: 6.0 + 5 * e + i for i, k in enumerate(keys)})
+            for e in (0.2, 0.5, 0.8) for ld in (0.5, 1.0)]
+    plot_summary(rows, sw, tmp_path / "s.png")
+    fig = saved[0]
+    shown = [a for a in fig.axes if a.get_visible()]
+    labels = " ".join(a.get_ylabel() for a in shown)
+    for word in ("Sommerfeld", "attitude", "friction", "flow", "K_11", "K_21", "C_12", "C_22"):
+        assert word in labels
+    assert len(shown) == 12
+    fig.canvas.draw()
+    for a in shown:
+        if a.get_yscale() == "log":
+            ticks = [t.get_text() for t in a.get_yticklabels()]
+            assert ticks and not any("10^" in t or "times" in t for t in ticks), ticks
+    mech = parse_sweep({"name": "m", "kind": "mechanism",
+                        "base": {"scene": "scenes/paper-long-fem.toml"},
+                        "vary": {"clearance": [15e-6, 20e-6]}})
+    title = _film_named(mech)
+    assert "the scene" not in title and "fem" in title and "gumbel" in title
+
+
+def test_a_bearing_no_journal_bearing_has_stops_the_sweep_before_it_starts(tmp_path):
+    """A diameter typed in mm (50) is refused by name before any case runs."""
+    sw = parse_sweep({**SWEEP, "base": {"diameter": 50.0}})
+    with pytest.raises(ValueError, match=r"diameter .*50 m is larger than any journal "
+                                         r"bearing.*typed in mm"):
+        run_sweep(sw, tmp_path / "out", workers=1, progress=False)
+    assert not (tmp_path / "out").exists()

@@ -62,3 +62,28 @@ def test_every_bad_parameter_is_named_at_once(solver):
     for name in ("n_theta must be an integer >= 8", "n_z must be an integer >= 2",
                  "cavitation must be one of"):
         assert name in msg
+
+
+@pytest.mark.parametrize("kw, needles", [
+    (dict(radius=25.0, length=25.0), ("diameter", "typed in mm", "0.05 m")),
+    (dict(viscosity=32.0), ("viscosity 32", "cSt", "0.0278")),
+    (dict(clearance=0.002), ("clearance", "0.2 of the radius", "typed in mm")),
+    (dict(clearance=1e-8), ("clearance", "1e-06 of the radius", "radial, in m")),
+    (dict(length=0.5), ("L/D", "25")),
+    (dict(viscosity=1e-8), ("viscosity", "Pa s")),
+])
+def test_bearing_outside_any_journal_bearing_names_the_unit(kw, needles):
+    """A journal bearing has a diameter of 0.5 mm to 5 m, c/R 1e-5 to 0.05, L/D 0.01 to
+    10, mu 1e-6 to 10 Pa s: outside, the likely unit mistake is named (the first case is
+    a 50 mm diameter typed as 50, the second ISO VG 32 typed as Pa s)."""
+    base = dict(radius=0.01, length=0.01, clearance=20e-6, viscosity=0.0117) | kw
+    with pytest.raises(ValueError) as err:
+        Bearing(**base)
+    for n in needles:
+        assert n in str(err.value)
+
+
+def test_journal_bearings_at_the_ends_of_the_range_are_accepted():
+    """A 2 mm spindle bearing, a 2 m turbine bearing, air and cold heavy oil."""
+    Bearing(radius=1e-3, length=2e-3, clearance=2e-6, viscosity=1.8e-5)
+    Bearing(radius=1.0, length=1.6, clearance=1e-3, viscosity=5.0)

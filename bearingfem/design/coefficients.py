@@ -128,9 +128,16 @@ def coefficients(bearing: Bearing, state: JournalState, model: str = "fem",
     block of the misaligned film's 4x4 coefficients
     (:func:`bearingfem.fe.sensitivity.fe_tilt_coefficients`, which also gives the moment
     rows and tilt columns).
+
+    ``thermal`` and ``lubricant`` (model "fem"): the thermal film's K and C with its
+    viscosity field frozen (:func:`bearingfem.design.thermal.thd_coefficients`; give
+    ``solution=eq.solution`` to reuse the equilibrium's thermal film).
     """
     check_inputs(bearing, state)
     check_choice("frame", frame, FRAMES)
+    if options.get("thermal") is not None:     # the thermal film (bearingfem.design.thermal)
+        from .thermal import thd_coefficients
+        return thd_coefficients(bearing, state, frame, **options)
     tilt = check_tilt("tilt", options.pop("tilt", (0.0, 0.0)))
     if any(tilt):
         return _tilted(bearing, state, model, frame, tilt, options)

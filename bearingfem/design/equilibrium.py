@@ -130,7 +130,12 @@ def equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
         (the bearing's reaction to the misalignment), ``film_min`` / ``film_min_angle``
         the least gap over the length (at an end) and its angle, and the friction the
         film's own shear integral
+    thermal, lubricant : a :class:`~bearingfem.thermal.Thermal` and its oil: the thermal
+        film's equilibrium (:func:`bearingfem.design.thermal.thd_equilibrium`)
     """
+    if options.get("thermal") is not None:     # the thermal film (bearingfem.design.thermal)
+        from .thermal import thd_equilibrium
+        return thd_equilibrium(bearing, load, omega, model, direction=direction, eps_max=eps_max, **options)
     tilt = check_tilt("tilt", options.pop("tilt", (0.0, 0.0)))
     m = film_model(model)
     if any(tilt) and not m.tilts:

@@ -90,6 +90,17 @@ class Stability:
             return self.verdict.value
         return f"{self.verdict.value} {self.critical_mass:.6g} kg"
 
+    def __str__(self) -> str:
+        """A sentence: the verdict with its critical mass and whirl, and the state."""
+        s = self.coefficients.state
+        text = (f"Lund stability of a rigid journal at eps {s.eps:.4g}, {s.omega:g} rad/s: "
+                f"{self.describe()}")
+        if self.whirl_frequency is not None:
+            text += f", whirling at {self.whirl_frequency:.4g} rad/s"
+            if self.whirl_ratio is not None:
+                text += f" ({self.whirl_ratio:.3g} of the running speed)"
+        return text + f"; K_eq {self.stiffness_eq:.4g} N/m."
+
 
 def _eigenvalues(K, C, mass):
     """Eigenvalues of m x'' + C x' + K x = 0."""

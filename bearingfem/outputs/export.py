@@ -46,13 +46,15 @@ def to_meshio(sol: FilmSolution, surface: str = "journal") -> meshio.Mesh:
         raise ValueError("sol.mesh must be the FilmMesh or FVMGrid of the solve")
     theta, z = np.asarray(sol.theta), np.asarray(sol.z)
     p, h = np.asarray(sol.pressure), np.asarray(sol.film_thickness)
-    # the JFO film fraction (1 in the full film) where the film has one
-    phi = None if sol.fraction is None else np.asarray(sol.fraction)
+    # the JFO film fraction (1 in the full film) and a thermal film's temperature [K]
+    # where the film has them
+    extra = {k: np.asarray(v) for k, v in (("fraction", sol.fraction),
+                                           ("temperature", sol.temperature)) if v is not None}
     if sol.half:
         n = len(theta)
         theta, z = np.concatenate([theta, theta]), np.concatenate([z, -z])
         p, h = np.concatenate([p, p]), np.concatenate([h, h])
-        phi = None if phi is None else np.concatenate([phi, phi])
+        extra = {k: np.concatenate([v, v]) for k, v in extra.items()}
         mirrored = cells + n
         if ctype == "triangle":
             mirrored = mirrored[:, [0, 2, 1]]
@@ -61,9 +63,7 @@ def to_meshio(sol: FilmSolution, surface: str = "journal") -> meshio.Mesh:
     if surface == "journal":
         alpha = inertial_from_theta(theta, sol.gamma)
         pts = np.column_stack([R * np.cos(alpha), R * np.sin(alpha), z])
-        data = {"pressure": p, "film_thickness": h, "theta": theta, "z": z}
-        if phi is not None:
-            data["fraction"] = phi
+        data = {"pressure": p, "film_thickness": h, "theta": theta, "z": z, **extra}
         return meshio.Mesh(pts, [(ctype, cells)], point_data=data)
     # Unwrapped: cells across the periodic seam would span the whole plane, so every cell
     # gets its own vertices and seam cells are unwrapped by 2 pi.
@@ -74,9 +74,7 @@ def to_meshio(sol: FilmSolution, surface: str = "journal") -> meshio.Mesh:
     pts = np.column_stack([R * th.ravel(), z[flat], np.zeros(flat.size)])
     own = np.arange(flat.size).reshape(cells.shape)
     data = {"pressure": p[flat], "film_thickness": h[flat], "theta": theta[flat],
-            "z": z[flat]}
-    if phi is not None:
-        data["fraction"] = phi[flat]
+            "z": z[flat], **{k: v[flat] for k, v in extra.items()}}
     return meshio.Mesh(pts, [(ctype, own)], point_data=data)
 
 

@@ -27,7 +27,8 @@ __all__ = ["render_film", "unwrapped_figure", "film_map", "FIELDS", "SURFACES"]
 SURFACES = ("journal", "unwrapped")
 FIELDS = {"pressure": ("pressure", 1e-6, "pressure [MPa]"),
           "film_thickness": ("film_thickness", 1e6, "film thickness [um]"),
-          "fraction": ("fraction", 1.0, "film fraction [1] (JFO)")}
+          "fraction": ("fraction", 1.0, "film fraction [1] (JFO)"),
+          "temperature": ("temperature", 1.0, "film temperature [K] (thermal film)")}
 #: Share of the peak pressure below which a node counts as cavitated in pictures (the
 #: complementarity solution is exactly 0 there; Gumbel's clip too).
 CAVITY_LEVEL = 1e-6
@@ -89,17 +90,35 @@ def film_map(sol: FilmSolution, field: str):
 def _cavity(sol: FilmSolution, tri, vals):
     """The cavitated region as (refined triangulation, field, level), or None: a cubic
     interpolant on a refined mesh draws the free boundary as a smooth isoline instead of the
-    element staircase (the pressure grows like distance^2 away from it). Triangles on the
-    ambient ends (p = 0 by the boundary condition, not cavitation) are left out."""
+    element staircase (the pressure grows like distance^2 away from it). The ambient ends
+    (p = 0 by the boundary condition, not cavitation) take the values of the row inside
+    them, so that the boundary runs on to the ends and the cavity is shaded over the end
+    rows too (left out, they showed as dark bands across the cavity)."""
     import matplotlib.tri as mtri
     if sol.cavitation == "none" or not np.any(vals <= CAVITY_LEVEL * np.max(vals)):
         return None
-    zmax = float(np.max(np.abs(tri.y)))
-    inner = ~np.any(np.abs(tri.y[tri.triangles]) >= zmax * (1 - 1e-9), axis=1)
-    cav_tri = mtri.Triangulation(tri.x, tri.y, tri.triangles[inner])
-    fine, fine_vals = mtri.UniformTriRefiner(cav_tri).refine_field(
-        vals, subdiv=3, triinterpolator=mtri.CubicTriInterpolator(cav_tri, vals, kind="geom"))
+    vals = _ends_from_inside(tri, vals)
+    fine, fine_vals = mtri.UniformTriRefiner(tri).refine_field(
+        vals, subdiv=3, triinterpolator=mtri.CubicTriInterpolator(tri, vals, kind="geom"))
     return fine, fine_vals, 2e-3 * float(np.max(vals))
+
+
+def _ends_from_inside(tri, vals):
+    """``vals`` with each node on an end (|z| largest) given the value of the node at the
+    same theta in the row inside it (the mesh's rows are straight in theta)."""
+    y = np.abs(tri.y)
+    rows = np.unique(np.round(y, 9))
+    if len(rows) < 2:
+        return vals
+    end, inside = rows[-1], rows[-2]
+    key = {(round(float(x), 6), round(float(z), 9)): i
+           for i, (x, z) in enumerate(zip(tri.x, tri.y)) if abs(round(abs(z), 9) - inside) < 1e-12}
+    out = np.array(vals, float)
+    for i in np.flatnonzero(np.abs(np.round(y, 9) - end) < 1e-12):
+        j = key.get((round(float(tri.x[i]), 6), round(float(np.sign(tri.y[i]) * inside), 9)))
+        if j is not None:
+            out[i] = vals[j]
+    return out
 
 
 def _boundary_lines(sol: FilmSolution):
@@ -128,7 +147,9 @@ def unwrapped_figure(sol: FilmSolution, field: str = "pressure", clim=None, titl
     label = FIELDS[field][2]
     fig, ax = plt.subplots(figsize=size, constrained_layout=True)
     top = float(np.max(vals)) if clim is None else float(clim[1])
-    lo = 0.0 if clim is None else float(clim[0])
+    # a temperature's scale starts at its coolest node (0 K would flatten the map)
+    lo = float(clim[0]) if clim is not None else (
+        float(np.min(vals)) if field == "temperature" else 0.0)
     levels = np.linspace(lo, top if top > lo else lo + 1.0, 41)
     if field == "fraction":
         # interpolated shading: the full film (fraction 1) takes the top colour (filled
@@ -184,6 +205,8 @@ def render_film(sol: FilmSolution, path, *, field: str = "pressure", surface: st
     _check(field, surface)
     if field == "fraction" and sol.fraction is None:
         raise ValueError("field 'fraction' needs a JFO film (cavitation='jfo')")
+    if field == "temperature" and sol.temperature is None:
+        raise ValueError("field 'temperature' needs a thermal film (thermal=Thermal(...))")
     if surface == "unwrapped":
         dpi = 100
         fig = unwrapped_figure(sol, field, clim, title,

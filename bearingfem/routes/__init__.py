@@ -21,6 +21,7 @@ jfo                the mass-conserving film in the film frame, rigid or on field
 jfo-grooved        the mass-conserving film with grooves, bearing-fixed mesh
 jfo-compressible   a lubricant with a bulk modulus: the compressible JFO film
 ehd-jfo            the mass-conserving film with a bush or a pressure law
+thd                the thermal film: energy equation and film coupled (any cavitation)
 fv                 finite volumes, every cavitation model
 =================  ============================================================
 """
@@ -33,14 +34,15 @@ from .fe import GeneralFilm, GroovedFilm, RigidFilm
 from .fv import FiniteVolumeFilm
 from .jfo import CompressibleJFOFilm, GroovedJFOFilm, JFOFilm
 from .problem import OPTION_DEFAULTS, FilmProblem, film_problem
+from .thd import ThermalFilm, solve_thd
 
 __all__ = ["ROUTES", "Route", "FilmProblem", "film_problem", "route_for", "solve",
-           "film_force", "fe_force", "OPTION_DEFAULTS"]
+           "film_force", "fe_force", "OPTION_DEFAULTS", "solve_thd"]
 
 #: The film routes by the problem kind they solve.
 ROUTES: dict = {r.name: r for r in (
     RigidFilm(), GroovedFilm(), GeneralFilm(), ElasticFilm(), JFOFilm(), GroovedJFOFilm(),
-    CompressibleJFOFilm(), ElasticJFOFilm(), FiniteVolumeFilm())}
+    CompressibleJFOFilm(), ElasticJFOFilm(), ThermalFilm(), FiniteVolumeFilm())}
 
 
 def route_for(problem: FilmProblem) -> Route:

@@ -54,6 +54,7 @@ class FilmProblem:
     roughness: Roughness | None = None
     start: object = None
     grading: tuple | None = None
+    thermal: object = None
     discretisation: str = "fe"
 
     # -- what the problem is (each decided here, once) ------------------------------------
@@ -89,6 +90,8 @@ class FilmProblem:
         """The route's name in :data:`bearingfem.routes.ROUTES`."""
         if self.discretisation == "fv":
             return "fv"
+        if self.thermal is not None:
+            return "thd"
         if self.mass_conserving:
             if self.compressible:
                 return "jfo-compressible"

@@ -1,0 +1,185 @@
+"""Equilibrium and dynamic coefficients of a thermal (THD) film.
+
+Equilibrium: Broyden's method in the journal position q = e/c on the THD film's force
+(each evaluation a thermal solve, :func:`bearingfem.routes.thd.solve_thd`, started from the
+last one's temperatures: a grooved film's mesh keeps its nodes at the same places in the
+bearing as the journal moves, so the field carries over node by node). Its first
+Jacobian is the isothermal film's with the viscosity field frozen (central differences,
+cheap and smooth), from the isothermal equilibrium at the supply temperature.
+
+Coefficients: K and C of the film with its converged viscosity field frozen (central
+differences in x, y and their rates on the film with that field), the usual THD
+linearisation (the temperature field does not follow a vibration at the rotor's
+frequencies); ROSS 3.1's fluid-film bearings do the same.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+
+import numpy as np
+
+from ..bearing import Bearing, JournalState
+from ..errors import ConvergenceError
+from ..reynolds import solve_reynolds
+from ..fields import FilmFields
+from ..film import local_to_inertial
+from ..routes.thd import check_thermal, solve_thd
+from .coefficients import DynamicCoefficients, _axes
+from .equilibrium import EPS_MAX, Equilibrium, _load_vector, equilibrium, least_film
+from .groups import sommerfeld_number
+
+__all__ = ["thd_equilibrium", "thd_coefficients", "frozen_film"]
+
+STEP = 1e-5            # central-difference step in q = e/c (and v/(c omega))
+MAX_STEPS = 40
+
+
+def _mesh_options(options):
+    known = ("n_theta", "n_z", "element", "cavitation", "grooves", "supply_angle", "tol")
+    unknown = set(options) - set(known) - {"lubricant", "thermal", "temperature_tol",
+                                           "relaxation", "max_iterations"}
+    if unknown:
+        raise ValueError(f"options not taken by the thermal film: {sorted(unknown)}")
+    o = dict(n_theta=48, n_z=8, element="P1", cavitation="reynolds", grooves=(),
+             supply_angle=None)
+    o.update({k: v for k, v in options.items() if k in known})
+    return o
+
+
+def frozen_film(bearing: Bearing, thd, mesh: dict):
+    """A function state -> FilmSolution: the isothermal film with ``thd``'s viscosity
+    field frozen at its quadrature points (the same places in the bearing for every
+    state); at ``thd``'s state it is ``thd``'s film."""
+    ratio = thd.thermal.viscosity_quadrature / bearing.viscosity
+    opts = {k: v for k, v in mesh.items() if k in ("grooves", "supply_angle", "tol")}
+
+    def film(state):
+        return solve_reynolds(bearing, state, mesh["n_theta"], mesh["n_z"], mesh["element"],
+                              mesh["cavitation"], fields=FilmFields(viscosity=ratio), **opts)
+    return film
+
+
+def _inertial_force(sol):
+    return np.array(sol.force, float)
+
+
+def _state(q, v, omega, clearance):
+    return JournalState.from_eccentricity(q[0] * clearance, q[1] * clearance,
+                                          v[0] * clearance, v[1] * clearance, clearance,
+                                          omega)
+
+
+def _jacobian(film, q, omega, clearance, velocity=False):
+    """d F / d q (or d F / d (v/c)) [N] by central differences on ``film``."""
+    J = np.empty((2, 2))
+    for j in range(2):
+        d = np.zeros(2)
+        d[j] = STEP if not velocity else STEP * abs(omega)
+        if velocity:
+            fp = _inertial_force(film(_state(q, d, omega, clearance)))
+            fm = _inertial_force(film(_state(q, -d, omega, clearance)))
+        else:
+            fp = _inertial_force(film(_state(q + d, np.zeros(2), omega, clearance)))
+            fm = _inertial_force(film(_state(q - d, np.zeros(2), omega, clearance)))
+        J[:, j] = (fp - fm) / (2.0 * d[j])
+    return J
+
+
+def thd_equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
+                    direction=None, eps_max: float = EPS_MAX, rtol: float = 1e-9,
+                    **options) -> Equilibrium:
+    """Where the journal sits under ``load`` with a thermal film (module docstring).
+
+    Options: ``lubricant`` and ``thermal`` (required), the film's mesh options
+    (``n_theta``, ``n_z``, ``element``, ``cavitation``, ``grooves``, ``supply_angle``)
+    and the thermal solve's (``temperature_tol``, ``relaxation``, ``max_iterations``).
+    ``rtol``: the film force's residual relative to the load. ``eq.solution`` is the THD
+    film; ``friction_force`` and ``power_loss`` its own shear integral.
+    """
+    if model != "fem":
+        raise ValueError(f"a thermal film needs model 'fem', got {model!r}")
+    lubricant, thermal = options.get("lubricant"), options.get("thermal")
+    mesh = _mesh_options(options)
+    thd_opts = {k: options[k] for k in ("temperature_tol", "relaxation", "max_iterations")
+                if k in options}
+    wx, wy = _load_vector(load, direction)
+    W = math.hypot(wx, wy)
+    if not omega > 0.0:
+        raise ValueError(f"omega must be > 0 for a thermal film, got {omega!r}")
+    check_thermal(lubricant, thermal, JournalState(0.5, omega=omega), mesh["cavitation"],
+                  mesh["element"])
+    # the isothermal equilibrium at the supply temperature starts the search
+    cold = replace(bearing, viscosity=float(lubricant.viscosity_at(
+        temperature=thermal.supply_temperature)))
+    iso_model = "fem-jfo" if mesh["cavitation"] == "jfo" else "fem"
+    iso_opts = dict(n_theta=mesh["n_theta"], n_z=mesh["n_z"], grooves=mesh["grooves"])
+    if iso_model == "fem":
+        iso_opts.update(element=mesh["element"], cavitation=mesh["cavitation"])
+    start = equilibrium(cold, (wx, wy), omega, iso_model, eps_max=eps_max, **iso_opts)
+    q = np.array([start.eps * math.cos(start.state.gamma),
+                  start.eps * math.sin(start.state.gamma)])
+    c = bearing.clearance
+    target = -np.array([wx, wy])
+    thd_kw = dict(lubricant=lubricant, thermal=thermal, grooves=mesh["grooves"],
+                  cavitation=mesh["cavitation"], element=mesh["element"],
+                  supply_angle=mesh["supply_angle"], **thd_opts)
+    sol = solve_thd(bearing, _state(q, np.zeros(2), omega, c), mesh["n_theta"], mesh["n_z"],
+                    **thd_kw)
+    J = _jacobian(frozen_film(bearing, sol, mesh), q, omega, c)
+    r = _inertial_force(sol) - target
+    calls = 1
+    for _ in range(MAX_STEPS):
+        if np.hypot(*r) <= rtol * W:
+            break
+        dq = -np.linalg.solve(J, r)
+        # keep inside eps_max: shorten the step
+        n = np.hypot(*(q + dq))
+        t = 1.0 if n < eps_max else 0.5 * (eps_max - np.hypot(*q)) / max(np.hypot(*dq), 1e-300)
+        dq = t * dq
+        q = q + dq
+        sol = solve_thd(bearing, _state(q, np.zeros(2), omega, c), mesh["n_theta"],
+                        mesh["n_z"], start=sol, **thd_kw)
+        calls += 1
+        r_new = _inertial_force(sol) - target
+        J = J + np.outer(r_new - r - J @ dq, dq) / float(dq @ dq)      # Broyden's update
+        r = r_new
+    else:
+        raise ConvergenceError("thermal equilibrium (Broyden)", MAX_STEPS,
+                               float(np.hypot(*r) / W), f"eps = {np.hypot(*q):.6g}")
+    state = _state(q, np.zeros(2), omega, c)
+    f_r, f_t = sol.force_local
+    film_min, film_min_angle = least_film(bearing, state)
+    friction = sol.friction_force
+    mu_supply = float(lubricant.viscosity_at(temperature=thermal.supply_temperature))
+    return Equilibrium(
+        eps=state.eps, attitude=math.atan2(f_t, -f_r), state=state, load=(wx, wy),
+        film_force=local_to_inertial(f_r, f_t, state.gamma),
+        sommerfeld=sommerfeld_number(replace(bearing, viscosity=mu_supply), W, omega),
+        film_min=film_min, film_min_angle=film_min_angle, friction_force=friction,
+        friction_coefficient=friction / W, power_loss=abs(sol.friction_torque * omega),
+        pressure_max=sol.pressure_max, side_leakage=sol.side_leakage,
+        flow_in=sol.side_leakage, solution=sol, model="fem-thd", iterations=calls)
+
+
+def thd_coefficients(bearing: Bearing, state: JournalState, frame: str = "inertial", *,
+                     solution=None, **options) -> DynamicCoefficients:
+    """K [N/m] and C [N s/m] of the thermal film at ``state`` with its viscosity field
+    frozen (module docstring); ``solution``: the THD film at ``state`` (e.g.
+    ``eq.solution``), solved here when None. Options as :func:`thd_equilibrium`."""
+    mesh = _mesh_options(options)
+    if solution is None:
+        solution = solve_thd(bearing, state, mesh["n_theta"], mesh["n_z"],
+                             lubricant=options.get("lubricant"),
+                             thermal=options.get("thermal"), grooves=mesh["grooves"],
+                             cavitation=mesh["cavitation"], element=mesh["element"],
+                             supply_angle=mesh["supply_angle"])
+    film = frozen_film(bearing, solution, mesh)
+    c, omega = bearing.clearance, state.omega
+    q = np.array([state.eps * math.cos(state.gamma), state.eps * math.sin(state.gamma)])
+    K = -_jacobian(film, q, omega, c) / c
+    C = -_jacobian(film, q, omega, c, velocity=True) / c
+    force = tuple(float(f) for f in solution.force)
+    out = DynamicCoefficients(K, C, "inertial", np.eye(2), state, force, "fem-thd",
+                              "central-differences (viscosity frozen)", c, np.zeros((2, 2)))
+    return out if frame == "inertial" else out.in_frame(frame)

@@ -1,0 +1,269 @@
+"""The thermal film: pressure, film fraction and temperature coupled through the viscosity.
+
+A fixed point (Picard) on the temperature field: at the temperatures T_k the oil's
+viscosity mu(p_k, T_k) at the film's quadrature points makes a viscosity field
+(:class:`~bearingfem.fields.FilmFields`) for the isothermal film solver, whose pressure
+(and JFO fraction) gives the flow and dissipation of the energy equation
+(:mod:`bearingfem.thermal.energy`); its solution T, with the grooves' mixed inlet
+temperatures, is relaxed into T_{k+1} = T_k + r (T - T_k). Why a fixed point: the film and
+the energy equation each are one linear (or complementarity) solve, and the coupling is
+one-way per step through mu(T); Anderson's acceleration of the temperature iterates
+(:class:`Anderson`) takes the fixed point where plain relaxation would crawl (measured:
+docs/thd.md).
+
+Converged when the largest change of the nodal temperatures and of the inlet temperatures
+is below ``temperature_tol`` [K] and the pressure's largest change below
+``pressure_rtol`` of its peak; otherwise :class:`~bearingfem.errors.ConvergenceError`.
+"""
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+from scipy.sparse.linalg import splu
+from skfem import LinearForm
+from skfem.models.poisson import mass
+
+from ..bearing import Bearing, JournalState
+from ..caches import cached
+from ..errors import ConvergenceError
+from ..fe.assembly import fe_operator
+from ..fields import FilmFields
+from ..film import film_thickness
+from ..lubricant import Lubricant
+from ..solution import FilmSolution
+from ..thermal.energy import Mixing, arc_basis, film_edges, film_flow, solve_energy
+from ..thermal.spec import Thermal, ThermalRecord
+from .base import Route
+from .fe import GeneralFilm
+from .jfo import JFOFilm
+from .problem import FilmProblem
+
+__all__ = ["ThermalFilm", "solve_thd", "ThermalRecord", "groove_mixing"]
+
+CAVITATION = ("reynolds", "jfo")
+
+
+@LinearForm
+def _value_form(v, w):
+    return w["f"] * v
+ANDERSON_DEPTH = 3     # past iterates Anderson's mixing combines
+
+
+class Anderson:
+    """Anderson's (1965) acceleration of the fixed point T -> G(T) (Walker & Ni's form):
+    the next iterate combines the last ``depth`` + 1 iterates with the weights that make
+    their residuals G(T) - T least in the 2-norm, relaxed by ``relaxation``. Why: the
+    groove's carried-over oil makes the plain iteration's factor approach -1 (an inlet
+    that overshoots each step); mixing the history removes it (measured in docs/thd.md).
+    """
+
+    def __init__(self, relaxation: float, depth: int):
+        self.relaxation, self.depth = relaxation, depth
+        self.x, self.f = [], []
+
+    def step(self, x: np.ndarray, g: np.ndarray) -> np.ndarray:
+        self.x.append(x)
+        self.f.append(g - x)
+        self.x, self.f = self.x[-self.depth - 1:], self.f[-self.depth - 1:]
+        f = self.f[-1]
+        if len(self.f) > 1:
+            dF = np.column_stack([b - a for a, b in zip(self.f[:-1], self.f[1:])])
+            dX = np.column_stack([b - a for a, b in zip(self.x[:-1], self.x[1:])])
+            gamma = np.linalg.lstsq(dF, f, rcond=None)[0]
+            return x + self.relaxation * f - (dX + self.relaxation * dF) @ gamma
+        return x + self.relaxation * f
+
+
+def check_thermal(lubricant, thermal, state, cavitation, element):
+    """What a thermal film needs before any work (ValueError naming the parameter)."""
+    if not isinstance(thermal, Thermal):
+        raise ValueError(f"thermal must be a Thermal, got {type(thermal).__name__}")
+    if not isinstance(lubricant, Lubricant):
+        raise ValueError(f"a thermal film needs lubricant=Lubricant (with density, specific "
+                         f"heat and conductivity), got {type(lubricant).__name__}")
+    for name in ("mass_density", "specific_heat", "conductivity"):
+        if getattr(lubricant, name) is None:
+            raise ValueError(f"a thermal film needs the lubricant's {name} (e.g. "
+                             f"Lubricant.two_point or Lubricant.iso_vg)")
+    if lubricant.density is not None or lubricant.bulk_modulus is not None:
+        raise ValueError("a thermal film takes an incompressible lubricant (no density "
+                         "law or bulk_modulus)")
+    if state.eps_dot != 0.0 or state.gamma_dot != 0.0:
+        raise ValueError("a thermal film is steady: eps_dot and gamma_dot must be 0")
+    if not state.omega > 0.0:
+        raise ValueError(f"omega must be > 0 for a thermal film (the oil enters at the "
+                         f"grooves' trailing edges), got {state.omega!r}")
+    if cavitation not in CAVITATION:
+        raise ValueError(f"cavitation must be one of {CAVITATION} for a thermal film, got "
+                         f"{cavitation!r}")
+    if cavitation == "jfo" and element != "P1":
+        raise ValueError(f"element must be 'P1' with cavitation 'jfo', got {element!r}")
+
+
+@cached(maxsize=16)
+def _projector(mesh):
+    """L2 projection onto the film's nodes of values at its quadrature points (the mass
+    matrix factorised once per mesh)."""
+    basis = mesh.basis
+    lu = splu(mass.assemble(basis).tocsc())
+    return lambda values: lu.solve(_value_form.assemble(basis, f=values))
+
+
+def _column_flows(bearing, state, mesh, edges, P, fraction, mu_nodal):
+    """Nodal q_theta [m^2/s] (Couette + Poiseuille, dp/dtheta projected on the nodes) and
+    each arc column's flow int q_theta dz [m^3/s]."""
+    R, c = bearing.radius, bearing.clearance
+    basis = mesh.basis
+    dP = _projector(mesh)(np.asarray(basis.interpolate(P).grad[0]))
+    h = c * film_thickness(mesh.theta, state.eps)
+    q = (0.5 * state.omega * R * fraction * h
+         - h ** 3 / (12.0 * mu_nodal) * bearing.pressure_scale / R * dP)
+    flows = np.empty(len(edges.columns))
+    for i, dofs in enumerate(edges.columns):
+        o = np.argsort(mesh.zeta[dofs])
+        flows[i] = R * np.trapezoid(q[dofs][o], mesh.zeta[dofs][o])
+    return q, flows
+
+
+def groove_mixing(bearing, state, mesh, edges, P, fraction, mu_nodal,
+                  thermal: Thermal) -> Mixing:
+    """Each groove's inlet temperature as a linear function of the film's (:class:`Thermal`'s
+    ``carry_over``): the upstream arc's exit temperature, flow-weighted over its last line
+    (trapezoidal in z), carried by lambda Q_out, Q_out the arc's least column flow (what
+    passes its cavity), mixed with fresh oil up to the next arc's inlet flow Q_in:
+    T_in = ((Q_in - C) T_supply + C T_out) / Q_in, C = min(lambda Q_out, Q_in)."""
+    q, flows = _column_flows(bearing, state, mesh, edges, P, fraction, mu_nodal)
+    column = np.full(mesh.ndofs, -1)
+    for i, dofs in enumerate(edges.columns):
+        column[dofs] = i
+    ts, lam = thermal.supply_temperature, thermal.carry_over
+    fresh, dofs, weights = [], [], []
+    for k, (d_in, d_out) in enumerate(zip(edges.inflow, edges.outflow)):
+        o = d_out[np.argsort(mesh.zeta[d_out])]
+        z, qo = mesh.zeta[o], q[o]
+        w = np.zeros(len(o))                           # trapezoidal weights in z
+        w[:-1] += 0.5 * np.diff(z)
+        w[1:] += 0.5 * np.diff(z)
+        q_sum = float(np.sum(w * qo))
+        q_out = float(np.min(flows[edges.column_groove == k], initial=np.inf))
+        q_in = float(flows[column[d_in[0]]])
+        carried = min(lam * max(q_out, 0.0), q_in) if q_in > 0.0 and q_sum > 0.0 else 0.0
+        share = carried / q_in if carried > 0.0 else 0.0
+        fresh.append((1.0 - share) * ts)
+        dofs.append(o)
+        weights.append(share * w * qo / q_sum if share > 0.0 else np.zeros(len(o)))
+    return Mixing(fresh=tuple(fresh), dofs=tuple(dofs), weights=tuple(weights))
+
+
+def solve_thd(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z: int = 20, *,
+              lubricant: Lubricant, thermal: Thermal, grooves=(), cavitation="reynolds",
+              element="P1", supply_angle=None, tol: float = 1e-10,
+              temperature_tol: float = 1e-6, pressure_rtol: float = 1e-8,
+              relaxation: float = 1.0, max_iterations: int = 200,
+              start: FilmSolution | None = None) -> FilmSolution:
+    """The steady thermal (THD) film at ``state`` (module docstring).
+
+    Parameters
+    ----------
+    bearing, state : the bearing (its ``viscosity`` is only the film's reference scale)
+        and a steady journal state (eps_dot = gamma_dot = 0, omega > 0)
+    n_theta, n_z, element, cavitation ("reynolds" or "jfo"), grooves, supply_angle, tol :
+        as :func:`~bearingfem.fe.reynolds.solve_reynolds`; a supply (grooves or
+        supply_angle) is needed. The whole length is meshed.
+    lubricant : :class:`~bearingfem.lubricant.Lubricant` with a temperature law (or none:
+        the isothermal film), mass_density, specific_heat, conductivity; a pressure law is
+        applied with the previous iterate's pressure
+    thermal : :class:`~bearingfem.thermal.Thermal`
+    temperature_tol : [K]; pressure_rtol : relative to the peak; the fixed point's tests
+    relaxation : r in (0, 1] of T_{k+1} = T_k + r (T - T_k), the step of Anderson's
+        acceleration (:class:`Anderson`)
+    max_iterations : fixed-point steps before ConvergenceError
+    start : a thermal :class:`FilmSolution` on the same mesh whose temperatures start the
+        fixed point (default: the supply temperature everywhere)
+
+    Returns
+    -------
+    FilmSolution with ``temperature`` (nodal [K]), ``temperature_max`` [K] and
+    ``thermal`` (:class:`ThermalRecord`).
+    """
+    check_thermal(lubricant, thermal, state, cavitation, element)
+    if not (isinstance(relaxation, (int, float)) and 0.0 < relaxation <= 1.0):
+        raise ValueError(f"relaxation must lie in (0, 1], got {relaxation!r}")
+    if not (isinstance(max_iterations, int) and max_iterations >= 1):
+        raise ValueError(f"max_iterations must be an integer >= 1, got {max_iterations!r}")
+    for name, value in (("temperature_tol", temperature_tol),
+                        ("pressure_rtol", pressure_rtol)):
+        if not (isinstance(value, (int, float)) and np.isfinite(value) and value > 0.0):
+            raise ValueError(f"{name} must be a positive finite number, got {value!r}")
+    if not grooves and supply_angle is None:
+        raise ValueError("a thermal film needs an oil supply: give grooves or a "
+                         "supply_angle")
+    op = fe_operator(bearing, state, n_theta, n_z, element, supply_angle, False, grooves)
+    # the isothermal film on the viscosity field of each iterate: the general film's route
+    # (the JFO film's with cavitation "jfo"), the whole length meshed
+    film = JFOFilm() if cavitation == "jfo" else GeneralFilm()
+    problem = FilmProblem(bearing, state, n_theta, n_z, element, cavitation, tol=tol,
+                          supply_angle=supply_angle, grooves=tuple(grooves),
+                          fields=FilmFields())
+    mesh = op.mesh
+    edges = film_edges(mesh)
+    arcs = arc_basis(mesh, edges)
+    ts = thermal.supply_temperature
+    n = mesh.ndofs
+    if start is not None and getattr(start, "temperature", None) is not None \
+            and len(start.temperature) == n:
+        T, p = np.array(start.temperature, float), np.array(start.pressure, float)
+    else:
+        T, p = np.full(n, ts), np.zeros(n)
+    walls = thermal.walls
+    anderson = Anderson(relaxation, ANDERSON_DEPTH)
+    change = dp = np.inf
+    for it in range(1, max_iterations + 1):
+        mu_q = lubricant.viscosity_at(op.at_quadrature(p), temperature=op.at_quadrature(T))
+        sol = film.solve(replace(problem, fields=FilmFields(viscosity=mu_q / bearing.viscosity)))
+        P = sol.pressure / bearing.pressure_scale
+        fraction = np.ones(n) if sol.fraction is None else sol.fraction
+        mu_arc = lubricant.viscosity_at(np.asarray(arcs.interpolate(sol.pressure)),
+                                        temperature=np.asarray(arcs.interpolate(T)))
+        flow = film_flow(bearing, state, arcs, P, fraction, mu_arc, lubricant)
+        mixing = groove_mixing(bearing, state, mesh, edges, P, fraction,
+                               lubricant.viscosity_at(sol.pressure, temperature=T), thermal)
+        energy = solve_energy(bearing, arcs, edges, flow, mixing, walls)
+        change = float(np.max(np.abs(energy.temperature - T)))
+        peak = max(float(np.max(np.abs(sol.pressure))), 1e-300)
+        dp = float(np.max(np.abs(sol.pressure - p))) / peak
+        p = sol.pressure
+        if change < temperature_tol and dp < pressure_rtol:
+            T = energy.temperature
+            break
+        T = anderson.step(T, energy.temperature)
+    else:
+        raise ConvergenceError("thermal film (temperature fixed point)", max_iterations,
+                               change, f"eps = {state.eps:.6g}; pressure change {dp:.3g}")
+    record = ThermalRecord(balance=energy.balance,
+                           journal_temperature=energy.journal_temperature,
+                           inlet_temperatures=tuple(float(T[d[0]]) for d in edges.inflow),
+                           viscosity=lubricant.viscosity_at(sol.pressure, temperature=T),
+                           viscosity_quadrature=mu_q,
+                           iterations=it, temperature_change=change, pressure_change=dp)
+    return replace(sol, temperature=T, temperature_max=float(np.max(T)), thermal=record,
+                   method=sol.method + "/thd")
+
+
+class ThermalFilm(Route):
+    name = "thd"
+    summary = "the thermal film: the energy equation coupled to the film through the " \
+              "oil's viscosity against temperature (a lubricant with a temperature law), " \
+              "whole length"
+    uses = frozenset({"element", "tol", "supply_angle", "half", "grooves", "lubricant",
+                      "thermal", "start"})
+
+    def check_options(self, p: FilmProblem) -> None:
+        check_thermal(p.lubricant, p.thermal, p.state, p.cavitation, p.element)
+
+    def solve(self, p: FilmProblem):
+        return solve_thd(p.bearing, p.state, p.n_theta, p.n_z, lubricant=p.lubricant,
+                         thermal=p.thermal, grooves=p.grooves, cavitation=p.cavitation,
+                         element=p.element, supply_angle=p.supply_angle, tol=p.tol,
+                         start=p.start)

@@ -1,0 +1,78 @@
+"""The slider-crank's joint effects and command-free helpers (mechanism/): bugs planted one
+at a time that the mechanism tests did not notice (docs/mutation.md)."""
+import math
+
+import numpy as np
+import pytest
+
+from mechanism.effects import CoulombFriction, HertzContact, JointKinematics
+
+C = 20e-6
+R = 0.01
+
+
+def _contacts(n=200, seed=3):
+    """Random kinematics in contact (e > c), every direction and sliding sense."""
+    rng = np.random.default_rng(seed)
+    for _ in range(n):
+        e = C * (1.0 + rng.uniform(1e-4, 5e-3))
+        a = rng.uniform(0, 2 * np.pi)
+        yield JointKinematics(e * math.cos(a), e * math.sin(a), *rng.normal(0, 0.05, 2),
+                              omega=rng.normal(0, 20.0))
+
+
+def test_coulomb_friction_dissipates_and_is_bounded():
+    """Energy: the friction force on the pin does no positive work against the sliding
+    velocity of the pin surface over the bush at the contact point, v = e' + omega R t_hat
+    (computed here from the kinematics), and its magnitude never exceeds mu_f F_n; it is
+    tangential. Fails with the friction acting along the sliding velocity (effects.py,
+    CoulombFriction.force: the sign of ft)."""
+    contact = HertzContact(C, 1e10, v_impact=1.0)   # mild damping: F_n > 0
+    friction = CoulombFriction(contact, 0.1, R, v_reg=1e-4)
+    powers = []
+    for k in _contacts():
+        fx, fy = friction.force(k)
+        rx, ry = k.e_x / k.e, k.e_y / k.e
+        vx, vy = k.de_x - k.omega * R * ry, k.de_y + k.omega * R * rx
+        powers.append(fx * vx + fy * vy)
+        fn = contact.normal_force(k)
+        assert math.hypot(fx, fy) <= 0.1 * fn * (1 + 1e-12)
+        assert abs(fx * rx + fy * ry) <= 1e-12 * (1 + fn)
+    powers = np.array(powers)
+    assert np.all(powers <= 0.0) and np.mean(powers < 0) > 0.9
+
+
+def test_joint_omega_is_the_rods_rotation_from_the_geometry():
+    """The journal's speed relative to the bearing is the rod's counter-clockwise rotation
+    (the slider does not turn): here the rate of the angle of the line crank pin -> piston
+    pin, by central differences along the motion. Fails with omega = +A' (joint.py)."""
+    from mechanism.dynamics import pin_position, rod_from_eccentricity
+    from mechanism.joint import joint_kinematics
+    from mechanism.parameters import Mechanism
+    m = Mechanism()
+    rng = np.random.default_rng(5)
+    for _ in range(20):
+        y = np.array([rng.uniform(0, 2 * np.pi), 1e-5, rng.uniform(-1e-5, 1e-5),
+                      rng.uniform(100, 400), 1e-3, rng.uniform(-0.01, 0.01)])
+
+        def rod_angle(dt):
+            q, ey = y[0] + y[3] * dt, y[2] + y[5] * dt
+            A, _ = rod_from_eccentricity(m, q, y[3], ey, y[5])
+            px, py = pin_position(m, q, A)
+            r = m.crank_length
+            return math.atan2(py - r * math.sin(q), px - r * math.cos(q))
+
+        h = 1e-7
+        rate = (rod_angle(h) - rod_angle(-h)) / (2 * h)
+        assert joint_kinematics(m, y).omega == pytest.approx(rate, rel=1e-5)
+
+
+def test_film_frames_take_the_nearest_sample_across_360_deg():
+    """A frame asked at 359.9 deg is the sample at 0 deg (0.1 deg away across the turn),
+    not the one at 359.5 deg (0.4 deg away). Fails with the distance not wrapped
+    (film_history.py, _sample_indices)."""
+    from types import SimpleNamespace
+
+    from mechanism.film_history import _sample_indices
+    result = SimpleNamespace(crank_angle=np.radians(np.arange(0.0, 360.0, 0.5)))
+    assert _sample_indices(result, [359.9, 0.2, 180.1]) == [0, 0, 360]
