@@ -8,7 +8,6 @@ import numpy as np
 import pytest
 
 from bearingfem import Bearing, Groove, JournalState, Lubricant, solve_reynolds
-from bearingfem.fe.assembly import fe_operator
 from bearingfem.fe.mesh import film_mesh
 from bearingfem.routes.thd import solve_thd
 from bearingfem.thermal import Thermal

@@ -25,7 +25,7 @@ from ..reynolds import solve_reynolds
 from ..fields import FilmFields
 from ..film import local_to_inertial
 from ..routes.thd import check_thermal, solve_thd
-from .coefficients import DynamicCoefficients, _axes
+from .coefficients import DynamicCoefficients
 from .equilibrium import EPS_MAX, Equilibrium, _load_vector, equilibrium, least_film
 from .groups import sommerfeld_number
 
