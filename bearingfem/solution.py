@@ -46,6 +46,10 @@ class FilmSolution:
     asperity_force_local : the same in the local frame (F_r, F_t) [N]
     asperity_friction_torque : the summits' Coulomb friction torque [N m], the film's
         convention (opposing positive omega); ``friction_torque`` stays the film's shear
+    force_error : a solve asked for an accuracy (``rtol``): the estimated relative
+        discretisation error of the force vector, |F_h - F| / |F| (:mod:`bearingfem.accuracy`);
+        None for a solve on a given mesh
+    accuracy : the :class:`~bearingfem.accuracy.AccuracyRecord` of how that mesh was chosen
     """
 
     force_local: tuple
@@ -82,6 +86,8 @@ class FilmSolution:
     asperity_force_local: tuple = (0.0, 0.0)   # (F_r, F_t) [N]
     asperity_friction_torque: float = 0.0      # [N m]
     density: np.ndarray | None = field(default=None, repr=False)  # compressible JFO: rho/rho0
+    force_error: float | None = None   # estimated relative error of |F| (solves with rtol)
+    accuracy: object = field(default=None, repr=False)   # AccuracyRecord (solves with rtol)
 
     @property
     def asperity_load(self) -> float:
@@ -98,9 +104,10 @@ class FilmSolution:
         fr, ft = self.force_local
         load = float(np.hypot(fr, ft))
         attitude = float(np.degrees(np.arctan2(ft, -fr))) if load else 0.0
+        err = "" if self.force_error is None else f" (+- {100 * self.force_error:.2g} %)"
         return "\n".join([
             f"film {self.method}, cavitation {self.cavitation}, {self.n_dofs} unknowns",
-            f"  force on the journal |F| {load:.6g} N, attitude angle {attitude:.4g} deg; "
+            f"  force on the journal |F| {load:.6g} N{err}, attitude angle {attitude:.4g} deg; "
             f"local (F_r, F_t) ({fr:.6g}, {ft:.6g}) N; inertial (F_x, F_y) "
             f"({self.force[0]:.6g}, {self.force[1]:.6g}) N",
             f"  peak pressure {self.pressure_max:.6g} Pa at theta "

@@ -35,6 +35,7 @@ from ..fields import check_tilt
 from ..film import local_to_inertial
 from ..models import film_model
 from ..validation import check_choice, check_inputs
+from .tolerance import answer_to_tolerance
 
 __all__ = ["DynamicCoefficients", "coefficients", "FRAMES", "EPS_FLOOR"]
 
@@ -65,6 +66,12 @@ class DynamicCoefficients:
         in the bearing (within 1 %; the turning form misses by 23-53 % of the largest entry,
         Kyx by up to 179 %, tests/test_lund_thomsen.py). Check a table's form before
         comparing.
+    error : with ``rtol`` or ``estimate=True``, the estimated discretisation error of K and
+        of C, each relative to its largest entry, the larger of the two (h/2h estimate,
+        :mod:`bearingfem.accuracy`); None otherwise. An estimate, not a bound
+    K_error, C_error : the estimated error of each entry [N/m], [N s/m] (magnitudes; with
+        ``eps_error`` given, the effect of the state's eps error is added)
+    accuracy : the :class:`~bearingfem.accuracy.AccuracyRecord` of the mesh chosen
     """
 
     K: np.ndarray
@@ -77,6 +84,10 @@ class DynamicCoefficients:
     method: str
     clearance: float
     K_groove_shift: np.ndarray
+    error: float | None = None
+    K_error: np.ndarray | None = None
+    C_error: np.ndarray | None = None
+    accuracy: object = None
 
     @property
     def load(self) -> float:
@@ -97,8 +108,11 @@ class DynamicCoefficients:
         check_choice("frame", frame, FRAMES)
         Q = _axes(frame, self.state.gamma, self.force)
         T = Q @ self.axes.T          # new components from old ones
+        A = np.abs(T)                # entry errors turn as magnitudes: a bound, |T| E |T|^T
         return replace(self, K=T @ self.K @ T.T, C=T @ self.C @ T.T, frame=frame, axes=Q,
-                       K_groove_shift=T @ self.K_groove_shift @ T.T)
+                       K_groove_shift=T @ self.K_groove_shift @ T.T,
+                       K_error=None if self.K_error is None else A @ self.K_error @ A.T,
+                       C_error=None if self.C_error is None else A @ self.C_error @ A.T)
 
 
 def _axes(frame: str, gamma: float, force) -> np.ndarray:
@@ -115,7 +129,9 @@ def _axes(frame: str, gamma: float, force) -> np.ndarray:
 
 
 def coefficients(bearing: Bearing, state: JournalState, model: str = "fem",
-                 frame: str = "inertial", **options) -> DynamicCoefficients:
+                 frame: str = "inertial", *, rtol: float | None = None,
+                 estimate: bool = False, eps_error: float | None = None,
+                 **options) -> DynamicCoefficients:
     """Stiffness K [N/m] and damping C [N s/m] of the film at ``state``.
 
     ``model`` is a name of :data:`bearingfem.models.FILM_MODELS` and ``options`` its
@@ -128,9 +144,19 @@ def coefficients(bearing: Bearing, state: JournalState, model: str = "fem",
     block of the misaligned film's 4x4 coefficients
     (:func:`bearingfem.fe.sensitivity.fe_tilt_coefficients`, which also gives the moment
     rows and tilt columns).
+
+    ``rtol`` (mesh models): a requested accuracy of K and C, each relative to its largest
+    entry, in [1e-6, 0.1]; the mesh (and element, P2 unless given) is chosen to reach it and
+    ``error``, ``K_error``, ``C_error`` report the estimate (:mod:`bearingfem.accuracy`).
+    ``estimate=True``: the same estimate for the mesh given (one more linearisation on the
+    half mesh). ``eps_error``: the estimated error of the state's eps (an equilibrium's
+    ``eps_error``); its effect on K and C (one more linearisation at eps + eps_error) is
+    added to the entries' errors and to ``error``.
     """
     check_inputs(bearing, state)
     check_choice("frame", frame, FRAMES)
+    if rtol is not None or estimate:
+        return _with_error(bearing, state, model, frame, rtol, eps_error, options)
     tilt = check_tilt("tilt", options.pop("tilt", (0.0, 0.0)))
     if any(tilt):
         return _tilted(bearing, state, model, frame, tilt, options)
@@ -160,6 +186,42 @@ def coefficients(bearing: Bearing, state: JournalState, model: str = "fem",
                                 d.method, c, K_shift)
     out = local if frame == "local" else local.in_frame(frame)
     return replace(out, K=K) if limit else out    # K turns into itself, without rounding
+
+
+def _relative(kc: DynamicCoefficients, dK, dC) -> float:
+    """The larger of |dK| / max|K| and |dC| / max|C| (entry-wise)."""
+    return float(max(np.max(np.abs(dK)) / np.max(np.abs(kc.K)),
+                     np.max(np.abs(dC)) / np.max(np.abs(kc.C))))
+
+
+def _with_error(bearing, state, model, frame, rtol, eps_error, options):
+    """The coefficients on the mesh that reaches ``rtol`` (or on the mesh given) with the
+    estimated error of each entry; the state's ``eps_error`` added as K, C's change over
+    it (one more linearisation on the chosen mesh)."""
+    m = film_model(model)
+
+    def evaluate(opts):
+        return coefficients(bearing, state, model, frame, **opts)
+
+    def difference(fine, coarse):
+        return _relative(fine, fine.K - coarse.K, fine.C - coarse.C)
+
+    kc, coarse, record = answer_to_tolerance(m, "coefficients",
+                                             round(bearing.length_ratio, 12), options,
+                                             evaluate, difference, rtol)
+    K_err = record.factor * np.abs(kc.K - coarse.K)
+    C_err = record.factor * np.abs(kc.C - coarse.C)
+    if eps_error:
+        mesh = {**options, "n_theta": record.mesh[0], "n_z": record.mesh[1]}
+        if "element" in m.defaults:
+            mesh["element"] = record.element
+        shifted = coefficients(bearing, replace(state, eps=min(state.eps + eps_error,
+                                                              0.5 * (1.0 + state.eps))),
+                               model, frame, **mesh)
+        K_err = K_err + np.abs(shifted.K - kc.K)
+        C_err = C_err + np.abs(shifted.C - kc.C)
+    return replace(kc, error=max(record.error, _relative(kc, K_err, C_err)), K_error=K_err,
+                   C_error=C_err, accuracy=record)
 
 
 def _tilted(bearing, state, model, frame, tilt, options) -> DynamicCoefficients:

@@ -19,7 +19,7 @@ columns are the derivative of the film as it is solved (its mesh turning with th
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 from scipy.optimize import brentq, root
@@ -34,6 +34,7 @@ from ..models import film_model, solve_film
 from ..solution import FilmSolution
 from .groups import petroff_friction, sommerfeld_number
 from .newton import closed_form_start, newton_position, polar_linearisation, shrink_inside
+from .tolerance import answer_to_tolerance
 
 __all__ = ["Equilibrium", "equilibrium", "EPS_MAX", "ConvergenceError"]
 
@@ -65,6 +66,10 @@ class Equilibrium:
         load the asperity contact carries, -(F_a . W)/|W|^2 (the film carries the rest;
         1 at omega = 0, the dry limit); 0 without. ``film_force`` is then the model's force,
         film plus asperities, and the friction adds the summits' Coulomb friction
+    eps_error : with ``rtol`` or ``estimate=True``, the estimated absolute discretisation
+        error of eps (the h/2h estimate of the journal position's error, |dq| with q = e/c,
+        :mod:`bearingfem.accuracy`); None otherwise. An estimate, not a bound
+    accuracy : the :class:`~bearingfem.accuracy.AccuracyRecord` of the mesh chosen
     """
 
     eps: float
@@ -85,6 +90,8 @@ class Equilibrium:
     model: str
     iterations: int
     asperity_load_share: float = 0.0
+    eps_error: float | None = None
+    accuracy: object = None
 
 
 def _load_vector(load, direction):
@@ -105,7 +112,8 @@ def _load_vector(load, direction):
 
 def equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
                 direction: float | None = None, eps_max: float = EPS_MAX,
-                rtol: float = 1e-13, start=None, **options) -> Equilibrium:
+                xtol: float = 1e-13, start=None, rtol: float | None = None,
+                estimate: bool = False, **options) -> Equilibrium:
     """Where the journal sits under a steady ``load`` at speed ``omega``.
 
     Parameters
@@ -117,7 +125,15 @@ def equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
     model : film model name (:data:`bearingfem.models.FILM_MODELS`); ``options`` its
         options, e.g. ``n_theta=120, n_z=20, element="P2", cavitation="reynolds"``
     eps_max : largest eccentricity ratio searched, in (0, 1)
-    rtol : relative tolerance on eps (relative, so light loads, eps ~ 1e-8, stay exact)
+    xtol : relative tolerance of the root on eps (relative, so light loads, eps ~ 1e-8,
+        stay exact): the iteration's, not the film's
+    rtol : a requested relative accuracy of the journal position q = e/c against the mesh
+        limit, in [1e-6, 0.1] (mesh models): the mesh (and element, P2 unless given) is
+        chosen to reach it and ``eps_error`` reports the estimate; the mesh options are
+        then ignored. Successive calls with the same bearing and options start at the
+        mesh that sufficed last (:mod:`bearingfem.accuracy`)
+    estimate : on the mesh given, also estimate ``eps_error`` (one more equilibrium on the
+        half mesh)
     start : an :class:`Equilibrium` or :class:`JournalState` near the answer (e.g. the
         previous load of a sweep), where Newton's method starts (models with exact
         partials only; default: the closed-form equilibrium). Newton's method raises
@@ -131,6 +147,9 @@ def equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
         the least gap over the length (at an end) and its angle, and the friction the
         film's own shear integral
     """
+    if rtol is not None or estimate:
+        return _equilibrium_with_error(bearing, load, omega, model, rtol, dict(
+            direction=direction, eps_max=eps_max, xtol=xtol, start=start), options)
     tilt = check_tilt("tilt", options.pop("tilt", (0.0, 0.0)))
     if any(tilt) and model != "fem":
         raise ValueError(f"tilt needs model 'fem' (a misaligned film), got model={model!r}")
@@ -157,7 +176,7 @@ def equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
                          f"omega != 0, got model={model!r}, omega={omega!r}")
     q0 = _start_position(start, eps_max) if start is not None else None
     if newton:
-        return _newton_equilibrium(m, bearing, omega, (wx, wy), opts, q0, eps_max, rtol,
+        return _newton_equilibrium(m, bearing, omega, (wx, wy), opts, q0, eps_max, xtol,
                                    model, tilt)
     calls = [0]
     grooves = opts.get("grooves", ())
@@ -171,7 +190,7 @@ def equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
     if not f_max >= W:
         raise ValueError(f"load {W:.6g} N exceeds what the film carries before contact: "
                          f"{f_max:.6g} N at eps_max = {eps_max:g} ({model} model)")
-    eps = brentq(lambda e: math.hypot(*force(e)) - W, 0.0, eps_max, xtol=1e-300, rtol=rtol)
+    eps = brentq(lambda e: math.hypot(*force(e)) - W, 0.0, eps_max, xtol=1e-300, rtol=xtol)
     f_r, f_t = force(eps)
     # turn the eccentricity so that the film force points opposite the load
     gamma = math.atan2(-wy, -wx) - math.atan2(f_t, f_r)
@@ -183,6 +202,34 @@ def equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
     state = JournalState(eps, omega=omega, gamma=gamma)
     sol = solve_film(model, bearing, state, opts)
     return _result(bearing, omega, (wx, wy), state, (f_r, f_t), sol, model, calls[0])
+
+
+def _position(eq: Equilibrium) -> np.ndarray:
+    return eq.eps * np.array([math.cos(eq.state.gamma), math.sin(eq.state.gamma)])
+
+
+def _equilibrium_with_error(bearing, load, omega, model, rtol, how, options):
+    """The equilibrium on the mesh that reaches ``rtol`` (or on the mesh given, with its
+    error), each mesh's Newton started from the last mesh's answer."""
+    m = film_model(model)
+    newton = m.derivatives is not None and not m.memory
+    last = []
+
+    def evaluate(opts):
+        start = last[-1] if newton and last else how["start"]
+        eq = equilibrium(bearing, load, omega, model, **{**how, "start": start}, **opts)
+        last.append(eq)
+        return eq
+
+    def difference(fine, coarse):     # relative change of the journal position
+        qf = _position(fine)
+        return float(np.linalg.norm(qf - _position(coarse)) / np.linalg.norm(qf))
+
+    # the memo (a design loop's next load starts at the mesh that sufficed) is keyed on
+    # the bearing's shape and the film options, not the load
+    eq, _, record = answer_to_tolerance(m, "equilibrium", round(bearing.length_ratio, 12),
+                                        options, evaluate, difference, rtol)
+    return replace(eq, eps_error=record.error * eq.eps, accuracy=record)
 
 
 def _result(bearing, omega, load, state, force_local, sol, model, calls, tilt=(0.0, 0.0)):

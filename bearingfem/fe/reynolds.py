@@ -4,6 +4,7 @@ from __future__ import annotations
 import numpy as np
 import scipy.sparse as sp
 
+from ..accuracy import film_to_tolerance
 from ..bearing import Bearing, JournalState, check_inside_clearance
 from ..film import film_thickness
 from ..solution import FilmSolution, film_solution
@@ -25,6 +26,7 @@ __all__ = ["solve_reynolds", "fe_operator", "fe_pressure", "fe_force", "general_
            "film_moment"]
 
 SHEAR = ("full", "none")
+_MESH_ARGS = ("bearing", "state", "n_theta", "n_z", "element", "rtol")
 
 
 def groove_pressures(bearing: Bearing, op: FilmOperator, grooves) -> np.ndarray | None:
@@ -135,12 +137,12 @@ def fe_force(bearing: Bearing, state: JournalState, n_theta=60, n_z=10, element=
 
 
 def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z: int = 20,
-                   element: str = "P1", cavitation: str = "reynolds", *,
+                   element: str | None = None, cavitation: str = "reynolds", *,
                    method: str = "active-set", supply_angle=None, half: bool = True,
                    tol: float = 1e-10, cavitated_shear: str = "full",
                    grooves=(), ambient_pressure: float = 0.0, fields: FilmFields | None = None,
                    tilt=(0.0, 0.0), tilt_rate=(0.0, 0.0), lubricant=None,
-                   bush=None, roughness=None, start=None) -> FilmSolution:
+                   bush=None, roughness=None, start=None, rtol=None) -> FilmSolution:
     """Solve the Reynolds equation on a finite-element mesh of the unwrapped film.
 
     Parameters
@@ -149,7 +151,7 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
     n_theta : cells around the circumference (>= 8)
     n_z : cells along the length (>= 2); with ``half=True`` only z >= 0 is meshed,
         with ceil(n_z/2) cells, which the symmetry of an aligned journal allows
-    element : "P1" or "P2" triangles
+    element : "P1" or "P2" triangles (None: P1; with ``rtol``, P2 where the film takes it)
     cavitation : "none" (full Sommerfeld), "gumbel" (negative pressure set to ambient after
         the solve), "reynolds" (Swift-Stieber complementarity, projected iteration), "jfo"
         (mass-conserving Jakobsson-Floberg-Olsson film, :mod:`bearingfem.fe.jfo`; P1 only;
@@ -193,6 +195,9 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
     start : with a lubricant or bush, a previous :class:`FilmSolution` of the same mesh
         whose pressure (and JFO fraction) starts Newton (a nearby state converges in a
         few steps; if that stalls, the cold route); None: a cold start. Same answer to ``tol``.
+    rtol : a requested relative accuracy of the film force, in [1e-6, 0.1]: the mesh (and,
+        unless given, the element) is chosen to reach it (n_theta and n_z are then
+        ignored) and ``force_error`` reports the estimate (:mod:`bearingfem.accuracy`)
 
     With ``fields`` or a tilt the whole length is meshed (no mid-plane symmetry) and
     ``moment`` is the film's moment on the journal; fields that are the rigid cylinder's
@@ -202,6 +207,11 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
     -------
     FilmSolution
     """
+    if rtol is not None:    # accuracy on request: bearingfem.accuracy chooses the mesh
+        opts = {k: v for k, v in locals().items() if k not in _MESH_ARGS}
+        return film_to_tolerance(lambda nt, nz, el: solve_reynolds(
+            bearing, state, nt, nz, el, **opts), bearing, rtol, element, opts)
+    element = "P1" if element is None else element
     n_theta, n_z, supply_angle = check_film_solve(
         bearing, state, n_theta, n_z, cavitation, method, supply_angle, tol,
         element=(element, tuple(ELEMENTS)), cavitated_shear=(cavitated_shear, SHEAR))
