@@ -9,8 +9,9 @@ argument: with e(h) ~ C h^p,
 
 and p the lower of the element's nominal order (the force of a P1 film converges as h^2;
 a P2 film as h^4 without cavitation and as h^2 with it, the free boundary limiting it) and
-the order observed on three meshes (never below 1). Taking the lower order makes the
-estimate err high before the asymptotic range, where the observed order is low. Its
+the order observed on three meshes (never below 1; from one pair alone, at most 2). Taking
+the lower order makes the estimate err high before the asymptotic range, where the
+observed order is low. Its
 effectivity (estimate / true error) is measured in tests/test_accuracy.py and
 docs/accuracy.md; ``SAFETY`` is the factor that keeps it above 1 over the measured meshes
 and states.
@@ -20,8 +21,8 @@ tolerance, (h / h_needed) = (e / rtol)^(1/p); the next pair is solved there (its
 half is the last fine mesh when the prediction asks for a doubling, so no solve is
 wasted), until the estimate is within the tolerance. What sufficed is kept in a small memo
 under a key the caller gives (the bearing and film options, not the state), so that the
-next state of a design loop starts at the pair that sufficed (grown or shrunk by the
-order's prediction) and usually needs that one pair alone.
+next state of a design loop starts at the pair that sufficed (one doubling coarser when
+its estimate was under rtol / 16) and usually needs that one pair alone.
 
 This module knows nothing about films: it takes ``evaluate(n_theta, n_z, element)`` and a
 ``difference(fine, coarse)`` of what is asked for (a film's force, an equilibrium's eps,
@@ -148,9 +149,12 @@ def estimate_error(scales, differences, order: float):
     """(estimated relative error of the finest answer, order used) from the last two or
     three mesh ``scales`` (1/h, increasing) and the ``differences`` between consecutive
     answers (the last the finest pair's; the one before it None when unknown): Richardson's
-    estimate at the nominal ``order``, or at the observed order when that is lower (>= 1)."""
+    estimate at the nominal ``order``, or at the observed order when that is lower (>= 1);
+    from one pair alone (no observed order) at most order 2, since a first pair is often
+    short of the asymptotic range (P2, L/D 1, eps 0.9, full film: 12 x 2 / 24 x 4 at order
+    4 gives effectivity 0.68)."""
     d = differences[-1]
-    p = order
+    p = min(order, 2.0)     # an order above 2 (the smooth P2 film's 4) only when observed
     if len(scales) == 3 and differences[0] is not None:
         p_obs = _observed_order(differences[0], d, scales[1] / scales[0],
                                 scales[2] / scales[1])
@@ -228,9 +232,10 @@ def refine_to_tolerance(evaluate: Callable, difference: Callable, rtol: float, *
             grow = 2.0          # a doubling reuses this mesh as the next pair's coarse one
         scale *= grow
     if memo_key is not None:
-        # next call: the scale predicted to just reach rtol (never below the start)
-        nxt = scale * min(1.0, 1.1 * (max(err, 1e-300) / rtol) ** (1.0 / p_used))
-        _MEMO[memo_key] = max(1.0, nxt)
+        # next call: the pair that sufficed; one doubling coarser when its estimate was
+        # under rtol / 16 (a predicted shrink by less is often undone by a pre-asymptotic
+        # estimate, costing a search)
+        _MEMO[memo_key] = max(1.0, scale / 2.0 if err < rtol / 16.0 else scale)
         while len(_MEMO) > _MEMO_SIZE:
             _MEMO.popitem(last=False)
     record = AccuracyRecord(
@@ -252,7 +257,7 @@ def estimate_at(evaluate: Callable, difference: Callable, mesh: tuple, *, elemen
     half = (max(8, 2 * math.ceil(mesh[0] / 4.0)), max(2, 2 * math.ceil(mesh[1] / 4.0)))
     fine, coarse = evaluate(*mesh, element), evaluate(*half, element)
     ratio = math.sqrt(mesh[0] * mesh[1] / (half[0] * half[1]))
-    err = richardson_error(difference(fine, coarse), ratio, order)
+    err, order = estimate_error([1.0, ratio], [difference(fine, coarse)], order)
     record = AccuracyRecord(rtol=None, error=float(err), element=element, mesh=mesh,
                             partner=half, order=float(order), meshes=(mesh, half), solves=2,
                             seconds=time.perf_counter() - t0,
