@@ -105,7 +105,9 @@ def test_critical_mass_range_contains_the_converged_value(film):
     """README example 2 on its meshes (and the command line's default 120 x 20 P1): the
     critical mass differs by 20x between them; its range over K, C's error (with the
     equilibrium's eps error) contains the converged one, and the verdict says it is
-    ill-conditioned there (fails without the eps error: the 96 x 16 range misses)."""
+    ill-conditioned there (fails with K and C's errors near zero: the range shrinks to
+    the mesh's own digits and misses; survives errors cut tenfold, the range is that wide:
+    test_coefficients_error_covers_the_converged_ones catches that)."""
     eq = equilibrium(B1, (0.0, -1000.0), 250.0, "fem", cavitation="reynolds", estimate=True,
                      **film)
     kc = coefficients(B1, eq.state, "fem", cavitation="reynolds", estimate=True,

@@ -5,10 +5,13 @@ from __future__ import annotations
 
 from typing import Callable
 
-from ..accuracy import check_rtol, estimate_at, nominal_order, refine_to_tolerance
-from ..models import FilmModel
+import numpy as np
 
-__all__ = ["answer_to_tolerance"]
+from ..accuracy import check_rtol, estimate_at, nominal_order, refine_to_tolerance
+from ..bearing import JournalState
+from ..models import FilmModel, film_model
+
+__all__ = ["answer_to_tolerance", "mesh_for_run", "run_force_error", "RUN_PROBES"]
 
 
 def answer_to_tolerance(m: FilmModel, what: str, key, options: dict, evaluate: Callable,
@@ -51,3 +54,51 @@ def answer_to_tolerance(m: FilmModel, what: str, key, options: dict, evaluate: C
     start = (24, 4) if element == "P2" else (48, 8)
     return refine_to_tolerance(run, difference, rtol, element=element, start_mesh=start,
                                order=order, key=memo)
+
+
+#: Steady states at which a run's mesh is chosen (eps, below the scene's eps_max): a
+#: journal's film is hardest to resolve near the wall, so the set reaches close to it.
+RUN_PROBES = (0.3, 0.6, 0.9, 0.97)
+
+
+def mesh_for_run(bearing, model: str, options: dict, rtol: float, omega: float,
+                 eps_max: float = 0.999) -> tuple:
+    """(options with the mesh chosen, record): the mesh on which the model's force is
+    within ``rtol`` (estimated) at every steady state of :data:`RUN_PROBES` (eps capped at
+    ``eps_max``) at journal speed ``omega`` [rad/s]; for a time integration, where the
+    state is not known beforehand. The run's own states are checked after it
+    (:func:`run_force_error`)."""
+    m = film_model(model)
+    states = [JournalState(min(e, eps_max), omega=omega) for e in RUN_PROBES]
+
+    def evaluate(opts):
+        return [m.film_force(bearing, s, **opts) for s in states]
+
+    def difference(fine, coarse):
+        return max(float(np.hypot(*np.subtract(f, c)) / np.hypot(*f))
+                   for f, c in zip(fine, coarse))
+
+    _, _, record = answer_to_tolerance(m, "run", round(bearing.length_ratio, 12), options,
+                                       evaluate, difference, rtol)
+    chosen = {**options, "n_theta": record.mesh[0], "n_z": record.mesh[1]}
+    if "element" in m.defaults:
+        chosen["element"] = record.element
+    return chosen, record
+
+
+def run_force_error(bearing, model: str, options: dict, states) -> float:
+    """The largest estimated relative force error (h/2h with the half mesh) of the model
+    on its mesh over ``states`` (JournalStates met in a run)."""
+    m = film_model(model)
+    worst = 0.0
+    for s in states:
+        def evaluate(opts, s=s):
+            return m.film_force(bearing, s, **opts)
+
+        def difference(fine, coarse):
+            n = float(np.hypot(*fine))
+            return float(np.hypot(*np.subtract(fine, coarse))) / n if n else 0.0
+
+        worst = max(worst, answer_to_tolerance(m, "run", None, options, evaluate,
+                                               difference, None)[2].error)
+    return worst
