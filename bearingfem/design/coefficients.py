@@ -208,7 +208,8 @@ def _with_error(bearing, state, model, frame, rtol, eps_error, options):
 
     kc, coarse, record = answer_to_tolerance(m, "coefficients",
                                              round(bearing.length_ratio, 12), options,
-                                             evaluate, difference, rtol)
+                                             evaluate, difference, rtol,
+                                             bearing.length_ratio)
     K_err = record.factor * np.abs(kc.K - coarse.K)
     C_err = record.factor * np.abs(kc.C - coarse.C)
     if eps_error:

@@ -228,7 +228,8 @@ def _equilibrium_with_error(bearing, load, omega, model, rtol, how, options):
     # the memo (a design loop's next load starts at the mesh that sufficed) is keyed on
     # the bearing's shape and the film options, not the load
     eq, _, record = answer_to_tolerance(m, "equilibrium", round(bearing.length_ratio, 12),
-                                        options, evaluate, difference, rtol)
+                                        options, evaluate, difference, rtol,
+                                        bearing.length_ratio)
     return replace(eq, eps_error=record.error * eq.eps, accuracy=record)
 
 

@@ -7,7 +7,8 @@ from typing import Callable
 
 import numpy as np
 
-from ..accuracy import check_rtol, estimate_at, nominal_order, refine_to_tolerance
+from ..accuracy import (check_rtol, estimate_at, groove_multiple, nominal_order,
+                        refine_to_tolerance, start_mesh)
 from ..bearing import JournalState
 from ..models import FilmModel, film_model
 
@@ -15,12 +16,14 @@ __all__ = ["answer_to_tolerance", "mesh_for_run", "run_force_error", "RUN_PROBES
 
 
 def answer_to_tolerance(m: FilmModel, what: str, key, options: dict, evaluate: Callable,
-                        difference: Callable, rtol: float | None):
+                        difference: Callable, rtol: float | None,
+                        length_ratio: float = 0.5):
     """(answer, coarse answer, record): ``evaluate(options)`` with the model's mesh options
     (n_theta, n_z and, if the model has it, element) chosen to reach ``rtol`` (relative,
     ``difference(fine, coarse)``), or, with ``rtol`` None, on the mesh of ``options`` with
     its error estimated. ``what`` names the quantity in messages; ``key`` (hashable or
-    None) the memo entry, to which the model and its other options are added."""
+    None) the memo entry, to which the model and its other options are added;
+    ``length_ratio`` L/D shapes the start mesh (:func:`~bearingfem.accuracy.start_mesh`)."""
     if not {"n_theta", "n_z"} <= set(m.defaults):
         raise ValueError(f"rtol and error estimates are for film models on a mesh (options "
                          f"n_theta, n_z); model {m.name!r} has none")
@@ -51,9 +54,10 @@ def answer_to_tolerance(m: FilmModel, what: str, key, options: dict, evaluate: C
         hash(memo)
     except TypeError:
         memo = None
-    start = (24, 4) if element == "P2" else (48, 8)
+    start = start_mesh(element, length_ratio)
     return refine_to_tolerance(run, difference, rtol, element=element, start_mesh=start,
-                               order=order, key=memo)
+                               order=order, key=memo,
+                               n_theta_multiple=groove_multiple(options.get("grooves")))
 
 
 #: Steady states at which a run's mesh is chosen (eps, below the scene's eps_max): a
@@ -79,7 +83,8 @@ def mesh_for_run(bearing, model: str, options: dict, rtol: float, omega: float,
                    for f, c in zip(fine, coarse))
 
     _, _, record = answer_to_tolerance(m, "run", round(bearing.length_ratio, 12), options,
-                                       evaluate, difference, rtol)
+                                       evaluate, difference, rtol,
+                                       bearing.length_ratio)
     chosen = {**options, "n_theta": record.mesh[0], "n_z": record.mesh[1]}
     if "element" in m.defaults:
         chosen["element"] = record.element
