@@ -160,3 +160,16 @@ def test_an_unreachable_tolerance_raises_convergence_error():
         refine_to_tolerance(slow, lambda f, c: abs(f - c) / abs(f), 1e-6, element="P1",
                             start_mesh=(48, 8), order=2.0)
     assert max(a * b for a, b in calls) <= 1536 * 256
+
+
+def test_a_jfo_film_to_a_tolerance():
+    """The mass-conserving film (P1, a flooded groove): within rtol and its estimate of a
+    fine film (P1 384 x 128, itself ~5e-4 off: the tolerance is 1e-2)."""
+    from bearingfem import Groove
+    clear_memo()
+    s = JournalState(eps=0.6, omega=250.0)
+    grooves = [Groove(angle=math.pi / 2, width=0.2, pressure=1e5)]
+    sol = solve_reynolds(B1, s, rtol=1e-2, cavitation="jfo", grooves=grooves)
+    ref = solve_reynolds(B1, s, 384, 128, cavitation="jfo", grooves=grooves)
+    assert sol.accuracy.element == "P1"
+    assert force_difference(ref, sol) <= sol.force_error <= 1e-2
