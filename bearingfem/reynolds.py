@@ -3,6 +3,7 @@
 :mod:`bearingfem.routes`."""
 from __future__ import annotations
 
+from .accuracy import film_to_tolerance
 from .bearing import Bearing, JournalState
 from .fields import FilmFields
 from .routes import film_problem, solve
@@ -12,13 +13,13 @@ __all__ = ["solve_reynolds", "fvm_reynolds"]
 
 
 def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z: int = 20,
-                   element: str = "P1", cavitation: str = "reynolds", *,
+                   element: str | None = None, cavitation: str = "reynolds", *,
                    method: str = "active-set", supply_angle=None, half: bool = True,
                    tol: float = 1e-10, cavitated_shear: str = "full",
                    grooves=(), ambient_pressure: float = 0.0, fields: FilmFields | None = None,
                    tilt=(0.0, 0.0), tilt_rate=(0.0, 0.0), lubricant=None,
                    bush=None, roughness=None, start=None, grading=None,
-                   thermal=None) -> FilmSolution:
+                   thermal=None, rtol: float | None = None) -> FilmSolution:
     """Solve the Reynolds equation on a finite-element mesh of the unwrapped film.
 
     The options make a :class:`~bearingfem.routes.FilmProblem`; its kind picks the route
@@ -31,7 +32,7 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
     n_z : cells along the length (>= 2); with ``half=True`` only z >= 0 is meshed,
         with ceil(n_z/2) cells, which the symmetry of an aligned journal allows (films on
         fields, tilted or elastic are meshed over the whole length)
-    element : "P1" or "P2" triangles
+    element : "P1" or "P2" triangles (None: P1; with ``rtol``, P2 where the film takes it)
     cavitation : "none" (full Sommerfeld), "gumbel" (negative pressure set to ambient after
         the solve), "reynolds" (Swift-Stieber complementarity, projected iteration), "jfo"
         (mass-conserving Jakobsson-Floberg-Olsson film; P1 only; needs a supply: grooves,
@@ -72,28 +73,47 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
         equation coupled to the film through the ``lubricant``'s viscosity against
         temperature (:mod:`bearingfem.routes.thd`); ``temperature`` and
         ``temperature_max`` [K] are then given
+    rtol : a requested relative accuracy of the film force, in [1e-6, 0.1]: the mesh (and,
+        unless given, the element) is chosen to reach it (n_theta and n_z are then
+        ignored) and ``force_error`` reports the estimate (:mod:`bearingfem.accuracy`)
 
     Returns
     -------
     FilmSolution
     """
-    return solve(film_problem(
-        bearing, state, n_theta, n_z, cavitation, element=element, method=method,
-        supply_angle=supply_angle, half=half, tol=tol, cavitated_shear=cavitated_shear,
-        grooves=grooves, ambient_pressure=ambient_pressure, fields=fields, tilt=tilt,
-        tilt_rate=tilt_rate, lubricant=lubricant, bush=bush, roughness=roughness,
-        start=start, grading=grading, thermal=thermal))
+    options = dict(method=method, supply_angle=supply_angle, half=half, tol=tol,
+                   cavitated_shear=cavitated_shear, grooves=grooves,
+                   ambient_pressure=ambient_pressure, fields=fields, tilt=tilt,
+                   tilt_rate=tilt_rate, lubricant=lubricant, bush=bush, roughness=roughness,
+                   start=start, grading=grading, thermal=thermal)
+    problem = film_problem(bearing, state, n_theta, n_z, cavitation,
+                           element="P1" if element is None else element, **options)
+    if rtol is None:
+        return solve(problem)
+    # accuracy on request: the problem is checked above, before any work; bearingfem.accuracy
+    # chooses the mesh (and element)
+    return film_to_tolerance(
+        lambda nt, nz, el: solve(film_problem(bearing, state, nt, nz, cavitation, element=el,
+                                              **options)),
+        bearing, rtol, element, dict(options, cavitation=cavitation))
 
 
 def fvm_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z: int = 20,
                  cavitation: str = "reynolds", *, method: str = "active-set",
                  supply_angle=None, tol: float = 1e-10, grooves=(),
                  ambient_pressure: float = 0.0, tilt=(0.0, 0.0),
-                 tilt_rate=(0.0, 0.0)) -> FilmSolution:
+                 tilt_rate=(0.0, 0.0), rtol: float | None = None) -> FilmSolution:
     """Finite-volume Reynolds solution: the same inputs (those it takes) and result type
     as :func:`solve_reynolds` (:mod:`bearingfem.fv`; forces are the midpoint sums of seed
-    Eq. 16, second order)."""
-    return solve(film_problem(
-        bearing, state, n_theta, n_z, cavitation, discretisation="fv", method=method,
-        supply_angle=supply_angle, tol=tol, grooves=grooves,
-        ambient_pressure=ambient_pressure, tilt=tilt, tilt_rate=tilt_rate))
+    Eq. 16, second order). ``rtol``: the grid chosen to reach a requested relative
+    accuracy of the force, ``force_error`` its estimate (second order, as P1)."""
+    options = dict(method=method, supply_angle=supply_angle, tol=tol, grooves=grooves,
+                   ambient_pressure=ambient_pressure, tilt=tilt, tilt_rate=tilt_rate)
+    problem = film_problem(bearing, state, n_theta, n_z, cavitation, discretisation="fv",
+                           **options)
+    if rtol is None:
+        return solve(problem)
+    return film_to_tolerance(
+        lambda nt, nz, el: solve(film_problem(bearing, state, nt, nz, cavitation,
+                                              discretisation="fv", **options)),
+        bearing, rtol, "P1", dict(options, cavitation=cavitation))

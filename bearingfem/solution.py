@@ -50,6 +50,10 @@ class FilmSolution:
         (:mod:`bearingfem.thermal`); None for an isothermal film
     thermal : a thermal film's :class:`~bearingfem.thermal.ThermalRecord` (energy
         balance, journal and inlet temperatures, viscosity, iterations)
+    force_error : a solve asked for an accuracy (``rtol``): the estimated relative
+        discretisation error of the force vector, |F_h - F| / |F| (:mod:`bearingfem.accuracy`);
+        None for a solve on a given mesh
+    accuracy : the :class:`~bearingfem.accuracy.AccuracyRecord` of how that mesh was chosen
     """
 
     force_local: tuple
@@ -89,6 +93,8 @@ class FilmSolution:
     temperature: np.ndarray | None = field(default=None, repr=False)  # thermal film: nodal [K]
     temperature_max: float | None = None       # thermal film: the film's hottest node [K]
     thermal: object = field(default=None, repr=False)  # thermal film: its ThermalRecord
+    force_error: float | None = None   # estimated relative error of |F| (solves with rtol)
+    accuracy: object = field(default=None, repr=False)   # AccuracyRecord (solves with rtol)
 
     @property
     def asperity_load(self) -> float:
@@ -105,9 +111,10 @@ class FilmSolution:
         fr, ft = self.force_local
         load = float(np.hypot(fr, ft))
         attitude = float(np.degrees(np.arctan2(ft, -fr))) if load else 0.0
+        err = "" if self.force_error is None else f" (+- {100 * self.force_error:.2g} %)"
         return "\n".join([
             f"film {self.method}, cavitation {self.cavitation}, {self.n_dofs} unknowns",
-            f"  force on the journal |F| {load:.6g} N, attitude angle {attitude:.4g} deg; "
+            f"  force on the journal |F| {load:.6g} N{err}, attitude angle {attitude:.4g} deg; "
             f"local (F_r, F_t) ({fr:.6g}, {ft:.6g}) N; inertial (F_x, F_y) "
             f"({self.force[0]:.6g}, {self.force[1]:.6g}) N",
             f"  peak pressure {self.pressure_max:.6g} Pa at theta "

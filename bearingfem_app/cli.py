@@ -102,6 +102,12 @@ def _load_args(p, required):
                         "(-90: downward)")
 
 
+def _rtol_arg(p):
+    p.add_argument("--rtol", type=float, default=None,
+                   help="a requested relative accuracy (e.g. 1e-3): the mesh (and element, "
+                        "P2 unless --element) is chosen to reach it; --n-theta, --n-z unused")
+
+
 def _design_args(p):
     """Film model and mesh for the designer's commands (closed forms ignore the mesh)."""
     _bearing_args(p, film=False)
@@ -127,6 +133,7 @@ def build_parser():
     f = add("solve", help="one film solve; print forces, optionally export VTU",
             epilog="example: bearingfem solve --ld 0.5 --eps 0.8 -o film.vtu")
     _film_args(f)
+    _rtol_arg(f)
     f.add_argument("--model", default="fem", choices=["fem", "fvm"],
                    help="film model: finite elements or finite volumes")
     f.add_argument("--method", choices=["fem", "fvm"], help=argparse.SUPPRESS)   # old name
@@ -185,6 +192,7 @@ def build_parser():
             epilog="example: bearingfem equilibrium --ld 1 --load 1000 "
                    "--model fem --element P2")
     _design_args(e)
+    _rtol_arg(e)
     _load_args(e, required=True)
     e.set_defaults(func=command_equilibrium)
     k = add("coefficients", help="stiffness and damping (K, C) and Lund's "
@@ -192,6 +200,7 @@ def build_parser():
             epilog="example: bearingfem coefficients --ld 0.5 --load 500 "
                    "--frame load")
     _design_args(k)
+    _rtol_arg(k)
     k.add_argument("--eps", type=float, help="steady state at this eccentricity ratio")
     k.add_argument("--gamma", type=float, default=0.0, help="its attitude [deg] (with --eps)")
     _load_args(k, required=False)

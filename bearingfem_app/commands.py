@@ -96,6 +96,15 @@ def _model_options(args):
                                                                    or k in args.given))}
 
 
+def _accuracy(args, opts):
+    """With --rtol the mesh options are the toolkit's to choose (the element too unless
+    given): (options without them, {"rtol": ...}); without, (options, {})."""
+    if args.rtol is None:
+        return opts, {}
+    drop = ("n_theta", "n_z") + (() if args.element_given else ("element",))
+    return {k: v for k, v in opts.items() if k not in drop}, {"rtol": args.rtol}
+
+
 def _check_cache():
     """The fem-table cache folder takes a file (tried, not guessed from permissions)."""
     import tempfile
@@ -155,8 +164,12 @@ def _print_rows(rows):
 
 
 def _equilibrium_rows(eq, b):
-    """What the designer reads of an equilibrium: (name, value, unit) rows."""
-    return [("eccentricity ratio", eq.eps, "-"),
+    """What the designer reads of an equilibrium: (name, value, unit) rows (with its
+    estimated error and the mesh chosen when an accuracy was asked)."""
+    return [("eccentricity ratio", eq.eps, "-")] + (
+        [] if eq.eps_error is None else [("  its estimated error", eq.eps_error, "-"),
+                                         ("  mesh chosen", "{} x {} {}".format(
+                                             *eq.accuracy.mesh, eq.accuracy.element), "")]) + [
             ("attitude angle", math.degrees(eq.attitude), "deg"),
             ("Sommerfeld number", eq.sommerfeld, "-"),
             ("minimum film", eq.film_min, "m"),
@@ -194,9 +207,10 @@ def command_equilibrium(args):
     from bearingfem.design import equilibrium
     out = _check_output(args.output, (".json", ".csv"))
     model, opts = _model_options(args)
+    opts, acc = _accuracy(args, opts)
     b = _bearing(args)
     eq = equilibrium(b, args.load, args.omega, model, direction=math.radians(args.direction),
-                     **opts)
+                     **opts, **acc)
     rows = _equilibrium_rows(eq, b)
     print(f"equilibrium, {model} {opts or ''}: load {args.load:g} N toward "
           f"{args.direction:g} deg (inertial), {args.omega:g} rad/s, L/D {args.length_ratio:g}")
@@ -210,21 +224,26 @@ def command_coefficients(args):
     from bearingfem.design import coefficients, equilibrium, lund_stability
     out = _check_output(args.output, (".json", ".csv"))
     model, opts = _model_options(args)
+    opts, acc = _accuracy(args, opts)
     b = _bearing(args)
     if (args.eps is None) == (args.load is None):
         raise ValueError("give exactly one of --eps (a steady state) or --load "
                          "(the equilibrium under that load)")
+    eps_error = None
     if args.load is not None:
-        state = equilibrium(b, args.load, args.omega, model,
-                            direction=math.radians(args.direction), **opts).state
+        eq = equilibrium(b, args.load, args.omega, model,
+                         direction=math.radians(args.direction), **opts, **acc)
+        state, eps_error = eq.state, eq.eps_error
     else:
         state = JournalState(args.eps, omega=args.omega, gamma=math.radians(args.gamma))
-    kc = coefficients(b, state, model, frame=args.frame, **opts)
+    kc = coefficients(b, state, model, frame=args.frame, eps_error=eps_error, **opts, **acc)
     st = lund_stability(kc)
     rows, axes = _coefficient_rows(kc, args.frame)
-    rows += [("eccentricity ratio", state.eps, "-"), ("load carried", kc.load, "N"),
-             ("critical mass", st.critical_mass, "kg"),
-             ("whirl frequency ratio", st.whirl_ratio, "-")]
+    rows += ([("eccentricity ratio", state.eps, "-"), ("load carried", kc.load, "N"),
+              ("critical mass", st.critical_mass, "kg"),
+              ("whirl frequency ratio", st.whirl_ratio, "-")]
+             + ([] if kc.error is None else [("K, C estimated error", kc.error,
+                                              "of the largest entry")]))
     print(f"coefficients, {model} {opts or ''}, {args.frame} frame ({kc.method}):")
     print(f"  {axes}")
     _print_rows(rows)
@@ -290,7 +309,13 @@ def command_solve(args):
     _check_output(args.output, FILM_FORMATS)
     b, s = _film_state(args)
     supply = _supply_angle(args, s.gamma)
-    if args.model == "fvm":
+    if args.model == "fvm" and args.rtol is not None:
+        raise ValueError("--rtol applies to --model fem only")
+    if args.rtol is not None:
+        sol = solve_reynolds(b, s, element=element if args.element_given else None,
+                             cavitation=args.cavitation, ambient_pressure=_ambient(args),
+                             supply_angle=supply, rtol=args.rtol)
+    elif args.model == "fvm":
         sol = fvm_reynolds(b, s, args.n_theta, args.n_z, args.cavitation,
                            ambient_pressure=_ambient(args), supply_angle=supply)
     else:

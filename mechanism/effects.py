@@ -78,6 +78,9 @@ class FilmEffect(Effect):
     options: dict = field(default_factory=dict)
     eps_max: float = 0.999
     solves: int = 0
+    #: keep every n-th state the film is asked at (0: none), and the one nearest the wall:
+    #: a run with an accuracy asked estimates its film error there afterwards
+    sample_every: int = 0
 
     def __post_init__(self):
         self.film_model = film_model(self.model, "lubrication.model")
@@ -91,6 +94,8 @@ class FilmEffect(Effect):
         self.state_size = int(self.run.state_size)
         self.z = np.zeros(self.state_size)
         self.z_rate = np.zeros(self.state_size)
+        self.samples: list = []
+        self.deepest: JournalState | None = None
 
     @property
     def wall(self) -> float:
@@ -107,6 +112,11 @@ class FilmEffect(Effect):
     def force(self, k: JointKinematics):
         s = self._state(k)
         self.solves += 1
+        if self.sample_every:
+            if self.solves % self.sample_every == 0:
+                self.samples.append(s)
+            if self.deepest is None or s.eps > self.deepest.eps:
+                self.deepest = s
         if self.start is None:              # the film begins at its first state
             self.start = (k.t,) + dataclasses.astuple(s)
             self.run.start(s, k.t)

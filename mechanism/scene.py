@@ -18,6 +18,7 @@ except ModuleNotFoundError:  # Python < 3.11
 from bearingfem import Bearing, ElasticBush, Roughness
 from bearingfem.bearing import plausibility_errors
 from bearingfem.lubricant import Lubricant
+from bearingfem.accuracy import check_rtol
 from bearingfem.models import film_model
 from .parameters import Mechanism
 
@@ -31,6 +32,7 @@ class Lubrication:
     model: str
     options: dict = field(default_factory=dict)
     eps_max: float = 0.999
+    rtol: float | None = None    # an accuracy asked instead of a mesh (bearingfem.accuracy)
 
 
 @dataclass(frozen=True)
@@ -190,7 +192,14 @@ def _lubrication(t: _Table) -> Lubrication:
         raise ValueError(str(err)) from None
     eps_max = t.number("eps_max", 0.999 if m.numeric else 1.0 - 1e-6,
                        lo=0.5, hi=1.0, hi_open=True)
-    given = {k: t.get(k) for k in sorted(set(t.data) - {"model", "eps_max"})}
+    given = {k: t.get(k) for k in sorted(set(t.data) - {"model", "eps_max", "rtol"})}
+    rtol = t.get("rtol")
+    if rtol is not None:    # an accuracy instead of a mesh: chosen when the run starts
+        rtol = check_rtol(rtol, f"{t.where}.rtol")
+        if not {"n_theta", "n_z"} <= set(m.defaults):
+            raise ValueError(f"{t.where}.rtol needs a film model on a mesh, got {model!r}")
+        if {"n_theta", "n_z"} & set(given):
+            raise ValueError(f"{t.where}: give rtol or the mesh (n_theta, n_z), not both")
     if "roughness" in given and "roughness" in m.defaults:   # mixed lubrication
         given["roughness"] = _roughness(_Table(given["roughness"], f"{t.where}.roughness"))
     for key, cls in (("lubricant", Lubricant), ("bush", ElasticBush)):   # the EHD film
@@ -201,7 +210,10 @@ def _lubrication(t: _Table) -> Lubrication:
                 raise ValueError(f"{t.where}.{key}: {err}") from None
     opts = m.options(given, where=t.where)
     t.done()
-    return Lubrication(model=model, options=opts, eps_max=eps_max)
+    if rtol is not None:     # the mesh (and the element, unless given) is chosen at the start
+        opts = {k: v for k, v in opts.items()
+                if k in given or k not in ("n_theta", "n_z", "element")}
+    return Lubrication(model=model, options=opts, eps_max=eps_max, rtol=rtol)
 
 
 def _roughness(t: _Table) -> Roughness:

@@ -22,6 +22,8 @@ import time
 
 import numpy as np
 
+from bearingfem.design.tolerance import mesh_for_run, run_force_error
+
 from .dynamics import accelerations, eccentricity_accelerations
 from .effects import (CoulombFriction, FilmEffect, HertzContact, JointKinematics, LinearSpring,
                       hertz_stiffness)
@@ -122,8 +124,13 @@ def build_effects(scene: Scene):
     effects, film, contact = [], None, None
     b = scene.bearing
     if scene.lubrication is not None:
-        film = FilmEffect(b, scene.lubrication.model, dict(scene.lubrication.options),
-                          scene.lubrication.eps_max)
+        lub = scene.lubrication
+        options, every = dict(lub.options), 0
+        if lub.rtol is not None:     # an accuracy asked instead of a mesh
+            options, _ = mesh_for_run(b, lub.model, options, lub.rtol, scene.crank_speed,
+                                      lub.eps_max)
+            every = 200
+        film = FilmEffect(b, lub.model, options, lub.eps_max, sample_every=every)
         effects.append(film)
     if scene.contact is not None:
         c = scene.contact
@@ -275,4 +282,13 @@ def simulate(scene: Scene, progress: bool | None = None) -> SimulationResult:
         stats["film_start"] = [float(v) for v in film.start]
     if film is not None:     # what the model records about itself (e.g. a table's error)
         stats.update(film.film_model.run_notes(scene.bearing, film.options))
+    if film is not None and film.sample_every and film.deepest is not None:
+        # the film's estimated error over the run: at the state nearest the wall and at
+        # up to 7 of the states met, spread over the run
+        met = film.samples[::max(1, len(film.samples) // 7)][:7] + [film.deepest]
+        stats.update(film_rtol=scene.lubrication.rtol,
+                     film_mesh=[film.options["n_theta"], film.options["n_z"],
+                                film.options.get("element", "P1")],
+                     film_force_error=run_force_error(scene.bearing, film.model,
+                                                      film.options, met))
     return sample_run(scene, pieces, effects, g, stats, partial, message)

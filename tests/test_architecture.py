@@ -9,7 +9,8 @@ from tools.imports import _known, cycles, import_graph
 #: The layers, bottom up: a module imports only from its own layer's group or below.
 LAYERS = [
     # the film: geometry, state, scales, records, checks, the model contract
-    {"errors", "version", "caches", "film", "bearing", "validation", "fields", "solution",
+    {"errors", "version", "caches", "accuracy", "film", "bearing", "validation", "fields",
+     "solution",
      "differentiate", "lubricant", "contact", "planar", "scales", "contract"},
     {"solvers", "closed", "elastic", "ehl"},        # solvers, closed forms, the bush
     {"fe", "fv"},                                   # discretisations

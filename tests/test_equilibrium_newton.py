@@ -127,11 +127,11 @@ def test_an_overload_is_still_refused_by_capacity():
         equilibrium(b, (0.0, -1e8), OMEGA, "fem", grooves=GROOVES)
 
 
-def test_a_looser_rtol_is_not_reported_as_a_failure():
-    """Newton stops on a step below sqrt(rtol) |q|; its answer at rtol 1e-6 is the default
+def test_a_looser_xtol_is_not_reported_as_a_failure():
+    """Newton stops on a step below sqrt(xtol) |q|; its answer at xtol 1e-6 is the default
     one to about rtol, not a ConvergenceError (fails with the final force check fixed at
-    1e-8 of the load whatever rtol)."""
+    1e-8 of the load whatever xtol)."""
     b = Bearing(radius=0.01, length=0.01, clearance=20e-6, viscosity=0.0117)
     tight = equilibrium(b, (0.0, -1000.0), 250.0, "fem", n_theta=48, n_z=8)
-    loose = equilibrium(b, (0.0, -1000.0), 250.0, "fem", n_theta=48, n_z=8, rtol=1e-6)
+    loose = equilibrium(b, (0.0, -1000.0), 250.0, "fem", n_theta=48, n_z=8, xtol=1e-6)
     assert loose.eps == pytest.approx(tight.eps, rel=1e-5)

@@ -24,8 +24,7 @@ linearised at EPS_FLOOR as it is.
 """
 from __future__ import annotations
 
-import math
-from dataclasses import dataclass, replace
+from dataclasses import replace
 
 import numpy as np
 
@@ -35,87 +34,17 @@ from ..fields import check_tilt
 from ..film import local_to_inertial
 from ..models import film_model
 from ..validation import check_choice, check_inputs
+from .records import EPS_FLOOR, FRAMES, DynamicCoefficients, frame_axes
+from .thermal import thd_coefficients
+from .tolerance import answer_to_tolerance
 
 __all__ = ["DynamicCoefficients", "coefficients", "FRAMES", "EPS_FLOOR"]
 
-FRAMES = ("inertial", "local", "load")
-#: Smallest eccentricity ratio linearised as such (the polar frame is singular at 0).
-EPS_FLOOR = 1e-6
-
-
-@dataclass(frozen=True)
-class DynamicCoefficients:
-    """Stiffness and damping of the film at ``state``.
-
-    Attributes
-    ----------
-    K : 2x2 [N/m], K_ij = -dF_i/dx_j;  C : 2x2 [N s/m], C_ij = -dF_i/dv_j
-    frame : "inertial" (x, y), "local" (r along the eccentricity, t), or "load" (axis 1
-        along the load the film carries, i.e. opposite the film force; axis 2 turned +90 deg)
-    axes : the two axes of ``frame`` as unit vectors in the inertial frame (rows)
-    state : the journal state; force : film force (F_x, F_y) there [N], inertial
-    model, method : the film model and how its partials were found
-    clearance : radial clearance c [m] of the bearing
-    K_groove_shift : 2x2 [N/m], the part of K from grooves fixed in the bearing that the
-        film moves against as the journal turns (zero without grooves).
-        ``K - K_groove_shift`` is the stiffness of grooves turning with the line of centres.
-        Published tables differ in which form they give: Someya's Journal-Bearing Databook
-        (1989) matches the turning form (within 3 % of the largest entry; ``K`` misses by
-        10-40 %, tests/test_someya.py), Lund & Thomsen (1978) match ``K``, the grooves fixed
-        in the bearing (within 1 %; the turning form misses by 23-53 % of the largest entry,
-        Kyx by up to 179 %, tests/test_lund_thomsen.py). Check a table's form before
-        comparing.
-    """
-
-    K: np.ndarray
-    C: np.ndarray
-    frame: str
-    axes: np.ndarray
-    state: JournalState
-    force: tuple
-    model: str
-    method: str
-    clearance: float
-    K_groove_shift: np.ndarray
-
-    @property
-    def load(self) -> float:
-        """|F| [N]: the load the film carries at this state."""
-        return float(math.hypot(*self.force))
-
-    def dimensionless(self):
-        """(K c / W, C c omega / W) with W = |F|, the usual non-dimensional coefficients."""
-        c = self.clearance
-        W = self.load
-        if W == 0.0:
-            raise ValueError("the film carries no load at this state: no dimensionless "
-                             "coefficients")
-        return self.K * c / W, self.C * c * abs(self.state.omega) / W
-
-    def in_frame(self, frame: str) -> "DynamicCoefficients":
-        """The same coefficients in another frame."""
-        check_choice("frame", frame, FRAMES)
-        Q = _axes(frame, self.state.gamma, self.force)
-        T = Q @ self.axes.T          # new components from old ones
-        return replace(self, K=T @ self.K @ T.T, C=T @ self.C @ T.T, frame=frame, axes=Q,
-                       K_groove_shift=T @ self.K_groove_shift @ T.T)
-
-
-def _axes(frame: str, gamma: float, force) -> np.ndarray:
-    if frame == "inertial":
-        return np.eye(2)
-    if frame == "local":
-        angle = gamma
-    else:
-        if force[0] == 0.0 and force[1] == 0.0:
-            raise ValueError("frame='load' needs a film that carries a load (|F| > 0)")
-        angle = math.atan2(-force[1], -force[0])
-    c, s = math.cos(angle), math.sin(angle)
-    return np.array([[c, s], [-s, c]])
-
 
 def coefficients(bearing: Bearing, state: JournalState, model: str = "fem",
-                 frame: str = "inertial", **options) -> DynamicCoefficients:
+                 frame: str = "inertial", *, rtol: float | None = None,
+                 estimate: bool = False, eps_error: float | None = None,
+                 **options) -> DynamicCoefficients:
     """Stiffness K [N/m] and damping C [N s/m] of the film at ``state``.
 
     ``model`` is a name of :data:`bearingfem.models.FILM_MODELS` and ``options`` its
@@ -132,12 +61,21 @@ def coefficients(bearing: Bearing, state: JournalState, model: str = "fem",
     ``thermal`` and ``lubricant`` (model "fem"): the thermal film's K and C with its
     viscosity field frozen (:func:`bearingfem.design.thermal.thd_coefficients`; give
     ``solution=eq.solution`` to reuse the equilibrium's thermal film).
+
+    ``rtol`` (mesh models): a requested accuracy of K and C, each relative to its largest
+    entry, in [1e-6, 0.1]; the mesh (and element, P2 unless given) is chosen to reach it and
+    ``error``, ``K_error``, ``C_error`` report the estimate (:mod:`bearingfem.accuracy`).
+    ``estimate=True``: the same estimate for the mesh given (one more linearisation on the
+    half mesh). ``eps_error``: the estimated error of the state's eps (an equilibrium's
+    ``eps_error``); its effect on K and C (one more linearisation at eps + eps_error) is
+    added to the entries' errors and to ``error``.
     """
     check_inputs(bearing, state)
     check_choice("frame", frame, FRAMES)
     if options.get("thermal") is not None:     # the thermal film (bearingfem.design.thermal)
-        from .thermal import thd_coefficients
         return thd_coefficients(bearing, state, frame, **options)
+    if rtol is not None or estimate:
+        return _with_error(bearing, state, model, frame, rtol, eps_error, options)
     tilt = check_tilt("tilt", options.pop("tilt", (0.0, 0.0)))
     if any(tilt):
         return _tilted(bearing, state, model, frame, tilt, options)
@@ -163,10 +101,47 @@ def coefficients(bearing: Bearing, state: JournalState, model: str = "fem",
         F = F * (state.eps / EPS_FLOOR)
     g = state.gamma
     force = tuple(float(f) for f in local_to_inertial(F[0], F[1], g))
-    local = DynamicCoefficients(K, C, "local", _axes("local", g, force), state, force, model,
+    local = DynamicCoefficients(K, C, "local", frame_axes("local", g, force), state, force, model,
                                 d.method, c, K_shift)
     out = local if frame == "local" else local.in_frame(frame)
     return replace(out, K=K) if limit else out    # K turns into itself, without rounding
+
+
+def _relative(kc: DynamicCoefficients, dK, dC) -> float:
+    """The larger of |dK| / max|K| and |dC| / max|C| (entry-wise)."""
+    return float(max(np.max(np.abs(dK)) / np.max(np.abs(kc.K)),
+                     np.max(np.abs(dC)) / np.max(np.abs(kc.C))))
+
+
+def _with_error(bearing, state, model, frame, rtol, eps_error, options):
+    """The coefficients on the mesh that reaches ``rtol`` (or on the mesh given) with the
+    estimated error of each entry; the state's ``eps_error`` added as K, C's change over
+    it (one more linearisation on the chosen mesh)."""
+    m = film_model(model)
+
+    def evaluate(opts):
+        return coefficients(bearing, state, model, frame, **opts)
+
+    def difference(fine, coarse):
+        return _relative(fine, fine.K - coarse.K, fine.C - coarse.C)
+
+    kc, coarse, record = answer_to_tolerance(m, "coefficients",
+                                             round(bearing.length_ratio, 12), options,
+                                             evaluate, difference, rtol,
+                                             bearing.length_ratio)
+    K_err = record.factor * np.abs(kc.K - coarse.K)
+    C_err = record.factor * np.abs(kc.C - coarse.C)
+    if eps_error:
+        mesh = {**options, "n_theta": record.mesh[0], "n_z": record.mesh[1]}
+        if "element" in m.defaults:
+            mesh["element"] = record.element
+        shifted = coefficients(bearing, replace(state, eps=min(state.eps + eps_error,
+                                                              0.5 * (1.0 + state.eps))),
+                               model, frame, **mesh)
+        K_err = K_err + np.abs(shifted.K - kc.K)
+        C_err = C_err + np.abs(shifted.C - kc.C)
+    return replace(kc, error=max(record.error, _relative(kc, K_err, C_err)), K_error=K_err,
+                   C_error=C_err, accuracy=record)
 
 
 def _tilted(bearing, state, model, frame, tilt, options) -> DynamicCoefficients:

@@ -19,7 +19,7 @@ columns are the derivative of the film as it is solved (its mesh turning with th
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import replace
 
 import numpy as np
 from scipy.optimize import brentq, root
@@ -31,81 +31,19 @@ from ..fe.sensitivity import fe_tilt_coefficients
 from ..fields import check_tilt
 from ..film import local_to_inertial
 from ..models import film_model, solve_film
-from ..solution import FilmSolution
 from .groups import petroff_friction, sommerfeld_number
+from .records import EPS_MAX, Equilibrium, least_film, load_vector
+from .thermal import thd_equilibrium
 from .newton import closed_form_start, newton_position, polar_linearisation, shrink_inside
+from .tolerance import answer_to_tolerance
 
 __all__ = ["Equilibrium", "equilibrium", "EPS_MAX", "ConvergenceError"]
-
-#: Default largest eccentricity ratio searched: past it the film is thinner than 1 % of c,
-#: below the roughness of real bearings; a load that needs more is refused.
-EPS_MAX = 0.99
-
-
-@dataclass(frozen=True)
-class Equilibrium:
-    """A journal at rest under ``load``: where it sits and what the film does there.
-
-    Attributes
-    ----------
-    eps : eccentricity ratio; attitude : angle from load line to line of centres [rad]
-    state : the :class:`JournalState` (eps_dot = gamma_dot = 0)
-    load : (W_x, W_y) [N] the external load carried (inertial frame); film_force the film's
-    sommerfeld : S = (R/c)^2 mu N / P
-    film_min : c (1 - eps) [m]; film_min_angle : its inertial angle [rad]
-    friction_force : on the journal, opposing rotation [N] (full Couette shear in cavitated
-        zones); friction_coefficient : friction_force / W; power_loss : F_f R |omega| [W]
-    pressure_max [Pa], side_leakage [m^3/s], flow_in [m^3/s] (= side leakage, steady):
-        from the film solution for the mesh models, None for the closed forms and the table
-    solution : the :class:`FilmSolution` at equilibrium (mesh models) or None
-    model, iterations : the film model and the number of film evaluations (a force, or a
-        force with its partials: one film solve, grooved FE films too, whose d/dgamma is
-        exact on the bearing-fixed mesh of :mod:`bearingfem.fe.grooved`)
-    asperity_load_share : with a ``roughness`` option (mixed lubrication), the share of the
-        load the asperity contact carries, -(F_a . W)/|W|^2 (the film carries the rest;
-        1 at omega = 0, the dry limit); 0 without. ``film_force`` is then the model's force,
-        film plus asperities, and the friction adds the summits' Coulomb friction
-    """
-
-    eps: float
-    attitude: float
-    state: JournalState
-    load: tuple
-    film_force: tuple
-    sommerfeld: float
-    film_min: float
-    film_min_angle: float
-    friction_force: float
-    friction_coefficient: float
-    power_loss: float
-    pressure_max: float | None
-    side_leakage: float | None
-    flow_in: float | None
-    solution: FilmSolution | None
-    model: str
-    iterations: int
-    asperity_load_share: float = 0.0
-
-
-def _load_vector(load, direction):
-    if direction is None:
-        try:
-            wx, wy = (check_finite("load", v) for v in load)
-        except TypeError:
-            raise ValueError(f"load must be a vector (W_x, W_y) [N], or a magnitude with "
-                             f"direction=angle [rad], got {load!r}") from None
-    else:
-        W = check_finite("load", load)
-        a = check_finite("direction", direction)
-        wx, wy = W * math.cos(a), W * math.sin(a)
-    if wx == 0.0 and wy == 0.0:
-        raise ValueError("load must be non-zero: an unloaded journal sits at the centre")
-    return wx, wy
 
 
 def equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
                 direction: float | None = None, eps_max: float = EPS_MAX,
-                rtol: float = 1e-13, start=None, **options) -> Equilibrium:
+                xtol: float = 1e-13, start=None, rtol: float | None = None,
+                estimate: bool = False, **options) -> Equilibrium:
     """Where the journal sits under a steady ``load`` at speed ``omega``.
 
     Parameters
@@ -117,7 +55,15 @@ def equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
     model : film model name (:data:`bearingfem.models.FILM_MODELS`); ``options`` its
         options, e.g. ``n_theta=120, n_z=20, element="P2", cavitation="reynolds"``
     eps_max : largest eccentricity ratio searched, in (0, 1)
-    rtol : relative tolerance on eps (relative, so light loads, eps ~ 1e-8, stay exact)
+    xtol : relative tolerance of the root on eps (relative, so light loads, eps ~ 1e-8,
+        stay exact): the iteration's, not the film's
+    rtol : a requested relative accuracy of the journal position q = e/c against the mesh
+        limit, in [1e-6, 0.1] (mesh models): the mesh (and element, P2 unless given) is
+        chosen to reach it and ``eps_error`` reports the estimate; the mesh options are
+        then ignored. Successive calls with the same bearing and options start at the
+        mesh that sufficed last (:mod:`bearingfem.accuracy`)
+    estimate : on the mesh given, also estimate ``eps_error`` (one more equilibrium on the
+        half mesh)
     start : an :class:`Equilibrium` or :class:`JournalState` near the answer (e.g. the
         previous load of a sweep), where Newton's method starts (models with exact
         partials only; default: the closed-form equilibrium). Newton's method raises
@@ -134,8 +80,11 @@ def equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
         film's equilibrium (:func:`bearingfem.design.thermal.thd_equilibrium`)
     """
     if options.get("thermal") is not None:     # the thermal film (bearingfem.design.thermal)
-        from .thermal import thd_equilibrium
-        return thd_equilibrium(bearing, load, omega, model, direction=direction, eps_max=eps_max, **options)
+        return thd_equilibrium(bearing, load, omega, model, direction=direction,
+                               eps_max=eps_max, isothermal=equilibrium, **options)
+    if rtol is not None or estimate:
+        return _equilibrium_with_error(bearing, load, omega, model, rtol, dict(
+            direction=direction, eps_max=eps_max, xtol=xtol, start=start), options)
     tilt = check_tilt("tilt", options.pop("tilt", (0.0, 0.0)))
     m = film_model(model)
     if any(tilt) and not m.tilts:
@@ -147,7 +96,7 @@ def equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
     if any(tilt) and opts.get("grooves"):
         # grooves fixed in space do not turn with the film: no exact tilted partials yet
         raise ValueError("tilt with grooves is not supported: give one of them")
-    wx, wy = _load_vector(load, direction)
+    wx, wy = load_vector(load, direction)
     W = math.hypot(wx, wy)
     omega = check_finite("omega", omega)
     if omega == 0.0 and opts.get("roughness") is None:   # rough surfaces carry a dry load
@@ -163,7 +112,7 @@ def equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
                          f"omega != 0, got model={model!r}, omega={omega!r}")
     q0 = _start_position(start, eps_max) if start is not None else None
     if newton:
-        return _newton_equilibrium(m, bearing, omega, (wx, wy), opts, q0, eps_max, rtol,
+        return _newton_equilibrium(m, bearing, omega, (wx, wy), opts, q0, eps_max, xtol,
                                    model, tilt)
     calls = [0]
     grooves = opts.get("grooves", ())
@@ -177,7 +126,7 @@ def equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
     if not f_max >= W:
         raise ValueError(f"load {W:.6g} N exceeds what the film carries before contact: "
                          f"{f_max:.6g} N at eps_max = {eps_max:g} ({model} model)")
-    eps = brentq(lambda e: math.hypot(*force(e)) - W, 0.0, eps_max, xtol=1e-300, rtol=rtol)
+    eps = brentq(lambda e: math.hypot(*force(e)) - W, 0.0, eps_max, xtol=1e-300, rtol=xtol)
     f_r, f_t = force(eps)
     # turn the eccentricity so that the film force points opposite the load
     gamma = math.atan2(-wy, -wx) - math.atan2(f_t, f_r)
@@ -189,6 +138,35 @@ def equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
     state = JournalState(eps, omega=omega, gamma=gamma)
     sol = solve_film(model, bearing, state, opts)
     return _result(bearing, omega, (wx, wy), state, (f_r, f_t), sol, model, calls[0])
+
+
+def _position(eq: Equilibrium) -> np.ndarray:
+    return eq.eps * np.array([math.cos(eq.state.gamma), math.sin(eq.state.gamma)])
+
+
+def _equilibrium_with_error(bearing, load, omega, model, rtol, how, options):
+    """The equilibrium on the mesh that reaches ``rtol`` (or on the mesh given, with its
+    error), each mesh's Newton started from the last mesh's answer."""
+    m = film_model(model)
+    newton = m.exact_derivatives and not m.memory
+    last = []
+
+    def evaluate(opts):
+        start = last[-1] if newton and last else how["start"]
+        eq = equilibrium(bearing, load, omega, model, **{**how, "start": start}, **opts)
+        last.append(eq)
+        return eq
+
+    def difference(fine, coarse):     # relative change of the journal position
+        qf = _position(fine)
+        return float(np.linalg.norm(qf - _position(coarse)) / np.linalg.norm(qf))
+
+    # the memo (a design loop's next load starts at the mesh that sufficed) is keyed on
+    # the bearing's shape and the film options, not the load
+    eq, _, record = answer_to_tolerance(m, "equilibrium", round(bearing.length_ratio, 12),
+                                        options, evaluate, difference, rtol,
+                                        bearing.length_ratio)
+    return replace(eq, eps_error=record.error * eq.eps, accuracy=record)
 
 
 def _result(bearing, omega, load, state, force_local, sol, model, calls, tilt=(0.0, 0.0)):
@@ -228,20 +206,6 @@ def _start_position(start, eps_max):
                          f"{state.eps!r}")
     return np.array([state.eps * math.cos(state.gamma), state.eps * math.sin(state.gamma)])
 
-
-def least_film(bearing: Bearing, state: JournalState, tilt=(0.0, 0.0)):
-    """(h_min [m], its inertial angle [rad]) of the journal at ``state`` tilted by ``tilt``.
-
-    The centre at axial position z sits at e(z) = e + z (tilt_y, -tilt_x), its least gap
-    c - |e(z)| in the direction of e(z); |e(z)| is convex in z, so the least film is at
-    an end, z = +-L/2 (c (1 - eps) at gamma for an aligned journal).
-    """
-    c = bearing.clearance
-    e = c * state.eps * np.array([math.cos(state.gamma), math.sin(state.gamma)])
-    d = 0.5 * bearing.length * np.array([tilt[1], -tilt[0]])
-    end = max((e + d, e - d), key=lambda v: math.hypot(*v))
-    angle = math.atan2(end[1], end[0]) if any(tilt) else state.gamma
-    return c - math.hypot(*end), float(np.mod(angle, 2.0 * math.pi))
 
 
 def _newton_equilibrium(m, bearing, omega, load, opts, q0, eps_max, rtol, model, tilt):

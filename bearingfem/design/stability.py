@@ -28,7 +28,7 @@ from __future__ import annotations
 
 import enum
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Optional
 
 import numpy as np
@@ -65,7 +65,15 @@ class Stability:
     whirl_frequency nu [rad/s], whirl_ratio nu / |omega|: the frequency of the whirl at the
         critical mass, or of the unstable whirl of a light journal (UNSTABLE_FOR_ANY_MASS);
         None when stable for any mass
-    stiffness_eq K_eq [N/m]"""
+    stiffness_eq K_eq [N/m]
+    critical_mass_range, whirl_ratio_range : (low, high) over K and C within their
+        estimated errors (coefficients with ``K_error``, ``C_error``: every corner of the
+        box K +- K_error, C +- C_error); None without error estimates or where the
+        verdict has no critical mass there
+    ill_conditioned : the verdict is not decided by K and C to within their error: the
+        critical mass spans more than a decade (:data:`ILL_CONDITIONED_SPAN`) or the
+        verdict itself changes inside the box (then ``verdicts`` lists those met)
+    """
 
     verdict: Verdict
     critical_mass: Optional[float]
@@ -73,6 +81,10 @@ class Stability:
     whirl_ratio: Optional[float]
     stiffness_eq: float
     coefficients: DynamicCoefficients
+    critical_mass_range: Optional[tuple] = None
+    whirl_ratio_range: Optional[tuple] = None
+    ill_conditioned: bool = False
+    verdicts: tuple = ()
 
     def stable(self, mass: float) -> bool:
         """Whether a journal of ``mass`` [kg] is stable on this film (linear theory)."""
@@ -85,21 +97,82 @@ class Stability:
         return v is Verdict.STABLE_FOR_ANY_MASS
 
     def describe(self) -> str:
-        """One line: the verdict, with the critical mass where there is one."""
+        """One line: the verdict, with the critical mass where there is one, and its range
+        over K and C's error; an ill-conditioned verdict says so instead of digits."""
+        r = self.critical_mass_range
+        if self.ill_conditioned:
+            where = "" if r is None else f"; critical mass {r[0]:.2g} .. {r[1]:.2g} kg"
+            met = ", ".join(v.value for v in self.verdicts)
+            return (f"ill-conditioned: K and C within their estimated error give "
+                    f"{met or self.verdict.value}{where} (refine the film: smaller rtol)")
         if self.critical_mass is None:
             return self.verdict.value
-        return f"{self.verdict.value} {self.critical_mass:.6g} kg"
+        if r is None:
+            return f"{self.verdict.value} {self.critical_mass:.6g} kg"
+        return (f"{self.verdict.value} {self.critical_mass:.4g} kg "
+                f"(range {r[0]:.3g} .. {r[1]:.3g} kg over K, C's error)")
 
     def __str__(self) -> str:
-        """A sentence: the verdict with its critical mass and whirl, and the state."""
+        """A sentence: the verdict with its critical mass and whirl, and the state (no
+        digits of whirl for an ill-conditioned verdict: :meth:`describe` says why)."""
         s = self.coefficients.state
         text = (f"Lund stability of a rigid journal at eps {s.eps:.4g}, {s.omega:g} rad/s: "
                 f"{self.describe()}")
+        if self.ill_conditioned:
+            return text + "."
         if self.whirl_frequency is not None:
             text += f", whirling at {self.whirl_frequency:.4g} rad/s"
             if self.whirl_ratio is not None:
                 text += f" ({self.whirl_ratio:.3g} of the running speed)"
         return text + f"; K_eq {self.stiffness_eq:.4g} N/m."
+
+
+#: A critical mass whose range over K and C's error spans more than this ratio is
+#: reported as ill-conditioned.
+ILL_CONDITIONED_SPAN = 10.0
+
+
+def _threshold(K, C):
+    """(K_eq, nu^2) of Lund's crossing for stacks of K and C (..., 2, 2)."""
+    tr = C[..., 0, 0] + C[..., 1, 1]
+    det = C[..., 0, 0] * C[..., 1, 1] - C[..., 0, 1] * C[..., 1, 0]
+    k_eq = (K[..., 0, 0] * C[..., 1, 1] + K[..., 1, 1] * C[..., 0, 0]
+            - K[..., 0, 1] * C[..., 1, 0] - K[..., 1, 0] * C[..., 0, 1]) / tr
+    nu2 = ((K[..., 0, 0] - k_eq) * (K[..., 1, 1] - k_eq) - K[..., 0, 1] * K[..., 1, 0]) / det
+    return k_eq, nu2
+
+
+def _with_ranges(st: "Stability") -> "Stability":
+    """``st`` with the critical mass and whirl ratio over every corner of K +- K_error,
+    C +- C_error (the threshold is a smooth function of the entries: over a box as small
+    as the errors its extremes are at corners)."""
+    kc = st.coefficients
+    if kc.K_error is None or kc.C_error is None:
+        return st
+    signs = np.array(np.meshgrid(*[[-1.0, 1.0]] * 8, indexing="ij")).reshape(8, -1).T
+    K = kc.K + signs[:, :4].reshape(-1, 2, 2) * kc.K_error
+    C = kc.C + signs[:, 4:].reshape(-1, 2, 2) * kc.C_error
+    k_eq, nu2 = _threshold(K, C)
+    crossing = (k_eq > 0.0) & (nu2 > 0.0)
+    omega = abs(kc.state.omega)
+    has = st.verdict in (Verdict.CRITICAL_MASS, Verdict.STABLE_ABOVE_CRITICAL_MASS)
+    verdicts = (st.verdict,)
+    m_range = w_range = None
+    if crossing.any():
+        m = k_eq[crossing] / nu2[crossing]
+        m_range = (float(m.min()), float(m.max()))
+        if omega:
+            w = np.sqrt(nu2[crossing]) / omega
+            w_range = (float(w.min()), float(w.max()))
+    if has and not crossing.all():
+        verdicts += (Verdict.STABLE_FOR_ANY_MASS,)    # (or unstable for any: no crossing)
+    if not has and crossing.any():
+        verdicts += (Verdict.CRITICAL_MASS,)
+    ill = len(verdicts) > 1 or (m_range is not None and
+                                m_range[1] > ILL_CONDITIONED_SPAN * m_range[0])
+    return replace(st, critical_mass_range=m_range if has or ill else None,
+                   whirl_ratio_range=w_range if has or ill else None, ill_conditioned=ill,
+                   verdicts=verdicts if ill else ())
 
 
 def _eigenvalues(K, C, mass):
@@ -113,7 +186,13 @@ def _unstable(K, C, mass) -> bool:
 
 
 def lund_stability(kc: DynamicCoefficients) -> Stability:
-    """The verdict, critical mass and whirl frequency of a rigid journal from K and C."""
+    """The verdict, critical mass and whirl frequency of a rigid journal from K and C; with
+    coefficients that carry their error (``coefficients(..., rtol=...)``), the ranges of
+    the critical mass and whirl ratio over it, and whether the verdict is ill-conditioned."""
+    return _with_ranges(_lund(kc))
+
+
+def _lund(kc: DynamicCoefficients) -> Stability:
     K, C = kc.K, kc.C
     trace_c = C[0, 0] + C[1, 1]
     if not trace_c > 0.0:

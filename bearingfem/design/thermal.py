@@ -25,8 +25,7 @@ from ..reynolds import solve_reynolds
 from ..fields import FilmFields
 from ..film import local_to_inertial
 from ..routes.thd import check_thermal, solve_thd
-from .coefficients import DynamicCoefficients
-from .equilibrium import EPS_MAX, Equilibrium, _load_vector, equilibrium, least_film
+from .records import EPS_MAX, DynamicCoefficients, Equilibrium, least_film, load_vector
 from .groups import sommerfeld_number
 
 __all__ = ["thd_equilibrium", "thd_coefficients", "frozen_film"]
@@ -88,14 +87,16 @@ def _jacobian(film, q, omega, clearance, velocity=False):
 
 def thd_equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
                     direction=None, eps_max: float = EPS_MAX, rtol: float = 1e-9,
-                    **options) -> Equilibrium:
+                    isothermal=None, **options) -> Equilibrium:
     """Where the journal sits under ``load`` with a thermal film (module docstring).
 
     Options: ``lubricant`` and ``thermal`` (required), the film's mesh options
     (``n_theta``, ``n_z``, ``element``, ``cavitation``, ``grooves``, ``supply_angle``)
     and the thermal solve's (``temperature_tol``, ``relaxation``, ``max_iterations``).
     ``rtol``: the film force's residual relative to the load. ``eq.solution`` is the THD
-    film; ``friction_force`` and ``power_loss`` its own shear integral.
+    film; ``friction_force`` and ``power_loss`` its own shear integral. ``isothermal``:
+    the isothermal :func:`~bearingfem.design.equilibrium` that starts the search (passed
+    in by it: this module lies below it).
     """
     if model != "fem":
         raise ValueError(f"a thermal film needs model 'fem', got {model!r}")
@@ -103,7 +104,7 @@ def thd_equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
     mesh = _mesh_options(options)
     thd_opts = {k: options[k] for k in ("temperature_tol", "relaxation", "max_iterations")
                 if k in options}
-    wx, wy = _load_vector(load, direction)
+    wx, wy = load_vector(load, direction)
     W = math.hypot(wx, wy)
     if not omega > 0.0:
         raise ValueError(f"omega must be > 0 for a thermal film, got {omega!r}")
@@ -116,7 +117,7 @@ def thd_equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
     iso_opts = dict(n_theta=mesh["n_theta"], n_z=mesh["n_z"], grooves=mesh["grooves"])
     if iso_model == "fem":
         iso_opts.update(element=mesh["element"], cavitation=mesh["cavitation"])
-    start = equilibrium(cold, (wx, wy), omega, iso_model, eps_max=eps_max, **iso_opts)
+    start = isothermal(cold, (wx, wy), omega, iso_model, eps_max=eps_max, **iso_opts)
     q = np.array([start.eps * math.cos(start.state.gamma),
                   start.eps * math.sin(start.state.gamma)])
     c = bearing.clearance

@@ -1,0 +1,345 @@
+"""Answers to a requested accuracy: a mesh chosen to reach a relative tolerance, with the
+error estimate that says it did.
+
+The estimate is the h/2h difference of the answer on a pair of meshes, the fine one twice
+the coarse one in both directions, turned into the fine mesh's error by Richardson's
+argument: with e(h) ~ C h^p,
+
+    e_fine ~ |q_fine - q_coarse| / (r^p - 1),   r = h_coarse / h_fine = 2,
+
+and p the lower of the element's nominal order (the force of a P1 film converges as h^2;
+a P2 film as h^4 without cavitation and as h^2 with it, the free boundary limiting it) and
+the order observed on three meshes (never below 1; from one pair alone, at most 2). Taking
+the lower order makes the estimate err high before the asymptotic range, where the
+observed order is low. Its
+effectivity (estimate / true error) is measured in tests/test_accuracy.py and
+docs/accuracy.md; ``SAFETY`` is the factor that keeps it above 1 over the measured meshes
+and states.
+
+The mesh: from a start pair the estimate and its order predict the mesh that reaches the
+tolerance, (h / h_needed) = (e / rtol)^(1/p); the next pair is solved there (its coarse
+half is the last fine mesh when the prediction asks for a doubling, so no solve is
+wasted), until the estimate is within the tolerance. What sufficed is kept in a small memo
+under a key the caller gives (the bearing and film options, not the state), so that the
+next state of a design loop starts at the pair that sufficed (one doubling coarser when
+its estimate was under rtol / 16) and usually needs that one pair alone.
+
+This module knows nothing about films: it takes ``evaluate(n_theta, n_z, element)`` and a
+``difference(fine, coarse)`` of what is asked for (a film's force, an equilibrium's eps,
+a film's K and C).
+"""
+from __future__ import annotations
+
+import math
+import time
+from collections import OrderedDict
+from dataclasses import dataclass, field, replace
+from typing import Callable, Hashable
+
+import numpy as np
+
+from .bearing import check_finite
+from .errors import ConvergenceError
+
+__all__ = ["AccuracyRecord", "solve_to_tolerance", "refine_to_tolerance", "check_rtol",
+           "nominal_order", "force_difference", "SAFETY", "RTOL_RANGE", "clear_memo",
+           "film_to_tolerance", "estimate_error", "estimate_at", "grid_multiple",
+           "groove_multiple", "start_mesh",
+           "richardson_error"]
+
+#: Tolerances accepted: looser than 10 % is no answer, tighter than 1e-6 is below what a
+#: double-precision film on a practical mesh resolves.
+RTOL_RANGE = (1e-6, 0.1)
+#: Factor on the Richardson estimate: keeps the measured effectivity >= 1 (docs/accuracy.md)
+SAFETY = 1.5
+#: Largest mesh the search goes to (cells around x along); past it the tolerance is refused
+MAX_CELLS = 1536 * 256
+_MEMO: "OrderedDict[Hashable, tuple]" = OrderedDict()
+_MEMO_SIZE = 64
+
+
+@dataclass(frozen=True)
+class AccuracyRecord:
+    """How an answer to a requested accuracy was reached.
+
+    Attributes
+    ----------
+    rtol : the relative tolerance asked for
+    error : the estimated relative error of the answer (<= rtol)
+    element : the element used; mesh : (n_theta, n_z) of the answer; partner : the coarse
+        mesh of its h/2h pair
+    order : the convergence order used in the estimate (nominal, or observed if lower)
+    meshes : every (n_theta, n_z) solved, in order, with the estimate found there (None
+        for the first)
+    solves : number of solves; seconds : their wall time [s]
+    memo : whether the search started from the mesh that sufficed at an earlier call
+    factor : the estimate per unit h/2h difference, SAFETY / (r^p - 1): an entry's error is
+        ``factor`` times its change between the pair
+    """
+
+    rtol: float | None
+    error: float
+    element: str
+    mesh: tuple
+    partner: tuple
+    order: float
+    meshes: tuple = ()
+    solves: int = 0
+    seconds: float = 0.0
+    memo: bool = False
+    factor: float = 0.0
+    estimates: tuple = field(default=(), repr=False)
+
+
+def check_rtol(rtol, name: str = "rtol") -> float:
+    """``rtol`` as a float in :data:`RTOL_RANGE`, or ValueError naming ``name``."""
+    v = check_finite(name, rtol)
+    lo, hi = RTOL_RANGE
+    if not lo <= v <= hi:
+        raise ValueError(f"{name} must lie in [{lo:g}, {hi:g}] (a relative accuracy), "
+                         f"got {rtol!r}")
+    return v
+
+
+def nominal_order(element: str, smooth: bool) -> float:
+    """The asymptotic order of a film's force in the mesh size h: 2 for P1; for P2, 4 on a
+    smooth film (the force is a linear functional: twice the element's order) and 2 with a
+    cavitation front (the pressure's second derivative jumps there)."""
+    return 4.0 if element == "P2" and smooth else 2.0
+
+
+def clear_memo():
+    """Forget the meshes that sufficed at earlier calls (each call is then a cold search)."""
+    _MEMO.clear()
+
+
+def force_difference(fine, coarse) -> float:
+    """|F_fine - F_coarse| / |F_fine| of two :class:`~bearingfem.solution.FilmSolution`
+    (film plus asperity force; the vector, so the attitude's error counts too)."""
+    f = np.add(fine.force_local, fine.asperity_force_local)
+    g = np.add(coarse.force_local, coarse.asperity_force_local)
+    n = float(np.linalg.norm(f))
+    return float(np.linalg.norm(f - g)) / n if n > 0.0 else 0.0
+
+
+def richardson_error(difference: float, ratio: float, order: float) -> float:
+    """The fine mesh's error from the h/2h ``difference`` of a pair ``ratio`` apart (h_coarse
+    / h_fine) at convergence ``order``, times :data:`SAFETY`."""
+    return SAFETY * difference / (ratio ** order - 1.0)
+
+
+def _observed_order(d1: float, d2: float, r1: float, r2: float) -> float | None:
+    """The order p of e = C h^p through three meshes h0 > h1 > h2 (r1 = h0/h1, r2 = h1/h2)
+    from d1 = |q1 - q0| and d2 = |q2 - q1|: d1 / d2 = ((r1 r2)^p - r2^p) / (r2^p - 1).
+    0 when the differences do not shrink, None when one is zero."""
+    if not (d1 > 0.0 and d2 > 0.0) or d1 <= d2:
+        return None if not (d1 > 0.0 and d2 > 0.0) else 0.0
+
+    def g(p):   # d1/d2 for e = C h^p: (h0^p - h1^p) / (h1^p - h2^p), h2 = 1
+        return (((r1 * r2) ** p - r2 ** p) / (r2 ** p - 1.0)) - d1 / d2
+    lo, hi = 0.05, 12.0
+    if g(lo) > 0.0 or g(hi) < 0.0:
+        return None if g(hi) < 0.0 else lo
+    for _ in range(80):      # bisection: g is increasing in p
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if g(mid) < 0.0 else (lo, mid)
+    return 0.5 * (lo + hi)
+
+
+def estimate_error(scales, differences, order: float):
+    """(estimated relative error of the finest answer, order used) from the last two or
+    three mesh ``scales`` (1/h, increasing) and the ``differences`` between consecutive
+    answers (the last the finest pair's; the one before it None when unknown): Richardson's
+    estimate at the nominal ``order``, or at the observed order when that is lower (>= 1);
+    from one pair alone (no observed order) at most order 2, since a first pair is often
+    short of the asymptotic range (P2, L/D 1, eps 0.9, full film: 12 x 2 / 24 x 4 at order
+    4 gives effectivity 0.68)."""
+    d = differences[-1]
+    p = min(order, 2.0)     # an order above 2 (the smooth P2 film's 4) only when observed
+    if len(scales) == 3 and differences[0] is not None:
+        p_obs = _observed_order(differences[0], d, scales[1] / scales[0],
+                                scales[2] / scales[1])
+        if p_obs is not None:
+            p = min(order, max(1.0, p_obs))
+    return richardson_error(d, scales[-1] / scales[-2], p), p
+
+
+def _mesh(scale: float, shape: tuple, multiple: int = 2) -> tuple:
+    """(n_theta, n_z) at ``scale`` times the shape (a, b): n_theta a multiple of
+    ``multiple``, n_z even."""
+    a, b = shape
+    m = max(2, int(multiple))
+    return (max(8, m * math.ceil(a * scale / m)), max(2, 2 * math.ceil(b * scale / 2.0)))
+
+
+def grid_multiple(edges, largest: int = 360) -> int:
+    """The least n (even, <= ``largest``) whose grid of 2 pi / n cells around puts a node
+    on every angle of ``edges`` [rad] (relative to the first), e.g. a groove's edges; 2
+    when none does."""
+    edges = np.asarray(edges, float)
+    if edges.size < 2:
+        return 2
+    rel = np.mod(edges - edges[0], 2.0 * math.pi) / (2.0 * math.pi)
+    for n in range(2, largest + 1, 2):
+        if np.all(np.abs(rel * n - np.round(rel * n)) < 1e-6):
+            return n
+    return 2
+
+
+def refine_to_tolerance(evaluate: Callable, difference: Callable, rtol: float, *,
+                        element: str, start_mesh: tuple, order: float,
+                        key: Hashable | None = None, error_of=None,
+                        n_theta_multiple: int = 2):
+    """(answer, coarse answer, :class:`AccuracyRecord`): ``evaluate(n_theta, n_z,
+    element)`` on the least mesh of the family ``start_mesh`` x scale whose estimated error is within ``rtol``.
+
+    ``difference(fine, coarse)`` is the relative difference of two answers (what the
+    tolerance is on); ``order`` the nominal convergence order of that quantity; ``key``
+    names the memo entry (None: no memo); ``error_of(answer)`` a floor of the answer's
+    error besides the mesh's (None: 0); ``n_theta_multiple``: n_theta is kept a multiple
+    of it (:func:`grid_multiple`: nodes on the grooves' edges). Raises :class:`ConvergenceError` when the
+    mesh would pass :data:`MAX_CELLS`.
+    """
+    rtol = check_rtol(rtol)
+    t0 = time.perf_counter()
+    shape = tuple(int(v) for v in start_mesh)
+    if n_theta_multiple > 2:     # the start as near its shape as the grid allows, its
+        m = n_theta_multiple     # coarse half still on the grid
+        shape = (m * max(2, round(shape[0] / m)), shape[1])
+    cache: dict = {}
+    solved: list = []
+
+    def at(scale):
+        m = _mesh(scale, shape, n_theta_multiple)
+        if m[0] * m[1] > MAX_CELLS:
+            raise ConvergenceError(
+                f"the mesh search for rtol = {rtol:g} ({element})", len(solved), None,
+                f"{m[0]} x {m[1]} cells, past the largest mesh ({MAX_CELLS} cells); ask "
+                f"for a looser rtol" + ("" if element == "P2" else " or element P2"))
+        if m not in cache:
+            cache[m] = evaluate(m[0], m[1], element)
+            solved.append(m)
+        return m, cache[m]
+
+    memo_key = None if key is None else (key, element, shape, n_theta_multiple)
+    scale = 1.0
+    remembered = memo_key is not None and memo_key in _MEMO
+    if remembered:
+        scale = _MEMO[memo_key]
+        _MEMO.move_to_end(memo_key)
+    history: list = []      # (scale, mesh, answer, difference to the previous or None)
+    estimates: list = []
+    p_used = order
+    while True:
+        coarse_scale = scale / 2.0
+        if not history or not math.isclose(history[-1][0], coarse_scale):
+            mc, qc = at(coarse_scale)
+            d_prev = None
+            if history:
+                d_prev = difference(qc, history[-1][2])
+            history.append((coarse_scale, mc, qc, d_prev))
+        mf, qf = at(scale)
+        d = difference(qf, history[-1][2])
+        history.append((scale, mf, qf, d))
+        err, p_used = estimate_error([h[0] for h in history[-3:]],
+                                     [h[3] for h in history[-2:]], order)
+        if error_of is not None:
+            err = max(err, error_of(qf))
+        estimates.append((mf, err))
+        if err <= rtol:
+            break
+        # the scale that reaches rtol with a 10 % margin, at least 1.5x, at most 4x finer
+        grow = min(4.0, max(1.5, 1.1 * (err / rtol) ** (1.0 / p_used)))
+        if grow < 2.2:
+            grow = 2.0          # a doubling reuses this mesh as the next pair's coarse one
+        scale *= grow
+    if memo_key is not None:
+        # next call: the pair that sufficed; one doubling coarser when its estimate was
+        # under rtol / 16 (a predicted shrink by less is often undone by a pre-asymptotic
+        # estimate, costing a search)
+        _MEMO[memo_key] = max(1.0, scale / 2.0 if err < rtol / 16.0 else scale)
+        while len(_MEMO) > _MEMO_SIZE:
+            _MEMO.popitem(last=False)
+    record = AccuracyRecord(
+        rtol=rtol, error=float(err), element=element, mesh=mf, partner=history[-2][1],
+        order=float(p_used), meshes=tuple(solved), solves=len(solved),
+        seconds=time.perf_counter() - t0, memo=remembered,
+        factor=SAFETY / ((scale / history[-2][0]) ** p_used - 1.0),
+        estimates=tuple(estimates))
+    return qf, history[-2][2], record
+
+
+def estimate_at(evaluate: Callable, difference: Callable, mesh: tuple, *, element: str,
+                order: float):
+    """(answer, coarse answer, :class:`AccuracyRecord`) on the ``mesh`` given, its error
+    estimated from the h/2h pair with the half mesh (one more solve, a quarter's cost) at
+    the nominal ``order``; ``record.rtol`` is None."""
+    t0 = time.perf_counter()
+    mesh = tuple(int(v) for v in mesh)
+    half = (max(8, 2 * math.ceil(mesh[0] / 4.0)), max(2, 2 * math.ceil(mesh[1] / 4.0)))
+    fine, coarse = evaluate(*mesh, element), evaluate(*half, element)
+    ratio = math.sqrt(mesh[0] * mesh[1] / (half[0] * half[1]))
+    err, order = estimate_error([1.0, ratio], [difference(fine, coarse)], order)
+    record = AccuracyRecord(rtol=None, error=float(err), element=element, mesh=mesh,
+                            partner=half, order=float(order), meshes=(mesh, half), solves=2,
+                            seconds=time.perf_counter() - t0,
+                            factor=SAFETY / (ratio ** order - 1.0))
+    return fine, coarse, record
+
+
+def solve_to_tolerance(solve: Callable, rtol: float, *, start_mesh: tuple, element: str,
+                       smooth: bool = False, key: Hashable | None = None,
+                       n_theta_multiple: int = 2):
+    """(FilmSolution, AccuracyRecord): ``solve(n_theta, n_z, element)`` -> FilmSolution on
+    the least mesh whose estimated relative error of the film force is within ``rtol``;
+    the solution carries ``force_error`` (the estimate) and ``accuracy`` (the record).
+    ``smooth``: the film has no cavitation front (the P2 force then converges as h^4)."""
+    sol, _, record = refine_to_tolerance(solve, force_difference, rtol, element=element,
+                                      start_mesh=start_mesh,
+                                      order=nominal_order(element, smooth), key=key,
+                                      n_theta_multiple=n_theta_multiple)
+    return replace(sol, force_error=record.error, accuracy=record), record
+
+
+def start_mesh(element: str, length_ratio: float) -> tuple:
+    """The search's start (n_theta, n_z): 24 cells around for P2, 48 for P1, and along the
+    length cells about as long as wide (n_z ~ n_theta (L/D) / pi), at least 4: the error
+    of a film with much longer cells along z than around is the z-direction's, which a
+    uniform refinement never fixes (Lund & Thomsen's L/D 1 rows: K's estimate stalls at
+    2e-3 from 144 x 16 to 288 x 32)."""
+    n = 24 if element == "P2" else 48
+    return n, max(4, 2 * round(n * length_ratio / math.pi / 2.0))
+
+
+def film_to_tolerance(solve: Callable, bearing, rtol: float, element: str | None,
+                      options: dict):
+    """A film solve to a requested accuracy: ``solve(n_theta, n_z, element)`` with the
+    element given, else P2 where the film takes it (P1 for JFO and EHD films, whose solvers
+    are P1); the start mesh :func:`start_mesh`, n_theta on the grooves' edges, the memo keyed on the
+    bearing's L/D and the film options that change the mesh needed. Returns the
+    FilmSolution with ``force_error`` and ``accuracy`` set."""
+    cavitation = options.get("cavitation", "reynolds")
+    p1_only = cavitation == "jfo" or options.get("lubricant") is not None \
+        or options.get("bush") is not None
+    if element is None:
+        element = "P1" if p1_only else "P2"
+    start = start_mesh(element, bearing.length_ratio)
+    smooth = cavitation == "none" and not options.get("grooves")
+    try:
+        key = ("film", round(bearing.length_ratio, 12), cavitation, element,
+               tuple(options.get("grooves") or ()), options.get("supply_angle"),
+               tuple(options.get("tilt", (0.0, 0.0))), options.get("lubricant") is None,
+               options.get("bush") is None, options.get("fields") is None)
+        hash(key)
+    except TypeError:
+        key = None
+    return solve_to_tolerance(solve, rtol, start_mesh=start, element=element,
+                              smooth=smooth, key=key,
+                              n_theta_multiple=groove_multiple(options.get("grooves")))[0]
+
+
+def groove_multiple(grooves) -> int:
+    """:func:`grid_multiple` of the grooves' edges (objects with ``angle`` and ``width``
+    [rad]); 2 without grooves or when no grid of <= 360 cells holds them all."""
+    edges = [g.angle + s * 0.5 * g.width for g in (grooves or ()) for s in (-1.0, 1.0)]
+    return grid_multiple(edges)

@@ -1,0 +1,109 @@
+"""The designer functions to a requested accuracy: a film model's mesh options chosen by
+:mod:`bearingfem.accuracy` for an equilibrium or a linearisation, or the error of a mesh
+given (its h/2h pair with the half mesh)."""
+from __future__ import annotations
+
+from typing import Callable
+
+import numpy as np
+
+from ..accuracy import (check_rtol, estimate_at, groove_multiple, nominal_order,
+                        refine_to_tolerance, start_mesh)
+from ..bearing import JournalState
+from ..models import FilmModel, film_model
+
+__all__ = ["answer_to_tolerance", "mesh_for_run", "run_force_error", "RUN_PROBES"]
+
+
+def answer_to_tolerance(m: FilmModel, what: str, key, options: dict, evaluate: Callable,
+                        difference: Callable, rtol: float | None,
+                        length_ratio: float = 0.5):
+    """(answer, coarse answer, record): ``evaluate(options)`` with the model's mesh options
+    (n_theta, n_z and, if the model has it, element) chosen to reach ``rtol`` (relative,
+    ``difference(fine, coarse)``), or, with ``rtol`` None, on the mesh of ``options`` with
+    its error estimated. ``what`` names the quantity in messages; ``key`` (hashable or
+    None) the memo entry, to which the model and its other options are added;
+    ``length_ratio`` L/D shapes the start mesh (:func:`~bearingfem.accuracy.start_mesh`)."""
+    if not {"n_theta", "n_z"} <= set(m.defaults):
+        raise ValueError(f"rtol and error estimates are for film models on a mesh (options "
+                         f"n_theta, n_z); model {m.name!r} has none")
+    if rtol is not None:
+        rtol = check_rtol(rtol)
+    has_element = "element" in m.defaults
+    element = options.get("element") if has_element else None
+    given = element is not None
+    element = element or ("P2" if has_element and rtol is not None else
+                          m.defaults.get("element", "P1"))
+    cavitation = options.get("cavitation", m.defaults.get("cavitation", "reynolds"))
+    smooth = cavitation == "none" and not options.get("grooves")
+    order = nominal_order(element, smooth)
+
+    def run(n_theta, n_z, el):
+        o = {**options, "n_theta": n_theta, "n_z": n_z}
+        if has_element:
+            o["element"] = el
+        return evaluate(o)
+
+    if rtol is None:
+        o = m.options(options)
+        return estimate_at(run, difference, (o["n_theta"], o["n_z"]), element=element,
+                           order=order)
+    rest = {k: v for k, v in options.items() if k not in ("n_theta", "n_z", "element")}
+    try:
+        memo = (what, m.name, key, given, tuple(sorted((k, repr(v)) for k, v in rest.items())))
+        hash(memo)
+    except TypeError:
+        memo = None
+    start = start_mesh(element, length_ratio)
+    return refine_to_tolerance(run, difference, rtol, element=element, start_mesh=start,
+                               order=order, key=memo,
+                               n_theta_multiple=groove_multiple(options.get("grooves")))
+
+
+#: Steady states at which a run's mesh is chosen (eps, below the scene's eps_max): a
+#: journal's film is hardest to resolve near the wall, so the set reaches close to it.
+RUN_PROBES = (0.3, 0.6, 0.9, 0.97)
+
+
+def mesh_for_run(bearing, model: str, options: dict, rtol: float, omega: float,
+                 eps_max: float = 0.999) -> tuple:
+    """(options with the mesh chosen, record): the mesh on which the model's force is
+    within ``rtol`` (estimated) at every steady state of :data:`RUN_PROBES` (eps capped at
+    ``eps_max``) at journal speed ``omega`` [rad/s]; for a time integration, where the
+    state is not known beforehand. The run's own states are checked after it
+    (:func:`run_force_error`)."""
+    m = film_model(model)
+    states = [JournalState(min(e, eps_max), omega=omega) for e in RUN_PROBES]
+
+    def evaluate(opts):
+        return [m.film_force(bearing, s, **opts) for s in states]
+
+    def difference(fine, coarse):
+        return max(float(np.hypot(*np.subtract(f, c)) / np.hypot(*f))
+                   for f, c in zip(fine, coarse))
+
+    _, _, record = answer_to_tolerance(m, "run", round(bearing.length_ratio, 12), options,
+                                       evaluate, difference, rtol,
+                                       bearing.length_ratio)
+    chosen = {**options, "n_theta": record.mesh[0], "n_z": record.mesh[1]}
+    if "element" in m.defaults:
+        chosen["element"] = record.element
+    return chosen, record
+
+
+def run_force_error(bearing, model: str, options: dict, states) -> float:
+    """The largest estimated relative force error (h/2h with the half mesh) of the model
+    on its mesh over ``states`` (JournalStates met in a run)."""
+    m = film_model(model)
+    worst = 0.0
+    for s in states:
+        def evaluate(opts, s=s):
+            return m.film_force(bearing, s, **opts)
+
+        def difference(fine, coarse):
+            n = float(np.hypot(*fine))
+            return float(np.hypot(*np.subtract(fine, coarse))) / n if n else 0.0
+
+        worst = max(worst, answer_to_tolerance(m, "run", None, options, evaluate,
+                                               difference, None)[2].error)
+    return worst

@@ -1,0 +1,143 @@
+"""What a film solve to a requested accuracy costs against one solve on the cheapest
+uniform mesh that reaches the same accuracy (found by search here).
+
+    python -m benchmarks.accuracy_rtol            # ~2 min: three states x three tolerances
+    python -m benchmarks.accuracy_rtol --quick    # one state, one tolerance (smoke)
+    python -m benchmarks.accuracy_rtol --lund-thomsen   # the ten rows at rtol 2e-3 (~1 min)
+
+For each state the true error of every uniform mesh of a grid (P1 and P2; n_theta from 8
+to 384, n_z / n_theta in 1/12, 1/6, 1/3) is measured against a converged film (P2 384 x 64);
+an ``rtol`` solve reports its estimate and is measured too; the cheapest uniform mesh whose
+true error is at most the rtol solve's is the baseline. Times: best of ``--repeat`` runs,
+one process, warm operator caches for both (meshes built once, as in any loop). "cold":
+the mesh search from the start pair (memo cleared); "loop": a design loop's next call,
+the memo holding the mesh that sufficed at a state 2 % away in eps.
+
+``--lund-thomsen``: Lund & Thomsen's ten two-groove rows (studies/lund_thomsen.py),
+equilibrium at rtol 2e-3 and K, C at rtol 2e-3 with the eps error passed on, one design
+loop (the memo carried from row to row, caches cold at the start), against P2 on 144 cells
+around (n_z ~ 144 L/D / 3: the study's converged mesh): |d eps|, the largest K and B
+entry errors relative to each matrix's largest entry, and the time.
+"""
+from __future__ import annotations
+
+import argparse
+import itertools
+import time
+
+from bearingfem import Bearing, JournalState, solve_reynolds
+from bearingfem.accuracy import clear_memo, force_difference
+
+N_THETA = (8, 12, 16, 20, 24, 32, 40, 48, 64, 80, 96, 128, 160, 192, 256, 320, 384)
+ASPECT = (12, 6, 3)
+STATES = [("L/D 1, eps 0.8, Reynolds", 1.0, 0.8, "reynolds"),
+          ("L/D 0.2, eps 0.6, Reynolds", 0.2, 0.6, "reynolds"),
+          ("L/D 1, eps 0.5, full film", 1.0, 0.5, "none")]
+
+
+def best(fn, repeat):
+    t = []
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        out = fn()
+        t.append(time.perf_counter() - t0)
+    return min(t), out
+
+
+def uniform_table(b, s, cavitation, ref, repeat):
+    """[(seconds, true error, element, n_theta, n_z)] over the grid."""
+    rows = []
+    for el, nt, a in itertools.product(("P1", "P2"), N_THETA, ASPECT):
+        nz = max(2, 2 * round(nt / a / 2))
+        if el == "P1" and nt < 16:
+            continue
+        solve_reynolds(b, s, nt, nz, el, cavitation)              # build the mesh once
+        t, sol = best(lambda: solve_reynolds(b, s, nt, nz, el, cavitation), repeat)
+        rows.append((t, force_difference(ref, sol), el, nt, nz))
+    return rows
+
+
+def lund_thomsen(rtol=2e-3):
+    """The ten rows as one design loop; prints a row per case and the totals."""
+    from bearingfem.design import coefficients, equilibrium
+    from bearingfem.design.groups import load_from_sommerfeld
+    from studies.lund_thomsen import GROOVES, LOAD_DIRECTION, OMEGA, TABLE, bearing, mesh
+    clear_memo()
+    film = dict(grooves=GROOVES, cavitation="reynolds")
+    print(f"{'L/D':>4s} {'S':>6s} {'eps':>8s} {'d eps':>8s} {'eps_err':>8s} {'K err':>8s} "
+          f"{'B err':>8s} {'kc.error':>8s} {'eq mesh':>9s} {'kc mesh':>9s} {'s':>6s}")
+    total, worst = 0.0, [0.0, 0.0, 0.0]
+    for ld, rows in TABLE.items():
+        b = bearing(ld)
+        for S, *_ in rows:
+            W = load_from_sommerfeld(b, S, OMEGA)
+            t0 = time.perf_counter()
+            eq = equilibrium(b, W, OMEGA, "fem", direction=LOAD_DIRECTION, rtol=rtol, **film)
+            kc = coefficients(b, eq.state, "fem", frame="load", rtol=rtol,
+                              eps_error=eq.eps_error, **film)
+            t = time.perf_counter() - t0
+            total += t
+            ref_o = mesh(ld, 144, "P2")
+            eqr = equilibrium(b, W, OMEGA, "fem", direction=LOAD_DIRECTION, **ref_o)
+            kr = coefficients(b, eqr.state, "fem", frame="load", **ref_o)
+            de = abs(eq.eps - eqr.eps)
+            eK = abs(kc.K - kr.K).max() / abs(kr.K).max()
+            eB = abs(kc.C - kr.C).max() / abs(kr.C).max()
+            worst = [max(worst[0], de), max(worst[1], eK), max(worst[2], eB)]
+            print(f"{ld:4g} {S:6g} {eq.eps:8.5f} {de:8.1e} {eq.eps_error:8.1e} {eK:8.1e} "
+                  f"{eB:8.1e} {kc.error:8.1e} {'{}x{}'.format(*eq.accuracy.mesh):>9s} "
+                  f"{'{}x{}'.format(*kc.accuracy.mesh):>9s} {t:6.2f}")
+    print(f"ten rows: {total:.2f} s; largest |d eps| {worst[0]:.1e}, K {100 * worst[1]:.2f} %, "
+          f"B {100 * worst[2]:.2f} % of the largest entry")
+
+
+def main(argv=None):
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("--quick", action="store_true")
+    p.add_argument("--repeat", type=int, default=3)
+    p.add_argument("--lund-thomsen", action="store_true")
+    a = p.parse_args(argv)
+    if a.lund_thomsen:
+        return lund_thomsen()
+    states = STATES[:1] if a.quick else STATES
+    tolerances = (1e-2,) if a.quick else (1e-2, 1e-3, 1e-4)
+    print(f"{'state':28s} {'rtol':>7s} {'estimate':>9s} {'true':>9s} {'mesh':>12s} "
+          f"{'cold s':>8s} {'loop s':>8s} {'cheapest uniform':>18s} {'its s':>8s} "
+          f"{'cold x':>7s} {'loop x':>7s}")
+    worst = 0.0
+    for name, ld, eps, cav in states:
+        b = Bearing(radius=0.01, length=0.02 * ld, clearance=20e-6, viscosity=0.0117)
+        s = JournalState(eps=eps, omega=250.0)
+        near = JournalState(eps=eps * 0.98, omega=250.0)
+        ref = solve_reynolds(b, s, 384, 64, "P2", cav)
+        table = uniform_table(b, s, cav, ref, a.repeat)
+        for rtol in tolerances:
+            def cold():
+                clear_memo()
+                return solve_reynolds(b, s, rtol=rtol, cavitation=cav)
+
+            def loop():
+                clear_memo()
+                solve_reynolds(b, near, rtol=rtol, cavitation=cav)
+                t0 = time.perf_counter()
+                sol = solve_reynolds(b, s, rtol=rtol, cavitation=cav)
+                return time.perf_counter() - t0, sol
+            cold()                                                   # build its meshes
+            t_cold, sol = best(cold, a.repeat)
+            t_loop = min(loop()[0] for _ in range(a.repeat))
+            true = force_difference(ref, sol)
+            ok = [r for r in table if r[1] <= true]
+            if not ok:
+                print(f"{name:28s} {rtol:7.0e}  no uniform mesh of the grid reaches {true:.2e}")
+                continue
+            cheap = min(ok)
+            worst = max(worst, t_cold / cheap[0])
+            mesh = "{} x {} {}".format(*sol.accuracy.mesh, sol.accuracy.element)
+            print(f"{name:28s} {rtol:7.0e} {sol.force_error:9.2e} {true:9.2e} {mesh:>12s} "
+                  f"{t_cold:8.4f} {t_loop:8.4f} {f'{cheap[3]} x {cheap[4]} {cheap[2]}':>18s} "
+                  f"{cheap[0]:8.4f} {t_cold / cheap[0]:7.2f} {t_loop / cheap[0]:7.2f}")
+    print(f"largest cold ratio: {worst:.2f}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,175 @@
+"""Answers to a requested accuracy (bearingfem.accuracy): the h/2h estimate's effectivity
+(estimate / true error) against converged films, the true error of rtol solves within the
+request, the memo of a design loop, and the stability verdict's range over K and C's error.
+
+The references are P2 films two or more doublings finer than the meshes checked (their own
+error is below 1e-6 of |F| for these states: studies/effectivity.py).
+"""
+import math
+
+import numpy as np
+import pytest
+
+from bearingfem import Bearing, ConvergenceError, JournalState, coefficients, equilibrium
+from bearingfem import solve_reynolds
+from bearingfem.accuracy import (clear_memo, estimate_error, force_difference, nominal_order,
+                                 refine_to_tolerance)
+from bearingfem.design import lund_stability
+
+B1 = Bearing(radius=0.01, length=0.02, clearance=20e-6, viscosity=0.0117)     # L/D 1
+B02 = Bearing(radius=0.01, length=0.004, clearance=20e-6, viscosity=0.0117)   # L/D 0.2
+#: README example 2's critical mass on the converged film (P2 384 x 64, Newton to 1e-13;
+#: P2 192 x 32 and rtol = 1e-4 give 2.54e5 and 2.549e5 kg): the threshold is steep here
+M_CONVERGED = 2.544e5
+
+
+def _reference(b, s, cavitation):
+    return solve_reynolds(b, s, 192, 32, "P2", cavitation)
+
+
+@pytest.mark.parametrize("b, eps, cavitation", [(B1, 0.6, "none"), (B1, 0.8, "reynolds"),
+                                                 (B02, 0.6, "reynolds"), (B1, 0.6, "gumbel")])
+@pytest.mark.parametrize("element, meshes", [("P1", [(24, 4), (48, 8), (96, 16)]),
+                                             ("P2", [(12, 2), (24, 4), (48, 8)])])
+def test_the_estimate_errs_high_and_within_a_factor(b, eps, cavitation, element, meshes):
+    """Effectivity (estimate / true error) in [1, 12] on two pairs of each element, with
+    the order the search uses (nominal, or observed from three meshes when lower); fails
+    with the estimate at the P2 film's smooth order 4 for a cavitated film (0.3-0.5)."""
+    s = JournalState(eps=eps, omega=250.0)
+    ref = _reference(b, s, cavitation)
+    sols = [solve_reynolds(b, s, nt, nz, element, cavitation) for nt, nz in meshes]
+    d = [force_difference(f, c) for c, f in zip(sols, sols[1:])]
+    order = nominal_order(element, cavitation == "none")
+    for est, sol in ((estimate_error([1.0, 2.0], d[:1], order)[0], sols[1]),
+                     (estimate_error([1.0, 2.0, 4.0], d, order)[0], sols[2])):
+        true = force_difference(ref, sol)
+        assert 1.0 <= est / true <= 12.0, (est, true)
+
+
+@pytest.mark.parametrize("rtol, element", [(1e-2, None), (1e-3, None), (1e-3, "P1")])
+@pytest.mark.parametrize("b, eps, cavitation", [(B1, 0.8, "reynolds"), (B02, 0.6, "none")])
+def test_rtol_solves_are_within_the_request(b, eps, cavitation, rtol, element):
+    """The film's true force error is within rtol and the estimate it reports; the mesh is
+    the least of its family to pass (fails if the search stops on the first pair)."""
+    clear_memo()
+    s = JournalState(eps=eps, omega=250.0)
+    sol = solve_reynolds(b, s, rtol=rtol, element=element, cavitation=cavitation)
+    true = force_difference(_reference(b, s, cavitation), sol)
+    assert sol.force_error <= rtol
+    assert true <= sol.force_error
+    assert sol.accuracy.element == (element or "P2")
+    assert sol.accuracy.estimates[-1][1] == sol.force_error
+
+
+def test_a_design_loop_reuses_the_mesh_that_sufficed():
+    """The next state starts at the pair that sufficed: one pair (two solves), not the
+    search from the start mesh again."""
+    clear_memo()
+    first = solve_reynolds(B1, JournalState(eps=0.7, omega=250.0), rtol=1e-3)
+    again = solve_reynolds(B1, JournalState(eps=0.72, omega=250.0), rtol=1e-3)
+    assert first.accuracy.solves > 2 and not first.accuracy.memo
+    assert again.accuracy.memo and again.accuracy.solves == 2
+    assert again.force_error <= 1e-3
+
+
+def test_equilibrium_to_a_tolerance():
+    """eps within rtol (relative) of the converged film's and within the estimate."""
+    clear_memo()
+    ref = equilibrium(B1, (0.0, -1000.0), 250.0, "fem", n_theta=192, n_z=32, element="P2",
+                      cavitation="reynolds")
+    eq = equilibrium(B1, (0.0, -1000.0), 250.0, "fem", rtol=2e-3, cavitation="reynolds")
+    assert eq.eps_error <= 2e-3 * eq.eps
+    assert abs(eq.eps - ref.eps) <= eq.eps_error
+    assert eq.accuracy.element == "P2"
+
+
+def test_coefficients_error_covers_the_converged_ones():
+    """K and C's entries within their estimated errors of the converged film's (P2 on the
+    given mesh and on rtol)."""
+    s = JournalState(eps=0.6, omega=250.0)
+    ref = coefficients(B02, s, "fem", n_theta=192, n_z=32, element="P2",
+                       cavitation="reynolds")
+    for kc in (coefficients(B02, s, "fem", n_theta=48, n_z=8, element="P2",
+                            cavitation="reynolds", estimate=True),
+               coefficients(B02, s, "fem", rtol=1e-2, cavitation="reynolds")):
+        assert np.all(np.abs(kc.K - ref.K) <= kc.K_error + 1e-9 * np.abs(ref.K).max())
+        assert np.all(np.abs(kc.C - ref.C) <= kc.C_error + 1e-9 * np.abs(ref.C).max())
+        assert kc.error == pytest.approx(max(np.max(kc.K_error) / np.abs(kc.K).max(),
+                                             np.max(kc.C_error) / np.abs(kc.C).max()))
+
+
+@pytest.mark.parametrize("film", [dict(n_theta=48, n_z=8, element="P2"),
+                                  dict(n_theta=96, n_z=16, element="P2"),
+                                  dict(n_theta=120, n_z=20, element="P1")])
+def test_critical_mass_range_contains_the_converged_value(film):
+    """README example 2 on its meshes (and the command line's default 120 x 20 P1): the
+    critical mass differs by 20x between them; its range over K, C's error (with the
+    equilibrium's eps error) contains the converged one, and the verdict says it is
+    ill-conditioned there (fails with K and C's errors near zero: the range shrinks to
+    the mesh's own digits and misses; survives errors cut tenfold, the range is that wide:
+    test_coefficients_error_covers_the_converged_ones catches that)."""
+    eq = equilibrium(B1, (0.0, -1000.0), 250.0, "fem", cavitation="reynolds", estimate=True,
+                     **film)
+    kc = coefficients(B1, eq.state, "fem", cavitation="reynolds", estimate=True,
+                      eps_error=eq.eps_error, **film)
+    st = lund_stability(kc)
+    lo, hi = st.critical_mass_range
+    assert lo <= M_CONVERGED <= hi
+    assert st.ill_conditioned and "ill-conditioned" in st.describe()
+
+
+def test_a_well_conditioned_verdict_prints_its_range():
+    """A short bearing at eps 0.6 (far from the threshold): a narrow range, not flagged."""
+    s = JournalState(eps=0.6, omega=250.0)
+    st = lund_stability(coefficients(B02, s, "fem", n_theta=48, n_z=8, element="P2",
+                                     cavitation="reynolds", estimate=True))
+    lo, hi = st.critical_mass_range
+    assert not st.ill_conditioned and hi / lo < 1.5
+    assert lo <= st.critical_mass <= hi and "range" in st.describe()
+
+
+@pytest.mark.slow
+def test_the_converged_critical_mass():
+    """M_CONVERGED as measured: P2 384 x 64."""
+    film = dict(n_theta=384, n_z=64, element="P2", cavitation="reynolds")
+    eq = equilibrium(B1, (0.0, -1000.0), 250.0, "fem", **film)
+    st = lund_stability(coefficients(B1, eq.state, "fem", **film))
+    assert st.critical_mass == pytest.approx(M_CONVERGED, rel=2e-3)
+
+
+@pytest.mark.parametrize("rtol", [0.0, -1e-3, 0.5, math.nan, 1e-9])
+def test_bad_rtol_is_refused_by_name(rtol):
+    with pytest.raises(ValueError, match="rtol must"):
+        solve_reynolds(B1, JournalState(eps=0.5, omega=250.0), rtol=rtol)
+
+
+def test_rtol_needs_a_mesh_model():
+    with pytest.raises(ValueError, match="model 'short' has none"):
+        equilibrium(B1, (0.0, -100.0), 250.0, "short", rtol=1e-3)
+
+
+def test_an_unreachable_tolerance_raises_convergence_error():
+    """A mesh past the largest is refused before it is built, naming the mesh."""
+    calls = []
+
+    def slow(n_theta, n_z, element):      # a quantity that converges at order 1/2
+        calls.append((n_theta, n_z))
+        return 1.0 + 1.0 / math.sqrt(n_theta)
+
+    with pytest.raises(ConvergenceError, match="past the largest mesh"):
+        refine_to_tolerance(slow, lambda f, c: abs(f - c) / abs(f), 1e-6, element="P1",
+                            start_mesh=(48, 8), order=2.0)
+    assert max(a * b for a, b in calls) <= 1536 * 256
+
+
+def test_a_jfo_film_to_a_tolerance():
+    """The mass-conserving film (P1, a flooded groove): within rtol and its estimate of a
+    fine film (P1 384 x 128, itself ~5e-4 off: the tolerance is 1e-2)."""
+    from bearingfem import Groove
+    clear_memo()
+    s = JournalState(eps=0.6, omega=250.0)
+    grooves = [Groove(angle=math.pi / 2, width=0.2, pressure=1e5)]
+    sol = solve_reynolds(B1, s, rtol=1e-2, cavitation="jfo", grooves=grooves)
+    ref = solve_reynolds(B1, s, 384, 128, cavitation="jfo", grooves=grooves)
+    assert sol.accuracy.element == "P1"
+    assert force_difference(ref, sol) <= sol.force_error <= 1e-2
