@@ -26,10 +26,12 @@ from __future__ import annotations
 
 import math
 
-from .published_coefficients import (K_NAMES, Published, axial_grooves, case,
-                                     largest_entry_error)
+from .published_coefficients import (K_NAMES, LOAD_DIRECTION, OMEGA, Published,
+                                     axial_grooves, bearing, case, largest_entry_error)
+from .published_coefficients import mesh as _mesh
 
-__all__ = ["TABLE", "LUND_THOMSEN", "table_case", "largest_entry_error"]
+__all__ = ["TABLE", "LUND_THOMSEN", "GROOVES", "table_case", "largest_entry_error",
+           "bearing", "mesh", "LOAD_DIRECTION", "OMEGA"]
 
 #: L/D -> rows (S, eps, phi [deg], Kxx, Kxy, Kyx, Kyy, Bxx, Bxy, Byy), as published
 TABLE = {
@@ -45,6 +47,8 @@ TABLE = {
           (0.108, 0.650, 39.72, 3.45, 3.34, -0.23, 1.44, 6.89, 1.72, 1.43)],
 }
 B_NAMES = ("Bxx", "Bxy", "Byy")
+#: the two 20 deg grooves at the horizontal split, across the load
+GROOVES = axial_grooves(math.radians(20.0))
 
 
 def _line(r) -> str:
@@ -55,12 +59,17 @@ def _line(r) -> str:
 
 LUND_THOMSEN = Published(
     name="lund_thomsen", source="Lund & Thomsen (1978)", table=TABLE,
-    grooves=axial_grooves(math.radians(20.0)), b_names=B_NAMES, tag="table", other="turning",
+    grooves=GROOVES, b_names=B_NAMES, tag="table", other="turning",
     errors=True, line=_line,
     header="ours (table); K, B: largest entry error; turning K: kc.K - kc.K_groove_shift",
     convergence_rows=(0, 4), convergence_column=0, panels=K_NAMES + B_NAMES + ("phi",),
     title=("Two-axial-groove bearing (20 deg grooves): K c / W, B c omega / W, load frame;"
            " solid: grooves fixed in the bearing (kc.K)"))
+
+
+def mesh(ld: float, n_theta: int, element: str = "P1") -> dict:
+    """FE options of this table's bearing, cells of about equal sides."""
+    return _mesh(ld, n_theta, GROOVES, element)
 
 
 def table_case(ld: float, sommerfeld: float, n_theta: int = 144,
