@@ -13,6 +13,7 @@ from pathlib import Path
 
 from bearingfem.bearing import check_surface_speed, plausibility_errors
 from bearingfem.validation import MIN_N_THETA, MIN_N_Z
+from mechanism.scene import oil_viscosity as scene_oil_viscosity
 
 __all__ = ["check_numbers", "given_options", "check_writable", "parse_angles",
            "check_scheduler_address", "oil_viscosity", "RULES"]
@@ -125,22 +126,10 @@ def parse_angles(text: str) -> list:
     return sorted(set(angles))
 
 
-_GRADE = re.compile(r"^\s*(?:ISO)?\s*(?:VG)?\s*(\d+)\s*$", re.IGNORECASE)
-
-
 def oil_viscosity(grade: str, temperature_c: float) -> float:
     """``--oil`` 'ISO VG 32' (or 'VG32', '32') at ``temperature_c`` [degC] -> its dynamic
-    viscosity [Pa s] (:meth:`bearingfem.lubricant.Lubricant.iso_vg`)."""
-    from bearingfem.lubricant import ISO_VG, Lubricant
-    m = _GRADE.match(grade)
-    if not m or int(m.group(1)) not in ISO_VG:
-        raise ValueError(f"--oil must be an ISO VG grade, one of "
-                         f"{', '.join(f'ISO VG {g}' for g in sorted(ISO_VG))}, got {grade!r}")
-    if not (math.isfinite(temperature_c) and -50.0 <= temperature_c <= 200.0):
-        raise ValueError(f"--oil-temperature must lie in [-50, 200] degC (an oil film's), "
-                         f"got {temperature_c!r}")
-    oil = Lubricant.iso_vg(int(m.group(1)))
-    return float(oil.viscosity_at(0.0, temperature=temperature_c + 273.15))
+    viscosity [Pa s] (as a scene's ``oil``: :func:`mechanism.scene.oil_viscosity`)."""
+    return scene_oil_viscosity(grade, temperature_c, ("--oil", "--oil-temperature"))
 
 
 _ADDRESS = re.compile(r"^(?:(tcp|tls|ws|wss|ucx)://)?(\[[0-9a-fA-F:]+\]|[\w.-]+):(\d{1,5})$")

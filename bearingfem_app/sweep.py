@@ -300,8 +300,11 @@ def _film_named(sweep: Sweep) -> str:
         cav = lub.options.get("cavitation", "the model's") if lub is not None else "-"
         return (f"film model {said('model', model)}; cavitation {said('cavitation', cav)} "
                 f"(scene {scene.name})")
+    models = sweep.vary.get("model", [sweep.base.get("model", "fem")])
+    closed = any(not FILM_MODELS[m].numeric for m in models if m in FILM_MODELS)
     return (f"film model {said('model', 'fem')}; cavitation "
-            f"{said('cavitation', 'each model default')} (closed forms: half film)")
+            f"{said('cavitation', 'each model default')}"
+            + (" (closed forms: half film)" if closed else ""))
 
 
 def plot_summary(rows, sweep: Sweep, path) -> None:

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import difflib
 import math
+import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -17,8 +18,8 @@ except ModuleNotFoundError:  # Python < 3.11
 
 from bearingfem import Bearing, ElasticBush, Roughness
 from bearingfem.bearing import plausibility_errors
-from bearingfem.lubricant import Lubricant
 from bearingfem.accuracy import check_rtol
+from bearingfem.lubricant import ISO_VG, Lubricant
 from bearingfem.models import film_model
 from .parameters import Mechanism
 
@@ -170,7 +171,13 @@ def _bearing(t: _Table) -> Bearing:
     if (length is None) == (ratio is None):
         raise ValueError(f"{t.where} needs exactly one of length [m] or length_ratio (L/D)")
     c = t.number("clearance", required=True, lo=0.0, hi=0.1 * D, lo_open=True)
-    mu = t.number("viscosity", required=True, lo=0.0, lo_open=True)
+    if t.get("oil") is None:
+        mu = t.number("viscosity", required=True, lo=0.0, lo_open=True)
+    elif "viscosity" in t.data:
+        raise ValueError(f"{t.where} takes one of viscosity [Pa s] or oil (an ISO VG grade)")
+    else:
+        mu = oil_viscosity(t.get("oil"), t.number("oil_temperature", 40.0),
+                           (f"{t.where}.oil", f"{t.where}.oil_temperature"))
     t.done()
     ld, ld_name = (ratio, "length_ratio") if length is None else (length / D,
                                                                    "length / diameter")
@@ -180,6 +187,24 @@ def _bearing(t: _Table) -> Bearing:
         raise ValueError("; ".join(bad))
     return Bearing(radius=D / 2, length=length if length is not None else ratio * D,
                    clearance=c, viscosity=mu)
+
+
+_GRADE = re.compile(r"^\s*(?:ISO)?\s*(?:VG)?\s*(\d+)\s*$", re.IGNORECASE)
+
+
+def oil_viscosity(grade, temperature_c: float, names=("oil", "oil_temperature")) -> float:
+    """An ISO VG grade ('ISO VG 32', 'VG32', '32' or 32) at ``temperature_c`` [degC] -> its
+    dynamic viscosity [Pa s] (:meth:`bearingfem.lubricant.Lubricant.iso_vg`, a VI 100
+    mineral oil); ``names``: how the caller spells the two inputs."""
+    m = _GRADE.match(str(grade)) if isinstance(grade, (str, int)) else None
+    if not m or int(m.group(1)) not in ISO_VG:
+        raise ValueError(f"{names[0]} must be an ISO VG grade, one of "
+                         f"{', '.join(f'ISO VG {g}' for g in sorted(ISO_VG))}, got {grade!r}")
+    if not (math.isfinite(temperature_c) and -50.0 <= temperature_c <= 200.0):
+        raise ValueError(f"{names[1]} must lie in [-50, 200] degC (an oil film's), "
+                         f"got {temperature_c!r}")
+    oil = Lubricant.iso_vg(int(m.group(1)))
+    return float(oil.viscosity_at(0.0, temperature=temperature_c + 273.15))
 
 
 def _lubrication(t: _Table) -> Lubrication:

@@ -118,3 +118,21 @@ def test_crank_speed_in_rpm():
     d["initial"]["crank_speed"] = 250.0
     with pytest.raises(ValueError, match="one of crank_speed"):
         parse_scene(d)
+
+
+def test_oil_by_grade_in_a_scene():
+    """bearing.oil 'ISO VG 32' (at oil_temperature, default 40 degC) is 32 mm^2/s times
+    870 kg/m^3 = 0.02784 Pa s by hand; with viscosity too, or a grade that does not
+    exist, it is refused."""
+    d = copy.deepcopy(BASE)
+    del d["bearing"]["viscosity"]
+    d["bearing"]["oil"] = "ISO VG 32"
+    assert parse_scene(d).bearing.viscosity == pytest.approx(32e-6 * 870, rel=1e-9)
+    d["bearing"]["oil_temperature"] = 80.0
+    assert parse_scene(d).bearing.viscosity < 0.5 * 32e-6 * 870
+    d["bearing"]["oil"] = "VG 33"
+    with pytest.raises(ValueError, match="scene.bearing.oil must be an ISO VG grade"):
+        parse_scene(d)
+    d["bearing"].update(oil="VG 32", viscosity=0.03)
+    with pytest.raises(ValueError, match="one of viscosity"):
+        parse_scene(d)
