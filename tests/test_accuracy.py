@@ -173,3 +173,14 @@ def test_a_jfo_film_to_a_tolerance():
     ref = solve_reynolds(B1, s, 384, 128, cavitation="jfo", grooves=grooves)
     assert sol.accuracy.element == "P1"
     assert force_difference(ref, sol) <= sol.force_error <= 1e-2
+
+
+def test_the_finite_volume_model_to_a_tolerance():
+    """The FV film (no element: its nominal order 2) through equilibrium(rtol=): eps within
+    its estimate of the converged film's (FE P2 192 x 64, the same Gumbel film)."""
+    clear_memo()
+    eq = equilibrium(B1, (0.0, -1000.0), 250.0, "fvm", rtol=1e-2, cavitation="gumbel")
+    ref = equilibrium(B1, (0.0, -1000.0), 250.0, "fem", n_theta=192, n_z=64, element="P2",
+                      cavitation="gumbel")
+    assert eq.eps_error <= 1e-2 * eq.eps
+    assert abs(eq.eps - ref.eps) <= eq.eps_error
