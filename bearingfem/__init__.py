@@ -17,9 +17,11 @@ from .fv.fvm import fvm_reynolds
 from .lubricant import Lubricant
 from .ehl import line_contact, point_contact
 from .solution import FilmSolution
+from .thermal import Thermal  # thermal (THD) films
 
 __all__ = ["Bearing", "JournalState", "ElasticJournalState", "Groove", "solve_reynolds", "fvm_reynolds", "FilmSolution",
            "short_bearing_force", "long_bearing_force", "short_bearing_exact_force",
            "long_bearing_exact_force", "equilibrium", "coefficients", "ElasticBush",
-           "Lubricant", "line_contact", "point_contact", "ConvergenceError", "Roughness"]
+           "Lubricant", "line_contact", "point_contact", "ConvergenceError", "Roughness",
+           "Thermal"]
 __version__ = "0.1.0"

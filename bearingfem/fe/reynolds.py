@@ -193,13 +193,13 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
     start : with a lubricant or bush, a previous :class:`FilmSolution` of the same mesh
         whose pressure (and JFO fraction) starts Newton (a nearby state converges in a
         few steps; if that stalls, the cold route); None: a cold start. Same answer to ``tol``.
+    thermal : :class:`~bearingfem.thermal.Thermal`: the thermal (THD) film of
+        :func:`bearingfem.thermal.solve_thd` with this ``lubricant`` (its temperature law);
+        ``start`` a previous thermal film of the same mesh
 
     With ``fields`` or a tilt the whole length is meshed (no mid-plane symmetry) and
     ``moment`` is the film's moment on the journal; fields that are the rigid cylinder's
     are solved by the rigid film's fast path (the same discrete problem).
-
-    thermal : :class:`~bearingfem.thermal.Thermal`: the thermal (THD) film of
-        :func:`bearingfem.thermal.solve_thd` with this ``lubricant`` (its temperature law)
 
     Returns
     -------
