@@ -134,10 +134,8 @@ def _column_flows(bearing, state, mesh, edges, P, fraction, mu_nodal):
     h = c * film_thickness(mesh.theta, state.eps)
     q = (0.5 * state.omega * R * fraction * h
          - h ** 3 / (12.0 * mu_nodal) * bearing.pressure_scale / R * dP)
-    flows = np.empty(len(edges.columns))
-    for i, dofs in enumerate(edges.columns):
-        o = np.argsort(mesh.zeta[dofs])
-        flows[i] = R * np.trapezoid(q[dofs][o], mesh.zeta[dofs][o])
+    flows = R * np.bincount(edges.column_index, edges.column_weight * q[edges.column_dofs],
+                            minlength=len(edges.column_theta))
     return q, flows
 
 
@@ -150,8 +148,7 @@ def groove_mixing(bearing, state, mesh, edges, P, fraction, mu_nodal,
     T_in = ((Q_in - C) T_supply + C T_out) / Q_in, C = min(lambda Q_out, Q_in)."""
     q, flows = _column_flows(bearing, state, mesh, edges, P, fraction, mu_nodal)
     column = np.full(mesh.ndofs, -1)
-    for i, dofs in enumerate(edges.columns):
-        column[dofs] = i
+    column[edges.column_dofs] = edges.column_index
     ts, lam = thermal.supply_temperature, thermal.carry_over
     fresh, dofs, weights = [], [], []
     for k, (d_in, d_out) in enumerate(zip(edges.inflow, edges.outflow)):
