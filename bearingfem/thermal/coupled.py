@@ -4,16 +4,15 @@ A fixed point (Picard) on the temperature field: at the temperatures T_k the oil
 viscosity mu(p_k, T_k) at the film's quadrature points makes a viscosity field
 (:class:`~bearingfem.fields.FilmFields`) for the isothermal film solver, whose pressure
 (and JFO fraction) gives the flow and dissipation of the energy equation
-(:mod:`bearingfem.thermal.energy`); its solution T, with the grooves' mixed inlet
-temperatures, is relaxed into T_{k+1} = T_k + r (T - T_k). Why a fixed point: the film and
-the energy equation each are one linear (or complementarity) solve, and the coupling is
-one-way per step through mu(T); Anderson's acceleration of the temperature iterates
-(:class:`Anderson`) takes the fixed point where plain relaxation would crawl (measured:
-docs/thd.md).
+(:mod:`bearingfem.thermal.energy`, the grooves' mixing solved with it) gives T, and
+Anderson's acceleration (:class:`Anderson`) of the iterates gives T_{k+1}. Why a fixed
+point: the film and the energy equation each are one linear (or complementarity) solve,
+and the coupling is one-way per step through mu(T); Anderson's mixing takes it where plain
+relaxation would crawl (measured: docs/thd.md).
 
-Converged when the largest change of the nodal temperatures and of the inlet temperatures
-is below ``temperature_tol`` [K] and the pressure's largest change below
-``pressure_rtol`` of its peak; otherwise :class:`~bearingfem.errors.ConvergenceError`.
+Converged when the largest change of the nodal temperatures is below ``temperature_tol``
+[K] and the pressure's largest change below ``pressure_rtol`` of its peak; otherwise
+:class:`~bearingfem.errors.ConvergenceError`.
 """
 from __future__ import annotations
 
@@ -39,12 +38,12 @@ from .spec import Thermal
 __all__ = ["solve_thd", "ThermalRecord", "groove_mixing"]
 
 CAVITATION = ("reynolds", "jfo")
+ANDERSON_DEPTH = 3     # past iterates Anderson's mixing combines
 
 
 @LinearForm
 def _value_form(v, w):
     return w["f"] * v
-ANDERSON_DEPTH = 3     # past iterates Anderson's mixing combines
 
 
 class Anderson:
