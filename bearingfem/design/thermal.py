@@ -10,7 +10,8 @@ cheap and smooth), from the isothermal equilibrium at the supply temperature.
 Coefficients: K and C of the film with its converged viscosity field frozen (central
 differences in x, y and their rates on the film with that field), the usual THD
 linearisation (the temperature field does not follow a vibration at the rotor's
-frequencies); ROSS 3.1's fluid-film bearings do the same.
+frequencies); ROSS 3.1's fluid-film engine perturbs its Reynolds equation about the
+converged film the same way.
 """
 from __future__ import annotations
 
