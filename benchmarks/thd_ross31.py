@@ -34,10 +34,10 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import os
 import subprocess
 import time
 
-import numpy as np
 
 from bearingfem import Bearing, Groove, Lubricant, solve_reynolds
 from bearingfem.design import coefficients, equilibrium
@@ -134,10 +134,14 @@ print(json.dumps(out))
     try:
         res = subprocess.run([str(_ross31_env.python()), "-c", code], input=cases,
                              capture_output=True, text=True, timeout=1800,
-                             env={"OMP_NUM_THREADS": "1", "NUMBA_NUM_THREADS": "1",
-                                  "PATH": "/usr/bin:/bin"})
-        return json.loads(res.stdout.strip().splitlines()[-1]) if res.returncode == 0 else {}
-    except (OSError, subprocess.SubprocessError, ValueError, IndexError):
+                             env={**os.environ, "OMP_NUM_THREADS": "1",
+                                  "NUMBA_NUM_THREADS": "1"})
+        if res.returncode:
+            print("ROSS failed:", res.stderr.strip().splitlines()[-1:])
+            return {}
+        return json.loads(res.stdout.strip().splitlines()[-1])
+    except (OSError, subprocess.SubprocessError, ValueError, IndexError) as err:
+        print("ROSS failed:", err)
         return {}
 
 

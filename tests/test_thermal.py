@@ -234,3 +234,30 @@ def test_temperature_renders_and_exports(tmp_path):
     with pytest.raises(ValueError, match="temperature"):
         render_film(solve_reynolds(BEARING, STATE, 48, 8, grooves=GROOVES),
                     tmp_path / "i.png", field="temperature", surface="unwrapped")
+
+
+def test_thermal_equilibrium_and_frozen_coefficients():
+    """equilibrium(..., thermal=) balances the load to 1e-9 with the THD film (hotter oil:
+    a larger eccentricity than the isothermal film at the supply temperature); with an
+    oil without a temperature law its K and C (central differences on the frozen field)
+    are the isothermal film's exact-sensitivity K and C to 1e-6 of the largest entry
+    (measured 7e-9 for K, 1e-12 for C at the step 1e-5 c; 3e-7 at 1e-4 c, 4e-8 at 1e-6 c:
+    truncation, then round-off). Fails with the damping's velocity step not scaled back
+    (C off by omega)."""
+    from bearingfem.design import coefficients, equilibrium
+    load, omega = (0.0, -2000.0), STATE.omega
+    opts = dict(n_theta=48, n_z=8, grooves=GROOVES, cavitation="reynolds")
+    eq = equilibrium(BEARING, load, omega, "fem", lubricant=VG32,
+                     thermal=Thermal(SUPPLY, carry_over=0.8), **opts)
+    assert math.hypot(*np.add(eq.film_force, load)) < 1e-9 * 2000.0
+    assert eq.solution.temperature_max > SUPPLY + 10.0
+    cold = equilibrium(replace(BEARING, viscosity=VG32.viscosity), load, omega, "fem", **opts)
+    assert eq.eps > cold.eps
+    assert eq.power_loss == pytest.approx(abs(eq.solution.friction_torque * omega))
+    flat = Lubricant(VG32.viscosity, mass_density=870.0, specific_heat=1950.0,
+                     conductivity=0.13)
+    kc_thd = coefficients(BEARING, cold.state, "fem", lubricant=flat,
+                          thermal=Thermal(SUPPLY), **opts)
+    kc = coefficients(replace(BEARING, viscosity=VG32.viscosity), cold.state, "fem", **opts)
+    for a, e in ((kc_thd.K, kc.K), (kc_thd.C, kc.C)):
+        assert np.max(np.abs(a - e)) < 1e-6 * np.max(np.abs(e))

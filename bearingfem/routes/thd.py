@@ -4,16 +4,15 @@ A fixed point (Picard) on the temperature field: at the temperatures T_k the oil
 viscosity mu(p_k, T_k) at the film's quadrature points makes a viscosity field
 (:class:`~bearingfem.fields.FilmFields`) for the isothermal film solver, whose pressure
 (and JFO fraction) gives the flow and dissipation of the energy equation
-(:mod:`bearingfem.thermal.energy`); its solution T, with the grooves' mixed inlet
-temperatures, is relaxed into T_{k+1} = T_k + r (T - T_k). Why a fixed point: the film and
-the energy equation each are one linear (or complementarity) solve, and the coupling is
-one-way per step through mu(T); Anderson's acceleration of the temperature iterates
-(:class:`Anderson`) takes the fixed point where plain relaxation would crawl (measured:
-docs/thd.md).
+(:mod:`bearingfem.thermal.energy`, the grooves' mixing solved with it) gives T, and
+Anderson's acceleration (:class:`Anderson`) of the iterates gives T_{k+1}. Why a fixed
+point: the film and the energy equation each are one linear (or complementarity) solve,
+and the coupling is one-way per step through mu(T); Anderson's mixing takes it where plain
+relaxation would crawl (measured: docs/thd.md).
 
-Converged when the largest change of the nodal temperatures and of the inlet temperatures
-is below ``temperature_tol`` [K] and the pressure's largest change below
-``pressure_rtol`` of its peak; otherwise :class:`~bearingfem.errors.ConvergenceError`.
+Converged when the largest change of the nodal temperatures is below ``temperature_tol``
+[K] and the pressure's largest change below ``pressure_rtol`` of its peak; otherwise
+:class:`~bearingfem.errors.ConvergenceError`.
 """
 from __future__ import annotations
 
@@ -42,12 +41,12 @@ from .problem import FilmProblem
 __all__ = ["ThermalFilm", "solve_thd", "ThermalRecord", "groove_mixing"]
 
 CAVITATION = ("reynolds", "jfo")
+ANDERSON_DEPTH = 3     # past iterates Anderson's mixing combines
 
 
 @LinearForm
 def _value_form(v, w):
     return w["f"] * v
-ANDERSON_DEPTH = 3     # past iterates Anderson's mixing combines
 
 
 class Anderson:
@@ -119,10 +118,8 @@ def _column_flows(bearing, state, mesh, edges, P, fraction, mu_nodal):
     h = c * film_thickness(mesh.theta, state.eps)
     q = (0.5 * state.omega * R * fraction * h
          - h ** 3 / (12.0 * mu_nodal) * bearing.pressure_scale / R * dP)
-    flows = np.empty(len(edges.columns))
-    for i, dofs in enumerate(edges.columns):
-        o = np.argsort(mesh.zeta[dofs])
-        flows[i] = R * np.trapezoid(q[dofs][o], mesh.zeta[dofs][o])
+    flows = R * np.bincount(edges.column_index, edges.column_weight * q[edges.column_dofs],
+                            minlength=len(edges.column_theta))
     return q, flows
 
 
@@ -135,8 +132,7 @@ def groove_mixing(bearing, state, mesh, edges, P, fraction, mu_nodal,
     T_in = ((Q_in - C) T_supply + C T_out) / Q_in, C = min(lambda Q_out, Q_in)."""
     q, flows = _column_flows(bearing, state, mesh, edges, P, fraction, mu_nodal)
     column = np.full(mesh.ndofs, -1)
-    for i, dofs in enumerate(edges.columns):
-        column[dofs] = i
+    column[edges.column_dofs] = edges.column_index
     ts, lam = thermal.supply_temperature, thermal.carry_over
     fresh, dofs, weights = [], [], []
     for k, (d_in, d_out) in enumerate(zip(edges.inflow, edges.outflow)):
@@ -169,7 +165,7 @@ def solve_thd(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z: in
     bearing, state : the bearing (its ``viscosity`` is only the film's reference scale)
         and a steady journal state (eps_dot = gamma_dot = 0, omega > 0)
     n_theta, n_z, element, cavitation ("reynolds" or "jfo"), grooves, supply_angle, tol :
-        as :func:`~bearingfem.fe.reynolds.solve_reynolds`; a supply (grooves or
+        as :func:`~bearingfem.solve_reynolds`; a supply (grooves or
         supply_angle) is needed. The whole length is meshed.
     lubricant : :class:`~bearingfem.lubricant.Lubricant` with a temperature law (or none:
         the isothermal film), mass_density, specific_heat, conductivity; a pressure law is

@@ -109,7 +109,8 @@ class FilmEdges:
     column_theta, column_groove : the theta of each grid column of arc dofs and the
         groove at the downstream end of its arc (an arc's carry-over flow is its least
         column flow)
-    columns : per column, the dofs on it
+    column_dofs, column_index, column_weight : the arc dofs, the column of each and its
+        trapezoidal weight in zeta within the column (int q dzeta = sum of weight * q)
     """
 
     elements: np.ndarray
@@ -118,7 +119,9 @@ class FilmEdges:
     interior: tuple
     column_theta: np.ndarray
     column_groove: np.ndarray
-    columns: tuple
+    column_dofs: np.ndarray
+    column_index: np.ndarray
+    column_weight: np.ndarray
 
     @property
     def held(self) -> np.ndarray:
@@ -165,7 +168,14 @@ def film_edges(mesh) -> FilmEdges:
     arc_dofs = np.flatnonzero(on_arc)
     key = np.round(th[arc_dofs], 10)
     column_theta, where = np.unique(key, return_inverse=True)
-    columns = tuple(arc_dofs[where == i] for i in range(len(column_theta)))
+    # trapezoidal weights in zeta along each column: sort by (column, zeta)
+    order = np.lexsort((mesh.zeta[arc_dofs], where))
+    dofs, col, z = arc_dofs[order], where[order], mesh.zeta[arc_dofs[order]]
+    same = col[1:] == col[:-1]
+    half = np.where(same, 0.5 * np.diff(z), 0.0)
+    weight = np.zeros(len(dofs))
+    weight[:-1] += half
+    weight[1:] += half
     rel_col = column_theta - t_lo
     rel_lo = np.array([np.mod(lo - t_lo, turn) for lo, _ in arcs])
     rel_lo = np.where(rel_lo < 1e-9, t_hi - t_lo, rel_lo)
@@ -174,7 +184,8 @@ def film_edges(mesh) -> FilmEdges:
     column_groove = order[np.minimum(pos, len(order) - 1)]
     return FilmEdges(elements=elements, inflow=tuple(inflow), outflow=tuple(outflow),
                      interior=tuple(interior), column_theta=column_theta,
-                     column_groove=column_groove, columns=columns)
+                     column_groove=column_groove, column_dofs=dofs, column_index=col,
+                     column_weight=weight)
 
 
 def film_flow(bearing, state, basis, P, fraction, viscosity, lubricant) -> EnergyFlow:
@@ -199,7 +210,7 @@ def film_flow(bearing, state, basis, P, fraction, viscosity, lubricant) -> Energ
 
 
 def _supg_tau(basis, flow: EnergyFlow, R: float) -> np.ndarray:
-    """tau [m K / W ...] of SUPG at the quadrature points: h_e / (2 |beta|) xi(Pe)."""
+    """SUPG's tau [m^2 K / W] at the quadrature points: h_e / (2 |beta|) xi(Pe)."""
     m = basis.mesh
     idx = basis.tind if basis.tind is not None else np.arange(m.t.shape[1])
     x = m.p[:, m.t[:, idx]]                               # (2, 3, elements)
