@@ -37,7 +37,8 @@ from ..errors import ConvergenceError
 from ..fe.jfo_balance import JFOFlows
 from ..scales import flow_factor
 from ..solvers.jfo import JFOResult
-from .newton import MEMORY, _block, _BlockLU
+from .coupling import BushJacobian
+from .newton import MEMORY, _block, _BlockLU, _KrylovLU
 
 __all__ = ["solve_ehd_jfo", "EHDJFOSolve"]
 
@@ -115,6 +116,7 @@ class _Newton:
         block = _block(t, data, free, n)        # the free block, transposed
         # the bush acts through dR/dP: only on the columns taken from it
         lu = (_BlockLU(block) if U is None else
+              _KrylovLU(block, U, free, n, pos) if isinstance(U, BushJacobian) else
               _BlockLU(block, U[np.ix_(free, free)] * pos) if V is None else
               _BlockLU(block, U[free], V[free] * pos[:, None]))
         return lu.solve(-R)
