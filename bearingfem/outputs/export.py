@@ -2,8 +2,9 @@
 
 Points lie on the 3-D journal surface (x = R cos alpha, y = R sin alpha, z) or, with
 ``surface="unwrapped"``, on the plane (R theta, z, 0). Point data: pressure [Pa],
-film_thickness [m], theta [rad] (from the maximum film) and z [m]. A half-domain solve is
-mirrored to the whole length.
+film_thickness [m], theta [rad] (from the maximum film) and z [m]; with an elastic bush
+deformation [m] (its radial deflection, > 0 opens the gap; film_thickness is then the
+deformed gap). A half-domain solve is mirrored to the whole length.
 """
 from __future__ import annotations
 
@@ -46,13 +47,16 @@ def to_meshio(sol: FilmSolution, surface: str = "journal") -> meshio.Mesh:
         raise ValueError("sol.mesh must be the FilmMesh or FVMGrid of the solve")
     theta, z = np.asarray(sol.theta), np.asarray(sol.z)
     p, h = np.asarray(sol.pressure), np.asarray(sol.film_thickness)
-    # the JFO film fraction (1 in the full film) where the film has one
+    # the JFO film fraction (1 in the full film) and the bush's deflection where the film
+    # has them
     phi = None if sol.fraction is None else np.asarray(sol.fraction)
+    w = None if sol.deformation is None else np.asarray(sol.deformation)
     if sol.half:
         n = len(theta)
         theta, z = np.concatenate([theta, theta]), np.concatenate([z, -z])
         p, h = np.concatenate([p, p]), np.concatenate([h, h])
         phi = None if phi is None else np.concatenate([phi, phi])
+        w = None if w is None else np.concatenate([w, w])
         mirrored = cells + n
         if ctype == "triangle":
             mirrored = mirrored[:, [0, 2, 1]]
@@ -64,6 +68,8 @@ def to_meshio(sol: FilmSolution, surface: str = "journal") -> meshio.Mesh:
         data = {"pressure": p, "film_thickness": h, "theta": theta, "z": z}
         if phi is not None:
             data["fraction"] = phi
+        if w is not None:
+            data["deformation"] = w
         return meshio.Mesh(pts, [(ctype, cells)], point_data=data)
     # Unwrapped: cells across the periodic seam would span the whole plane, so every cell
     # gets its own vertices and seam cells are unwrapped by 2 pi.
@@ -77,6 +83,8 @@ def to_meshio(sol: FilmSolution, surface: str = "journal") -> meshio.Mesh:
             "z": z[flat]}
     if phi is not None:
         data["fraction"] = phi[flat]
+    if w is not None:
+        data["deformation"] = w[flat]
     return meshio.Mesh(pts, [(ctype, own)], point_data=data)
 
 

@@ -27,7 +27,8 @@ __all__ = ["render_film", "unwrapped_figure", "film_map", "FIELDS", "SURFACES"]
 SURFACES = ("journal", "unwrapped")
 FIELDS = {"pressure": ("pressure", 1e-6, "pressure [MPa]"),
           "film_thickness": ("film_thickness", 1e6, "film thickness [um]"),
-          "fraction": ("fraction", 1.0, "film fraction [1] (JFO)")}
+          "fraction": ("fraction", 1.0, "film fraction [1] (JFO)"),
+          "deformation": ("deformation", 1e6, "bush deflection [um]")}
 #: Share of the peak pressure below which a node counts as cavitated in pictures (the
 #: complementarity solution is exactly 0 there; Gumbel's clip too).
 CAVITY_LEVEL = 1e-6
@@ -176,14 +177,17 @@ def unwrapped_figure(sol: FilmSolution, field: str = "pressure", clim=None, titl
 def render_film(sol: FilmSolution, path, *, field: str = "pressure", surface: str = "journal",
                 window_size=(900, 650), title: str | None = None, clim=None,
                 camera_angle: float | None = None):
-    """Write a PNG (or other image) of ``field`` ("pressure", "film_thickness" or, for a
-    JFO film, "fraction") on
+    """Write a PNG (or other image) of ``field`` ("pressure", "film_thickness" (the
+    deformed gap with a bush), for a JFO film "fraction", for a film with an elastic bush
+    "deformation", its radial deflection) on
     ``surface`` ("journal" or "unwrapped"). ``clim`` (lo, hi) fixes the colour range in the
     field's display units (MPa, um); ``camera_angle`` [rad, inertial] fixes where the
     journal view looks from (default: the loaded side)."""
     _check(field, surface)
     if field == "fraction" and sol.fraction is None:
         raise ValueError("field 'fraction' needs a JFO film (cavitation='jfo')")
+    if field == "deformation" and sol.deformation is None:
+        raise ValueError("field 'deformation' needs a film with an elastic bush (bush=...)")
     if surface == "unwrapped":
         dpi = 100
         fig = unwrapped_figure(sol, field, clim, title,
