@@ -10,6 +10,7 @@ import sys
 from bearingfem.bearing import SEED_TABLE1
 from bearingfem.models import FILM_MODELS
 
+from .bush import add_bush_args
 from .checks import check_numbers, given_options
 
 from .commands import (command_coefficients, command_convergence, command_equilibrium,
@@ -96,6 +97,7 @@ def build_parser():
     f.add_argument("--method", default="fem", choices=["fem", "fvm"],
                    help="finite elements or finite volumes")
     f.add_argument("-o", "--output", help="write the film (.vtu, .xdmf)")
+    add_bush_args(f)
     f.set_defaults(func=command_solve)
     c = add("convergence", help="mesh-convergence study: CSV table + log-log PNG",
             epilog="example: bearingfem convergence --ld 1.0 --eps 0.6 -o conv")
@@ -150,6 +152,7 @@ def build_parser():
                    "--model fem --element P2")
     _design_args(e)
     _load_args(e, required=True)
+    add_bush_args(e)
     e.set_defaults(func=command_equilibrium)
     k = add("coefficients", help="stiffness and damping (K, C) and Lund's "
                                  "critical mass, at an eccentricity or under a load",
@@ -161,6 +164,7 @@ def build_parser():
     _load_args(k, required=False)
     k.add_argument("--frame", default="inertial", choices=["inertial", "local", "load"],
                    help="axes of K and C")
+    add_bush_args(k)
     k.set_defaults(func=command_coefficients)
     return p
 
