@@ -105,3 +105,16 @@ def test_unconverged_krylov_solve_raises(monkeypatch):
     monkeypatch.setattr(newton, "KRYLOV_MAXITER", 1)
     with pytest.raises(ConvergenceError):
         solve_reynolds(SEED, HEAVY, 48, 4, bush=ElasticBush(model="ring", **BRONZE))
+
+
+def test_a_solve_reports_its_progress(caplog):
+    """The load continuation logs each step at INFO and each Newton iteration at DEBUG
+    (bearingfem.ehd.newton); the last step reaches s = 1. Nothing is printed."""
+    import logging
+    with caplog.at_level(logging.DEBUG, logger="bearingfem.ehd"):
+        sol = solve_reynolds(SEED, HEAVY, 24, 4, bush=ElasticBush(model="ring", **BRONZE))
+    steps = [r.getMessage() for r in caplog.records if r.levelno == logging.INFO]
+    newton_its = [r for r in caplog.records if r.levelno == logging.DEBUG]
+    assert steps and steps[-1].startswith("EHD Newton (load continuation): coupling s = 1 "
+                                          "converged")
+    assert len(newton_its) >= sol.iterations

@@ -26,6 +26,7 @@ for Newton's method, SIAM J. Numer. Anal. 23 (1986) 707-716.
 """
 from __future__ import annotations
 
+import logging
 from collections import deque
 from dataclasses import dataclass
 
@@ -41,6 +42,8 @@ from .coupling import BushJacobian
 from .newton import MEMORY, _block, _BlockLU, _KrylovLU
 
 __all__ = ["solve_ehd_jfo", "EHDJFOSolve"]
+
+LOG = logging.getLogger(__name__)
 
 MIN_INCREMENT = 1e-4
 MAX_NEWTON = 40
@@ -154,6 +157,7 @@ class _Newton:
         recent = deque(maxlen=MEMORY)
         while True:
             res = float(np.max(np.abs(R), initial=0.0)) / scale
+            LOG.debug("EHD-JFO Newton at s = %.4g: iteration %d, residual %.3g", s, it, res)
             if res <= tol:
                 return (u, res), it
             if it >= MAX_NEWTON:
@@ -220,6 +224,8 @@ def solve_ehd_jfo(bearing, film, P0, phi0=None, tol: float = 1e-10,
         s = min(1.0, done + increment)
         out, its = newton.run(u, s, tol)
         iterations += its
+        LOG.info("EHD-JFO Newton (load continuation): coupling s = %.4g %s in %d iterations",
+                 s, "stalled" if out is None else "converged", its)
         if out is None:
             rejected += 1
             increment *= 0.25

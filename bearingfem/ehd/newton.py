@@ -14,6 +14,10 @@ step is accepted below the largest |Phi|_2 of the last :data:`MEMORY` iterates, 
 Convergence test: max |Phi| <= tol * max_i (|K| |P| + |load|)_i over the free dofs, the
 size of the terms the residual sums (so tol is relative to round-off of the assembly).
 
+Progress: each Newton iteration is logged at DEBUG and each continuation step at INFO on
+the ``bearingfem.ehd.newton`` logger (``logging.basicConfig(level=logging.INFO)`` shows a
+long solve's course; nothing is printed).
+
 Load continuation: the coupling is scaled by s in [0, 1] (fields at s p, deflection
 s C p; s = 0 is the isoviscous rigid film). Newton first tries s = 1 from the rigid film;
 a failed step is retried from the last converged s with a quarter of the increment, a
@@ -21,6 +25,7 @@ converged one doubles it. Below an increment of 1e-4 the solve raises Convergenc
 """
 from __future__ import annotations
 
+import logging
 import warnings
 from collections import deque
 from dataclasses import dataclass, replace
@@ -34,6 +39,8 @@ from ..errors import ConvergenceError
 from .coupling import BushJacobian, jacobian_tables
 
 __all__ = ["EHDResult", "solve_ehd", "ConvergenceError"]
+
+LOG = logging.getLogger(__name__)
 
 MIN_INCREMENT = 1e-4
 MAX_NEWTON = 30
@@ -239,6 +246,7 @@ def _newton(film, P, s, free, cavitation, tol, keep=None):
     recent = deque(maxlen=MEMORY)
     for it in range(MAX_NEWTON + 1):
         res = float(np.max(np.abs(phi), initial=0.0)) / scale
+        LOG.debug("EHD Newton at s = %.4g: iteration %d, residual %.3g", s, it, res)
         if res <= tol:
             return (P, res, _held_nodes(P.size, free, held)), it
         if it == MAX_NEWTON:
@@ -340,6 +348,8 @@ def continuation(newton, P, done: float, target: float, max_increment: float,
         x = min(target, done + increment)
         out, its = newton(x, P)
         iterations += its
+        LOG.info("%s: %s = %.4g %s in %d iterations", what, parameter, x,
+                 "stalled" if out is None else "converged", its)
         if out is None:
             rejected += 1
             increment *= 0.25
