@@ -62,7 +62,8 @@ def run(tree: Path, case, mesh, model: str, out: str):
            *map(str, (*case, *mesh)), model, out]
     proc = subprocess.run(cmd, env=env, cwd="/tmp", capture_output=True, text=True)
     if proc.returncode:
-        return dict(error=proc.stderr.strip().splitlines()[-1][:60])
+        lines = proc.stderr.strip().splitlines()
+        return dict(error=lines[-1][:60] if lines else f"exit {proc.returncode}")
     out = json.loads(proc.stdout.strip().splitlines()[-1])
     if Path(out["where"]) != tree.resolve() / "bearingfem":
         raise RuntimeError(f"the child imported {out['where']}, not {tree}")

@@ -37,12 +37,15 @@ def richardson(a, b, c):
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true")
+    parser.add_argument("--models", default="ring,liner,solid",
+                        help="comma list of bush models")
     args = parser.parse_args(argv)
     b = seed_bearing(0.2)
     out = {}
     print(f"{'bush':>6} {'mesh':>8} {'|F| [N]':>9} {'p_max[MPa]':>10} {'h_min[um]':>9} "
           f"{'time[s]':>8} {'dF/F_fin':>9} {'dp/p_fin':>9}")
-    for model, meshes in MESHES.items():
+    for model in args.models.split(","):
+        meshes = MESHES[model]
         meshes = meshes[:2] if args.quick else meshes
         bush = ElasticBush(model=model, **BRONZE)
         rows = []
