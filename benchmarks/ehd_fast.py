@@ -4,6 +4,7 @@ preconditioned by the film's sparse LU), time and peak memory per mesh.
 
     python -m benchmarks.ehd_fast --old-tree DIR     # DIR: a checkout of the dense route
     python -m benchmarks.ehd_fast --quick            # smoke run (new route, 60 x 10)
+    python -m benchmarks.ehd_fast --jfo --old-max 120    # the EHD-JFO film
     python -m benchmarks.ehd_fast --solid            # also the 3-D solid bush (new route,
                                                      # heavy state, two coarser meshes)
 
@@ -32,7 +33,9 @@ MESHES = [(120, 20), (240, 40), (480, 80)]
 
 
 def child(ld: float, eps: float, n_theta: int, n_z: int, model: str, out: str):
-    """Solve once and print time [s], peak RSS [MB], Newton iterations, the pressure."""
+    """Solve once and print time [s], peak RSS [MB], Newton iterations, the pressure
+    (``model`` "ring-jfo" etc.: the EHD-JFO film, ambient 1e5 Pa)."""
+    model, _, jfo = model.partition("-")
     import resource
     import time
 
@@ -43,8 +46,9 @@ def child(ld: float, eps: float, n_theta: int, n_z: int, model: str, out: str):
     base = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
     bush = ElasticBush(outer_radius=0.016, modulus=110e9, poisson=0.34, model=model)
     t = time.perf_counter()
+    kw = dict(cavitation="jfo", ambient_pressure=1e5) if jfo else {}
     sol = solve_reynolds(seed_bearing(ld), JournalState(eps=eps, omega=250.0), n_theta,
-                         n_z, bush=bush)
+                         n_z, bush=bush, **kw)
     seconds = time.perf_counter() - t
     np.save(out, sol.pressure)
     print(json.dumps(dict(where=str(Path(sys.modules["bearingfem"].__file__).parent),
@@ -76,6 +80,8 @@ def main(argv=None):
     parser.add_argument("--old-max", type=int, default=240)
     parser.add_argument("--quick", action="store_true")
     parser.add_argument("--solid", action="store_true")
+    parser.add_argument("--jfo", action="store_true",
+                        help="the EHD-JFO film instead (ring, L/D 1, eps 0.8)")
     parser.add_argument("--child", nargs=6, default=None)
     args = parser.parse_args(argv)
     if args.child:
@@ -84,7 +90,9 @@ def main(argv=None):
     import numpy as np
     meshes = [(60, 10)] if args.quick else MESHES
     cases = CASES[-1:] if args.quick else CASES
-    runs = [("ring", c, meshes) for c in cases] + (
+    if args.jfo:
+        cases = [(1.0, 0.8)]
+    runs = [("ring-jfo" if args.jfo else "ring", c, meshes) for c in cases] + (
         [("solid", c, meshes[:2]) for c in cases[-1:]] if args.solid else [])
     print(f"{'bush':>5} {'L/D':>4} {'eps':>6} {'mesh':>7} {'old[s]':>8} {'old[MB]':>8} "
           f"{'new[s]':>7} {'new[MB]':>8} {'iters':>5} {'p_max[MPa]':>10} {'same':>8}")
@@ -94,7 +102,8 @@ def main(argv=None):
         for mesh in on:
             new = run(ROOT, case, mesh, model, f"{tmp}_new.npy")
             old = (run(args.old_tree, case, mesh, model, f"{tmp}_old.npy")
-                   if args.old_tree and mesh[0] <= args.old_max and model == "ring"
+                   if args.old_tree and mesh[0] <= args.old_max
+                   and not model.startswith("solid")
                    else None)
             same = (float(np.max(np.abs(np.load(f"{tmp}_new.npy") - np.load(
                 f"{tmp}_old.npy"))) / new["p_max"])
