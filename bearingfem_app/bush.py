@@ -42,7 +42,7 @@ def bush_from_args(args) -> ElasticBush | None:
     except ValueError as err:
         # ElasticBush names its field: name the option as typed
         text = str(err)
-        for dest, (option, field) in BUSH_OPTIONS.items():
+        for option, field in BUSH_OPTIONS.values():
             if text.startswith(field):
                 text = option + text[len(field):]
         raise ValueError(text) from None

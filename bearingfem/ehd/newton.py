@@ -198,7 +198,7 @@ class _KrylovLU:
         if norm == 0.0:
             return np.zeros_like(rhs)
         m = rhs.size
-        inverse = lambda y: self.lu.solve(y, trans="T")           # noqa: E731
+        inverse = lambda y: self.lu.solve(y, trans="T")
         op = LinearOperator((m, m), matvec=lambda y: self.matvec(inverse(y)), dtype=float)
         y, _ = gmres(op, rhs, rtol=KRYLOV_TOL, atol=0.0, restart=KRYLOV_RESTART,
                      maxiter=KRYLOV_MAXITER)
