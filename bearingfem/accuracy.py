@@ -39,6 +39,7 @@ from typing import Callable, Hashable
 import numpy as np
 
 from .bearing import check_finite
+from .caches import kept
 from .errors import ConvergenceError
 
 __all__ = ["AccuracyRecord", "solve_to_tolerance", "refine_to_tolerance", "check_rtol",
@@ -54,7 +55,7 @@ RTOL_RANGE = (1e-6, 0.1)
 SAFETY = 1.5
 #: Largest mesh the search goes to (cells around x along); past it the tolerance is refused
 MAX_CELLS = 1536 * 256
-_MEMO: "OrderedDict[Hashable, tuple]" = OrderedDict()
+_MEMO: "OrderedDict[Hashable, tuple]" = kept(OrderedDict())
 _MEMO_SIZE = 64
 
 
@@ -206,7 +207,7 @@ def refine_to_tolerance(evaluate: Callable, difference: Callable, rtol: float, *
     if n_theta_multiple > 2:     # the start as near its shape as the grid allows, its
         m = n_theta_multiple     # coarse half still on the grid
         shape = (m * max(2, round(shape[0] / m)), shape[1])
-    cache: dict = {}
+    by_mesh: dict = {}
     solved: list = []
 
     def at(scale):
@@ -216,10 +217,10 @@ def refine_to_tolerance(evaluate: Callable, difference: Callable, rtol: float, *
                 f"the mesh search for rtol = {rtol:g} ({element})", len(solved), None,
                 f"{m[0]} x {m[1]} cells, past the largest mesh ({MAX_CELLS} cells); ask "
                 f"for a looser rtol" + ("" if element == "P2" else " or element P2"))
-        if m not in cache:
-            cache[m] = evaluate(m[0], m[1], element)
+        if m not in by_mesh:
+            by_mesh[m] = evaluate(m[0], m[1], element)
             solved.append(m)
-        return m, cache[m]
+        return m, by_mesh[m]
 
     memo_key = None if key is None else (key, element, shape, n_theta_multiple)
     scale = 1.0

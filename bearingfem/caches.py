@@ -11,9 +11,10 @@ from __future__ import annotations
 
 from functools import lru_cache
 
-__all__ = ["cached", "clear_caches", "registered"]
+__all__ = ["cached", "kept", "clear_caches", "registered"]
 
 _REGISTER: list = []
+_STORES: list = []     # other mappings kept between calls (e.g. the accuracy memo)
 
 
 def cached(maxsize: int):
@@ -25,6 +26,13 @@ def cached(maxsize: int):
     return register
 
 
+def kept(store):
+    """Register ``store`` (a mapping kept between calls, with ``clear()``) for
+    :func:`clear_caches`; returns it."""
+    _STORES.append(store)
+    return store
+
+
 def registered() -> tuple:
     """The registered caches (the ``lru_cache`` wrappers), in the order they were declared."""
     return tuple(_REGISTER)
@@ -34,3 +42,5 @@ def clear_caches() -> None:
     """Empty every registered cache of the library (the start of every cold timing)."""
     for memo in _REGISTER:
         memo.cache_clear()
+    for store in _STORES:
+        store.clear()

@@ -13,6 +13,7 @@ from bearingfem.bearing import SEED_TABLE1
 from bearingfem.models import FILM_MODELS
 from mechanism.scene import shipped_scenes
 
+from .bush import add_bush_args
 from .checks import check_numbers, given_options, oil_viscosity
 
 from .commands import (command_coefficients, command_convergence, command_design,
@@ -138,6 +139,7 @@ def build_parser():
                    help="film model: finite elements or finite volumes")
     f.add_argument("--method", choices=["fem", "fvm"], help=argparse.SUPPRESS)   # old name
     f.add_argument("-o", "--output", help="write the film (.vtu, .xdmf)")
+    add_bush_args(f)
     f.set_defaults(func=command_solve)
     c = add("convergence", help="mesh-convergence study: CSV table + log-log PNG",
             epilog="example: bearingfem convergence --ld 1.0 --eps 0.6 -o conv")
@@ -194,6 +196,7 @@ def build_parser():
     _design_args(e)
     _rtol_arg(e)
     _load_args(e, required=True)
+    add_bush_args(e)
     e.set_defaults(func=command_equilibrium)
     k = add("coefficients", help="stiffness and damping (K, C) and Lund's "
                                  "critical mass, at an eccentricity or under a load",
@@ -206,6 +209,7 @@ def build_parser():
     _load_args(k, required=False)
     k.add_argument("--frame", default="inertial", choices=["inertial", "local", "load"],
                    help="axes of K and C")
+    add_bush_args(k)
     k.set_defaults(func=command_coefficients)
     d = add("design", help="a design point in one go: least film, attitude, friction power, "
                            "flow, K and C in the load frame, stability",

@@ -8,6 +8,7 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
+from .bush import bush_from_args
 from .checks import check_writable, parse_angles
 
 #: exit status of a run stopped by Ctrl-C (128 + SIGINT), as shells report it
@@ -91,9 +92,14 @@ def _model_options(args):
     if m.disk_cache:      # tables are built once and kept: the cache must take them
         _check_cache()
     given = {k: getattr(args, k) for k in MODEL_OPTIONS}
-    return args.model, {k: v for k, v in given.items()
-                        if k in m.defaults and (v is not None and (k != "ambient_pressure"
-                                                                   or k in args.given))}
+    opts = {k: v for k, v in given.items()
+            if k in m.defaults and (v is not None and (k != "ambient_pressure"
+                                                       or k in args.given))}
+    bush = bush_from_args(args)
+    if bush is not None and "bush" not in m.defaults:
+        raise ValueError(f"--bush applies to the elastic film, --model fem-ehd, not "
+                         f"--model {args.model}")
+    return args.model, opts if bush is None else dict(opts, bush=bush)
 
 
 def _accuracy(args, opts):
@@ -309,18 +315,22 @@ def command_solve(args):
     _check_output(args.output, FILM_FORMATS)
     b, s = _film_state(args)
     supply = _supply_angle(args, s.gamma)
+    bush = bush_from_args(args)
+    if bush is not None and args.model == "fvm":
+        raise ValueError("--bush applies to --model fem (the elastic film is a finite-"
+                         "element film)")
     if args.model == "fvm" and args.rtol is not None:
         raise ValueError("--rtol applies to --model fem only")
     if args.rtol is not None:
         sol = solve_reynolds(b, s, element=element if args.element_given else None,
                              cavitation=args.cavitation, ambient_pressure=_ambient(args),
-                             supply_angle=supply, rtol=args.rtol)
+                             supply_angle=supply, rtol=args.rtol, bush=bush)
     elif args.model == "fvm":
         sol = fvm_reynolds(b, s, args.n_theta, args.n_z, args.cavitation,
                            ambient_pressure=_ambient(args), supply_angle=supply)
     else:
         sol = solve_reynolds(b, s, args.n_theta, args.n_z, element, args.cavitation,
-                             ambient_pressure=_ambient(args), supply_angle=supply)
+                             ambient_pressure=_ambient(args), supply_angle=supply, bush=bush)
     print(sol.summary())
     from bearingfem.design import sommerfeld_number
     load = math.hypot(*sol.force_local)

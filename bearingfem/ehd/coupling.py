@@ -11,9 +11,12 @@ film on these fields, on the free dofs of the general assembly
     k = rho H^3 / mu,  c = 6 w rho H,  s = -12 (rho dH/dt + H drho/dt),
 
 and its Jacobian is K + J_local + J_bush: J_local from d(k, c, s)/dp at the same point
-(sparse, the element pattern) and J_bush = T_H I C (dense for the full compliance, of rank
-n for a reduced one), T_H the quadrature-point derivatives in H and I the nodal-to-
-quadrature interpolation.
+(sparse, the element pattern) and J_bush = T_H I C, T_H the quadrature-point derivatives
+in H and I the nodal-to-quadrature interpolation. The full compliance of a bush is
+circulant in theta (:class:`CirculantCompliance`): J_bush is then never formed, only
+applied (:class:`BushJacobian`: C by FFT, T_H sparse; cost N log N, memory linear); a
+dense compliance (:class:`DofCompliance`, the matrix given) gives it dense and a reduced
+one of rank n.
 
 A homotopy parameter ``s`` in [0, 1] scales the coupling: the fields are evaluated at
 s p and the deflection is s C p, so s = 0 is the isoviscous rigid film and s = 1 the
@@ -22,9 +25,11 @@ EHD film (the load continuation of :mod:`bearingfem.ehd.newton`).
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 import scipy.sparse as sp
+from scipy.fft import irfft, rfft
 
 from ..caches import cached
 from .asperity import contact_deflection, deflection_factors
@@ -33,7 +38,8 @@ from ..fields import FilmFields
 from ..fe.general import film_system
 from ..solvers.pattern import Pattern
 
-__all__ = ["EHDFilm", "ehd_film", "dof_compliance"]
+__all__ = ["EHDFilm", "ehd_film", "dof_compliance", "DofCompliance", "CirculantCompliance",
+           "BushJacobian"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -51,13 +57,87 @@ class DofCompliance:
         return self.left @ (self.singular * (self.right.T @ p))
 
 
+@dataclass(frozen=True, eq=False)
+class CirculantCompliance:
+    """The full compliance on the film's dofs, applied per theta harmonic by FFT: the
+    pressure is read on the (n_theta, n_z + 1) bush grid (one dof per grid node,
+    ``source``), each harmonic m multiplied by its block ``spectrum[m]`` ((n_z + 1)^2, or
+    its diagonal (n_z + 1) where the slices do not couple: the ring; a local compliance,
+    the liner's, is one factor per axial node, applied without FFT), and the deflection
+    read back at every dof (``node``: its grid node). Cost per product
+    n_theta log n_theta (n_z + 1) plus n_theta (n_z + 1)^2 (or n_theta (n_z + 1) diagonal);
+    no dense matrix unless :attr:`left` is asked for."""
+
+    spectrum: np.ndarray      # (n_theta // 2 + 1, nz, nz), (.., nz) diagonal or (nz,) local
+    shape: tuple              # (n_theta, nz)
+    node: np.ndarray          # grid node of each dof (C order of the grid)
+    source: np.ndarray        # the dof whose pressure each grid node takes
+    singular = None
+    right = None
+
+    def apply(self, p: np.ndarray) -> np.ndarray:
+        """Nodal deflection [m] under nodal pressure ``p`` [Pa] (dofs; or (dofs, k))."""
+        return self.on_grid(np.asarray(p, float)[self.source])[self.node]
+
+    def on_grid(self, p: np.ndarray) -> np.ndarray:
+        """The deflection at the grid nodes [m] under the grid nodes' pressure [Pa]
+        (C order of the grid; or (grid nodes, k))."""
+        extra = p.shape[1:]
+        grid = p.reshape(self.shape + extra)
+        if self.spectrum.ndim == 1:          # local: each node's own compliance
+            return (self.spectrum.reshape((-1,) + (1,) * len(extra)) * grid).reshape(p.shape)
+        harmonics = rfft(grid, axis=0)
+        if self.spectrum.ndim == 2:
+            harmonics = self.spectrum.reshape(self.spectrum.shape + (1,) * len(extra)) \
+                * harmonics
+        else:
+            harmonics = np.einsum("mlk,mk...->ml...", self.spectrum, harmonics)
+        return irfft(harmonics, n=self.shape[0], axis=0).reshape((-1,) + extra)
+
+    @cached_property
+    def left(self) -> np.ndarray:
+        """The dense (dofs, dofs) matrix [m/Pa] (the routes that still take the dense
+        compliance: the summits' contact, :mod:`.asperity`); built once, on demand."""
+        n = self.node.size
+        C = np.zeros((n, n))
+        C[:, self.source] = self.on_grid(np.eye(self.source.size))[self.node]
+        return C
+
+
+@dataclass(frozen=True, eq=False)
+class BushJacobian:
+    """The bush's part of dR/dP, T_H C, applied matrix-free: ``coupling`` (sparse, dofs x
+    dofs) the residual's derivative in the nodal deflection [1/m scaled], C the circulant
+    compliance."""
+
+    coupling: sp.spmatrix
+    compliance: CirculantCompliance
+
+    def apply(self, x: np.ndarray) -> np.ndarray:
+        """T_H C x (x on the dofs, or (dofs, k))."""
+        return self.coupling @ self.compliance.apply(x)
+
+    __matmul__ = apply
+
+    def toarray(self) -> np.ndarray:
+        """The dense matrix (checks on small meshes; never in a solve)."""
+        return np.asarray(self.coupling @ self.compliance.left)
+
+    def __array__(self, dtype=None, copy=None):
+        return self.toarray() if dtype is None else self.toarray().astype(dtype)
+
+    def plus(self, coupling) -> "BushJacobian":
+        """T_H C + coupling C (another sparse derivative in the deflection)."""
+        return BushJacobian(self.coupling + coupling, self.compliance)
+
+
 @cached(maxsize=8)
 def _cached_compliance(bush: ElasticBush, radius: float, length: float, n_theta: int,
                        n_z: int) -> BushCompliance:
     return bush_compliance(bush, radius, length, n_theta, n_z)
 
 
-def dof_compliance(bush, bearing, op) -> DofCompliance:
+def dof_compliance(bush, bearing, op) -> CirculantCompliance | DofCompliance:
     """The bush's compliance between the film mesh's P1 dofs (grid node (j, k) of the
     compliance at theta = theta_start + 2 pi j / n_theta, z = -L/2 + k L / n_z).
 
@@ -91,10 +171,14 @@ def dof_compliance(bush, bearing, op) -> DofCompliance:
     if grid_nodes.size != shape[0] * shape[1]:
         raise ValueError("the bush needs the whole-length P1 film mesh")
     if isinstance(bush, BushCompliance):
-        full = bush.matrix()
-        C = np.zeros((mesh.ndofs, mesh.ndofs))
-        C[:, rep] = full[np.ix_(node, grid_nodes)]
-        return DofCompliance(C)
+        own = np.einsum("ll->l", bush.columns[0])
+        if not np.any(bush.columns[1:]) and np.array_equal(bush.columns[0], np.diag(own)):
+            return CirculantCompliance(own, shape, node, rep)       # local: the liner
+        spectrum = bush.spectrum
+        diagonal = np.einsum("mll->ml", spectrum)
+        if np.array_equal(spectrum, diagonal[:, :, None] * np.eye(shape[1])):
+            spectrum = diagonal                # slices uncoupled: the ring
+        return CirculantCompliance(spectrum, shape, node, rep)
     right = np.zeros((mesh.ndofs, bush.n_vectors))
     right[rep] = bush.right[grid_nodes]
     return DofCompliance(bush.left[node], bush.singular, right)
@@ -177,7 +261,7 @@ class EHDFilm:
     base : the film's own fields at the quadrature points (gap without deflection, its
         rate, and viscosity / density ratios the lubricant multiplies)
     gap0 : nodal gap without deflection (H)
-    lubricant : Lubricant or None; compliance : DofCompliance or None
+    lubricant : Lubricant or None; compliance : CirculantCompliance, DofCompliance or None
     scale : pressure scale mu0 (R/c)^2 [Pa s]; clearance c [m]; wedge : wedge speed [rad/s]
     viscosity : the bearing's viscosity mu0 [Pa s] (the ratios' reference)
     eps : the state's eccentricity ratio, the reference cylinder of the general load
@@ -188,7 +272,7 @@ class EHDFilm:
     base: FilmFields
     gap0: np.ndarray
     lubricant: object
-    compliance: DofCompliance | None
+    compliance: CirculantCompliance | DofCompliance | None
     scale: float
     clearance: float
     wedge: float
@@ -307,7 +391,8 @@ class EHDFilm:
 
     def jacobian(self, P: np.ndarray, s: float = 1.0, state: FilmState | None = None):
         """(J_sparse, U, V) with dR/dP = J_sparse + U V^T (U, V None without a bush; for
-        the full compliance V is the identity, given as None and U dense N x N), at P
+        the circulant compliance U is a :class:`BushJacobian` (matrix-free) and V None;
+        for a dense one V is the identity, given as None, and U dense N x N), at P
         (``state`` its evaluation, when the caller has it: the film is then not built
         again)."""
         ev = self.evaluate(P, s) if state is None else state
@@ -331,6 +416,8 @@ class EHDFilm:
             U, V = deflection_factors(c, s, ev.contact.slope)
             k = self.scale / self.clearance          # s is in U
             return J, k * (TH @ U), V
+        if isinstance(c, CirculantCompliance):
+            return J, BushJacobian(k * TH, c), None
         if c.right is None:
             return J, k * (TH @ c.left), None
         return J, k * (TH @ (c.left * c.singular)), c.right

@@ -43,7 +43,7 @@ from ..fields import FilmFields
 from ..lubricant import Lubricant
 from ..fe.jfo_steady import jfo_film_solution, steady_jfo
 from ..fe.volumes import transport_matrix
-from .coupling import EHDFilm, ehd_film
+from .coupling import BushJacobian, EHDFilm, ehd_film
 from .jfo_newton import EHDJFOSolve, solve_ehd_jfo
 
 __all__ = ["JFOCoupling", "FaceMaps", "jfo_coupling", "solve_ehd_jfo", "check_ehd_jfo",
@@ -178,6 +178,8 @@ class JFOCoupling:
             TH = TH + slope
         scale = s * f.scale / f.clearance
         c = f.compliance
+        if isinstance(U, BushJacobian):
+            return J, U.plus(scale * TH), None, A
         if c.right is None:
             return J, U + scale * (TH @ c.left), None, A
         return J, U + scale * (TH @ (c.left * c.singular)), V, A

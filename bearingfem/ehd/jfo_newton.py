@@ -26,6 +26,7 @@ for Newton's method, SIAM J. Numer. Anal. 23 (1986) 707-716.
 """
 from __future__ import annotations
 
+import logging
 from collections import deque
 from dataclasses import dataclass
 
@@ -36,9 +37,12 @@ import scipy.sparse as sp
 from ..fe.jfo_balance import JFOFlows
 from ..solvers.continuation import Increments
 from ..solvers.jfo import JFOResult
-from .newton import MEMORY, _block, _BlockLU
+from .coupling import BushJacobian
+from .newton import MEMORY, _block, _BlockLU, _KrylovLU
 
 __all__ = ["solve_ehd_jfo", "EHDJFOSolve"]
+
+LOG = logging.getLogger(__name__)
 
 #: The load continuation's steps in the coupling s (as :mod:`bearingfem.ehd.newton`'s).
 STEPS = Increments(1.0, 1e-4)
@@ -115,6 +119,7 @@ class _Newton:
         block = _block(t, data, free, n)        # the free block, transposed
         # the bush acts through dR/dP: only on the columns taken from it
         lu = (_BlockLU(block) if U is None else
+              _KrylovLU(block, U, free, n, pos) if isinstance(U, BushJacobian) else
               _BlockLU(block, U[np.ix_(free, free)] * pos) if V is None else
               _BlockLU(block, U[free], V[free] * pos[:, None]))
         return lu.solve(-R)
@@ -152,6 +157,7 @@ class _Newton:
         recent = deque(maxlen=MEMORY)
         while True:
             res = float(np.max(np.abs(R), initial=0.0)) / scale
+            LOG.debug("EHD-JFO Newton at s = %.4g: iteration %d, residual %.3g", s, it, res)
             if res <= tol:
                 return (u, res), it
             if it >= MAX_NEWTON:
@@ -215,7 +221,7 @@ def solve_ehd_jfo(bearing, film, P0, phi0=None, tol: float = 1e-10,
         u = np.where(phi0[free] < 1.0, phi0[free] - 1.0, P0[free])
         walk = STEPS.walk(lambda s, out: newton.run(out[0], s, tol), (u, 0.0), 0.0, 1.0,
                           "EHD-JFO Newton (load continuation)", "coupling s",
-                          "refine the mesh or reduce the load")
+                          "refine the mesh or reduce the load", LOG)
         (u, residual), steps, rejected = walk.state, walk.steps, walk.rejected
         iterations += walk.iterations
     P, phi = newton.nodal(u)

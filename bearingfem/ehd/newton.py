@@ -14,6 +14,10 @@ step is accepted below the largest |Phi|_2 of the last :data:`MEMORY` iterates, 
 Convergence test: max |Phi| <= tol * max_i (|K| |P| + |load|)_i over the free dofs, the
 size of the terms the residual sums (so tol is relative to round-off of the assembly).
 
+Progress: each Newton iteration is logged at DEBUG and each continuation step at INFO on
+the ``bearingfem.ehd.newton`` logger (``logging.basicConfig(level=logging.INFO)`` shows a
+long solve's course; nothing is printed).
+
 Load continuation: the coupling is scaled by s in [0, 1] (fields at s p, deflection
 s C p; s = 0 is the isoviscous rigid film). Newton first tries s = 1 from the rigid film;
 a failed step is retried from the last converged s with a quarter of the increment, a
@@ -21,6 +25,7 @@ converged one doubles it. Below an increment of 1e-4 the solve raises Convergenc
 """
 from __future__ import annotations
 
+import logging
 import warnings
 from collections import deque
 from dataclasses import dataclass, replace
@@ -28,13 +33,15 @@ from dataclasses import dataclass, replace
 import numpy as np
 import scipy.linalg as la
 import scipy.sparse as sp
-from scipy.sparse.linalg import splu
+from scipy.sparse.linalg import LinearOperator, gmres, splu
 
 from ..errors import ConvergenceError
 from ..solvers.continuation import Increments
-from .coupling import jacobian_tables
+from .coupling import BushJacobian, jacobian_tables
 
 __all__ = ["EHDResult", "solve_ehd", "ConvergenceError"]
+
+LOG = logging.getLogger(__name__)
 
 MIN_INCREMENT = 1e-4
 MAX_NEWTON = 30
@@ -97,6 +104,7 @@ class _Factor:
         I = self.I
         block = _block(tables, J.data, I, J.shape[0])       # J[I][:, I], transposed
         self.lu = (_BlockLU(block) if U is None else
+                   _KrylovLU(block, U, I, J.shape[0]) if isinstance(U, BushJacobian) else
                    _BlockLU(block, U[np.ix_(I, I)]) if V is None else
                    _BlockLU(block, U[I], V[I]))
 
@@ -117,7 +125,9 @@ class _Factor:
         known = np.zeros_like(P)
         known[A] = dA
         rhs = -phi[~self.held] - (self.J @ known)[I]
-        if U is not None:              # the held rows' known step through the bush
+        if isinstance(U, BushJacobian):  # the held rows' known step through the bush
+            rhs = rhs - U.apply(known)[I]
+        elif U is not None:
             rhs = rhs - (U[np.ix_(I, A)] @ dA if V is None else U[I] @ (V[A].T @ dA))
         dI = self.lu.solve(rhs)
         step = np.zeros_like(P)
@@ -149,6 +159,56 @@ class _BlockLU:
         if self.V is None:
             return y
         return y - self.Z @ la.lu_solve(self.small, self.V.T @ y, check_finite=False)
+
+
+#: GMRES of the Newton step: converged at |r| <= KRYLOV_TOL |rhs| (true residual, right
+#: preconditioning), so the step is the direct solve's to about round-off times the
+#: preconditioned system's condition; a solve that ends above KRYLOV_ACCEPT |rhs| raises.
+KRYLOV_TOL = 1e-12
+KRYLOV_ACCEPT = 1e-8
+KRYLOV_RESTART = 60
+KRYLOV_MAXITER = 10
+
+
+class _KrylovLU:
+    """The Newton matrix on the rows I, M = B + (T_H C)[I][:, I] diag(columns), with the
+    bush's part matrix-free (a :class:`~.coupling.BushJacobian`: the compliance by FFT):
+    GMRES on M P^-1 y = rhs, x = P^-1 y, P = B by its sparse LU (the film's own Jacobian
+    with the deflection held; right preconditioning, so GMRES measures the true residual).
+    ``block`` is the CSC of B's transpose (:func:`_block`); ``columns`` (over I, or None)
+    scales M's bush columns (the JFO's columns taken from dR/dP). Same interface as
+    :class:`_BlockLU`; a singular B raises splu's RuntimeError, a GMRES solve that does not
+    converge LinAlgError (a stall to the Newton callers)."""
+
+    def __init__(self, block, bush: BushJacobian, index, n: int, columns=None):
+        self.lu = splu(block)
+        self.B = block.T.tocsr()
+        self.bush, self.index, self.n, self.columns = bush, index, n, columns
+        self.products = 0          # matrix-vector products so far (the benchmark's record)
+
+    def matvec(self, x: np.ndarray) -> np.ndarray:
+        full = np.zeros(self.n)
+        full[self.index] = x if self.columns is None else x * self.columns
+        self.products += 1
+        return self.B @ x + self.bush.apply(full)[self.index]
+
+    def solve(self, rhs: np.ndarray) -> np.ndarray:
+        if rhs.ndim == 2:
+            return np.column_stack([self.solve(r) for r in rhs.T])
+        norm = float(np.linalg.norm(rhs))
+        if norm == 0.0:
+            return np.zeros_like(rhs)
+        m = rhs.size
+        inverse = lambda y: self.lu.solve(y, trans="T")
+        op = LinearOperator((m, m), matvec=lambda y: self.matvec(inverse(y)), dtype=float)
+        y, _ = gmres(op, rhs, rtol=KRYLOV_TOL, atol=0.0, restart=KRYLOV_RESTART,
+                     maxiter=KRYLOV_MAXITER)
+        x = inverse(y)
+        residual = float(np.linalg.norm(rhs - self.matvec(x)))
+        if not residual <= KRYLOV_ACCEPT * norm:
+            raise la.LinAlgError(f"GMRES of the EHD Newton step stopped at a relative "
+                                 f"residual {residual / norm:.3g}")
+        return x
 
 
 def _lu(M):
@@ -187,6 +247,7 @@ def _newton(film, P, s, free, cavitation, tol, keep=None):
     recent = deque(maxlen=MEMORY)
     for it in range(MAX_NEWTON + 1):
         res = float(np.max(np.abs(phi), initial=0.0)) / scale
+        LOG.debug("EHD Newton at s = %.4g: iteration %d, residual %.3g", s, it, res)
         if res <= tol:
             return (P, res, _held_nodes(P.size, free, held)), it
         if it == MAX_NEWTON:
@@ -282,8 +343,9 @@ def continuation(newton, P, done: float, target: float, max_increment: float,
     continuation.Increments` (``max_increment`` the first and largest, ``min_increment``
     the smallest): ``newton(x, P)`` solves at x from P (((P, residual, active) or None when
     it stalls, its iterations)); ConvergenceError names ``what``, the ``parameter``
-    reached and the ``hint``."""
+    reached and the ``hint``. Each attempt is logged at INFO (:data:`LOG`)."""
     walk = Increments(max_increment, min_increment).walk(
-        lambda x, out: newton(x, out[0]), (P, None, None), done, target, what, parameter, hint)
+        lambda x, out: newton(x, out[0]), (P, None, None), done, target, what, parameter, hint,
+        LOG)
     P, residual, active = walk.state
     return EHDResult(P, walk.iterations, residual, True, active, walk.steps, walk.rejected)

@@ -9,7 +9,7 @@ import numpy as np
 from .compliance import check_pressure, discretise
 from .solid import solid_system
 
-__all__ = ["BushField", "bush_field"]
+__all__ = ["BushField", "bush_field", "film_grid_pressure"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -75,12 +75,42 @@ class BushField:
         return str(path)
 
 
-def bush_field(bush, radius: float, length: float, pressure, refine_theta: int = 1,
-               refine_z: int | None = None, n_radial: int | None = None,
-               grading: float = 4.0) -> BushField:
+def film_grid_pressure(sol) -> tuple[float, float, np.ndarray]:
+    """(R [m], L [m], nodal pressure (n_theta, n_z + 1) [Pa]) of a whole-length P1 film
+    solution (a :class:`~bearingfem.solution.FilmSolution` of ``solve_reynolds``) on its
+    tensor grid: angle index j at theta = 2 pi j / n_theta from the maximum film, axial
+    index k at z = -L/2 + k L / n_z."""
+    mesh = getattr(sol, "mesh", None)
+    if not all(hasattr(mesh, a) for a in ("n_theta", "n_z", "length_ratio")) or sol.half:
+        raise ValueError("the film solution must be a whole-length finite-element film "
+                         "(half=False; the EHD films are)")
+    n, nz = mesh.n_theta, mesh.n_z
+    theta, z = np.mod(np.asarray(sol.theta), 2 * np.pi), np.asarray(sol.z)
+    length = 2.0 * float(np.max(np.abs(z)))
+    j = np.rint(theta / (2 * np.pi / n)).astype(int) % n
+    k = np.rint((z / length + 0.5) * nz).astype(int)
+    grid = np.full((n, nz + 1), np.nan)
+    grid[j, k] = np.asarray(sol.pressure)
+    if np.isnan(grid).any():
+        raise ValueError("the film solution's nodes must fill its (n_theta, n_z + 1) grid "
+                         "(a P1 film)")
+    return float(sol.radius), length, grid
+
+
+def bush_field(bush, radius, length: float | None = None, pressure=None,
+               refine_theta: int = 1, refine_z: int | None = None,
+               n_radial: int | None = None, grading: float = 4.0) -> BushField:
     """Solve the solid bush (``bush.model`` is ignored) under the nodal film pressure
     [Pa] (n_theta, n_z) directly, without the compliance; arguments as for
-    :func:`~.compliance.bush_compliance`."""
+    :func:`~.compliance.bush_compliance`. ``bush_field(bush, sol)``: the pressure, radius
+    and length of a film solution ``sol`` (:func:`film_grid_pressure`; angle 0 of the
+    bush mesh at the film's maximum film)."""
+    if hasattr(radius, "pressure"):
+        if length is not None or pressure is not None:
+            raise ValueError("give a film solution alone or radius, length and pressure")
+        radius, length, pressure = film_grid_pressure(radius)
+    elif length is None or pressure is None:
+        raise ValueError("bush_field needs a film solution or radius, length and pressure")
     shape = np.shape(pressure)
     if len(shape) != 2:
         raise ValueError(f"pressure must be an (n_theta, n_z) array, got shape {shape}")

@@ -2,8 +2,9 @@
 
 Points lie on the 3-D journal surface (x = R cos alpha, y = R sin alpha, z) or, with
 ``surface="unwrapped"``, on the plane (R theta, z, 0). Point data: pressure [Pa],
-film_thickness [m], theta [rad] (from the maximum film) and z [m]. A half-domain solve is
-mirrored to the whole length.
+film_thickness [m], theta [rad] (from the maximum film) and z [m]; with an elastic bush
+deformation [m] (its radial deflection, > 0 opens the gap; film_thickness is then the
+deformed gap). A half-domain solve is mirrored to the whole length.
 """
 from __future__ import annotations
 
@@ -46,10 +47,11 @@ def to_meshio(sol: FilmSolution, surface: str = "journal") -> meshio.Mesh:
         raise ValueError("sol.mesh must be the FilmMesh or FVMGrid of the solve")
     theta, z = np.asarray(sol.theta), np.asarray(sol.z)
     p, h = np.asarray(sol.pressure), np.asarray(sol.film_thickness)
-    # the JFO film fraction (1 in the full film) and a thermal film's temperature [K]
-    # where the film has them
+    # the JFO film fraction (1 in the full film), a thermal film's temperature [K] and the
+    # bush's deflection [m] where the film has them
     extra = {k: np.asarray(v) for k, v in (("fraction", sol.fraction),
-                                           ("temperature", sol.temperature)) if v is not None}
+                                           ("temperature", sol.temperature),
+                                           ("deformation", sol.deformation)) if v is not None}
     if sol.half:
         n = len(theta)
         theta, z = np.concatenate([theta, theta]), np.concatenate([z, -z])

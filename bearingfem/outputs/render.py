@@ -28,7 +28,8 @@ SURFACES = ("journal", "unwrapped")
 FIELDS = {"pressure": ("pressure", 1e-6, "pressure [MPa]"),
           "film_thickness": ("film_thickness", 1e6, "film thickness [um]"),
           "fraction": ("fraction", 1.0, "film fraction [1] (JFO)"),
-          "temperature": ("temperature", 1.0, "film temperature [K] (thermal film)")}
+          "temperature": ("temperature", 1.0, "film temperature [K] (thermal film)"),
+          "deformation": ("deformation", 1e6, "bush deflection [um]")}
 #: Share of the peak pressure below which a node counts as cavitated in pictures (the
 #: complementarity solution is exactly 0 there; Gumbel's clip too).
 CAVITY_LEVEL = 1e-6
@@ -197,8 +198,9 @@ def unwrapped_figure(sol: FilmSolution, field: str = "pressure", clim=None, titl
 def render_film(sol: FilmSolution, path, *, field: str = "pressure", surface: str = "journal",
                 window_size=(900, 650), title: str | None = None, clim=None,
                 camera_angle: float | None = None):
-    """Write a PNG (or other image) of ``field`` ("pressure", "film_thickness" or, for a
-    JFO film, "fraction") on
+    """Write a PNG (or other image) of ``field`` ("pressure", "film_thickness" (the
+    deformed gap with a bush), for a JFO film "fraction", for a film with an elastic bush
+    "deformation", its radial deflection) on
     ``surface`` ("journal" or "unwrapped"). ``clim`` (lo, hi) fixes the colour range in the
     field's display units (MPa, um); ``camera_angle`` [rad, inertial] fixes where the
     journal view looks from (default: the loaded side)."""
@@ -207,6 +209,8 @@ def render_film(sol: FilmSolution, path, *, field: str = "pressure", surface: st
         raise ValueError("field 'fraction' needs a JFO film (cavitation='jfo')")
     if field == "temperature" and sol.temperature is None:
         raise ValueError("field 'temperature' needs a thermal film (thermal=Thermal(...))")
+    if field == "deformation" and sol.deformation is None:
+        raise ValueError("field 'deformation' needs a film with an elastic bush (bush=...)")
     if surface == "unwrapped":
         dpi = 100
         fig = unwrapped_figure(sol, field, clim, title,

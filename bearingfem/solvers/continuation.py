@@ -12,6 +12,7 @@ on it exactly.
 """
 from __future__ import annotations
 
+import logging
 import math
 from dataclasses import dataclass
 from typing import Callable
@@ -51,16 +52,20 @@ class Continuation:
         raise NotImplementedError
 
     def walk(self, solve: Callable, state, start: float, target: float, what: str,
-             parameter: str, hint: str) -> Walk:
+             parameter: str, hint: str, log: logging.Logger | None = None) -> Walk:
         """Walk ``parameter`` from ``start`` (where ``state`` is the solved answer) to
         ``target``: ``solve(x, state)`` gives (the answer at x from ``state``, or None when
         it does not converge; its iterations). Raises ConvergenceError naming ``what``, the
-        value reached and the ``hint`` when the step falls below ``smallest``."""
+        value reached and the ``hint`` when the step falls below ``smallest``. ``log``: a
+        logger told of each attempt at INFO (a long solve's progress)."""
         done, step, iterations, steps, rejected = start, self.step, 0, 0, 0
         while done < target:
             x = min(target, self.advance(done, step))
             out, its = solve(x, state)
             iterations += its
+            if log is not None:
+                log.info("%s: %s = %.4g %s in %d iterations", what, parameter, x,
+                         "stalled" if out is None else "converged", its)
             if out is None:
                 rejected += 1
                 step = self.shorter(step)

@@ -1,0 +1,53 @@
+"""The elastic bush on the command line: ``--bush ring|solid|liner`` with its outer radius,
+Young's modulus and Poisson's ratio (the :class:`bearingfem.ElasticBush` of
+``solve``, ``equilibrium`` and ``coefficients``)."""
+from __future__ import annotations
+
+from bearingfem.elastic.bush import MODELS, ElasticBush
+
+__all__ = ["add_bush_args", "bush_from_args", "BUSH_OPTIONS"]
+
+#: dest -> (option as typed, ElasticBush field)
+BUSH_OPTIONS = {"bush_outer_radius": ("--bush-outer-radius", "outer_radius"),
+                "bush_modulus": ("--bush-modulus", "modulus"),
+                "bush_poisson": ("--bush-poisson", "poisson")}
+
+
+def add_bush_args(p):
+    d = ElasticBush()
+    p.add_argument("--bush", default=None, choices=MODELS,
+                   help="an elastic bush (EHD film): a 3-D solid, plane-strain rings per "
+                        "slice, or a thin liner; outer surface held")
+    p.add_argument("--bush-outer-radius", type=float, default=None,
+                   help=f"the bush's held outer radius [m] (> R; default {d.outer_radius:g})")
+    p.add_argument("--bush-modulus", type=float, default=None,
+                   help=f"the bush's Young's modulus [Pa] (default {d.modulus:g})")
+    p.add_argument("--bush-poisson", type=float, default=None,
+                   help=f"the bush's Poisson's ratio, in (-1, 0.5) (default {d.poisson:g})")
+
+
+def bush_from_args(args) -> ElasticBush | None:
+    """The bush the options describe, or None without ``--bush``; a bush option without
+    ``--bush``, or a value out of range, raises ValueError naming the option."""
+    given = [o for dest, (o, _) in BUSH_OPTIONS.items() if getattr(args, dest) is not None]
+    if args.bush is None:
+        if given:
+            raise ValueError(f"{', '.join(given)} {'needs' if len(given) == 1 else 'need'} "
+                             "--bush ring|solid|liner")
+        return None
+    fields = {f: getattr(args, dest) for dest, (_, f) in BUSH_OPTIONS.items()
+              if getattr(args, dest) is not None}
+    try:
+        bush = ElasticBush(model=args.bush, **fields)
+    except ValueError as err:
+        # ElasticBush names its field: name the option as typed
+        text = str(err)
+        for option, field in BUSH_OPTIONS.values():
+            if text.startswith(field):
+                text = option + text[len(field):]
+        raise ValueError(text) from None
+    radius = args.diameter / 2
+    if not bush.outer_radius > radius:                   # before any work
+        raise ValueError(f"--bush-outer-radius must exceed the film radius R = --diameter / 2"
+                         f" = {radius:g} m, got {bush.outer_radius:g}")
+    return bush

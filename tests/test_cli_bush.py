@@ -1,0 +1,65 @@
+"""The elastic bush on the command line (--bush, --bush-outer-radius, --bush-modulus,
+--bush-poisson on solve, equilibrium and coefficients): the film is the Python API's, bad
+input is one line with exit status 2."""
+import re
+
+import pytest
+
+from bearingfem import Bearing, ElasticBush, JournalState, solve_reynolds
+from bearingfem.bearing import SEED_TABLE1
+from bearingfem_app.cli import main
+
+MESH = ("--n-theta", "48", "--n-z", "4")
+
+
+def test_solve_with_a_bush_is_the_api_film(capsys):
+    """solve --bush ring with a soft bush prints the EHD film's force, the one
+    solve_reynolds(..., bush=ElasticBush(...)) gives (to the printed 6 digits). Fails if
+    a bush option is dropped (the bronze default's force differs in the 3rd digit)."""
+    assert main(["solve", "--ld", "0.5", "--eps", "0.8", *MESH, "--bush", "ring",
+                 "--bush-outer-radius", "0.015", "--bush-modulus", "5e9",
+                 "--bush-poisson", "0.3"]) == 0
+    out = capsys.readouterr().out
+    assert "ehd-newton" in out
+    d = SEED_TABLE1["diameter"]
+    b = Bearing(radius=d / 2, length=0.5 * d, clearance=SEED_TABLE1["clearance"],
+                viscosity=SEED_TABLE1["viscosity"])
+    sol = solve_reynolds(b, JournalState(eps=0.8, omega=250.0), 48, 4, "P1", "reynolds",
+                         bush=ElasticBush(outer_radius=0.015, modulus=5e9, poisson=0.3,
+                                          model="ring"))
+    printed = float(re.search(r"\|F\| ([\d.e+-]+) N", out).group(1))
+    assert printed == pytest.approx(float(f"{abs(complex(*sol.force_local)):.6g}"), rel=1e-12)
+
+
+def test_equilibrium_takes_the_bush(capsys):
+    """equilibrium --model fem-ehd --bush liner finds where the elastic film carries the
+    load (its eccentricity printed)."""
+    assert main(["equilibrium", "--ld", "0.5", "--load", "200", "--model", "fem-ehd",
+                 *MESH, "--bush", "liner", "--bush-outer-radius", "0.0105",
+                 "--bush-modulus", "5e9"]) == 0
+    assert "eccentricity ratio" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("args, needle", [
+    (("solve", "--bush-modulus", "5e9"), "--bush-modulus needs --bush ring|solid|liner"),
+    (("solve", "--bush", "ring", "--bush-poisson", "0.6"),
+     "--bush-poisson must be in (-1, 0.5), got 0.6"),
+    (("solve", "--bush", "ring", "--bush-modulus", "-1"), "--bush-modulus must be"),
+    (("solve", "--bush", "ring", "--bush-outer-radius", "0.001"),
+     "--bush-outer-radius must exceed the film radius"),
+    (("solve", "--bush", "ring", "--model", "fvm"), "--bush applies to --model fem"),
+    (("equilibrium", "--load", "100", "--bush", "solid"),
+     "--bush applies to the elastic film, --model fem-ehd"),
+    (("coefficients", "--eps", "0.5", "--bush-poisson", "0.3"), "needs --bush"),
+])
+def test_bad_bush_input_is_one_line(args, needle, capsys):
+    assert main(list(args)) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and needle in err[0], err
+
+
+def test_unknown_bush_model_is_refused(capsys):
+    with pytest.raises(SystemExit) as e:
+        main(["solve", "--bush", "rubber"])
+    assert e.value.code == 2
+    assert "--bush: invalid choice" in capsys.readouterr().err
