@@ -146,9 +146,11 @@ def _with_error(bearing, state, model, frame, rtol, eps_error, options):
 
 def _tilted(bearing, state, model, frame, tilt, options) -> DynamicCoefficients:
     """The (x, y) block of the misaligned FE film's exact 4x4 coefficients."""
-    if model != "fem":
-        raise ValueError(f"tilt needs model 'fem' (a misaligned film), got model={model!r}")
-    o = film_model(model).options(options)
+    m = film_model(model)
+    if not m.tilts:
+        raise ValueError(f"tilt needs a model that solves a tilted journal (model 'fem'), "
+                         f"got model={model!r}")
+    o = m.options(options)
     if o.get("grooves"):
         raise ValueError("coefficients with tilt: grooves are not supported")
     if o.get("roughness") is not None:
