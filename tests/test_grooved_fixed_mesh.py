@@ -185,3 +185,23 @@ def test_equilibrium_hands_its_last_film_to_the_solution_and_coefficients():
     np.testing.assert_allclose(eq.solution.pressure, cold_sol.pressure, rtol=1e-8,
                                atol=1e-8 * cold_sol.pressure_max)
     assert eq.pressure_max == pytest.approx(cold_sol.pressure_max, rel=1e-8)
+
+
+def test_a_second_bearing_of_the_same_shape_gets_its_own_coefficients():
+    """The bearing-fixed operator is shared by every bearing of one L/D, and keeps the last
+    film and its partials. K and C of a second bearing (its viscosity 1.5 times the first's,
+    the same state, right after the first's) must be its own: with the grooves at ambient
+    pressure the dimensionless film is the same, so K and C scale with the viscosity exactly.
+    Old: the first bearing's K and C came back (the kept film's key held no bearing)."""
+    from dataclasses import replace
+
+    from bearingfem import coefficients
+    grooves = (Groove(angle=0.5 * np.pi, width=0.3), Groove(angle=-0.5 * np.pi, width=0.3))
+    b1 = Bearing(radius=0.02, length=0.02, clearance=40e-6, viscosity=0.02)
+    b2 = replace(b1, viscosity=0.03)
+    s = JournalState(eps=0.5, omega=200.0, gamma=-1.2)
+    opts = dict(n_theta=24, n_z=4, element="P2", cavitation="reynolds", grooves=grooves)
+    k1 = coefficients(b1, s, "fem", **opts)
+    k2 = coefficients(b2, s, "fem", **opts)
+    np.testing.assert_allclose(k2.K, 1.5 * k1.K, rtol=1e-9, atol=1e-9 * np.abs(k1.K).max())
+    np.testing.assert_allclose(k2.C, 1.5 * k1.C, rtol=1e-9, atol=1e-9 * np.abs(k1.C).max())

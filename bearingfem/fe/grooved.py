@@ -229,10 +229,12 @@ def _coarse_active(gop, bearing, state, grooves, tol, values, load, G):
     return active
 
 
-def _film_key(state, grooves, cavitation, method="active-set", tol=1e-10):
-    """What makes a grooved film on one operator: equal keys, the same solve."""
-    return (state.eps, state.eps_dot, state.wedge_speed, state.gamma, cavitation, method,
-            tol, tuple(g.pressure for g in grooves))
+def _film_key(bearing, state, grooves, cavitation, method="active-set", tol=1e-10):
+    """What makes a grooved film on one operator: equal keys, the same solve. The operator
+    is shared by every bearing of its L/D, so the bearing is part of the key (its scales
+    turn the held groove pressures and the partials into its own)."""
+    return (bearing, state.eps, state.eps_dot, state.wedge_speed, state.gamma, cavitation,
+            method, tol, tuple(g.pressure for g in grooves))
 
 
 def grooved_pressure(gop: GroovedOperator, bearing: Bearing, state: JournalState, grooves,
@@ -246,7 +248,7 @@ def grooved_pressure(gop: GroovedOperator, bearing: Bearing, state: JournalState
     tolerance. With ``reuse`` the last solve on this operator is returned when it was of
     this very film (K/C after the film's solve). Every solve is kept as
     ``gop.last``."""
-    key = _film_key(state, grooves, cavitation, method, tol)
+    key = _film_key(bearing, state, grooves, cavitation, method, tol)
     if reuse and gop.last.get("key") == key:
         return gop.last["result"]
     G = _held(bearing, gop, grooves)
@@ -298,7 +300,7 @@ def grooved_derivatives(bearing: Bearing, state: JournalState, gop: GroovedOpera
     path (Newton's steps, K/C, charts): the solve starts from the operator's last
     cavitated set, and at the state of the last solve takes its film; asked again at
     the state of the last partials (K/C at a Newton equilibrium) returns them."""
-    key = _film_key(state, grooves, cavitation)
+    key = _film_key(bearing, state, grooves, cavitation)
     kept = gop.last.get("derivatives")
     if kept is not None and kept[0] == key and gop.last.get("key") == key:
         return kept[1]
@@ -356,8 +358,8 @@ def grooved_solution(bearing: Bearing, state: JournalState, gop: GroovedOperator
     film (an equilibrium's answer: the same film to the solver's tolerance)."""
     op = gop.op
     kept = gop.last.get("derivatives")
-    designer = kept is not None and kept[0] == _film_key(state, grooves, cavitation, method,
-                                                          tol)
+    designer = kept is not None and kept[0] == _film_key(bearing, state, grooves, cavitation,
+                                                          method, tol)
     res = grooved_pressure(gop, bearing, state, grooves, cavitation, method, tol,
                            reuse=designer)
     values, load = _system(gop, state)
