@@ -58,9 +58,11 @@ def plausibility_errors(diameter, length_ratio, clearance, viscosity,
     ratio = clearance / (diameter / 2)
     lo, hi = PLAUSIBLE["clearance_ratio"]
     if not out and ratio > hi:
+        # the unit that brings it into the range: um for a number like 50, mm for 0.05
+        unit, scale = ("um", 1e-6) if lo <= ratio * 1e-6 <= hi else ("mm", 1e-3)
         out.append(f"{n_c} {clearance:g} m is {ratio:.3g} of the radius (a journal bearing's "
-                   f"radial clearance is {lo:g} to {hi:g} of it): typed in mm? "
-                   f"({clearance:g} mm = {clearance / 1e3:g} m)")
+                   f"radial clearance is {lo:g} to {hi:g} of it): typed in {unit}? "
+                   f"({clearance:g} {unit} = {clearance * scale:g} m)")
     elif not out and ratio < lo:
         out.append(f"{n_c} {clearance:g} m is {ratio:.3g} of the radius (a journal bearing's "
                    f"radial clearance is {lo:g} to {hi:g} of it): {n_d} typed in mm, or the "
@@ -116,10 +118,6 @@ class Bearing:
     def __post_init__(self):
         for name in ("radius", "length", "clearance", "viscosity"):
             object.__setattr__(self, name, check_positive(name, getattr(self, name)))
-        if self.clearance >= self.radius:
-            raise ValueError(
-                f"clearance must be smaller than radius (thin film), got "
-                f"clearance={self.clearance!r} >= radius={self.radius!r}")
         bad = plausibility_errors(self.diameter, self.length_ratio, self.clearance,
                                   self.viscosity, ("diameter (2 radius)", "L/D (length / "
                                                    "diameter)", "clearance", "viscosity"))

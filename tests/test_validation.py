@@ -87,3 +87,13 @@ def test_journal_bearings_at_the_ends_of_the_range_are_accepted():
     """A 2 mm spindle bearing, a 2 m turbine bearing, air and cold heavy oil."""
     Bearing(radius=1e-3, length=2e-3, clearance=2e-6, viscosity=1.8e-5)
     Bearing(radius=1.0, length=1.6, clearance=1e-3, viscosity=5.0)
+
+
+@pytest.mark.parametrize("clearance, unit", [(50.0, "typed in um? (50 um = 5e-05 m)"),
+                                             (0.05, "typed in mm? (0.05 mm = 5e-05 m)")])
+def test_a_clearance_in_um_or_mm_is_named(clearance, unit):
+    """A clearance of 50 (um) or 0.05 (mm) on a 50 mm journal: the unit that brings it
+    into the range is named (old: 'clearance must be smaller than radius')."""
+    with pytest.raises(ValueError) as err:
+        Bearing(radius=0.025, length=0.025, clearance=clearance, viscosity=0.03)
+    assert unit in str(err.value)
