@@ -26,10 +26,11 @@ from __future__ import annotations
 
 import math
 
-from .published_coefficients import (K_NAMES, Published, axial_grooves, case,
-                                     largest_entry_error)
+from .published_coefficients import (LOAD_DIRECTION, K_NAMES, OMEGA, Published, axial_grooves,
+                                     bearing, case, largest_entry_error)
 
-__all__ = ["TABLE", "LUND_THOMSEN", "table_case", "largest_entry_error"]
+__all__ = ["TABLE", "GROOVES", "OMEGA", "LOAD_DIRECTION", "LUND_THOMSEN", "bearing", "table_case",
+           "largest_entry_error"]
 
 #: L/D -> rows (S, eps, phi [deg], Kxx, Kxy, Kyx, Kyy, Bxx, Bxy, Byy), as published
 TABLE = {
@@ -53,9 +54,11 @@ def _line(r) -> str:
             f"  B {100 * r['B_error']:5.2f} %  | turning K {100 * r['K_turning_error']:6.1f} %")
 
 
+GROOVES = axial_grooves(math.radians(20.0))
+
 LUND_THOMSEN = Published(
     name="lund_thomsen", source="Lund & Thomsen (1978)", table=TABLE,
-    grooves=axial_grooves(math.radians(20.0)), b_names=B_NAMES, tag="table", other="turning",
+    grooves=GROOVES, b_names=B_NAMES, tag="table", other="turning",
     errors=True, line=_line,
     header="ours (table); K, B: largest entry error; turning K: kc.K - kc.K_groove_shift",
     convergence_rows=(0, 4), convergence_column=0, panels=K_NAMES + B_NAMES + ("phi",),
