@@ -31,10 +31,11 @@ from __future__ import annotations
 
 import math
 
-from .published_coefficients import (B_NAMES, K_NAMES, Published, axial_grooves,
-                                     largest_entry_error)
+from .published_coefficients import (B_NAMES, K_NAMES, LOAD_DIRECTION, OMEGA, Published,
+                                     axial_grooves, bearing, largest_entry_error)
 
-__all__ = ["TABLE", "SOMEYA", "databook_case", "largest_entry_error"]
+__all__ = ["TABLE", "GROOVES", "OMEGA", "LOAD_DIRECTION", "SOMEYA", "bearing", "databook_case",
+           "largest_entry_error"]
 
 #: L/D -> rows (S, eps, phi [deg], Kxx, Kxy, Kyx, Kyy, Bxx, Bxy, Byx, Byy)
 TABLE = {
@@ -77,9 +78,11 @@ def _line(r) -> str:
             f"  d_phi {r['phi'] - r['phi_book']:+6.2f} deg | {err} | fixed {fixed}")
 
 
+GROOVES = axial_grooves(math.radians(10.0))
+
 SOMEYA = Published(
     name="someya", source="Someya (1989)", table=TABLE,
-    grooves=axial_grooves(math.radians(10.0)), tag="book", other="fixed", line=_line,
+    grooves=GROOVES, tag="book", other="fixed", line=_line,
     header=("errors against the book [%]: " + " ".join(f"{n:>6}" for n in NAMES)
             + " | K with the grooves fixed: " + " ".join(f"{n:>6}" for n in NAMES[:4])),
     convergence_rows=(4, 6, 9), convergence_column=1, panels=NAMES,
