@@ -27,10 +27,12 @@ def add_bush_args(p):
 
 
 def bush_from_args(args) -> ElasticBush | None:
-    """The bush the options describe, or None without ``--bush``; a bush option without
-    ``--bush``, or a value out of range, raises ValueError naming the option."""
-    given = [o for dest, (o, _) in BUSH_OPTIONS.items() if getattr(args, dest) is not None]
-    if args.bush is None:
+    """The bush the options describe, or None without ``--bush`` (or for a command that
+    takes no bush); a bush option without ``--bush``, or a value out of range, raises
+    ValueError naming the option."""
+    given = [o for dest, (o, _) in BUSH_OPTIONS.items()
+             if getattr(args, dest, None) is not None]
+    if getattr(args, "bush", None) is None:
         if given:
             raise ValueError(f"{', '.join(given)} {'needs' if len(given) == 1 else 'need'} "
                              "--bush ring|solid|liner")
