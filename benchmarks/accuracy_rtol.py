@@ -24,10 +24,10 @@ from __future__ import annotations
 import argparse
 import itertools
 import math
-import time
 
 from bearingfem import Bearing, JournalState, solve_reynolds
 from bearingfem.accuracy import clear_memo, force_difference
+from .common import best_of
 
 N_THETA = (8, 12, 16, 20, 24, 32, 40, 48, 64, 80, 96, 128, 160, 192, 256)
 #: n_z against cells as long as wide (n_z = n_theta (L/D) / pi): half, equal, twice
@@ -38,12 +38,9 @@ STATES = [("L/D 1, eps 0.8, Reynolds", 1.0, 0.8, "reynolds"),
 
 
 def best(fn, repeat):
-    t = []
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        out = fn()
-        t.append(time.perf_counter() - t0)
-    return min(t), out
+    """(best wall time [s], result) of ``repeat`` calls (the benchmarks' one timer)."""
+    t = best_of(fn, repeat)
+    return t.wall, t.out
 
 
 def uniform_table(b, s, cavitation, ref, repeat):
@@ -73,11 +70,13 @@ def lund_thomsen(rtol=2e-3):
         b = bearing(ld)
         for S, *_ in rows:
             W = load_from_sommerfeld(b, S, OMEGA)
-            t0 = time.perf_counter()
-            eq = equilibrium(b, W, OMEGA, "fem", direction=LOAD_DIRECTION, rtol=rtol, **film)
-            kc = coefficients(b, eq.state, "fem", frame="load", rtol=rtol,
-                              eps_error=eq.eps_error, **film)
-            t = time.perf_counter() - t0
+            def design(b=b, W=W):
+                eq = equilibrium(b, W, OMEGA, "fem", direction=LOAD_DIRECTION, rtol=rtol,
+                                 **film)
+                return eq, coefficients(b, eq.state, "fem", frame="load", rtol=rtol,
+                                        eps_error=eq.eps_error, **film)
+            timed = best_of(design)
+            t, (eq, kc) = timed.wall, timed.out
             total += t
             ref_o = mesh(ld, 144, "P2")
             eqr = equilibrium(b, W, OMEGA, "fem", direction=LOAD_DIRECTION, **ref_o)
@@ -119,11 +118,11 @@ def main(argv=None):
                 return solve_reynolds(b, s, rtol=rtol, cavitation=cav)
 
             def loop():
-                clear_memo()
-                solve_reynolds(b, near, rtol=rtol, cavitation=cav)
-                t0 = time.perf_counter()
-                sol = solve_reynolds(b, s, rtol=rtol, cavitation=cav)
-                return time.perf_counter() - t0, sol
+                timed = best_of(lambda: solve_reynolds(b, s, rtol=rtol, cavitation=cav),
+                                before=lambda: (clear_memo(),
+                                                solve_reynolds(b, near, rtol=rtol,
+                                                               cavitation=cav)))
+                return timed.wall, timed.out
             cold()                                                   # build its meshes
             t_cold, sol = best(cold, a.repeat)
             t_loop = min(loop()[0] for _ in range(a.repeat))

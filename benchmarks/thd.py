@@ -11,10 +11,10 @@ solve, and the time split of one thermal step (film / energy equation + mixing).
 """
 from __future__ import annotations
 
-import time
 
 from bearingfem import JournalState, solve_reynolds
 from bearingfem.routes.thd import solve_thd
+from .common import best_of
 from bearingfem.thermal import Thermal
 from studies.thd_designer import BEARING, GROOVES, OIL, OMEGA, SUPPLY
 
@@ -23,12 +23,9 @@ THERMAL = Thermal(SUPPLY, carry_over=0.8)
 
 
 def best(f, repeat=3):
-    out, times = None, []
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        out = f()
-        times.append(time.perf_counter() - t0)
-    return min(times), out
+    """(best wall time [s], result) of ``repeat`` calls (the benchmarks' one timer)."""
+    t = best_of(f, repeat)
+    return t.wall, t.out
 
 
 def main():
