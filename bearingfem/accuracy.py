@@ -327,10 +327,14 @@ def film_to_tolerance(solve: Callable, bearing, rtol: float, element: str | None
     start = start_mesh(element, bearing.length_ratio)
     smooth = cavitation == "none" and not options.get("grooves")
     try:
-        key = ("film", round(bearing.length_ratio, 12), cavitation, element,
-               tuple(options.get("grooves") or ()), options.get("supply_angle"),
-               tuple(options.get("tilt", (0.0, 0.0))), options.get("lubricant") is None,
-               options.get("bush") is None, options.get("fields") is None)
+        key = ("film", options.get("discretisation", "fe"), round(bearing.length_ratio, 12),
+               cavitation, element, tuple(options.get("grooves") or ()),
+               options.get("supply_angle"), tuple(options.get("tilt", (0.0, 0.0))),
+               tuple(options.get("tilt_rate", (0.0, 0.0))), options.get("half", True),
+               options.get("ambient_pressure", 0.0), options.get("grading"),
+               options.get("lubricant") is None, options.get("bush") is None,
+               options.get("fields") is None, options.get("roughness") is None,
+               options.get("thermal") is None)
         hash(key)
     except TypeError:
         key = None

@@ -64,8 +64,9 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
     roughness : :class:`~bearingfem.contact.Roughness`: the Greenwood-Tripp asperity
         contact of the gap is added as ``asperity_force`` / ``asperity_friction_torque``
         (with a bush the summits' pressure deforms the bush too)
-    start : the EHD film: a previous :class:`FilmSolution` of the same mesh to start
-        Newton from (the same answer to ``tol``)
+    start : the EHD and thermal films: a previous :class:`FilmSolution` of the same mesh to
+        start from (the same answer to ``tol``); not with ``rtol`` (whose meshes it cannot
+        know)
     grading : grooved films: (angle [rad], strength in [0, 0.99]) of a bearing-fixed mesh
         whose theta cells concentrate towards the inertial ``angle`` (where the film is
         thin); None: uniform cells
@@ -86,7 +87,12 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
                    ambient_pressure=ambient_pressure, fields=fields, tilt=tilt,
                    tilt_rate=tilt_rate, lubricant=lubricant, bush=bush, roughness=roughness,
                    start=start, grading=grading, thermal=thermal)
-    problem = film_problem(bearing, state, n_theta, n_z, cavitation,
+    if rtol is not None and start is not None:
+        raise ValueError("start is not taken with rtol (the meshes of the search are not "
+                         "known before it): give one of them")
+    # with rtol the mesh is the search's: the problem is checked on the default mesh
+    mesh = (n_theta, n_z) if rtol is None else (120, 20)
+    problem = film_problem(bearing, state, *mesh, cavitation,
                            element="P1" if element is None else element, **options)
     if rtol is None:
         return solve(problem)
@@ -109,11 +115,12 @@ def fvm_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z:
     accuracy of the force, ``force_error`` its estimate (second order, as P1)."""
     options = dict(method=method, supply_angle=supply_angle, tol=tol, grooves=grooves,
                    ambient_pressure=ambient_pressure, tilt=tilt, tilt_rate=tilt_rate)
-    problem = film_problem(bearing, state, n_theta, n_z, cavitation, discretisation="fv",
+    mesh = (n_theta, n_z) if rtol is None else (120, 20)
+    problem = film_problem(bearing, state, *mesh, cavitation, discretisation="fv",
                            **options)
     if rtol is None:
         return solve(problem)
     return film_to_tolerance(
         lambda nt, nz, el: solve(film_problem(bearing, state, nt, nz, cavitation,
                                               discretisation="fv", **options)),
-        bearing, rtol, "P1", dict(options, cavitation=cavitation))
+        bearing, rtol, "P1", dict(options, cavitation=cavitation, discretisation="fv"))

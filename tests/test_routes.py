@@ -96,3 +96,36 @@ def test_the_light_path_is_the_whole_film(cavitation, options):
     light = fe_force(B, S, 24, 4, "P1", cavitation, **options)[0]
     whole = solve_reynolds(B, S, 24, 4, "P1", cavitation, **options).force_local
     assert np.allclose(light, whole, rtol=1e-9, atol=0.0)
+
+
+def test_the_thermal_film_refuses_what_it_does_not_use():
+    """tol with the JFO thermal film (its inner JFO films have no projected iteration), and
+    the accuracy keywords in the thermal designer functions, are refused by name."""
+    from bearingfem import coefficients, equilibrium
+    with pytest.raises(ValueError, match="tol"):
+        solve_reynolds(B, S, 24, 4, "P1", "jfo", grooves=G, lubricant=VG32, thermal=HOT,
+                       tol=1e-9)
+    with pytest.raises(ValueError, match="rtol"):
+        equilibrium(B, (0.0, -20.0), 250.0, "fem", grooves=G, lubricant=VG32, thermal=HOT,
+                    rtol=1e-3)
+    with pytest.raises(ValueError, match="model 'fem'"):
+        coefficients(B, S, "short", grooves=G, lubricant=VG32, thermal=HOT)
+
+
+def test_rtol_takes_no_start_and_ignores_the_mesh_given():
+    """With rtol the mesh is the search's: a start solution cannot fit it (refused before
+    any work), and an n_theta too coarse to solve on is not checked."""
+    with pytest.raises(ValueError, match="start"):
+        solve_reynolds(B, S, lubricant=OIL, start=object(), rtol=1e-2)
+    sol = solve_reynolds(B, S, 4, 1, cavitation="gumbel", rtol=2e-2)
+    assert sol.force_error is not None and sol.force_error <= 2e-2
+
+
+def test_the_finite_volume_search_does_not_start_from_the_fe_films_memo():
+    """The accuracy memo is keyed by the discretisation: an FV search after an FE P1 search
+    of the same film starts afresh (the FE mesh says nothing of the FV grid's error)."""
+    from bearingfem import fvm_reynolds
+    from bearingfem.accuracy import clear_memo
+    clear_memo()
+    solve_reynolds(B, S, element="P1", cavitation="gumbel", rtol=1e-2)
+    assert not fvm_reynolds(B, S, cavitation="gumbel", rtol=1e-2).accuracy.memo

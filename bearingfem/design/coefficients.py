@@ -73,6 +73,13 @@ def coefficients(bearing: Bearing, state: JournalState, model: str = "fem",
     check_inputs(bearing, state)
     check_choice("frame", frame, FRAMES)
     if options.get("thermal") is not None:     # the thermal film (bearingfem.design.thermal)
+        given = [k for k, v in (("rtol", rtol), ("estimate", estimate),
+                                ("eps_error", eps_error)) if v]
+        if given:
+            raise ValueError(f"{', '.join(given)}: not taken with thermal= (the thermal "
+                             "film's K and C are found on the mesh given)")
+        if model != "fem":
+            raise ValueError(f"a thermal film needs model 'fem', got {model!r}")
         return thd_coefficients(bearing, state, frame, **options)
     if rtol is not None or estimate:
         return _with_error(bearing, state, model, frame, rtol, eps_error, options)

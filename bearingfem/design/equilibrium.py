@@ -80,6 +80,11 @@ def equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
         film's equilibrium (:func:`bearingfem.design.thermal.thd_equilibrium`)
     """
     if options.get("thermal") is not None:     # the thermal film (bearingfem.design.thermal)
+        given = [k for k, v in (("rtol", rtol), ("estimate", estimate), ("start", start),
+                                ("xtol", xtol != 1e-13)) if v]
+        if given:
+            raise ValueError(f"{', '.join(given)}: not taken with thermal= (the thermal "
+                             "film's equilibrium is solved on the mesh given)")
         return thd_equilibrium(bearing, load, omega, model, direction=direction,
                                eps_max=eps_max, isothermal=equilibrium, **options)
     if rtol is not None or estimate:

@@ -47,12 +47,19 @@ def _mesh_options(options):
     return o
 
 
+def _solve_tol(mesh: dict) -> dict:
+    """``tol`` for the thermal solve where it was given (its films' projected iteration)."""
+    return {"tol": mesh["tol"]} if "tol" in mesh else {}
+
+
 def frozen_film(bearing: Bearing, thd, mesh: dict):
     """A function state -> FilmSolution: the isothermal film with ``thd``'s viscosity
     field frozen at its quadrature points (the same places in the bearing for every
     state); at ``thd``'s state it is ``thd``'s film."""
     ratio = thd.thermal.viscosity_quadrature / bearing.viscosity
-    opts = {k: v for k, v in mesh.items() if k in ("grooves", "supply_angle", "tol")}
+    # the JFO film has no projected-iteration tolerance: tol is the Reynolds films'
+    keys = ("grooves", "supply_angle") + (() if mesh["cavitation"] == "jfo" else ("tol",))
+    opts = {k: v for k, v in mesh.items() if k in keys}
 
     def film(state):
         return solve_reynolds(bearing, state, mesh["n_theta"], mesh["n_z"], mesh["element"],
@@ -125,7 +132,7 @@ def thd_equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
     target = -np.array([wx, wy])
     thd_kw = dict(lubricant=lubricant, thermal=thermal, grooves=mesh["grooves"],
                   cavitation=mesh["cavitation"], element=mesh["element"],
-                  supply_angle=mesh["supply_angle"], **thd_opts)
+                  supply_angle=mesh["supply_angle"], **_solve_tol(mesh), **thd_opts)
     sol = solve_thd(bearing, _state(q, np.zeros(2), omega, c), mesh["n_theta"], mesh["n_z"],
                     temperature_tol=1e-2, pressure_rtol=1e-4, **thd_kw)
     J = _jacobian(frozen_film(bearing, sol, mesh), q, omega, c)
@@ -185,11 +192,14 @@ def thd_coefficients(bearing: Bearing, state: JournalState, frame: str = "inerti
     ``eq.solution``), solved here when None. Options as :func:`thd_equilibrium`."""
     mesh = _mesh_options(options)
     if solution is None:
+        solve_opts = {k: options[k] for k in ("temperature_tol", "relaxation",
+                                              "max_iterations") if k in options}
         solution = solve_thd(bearing, state, mesh["n_theta"], mesh["n_z"],
                              lubricant=options.get("lubricant"),
                              thermal=options.get("thermal"), grooves=mesh["grooves"],
                              cavitation=mesh["cavitation"], element=mesh["element"],
-                             supply_angle=mesh["supply_angle"])
+                             supply_angle=mesh["supply_angle"], **_solve_tol(mesh),
+                             **solve_opts)
     film = frozen_film(bearing, solution, mesh)
     c, omega = bearing.clearance, state.omega
     q = np.array([state.eps * math.cos(state.gamma), state.eps * math.sin(state.gamma)])

@@ -95,7 +95,8 @@ def _integrated_force(op: FilmOperator, P: np.ndarray, clip: bool):
 
 
 def rigid_force(bearing: Bearing, state: JournalState, op: FilmOperator, cavitation: str,
-                method: str = "active-set", warm: LCPResult | None = None, grooves=()):
+                method: str = "active-set", warm: LCPResult | None = None, grooves=(),
+                tol: float = 1e-10):
     """(F_r, F_t) [N] and the :class:`LCPResult` of the rigid film on ``op`` (a mesh in the
     film frame): the light path of time integration, no other outputs. ``warm``, the
     previous call's result on the same mesh at a nearby state, starts the solve from its
@@ -103,7 +104,7 @@ def rigid_force(bearing: Bearing, state: JournalState, op: FilmOperator, cavitat
     a0, factor = (None, None) if warm is None else (warm.active, warm.factor)
     if a0 is not None and (a0.shape != (op.mesh.ndofs,) or not a0.any()):
         a0 = None
-    res = fe_pressure(op, state, cavitation, method, active0=a0, factor=factor,
+    res = fe_pressure(op, state, cavitation, method, tol, active0=a0, factor=factor,
                       dirichlet=groove_pressures(bearing, op, grooves))
     ic, is_ = _integrated_force(op, res.pressure, cavitation == "gumbel")
     k = force_factor(bearing, op.mesh.half)

@@ -21,7 +21,7 @@ jfo                the mass-conserving film in the film frame, rigid or on field
 jfo-grooved        the mass-conserving film with grooves, bearing-fixed mesh
 jfo-compressible   a lubricant with a bulk modulus: the compressible JFO film
 ehd-jfo            the mass-conserving film with a bush or a pressure law
-thd                the thermal film: energy equation and film coupled (any cavitation)
+thd                the thermal film: energy equation and film coupled (Reynolds or JFO)
 fv                 finite volumes, every cavitation model
 =================  ============================================================
 """
@@ -75,7 +75,8 @@ def fe_force(bearing: Bearing, state: JournalState, n_theta=60, n_z=10, element=
     solved on the bearing-fixed mesh (no rebuild for a new journal angle; ``warm`` gives
     its cavitated set only), the JFO film's too.
     """
-    # the options come checked from the model registry: no second check on the hot path
+    # the options come checked from the model registry: no film_problem checks on the hot
+    # path (the route still refuses what it does not use)
     return film_force(FilmProblem(bearing, state, n_theta, n_z, element, cavitation, method,
                                   half=half, grooves=tuple(grooves),
                                   ambient_pressure=ambient_pressure), warm)

@@ -44,7 +44,7 @@ class RigidFilm(Route):
 
     def force(self, p: FilmProblem, warm=None):
         return rigid_force(p.bearing, p.state, self.operator(p), p.cavitation, p.method,
-                           warm, p.grooves)
+                           warm, p.grooves, p.tol)
 
     def derivatives(self, p: FilmProblem):
         if p.supply_angle is not None or not p.half:

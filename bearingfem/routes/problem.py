@@ -136,6 +136,8 @@ def film_problem(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z:
                  **options) -> FilmProblem:
     """The checked :class:`FilmProblem` (ValueError naming the parameter, before any
     work): what every route shares is checked here, the rest by the route."""
+    if discretisation not in ("fe", "fv"):
+        raise ValueError(f"discretisation must be 'fe' or 'fv', got {discretisation!r}")
     unknown = sorted(set(options) - set(OPTION_DEFAULTS))
     if unknown:
         raise ValueError(f"{', '.join(unknown)}: not an option of a film solve (options: "

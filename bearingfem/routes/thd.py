@@ -36,7 +36,7 @@ from ..thermal.spec import Thermal, ThermalRecord
 from .base import Route
 from .fe import GeneralFilm
 from .jfo import JFOFilm
-from .problem import FilmProblem
+from .problem import OPTION_DEFAULTS, FilmProblem
 
 __all__ = ["ThermalFilm", "solve_thd", "ThermalRecord", "groove_mixing"]
 
@@ -257,6 +257,9 @@ class ThermalFilm(Route):
 
     def check_options(self, p: FilmProblem) -> None:
         check_thermal(p.lubricant, p.thermal, p.state, p.cavitation, p.element)
+        if p.cavitation == "jfo" and p.tol != OPTION_DEFAULTS["tol"]:
+            raise ValueError("tol is not used by the 'thd' film with cavitation 'jfo' (the "
+                             "JFO film has no projected iteration)")
 
     def solve(self, p: FilmProblem):
         return solve_thd(p.bearing, p.state, p.n_theta, p.n_z, lubricant=p.lubricant,
