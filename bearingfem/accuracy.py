@@ -333,7 +333,8 @@ def film_to_tolerance(solve: Callable, bearing, rtol: float, element: str | None
                tuple(options.get("tilt_rate", (0.0, 0.0))), options.get("half", True),
                options.get("ambient_pressure", 0.0), options.get("grading"),
                options.get("lubricant") is None, options.get("bush") is None,
-               options.get("fields") is None, options.get("roughness") is None,
+               options.get("fields") is None, options.get("profile"),
+               options.get("roughness") is None,
                options.get("thermal") is None)
         hash(key)
     except TypeError:

@@ -22,6 +22,10 @@ Misalignment (:func:`tilted_gap`) is the first user: a journal whose axis is tur
 (tilt_x, tilt_y) about the inertial x and y axes through the bearing centre has its centre
 at (e_x + z tilt_y, e_y - z tilt_x) at the axial position z, so its gap gains a part linear
 in z.
+
+A bush edge profile (:class:`EdgeProfile`, a crown or a chamfer of the bush bore) is the
+second: a gap h_p(z) >= 0 fixed to the bush and even in z, which relieves the edge load
+of a short, heavily loaded bush (whose sharp edge would carry the least film).
 """
 from __future__ import annotations
 
@@ -32,7 +36,10 @@ import numpy as np
 from .bearing import check_finite
 from .film import film_thickness
 
-__all__ = ["FilmFields", "tilted_gap", "check_tilt"]
+__all__ = ["FilmFields", "EdgeProfile", "PROFILE_KINDS", "tilted_gap", "check_tilt"]
+
+#: The edge profiles of :class:`EdgeProfile`.
+PROFILE_KINDS = ("crown", "chamfer")
 
 FIELD_NAMES = ("gap", "gap_rate", "viscosity", "density", "density_rate")
 
@@ -194,3 +201,61 @@ def tilted_gap(bearing, state, theta, zeta, tilt=(0.0, 0.0), tilt_rate=(0.0, 0.0
     dH = k * (ty * c - tx * s)
     dH_dtheta = -k * (ty * s + tx * c)
     return dH, k * (ry * c - rx * s) + state.gamma_dot * dH_dtheta
+
+
+@dataclass(frozen=True)
+class EdgeProfile:
+    """A bush edge profile: the gap h_p(z) [m] the bore adds at the axial position z
+    (from the mid-plane, |z| <= L/2), fixed to the bush, the same at both ends.
+
+    With a = L/2 - length, where the profile starts, and u = max(0, |z| - a) / length:
+
+    * ``kind="crown"``: h_p = depth u^2, a parabola tangent to the bore at |z| = a; the
+      default ``length`` (None: L/2) is the crown of the whole length, depth (2 z / L)^2.
+    * ``kind="chamfer"``: h_p = depth u, a straight taper (a conical edge) of axial
+      ``length`` and radial ``depth``.
+
+    Parameters
+    ----------
+    kind : "crown" or "chamfer"
+    depth : the extra gap at the bush's ends [m] (>= 0; 0 is the sharp-edged bore)
+    length : the axial length of the profile at each end [m], in (0, L/2]; None: L/2
+    """
+
+    kind: str = "crown"
+    depth: float = 0.0
+    length: float | None = None
+
+    def __post_init__(self):
+        if self.kind not in PROFILE_KINDS:
+            raise ValueError(f"kind must be one of {PROFILE_KINDS}, got {self.kind!r}")
+        depth = check_finite("depth", self.depth)
+        if depth < 0.0:
+            raise ValueError(f"depth must be >= 0 [m], got {self.depth!r}")
+        object.__setattr__(self, "depth", depth)
+        if self.length is not None:
+            length = check_finite("length", self.length)
+            if not length > 0.0:
+                raise ValueError(f"length must be > 0 [m] (or None: half the bush "
+                                 f"length), got {self.length!r}")
+            object.__setattr__(self, "length", length)
+
+    def check(self, bearing) -> "EdgeProfile":
+        """This profile, or a ValueError naming ``length`` when it exceeds L/2 of
+        ``bearing``."""
+        if self.length is not None and self.length > 0.5 * bearing.length * (1 + 1e-12):
+            raise ValueError(f"length must lie in (0, L/2] = (0, {0.5 * bearing.length!r}] "
+                             f"[m], got {self.length!r}")
+        return self
+
+    def gap(self, z, bearing_length: float) -> np.ndarray:
+        """h_p [m] at the axial positions z [m] of a bush of length ``bearing_length``."""
+        half = 0.5 * bearing_length
+        length = half if self.length is None else self.length
+        u = np.maximum(0.0, np.abs(np.asarray(z, dtype=float)) - (half - length)) / length
+        return self.depth * (u * u if self.kind == "crown" else u)
+
+    def film_gap(self, bearing, zeta) -> np.ndarray:
+        """dH = h_p / c at zeta = z/R of ``bearing``'s film (dimensionless)."""
+        z = bearing.radius * np.asarray(zeta, dtype=float)
+        return self.gap(z, bearing.length) / bearing.clearance

@@ -17,7 +17,7 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
                    method: str = "active-set", supply_angle=None, half: bool = True,
                    tol: float = 1e-10, cavitated_shear: str = "full",
                    grooves=(), ambient_pressure: float = 0.0, fields: FilmFields | None = None,
-                   tilt=(0.0, 0.0), tilt_rate=(0.0, 0.0), lubricant=None,
+                   tilt=(0.0, 0.0), tilt_rate=(0.0, 0.0), profile=None, lubricant=None,
                    bush=None, roughness=None, start=None, grading=None,
                    thermal=None, rtol: float | None = None) -> FilmSolution:
     """Solve the Reynolds equation on a finite-element mesh of the unwrapped film.
@@ -54,6 +54,11 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
     tilt, tilt_rate : (tilt_x, tilt_y) [rad] and their rates [rad/s]: the journal axis
         turned about the inertial x and y axes through the bearing centre
         (:func:`~bearingfem.fields.tilted_gap`); ``moment`` is then the film's moment
+    profile : :class:`~bearingfem.fields.EdgeProfile`: a crowned or chamfered bush bore,
+        its gap h_p(z) [m] added to the film's, which is then meshed over its whole
+        length (with fields, a tilt, grooves, a bush or a lubricant too; refused by the
+        EHD-JFO film, a bush or lubricant with "jfo", the compressible JFO film and the
+        thermal film)
     lubricant : :class:`~bearingfem.lubricant.Lubricant`: viscosity and density following
         the pressure (the EHD film, solved by Newton); with ``cavitation="jfo"`` a
         lubricant with a ``bulk_modulus`` (constant viscosity) is the compressible
@@ -85,7 +90,8 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
     options = dict(method=method, supply_angle=supply_angle, half=half, tol=tol,
                    cavitated_shear=cavitated_shear, grooves=grooves,
                    ambient_pressure=ambient_pressure, fields=fields, tilt=tilt,
-                   tilt_rate=tilt_rate, lubricant=lubricant, bush=bush, roughness=roughness,
+                   tilt_rate=tilt_rate, profile=profile, lubricant=lubricant, bush=bush,
+                   roughness=roughness,
                    start=start, grading=grading, thermal=thermal)
     if rtol is not None and start is not None:
         raise ValueError("start is not taken with rtol (the meshes of the search are not "
@@ -108,13 +114,16 @@ def fvm_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z:
                  cavitation: str = "reynolds", *, method: str = "active-set",
                  supply_angle=None, tol: float = 1e-10, grooves=(),
                  ambient_pressure: float = 0.0, tilt=(0.0, 0.0),
-                 tilt_rate=(0.0, 0.0), rtol: float | None = None) -> FilmSolution:
+                 tilt_rate=(0.0, 0.0), profile=None,
+                 rtol: float | None = None) -> FilmSolution:
     """Finite-volume Reynolds solution: the same inputs (those it takes) and result type
     as :func:`solve_reynolds` (:mod:`bearingfem.fv`; forces are the midpoint sums of seed
     Eq. 16, second order). ``rtol``: the grid chosen to reach a requested relative
-    accuracy of the force, ``force_error`` its estimate (second order, as P1)."""
+    accuracy of the force, ``force_error`` its estimate (second order, as P1).
+    ``profile``: a bush edge profile (:class:`~bearingfem.fields.EdgeProfile`)."""
     options = dict(method=method, supply_angle=supply_angle, tol=tol, grooves=grooves,
-                   ambient_pressure=ambient_pressure, tilt=tilt, tilt_rate=tilt_rate)
+                   ambient_pressure=ambient_pressure, tilt=tilt, tilt_rate=tilt_rate,
+                   profile=profile)
     mesh = (n_theta, n_z) if rtol is None else (120, 20)
     problem = film_problem(bearing, state, *mesh, cavitation, discretisation="fv",
                            **options)

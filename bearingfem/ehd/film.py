@@ -90,14 +90,14 @@ def solve_ehd_film(bearing, state, op, base, gap0, lubricant, bush, cavitation, 
 def solve_elastic_film(bearing, state, n_theta: int, n_z: int, cavitation: str = "reynolds",
                        *, element: str = "P1", method: str = "active-set", tol: float = 1e-10,
                        supply_angle=None, cavitated_shear: str = "full", grooves=(),
-                       fields=None, tilt=(0.0, 0.0), tilt_rate=(0.0, 0.0), lubricant=None,
-                       bush=None, roughness=None, start=None):
+                       fields=None, tilt=(0.0, 0.0), tilt_rate=(0.0, 0.0), profile=None,
+                       lubricant=None, bush=None, roughness=None, start=None):
     """The EHD film on an (n_theta, n_z) mesh of the whole length (arguments as
     :func:`bearingfem.solve_reynolds`'s, checked there): the film on its fields, then
     :func:`solve_ehd_film`."""
     check_ehd(lubricant, bush, fields, element, cavitation)
     op = fe_operator(bearing, state, n_theta, n_z, element, supply_angle, False, grooves)
-    film, gap = general_film(bearing, state, op, fields, tilt, tilt_rate)
+    film, gap = general_film(bearing, state, op, fields, tilt, tilt_rate, profile)
     return solve_ehd_film(bearing, state, op, film, gap, lubricant, bush, cavitation, method,
                           tol, groove_pressures(bearing, op, grooves), cavitated_shear,
                           grooves, start, roughness)

@@ -23,7 +23,7 @@ import numpy as np
 
 from ..bearing import Bearing, JournalState
 from ..caches import cached
-from ..fields import FilmFields, tilted_gap
+from ..fields import EdgeProfile, FilmFields, tilted_gap
 from ..film import film_thickness
 from ..scales import moment_factor
 from .assembly import FilmOperator
@@ -162,12 +162,17 @@ def reference_load_partial(op: FilmOperator, wedge_speed: float) -> np.ndarray:
 
 
 def general_film(bearing: Bearing, state: JournalState, op: FilmOperator,
-                 fields: FilmFields | None = None, tilt=(0.0, 0.0), tilt_rate=(0.0, 0.0)):
-    """The film's fields at ``op``'s quadrature points with the tilt's gap added, and the
-    nodal gap; raises ValueError when the tilted journal touches the bush."""
+                 fields: FilmFields | None = None, tilt=(0.0, 0.0), tilt_rate=(0.0, 0.0),
+                 profile: EdgeProfile | None = None):
+    """The film's fields at ``op``'s quadrature points with the tilt's gap and the bush
+    edge ``profile``'s added, and the nodal gap; raises ValueError when the tilted journal
+    touches the bush."""
     spec = fields or FilmFields()
     film = spec.on(op, state) if state.eps < 1.0 else spec.beyond_clearance(op, state)
     gap = spec.nodal_gap(op, state)
+    if profile is not None:     # fixed to the bush: no rate
+        film = film.plus(gap=profile.film_gap(bearing, op.qp_zeta))
+        gap = gap + profile.film_gap(bearing, op.mesh.zeta)
     if any(tilt) or any(tilt_rate):
         dH, dH_dt = tilted_gap(bearing, state, op.qp_theta, op.qp_zeta, tilt, tilt_rate)
         film = film.plus(gap=dH, gap_rate=dH_dt)

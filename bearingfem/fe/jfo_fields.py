@@ -101,9 +101,9 @@ def zeta_extent(op: FilmOperator, cv: ControlVolumes):
 class _Departure:
     """The fields (and tilt) less the rigid cylinder of ``state`` at given points."""
 
-    def __init__(self, bearing, op, state, spec: FilmFields, tilt, tilt_rate):
+    def __init__(self, bearing, op, state, spec: FilmFields, tilt, tilt_rate, profile=None):
         self.bearing, self.op, self.state, self.spec = bearing, op, state, spec
-        self.tilt, self.tilt_rate = tilt, tilt_rate
+        self.tilt, self.tilt_rate, self.profile = tilt, tilt_rate, profile
         self.nodal = any(np.ndim(getattr(spec, n)) in (1, 2) and not callable(getattr(spec, n))
                          for n in FIELD_NAMES)
 
@@ -117,21 +117,24 @@ class _Departure:
         if any(self.tilt) or any(self.tilt_rate):
             dH, dH_dt = tilted_gap(self.bearing, s, theta, zeta, self.tilt, self.tilt_rate)
             H, rate = H + dH, rate + dH_dt
+        if self.profile is not None:
+            H = H + self.profile.film_gap(self.bearing, zeta)
         return (f.density * H - film_thickness(theta, s.eps),
                 f.density * rate + f.density_rate * H - s.eps_dot * np.cos(theta))
 
 
 def field_balance_film(bearing: Bearing, op: FilmOperator, state: JournalState,
                        spec: FilmFields | None = None, tilt=(0.0, 0.0),
-                       tilt_rate=(0.0, 0.0)) -> BalanceFilm:
-    """The film of ``spec`` (None: the rigid cylinder's fields) with a tilt on ``op``'s
-    mesh; raises ValueError for a bad field or a tilt that touches the bush."""
+                       tilt_rate=(0.0, 0.0), profile=None) -> BalanceFilm:
+    """The film of ``spec`` (None: the rigid cylinder's fields) with a tilt and a bush
+    edge ``profile`` (:class:`~bearingfem.fields.EdgeProfile`) on ``op``'s mesh; raises
+    ValueError for a bad field or a tilt that touches the bush."""
     spec = spec or FilmFields()
-    fields, gap = general_film(bearing, state, op, spec, tilt, tilt_rate)
+    fields, gap = general_film(bearing, state, op, spec, tilt, tilt_rate, profile)
     values, _ = film_system(op, fields, 0.0)
     rigid = rigid_balance_film(op, state)
     cv = film_volumes(op.mesh)
-    departure = _Departure(bearing, op, state, spec, tilt, tilt_rate)
+    departure = _Departure(bearing, op, state, spec, tilt, tilt_rate, profile)
     xs, wx = halves(cv.x_lo, op.mesh.axes[0][cv.column], cv.x_hi)
     ys, wy = halves(*zeta_extent(op, cv))
     TH = np.broadcast_to(xs[:, :, None], xs.shape + (ys.shape[1],))
@@ -166,9 +169,11 @@ def _as_functions(spec: FilmFields, op: FilmOperator) -> FilmFields:
 
 
 def balance_films(bearing: Bearing, state: JournalState, fine: FilmOperator,
-                  spec: FilmFields | None = None, tilt=(0.0, 0.0), tilt_rate=(0.0, 0.0)):
-    """The function op -> :class:`BalanceFilm` that the JFO solves take: ``spec`` and the
-    tilt on the mesh ``fine`` as given, on the coarser meshes of the nested solve with
+                  spec: FilmFields | None = None, tilt=(0.0, 0.0), tilt_rate=(0.0, 0.0),
+                  profile=None):
+    """The function op -> :class:`BalanceFilm` that the JFO solves take: ``spec``, the
+    tilt and the bush edge ``profile`` on the mesh ``fine`` as given, on the coarser
+    meshes of the nested solve with
     their arrays interpolated from ``fine`` (one film per mesh, kept). Evaluates the fine
     film at once, so bad fields raise before any solve."""
     spec = spec or FilmFields()
@@ -178,7 +183,7 @@ def balance_films(bearing: Bearing, state: JournalState, fine: FilmOperator,
     def film(op: FilmOperator) -> BalanceFilm:
         if op not in films:
             films[op] = field_balance_film(bearing, op, state, spec if op is fine else coarse,
-                                           tilt, tilt_rate)
+                                           tilt, tilt_rate, profile)
         return films[op]
     film(fine)
     return film

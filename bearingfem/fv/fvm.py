@@ -283,7 +283,7 @@ def _force(bearing: Bearing, g: FVMGrid, P: np.ndarray):
 def solve_fv(bearing: Bearing, state: JournalState, n_theta: int, n_z: int,
              cavitation: str, method: str = "active-set", supply_angle=None,
              tol: float = 1e-10, grooves=(), ambient_pressure: float = 0.0,
-             tilt=(0.0, 0.0), tilt_rate=(0.0, 0.0)) -> FilmSolution:
+             tilt=(0.0, 0.0), tilt_rate=(0.0, 0.0), profile=None) -> FilmSolution:
     """Finite-volume Reynolds solution (arguments checked by
     :func:`bearingfem.fvm_reynolds`, whose front this is); same result type as
     ``solve_reynolds``.
@@ -297,16 +297,18 @@ def solve_fv(bearing: Bearing, state: JournalState, n_theta: int, n_z: int,
 
     ``tilt``, ``tilt_rate``: a misaligned journal (:func:`bearingfem.fields.tilted_gap`,
     every cavitation model): the balance on its gap field and ``moment`` (M_x, M_y)
-    [N m], midpoint sums as the force.
+    [N m], midpoint sums as the force. ``profile``: a bush edge profile
+    (:class:`~bearingfem.fields.EdgeProfile`) added to the gap.
     """
     theta0 = None if supply_angle is None else float(theta_from_inertial(supply_angle,
                                                                          state.gamma))
-    tilted = any(tilt) or any(tilt_rate)
+    on_gap = any(tilt) or any(tilt_rate) or profile is not None
     g = fvm_grid(n_theta, n_z, bearing.length_ratio, theta0)
     system = gap = None
-    if tilted:
+    if on_gap:       # a gap field: a tilt or an edge profile
         def gap(t, z):
-            return film_thickness(t, state.eps) + tilted_gap(bearing, state, t, z, tilt)[0]
+            H = film_thickness(t, state.eps) + tilted_gap(bearing, state, t, z, tilt)[0]
+            return H if profile is None else H + profile.film_gap(bearing, z)
 
         def rate(t, z):
             return (state.eps_dot * np.cos(t)
@@ -320,7 +322,7 @@ def solve_fv(bearing: Bearing, state: JournalState, n_theta: int, n_z: int,
     phi = flows = None
     if cavitation == "jfo":
         P, phi, res, flows = _jfo(bearing, g, state, grooves, ambient_pressure,
-                                  gap, rate if tilted else None)
+                                  gap, rate if on_gap else None)
     else:
         res = _pressure(g, state, cavitation, method, tol, held, system)
         P = res.pressure if cavitation == "none" else np.maximum(res.pressure, 0.0)
@@ -360,7 +362,7 @@ def solve_fv(bearing: Bearing, state: JournalState, n_theta: int, n_z: int,
         r = (A @ P - rhs).reshape(n_theta, n_z)
         flow_in = flow_factor(bearing) * float(np.sum(r[np.any(np.stack(columns), axis=0)]))
     moment = (0.0, 0.0)
-    if tilted:      # M_x = -sum z dF_y, M_y = sum z dF_x, dF = p (cos, sin)(theta + gamma) dA
+    if on_gap:      # M_x = -sum z dF_y, M_y = sum z dF_x, dF = p (cos, sin)(theta + gamma) dA
         a = th + state.gamma
         k = moment_factor(bearing) * dA
         Pz = P * ze

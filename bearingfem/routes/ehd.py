@@ -15,7 +15,7 @@ class ElasticFilm(Route):
     summary = "a lubricant (pressure-viscosity/density law) or a bush, cavitation 'none' " \
               "or 'reynolds', P1, whole length"
     uses = frozenset({"element", "method", "tol", "cavitated_shear", "supply_angle", "half",
-                      "grooves", "fields", "tilt", "tilt_rate", "lubricant", "bush",
+                      "grooves", "fields", "tilt", "tilt_rate", "profile", "lubricant", "bush",
                       "roughness", "start"})
 
     def check_options(self, p: FilmProblem) -> None:
@@ -26,7 +26,8 @@ class ElasticFilm(Route):
             p.bearing, p.state, p.n_theta, p.n_z, p.cavitation, element=p.element,
             method=p.method, tol=p.tol, supply_angle=p.supply_angle,
             cavitated_shear=p.cavitated_shear, grooves=p.grooves, fields=p.fields,
-            tilt=p.tilt, tilt_rate=p.tilt_rate, lubricant=p.lubricant, bush=p.bush,
+            tilt=p.tilt, tilt_rate=p.tilt_rate, profile=p.profile, lubricant=p.lubricant,
+            bush=p.bush,
             roughness=p.roughness, start=p.start)
 
 

@@ -87,14 +87,16 @@ class GroovedFilm(Route):
 
 class GeneralFilm(Route):
     name = "general"
-    summary = "a film on general fields (gap, viscosity, density) or a tilted journal, " \
-              "whole length"
-    uses = _SOLVER | {"supply_angle", "half", "grooves", "fields", "tilt", "tilt_rate"}
+    summary = "a film on general fields (gap, viscosity, density), a tilted journal or a " \
+              "bush edge profile, whole length"
+    uses = _SOLVER | {"supply_angle", "half", "grooves", "fields", "tilt", "tilt_rate",
+                      "profile"}
 
     def solve(self, p: FilmProblem):
         op = fe_operator(p.bearing, p.state, p.n_theta, p.n_z, p.element, p.supply_angle,
                          False, p.grooves)
-        film, gap = general_film(p.bearing, p.state, op, p.fields, p.tilt, p.tilt_rate)
+        film, gap = general_film(p.bearing, p.state, op, p.fields, p.tilt, p.tilt_rate,
+                                 p.profile)
         sol = solve_film(p.bearing, p.state, op, p.element, p.cavitation, p.method, p.tol,
                          p.cavitated_shear, p.grooves, film, gap)
         return self.with_contact(p, sol, op, film.gap)

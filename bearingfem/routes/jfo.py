@@ -28,16 +28,18 @@ def _cavitated(warm):
 
 class JFOFilm(Route):
     name = "jfo"
-    summary = "the mass-conserving JFO film meshed in the film frame, rigid or on fields"
+    summary = "the mass-conserving JFO film meshed in the film frame, rigid or on fields " \
+              "(a tilt, a bush edge profile)"
     uses = frozenset({"element", "supply_angle", "half", "grooves", "ambient_pressure",
-                      "fields", "tilt", "tilt_rate", "roughness"})
+                      "fields", "tilt", "tilt_rate", "profile", "roughness"})
 
     def solve(self, p: FilmProblem):
         operator = _operators(p)
         film = gap = None
         if p.general:
             fine = operator(p.n_theta, p.n_z)
-            film = balance_films(p.bearing, p.state, fine, p.fields, p.tilt, p.tilt_rate)
+            film = balance_films(p.bearing, p.state, fine, p.fields, p.tilt, p.tilt_rate,
+                                 p.profile)
             gap = film(fine).fields.gap                 # bad fields raised above
             if film(fine).fields.is_rigid(fine, p.state):
                 film = None                 # the rigid data takes the fast path

@@ -13,7 +13,7 @@ from ..contact import Roughness
 from ..fe.grooved import check_grading
 from ..fe.mesh import ELEMENTS
 from ..fe.mixed import check_roughness
-from ..fields import FilmFields, check_tilt
+from ..fields import EdgeProfile, FilmFields, check_tilt
 from ..lubricant import Lubricant
 from ..validation import check_film_solve, check_grooves, check_jfo_supply
 
@@ -49,6 +49,7 @@ class FilmProblem:
     fields: FilmFields | None = None
     tilt: tuple = (0.0, 0.0)
     tilt_rate: tuple = (0.0, 0.0)
+    profile: EdgeProfile | None = None
     lubricant: Lubricant | None = None
     bush: object = None
     roughness: Roughness | None = None
@@ -81,9 +82,10 @@ class FilmProblem:
 
     @property
     def general(self) -> bool:
-        """The film on general fields (gap, viscosity, density): fields, a tilt or the EHD
-        film. Its whole length is meshed (no mid-plane symmetry)."""
-        return self.fields is not None or self.tilted or self.elastic
+        """The film on general fields (gap, viscosity, density): fields, a tilt, a bush edge
+        profile or the EHD film. Its whole length is meshed (no mid-plane symmetry)."""
+        return (self.fields is not None or self.tilted or self.profile is not None
+                or self.elastic)
 
     @property
     def kind(self) -> str:
@@ -154,6 +156,11 @@ def film_problem(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z:
         check_inside_clearance(state, "a film without a bush")
     if o["fields"] is not None and not isinstance(o["fields"], FilmFields):
         raise ValueError(f"fields must be a FilmFields, got {type(o['fields']).__name__}")
+    if o["profile"] is not None:
+        if not isinstance(o["profile"], EdgeProfile):
+            raise ValueError(f"profile must be an EdgeProfile or None, "
+                             f"got {type(o['profile']).__name__}")
+        o["profile"].check(bearing)
     if o["lubricant"] is not None and not isinstance(o["lubricant"], Lubricant):
         raise ValueError(f"lubricant must be a bearingfem.Lubricant or None, "
                          f"got {type(o['lubricant']).__name__}")
