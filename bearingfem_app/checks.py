@@ -37,6 +37,7 @@ RULES = {
     "levels": ("--levels", 3, True, None, False),
     "frames": ("--frames", 1, True, None, False),
     "workers": ("--workers", 1, True, None, False),
+    "turns": ("--turns", 0.0, False, 1000.0, True),
 }
 
 

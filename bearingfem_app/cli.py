@@ -130,6 +130,9 @@ def build_parser():
                    + ", ".join(shipped_scenes()) + ")")
     s.add_argument("-o", "--output", required=True, help="output directory")
     s.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
+    s.add_argument("--turns", type=float, default=None,
+                   help="run this many crank turns, all recorded (a quick look; default: "
+                        "the scene's turns and record_from_turn)")
     s.set_defaults(func=command_simulate)
     f = add("solve", help="one film solve; print forces, optionally export VTU",
             epilog="example: bearingfem solve --ld 0.5 --eps 0.8 -o film.vtu")

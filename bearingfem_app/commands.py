@@ -20,10 +20,15 @@ __all__ = ["command_simulate", "command_solve", "command_render", "command_conve
 
 
 def command_simulate(args):
+    from dataclasses import replace
+
     from mechanism import load_scene, simulate
     from mechanism.figures import plot_run
 
     scene = load_scene(args.scene)
+    if args.turns is not None:      # a quick look: these turns, every one recorded
+        scene = replace(scene, run=replace(scene.run, turns=float(args.turns),
+                                           record_from_turn=0.0))
     check_writable(args.output, "-o/--output")
     res = simulate(scene, progress=None if not args.quiet else False)
     out = _make_dir(args.output, "-o/--output")

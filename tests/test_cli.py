@@ -59,6 +59,21 @@ def test_simulate_writes_result_and_figure(tmp_path):
     assert (tmp_path / "out" / "run.png").stat().st_size > 10_000
 
 
+def test_simulate_turns_runs_and_records_that_many_turns(tmp_path):
+    """--turns 0.25 on a shipped scene of five turns recorded from the fourth: the run ends
+    after a quarter turn of the crank (from top dead centre, 90 deg) and records it all
+    (its first time is 0). Old: no --turns; the scene's turns and recording only."""
+    r = run("simulate", "paper-long-analytic", "--turns", "0.25", "-o", str(tmp_path / "o"),
+            "-q")
+    assert r.returncode == 0, r.stderr
+    import numpy as np
+    data = np.load(tmp_path / "o" / "result.npz")
+    turned = np.degrees(data["crank_angle"][-1] - data["crank_angle"][0])
+    assert data["t"][0] == 0.0 and abs(turned - 90.0) < 1.0
+    r = run("simulate", "paper-long-analytic", "--turns", "0", "-o", str(tmp_path / "p"))
+    assert r.returncode == 2 and "--turns" in r.stderr and not (tmp_path / "p").exists()
+
+
 @pytest.mark.slow   # 5 s; convergence and render are tested directly by default
 def test_convergence_and_render_commands(tmp_path):
     r = run("convergence", "--ld", "1.0", "--eps", "0.6", "--levels", "3", "--methods", "P1,fvm",
