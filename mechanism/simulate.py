@@ -34,7 +34,7 @@ from .progress import Progress
 from .result import SimulationResult
 from .sampling import sample_run
 from .scene import Scene
-from .stepping import STEP_FAILURE, integrate
+from .stepping import INTERRUPTED, STEP_FAILURE, integrate
 
 #: Relative step of the joint states' forward differences in the Jacobian (sqrt of the
 #: double precision's unit roundoff, as LSODA's own).
@@ -245,6 +245,8 @@ def simulate(scene: Scene, progress: bool | None = None) -> SimulationResult:
                 steps += len(sol.t) - 1
                 first_step = sol.t[-1] - sol.t[-2]
             t, y = float(sol.t[-1]), sol.y[:, -1]
+            if sol.status == INTERRUPTED:     # Ctrl-C: the steps taken are kept above
+                raise KeyboardInterrupt
             if sol.t_events[0].size:
                 break
             if sol.t_events[1].size:

@@ -34,7 +34,10 @@ from scipy.integrate._ivp.ivp import (BDF, LSODA, MESSAGES, METHODS, find_active
 
 from bearingfem.errors import ConvergenceError
 
-__all__ = ["integrate", "Segment", "StepCut", "STEP_FAILURE"]
+__all__ = ["integrate", "Segment", "StepCut", "STEP_FAILURE", "INTERRUPTED"]
+
+#: A segment's status when the caller's ``interrupted()`` stopped it between steps.
+INTERRUPTED = 2
 
 #: What cuts a step instead of stopping the run: a solve that did not converge.
 STEP_FAILURE = ConvergenceError
@@ -58,7 +61,8 @@ class StepCut:
 class Segment:
     """One call of :func:`integrate`, as ``solve_ivp`` returns it: the accepted step ends
     ``t`` and states ``y`` (n x len(t)), the dense output ``sol``, the event roots per
-    event, ``status`` (0 end reached, 1 terminal event, -1 solver failed), the solver's
+    event, ``status`` (0 end reached, 1 terminal event, -1 solver failed, 2 interrupted by
+    the caller's ``interrupted()`` between steps: the steps taken so far), the solver's
     message, and the steps cut."""
 
     t: np.ndarray
@@ -162,10 +166,11 @@ def integrate(fun, t_span, y0, method: str = "LSODA", events=(), accept=None,
                     limit, in_row, tried = raised, 0, first
                 except STEP_FAILURE:        # the solve fails here still: keep the solver
                     pass
-        if interrupted is not None and interrupted():
+        if interrupted is not None and interrupted() and status is None:
             # Ctrl-C seen by the caller's handler: stop here, between steps, in Python (an
-            # interrupt raised inside a compiled solver's callback can be lost)
-            raise KeyboardInterrupt
+            # interrupt raised inside a compiled solver's callback can be lost), and give
+            # back the steps taken so far (the caller keeps them)
+            status, message = INTERRUPTED, "interrupted"
     message = MESSAGES.get(status, message)
     ts = np.array(ts)
     dense = OdeSolution(ts, interpolants, alt_segment=solver_class in (BDF, LSODA)) \
