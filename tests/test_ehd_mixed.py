@@ -237,3 +237,34 @@ def test_benchmark_smoke(capsys):
     assert all(r["residual"] <= 1e-10 for r in rows)
     shares = [r["share"] for r in rows]
     assert 0.0 < shares[0] < shares[1] < shares[2] < 1.0
+
+
+def test_the_fem_model_takes_a_bush_within_the_clearance():
+    """equilibrium(model="fem", bush=, roughness=) (CONTRACT.md's call): the steady EHD film
+    with its summits, by the fem model. At the equilibrium it returns, an independent
+    solve_reynolds of the same film and summits balances the load to 1e-9; its K by the
+    model's central differences equals the test's own differences of solve_reynolds's film
+    force (x, y moved by +-1e-4 c) to 1e-3 of the largest entry (the two difference steps
+    differ). Old: "bush is not an option of film model 'fem'"."""
+    from bearingfem import coefficients
+    from bearingfem.design.equilibrium import equilibrium
+    opts = dict(n_theta=24, n_z=4, cavitation="reynolds")
+    eq = equilibrium(SEED, load=(0.0, -150.0), omega=100.0, model="fem", bush=RING,
+                     roughness=ROUGH, **opts)
+    sol = solve_reynolds(SEED, eq.state, 24, 4, cavitation="reynolds", bush=RING,
+                         roughness=ROUGH)
+    total = np.add(sol.force, sol.asperity_force)
+    assert np.hypot(*(total + [0.0, -150.0])) / 150.0 < 1e-9
+    assert 0.0 < eq.asperity_load_share < 1.0
+    kc = coefficients(SEED, eq.state, "fem", bush=RING, **opts)
+    c, e = SEED.clearance, eq.state.eps
+
+    def force_at(x, y):
+        s = JournalState.from_eccentricity(x, y, 0.0, 0.0, c, eq.state.omega)
+        return np.array(solve_reynolds(SEED, s, 24, 4, cavitation="reynolds", bush=RING).force)
+    x0, y0 = c * e * np.cos(eq.state.gamma), c * e * np.sin(eq.state.gamma)
+    d = 1e-4 * c
+    Kx = -(force_at(x0 + d, y0) - force_at(x0 - d, y0)) / (2 * d)
+    Ky = -(force_at(x0, y0 + d) - force_at(x0, y0 - d)) / (2 * d)
+    K = np.column_stack([Kx, Ky])
+    assert np.allclose(kc.K, K, rtol=1e-3, atol=1e-3 * np.abs(K).max())

@@ -1,11 +1,16 @@
 """The finite-element film with Reynolds-family cavitation ("fem"): the film of
 :func:`bearingfem.solve_reynolds`, plus the asperity contact with roughness (film and
-summits carry the load together), with its exact partials (discrete sensitivities)."""
+summits carry the load together), with its exact partials (discrete sensitivities). With
+a ``lubricant`` or a ``bush`` it is the steady EHD film (inside the clearance circle; the
+"fem-ehd" model goes beyond it and along a run), its partials by central differences."""
 from __future__ import annotations
 
 from dataclasses import replace
 
 from ..contract import SteadyRun
+from ..differentiate import central_differences
+from ..elastic import ElasticBush
+from ..lubricant import Lubricant
 from ..fe.mixed import contact_partial_eps
 from ..routes import FilmProblem, route_for, solve
 from ..solution import ForceDerivatives
@@ -15,33 +20,25 @@ __all__ = ["FEModel"]
 
 
 def _problem(bearing, state, n_theta, n_z, element, cavitation, grooves, roughness,
-             grading) -> FilmProblem:
+             grading, lubricant=None, bush=None) -> FilmProblem:
     """The model's film problem (its options come checked from the registry)."""
     return FilmProblem(bearing, state, n_theta, n_z, element, cavitation, grooves=grooves,
-                       roughness=roughness, grading=grading)
-
-
-def _total(route, p: FilmProblem, force) -> tuple:
-    """The film's force plus the summits' (the film's alone without roughness)."""
-    contact = route.contact(p)
-    if contact is None:
-        return force
-    c = contact.force_local
-    return force[0] + c[0], force[1] + c[1]
+                       roughness=roughness, grading=grading, lubricant=lubricant, bush=bush)
 
 
 class FEModel(FilmModel):
     name = "fem"
     defaults = dict(n_theta=48, n_z=8, element="P1", cavitation="gumbel", grooves=(),
-                    roughness=None, grading=None)
+                    roughness=None, grading=None, lubricant=None, bush=None)
+    #: a pressure-dependent oil or an elastic bush makes the film the steady EHD film
+    rules = {"lubricant": ("instance", (Lubricant,)), "bush": ("instance", (ElasticBush,))}
     numeric = True
     tilts = True
 
     def _film_force(self, bearing, state, **options):
         """A cold solve's force, film plus asperity contact."""
         p = _problem(bearing, state, **options)
-        route = route_for(p)
-        return _total(route, p, route.force(p)[0])
+        return route_for(p).total_force(p)[0]
 
     def _film_solution(self, bearing, state, **options):
         return solve(_problem(bearing, state, **options))
@@ -53,6 +50,9 @@ class FEModel(FilmModel):
         p = _problem(bearing, state, **options)
         route = route_for(p)
         d = route.derivatives(p)
+        if d is None:       # a film without exact partials (the EHD film): differences
+            return central_differences(lambda s: self._film_force(bearing, s, **options),
+                                       state)
         contact = route.contact(p)
         if contact is None:
             return d
@@ -71,9 +71,9 @@ class FEModel(FilmModel):
             p = _problem(bearing, state, **options)
             route = route_for(p)
             key = (bearing.length_ratio, p.n_theta, p.n_z, p.element, p.cavitation,
-                   p.grooves, p.grading)
-            force, last[key] = route.force(p, last.get(key))
-            return _total(route, p, force)
+                   p.grooves, p.grading, p.kind)
+            force, last[key] = route.total_force(p, last.get(key))
+            return force
         return SteadyRun(bearing, warm_force, options)
 
 

@@ -69,6 +69,16 @@ class Route:
     def force(self, problem: FilmProblem, warm=None):
         return self.solve(problem).force_local, None
 
+    def total_force(self, problem: FilmProblem, warm=None):
+        """((F_r, F_t) [N], record): the film's force plus the summits' (the film's alone
+        without roughness), on the light path; ``warm`` as in :meth:`force`."""
+        force, record = self.force(problem, warm)
+        contact = self.contact(problem)
+        if contact is None:
+            return force, record
+        c = contact.force_local
+        return (force[0] + c[0], force[1] + c[1]), record
+
     def derivatives(self, problem: FilmProblem) -> ForceDerivatives | None:
         """The film force's exact partials in (eps, eps_dot, w) (gamma too where the
         route has it), or None where the route has none (the caller differences)."""

@@ -2,12 +2,20 @@
 Newton (:mod:`bearingfem.ehd`), with Reynolds' condition or the JFO film."""
 from __future__ import annotations
 
+from dataclasses import replace
+
 from ..ehd.film import check_ehd, solve_elastic_film
 from ..ehd.jfo import check_ehd_jfo, solve_elastic_jfo_film
 from .base import Route
 from .problem import FilmProblem
 
 __all__ = ["ElasticFilm", "ElasticJFOFilm"]
+
+
+def _total(sol) -> tuple:
+    """The film's force plus the summits' (solved with the film) [N]."""
+    f, c = sol.force_local, sol.asperity_force_local
+    return float(f[0] + c[0]), float(f[1] + c[1])
 
 
 class ElasticFilm(Route):
@@ -20,6 +28,14 @@ class ElasticFilm(Route):
 
     def check_options(self, p: FilmProblem) -> None:
         check_ehd(p.lubricant, p.bush, p.fields, p.element, p.cavitation)
+
+    def total_force(self, p: FilmProblem, warm=None):
+        """The film and its summits, solved together; ``warm``: the last call's film on
+        the same mesh, which starts Newton (the same answer to ``tol``)."""
+        if warm is not None and p.start is None:
+            p = replace(p, start=warm)
+        sol = self.solve(p)
+        return _total(sol), sol
 
     def solve(self, p: FilmProblem):
         return solve_elastic_film(
