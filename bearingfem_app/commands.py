@@ -102,8 +102,9 @@ def _model_options(args):
                                                        or k in args.given))}
     bush = bush_from_args(args)
     if bush is not None and "bush" not in m.defaults:
-        raise ValueError(f"--bush applies to the elastic film, --model fem-ehd, not "
-                         f"--model {args.model}")
+        raise ValueError(f"--bush applies to a film model that takes a bush (--model fem: "
+                         f"the steady elastic film; fem-ehd: beyond the clearance and along "
+                         f"a run), not --model {args.model}")
     return args.model, opts if bush is None else dict(opts, bush=bush)
 
 
