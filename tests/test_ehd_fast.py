@@ -1,5 +1,5 @@
 """The EHD film with its compliance applied by FFT and the Newton step by GMRES
-(bearingfem.ehd.coupling.CirculantCompliance, bearingfem.ehd.newton._KrylovLU) against the
+(bearingfem.ehd.film_compliance.CirculantCompliance, bearingfem.ehd.newton._KrylovLU) against the
 dense route it replaced: the same compliance, the same Newton iterates, the same film to
 round-off; an unconverged Krylov solve never returns a film."""
 import numpy as np
@@ -9,7 +9,7 @@ import bearingfem.ehd.coupling as coupling
 import bearingfem.ehd.newton as newton
 from bearingfem import ElasticBush, JournalState, solve_reynolds
 from bearingfem.bearing import seed_bearing
-from bearingfem.ehd.coupling import CirculantCompliance, DofCompliance, dof_compliance
+from bearingfem.ehd.film_compliance import CirculantCompliance, DofCompliance, dof_compliance
 from bearingfem.elastic import bush_compliance
 from bearingfem.errors import ConvergenceError
 from bearingfem.fe.kernel import fe_operator

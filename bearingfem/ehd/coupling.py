@@ -13,10 +13,10 @@ film on these fields, on the free dofs of the general assembly
 and its Jacobian is K + J_local + J_bush: J_local from d(k, c, s)/dp at the same point
 (sparse, the element pattern) and J_bush = T_H I C, T_H the quadrature-point derivatives
 in H and I the nodal-to-quadrature interpolation. The full compliance of a bush is
-circulant in theta (:class:`CirculantCompliance`): J_bush is then never formed, only
-applied (:class:`BushJacobian`: C by FFT, T_H sparse; cost N log N, memory linear); a
-dense compliance (:class:`DofCompliance`, the matrix given) gives it dense and a reduced
-one of rank n.
+circulant in theta (:class:`~bearingfem.ehd.film_compliance.CirculantCompliance`): J_bush
+is then never formed, only applied (:class:`~bearingfem.ehd.film_compliance.BushJacobian`:
+C by FFT, T_H sparse; cost N log N, memory linear); a reduced compliance
+(:class:`~bearingfem.ehd.film_compliance.DofCompliance`) gives it of rank n.
 
 A homotopy parameter ``s`` in [0, 1] scales the coupling: the fields are evaluated at
 s p and the deflection is s C p, so s = 0 is the isoviscous rigid film and s = 1 the
@@ -25,163 +25,19 @@ EHD film (the load continuation of :mod:`bearingfem.ehd.newton`).
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import cached_property
 
 import numpy as np
 import scipy.sparse as sp
-from scipy.fft import irfft, rfft
 
 from ..caches import cached
 from .asperity import contact_deflection, deflection_factors
-from ..elastic import BushCompliance, ElasticBush, ReducedCompliance, bush_compliance
+from .film_compliance import (BushJacobian, CirculantCompliance, DofCompliance,
+                              dof_compliance)
 from ..fields import FilmFields
 from ..fe.general import film_system
 from ..solvers.pattern import Pattern
 
-__all__ = ["EHDFilm", "ehd_film", "dof_compliance", "DofCompliance", "CirculantCompliance",
-           "BushJacobian"]
-
-
-@dataclass(frozen=True, eq=False)
-class DofCompliance:
-    """The compliance on the film's dofs, C = left diag(s) right^T [m/Pa] (dense: left is
-    the full matrix, right None)."""
-
-    left: np.ndarray
-    singular: np.ndarray | None = None
-    right: np.ndarray | None = None
-
-    def apply(self, p: np.ndarray) -> np.ndarray:
-        if self.right is None:
-            return self.left @ p
-        return self.left @ (self.singular * (self.right.T @ p))
-
-
-@dataclass(frozen=True, eq=False)
-class CirculantCompliance:
-    """The full compliance on the film's dofs, applied per theta harmonic by FFT: the
-    pressure is read on the (n_theta, n_z + 1) bush grid (one dof per grid node,
-    ``source``), each harmonic m multiplied by its block ``spectrum[m]`` ((n_z + 1)^2, or
-    its diagonal (n_z + 1) where the slices do not couple: the ring; a local compliance,
-    the liner's, is one factor per axial node, applied without FFT), and the deflection
-    read back at every dof (``node``: its grid node). Cost per product
-    n_theta log n_theta (n_z + 1) plus n_theta (n_z + 1)^2 (or n_theta (n_z + 1) diagonal);
-    no dense matrix unless :attr:`left` is asked for."""
-
-    spectrum: np.ndarray      # (n_theta // 2 + 1, nz, nz), (.., nz) diagonal or (nz,) local
-    shape: tuple              # (n_theta, nz)
-    node: np.ndarray          # grid node of each dof (C order of the grid)
-    source: np.ndarray        # the dof whose pressure each grid node takes
-    singular = None
-    right = None
-
-    def apply(self, p: np.ndarray) -> np.ndarray:
-        """Nodal deflection [m] under nodal pressure ``p`` [Pa] (dofs; or (dofs, k))."""
-        return self.on_grid(np.asarray(p, float)[self.source])[self.node]
-
-    def on_grid(self, p: np.ndarray) -> np.ndarray:
-        """The deflection at the grid nodes [m] under the grid nodes' pressure [Pa]
-        (C order of the grid; or (grid nodes, k))."""
-        extra = p.shape[1:]
-        grid = p.reshape(self.shape + extra)
-        if self.spectrum.ndim == 1:          # local: each node's own compliance
-            return (self.spectrum.reshape((-1,) + (1,) * len(extra)) * grid).reshape(p.shape)
-        harmonics = rfft(grid, axis=0)
-        if self.spectrum.ndim == 2:
-            harmonics = self.spectrum.reshape(self.spectrum.shape + (1,) * len(extra)) \
-                * harmonics
-        else:
-            harmonics = np.einsum("mlk,mk...->ml...", self.spectrum, harmonics)
-        return irfft(harmonics, n=self.shape[0], axis=0).reshape((-1,) + extra)
-
-    @cached_property
-    def left(self) -> np.ndarray:
-        """The dense (dofs, dofs) matrix [m/Pa] (the routes that still take the dense
-        compliance: the summits' contact, :mod:`.asperity`); built once, on demand."""
-        n = self.node.size
-        C = np.zeros((n, n))
-        C[:, self.source] = self.on_grid(np.eye(self.source.size))[self.node]
-        return C
-
-
-@dataclass(frozen=True, eq=False)
-class BushJacobian:
-    """The bush's part of dR/dP, T_H C, applied matrix-free: ``coupling`` (sparse, dofs x
-    dofs) the residual's derivative in the nodal deflection [1/m scaled], C the circulant
-    compliance."""
-
-    coupling: sp.spmatrix
-    compliance: CirculantCompliance
-
-    def apply(self, x: np.ndarray) -> np.ndarray:
-        """T_H C x (x on the dofs, or (dofs, k))."""
-        return self.coupling @ self.compliance.apply(x)
-
-    __matmul__ = apply
-
-    def toarray(self) -> np.ndarray:
-        """The dense matrix (checks on small meshes; never in a solve)."""
-        return np.asarray(self.coupling @ self.compliance.left)
-
-    def __array__(self, dtype=None, copy=None):
-        return self.toarray() if dtype is None else self.toarray().astype(dtype)
-
-    def plus(self, coupling) -> "BushJacobian":
-        """T_H C + coupling C (another sparse derivative in the deflection)."""
-        return BushJacobian(self.coupling + coupling, self.compliance)
-
-
-@cached(maxsize=8)
-def _cached_compliance(bush: ElasticBush, radius: float, length: float, n_theta: int,
-                       n_z: int) -> BushCompliance:
-    return bush_compliance(bush, radius, length, n_theta, n_z)
-
-
-def dof_compliance(bush, bearing, op) -> CirculantCompliance | DofCompliance:
-    """The bush's compliance between the film mesh's P1 dofs (grid node (j, k) of the
-    compliance at theta = theta_start + 2 pi j / n_theta, z = -L/2 + k L / n_z).
-
-    ``bush`` is an :class:`ElasticBush` (its full compliance is built, cached) or a
-    prebuilt :class:`BushCompliance` / :class:`ReducedCompliance` on the (n_theta,
-    n_z + 1) grid. The compliance is circulant in theta, so a grid starting at any film
-    angle (the journal's attitude) uses the same columns. Where a supply line closes the
-    film, its two seam dofs are one grid node: the deflection is read at both, the pressure
-    taken from one.
-    """
-    mesh = op.mesh
-    shape = (mesh.n_theta, mesh.n_z + 1)
-    if isinstance(bush, ElasticBush):
-        bush = _cached_compliance(bush, bearing.radius, bearing.length, *shape)
-    elif not isinstance(bush, (BushCompliance, ReducedCompliance)):
-        raise ValueError(f"bush must be an ElasticBush, BushCompliance or ReducedCompliance, "
-                         f"got {type(bush).__name__}")
-    if tuple(bush.shape) != shape:
-        raise ValueError(f"bush compliance must be on the film grid {shape} (n_theta, n_z + 1)"
-                         f", got {tuple(bush.shape)}")
-    if isinstance(bush, BushCompliance) and not (
-            np.isclose(bush.radius, bearing.radius) and np.isclose(bush.length, bearing.length)):
-        raise ValueError(f"bush compliance built for R={bush.radius}, L={bush.length} [m], "
-                         f"the bearing has R={bearing.radius}, L={bearing.length}")
-    start = 0.0 if mesh.theta0 is None else mesh.theta0
-    h = 2.0 * np.pi / mesh.n_theta
-    j = np.rint((mesh.theta - start) / h).astype(int) % mesh.n_theta
-    k = np.rint((mesh.zeta + mesh.length_ratio) / (2 * mesh.length_ratio) * mesh.n_z)
-    node = j * shape[1] + k.astype(int)
-    grid_nodes, rep = np.unique(node, return_index=True)
-    if grid_nodes.size != shape[0] * shape[1]:
-        raise ValueError("the bush needs the whole-length P1 film mesh")
-    if isinstance(bush, BushCompliance):
-        own = np.einsum("ll->l", bush.columns[0])
-        if not np.any(bush.columns[1:]) and np.array_equal(bush.columns[0], np.diag(own)):
-            return CirculantCompliance(own, shape, node, rep)       # local: the liner
-        spectrum = bush.spectrum
-        diagonal = np.einsum("mll->ml", spectrum)
-        if np.array_equal(spectrum, diagonal[:, :, None] * np.eye(shape[1])):
-            spectrum = diagonal                # slices uncoupled: the ring
-        return CirculantCompliance(spectrum, shape, node, rep)
-    right = np.zeros((mesh.ndofs, bush.n_vectors))
-    right[rep] = bush.right[grid_nodes]
-    return DofCompliance(bush.left[node], bush.singular, right)
+__all__ = ["EHDFilm", "ehd_film", "FilmState", "jacobian_tables"]
 
 
 @dataclass(frozen=True, eq=False)

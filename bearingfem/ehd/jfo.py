@@ -6,7 +6,7 @@ The steady JFO balance of :mod:`bearingfem.fe.jfo` on the nodes' control volumes
     P >= 0,  phi <= 1,  P (1 - phi) = 0,
 
 with the gap of the elastic bush H = H_rigid + w / c, w = C p (C its compliance,
-:func:`~bearingfem.ehd.coupling.dof_compliance`), and a pressure-viscosity law of a
+:func:`~bearingfem.ehd.film_compliance.dof_compliance`), and a pressure-viscosity law of a
 :class:`~bearingfem.lubricant.Lubricant` in the Poiseuille operator K (the EHD film's
 own, :class:`~bearingfem.ehd.coupling.EHDFilm`, at zero wedge speed). T is the upwind
 Couette transport across the volumes' downstream faces, whose flux 6 w int H dzeta
@@ -43,7 +43,8 @@ from ..fields import FilmFields
 from ..lubricant import Lubricant
 from ..fe.jfo_steady import jfo_film_solution, steady_jfo
 from ..fe.volumes import transport_matrix
-from .coupling import BushJacobian, EHDFilm, ehd_film
+from .coupling import EHDFilm, ehd_film
+from .film_compliance import BushJacobian
 from .jfo_newton import EHDJFOSolve, solve_ehd_jfo
 
 __all__ = ["JFOCoupling", "FaceMaps", "jfo_coupling", "solve_ehd_jfo", "check_ehd_jfo",

@@ -37,7 +37,7 @@ import scipy.sparse as sp
 from ..fe.jfo_balance import JFOFlows
 from ..solvers.continuation import Increments
 from ..solvers.jfo import JFOResult
-from .coupling import BushJacobian
+from .film_compliance import BushJacobian
 from .newton import MEMORY, _block, _BlockLU, _KrylovLU
 
 __all__ = ["solve_ehd_jfo", "EHDJFOSolve"]

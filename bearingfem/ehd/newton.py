@@ -37,7 +37,8 @@ from scipy.sparse.linalg import LinearOperator, gmres, splu
 
 from ..errors import ConvergenceError
 from ..solvers.continuation import Increments
-from .coupling import BushJacobian, jacobian_tables
+from .coupling import jacobian_tables
+from .film_compliance import BushJacobian
 
 __all__ = ["EHDResult", "solve_ehd", "ConvergenceError"]
 
@@ -172,7 +173,7 @@ KRYLOV_MAXITER = 10
 
 class _KrylovLU:
     """The Newton matrix on the rows I, M = B + (T_H C)[I][:, I] diag(columns), with the
-    bush's part matrix-free (a :class:`~.coupling.BushJacobian`: the compliance by FFT):
+    bush's part matrix-free (a :class:`~.film_compliance.BushJacobian`: the compliance by FFT):
     GMRES on M P^-1 y = rhs, x = P^-1 y, P = B by its sparse LU (the film's own Jacobian
     with the deflection held; right preconditioning, so GMRES measures the true residual).
     ``block`` is the CSC of B's transpose (:func:`_block`); ``columns`` (over I, or None)
