@@ -16,9 +16,9 @@ from mechanism.scene import shipped_scenes
 from .bush import add_bush_args
 from .checks import check_numbers, given_options, oil_viscosity
 
-from .commands import (command_coefficients, command_convergence, command_design,
-                       command_equilibrium, command_frames, command_render,
+from .commands import (command_convergence, command_frames, command_render,
                        command_simulate, command_solve, command_sweep)
+from .design_commands import command_coefficients, command_design, command_equilibrium
 
 EXAMPLES = """examples:
   bearingfem simulate scenes/paper-short-fem.toml -o results/short-fem

@@ -1,0 +1,136 @@
+"""The designer's commands: ``equilibrium``, ``coefficients`` and ``design`` (the parser is
+in :mod:`bearingfem_app.cli`; the options they read in :mod:`bearingfem_app.options`)."""
+from __future__ import annotations
+
+import math
+
+from .options import (accuracy_options, bearing_from_args, check_output, model_options,
+                      print_rows, write_numbers)
+
+__all__ = ["command_equilibrium", "command_coefficients", "command_design"]
+
+
+def _equilibrium_rows(eq, b):
+    """What the designer reads of an equilibrium: (name, value, unit) rows (with its
+    estimated error and the mesh chosen when an accuracy was asked)."""
+    return [("eccentricity ratio", eq.eps, "-")] + (
+        [] if eq.eps_error is None else [("  its estimated error", eq.eps_error, "-"),
+                                         ("  mesh chosen", "{} x {} {}".format(
+                                             *eq.accuracy.mesh, eq.accuracy.element), "")]) + [
+            ("attitude angle", math.degrees(eq.attitude), "deg"),
+            ("Sommerfeld number", eq.sommerfeld, "-"),
+            ("minimum film", eq.film_min, "m"),
+            ("minimum film angle", math.degrees(eq.film_min_angle), "deg (inertial)"),
+            ("journal x", eq.eps * b.clearance * math.cos(eq.state.gamma), "m"),
+            ("journal y", eq.eps * b.clearance * math.sin(eq.state.gamma), "m"),
+            ("peak pressure", eq.pressure_max, "Pa"),
+            ("friction force", eq.friction_force, "N"),
+            ("friction coefficient", eq.friction_coefficient, "-"),
+            ("power loss", eq.power_loss, "W"),
+            ("side leakage", eq.side_leakage, "m^3/s"),
+            ("inflow", eq.flow_in, "m^3/s")]
+
+
+#: the axes of K and C in each frame, in words
+FRAME_AXES = {
+    "inertial": (("x", "y"), "x, y inertial (y up: --direction -90 is downward)"),
+    "local": (("r", "t"), "r along the eccentricity (journal centre from bearing centre), "
+                          "t = r turned +90 deg"),
+    "load": (("1", "2"), "1 along the load, 2 = 1 turned +90 deg (counter-clockwise)")}
+
+
+def _coefficient_rows(kc, frame):
+    """K, C in ``frame`` as rows, and one line naming the frame's axes."""
+    (a, b), words = FRAME_AXES[frame]
+    names = (a + a, a + b, b + a, b + b)
+    rows = ([(f"K_{n}", float(v), "N/m") for n, v in zip(names, kc.K.ravel())]
+            + [(f"C_{n}", float(v), "N s/m") for n, v in zip(names, kc.C.ravel())])
+    angles = [round(math.degrees(math.atan2(q[1], q[0])), 9) + 0.0 for q in kc.axes]
+    return rows, (f"axes: {words}; axis {a} at {angles[0]:.4g} deg, axis {b} at "
+                  f"{angles[1]:.4g} deg (inertial, counter-clockwise from x)")
+
+
+def command_equilibrium(args):
+    from bearingfem.design import equilibrium
+    out = check_output(args.output, (".json", ".csv"))
+    model, opts = model_options(args)
+    opts, acc = accuracy_options(args, opts)
+    b = bearing_from_args(args)
+    eq = equilibrium(b, args.load, args.omega, model, direction=math.radians(args.direction),
+                     **opts, **acc)
+    rows = _equilibrium_rows(eq, b)
+    print(f"equilibrium, {model} {opts or ''}: load {args.load:g} N toward "
+          f"{args.direction:g} deg (inertial), {args.omega:g} rad/s, L/D {args.length_ratio:g}")
+    print_rows(rows)
+    write_numbers(out, rows)
+    return 0
+
+
+def command_coefficients(args):
+    from bearingfem import JournalState
+    from bearingfem.design import coefficients, equilibrium, lund_stability
+    out = check_output(args.output, (".json", ".csv"))
+    model, opts = model_options(args)
+    opts, acc = accuracy_options(args, opts)
+    b = bearing_from_args(args)
+    if (args.eps is None) == (args.load is None):
+        raise ValueError("give exactly one of --eps (a steady state) or --load "
+                         "(the equilibrium under that load)")
+    eps_error = None
+    if args.load is not None:
+        eq = equilibrium(b, args.load, args.omega, model,
+                         direction=math.radians(args.direction), **opts, **acc)
+        state, eps_error = eq.state, eq.eps_error
+    else:
+        state = JournalState(args.eps, omega=args.omega, gamma=math.radians(args.gamma))
+    kc = coefficients(b, state, model, frame=args.frame, eps_error=eps_error, **opts, **acc)
+    st = lund_stability(kc)
+    rows, axes = _coefficient_rows(kc, args.frame)
+    rows += ([("eccentricity ratio", state.eps, "-"), ("load carried", kc.load, "N"),
+              ("critical mass", st.critical_mass, "kg"),
+              ("whirl frequency ratio", st.whirl_ratio, "-")]
+             + ([] if kc.error is None else [("K, C estimated error", kc.error,
+                                              "of the largest entry")]))
+    print(f"coefficients, {model} {opts or ''}, {args.frame} frame ({kc.method}):")
+    print(f"  {axes}")
+    print_rows(rows)
+    print(f"  {st}")
+    rows.append(("stability", st.verdict.value, "-"))
+    write_numbers(out, rows)
+    return 0
+
+
+def _oil_words(args) -> str:
+    if getattr(args, "oil", None) is None:
+        return ""
+    t = 40.0 if args.oil_temperature is None else args.oil_temperature
+    return f" ({args.oil} at {t:g} degC)"
+
+
+def command_design(args):
+    """The designer's question in one command: where the journal sits under the load
+    (least film, attitude, friction power, flow) and the film's K, C there in the load
+    frame, with Lund's stability of a rigid journal."""
+    from bearingfem.design import coefficients, equilibrium, lund_stability
+    out = check_output(args.output, (".json", ".csv"))
+    model, opts = model_options(args)
+    b = bearing_from_args(args)
+    eq = equilibrium(b, args.load, args.omega, model, direction=math.radians(args.direction),
+                     **opts)
+    kc = coefficients(b, eq.state, model, frame="load", **opts)
+    st = lund_stability(kc)
+    eq_rows = _equilibrium_rows(eq, b)
+    k_rows, axes = _coefficient_rows(kc, "load")
+    k_rows += [("critical mass", st.critical_mass, "kg"),
+               ("whirl frequency ratio", st.whirl_ratio, "-")]
+    print(f"design point, {model} {opts or ''}: D {b.diameter * 1e3:g} mm, L/D "
+          f"{b.length_ratio:g}, radial clearance {b.clearance * 1e6:g} um, viscosity "
+          f"{b.viscosity:.4g} Pa s{_oil_words(args)}, {args.omega:g} rad/s ({args.omega * 30 / math.pi:g} rpm), "
+          f"load {args.load:g} N toward {args.direction:g} deg (inertial)")
+    print_rows(eq_rows)
+    print(f"  K, C ({kc.method}); {axes}")
+    print_rows(k_rows)
+    print(f"  {st}")
+    rows = eq_rows + k_rows + [("stability", st.verdict.value, "-")]
+    write_numbers(out, rows)
+    return 0

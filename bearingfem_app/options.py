@@ -1,0 +1,150 @@
+"""What the ``bearingfem`` commands read from their options and how they write: the
+bearing, the journal state, the film model and its options, an accuracy, the output's
+checks and the rows of numbers (:mod:`bearingfem_app.commands`,
+:mod:`bearingfem_app.design_commands`). Every check raises ValueError with one line
+naming the option, before any work."""
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+from .bush import bush_from_args
+from .checks import check_writable
+
+__all__ = ["bearing_from_args", "supply_angle", "ambient_pressure", "film_state",
+           "MODEL_OPTIONS", "model_options", "accuracy_options", "check_cache",
+           "check_output", "make_dir", "write_numbers", "print_rows"]
+
+
+def bearing_from_args(args):
+    from bearingfem import Bearing
+    from bearingfem.bearing import check_positive
+    check_positive("--length-ratio/--ld (L/D)", args.length_ratio)   # name what was typed
+    return Bearing(radius=args.diameter / 2, length=args.length_ratio * args.diameter,
+                   clearance=args.clearance, viscosity=args.viscosity)
+
+
+def supply_angle(args, gamma=0.0):
+    """--supply-angle: degrees from the maximum film (or max-film) -> inertial [rad], or
+    None. The maximum film lies opposite the eccentricity, at gamma + pi."""
+    text = args.supply_angle
+    if text is None:
+        return None
+    if text == "max-film":
+        return gamma + math.pi
+    try:
+        value = float(text)
+    except ValueError:
+        raise ValueError(f"--supply-angle must be degrees from the maximum film or max-film, "
+                         f"got {text!r}") from None
+    if not math.isfinite(value):
+        raise ValueError(f"--supply-angle must be finite, got {text!r}")
+    return gamma + math.pi + math.radians(value)
+
+
+def ambient_pressure(args):
+    return 0.0 if args.ambient_pressure is None else args.ambient_pressure
+
+
+def film_state(args):
+    """The bearing and the journal state the film options describe."""
+    from bearingfem import JournalState
+    s = JournalState(eps=args.eps, eps_dot=args.eps_dot, gamma=0.0, gamma_dot=0.0,
+                     omega=args.omega)
+    return bearing_from_args(args), s
+
+
+#: command-line options that are film-model options (dest -> option as typed)
+MODEL_OPTIONS = {"n_theta": "--n-theta", "n_z": "--n-z", "element": "--element",
+                 "cavitation": "--cavitation", "ambient_pressure": "--ambient-pressure"}
+
+
+def model_options(args):
+    """The film model named on the command line and the options of it given there; an
+    option typed that the model does not take is refused (it would be ignored)."""
+    from bearingfem.models import film_model
+    m = film_model(args.model, "--model")
+    refused = [o for k, o in MODEL_OPTIONS.items() if k in args.given and k not in m.defaults]
+    if refused:
+        takes = ", ".join(MODEL_OPTIONS[k] for k in m.defaults if k in MODEL_OPTIONS)
+        raise ValueError(f"{', '.join(refused)} {'does' if len(refused) == 1 else 'do'} not "
+                         f"apply to --model {args.model} (its options: {takes or 'none'})")
+    if m.disk_cache:      # tables are built once and kept: the cache must take them
+        check_cache()
+    given = {k: getattr(args, k) for k in MODEL_OPTIONS}
+    opts = {k: v for k, v in given.items()
+            if k in m.defaults and (v is not None and (k != "ambient_pressure"
+                                                       or k in args.given))}
+    bush = bush_from_args(args)
+    if bush is not None and "bush" not in m.defaults:
+        raise ValueError(f"--bush applies to a film model that takes a bush (--model fem: "
+                         f"the steady elastic film; fem-ehd: beyond the clearance and along "
+                         f"a run), not --model {args.model}")
+    return args.model, opts if bush is None else dict(opts, bush=bush)
+
+
+def accuracy_options(args, opts):
+    """With --rtol the mesh options are the toolkit's to choose (the element too unless
+    given): (options without them, {"rtol": ...}); without, (options, {})."""
+    if args.rtol is None:
+        return opts, {}
+    drop = ("n_theta", "n_z") + (() if args.element_given else ("element",))
+    return {k: v for k, v in opts.items() if k not in drop}, {"rtol": args.rtol}
+
+
+def check_cache():
+    """The fem-table cache folder takes a file (tried, not guessed from permissions)."""
+    import tempfile
+
+    from bearingfem.fe.force_table import cache_dir
+    folder = cache_dir()
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+        with tempfile.TemporaryFile(dir=folder):
+            pass
+    except OSError as err:
+        raise ValueError(f"--model fem-table: cannot write its table cache {str(folder)!r} "
+                         f"({err.strerror}); set BEARINGFEM_CACHE to a writable folder") \
+            from None
+
+
+def check_output(path, suffixes):
+    """Refuse an output file of an unknown kind, or in a folder that cannot be made, before
+    any work (the folder is made when the file is written)."""
+    if path is None:
+        return None
+    out = Path(path)
+    if out.suffix.lower() not in suffixes:
+        raise ValueError(f"-o/--output must end in {' or '.join(suffixes)}, got {path!r}")
+    check_writable(out.parent, "-o/--output")
+    return out
+
+
+def make_dir(path, option):
+    """Create an output folder before any work, or say in one line why it cannot be."""
+    try:
+        Path(path).mkdir(parents=True, exist_ok=True)
+    except OSError as err:
+        raise ValueError(f"{option}: cannot create folder {str(path)!r} ({err.strerror})") \
+            from None
+    return Path(path)
+
+
+def write_numbers(out, rows):
+    """rows: (name, value, unit) -> JSON object or a CSV table."""
+    if out is None:
+        return
+    make_dir(out.parent, "-o/--output")
+    if out.suffix.lower() == ".json":
+        import json
+        out.write_text(json.dumps({n: {"value": v, "unit": u} for n, v, u in rows}, indent=1))
+    else:
+        from bearingfem.outputs.tables import write_csv
+        write_csv([dict(quantity=n, value=v, unit=u) for n, v, u in rows], out)
+    print(f"wrote {out}")
+
+
+def print_rows(rows):
+    for name, value, unit in rows:
+        v = "-" if value is None else (value if isinstance(value, str) else f"{value:.6g}")
+        print(f"  {name:24s} {v:>14s} {unit}")
