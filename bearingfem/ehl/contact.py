@@ -12,7 +12,7 @@ import numpy as np
 
 from ..lubricant import Lubricant
 from ..errors import ConvergenceError
-from ..solvers.continuation import Ratios
+from ..solvers.continuation import Ratios, attempt
 from .fits import (MARTIN_LOAD, hertz_line, moes_parameters, pan_hamrock,
                    rigid_isoviscous_pressure)
 from .halfspace import LineCompliance
@@ -203,8 +203,4 @@ def _solve_with_continuation(prob, H_guess, tol):
 
 def _attempt(prob, start, f, tol):
     """(the film at load fraction f from ``start`` = (P, H0), or None; its iterations)."""
-    try:
-        record = solve_dimensionless(prob, *start, tol=tol, load=f)
-    except ConvergenceError:
-        return None, 0
-    return record, record.iterations
+    return attempt(solve_dimensionless, prob, *start, tol=tol, load=f)

@@ -13,7 +13,7 @@ import numpy as np
 
 from ..errors import ConvergenceError
 from ..lubricant import Lubricant
-from ..solvers.continuation import Ratios
+from ..solvers.continuation import Ratios, attempt
 from .contact import _positive, _pressure_laws
 from .fits import FilmFit
 from .point import DimensionlessPoint, solve_point
@@ -171,8 +171,4 @@ def _solve_with_continuation(prob, H_c, tol):
 
 def _attempt(prob, start, f, tol):
     """(the contact at load fraction f from ``start`` = (P, H0), or None; its iterations)."""
-    try:
-        record = solve_point(prob, *start, tol=tol, load=f)
-    except ConvergenceError:
-        return None, 0
-    return record, record.iterations
+    return attempt(solve_point, prob, *start, tol=tol, load=f)

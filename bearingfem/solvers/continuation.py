@@ -19,7 +19,18 @@ from typing import Callable
 
 from ..errors import ConvergenceError
 
-__all__ = ["Continuation", "Increments", "Ratios", "Walk"]
+__all__ = ["Continuation", "Increments", "Ratios", "Walk", "attempt"]
+
+
+def attempt(solve: Callable, *args, **kwargs) -> tuple:
+    """One step of a walk: (the record ``solve(*args, **kwargs)`` returns, its
+    ``iterations``), or (None, 0) when it raises ConvergenceError (the walk then retries
+    shorter)."""
+    try:
+        record = solve(*args, **kwargs)
+    except ConvergenceError:
+        return None, 0
+    return record, record.iterations
 
 
 @dataclass(frozen=True)
