@@ -144,7 +144,16 @@ def write_numbers(out, rows):
     print(f"wrote {out}")
 
 
+#: units printed beside SI ones a designer reads more easily: unit -> (scale, name, below)
+READABLE = {"m": (1e6, "um", 1e-3), "Pa": (1e-6, "MPa", float("inf"))}
+
+
 def print_rows(rows):
+    """Rows as ``name value unit``, in SI; films in um and pressures in MPa beside them."""
     for name, value, unit in rows:
         v = "-" if value is None else (value if isinstance(value, str) else f"{value:.6g}")
-        print(f"  {name:24s} {v:>14s} {unit}")
+        gloss = ""
+        if unit in READABLE and isinstance(value, float) and abs(value) < READABLE[unit][2]:
+            scale, readable, _ = READABLE[unit]
+            gloss = f"  ({value * scale:.4g} {readable})"
+        print(f"  {name:24s} {v:>14s} {unit}{gloss}")

@@ -85,8 +85,10 @@ def test_convergence_and_render_commands(tmp_path):
             "-o", str(tmp_path / "film.png"))
     assert r.returncode == 0, r.stderr
     assert (tmp_path / "film.png").stat().st_size > 5000
-    r = run("render", "--field", "temperature", "-o", str(tmp_path / "x.png"))
+    r = run("render", "--field", "vorticity", "-o", str(tmp_path / "x.png"))
     assert r.returncode == 2 and "field must be one of" in r.stderr
+    r = run("render", "--field", "temperature", "-o", str(tmp_path / "x.png"))
+    assert r.returncode == 2 and "needs a thermal film" in r.stderr
 
 
 @pytest.mark.slow   # 5 s; the sweep runner is tested on a real cluster in test_sweep.py
@@ -201,6 +203,8 @@ def test_design_answers_the_designers_question_in_one_command(tmp_path):
     assert got["power loss"]["value"] == pytest.approx(eq.power_loss, rel=1e-9)
     assert got["K_12"]["value"] == pytest.approx(kc.K[0, 1], rel=1e-9)
     assert got["C_21"]["value"] == pytest.approx(kc.C[1, 0], rel=1e-9)
+    # the least film also in um, as a designer reads it (the files keep SI)
+    assert f"({eq.film_min * 1e6:.4g} um)" in r.stdout
 
 
 def test_rpm_is_the_speed_in_revolutions_per_minute():
