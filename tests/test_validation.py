@@ -5,6 +5,7 @@ import pytest
 
 from bearingfem import (Bearing, JournalState, fvm_reynolds, long_bearing_force,
                         short_bearing_force, solve_reynolds)
+from bearingfem.design import equilibrium
 
 
 @pytest.mark.parametrize("field", ["radius", "length", "clearance", "viscosity"])
@@ -97,3 +98,17 @@ def test_a_clearance_in_um_or_mm_is_named(clearance, unit):
     with pytest.raises(ValueError) as err:
         Bearing(radius=0.025, length=0.025, clearance=clearance, viscosity=0.03)
     assert unit in str(err.value)
+
+
+@pytest.mark.parametrize("call", [
+    lambda b: solve_reynolds(b, JournalState(eps=0.5, omega=2e4), 24, 4),
+    lambda b: fvm_reynolds(b, JournalState(eps=0.5, omega=-2e4), 24, 4),
+    lambda b: equilibrium(b, 2000.0, 3000.0 * 60.0, "short")])
+def test_a_surface_speed_above_any_journal_bearings_is_refused_by_the_python_api(call):
+    """|omega| R above 300 m/s (a speed in rpm given as rad/s, say) is refused before any
+    work in the Python API too, as on the command line."""
+    b = Bearing(radius=0.025, length=0.025, clearance=50e-6, viscosity=0.03)
+    with pytest.raises(ValueError, match=r"omega .* surface speed of (500|4500) m/s"):
+        call(b)
+    # 11459 rpm at this radius is 30 m/s: a journal bearing's speed, accepted
+    solve_reynolds(b, JournalState(eps=0.5, omega=1200.0), 24, 4)

@@ -24,7 +24,7 @@ from dataclasses import replace
 import numpy as np
 from scipy.optimize import brentq, root
 
-from ..bearing import Bearing, JournalState, check_finite
+from ..bearing import Bearing, JournalState, check_finite, check_surface_speed
 from ..errors import ConvergenceError
 from ..reynolds import solve_reynolds
 from ..fe.sensitivity import fe_tilt_coefficients
@@ -79,6 +79,7 @@ def equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
     thermal, lubricant : a :class:`~bearingfem.thermal.Thermal` and its oil: the thermal
         film's equilibrium (:func:`bearingfem.design.thermal.thd_equilibrium`)
     """
+    check_surface_speed(bearing.radius, check_finite("omega", omega))
     if options.get("thermal") is not None:     # the thermal film (bearingfem.design.thermal)
         given = [k for k, v in (("rtol", rtol), ("estimate", estimate), ("start", start),
                                 ("xtol", xtol != 1e-13)) if v]

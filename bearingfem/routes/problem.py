@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, fields as dataclass_fields
 
-from ..bearing import Bearing, JournalState, check_inside_clearance
+from ..bearing import Bearing, JournalState, check_inside_clearance, check_surface_speed
 from ..contact import Roughness
 from ..fe.grooved import check_grading
 from ..fe.mesh import ELEMENTS
@@ -152,6 +152,7 @@ def film_problem(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z:
     ambient = check_jfo_supply(cavitation, grooves, supply_angle, o["ambient_pressure"],
                                o["element"])
     tilt, tilt_rate = check_tilt("tilt", o["tilt"]), check_tilt("tilt_rate", o["tilt_rate"])
+    check_surface_speed(bearing.radius, state.omega, "state.omega")
     if o["bush"] is None:
         check_inside_clearance(state, "a film without a bush")
     if o["fields"] is not None and not isinstance(o["fields"], FilmFields):
