@@ -36,6 +36,7 @@ KINDS = [
     ("jfo", dict(grooves=G), "jfo-grooved"),
     ("jfo", dict(ambient_pressure=1e5, lubricant=ELRODE), "jfo-compressible"),
     ("jfo", dict(ambient_pressure=1e5, bush=RING), "ehd-jfo"),
+    ("jfo", dict(ambient_pressure=1e5, bush=RING, roughness=ROUGH), "ehd-jfo"),
     ("reynolds", dict(grooves=G, lubricant=VG32, thermal=HOT), "thd"),
     ("jfo", dict(grooves=G, lubricant=VG32, thermal=HOT), "thd"),
 ]

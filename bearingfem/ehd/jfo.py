@@ -38,11 +38,13 @@ from ..errors import ConvergenceError
 from ..fe.assembly import fe_operator
 from ..fe.jfo_balance import boundary_values, cos_integral, film_volumes
 from ..fe.jfo_fields import BalanceFilm, halves, zeta_extent, rigid_balance_film
+from ..fe.mixed import film_contact, with_contact
 from ..fe.multilevel import prolongation
 from ..fields import FilmFields
 from ..lubricant import Lubricant
 from ..fe.jfo_steady import jfo_film_solution, steady_jfo
 from ..fe.volumes import transport_matrix
+from .asperity import deflection_factors
 from .coupling import EHDFilm, ehd_film
 from .film_compliance import BushJacobian
 from .jfo_newton import EHDJFOSolve, solve_ehd_jfo
@@ -142,7 +144,10 @@ class JFOCoupling:
         ev = self.poiseuille.evaluate(P, s)
         if ev is None:
             return None
-        face = self.face0 + self.maps.face @ self.gap_departure(P, s)
+        # with roughness the deflection was solved with the summits' pressure in ev
+        dH = (self.gap_departure(P, s) if ev.contact is None
+              else ev.contact.deflection / self.poiseuille.clearance)
+        face = self.face0 + self.maps.face @ dH
         cv = film_volumes(self.op.mesh)
         T = transport_matrix(cv, 6.0 * self.speed * face)
         K = sp.csr_matrix((ev.values, self.op.indices, self.op.indptr), shape=self.op.shape)
@@ -179,6 +184,9 @@ class JFOCoupling:
             TH = TH + slope
         scale = s * f.scale / f.clearance
         c = f.compliance
+        if state.ev.contact is not None:     # dw/dp through the summits' stiffness
+            Uc, Vc = deflection_factors(c, s, state.ev.contact.slope)   # s is in Uc
+            return J, U + (f.scale / f.clearance) * (TH @ Uc), Vc, A
         if isinstance(U, BushJacobian):
             return J, U.plus(scale * TH), None, A
         if c.right is None:
@@ -186,12 +194,14 @@ class JFOCoupling:
         return J, U + scale * (TH @ (c.left * c.singular)), V, A
 
 
-def jfo_coupling(bearing, state, op, lubricant, bush, grooves, ambient: float) -> JFOCoupling:
-    """The EHD-JFO problem of ``op`` (a whole-length P1 film operator)."""
+def jfo_coupling(bearing, state, op, lubricant, bush, grooves, ambient: float,
+                 roughness=None) -> JFOCoupling:
+    """The EHD-JFO problem of ``op`` (a whole-length P1 film operator); ``roughness``: the
+    summits' pressure loads the bush too (:mod:`bearingfem.ehd.asperity`)."""
     rigid = FilmFields().on(op, state)
     base = replace(rigid, gap_rate=np.zeros_like(rigid.gap))
     gap0 = FilmFields().nodal_gap(op, state)
-    poiseuille = replace(ehd_film(bearing, state, op, base, gap0, lubricant, bush),
+    poiseuille = replace(ehd_film(bearing, state, op, base, gap0, lubricant, bush, roughness),
                          wedge=0.0, eps=0.0)
     cv = film_volumes(op.mesh)
     P_fix, phi_fix = boundary_values(bearing, op.mesh, grooves, ambient)
@@ -213,13 +223,15 @@ def balance_film(film: JFOCoupling, P: np.ndarray) -> BalanceFilm:
 
 
 def solve_ehd_jfo_film(bearing, state, operator, n_theta: int, n_z: int, lubricant, bush,
-                       grooves, ambient: float, tol: float, start=None):
+                       grooves, ambient: float, tol: float, start=None, roughness=None):
     """The route of ``solve_reynolds(..., cavitation="jfo", bush=, lubricant=)``: the rigid
     JFO film on ``operator(n_theta, n_z)`` (whole length), then the EHD-JFO Newton; a
     :class:`FilmSolution` with ``fraction``, ``deformation`` [m] and the deformed ``gap``.
-    ``start``: a previous EHD-JFO FilmSolution on the same mesh (warm start)."""
+    ``start``: a previous EHD-JFO FilmSolution on the same mesh (warm start).
+    ``roughness``: the summits' pressure deforms the bush with the film's, and their
+    contact on the deformed gap is added to the solution (as the Reynolds EHD film's)."""
     op = operator(n_theta, n_z)
-    film = jfo_coupling(bearing, state, op, lubricant, bush, grooves, ambient)
+    film = jfo_coupling(bearing, state, op, lubricant, bush, grooves, ambient, roughness)
 
     def rigid():
         return steady_jfo(bearing, state, operator, n_theta, n_z, grooves, ambient)[:2]
@@ -234,17 +246,23 @@ def solve_ehd_jfo_film(bearing, state, operator, n_theta: int, n_z: int, lubrica
         out = solve_ehd_jfo(bearing, film, rigid, None, tol, warm)
     except ConvergenceError as e:
         raise e.at(f"steady EHD-JFO film {n_theta}x{n_z}, eps = {state.eps:.6g}") from None
+    balance = balance_film(film, out.P)
     sol = jfo_film_solution(bearing, state, op, out.P, out.phi, out.result, out.flows,
-                         "fem-P1/jfo-ehd-newton", balance_film(film, out.P))
-    return replace(sol, deformation=film.poiseuille.deflection(out.P))
+                            "fem-P1/jfo-ehd-newton", balance)
+    sol = replace(sol, deformation=film.poiseuille.deflection(out.P))
+    if roughness is None:
+        return sol
+    # the summits on the deformed gap, at the quadrature points (the rigid mixed film's rule)
+    return with_contact(sol, film_contact(bearing, state, op, roughness, balance.fields.gap))
 
 
 def solve_elastic_jfo_film(bearing, state, n_theta: int, n_z: int, *, lubricant=None,
                            bush=None, grooves=(), ambient_pressure: float = 0.0,
-                           tol: float = 1e-10, supply_angle=None, start=None):
+                           tol: float = 1e-10, supply_angle=None, start=None,
+                           roughness=None):
     """The EHD-JFO film on an (n_theta, n_z) mesh of the whole length (arguments as
     :func:`bearingfem.solve_reynolds`'s, checked there): :func:`solve_ehd_jfo_film`."""
     def whole(nt, nz):
         return fe_operator(bearing, state, nt, nz, "P1", supply_angle, False, grooves)
     return solve_ehd_jfo_film(bearing, state, whole, n_theta, n_z, lubricant, bush, grooves,
-                              ambient_pressure, tol, start)
+                              ambient_pressure, tol, start, roughness)

@@ -51,13 +51,20 @@ class ElasticJFOFilm(Route):
     name = "ehd-jfo"
     summary = "the JFO film with a bush or a pressure-viscosity law, whole length"
     uses = frozenset({"element", "tol", "supply_angle", "half", "grooves",
-                      "ambient_pressure", "lubricant", "bush", "start"})
+                      "ambient_pressure", "lubricant", "bush", "roughness", "start"})
 
     def check_options(self, p: FilmProblem) -> None:
         check_ehd_jfo(p.lubricant, p.fields, p.tilt, p.tilt_rate)
+
+    def total_force(self, p: FilmProblem, warm=None):
+        """The film and its summits, solved together (as :class:`ElasticFilm`'s)."""
+        if warm is not None and p.start is None:
+            p = replace(p, start=warm)
+        sol = self.solve(p)
+        return _total(sol), sol
 
     def solve(self, p: FilmProblem):
         return solve_elastic_jfo_film(
             p.bearing, p.state, p.n_theta, p.n_z, lubricant=p.lubricant, bush=p.bush,
             grooves=p.grooves, ambient_pressure=p.ambient_pressure, tol=p.tol,
-            supply_angle=p.supply_angle, start=p.start)
+            supply_angle=p.supply_angle, start=p.start, roughness=p.roughness)
