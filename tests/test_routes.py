@@ -65,7 +65,7 @@ UNUSED = [
     ("jfo", dict(ambient_pressure=1e5), "tol", 1e-8),
     ("jfo", dict(grooves=G), "start", None),
     ("jfo", dict(ambient_pressure=1e5, lubricant=ELRODE), "tilt", (0.0, 1e-4)),
-    ("jfo", dict(ambient_pressure=1e5, bush=RING), "roughness", ROUGH),
+    ("jfo", dict(ambient_pressure=1e5, bush=RING), "method", "psor"),
     ("jfo", dict(ambient_pressure=1e5, bush=RING), "cavitated_shear", "none"),
     ("reynolds", dict(lubricant=OIL), "grading", (np.pi, 0.5)),
     ("reynolds", dict(grooves=G, lubricant=VG32, thermal=HOT), "tilt", (0.0, 1e-4)),
