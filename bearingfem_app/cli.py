@@ -84,6 +84,22 @@ def _bearing_args(p, film=True):
                                              else "with --model fem-jfo (default 1e5)"))
 
 
+def _film_discretisation(name: str) -> str:
+    """solve's --model: fem or fvm; a designer's model name (fem-jfo, short, ...) is
+    answered with the options that ask for that film here."""
+    if name in ("fem", "fvm"):
+        return name
+    hint = ""
+    if name.endswith("-jfo") and name[:-4] in ("fem", "fvm"):
+        hint = f": for the {name} film give --model {name[:-4]} --cavitation jfo"
+    elif name in FILM_MODELS:
+        hint = (f": {name!r} is a model of equilibrium, coefficients and scenes; solve "
+                "solves the film on a mesh")
+    raise argparse.ArgumentTypeError(
+        f"invalid choice {name!r} (choose fem or fvm; the cavitation model is "
+        f"--cavitation){hint}")
+
+
 def _film_args(p):
     _bearing_args(p)
     p.add_argument("--eps", type=float, default=0.6, help="eccentricity ratio in [0, 1)")
@@ -138,9 +154,10 @@ def build_parser():
             epilog="example: bearingfem solve --ld 0.5 --eps 0.8 -o film.vtu")
     _film_args(f)
     _rtol_arg(f)
-    f.add_argument("--model", default="fem", choices=["fem", "fvm"],
-                   help="film model: finite elements or finite volumes")
-    f.add_argument("--method", choices=["fem", "fvm"], help=argparse.SUPPRESS)   # old name
+    f.add_argument("--model", default="fem", type=_film_discretisation,
+                   help="film model: fem (finite elements) or fvm (finite volumes); the "
+                        "cavitation model is --cavitation")
+    f.add_argument("--method", type=_film_discretisation, help=argparse.SUPPRESS)  # old name
     f.add_argument("-o", "--output", help="write the film (.vtu, .xdmf)")
     add_bush_args(f)
     f.set_defaults(func=command_solve)

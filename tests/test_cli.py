@@ -242,6 +242,9 @@ def test_old_spelling_is_taken_with_a_note_and_typos_get_a_suggestion():
     typo = run("solve", "--modl", "fvm")
     assert typo.returncode == 2 and "did you mean --model?" in typo.stderr
     assert "usage: bearingfem solve" in typo.stderr
+    # a designer's model name on solve names the options that ask for its film here
+    jfo = run("solve", "--model", "fem-jfo")
+    assert jfo.returncode == 2 and "give --model fem --cavitation jfo" in jfo.stderr
 
 
 def test_oil_by_grade_is_its_viscosity_at_the_temperature():
