@@ -273,8 +273,13 @@ def test_linear_threshold_agrees_with_the_nonlinear_orbit():
 
 def test_threshold_speed_is_where_the_critical_mass_is_the_journal_mass():
     mass = 50.0
-    th = threshold_speed(FRISWELL, (0.0, -525.0), mass, "short", omega_range=(10.0, 1e4))
+    th = threshold_speed(FRISWELL, (0.0, -525.0), mass, "short", omega_range=(10.0, 5e3))
     assert th.stability.critical_mass == pytest.approx(mass, rel=1e-6)
+    # the default range ends at a journal bearing's highest surface speed, 300 m/s
+    assert threshold_speed(FRISWELL, (0.0, -525.0), mass, "short").omega == pytest.approx(
+        th.omega, rel=1e-6)
+    with pytest.raises(ValueError, match="omega_range's high end 10000 rad/s .* 500 m/s"):
+        threshold_speed(FRISWELL, (0.0, -525.0), mass, "short", omega_range=(10.0, 1e4))
     slower = equilibrium(FRISWELL, (0.0, -525.0), 0.9 * th.omega, "short")
     assert lund_stability(coefficients(FRISWELL, slower.state, "short")).stable(mass)
 

@@ -35,7 +35,7 @@ import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
-from ..bearing import Bearing, JournalState, check_positive
+from ..bearing import PLAUSIBLE, Bearing, JournalState, check_positive, check_surface_speed
 from ..film import local_to_inertial
 from ..models import film_model
 from .coefficients import DynamicCoefficients, coefficients
@@ -253,18 +253,22 @@ class ThresholdSpeed:
 
 
 def threshold_speed(bearing: Bearing, load, mass: float, model: str = "fem", *,
-                    omega_range=(1.0, 1e5), rtol: float = 1e-8,
+                    omega_range=None, rtol: float = 1e-8,
                     **options) -> ThresholdSpeed:
     """The onset speed of oil whirl of a rigid journal of ``mass`` [kg] carrying ``load``
-    [N] (vector, inertial), within ``omega_range`` [rad/s].
+    [N] (vector, inertial), within ``omega_range`` [rad/s] (default: 1 rad/s up to the
+    speed whose surface speed omega R is the highest of any journal bearing, 300 m/s).
 
     As the speed grows the journal rises toward the centre and its critical mass falls;
     the threshold is where the critical mass equals ``mass`` (Brent's method in ln omega).
     """
     mass = check_positive("mass", mass)
+    if omega_range is None:
+        omega_range = (1.0, PLAUSIBLE["surface_speed"] / bearing.radius)
     lo, hi = (check_positive("omega_range", w) for w in omega_range)
     if not lo < hi:
         raise ValueError(f"omega_range must be increasing (low, high) [rad/s], got {omega_range!r}")
+    check_surface_speed(bearing.radius, hi, "omega_range's high end")
 
     def margin(log_omega):
         eq = equilibrium(bearing, load, math.exp(log_omega), model, **options)
