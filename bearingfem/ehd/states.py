@@ -33,6 +33,7 @@ from ..contract import FilmStep, StateTangent
 from ..errors import ConvergenceError
 from ..fe.assembly import fe_operator
 from ..fe.kernel import film_outputs
+from ..fe.mixed import refuse_rough_flow
 from ..fields import FilmFields
 from ..film import film_thickness, local_to_inertial
 from ..scales import force_factor
@@ -178,6 +179,7 @@ class ModalStateEHD:
             raise ValueError(f"modes must be >= 1 for the modal-state EHD film, got {modes!r}")
         if not (np.isfinite(relaxation) and relaxation > 0.0):
             raise ValueError(f"relaxation must be > 0 [s], got {relaxation!r}")
+        refuse_rough_flow(roughness, "modal-state EHD film")
         self.bearing, self.lubricant, self.roughness = bearing, lubricant, roughness
         self.n_theta, self.n_z = int(n_theta), int(n_z)
         comp = ehd_compliance(bush, bearing.radius, bearing.length, self.n_theta, self.n_z,

@@ -24,11 +24,13 @@ import numpy as np
 
 from ..bearing import Bearing, JournalState
 from ..contact.asperity import AsperityContact, Roughness, asperity_contact
+from ..contact.flow_factors import FlowFields, flow_fields
 from ..film import film_thickness
 from ..scales import half_film_factor
 from .assembly import FilmOperator
 
-__all__ = ["check_roughness", "film_contact", "contact_partial_eps", "with_contact"]
+__all__ = ["check_roughness", "film_contact", "contact_partial_eps", "with_contact",
+           "film_flow", "refuse_rough_flow"]
 
 
 def check_roughness(roughness) -> Roughness | None:
@@ -38,6 +40,15 @@ def check_roughness(roughness) -> Roughness | None:
         raise ValueError(f"roughness must be a bearingfem.Roughness or None, got "
                          f"{type(roughness).__name__}")
     return roughness
+
+
+def refuse_rough_flow(roughness, film: str) -> None:
+    """ValueError naming ``roughness.flow`` when it is given to the film ``film``, which
+    solves the smooth film's flow."""
+    if roughness is not None and roughness.flow is not None:
+        raise ValueError(f"roughness.flow (Patir & Cheng's flow factors) is not taken by "
+                         f"the {film}: give roughness without flow (the smooth film's "
+                         f"flow) or solve the rigid film (solve_reynolds, model 'fem')")
 
 
 def _surface(bearing: Bearing, op: FilmOperator):
@@ -64,6 +75,16 @@ def contact_partial_eps(bearing: Bearing, state: JournalState, op: FilmOperator,
     dp = roughness.pressure_derivative(film_thickness(th, state.eps, c)) * c * np.cos(th)
     dA = _surface(bearing, op)
     return float(np.sum(dp * dA * np.cos(th))), float(np.sum(dp * dA * np.sin(th)))
+
+
+def film_flow(bearing: Bearing, state: JournalState, roughness: Roughness | None,
+              gap: np.ndarray) -> FlowFields | None:
+    """The rough gap's coefficient fields on the nominal gap ``gap`` (H = h/c at the film's
+    points) by ``roughness.flow`` (Patir & Cheng), or None for a smooth film's flow (no
+    roughness, or roughness without flow factors)."""
+    if roughness is None or roughness.flow is None:
+        return None
+    return flow_fields(roughness.flow, gap, roughness.sigma / bearing.clearance, state.omega)
 
 
 def with_contact(solution, contact: AsperityContact):
