@@ -1,0 +1,194 @@
+"""Patir & Cheng's pressure flow factor measured on rough cells: the fits against a flow
+simulation of its own.
+
+A periodic cell [0, L_x] x [0, L_y] of the local gap h_T(x, y) = max(h + delta(x, y), 0)
+(delta the roughness, contact closing the gap) carries the Reynolds equation
+div(h_T^3 grad p) = 0 with a mean pressure gradient imposed, p = -x + p~ (p~ periodic),
+solved by P1 finite elements (scikit-fem, on a grid of right triangles, the periodic
+dofs joined). Its mean flow per unit width and unit gradient,
+<q_x> = <h_T^3 (1 - dp~/dx)>, gives
+
+    phi_x = <q_x> / h^3,
+
+the factor Patir & Cheng (1978) computed by flow simulations of their own (on finite
+cells with the pressure held at the ends) and fitted. Exact checks of the cell solve:
+ridges across the flow, h_T = h (1 + a cos(2 pi x / l)), give
+phi_x = 1 / (h^3 <h_T^-3>) = 2 (1 - a^2)^(5/2) / (2 + a^2); ridges along it,
+h_T = h (1 + a cos(2 pi y / l)), give phi_x = <h_T^3> / h^3 = 1 + 3 a^2 / 2; a
+checkerboard of two conductances k1, k2 gives sqrt(k1 k2) (Keller's duality).
+
+The isotropic rough surface is a periodic Gaussian random field of unit variance with a
+Gaussian autocorrelation whose half-height length is ``correlation`` (Patir & Cheng's
+lambda_0.5), drawn in Fourier space on a grid of ``correlation`` / 8 and sampled on any
+finer grid by zero padding (the same surface on every mesh: a convergence study of the
+cell solve alone).
+
+    python -m studies.flow_factors        # the table of docs/mixed-lubrication.md
+"""
+from __future__ import annotations
+
+import math
+import time
+
+import numpy as np
+import scipy.sparse as sp
+from scipy.sparse.linalg import spsolve
+from skfem import Basis, BilinearForm, ElementTriP1, LinearForm, MeshTri, asm
+from skfem.helpers import dot, grad
+
+from bearingfem.contact.flow_factors import pressure_flow_factor
+
+__all__ = ["cell_flow_factor", "gaussian_surface", "transverse_exact", "longitudinal_exact",
+           "measured_factors"]
+
+#: the coefficient's floor where the surfaces touch (a closed cell carries no flow)
+CLOSED = 1e-12
+
+
+@BilinearForm
+def _conduction(u, v, w):
+    return w.k * dot(grad(u), grad(v))
+
+
+@LinearForm
+def _driving(v, w):
+    return w.k * grad(v)[0]          # int k e_x . grad v: the imposed unit gradient
+
+
+def _periodic(mesh, lx: float, ly: float):
+    """(N x M) sparse map of the periodic dofs onto the mesh's nodes (x = L_x onto 0,
+    y = L_y onto 0)."""
+    x, y = mesh.p
+    nx = len(np.unique(np.round(x / lx * 1e9)))
+    ny = len(np.unique(np.round(y / ly * 1e9)))
+    i = np.rint(x / lx * (nx - 1)).astype(int) % (nx - 1)
+    j = np.rint(y / ly * (ny - 1)).astype(int) % (ny - 1)
+    col = i * (ny - 1) + j
+    n = mesh.p.shape[1]
+    return sp.csr_matrix((np.ones(n), (np.arange(n), col)), shape=(n, (nx - 1) * (ny - 1)))
+
+
+def cell_flow_factor(gap, nominal: float, size: tuple, cells: tuple) -> float:
+    """phi_x of the local gap ``gap(x, y)`` [any unit; clipped at 0, evaluated at the
+    quadrature points] on the periodic cell ``size`` = (L_x, L_y) meshed with ``cells`` =
+    (n_x, n_y) squares of two triangles, for the nominal gap ``nominal`` (module
+    docstring)."""
+    (lx, ly), (nx, ny) = size, cells
+    mesh = MeshTri.init_tensor(np.linspace(0.0, lx, nx + 1), np.linspace(0.0, ly, ny + 1))
+    basis = Basis(mesh, ElementTriP1())
+    x, y = np.asarray(basis.global_coordinates())
+    k = np.maximum(gap(x, y), 0.0) ** 3 + CLOSED * nominal ** 3
+    P = _periodic(mesh, lx, ly)
+    K = (P.T @ asm(_conduction, basis, k=k) @ P).tocsc()
+    b = P.T @ asm(_driving, basis, k=k)
+    # p~ is defined up to a constant: held at 0 on the first dof
+    q = np.zeros(K.shape[0])
+    q[1:] = spsolve(K[1:, 1:], b[1:])
+    dpdx = basis.interpolate(P @ q).grad[0]
+    flow = float(np.sum(k * (1.0 - dpdx) * basis.dx)) / (lx * ly)
+    return flow / nominal ** 3
+
+
+def transverse_exact(a: float) -> float:
+    """phi_x of ridges across the flow, h_T = h (1 + a cos): 1 / (h^3 <h_T^-3>)."""
+    return 2.0 * (1.0 - a * a) ** 2.5 / (2.0 + a * a)
+
+
+def longitudinal_exact(a: float) -> float:
+    """phi_x of ridges along the flow, h_T = h (1 + a cos): <h_T^3> / h^3."""
+    return 1.0 + 1.5 * a * a
+
+
+def gaussian_surface(length: float, correlation: float, seed: int):
+    """A periodic isotropic Gaussian surface of unit variance on [0, length]^2 with a
+    Gaussian autocorrelation of half-height length ``correlation``: returns
+    ``sample(n)``, the surface on an n x n grid of cell centres (n a multiple of the
+    drawing grid's), the same surface for every n."""
+    n0 = int(round(8 * length / correlation))
+    beta = correlation / math.sqrt(math.log(2.0))      # R(r) = exp(-r^2 / beta^2)
+    k = 2.0 * math.pi * np.fft.fftfreq(n0, d=length / n0)
+    kx, ky = np.meshgrid(k, k, indexing="ij")
+    spectrum = np.exp(-(kx ** 2 + ky ** 2) * beta ** 2 / 8.0)   # sqrt of the PSD
+    rng = np.random.default_rng(seed)
+    coeff = np.fft.fft2(rng.standard_normal((n0, n0))) * spectrum
+    coeff[0, 0] = 0.0
+    field = np.real(np.fft.ifft2(coeff))
+    scale = 1.0 / field.std()
+
+    def sample(n: int) -> np.ndarray:
+        if n % n0:
+            raise ValueError(f"n must be a multiple of {n0}, got {n}")
+        m = n // n0
+        padded = np.zeros((n, n), complex)
+        h = n0 // 2
+        idx = np.r_[0:h, n - (n0 - h):n]
+        src = np.r_[0:h, h:n0]
+        padded[np.ix_(idx, idx)] = coeff[np.ix_(src, src)]
+        # shift by half a fine cell: the n x n values sit at the cell centres
+        f = 2.0 * math.pi * np.fft.fftfreq(n, d=1.0 / n) * (0.5 / n)
+        padded *= np.exp(1j * (f[:, None] + f[None, :]))
+        return np.real(np.fft.ifft2(padded)) * (m * m) * scale
+    return sample
+
+
+def _cells_gap(values: np.ndarray, length: float, nominal: float):
+    n = values.shape[0]
+
+    def gap(x, y):
+        i = np.minimum((x / length * n).astype(int), n - 1)
+        j = np.minimum((y / length * n).astype(int), n - 1)
+        return nominal + values[i, j]
+    return gap
+
+
+def measured_factors(H, seeds=range(4), length: float = 8.0, per_correlation: int = 16):
+    """phi_x on ``seeds`` isotropic surfaces (sigma = 1, correlation length 1, a cell
+    ``length`` wide, ``per_correlation`` grid cells per correlation length) at each
+    nominal gap H: array (H, seeds)."""
+    n = int(length * per_correlation)
+    out = np.zeros((len(H), len(seeds)))
+    for j, seed in enumerate(seeds):
+        values = gaussian_surface(length, 1.0, seed)(n)
+        for i, h in enumerate(H):
+            out[i, j] = cell_flow_factor(_cells_gap(values, length, h), h, (length, length),
+                                         (n, n))
+    return out
+
+
+def main():
+    print("exact checks of the cell solve (a = 0.5, ridges of period 1):")
+    print("| cells per ridge | across: measured | exact | along: measured | exact |")
+    print("|---|---|---|---|---|")
+    a = 0.5
+    for m in (8, 16, 32, 64):
+        across = cell_flow_factor(lambda x, y: 1.0 + a * np.cos(2 * np.pi * x), 1.0,
+                                  (2.0, 1.0), (2 * m, 4))
+        along = cell_flow_factor(lambda x, y: 1.0 + a * np.cos(2 * np.pi * y), 1.0,
+                                 (1.0, 1.0), (4, m))
+        print(f"| {m} | {across:.6f} | {transverse_exact(a):.6f} | {along:.6f} | "
+              f"{longitudinal_exact(a):.6f} |")
+    print("\nmesh convergence, one isotropic surface (seed 0, cell 8 x 8 correlation "
+          "lengths), H = 1.5:")
+    sample = gaussian_surface(8.0, 1.0, 0)
+    for per in (8, 16, 32):
+        n = 8 * per
+        phi = cell_flow_factor(_cells_gap(sample(n), 8.0, 1.5), 1.5, (8.0, 8.0), (n, n))
+        print(f"  {per} cells per correlation length: phi_x = {phi:.5f}")
+    H = np.array([1.0, 1.5, 2.0, 3.0, 4.0, 6.0])
+    seeds = range(8)
+    t = time.perf_counter()
+    phi = measured_factors(H, seeds, length=32.0, per_correlation=8)
+    print(f"\n{len(seeds)} isotropic surfaces of 32 x 32 correlation lengths, 8 cells each "
+          f"({time.perf_counter() - t:.0f} s):")
+    print("| H | phi_x measured: mean (std of the surfaces) | its standard error | "
+          "Patir & Cheng's fit | fit - measured | 1 - 3/(2 H^2) |")
+    print("|---|---|---|---|---|---|")
+    fit = pressure_flow_factor(H, 1.0)
+    for h, row, f in zip(H, phi, fit):
+        m, s = row.mean(), row.std(ddof=1)
+        print(f"| {h:g} | {m:.3f} ({s:.3f}) | {s / math.sqrt(len(row)):.3f} | {f:.3f} | "
+              f"{100 * (f - m) / m:+.1f} % | {1 - 1.5 / h**2:.3f} |")
+
+
+if __name__ == "__main__":
+    main()
