@@ -13,20 +13,26 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from bearingfem import FlowFactors, JournalState, Roughness, solve_reynolds
+from bearingfem import (Bearing, ElasticBush, ElasticJournalState, FlowFactors,
+                        JournalState, Roughness, solve_reynolds)
 from bearingfem.bearing import seed_bearing
 from bearingfem.contact.flow_factors import (PATTERNS, PRESSURE_FIT, SHEAR_FIT, FlowFields,
                                              flow_fields, mean_gap, pressure_flow_factor,
-                                             shear_flow_factor)
+                                             pressure_flow_slope, shear_flow_factor,
+                                             shear_flow_slope)
 from bearingfem.fe.assembly import fe_operator
 from bearingfem.fe.general import general_film
 from bearingfem.fe.kernel import solve_film
 from bearingfem.fields import FilmFields
 from bearingfem.routes import film_problem, route_for
+from bearingfem.ehd.states import ModalStateEHD
+from bearingfem.lubricant import Lubricant
 from studies.flow_factors import (_cells_gap, cell_flow_factor, gaussian_surface,
                                   longitudinal_exact, transverse_exact)
 
 B = seed_bearing()                                   # c = 20 um
+PIN = Bearing(radius=0.01, length=0.004, clearance=20e-6, viscosity=0.0117)
+SOLID = ElasticBush(outer_radius=0.016, modulus=110e9, poisson=0.34, model="solid")
 
 
 def rough(sigma, **flow):
@@ -81,6 +87,34 @@ def test_pressure_fits_and_their_limits(gamma):
         np.testing.assert_allclose(pressure_flow_factor(1e3, gamma) - 1.0, C * 1e3 ** -1.5,
                                    rtol=1e-9)
     assert pressure_flow_factor(0.5 * least, gamma) == pressure_flow_factor(least, gamma)
+
+
+@pytest.mark.parametrize("gamma", PATTERNS)
+def test_slopes_against_differences(gamma):
+    """d phi_x/dH, d Phi_s/dH and the flow fields' slopes in the nominal gap against
+    central differences (1e-7), across the fits' limits and the switch at H = 5 (0 below
+    a limit, where a factor is held). Fails with the shear slope's -0.25 beyond H = 5
+    typed -0.5."""
+    H = np.array([0.3, 0.7, 1.2, 2.0, 4.0, 4.9, 5.1, 8.0])
+    d = 1e-6
+    for f, slope in ((pressure_flow_factor, pressure_flow_slope),
+                     (shear_flow_factor, shear_flow_slope)):
+        fd = (f(H + d, gamma) - f(H - d, gamma)) / (2 * d)
+        np.testing.assert_allclose(slope(H, gamma), fd, rtol=1e-7, atol=1e-9)
+    flow = FlowFactors(pattern=gamma, journal_share=0.9)
+    Hc, sig = np.array([0.001, 0.02, 0.06, 0.1, 0.3]), 0.05      # h/c, sigma/c
+    ff = flow_fields(flow, Hc, sig, 10.0)
+    up, dn = flow_fields(flow, Hc + d * sig, sig, 10.0), flow_fields(flow, Hc - d * sig, sig,
+                                                                       10.0)
+    for a in range(2):
+        np.testing.assert_allclose(ff.conductance_slope[a],
+                                   (up.conductance[a] - dn.conductance[a]) / (2 * d * sig),
+                                   rtol=1e-6, atol=1e-12)
+    for name, deriv in (("mean_gap", "gap_slope"), ("gap_slope", "gap_curvature"),
+                        ("shear", "shear_slope")):
+        np.testing.assert_allclose(getattr(ff, deriv),
+                                   (getattr(up, name) - getattr(dn, name)) / (2 * d * sig),
+                                   rtol=1e-6, atol=1e-9)
 
 
 def test_mean_gap_against_quadrature():
@@ -225,22 +259,79 @@ def test_rough_flow_changes_the_thin_film_as_the_factors_say():
 
 
 def test_routes_that_cannot_take_the_flow_refuse_it_by_name():
-    """The JFO, EHD, modal-state and transient EHD films refuse roughness.flow with a
+    """The JFO, steady EHD and transient EHD films refuse roughness.flow with a
     ValueError naming it, before any work."""
-    from bearingfem import ElasticBush
-    from bearingfem.ehd.states import ModalStateEHD
     from bearingfem.ehd.transient import TransientEHD
     s = JournalState(0.6, omega=100.0)
     r = rough(0.3e-6)
-    bush = ElasticBush(outer_radius=0.016, modulus=110e9, poisson=0.34)
+    bush = SOLID
     with pytest.raises(ValueError, match="roughness.flow"):
         route_for(film_problem(B, s, 48, 8, "jfo", ambient_pressure=1e5, roughness=r))
     with pytest.raises(ValueError, match="roughness.flow"):
         route_for(film_problem(B, s, 48, 8, "reynolds", bush=bush, roughness=r))
     with pytest.raises(ValueError, match="roughness.flow"):
-        ModalStateEHD(B, None, bush, 16, 2, 4, roughness=r)
-    with pytest.raises(ValueError, match="roughness.flow"):
         TransientEHD(B, None, bush, roughness=r)
+
+
+# -- the modal-state EHD film (where the 0.05 sigma floor was) ---------------------------
+def test_modal_state_film_smooth_limit():
+    """The modal-state EHD film with flow factors at sigma = 1e-12 m is the film without
+    roughness: force and dq/dt to round-off (1e-16 measured; gamma = 1, whose factors
+    reach 1 exponentially). Fails with the rough film's squeeze weight dE/dh doubled in
+    the bush's rate load."""
+    s = JournalState(eps=0.9, eps_dot=5.0, gamma=1.0, gamma_dot=1.0, omega=62.5)
+    q = 1e-7 * np.linspace(1.0, -0.5, 8)
+    F0, r0 = ModalStateEHD(PIN, None, SOLID, 24, 4, 8, relaxation=1e-5).rates(s, q)
+    F1, r1 = ModalStateEHD(PIN, None, SOLID, 24, 4, 8, relaxation=1e-5,
+                           roughness=rough(1e-12)).rates(s, q)
+    np.testing.assert_allclose(F1, F0, rtol=1e-12)
+    np.testing.assert_allclose(r1, r0, rtol=0, atol=1e-12 * np.max(np.abs(r0)))
+
+
+@pytest.mark.parametrize("oil", [False, True], ids=["isoviscous", "barus"])
+@pytest.mark.parametrize("sigma", [0.5e-6, 1.5e-6])
+def test_modal_state_tangent_with_flow_factors(oil, sigma):
+    """The modal-state film's tangent (force and dq/dt in the modal coordinates, the
+    implicit-function derivative through the rough gap's coefficients: conductance, mean
+    gap and squeeze weight differentiated in H) against central differences of whole
+    solves, at a least film of 2.1 and 0.69 sigma (below the fits' limits: the factors
+    held), gamma = 1/3, journal_share 0.8 (shear flow), whirling journal; measured 1e-11
+    and 1e-9, asserted 1e-7. Fails with the squeeze term's d(dE/dh)/dh left out, or the
+    tangent taken on the affine film's rate at dq/dt = 0."""
+    lub = Lubricant(viscosity=0.0117, barus=2e-8) if oil else None
+    r = rough(sigma, pattern=1 / 3, journal_share=0.8)
+
+    def film():
+        return ModalStateEHD(PIN, lub, SOLID, 16, 2, 4, relaxation=1e-5, roughness=r)
+    s = JournalState(eps=0.95, eps_dot=10.0, gamma=0.3, gamma_dot=20.0, omega=62.5)
+    f = film()
+    n = f.state_size
+    q = 3e-7 * np.linspace(1.0, -0.5, n)
+    f.rates(s, q)
+    T = f.tangent()
+    h = 1e-11
+    dF, dr = np.zeros((2, n)), np.zeros((n, n))
+    for j in range(n):
+        d = np.zeros(n)
+        d[j] = h
+        (Fp, rp), (Fm, rm) = film().rates(s, q + d), film().rates(s, q - d)
+        dF[:, j] = (np.array(Fp) - np.array(Fm)) / (2 * h)
+        dr[:, j] = (rp - rm) / (2 * h)
+    assert np.max(np.abs(T.force_local - dF)) < 1e-7 * np.max(np.abs(dF))
+    assert np.max(np.abs(T.rates - dr)) < 1e-7 * np.max(np.abs(dr))
+
+
+def test_modal_state_film_past_the_circle_without_a_floor():
+    """Past the clearance circle (eps 1.1, q = 0) the nominal gap is negative on an arc:
+    the rough film takes it (its mean gap stays > 0, no floor), the summits carry the
+    contact and the film's force and friction are finite. Fails with the gap's positivity
+    check kept for a rough flow (the film then does not solve)."""
+    s = ElasticJournalState(eps=1.1, omega=62.5)
+    film = ModalStateEHD(PIN, None, SOLID, 24, 4, 8, roughness=rough(0.5e-6))
+    sol = film.solution(s, np.zeros(8))
+    assert np.min(sol.film_thickness) < 0.0
+    assert np.all(np.isfinite(sol.force_local)) and np.isfinite(sol.friction_torque)
+    assert abs(sol.asperity_force_local[0]) > abs(sol.force_local[0])
 
 
 # -- the flow simulation of rough cells ---------------------------------------------------

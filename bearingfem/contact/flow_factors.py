@@ -50,7 +50,7 @@ from ..bearing import check_finite
 
 __all__ = ["FlowFactors", "FlowFields", "PATTERNS", "PRESSURE_FIT", "SHEAR_FIT",
            "SHEAR_FIT_LIMIT", "FLOW_FLOOR", "pressure_flow_factor", "shear_flow_factor",
-           "mean_gap", "flow_fields"]
+           "pressure_flow_slope", "shear_flow_slope", "mean_gap", "flow_fields"]
 
 #: Peklenik's gamma values Patir & Cheng tabulate (their fits hold at these alone).
 PATTERNS = (1 / 9, 1 / 6, 1 / 3, 1.0, 3.0, 6.0, 9.0)
@@ -93,6 +93,26 @@ def pressure_flow_factor(H, gamma: float = 1.0) -> np.ndarray:
     if g <= 1.0:
         return 1.0 - C * np.exp(-r * H)
     return 1.0 + C * H ** -r
+
+
+def pressure_flow_slope(H, gamma: float = 1.0) -> np.ndarray:
+    """d phi_x / dH of :func:`pressure_flow_factor` (0 below the fit's least H, where the
+    factor is held)."""
+    g = _pattern(gamma)
+    C, r, least = PRESSURE_FIT[g]
+    H = np.asarray(H, dtype=float)
+    Hc = np.maximum(H, least)
+    slope = C * r * np.exp(-r * Hc) if g <= 1.0 else -r * C * Hc ** (-r - 1.0)
+    return np.where(H > least, slope, 0.0)
+
+
+def shear_flow_slope(H, gamma: float = 1.0) -> np.ndarray:
+    """d Phi_s / dH of :func:`shear_flow_factor` (0 below H = 0.5, where it is held)."""
+    _, a1, a2, a3, _ = SHEAR_FIT[_pattern(gamma)]
+    H = np.asarray(H, dtype=float)
+    Hc = np.maximum(H, SHEAR_FIT_LIMIT)
+    log_slope = np.where(Hc <= SHEAR_SWITCH, a1 / Hc - a2 + 2.0 * a3 * Hc, -0.25)
+    return np.where(H > SHEAR_FIT_LIMIT, shear_flow_factor(Hc, gamma) * log_slope, 0.0)
 
 
 def shear_flow_factor(H, gamma: float = 1.0) -> np.ndarray:
@@ -144,6 +164,12 @@ class FlowFactors:
                 pressure_flow_factor(H, 1.0 / self.pattern),
                 (2.0 * self.journal_share - 1.0) * shear_flow_factor(H, self.pattern))
 
+    def slopes(self, H) -> tuple:
+        """d(phi_x, phi_y, phi_s)/dH at H = h/sigma."""
+        return (pressure_flow_slope(H, self.pattern),
+                pressure_flow_slope(H, 1.0 / self.pattern),
+                (2.0 * self.journal_share - 1.0) * shear_flow_slope(H, self.pattern))
+
 
 @dataclass(frozen=True, eq=False)
 class FlowFields:
@@ -155,6 +181,8 @@ class FlowFields:
     gap_slope : dE(h_T)/dh, the squeeze's factor on dH/dt
     shear : sigma phi_s / c, the shear flow's content
     shear_speed : omega [rad/s], the surfaces' relative speed that drives it
+    conductance_slope, gap_curvature, shear_slope : the derivatives of conductance,
+        gap_slope and shear in the nominal gap H (for a Newton film whose gap moves)
     """
 
     conductance: tuple
@@ -162,6 +190,9 @@ class FlowFields:
     gap_slope: np.ndarray
     shear: np.ndarray
     shear_speed: float
+    conductance_slope: tuple = None
+    gap_curvature: np.ndarray = None
+    shear_slope: np.ndarray = None
 
 
 def flow_fields(flow: FlowFactors, gap: np.ndarray, roughness_ratio: float,
@@ -172,7 +203,14 @@ def flow_fields(flow: FlowFactors, gap: np.ndarray, roughness_ratio: float,
     H = np.asarray(gap, dtype=float)
     Hs = H / s
     phi_x, phi_z, phi_s = flow.factors(Hs)
-    cube = np.maximum(H, FLOW_FLOOR * s) ** 3
+    dphi_x, dphi_z, dphi_s = flow.slopes(Hs)               # d/dHs = s d/dH
+    floor = FLOW_FLOOR * s
+    cube = np.maximum(H, floor) ** 3
+    dcube = np.where(H > floor, 3.0 * H * H, 0.0)
     E, slope = mean_gap(Hs)
     return FlowFields(conductance=(phi_x * cube, phi_z * cube), mean_gap=s * E,
-                      gap_slope=slope, shear=s * phi_s, shear_speed=float(omega))
+                      gap_slope=slope, shear=s * phi_s, shear_speed=float(omega),
+                      conductance_slope=(dphi_x * cube / s + phi_x * dcube,
+                                         dphi_z * cube / s + phi_z * dcube),
+                      gap_curvature=np.exp(-0.5 * Hs * Hs) / (math.sqrt(2.0 * math.pi) * s),
+                      shear_slope=dphi_s)
