@@ -259,8 +259,8 @@ def test_rough_flow_changes_the_thin_film_as_the_factors_say():
 
 
 def test_routes_that_cannot_take_the_flow_refuse_it_by_name():
-    """The JFO, steady EHD and transient EHD films refuse roughness.flow with a
-    ValueError naming it, before any work."""
+    """The JFO films (rigid and with a bush) and the transient EHD film (a kept film
+    between steps) refuse roughness.flow with a ValueError naming it, before any work."""
     from bearingfem.ehd.transient import TransientEHD
     s = JournalState(0.6, omega=100.0)
     r = rough(0.3e-6)
@@ -268,9 +268,54 @@ def test_routes_that_cannot_take_the_flow_refuse_it_by_name():
     with pytest.raises(ValueError, match="roughness.flow"):
         route_for(film_problem(B, s, 48, 8, "jfo", ambient_pressure=1e5, roughness=r))
     with pytest.raises(ValueError, match="roughness.flow"):
-        route_for(film_problem(B, s, 48, 8, "reynolds", bush=bush, roughness=r))
+        route_for(film_problem(B, s, 48, 8, "jfo", ambient_pressure=1e5, bush=bush,
+                               roughness=r))
     with pytest.raises(ValueError, match="roughness.flow"):
         TransientEHD(B, None, bush, roughness=r)
+
+
+# -- the steady EHD film -----------------------------------------------------------------
+def test_steady_ehd_film_smooth_limit():
+    """The steady EHD film (bush, Barus oil) with flow factors at sigma = 1e-12 m is the
+    film without roughness to Newton's tolerance (pressure 1e-10 of its peak). Fails with
+    the flow left out of the Newton residual's film but kept in its start."""
+    oil = Lubricant(viscosity=0.0117, barus=2e-8)
+    s = JournalState(eps=0.9, omega=62.5)
+    a = solve_reynolds(PIN, s, 24, 4, lubricant=oil, bush=SOLID)
+    b = solve_reynolds(PIN, s, 24, 4, lubricant=oil, bush=SOLID, roughness=rough(1e-12))
+    np.testing.assert_allclose(b.pressure, a.pressure, rtol=0,
+                               atol=1e-10 * np.max(a.pressure))
+    np.testing.assert_allclose(b.force_local, a.force_local, rtol=1e-9)
+
+
+@pytest.mark.parametrize("with_bush", [False, True], ids=["oil", "oil+bush"])
+def test_steady_ehd_jacobian_with_flow_factors(with_bush):
+    """The steady EHD film's Newton Jacobian (sparse + the bush's U V^T, the summits'
+    stiffness in it) with a rough gap's flow (sigma 1 um: H from 0.4 to 5 on the film),
+    against central differences of its residual, to 1e-6 of the largest entry. Fails with
+    the conductance's H-slope left out (the bush's term) or its viscosity slope taken
+    on H^3 (the oil's)."""
+    from bearingfem.ehd.coupling import ehd_film
+    from bearingfem.ehd.film_compliance import dof_compliance  # noqa: F401 (the bush's)
+    oil = Lubricant(viscosity=0.0117, barus=2e-8)
+    s = JournalState(eps=0.95, eps_dot=5.0, omega=625.0)      # peak 15 MPa: alpha p 0.3
+    op = fe_operator(PIN, s, 16, 2, "P1", None, False)
+    base, gap = general_film(PIN, s, op)
+    r = Roughness(sigma=1e-6, contact_modulus=80.8e9, elastic_factor=1e-3,
+                  flow=FlowFactors(pattern=1 / 3, journal_share=0.8))
+    film = ehd_film(PIN, s, op, base, gap, oil, SOLID if with_bush else None, r)
+    P = np.maximum(np.asarray(solve_reynolds(PIN, s, 16, 2, half=False).pressure)
+                   / PIN.pressure_scale, 0.0)
+    J, U, V = film.jacobian(P)
+    full = J.toarray() if U is None else (
+        J.toarray() + (U if V is None else U @ V.T))
+    h = 1e-6 * np.max(np.abs(P))
+    fd = np.empty_like(full)
+    for j in range(P.size):
+        d = np.zeros_like(P)
+        d[j] = h
+        fd[:, j] = (film.evaluate(P + d).residual - film.evaluate(P - d).residual) / (2 * h)
+    assert np.max(np.abs(full - fd)) < 1e-6 * np.max(np.abs(fd))
 
 
 # -- the modal-state EHD film (where the 0.05 sigma floor was) ---------------------------

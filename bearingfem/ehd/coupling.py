@@ -183,6 +183,12 @@ class EHDFilm:
                           density_rate=self.base.density_rate)
         return film, slopes
 
+    def flow_fields(self, film: FilmFields):
+        """The rough gap's coefficient fields on ``film``'s gap (None: the smooth flow)."""
+        if self.flow is None:
+            return None
+        return flow_fields(self.flow, film.gap, self.sigma / self.clearance, self.omega)
+
     def evaluate(self, P: np.ndarray, s: float = 1.0) -> FilmState | None:
         """The film at pressure P, or None where the gap closes or a viscosity or density
         is not finite and > 0 (a trial pressure may push a property law out of range)."""
@@ -199,8 +205,7 @@ class EHDFilm:
         for field in checked:
             if not np.all((field > 0.0) & np.isfinite(field)):
                 return None
-        flow = None if self.flow is None else flow_fields(
-            self.flow, film.gap, self.sigma / self.clearance, self.omega)
+        flow = self.flow_fields(film)
         values, load = film_system(self.op, film, self.wedge, self.eps, flow)
         pattern = self.op.pattern
         size = pattern.matrix(np.abs(values)) @ np.abs(P) + np.abs(load)

@@ -40,6 +40,7 @@ from ..contract import FilmStep, StateTangent
 from ..errors import ConvergenceError
 from ..fe.assembly import fe_operator
 from ..fe.kernel import film_outputs
+from ..fe.mixed import friction_fields
 from ..fields import FilmFields
 from ..film import film_thickness, local_to_inertial
 from ..scales import force_factor
@@ -334,12 +335,7 @@ class ModalStateEHD:
         res = self._solve(coupled)
         self._P = res.pressure
         ev = coupled.film_state(res.pressure)
-        fields = ev.fields
-        if ev.flow is not None:
-            # the friction of a rough gap is the smooth film's on the nominal gap floored
-            # at FLOW_FLOOR sigma (Patir & Cheng's shear stress factors are not modelled)
-            fields = replace(fields, gap=np.maximum(
-                fields.gap, FLOW_FLOOR * self.roughness.sigma / self.bearing.clearance))
+        fields = friction_fields(ev.fields, self.roughness, self.bearing.clearance)
         sol = film_outputs(self.bearing, state, coupled.op, res, ev.values, ev.load,
                            fields, "reynolds", "full", (), "fem-P1/ehd-states",
                            gap=coupled.gap)

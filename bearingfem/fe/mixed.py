@@ -24,13 +24,13 @@ import numpy as np
 
 from ..bearing import Bearing, JournalState
 from ..contact.asperity import AsperityContact, Roughness, asperity_contact
-from ..contact.flow_factors import FlowFields, flow_fields
+from ..contact.flow_factors import FLOW_FLOOR, FlowFields, flow_fields
 from ..film import film_thickness
 from ..scales import half_film_factor
 from .assembly import FilmOperator
 
 __all__ = ["check_roughness", "film_contact", "contact_partial_eps", "with_contact",
-           "film_flow", "refuse_rough_flow"]
+           "film_flow", "refuse_rough_flow", "friction_fields"]
 
 
 def check_roughness(roughness) -> Roughness | None:
@@ -40,6 +40,15 @@ def check_roughness(roughness) -> Roughness | None:
         raise ValueError(f"roughness must be a bearingfem.Roughness or None, got "
                          f"{type(roughness).__name__}")
     return roughness
+
+
+def friction_fields(fields, roughness: Roughness | None, clearance: float):
+    """The fields whose gap the film's friction takes: with a rough gap's flow the
+    nominal gap floored at FLOW_FLOOR sigma (it may be <= 0 where the surfaces are pressed
+    through; Patir & Cheng's shear stress factors are not modelled), else ``fields``."""
+    if roughness is None or roughness.flow is None:
+        return fields
+    return replace(fields, gap=np.maximum(fields.gap, FLOW_FLOOR * roughness.sigma / clearance))
 
 
 def refuse_rough_flow(roughness, film: str) -> None:
