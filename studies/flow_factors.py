@@ -23,10 +23,12 @@ lambda_0.5), drawn in Fourier space on a grid of ``correlation`` / 8 and sampled
 finer grid by zero padding (the same surface on every mesh: a convergence study of the
 cell solve alone).
 
-    python -m studies.flow_factors        # the table of docs/mixed-lubrication.md
+    python -m studies.flow_factors        # the tables of docs/mixed-lubrication.md
+    python -m studies.flow_factors --figure docs/img/flow-factors.png
 """
 from __future__ import annotations
 
+import argparse
 import math
 import time
 
@@ -36,7 +38,8 @@ from scipy.sparse.linalg import spsolve
 from skfem import Basis, BilinearForm, ElementTriP1, LinearForm, MeshTri, asm
 from skfem.helpers import dot, grad
 
-from bearingfem.contact.flow_factors import pressure_flow_factor
+from bearingfem.contact.flow_factors import (PATTERNS, PRESSURE_FIT, mean_gap,
+                                             pressure_flow_factor, shear_flow_factor)
 
 __all__ = ["cell_flow_factor", "gaussian_surface", "transverse_exact", "longitudinal_exact",
            "measured_factors"]
@@ -155,7 +158,43 @@ def measured_factors(H, seeds=range(4), length: float = 8.0, per_correlation: in
     return out
 
 
-def main():
+def figure(path, H, measured) -> None:
+    """The fits of Patir & Cheng (phi_x against H for each gamma; phi_y is phi_x of
+    1/gamma; Phi_s; the mean gap) and the measured isotropic factors, to ``path``."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(1, 3, figsize=(13, 4))
+    names = {1 / 9: "1/9", 1 / 6: "1/6", 1 / 3: "1/3", 1.0: "1", 3.0: "3", 6.0: "6", 9.0: "9"}
+    for g in PATTERNS:
+        least = PRESSURE_FIT[g][2]
+        h = np.linspace(least, 6.0, 200)
+        ax[0].plot(h, pressure_flow_factor(h, g), label=f"gamma {names[g]}")
+        h = np.linspace(0.5, 6.0, 200)
+        ax[1].plot(h, shear_flow_factor(h, g), label=f"gamma {names[g]}")
+    ax[0].set(xlabel="H = h / sigma", ylabel="phi_x (phi_y = phi_x of 1/gamma)",
+              title="pressure flow factor (fits from their least H)")
+    ax[1].set(xlabel="H = h / sigma", ylabel="Phi_s  (phi_s = (V_r1 - V_r2) Phi_s)",
+              title="shear flow factor")
+    h = np.linspace(0.5, 6.0, 200)
+    ax[2].plot(h, pressure_flow_factor(h, 1.0), "k", label="fit, gamma = 1")
+    ax[2].plot(h[h > 1.2], 1 - 1.5 / h[h > 1.2] ** 2, "k:", label="1 - 3/(2 H^2)")
+    ax[2].errorbar(H, measured.mean(axis=1), yerr=measured.std(axis=1, ddof=1), fmt="o",
+                   color="C3", capsize=3, label="rough cells (mean, std)")
+    ax[2].plot(h, mean_gap(h)[0] / h, "C0--", label="E(h_T) / h")
+    ax[2].set(xlabel="H = h / sigma", ylim=(0.0, 1.6),
+              title="isotropic: the fit against rough cells")
+    for a in ax:
+        a.grid(alpha=0.3)
+        a.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--figure", help="also draw the factors and the measured ones here")
+    args = parser.parse_args(argv)
     print("exact checks of the cell solve (a = 0.5, ridges of period 1):")
     print("| cells per ridge | across: measured | exact | along: measured | exact |")
     print("|---|---|---|---|---|")
@@ -188,6 +227,8 @@ def main():
         m, s = row.mean(), row.std(ddof=1)
         print(f"| {h:g} | {m:.3f} ({s:.3f}) | {s / math.sqrt(len(row)):.3f} | {f:.3f} | "
               f"{100 * (f - m) / m:+.1f} % | {1 - 1.5 / h**2:.3f} |")
+    if args.figure:
+        figure(args.figure, H, phi)
 
 
 if __name__ == "__main__":

@@ -278,7 +278,7 @@ def test_routes_that_cannot_take_the_flow_refuse_it_by_name():
 def test_steady_ehd_film_smooth_limit():
     """The steady EHD film (bush, Barus oil) with flow factors at sigma = 1e-12 m is the
     film without roughness to Newton's tolerance (pressure 1e-10 of its peak). Fails with
-    the flow left out of the Newton residual's film but kept in its start."""
+    the EHD film's sigma taken in micrometres."""
     oil = Lubricant(viscosity=0.0117, barus=2e-8)
     s = JournalState(eps=0.9, omega=62.5)
     a = solve_reynolds(PIN, s, 24, 4, lubricant=oil, bush=SOLID)
