@@ -24,7 +24,8 @@ class ElasticFilm(Route):
               "or 'reynolds', P1, whole length"
     uses = frozenset({"element", "method", "tol", "cavitated_shear", "supply_angle", "half",
                       "grooves", "fields", "tilt", "tilt_rate", "profile", "lubricant", "bush",
-                      "roughness", "start", "roughness.flow"})
+                      "roughness", "start"})
+    rough_flow = True
 
     def check_options(self, p: FilmProblem) -> None:
         check_ehd(p.lubricant, p.bush, p.fields, p.element, p.cavitation)

@@ -91,7 +91,8 @@ class GeneralFilm(Route):
     summary = "a film on general fields (gap, viscosity, density), a tilted journal, a " \
               "bush edge profile or a rough gap's flow, whole length"
     uses = _SOLVER | {"supply_angle", "half", "grooves", "fields", "tilt", "tilt_rate",
-                      "profile", "roughness.flow"}
+                      "profile"}
+    rough_flow = True
 
     def solve(self, p: FilmProblem):
         op = fe_operator(p.bearing, p.state, p.n_theta, p.n_z, p.element, p.supply_angle,
