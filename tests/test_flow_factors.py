@@ -397,13 +397,17 @@ def test_cell_solve_is_exact_across_and_along_ridges():
     assert 3.6 < errors[0] / errors[1] < 4.4 and 3.6 < errors[1] / errors[2] < 4.4
 
 
-@pytest.mark.parametrize("H", [3.0, 4.0])
-def test_isotropic_rough_cells_against_the_fit(H):
+@pytest.mark.parametrize("H, tol", [pytest.param(3.0, 0.05, marks=pytest.mark.slow),
+                                    (4.0, 0.02),
+                                    pytest.param(6.0, 0.02, marks=pytest.mark.slow)])
+def test_isotropic_rough_cells_against_the_fit(H, tol):
     """Four isotropic Gaussian surfaces (16 x 16 correlation lengths, 8 cells each), the
-    flow of the periodic cell at H = 3 and 4 against Patir & Cheng's isotropic fit
-    1 - 0.9 exp(-0.56 H): the mean within 3 % (the table of docs/mixed-lubrication.md,
-    8 surfaces of 32 x 32 lengths, gives the measured difference and scatter). Fails with
-    the fit's C = 0.9 typed 1.2 (H = 3: 8 % low)."""
+    flow of the periodic cell against Patir & Cheng's isotropic fit 1 - 0.9 exp(-0.56 H)
+    where the fit holds to a few %: the tolerances from the study's eight surfaces of
+    32 x 32 lengths (docs/mixed-lubrication.md: fit - measured -3.1 +- 0.8 %, -0.9 +- 0.4 %,
+    +1.0 +- 0.2 % at H = 3, 4, 6; here -1.8, -0.3, +1.3 %). Below H = 3 the fit falls
+    below the cells (-7 % at H = 2, -20 % at H = 1): not asserted. Fails with the fit's
+    C = 0.9 typed 1.2."""
     values = [cell_flow_factor(_cells_gap(gaussian_surface(16.0, 1.0, seed)(128), 16.0, H),
                                H, (16.0, 16.0), (128, 128)) for seed in range(4)]
-    assert np.mean(values) == pytest.approx(float(pressure_flow_factor(H, 1.0)), rel=0.03)
+    assert np.mean(values) == pytest.approx(float(pressure_flow_factor(H, 1.0)), rel=tol)
