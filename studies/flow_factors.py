@@ -134,46 +134,71 @@ def gaussian_surface(length: float, correlation: float, seed: int):
     return sample
 
 
-def _cells_gap(values: np.ndarray, length: float, nominal: float):
+def _cells_gap(values: np.ndarray, length: float, nominal: float, pattern: float = 1.0):
+    """The gap nominal + values on the cell [0, pattern length] x [0, length]: the
+    surface ``values`` stretched along x by Peklenik's gamma = ``pattern`` (its
+    correlation lengths then pattern lambda along x, lambda along y)."""
     n = values.shape[0]
 
     def gap(x, y):
-        i = np.minimum((x / length * n).astype(int), n - 1)
+        i = np.minimum((x / (pattern * length) * n).astype(int), n - 1)
         j = np.minimum((y / length * n).astype(int), n - 1)
         return nominal + values[i, j]
     return gap
 
 
-def measured_factors(H, seeds=range(4), length: float = 8.0, per_correlation: int = 16):
-    """phi_x on ``seeds`` isotropic surfaces (sigma = 1, correlation length 1, a cell
-    ``length`` wide, ``per_correlation`` grid cells per correlation length) at each
-    nominal gap H: array (H, seeds)."""
+def measured_factors(H, seeds=range(4), length: float = 8.0, per_correlation: int = 16,
+                     pattern: float = 1.0):
+    """phi_x on ``seeds`` Gaussian surfaces (sigma = 1, correlation length 1 across the
+    flow and ``pattern`` along it, a cell ``length`` correlation lengths wide each way,
+    ``per_correlation`` grid cells per correlation length) at each nominal gap H: array
+    (H, seeds)."""
     n = int(length * per_correlation)
     out = np.zeros((len(H), len(seeds)))
     for j, seed in enumerate(seeds):
         values = gaussian_surface(length, 1.0, seed)(n)
         for i, h in enumerate(H):
-            out[i, j] = cell_flow_factor(_cells_gap(values, length, h), h, (length, length),
-                                         (n, n))
+            out[i, j] = cell_flow_factor(_cells_gap(values, length, h, pattern), h,
+                                         (pattern * length, length), (n, n))
     return out
 
 
-def figure(path, H, measured) -> None:
+#: the nominal gaps of the anisotropic cells
+ANISOTROPIC_H = (1.0, 1.5, 2.0, 3.0, 4.0)
+
+
+def anisotropic_factors(seeds=range(4), length: float = 16.0, per_correlation: int = 8):
+    """{gamma: (H, phi_x (H, seeds))} of the cells stretched by each tabulated gamma != 1,
+    at the H of ANISOTROPIC_H at or above the fit's least H."""
+    out = {}
+    for g in PATTERNS:
+        if g == 1.0:
+            continue
+        H = np.array([h for h in ANISOTROPIC_H if h >= PRESSURE_FIT[g][2]])
+        out[g] = (H, measured_factors(H, seeds, length, per_correlation, pattern=g))
+    return out
+
+
+def figure(path, H, measured, anisotropic=None) -> None:
     """The fits of Patir & Cheng (phi_x against H for each gamma; phi_y is phi_x of
-    1/gamma; Phi_s; the mean gap) and the measured isotropic factors, to ``path``."""
+    1/gamma; Phi_s; the mean gap) and the measured factors (isotropic; the anisotropic
+    cells' means as markers on the first panel), to ``path``."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     fig, ax = plt.subplots(1, 3, figsize=(13, 4))
     names = {1 / 9: "1/9", 1 / 6: "1/6", 1 / 3: "1/3", 1.0: "1", 3.0: "3", 6.0: "6", 9.0: "9"}
-    for g in PATTERNS:
+    for k, g in enumerate(PATTERNS):
         least = PRESSURE_FIT[g][2]
         h = np.linspace(least, 6.0, 200)
-        ax[0].plot(h, pressure_flow_factor(h, g), label=f"gamma {names[g]}")
+        ax[0].plot(h, pressure_flow_factor(h, g), color=f"C{k}", label=f"gamma {names[g]}")
+        if anisotropic and g in anisotropic:
+            Hg, phi = anisotropic[g]
+            ax[0].plot(Hg, phi.mean(axis=1), "o", color=f"C{k}", ms=4)
         h = np.linspace(0.5, 6.0, 200)
         ax[1].plot(h, shear_flow_factor(h, g), label=f"gamma {names[g]}")
     ax[0].set(xlabel="H = h / sigma", ylabel="phi_x (phi_y = phi_x of 1/gamma)",
-              title="pressure flow factor (fits from their least H)")
+              title="pressure flow factor: fits, and cells (dots)")
     ax[1].set(xlabel="H = h / sigma", ylabel="Phi_s  (phi_s = (V_r1 - V_r2) Phi_s)",
               title="shear flow factor")
     h = np.linspace(0.5, 6.0, 200)
@@ -227,8 +252,20 @@ def main(argv=None):
         m, s = row.mean(), row.std(ddof=1)
         print(f"| {h:g} | {m:.3f} ({s:.3f}) | {s / math.sqrt(len(row)):.3f} | {f:.3f} | "
               f"{100 * (f - m) / m:+.1f} % | {1 - 1.5 / h**2:.3f} |")
+    t = time.perf_counter()
+    aniso = anisotropic_factors()
+    print(f"\nanisotropic cells: 4 surfaces of 16 x 16 correlation lengths (across the flow; "
+          f"gamma times as long along it), 8 cells each ({time.perf_counter() - t:.0f} s):")
+    print("| gamma | H | phi_x measured: mean (std) | Patir & Cheng's fit | fit - measured |")
+    print("|---|---|---|---|---|")
+    for g, (Hg, values) in aniso.items():
+        for h, row in zip(Hg, values):
+            m, sd = row.mean(), row.std(ddof=1)
+            f = float(pressure_flow_factor(h, g))
+            print(f"| {g:.3g} | {h:g} | {m:.3f} ({sd:.3f}) | {f:.3f} | "
+                  f"{100 * (f - m) / m:+.1f} % |")
     if args.figure:
-        figure(args.figure, H, phi)
+        figure(args.figure, H, phi, aniso)
 
 
 if __name__ == "__main__":
