@@ -11,11 +11,16 @@ dofs joined). Its mean flow per unit width and unit gradient,
     phi_x = <q_x> / h^3,
 
 the factor Patir & Cheng (1978) computed by flow simulations of their own (on finite
-cells with the pressure held at the ends) and fitted. Exact checks of the cell solve:
+cells with the pressure held at the ends) and fitted. The shear flow factor (Patir &
+Cheng 1979) is the mean flow of the rough surface sliding at unit speed over a smooth one
+with no mean gradient: div(h_T^3 grad p) = -6 dh_T/dx (the roughness' own squeeze),
+sigma Phi_s = -<h_T^3 dp/dx> / 6. Exact checks of the cell solve:
 ridges across the flow, h_T = h (1 + a cos(2 pi x / l)), give
 phi_x = 1 / (h^3 <h_T^-3>) = 2 (1 - a^2)^(5/2) / (2 + a^2); ridges along it,
 h_T = h (1 + a cos(2 pi y / l)), give phi_x = <h_T^3> / h^3 = 1 + 3 a^2 / 2; a
-checkerboard of two conductances k1, k2 gives sqrt(k1 k2) (Keller's duality).
+checkerboard of two conductances k1, k2 gives sqrt(k1 k2) (Keller's duality); the
+shear flow of ridges across the flow is sigma Phi_s = h - <h_T^-2>/<h_T^-3> (h_T^3 dp/dx
+= -6 h_T + C, C fixed by periodicity), of ridges along it 0.
 
 The isotropic rough surface is a periodic Gaussian random field of unit variance with a
 Gaussian autocorrelation whose half-height length is ``correlation`` (Patir & Cheng's
@@ -34,15 +39,15 @@ import time
 
 import numpy as np
 import scipy.sparse as sp
-from scipy.sparse.linalg import spsolve
+from scipy.sparse.linalg import splu
 from skfem import Basis, BilinearForm, ElementTriP1, LinearForm, MeshTri, asm
 from skfem.helpers import dot, grad
 
 from bearingfem.contact.flow_factors import (PATTERNS, PRESSURE_FIT, mean_gap,
                                              pressure_flow_factor, shear_flow_factor)
 
-__all__ = ["cell_flow_factor", "gaussian_surface", "transverse_exact", "longitudinal_exact",
-           "measured_factors"]
+__all__ = ["cell_factors", "cell_flow_factor", "gaussian_surface", "transverse_exact",
+           "longitudinal_exact", "transverse_shear_exact", "measured_factors"]
 
 #: the coefficient's floor where the surfaces touch (a closed cell carries no flow)
 CLOSED = 1e-12
@@ -71,25 +76,47 @@ def _periodic(mesh, lx: float, ly: float):
     return sp.csr_matrix((np.ones(n), (np.arange(n), col)), shape=(n, (nx - 1) * (ny - 1)))
 
 
-def cell_flow_factor(gap, nominal: float, size: tuple, cells: tuple) -> float:
-    """phi_x of the local gap ``gap(x, y)`` [any unit; clipped at 0, evaluated at the
-    quadrature points] on the periodic cell ``size`` = (L_x, L_y) meshed with ``cells`` =
-    (n_x, n_y) squares of two triangles, for the nominal gap ``nominal`` (module
-    docstring)."""
+def cell_factors(gap, nominal: float, size: tuple, cells: tuple,
+                 sigma: float = 1.0) -> tuple:
+    """(phi_x, Phi_s) of the local gap ``gap(x, y)`` [any unit; clipped at 0, evaluated
+    at the quadrature points] on the periodic cell ``size`` = (L_x, L_y) meshed with
+    ``cells`` = (n_x, n_y) squares of two triangles, for the nominal gap ``nominal`` and
+    the roughness ``sigma`` (module docstring; both flows on one factorisation)."""
     (lx, ly), (nx, ny) = size, cells
     mesh = MeshTri.init_tensor(np.linspace(0.0, lx, nx + 1), np.linspace(0.0, ly, ny + 1))
     basis = Basis(mesh, ElementTriP1())
     x, y = np.asarray(basis.global_coordinates())
-    k = np.maximum(gap(x, y), 0.0) ** 3 + CLOSED * nominal ** 3
+    h = np.maximum(gap(x, y), 0.0)
+    k = h ** 3 + CLOSED * nominal ** 3
     P = _periodic(mesh, lx, ly)
     K = (P.T @ asm(_conduction, basis, k=k) @ P).tocsc()
-    b = P.T @ asm(_driving, basis, k=k)
     # p~ is defined up to a constant: held at 0 on the first dof
-    q = np.zeros(K.shape[0])
-    q[1:] = spsolve(K[1:, 1:], b[1:], permc_spec="MMD_AT_PLUS_A")   # symmetric
-    dpdx = basis.interpolate(P @ q).grad[0]
-    flow = float(np.sum(k * (1.0 - dpdx) * basis.dx)) / (lx * ly)
-    return flow / nominal ** 3
+    lu = splu(K[1:, 1:], permc_spec="MMD_AT_PLUS_A")     # symmetric
+
+    def mean_flux(load):
+        q = np.zeros(K.shape[0])
+        q[1:] = lu.solve(load[1:])
+        return float(np.sum(k * basis.interpolate(P @ q).grad[0] * basis.dx)) / (lx * ly)
+    # the unit gradient: <q_x> = <h_T^3 (1 - dp~/dx)>
+    pressure = (float(np.sum(k * basis.dx)) / (lx * ly)
+                - mean_flux(P.T @ asm(_driving, basis, k=k)))
+    # the roughness sliding at unit speed over a smooth surface, no mean gradient:
+    # div(h_T^3 grad p) = -6 dh_T/dx, weakly int h_T^3 grad p . grad v = -6 int h_T dv/dx
+    shear = -mean_flux(-6.0 * (P.T @ asm(_driving, basis, k=h))) / (6.0 * sigma)
+    return pressure / nominal ** 3, shear
+
+
+def cell_flow_factor(gap, nominal: float, size: tuple, cells: tuple) -> float:
+    """phi_x of :func:`cell_factors`."""
+    return cell_factors(gap, nominal, size, cells)[0]
+
+
+def transverse_shear_exact(H: float, a: float) -> float:
+    """Phi_s of ridges across the flow on the moving surface, h_T = H + a cos(2 pi x / l)
+    (sigma = a / sqrt(2)): H - <h_T^-2>/<h_T^-3>, over sigma."""
+    t = np.linspace(0.0, 2.0 * np.pi, 20001)[:-1]      # periodic: the rectangle rule
+    h = H + a * np.cos(t)
+    return (H - np.mean(h ** -2) / np.mean(h ** -3)) / (a / math.sqrt(2.0))
 
 
 def transverse_exact(a: float) -> float:
@@ -151,16 +178,16 @@ def measured_factors(H, seeds=range(4), length: float = 8.0, per_correlation: in
                      pattern: float = 1.0):
     """phi_x on ``seeds`` Gaussian surfaces (sigma = 1, correlation length 1 across the
     flow and ``pattern`` along it, a cell ``length`` correlation lengths wide each way,
-    ``per_correlation`` grid cells per correlation length) at each nominal gap H: array
-    (H, seeds)."""
+    ``per_correlation`` grid cells per correlation length) at each nominal gap H: arrays
+    (H, seeds) of phi_x and of Phi_s (the surface moving, the other smooth)."""
     n = int(length * per_correlation)
-    out = np.zeros((len(H), len(seeds)))
+    phi, shear = np.zeros((len(H), len(seeds))), np.zeros((len(H), len(seeds)))
     for j, seed in enumerate(seeds):
         values = gaussian_surface(length, 1.0, seed)(n)
         for i, h in enumerate(H):
-            out[i, j] = cell_flow_factor(_cells_gap(values, length, h, pattern), h,
-                                         (pattern * length, length), (n, n))
-    return out
+            phi[i, j], shear[i, j] = cell_factors(_cells_gap(values, length, h, pattern), h,
+                                                  (pattern * length, length), (n, n))
+    return phi, shear
 
 
 #: the nominal gaps of the anisotropic cells
@@ -168,18 +195,18 @@ ANISOTROPIC_H = (1.0, 1.5, 2.0, 3.0, 4.0)
 
 
 def anisotropic_factors(seeds=range(4), length: float = 16.0, per_correlation: int = 8):
-    """{gamma: (H, phi_x (H, seeds))} of the cells stretched by each tabulated gamma != 1,
-    at the H of ANISOTROPIC_H at or above the fit's least H."""
+    """{gamma: (H, phi_x (H, seeds), Phi_s (H, seeds))} of the cells stretched by each
+    tabulated gamma != 1, at the H of ANISOTROPIC_H at or above the fit's least H."""
     out = {}
     for g in PATTERNS:
         if g == 1.0:
             continue
         H = np.array([h for h in ANISOTROPIC_H if h >= PRESSURE_FIT[g][2]])
-        out[g] = (H, measured_factors(H, seeds, length, per_correlation, pattern=g))
+        out[g] = (H, *measured_factors(H, seeds, length, per_correlation, pattern=g))
     return out
 
 
-def figure(path, H, measured, anisotropic=None) -> None:
+def figure(path, H, measured, shear, anisotropic=None) -> None:
     """The fits of Patir & Cheng (phi_x against H for each gamma; phi_y is phi_x of
     1/gamma; Phi_s; the mean gap) and the measured factors (isotropic; the anisotropic
     cells' means as markers on the first panel), to ``path``."""
@@ -192,15 +219,18 @@ def figure(path, H, measured, anisotropic=None) -> None:
         least = PRESSURE_FIT[g][2]
         h = np.linspace(least, 6.0, 200)
         ax[0].plot(h, pressure_flow_factor(h, g), color=f"C{k}", label=f"gamma {names[g]}")
-        if anisotropic and g in anisotropic:
-            Hg, phi = anisotropic[g]
-            ax[0].plot(Hg, phi.mean(axis=1), "o", color=f"C{k}", ms=4)
         h = np.linspace(0.5, 6.0, 200)
-        ax[1].plot(h, shear_flow_factor(h, g), label=f"gamma {names[g]}")
+        ax[1].plot(h, shear_flow_factor(h, g), color=f"C{k}", label=f"gamma {names[g]}")
+        if anisotropic and g in anisotropic:
+            Hg, phi, shg = anisotropic[g]
+            ax[0].plot(Hg, phi.mean(axis=1), "o", color=f"C{k}", ms=4)
+            ax[1].plot(Hg, shg.mean(axis=1), "o", color=f"C{k}", ms=4)
+        elif g == 1.0:
+            ax[1].plot(H, shear.mean(axis=1), "o", color=f"C{k}", ms=4)
     ax[0].set(xlabel="H = h / sigma", ylabel="phi_x (phi_y = phi_x of 1/gamma)",
               title="pressure flow factor: fits, and cells (dots)")
     ax[1].set(xlabel="H = h / sigma", ylabel="Phi_s  (phi_s = (V_r1 - V_r2) Phi_s)",
-              title="shear flow factor")
+              title="shear flow factor: fits, and cells (dots)")
     h = np.linspace(0.5, 6.0, 200)
     ax[2].plot(h, pressure_flow_factor(h, 1.0), "k", label="fit, gamma = 1")
     ax[2].plot(h[h > 1.2], 1 - 1.5 / h[h > 1.2] ** 2, "k:", label="1 - 3/(2 H^2)")
@@ -220,52 +250,59 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--figure", help="also draw the factors and the measured ones here")
     args = parser.parse_args(argv)
-    print("exact checks of the cell solve (a = 0.5, ridges of period 1):")
-    print("| cells per ridge | across: measured | exact | along: measured | exact |")
-    print("|---|---|---|---|---|")
-    a = 0.5
+    print("exact checks of the cell solve (H = 1, a = 0.5, ridges of period 1):")
+    print("| cells per ridge | phi_x across: measured | exact | phi_x along: measured | "
+          "exact | Phi_s across: measured | exact |")
+    print("|---|---|---|---|---|---|---|")
+    a, sig = 0.5, 0.5 / math.sqrt(2.0)
     for m in (8, 16, 32, 64):
-        across = cell_flow_factor(lambda x, y: 1.0 + a * np.cos(2 * np.pi * x), 1.0,
-                                  (2.0, 1.0), (2 * m, 4))
+        across, shear = cell_factors(lambda x, y: 1.0 + a * np.cos(2 * np.pi * x), 1.0,
+                                     (2.0, 1.0), (2 * m, 4), sig)
         along = cell_flow_factor(lambda x, y: 1.0 + a * np.cos(2 * np.pi * y), 1.0,
                                  (1.0, 1.0), (4, m))
         print(f"| {m} | {across:.6f} | {transverse_exact(a):.6f} | {along:.6f} | "
-              f"{longitudinal_exact(a):.6f} |")
+              f"{longitudinal_exact(a):.6f} | {shear:.6f} | "
+              f"{transverse_shear_exact(1.0, a):.6f} |")
     print("\nmesh convergence, one isotropic surface (seed 0, cell 8 x 8 correlation "
           "lengths), H = 1.5:")
     sample = gaussian_surface(8.0, 1.0, 0)
     for per in (8, 16, 32):
         n = 8 * per
-        phi = cell_flow_factor(_cells_gap(sample(n), 8.0, 1.5), 1.5, (8.0, 8.0), (n, n))
-        print(f"  {per} cells per correlation length: phi_x = {phi:.5f}")
+        p, sh = cell_factors(_cells_gap(sample(n), 8.0, 1.5), 1.5, (8.0, 8.0), (n, n))
+        print(f"  {per} cells per correlation length: phi_x = {p:.5f}, Phi_s = {sh:.5f}")
     H = np.array([1.0, 1.5, 2.0, 3.0, 4.0, 6.0])
     seeds = range(8)
     t = time.perf_counter()
-    phi = measured_factors(H, seeds, length=32.0, per_correlation=8)
+    phi, shear = measured_factors(H, seeds, length=32.0, per_correlation=8)
     print(f"\n{len(seeds)} isotropic surfaces of 32 x 32 correlation lengths, 8 cells each "
           f"({time.perf_counter() - t:.0f} s):")
-    print("| H | phi_x measured: mean (std of the surfaces) | its standard error | "
-          "Patir & Cheng's fit | fit - measured | 1 - 3/(2 H^2) |")
-    print("|---|---|---|---|---|---|")
-    fit = pressure_flow_factor(H, 1.0)
-    for h, row, f in zip(H, phi, fit):
-        m, s = row.mean(), row.std(ddof=1)
-        print(f"| {h:g} | {m:.3f} ({s:.3f}) | {s / math.sqrt(len(row)):.3f} | {f:.3f} | "
-              f"{100 * (f - m) / m:+.1f} % | {1 - 1.5 / h**2:.3f} |")
+    print("| H | phi_x of the cells: mean (std of the surfaces) | standard error | "
+          "Patir & Cheng's fit | fit - measured | 1 - 3/(2 H^2) | Phi_s of the cells | "
+          "fit | fit - measured |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    for h, row, srow in zip(H, phi, shear):
+        m, sd = row.mean(), row.std(ddof=1)
+        f, fs, ms = (float(pressure_flow_factor(h, 1.0)), float(shear_flow_factor(h, 1.0)),
+                     srow.mean())
+        print(f"| {h:g} | {m:.3f} ({sd:.3f}) | {sd / math.sqrt(len(row)):.3f} | {f:.3f} | "
+              f"{100 * (f - m) / m:+.1f} % | {1 - 1.5 / h**2:.3f} | {ms:.3f} "
+              f"({srow.std(ddof=1):.3f}) | {fs:.3f} | {100 * (fs - ms) / ms:+.1f} % |")
     t = time.perf_counter()
     aniso = anisotropic_factors()
     print(f"\nanisotropic cells: 4 surfaces of 16 x 16 correlation lengths (across the flow; "
           f"gamma times as long along it), 8 cells each ({time.perf_counter() - t:.0f} s):")
-    print("| gamma | H | phi_x measured: mean (std) | Patir & Cheng's fit | fit - measured |")
-    print("|---|---|---|---|---|")
-    for g, (Hg, values) in aniso.items():
-        for h, row in zip(Hg, values):
-            m, sd = row.mean(), row.std(ddof=1)
-            f = float(pressure_flow_factor(h, g))
-            print(f"| {g:.3g} | {h:g} | {m:.3f} ({sd:.3f}) | {f:.3f} | "
-                  f"{100 * (f - m) / m:+.1f} % |")
+    print("| gamma | H | phi_x of the cells: mean (std) | fit | fit - measured | "
+          "Phi_s of the cells | fit | fit - measured |")
+    print("|---|---|---|---|---|---|---|---|")
+    for g, (Hg, values, svalues) in aniso.items():
+        for h, row, srow in zip(Hg, values, svalues):
+            m, ms = row.mean(), srow.mean()
+            f, fs = float(pressure_flow_factor(h, g)), float(shear_flow_factor(h, g))
+            print(f"| {g:.3g} | {h:g} | {m:.3f} ({row.std(ddof=1):.3f}) | {f:.3f} | "
+                  f"{100 * (f - m) / m:+.1f} % | {ms:.3f} ({srow.std(ddof=1):.3f}) | "
+                  f"{fs:.3f} | {100 * (fs - ms) / ms:+.1f} % |")
     if args.figure:
-        figure(args.figure, H, phi, aniso)
+        figure(args.figure, H, phi, shear, aniso)
 
 
 if __name__ == "__main__":
