@@ -427,8 +427,9 @@ def test_isotropic_rough_cells_against_the_fit(H, tol):
     +1.0 +- 0.2 % at H = 3, 4, 6; here -1.8, -0.3, +1.3 %). Below H = 3 the fit falls
     below the cells (-7 % at H = 2, -20 % at H = 1): not asserted. The shear flow factor
     of the same cells: the fit 1.899 H^0.98 exp(-0.92 H + 0.05 H^2) is 8.0 %, 7.0 % above
-    them at H = 3, 4 and 2.6 % below at H = 6, asserted within 10 %. Fails with the fit's
-    C = 0.9 typed 1.2, or A1 typed 2.1."""
+    them at H = 3, 4 and 2.6 % below at H = 6 (the table's eight surfaces: +6.9, +7.0,
+    -1.4 %), asserted within 10 %. Fails with the fit's C = 0.9 typed 1.2, or A1 typed
+    2.1."""
     phi, shear = measured_factors([H], range(4), length=16.0, per_correlation=8)
     assert phi.mean() == pytest.approx(float(pressure_flow_factor(H, 1.0)), rel=tol)
     assert shear.mean() == pytest.approx(float(shear_flow_factor(H, 1.0)), rel=0.1)
