@@ -1,12 +1,13 @@
 """Asperity contact on the film mesh: the mixed-lubrication part of a film solve.
 
-In Greenwood & Tripp's model without flow factors (Greenwood & Tripp, Proc. Instn Mech.
-Engrs 185 (1970) 625) the summits carry a nominal pressure p_a(h) that depends on the local
-gap alone, and the oil film's Reynolds equation is unchanged by it. So the contact is a
-quadrature of p_a over the journal surface at the film mesh's quadrature points (the same
-rule the film's force integral uses), added to the film's force: the load is carried by
-film and asperities together (Patir & Cheng's average-flow factors, which would couple
-them, are not modelled).
+In Greenwood & Tripp's model (Greenwood & Tripp, Proc. Instn Mech. Engrs 185 (1970) 625)
+the summits carry a nominal pressure p_a(h) that depends on the local gap alone, and the
+oil film's Reynolds equation is unchanged by it. So the contact is a quadrature of p_a
+over the journal surface at the film mesh's quadrature points (the same rule the film's
+force integral uses), added to the film's force: the load is carried by film and
+asperities together. The roughness changes the film's flow only where it has flow
+factors (``Roughness.flow``, Patir & Cheng's average flow model): :func:`film_flow` gives
+their coefficient fields to the film's Reynolds form.
 
 The rigid cylinder's gap h = c (1 + eps cos theta) makes the contact force a function of
 eps alone (gamma only turns it), with the exact partial
