@@ -9,6 +9,7 @@ stiffness and damping, stability) in :mod:`bearingfem.design`.
 from .bearing import Bearing, ElasticJournalState, Groove, JournalState
 from .caches import clear_caches  # empties every cache of the library (cold timings)
 from .contact import Roughness  # Greenwood-Tripp asperity contact (mixed lubrication)
+from .contact import FlowFactors  # Patir & Cheng's flow of a rough gap
 from .closed.long_bearing import long_bearing_exact_force, long_bearing_force
 from .closed.short_bearing import short_bearing_exact_force, short_bearing_force
 from .design import coefficients, equilibrium
@@ -24,5 +25,5 @@ __all__ = ["Bearing", "JournalState", "ElasticJournalState", "Groove", "solve_re
            "short_bearing_force", "long_bearing_force", "short_bearing_exact_force",
            "long_bearing_exact_force", "equilibrium", "coefficients", "ElasticBush",
            "Lubricant", "line_contact", "point_contact", "ConvergenceError", "Roughness",
-           "clear_caches", "Thermal"]
+           "FlowFactors", "clear_caches", "Thermal"]
 from .version import __version__  # noqa: F401  (the package version)

@@ -68,7 +68,10 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
         (P1; cavitation "none", "reynolds" or "jfo"; quasi-static)
     roughness : :class:`~bearingfem.contact.Roughness`: the Greenwood-Tripp asperity
         contact of the gap is added as ``asperity_force`` / ``asperity_friction_torque``
-        (with a bush the summits' pressure deforms the bush too)
+        (with a bush the summits' pressure deforms the bush too); with ``flow``
+        (:class:`~bearingfem.contact.FlowFactors`) the film's flow through the rough gap
+        is Patir & Cheng's average flow model (the film is then meshed over its whole
+        length; refused by the JFO and thermal films)
     start : the EHD and thermal films: a previous :class:`FilmSolution` of the same mesh to
         start from (the same answer to ``tol``); not with ``rtol`` (whose meshes it cannot
         know)

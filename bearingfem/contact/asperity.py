@@ -25,6 +25,7 @@ import numpy as np
 
 from ..bearing import check_finite, check_positive
 from ..film import local_to_inertial
+from .flow_factors import FlowFactors
 from .gaussian import tail_moment, tail_moment_derivative
 
 __all__ = ["Roughness", "AsperityContact", "asperity_contact", "surface_force_local",
@@ -51,6 +52,8 @@ class Roughness:
     asperity_density : eta [1/m^2], > 0, and
     asperity_radius : beta [m], > 0 (then K follows from Greenwood & Tripp's formula)
     friction : asperity (boundary) friction coefficient [-], >= 0
+    flow : :class:`~bearingfem.contact.FlowFactors` or None: the film's flow through the
+        rough gap by Patir & Cheng's average flow model (None: the smooth film's flow)
     """
 
     sigma: float
@@ -59,6 +62,7 @@ class Roughness:
     asperity_density: float | None = None
     asperity_radius: float | None = None
     friction: float = 0.0
+    flow: FlowFactors | None = None
 
     def __post_init__(self):
         check_positive("sigma", self.sigma)
@@ -78,6 +82,9 @@ class Roughness:
         v = check_finite("friction", self.friction)
         if v < 0.0:
             raise ValueError(f"friction must be >= 0, got {self.friction!r}")
+        if self.flow is not None and not isinstance(self.flow, FlowFactors):
+            raise ValueError(f"flow must be a bearingfem.FlowFactors or None, got "
+                             f"{type(self.flow).__name__}")
 
     @property
     def factor(self) -> float:

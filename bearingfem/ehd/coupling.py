@@ -33,6 +33,7 @@ from ..caches import cached
 from .asperity import contact_deflection, deflection_factors
 from .film_compliance import (BushJacobian, CirculantCompliance, DofCompliance,
                               dof_compliance)
+from ..contact.flow_factors import flow_fields
 from ..fields import FilmFields
 from ..fe.general import film_system
 from ..solvers.pattern import Pattern
@@ -108,6 +109,7 @@ class FilmState:
     residual: np.ndarray
     size: np.ndarray
     contact: object = None     # ContactDeflection with roughness (bearingfem.ehd.asperity)
+    flow: object = None        # FlowFields of a rough gap's flow (Patir & Cheng), or None
 
 
 @dataclass(frozen=True, eq=False)
@@ -136,6 +138,9 @@ class EHDFilm:
     tables: JacobianTables
     eps: float = 0.0   # the reference cylinder's eps (film_system's strong-form Couette)
     roughness: object = None   # Roughness: the summits' pressure loads the bush too
+    flow: object = None        # FlowFactors: the rough gap's flow (Patir & Cheng), or None
+    sigma: float = 0.0         # the roughness sigma [m] the flow factors take
+    omega: float = 0.0         # the surfaces' relative speed [rad/s] (the shear flow's)
 
     def contact(self, P: np.ndarray, s: float = 1.0):
         """The bush's deflection under s (p + p_a) with the summits' pressure
@@ -178,6 +183,12 @@ class EHDFilm:
                           density_rate=self.base.density_rate)
         return film, slopes
 
+    def flow_fields(self, film: FilmFields):
+        """The rough gap's coefficient fields on ``film``'s gap (None: the smooth flow)."""
+        if self.flow is None:
+            return None
+        return flow_fields(self.flow, film.gap, self.sigma / self.clearance, self.omega)
+
     def evaluate(self, P: np.ndarray, s: float = 1.0) -> FilmState | None:
         """The film at pressure P, or None where the gap closes or a viscosity or density
         is not finite and > 0 (a trial pressure may push a property law out of range)."""
@@ -187,14 +198,19 @@ class EHDFilm:
             if contact is None:
                 return None
         film, slopes = self.fields(P, s, contact)
-        for field in (film.gap, film.viscosity, film.density):
+        # a rough gap's flow takes any nominal gap (the surfaces pressed through: its
+        # mean gap stays > 0), a smooth one a gap > 0
+        checked = (film.viscosity, film.density) if self.flow is not None else (
+            film.gap, film.viscosity, film.density)
+        for field in checked:
             if not np.all((field > 0.0) & np.isfinite(field)):
                 return None
-        values, load = film_system(self.op, film, self.wedge, self.eps)
+        flow = self.flow_fields(film)
+        values, load = film_system(self.op, film, self.wedge, self.eps, flow)
         pattern = self.op.pattern
         size = pattern.matrix(np.abs(values)) @ np.abs(P) + np.abs(load)
         return FilmState(film, slopes, values, load, pattern.matrix(values) @ P - load, size,
-                         contact)
+                         contact, flow)
 
     def system(self, P: np.ndarray, s: float = 1.0):
         """(evaluated fields, stiffness values on the pattern, load) at pressure P, or
@@ -221,19 +237,30 @@ class EHDFilm:
         Bs = t.phi
 
         def assemble(dk, dc, dsq):
-            g = Bk * dk - Bc * dc - Bs * dsq                                # (nb, E, Q)
+            if isinstance(dk, tuple):       # a diagonal tensor's: one axis at a time
+                flux = sum(t.dphi[:, a] * gradP[a] * dk[a] for a in range(2))
+            else:
+                flux = Bk * dk
+            g = flux - Bc * dc - Bs * dsq                                   # (nb, E, Q)
             local = np.einsum("ieq,jeq->eij", g, t.value).reshape(g.shape[1], -1)
             return np.bincount(t.positions.ravel(), local.ravel(),
                                minlength=len(t.indices))
         return assemble
 
     def _gap_slope(self, assemble, ev: FilmState, where=None) -> sp.csr_matrix:
-        film = ev.fields
+        film, f = ev.fields, ev.flow
         rho, mu, H = film.density, film.viscosity, film.gap
-        coef = (3.0 * rho * H**2 / mu, 6.0 * self.wedge * rho,
-                -12.0 * film.density_rate * np.ones_like(H))
+        if f is None:
+            coef = (3.0 * rho * H**2 / mu, 6.0 * self.wedge * rho,
+                    -12.0 * film.density_rate * np.ones_like(H))
+        else:       # film_system's rough-gap coefficients differentiated in H
+            coef = (tuple(rho * d / mu for d in f.conductance_slope),
+                    6.0 * rho * (self.wedge * f.gap_slope + f.shear_speed * f.shear_slope),
+                    -12.0 * (rho * f.gap_curvature * film.gap_rate
+                             + film.density_rate * f.gap_slope))
         if where is not None:
-            coef = tuple(c * where for c in coef)
+            coef = tuple(tuple(x * where for x in c) if isinstance(c, tuple) else c * where
+                         for c in coef)
         return self.tables.pattern.matrix(assemble(*coef))
 
     def gap_slope(self, P: np.ndarray, s: float = 1.0, state: FilmState | None = None,
@@ -256,12 +283,20 @@ class EHDFilm:
         rho, mu, H = film.density, film.viscosity, film.gap
         assemble = self._assembler(P)
         data = np.bincount(t.from_stiffness, ev.values, minlength=len(t.indices))
-        if slopes is not None:
+        if slopes is not None and ev.flow is None:
             drho, dmu = slopes
             ds = s * self.scale
             data += assemble(ds * (drho * H**3 / mu - rho * H**3 * dmu / mu**2),
                              ds * 6.0 * self.wedge * drho * H,
                              ds * -12.0 * drho * film.gap_rate)
+        elif slopes is not None:    # the rough gap's coefficients through rho and mu
+            drho, dmu = slopes
+            ds, f = s * self.scale, ev.flow
+            data += assemble(tuple(ds * (drho * C / mu - rho * C * dmu / mu**2)
+                                   for C in f.conductance),
+                             ds * 6.0 * drho * (self.wedge * f.mean_gap
+                                                + f.shear_speed * f.shear),
+                             ds * -12.0 * drho * f.gap_slope * film.gap_rate)
         J = t.pattern.matrix(data)
         if self.compliance is None:
             return J, None, None
@@ -282,10 +317,13 @@ class EHDFilm:
 def ehd_film(bearing, state, op, base: FilmFields, gap0, lubricant, bush,
              roughness=None) -> EHDFilm:
     """Build the EHD film of ``op`` on the evaluated base fields ``base`` (``roughness``:
-    the summits' pressure loads the bush too, :mod:`bearingfem.ehd.asperity`)."""
+    the summits' pressure loads the bush too, :mod:`bearingfem.ehd.asperity`; its
+    ``flow``, the rough gap's flow factors, enter the film's Reynolds form)."""
     compliance = None if bush is None else dof_compliance(bush, bearing, op)
+    flow = None if roughness is None else roughness.flow
     return EHDFilm(op=op, base=base, gap0=gap0, lubricant=lubricant, compliance=compliance,
                    scale=bearing.pressure_scale, clearance=bearing.clearance,
                    wedge=state.wedge_speed, viscosity=bearing.viscosity,
                    tables=jacobian_tables(op), eps=state.eps,
-                   roughness=None if bush is None else roughness)
+                   roughness=None if bush is None else roughness, flow=flow,
+                   sigma=0.0 if flow is None else roughness.sigma, omega=state.omega)

@@ -8,7 +8,7 @@ import numpy as np
 
 from ..fe.assembly import fe_operator
 from ..fe.general import film_system, general_film
-from ..fe.mixed import film_contact, with_contact
+from ..fe.mixed import film_contact, friction_fields, with_contact
 from ..fe.kernel import fe_pressure, film_outputs, groove_pressures
 from ..lubricant import Lubricant
 from .coupling import ehd_film
@@ -61,14 +61,16 @@ def solve_ehd_film(bearing, state, op, base, gap0, lubricant, bush, cavitation, 
     ``start``: a previous solution on the same mesh to start Newton from (warm).
     ``roughness``: the asperity contact of the deformed gap is added
     (:func:`~bearingfem.fe.mixed.with_contact`); with a bush its pressure deforms the bush
-    too (:mod:`bearingfem.ehd.asperity`), so ``deformation`` includes the summits' share."""
+    too (:mod:`bearingfem.ehd.asperity`), so ``deformation`` includes the summits' share;
+    its ``flow`` factors, when given, carry the film's flow through the rough gap."""
     film = ehd_film(bearing, state, op, base, gap0, lubricant, bush, roughness)
 
     def rigid(film=film):                       # the isoviscous rigid film (s = 0)
         film0, _ = film.fields(np.zeros(op.mesh.ndofs), 0.0)
         return fe_pressure(op, replace(state, eps=film.eps), cavitation, method, tol,
                            dirichlet=dirichlet,
-                           system=film_system(op, film0, state.wedge_speed, film.eps)).pressure
+                           system=film_system(op, film0, state.wedge_speed, film.eps,
+                                              film.flow_fields(film0))).pressure
     # beyond the clearance circle the rigid film does not exist: continue in eps instead
     solve = solve_beyond if state.eps >= 1.0 else solve_ehd
     res = solve(film, rigid, "reynolds" if cavitation == "reynolds" else "none", tol,
@@ -76,7 +78,8 @@ def solve_ehd_film(bearing, state, op, base, gap0, lubricant, bush, cavitation, 
     P = res.pressure
     fields, values, load = film.system(P)
     deformation = film.deflection(P)
-    sol = film_outputs(bearing, state, op, res, values, load, fields, cavitation,
+    sol = film_outputs(bearing, state, op, res, values, load,
+                       friction_fields(fields, roughness, bearing.clearance), cavitation,
                         cavitated_shear, grooves, "fem-P1/ehd-newton"
                         if op.mesh.basis.Nbfun == 3 else "fem-P2/ehd-newton",
                         gap0 + deformation / bearing.clearance)

@@ -21,6 +21,12 @@ term, R(P) = K P - load(P), solved by the EHD film's semismooth Newton
 Jacobian: sparse plus U V^T, U = G / tau, G the squeeze load of unit modal rates). As tau
 -> 0 the film tends to the quasi-static EHD film; a journal held still relaxes to the
 steady EHD solve (tests/test_ehd_states.py).
+
+With ``roughness`` the summits' pressure (Greenwood & Tripp) loads the journal and the
+bush. The film's flow through the rough gap is Patir & Cheng's average flow model when
+the roughness has ``flow`` factors (:mod:`bearingfem.contact.flow_factors`: any nominal
+gap, the surfaces pressed through included; tests/test_flow_factors.py); without them the
+smooth film's flow sees the gap floored at FLOW_FLOOR sigma.
 """
 from __future__ import annotations
 
@@ -29,10 +35,12 @@ from dataclasses import replace
 import numpy as np
 
 from ..bearing import Bearing, JournalState
+from ..contact.flow_factors import FLOW_FLOOR
 from ..contract import FilmStep, StateTangent
 from ..errors import ConvergenceError
 from ..fe.assembly import fe_operator
 from ..fe.kernel import film_outputs
+from ..fe.mixed import friction_fields
 from ..fields import FilmFields
 from ..film import film_thickness, local_to_inertial
 from ..scales import force_factor
@@ -46,8 +54,8 @@ __all__ = ["ModalStateEHD", "StateTangent"]
 
 #: Newton's tolerance on the film's residual (as the steady EHD solve's).
 TOL = 1e-10
-#: With roughness, the film's flow sees the gap floored at this many sigma.
-FLOW_FLOOR = 0.05
+#: With roughness and no flow factors, the film's flow sees the gap floored at FLOW_FLOOR
+#: sigma (bearingfem.contact.flow_factors, which floors the pressure term's h^3 there).
 
 
 class _CoupledFilm:
@@ -109,11 +117,13 @@ class _CoupledFilm:
             return None
         load = ev0.load - self.squeeze_load(ev0) @ self.rates(P)
         size = self.op.pattern.matrix(np.abs(ev0.values)) @ np.abs(P) + np.abs(load)
-        return FilmState(ev0.fields, None, ev0.values, load, K @ P - load, size)
+        return FilmState(ev0.fields, None, ev0.values, load, K @ P - load, size,
+                         flow=ev0.flow)
 
     def squeeze_load(self, ev):
         """G (nodes, n): d R / d(dq/dt), the squeeze load of unit modal rates,
-        d R_i / d(dH/dt)_q = 12 rho phi_i dx (kept per density)."""
+        d R_i / d(dH/dt)_q = 12 rho phi_i dx (times dE(h_T)/dh with a rough gap's flow;
+        kept per density: the gap is this film's)."""
         rho = np.broadcast_to(ev.fields.density, self.op.qp_weight.shape)
         if self._G is None or not np.array_equal(rho, self._G[0]):
             self._G = (rho, self.rate_load(ev, self.frame.squeeze))
@@ -123,6 +133,8 @@ class _CoupledFilm:
         """d R / da (nodes, k) for dH/dt at the points moving by M (E*Q, k) [1/s] per unit
         of a: d R_i / d(dH/dt)_q = 12 rho phi_i dx."""
         rho = np.broadcast_to(ev.fields.density, self.op.qp_weight.shape)
+        if ev.flow is not None:     # the squeeze moves the mean gap: dE(h_T)/dh dH/dt
+            rho = rho * ev.flow.gap_slope
         w = (12.0 * rho * self.op.qp_weight).ravel()
         return np.asarray(self.op.qp_interp.T @ (w[:, None] * M))
 
@@ -214,7 +226,11 @@ class ModalStateEHD:
         rigid_rate = state.eps_dot * np.cos(th) + state.gamma_dot * dw / c
         gap0 = film_thickness(m.theta, state.eps) + w / c
         contact, gap_nodes, moving = None, gap0, None   # the gap as it is (not floored)
-        if self.roughness is not None:
+        if self.roughness is not None and self.roughness.flow is not None:
+            # the summits carry what the film cannot; the film's flow through the rough
+            # gap by Patir & Cheng's factors, which take any nominal gap (no floor)
+            contact = self.roughness.pressure(c * gap0)
+        elif self.roughness is not None:
             # the summits carry what the film cannot where the gap nearly closes: their
             # pressure loads the bush and the journal; the film's flow sees a gap floored at
             # FLOW_FLOOR sigma (a stand-in for the flow factors of a rough gap)
@@ -225,7 +241,7 @@ class ModalStateEHD:
         base = FilmFields(gap=gap_q, gap_rate=np.zeros_like(gap_q),
                           viscosity=np.ones_like(gap_q), density=np.ones_like(gap_q),
                           density_rate=np.zeros_like(gap_q))
-        film = ehd_film(b, state, op, base, gap0, self.lubricant, None)
+        film = ehd_film(b, state, op, base, gap0, self.lubricant, None, self.roughness)
         return _CoupledFilm(film, q, self.tau, frame, self.modal, rigid_rate, contact,
                             gap_nodes, w, moving, state.gamma_dot)
 
@@ -282,7 +298,10 @@ class ModalStateEHD:
         c, P, n = self.bearing.clearance, res.pressure, self.state_size
         ev = coupled.evaluate(P)
         L = frame.left                                               # (nodes, n) [1]
-        dR = film.gap_slope(P, 1.0, ev, coupled.moving) @ (L / c)
+        # a rough gap's squeeze term moves with the gap at the film's own rate: the film
+        # built whole (the affine path's fields hold the rate at dq/dt = 0)
+        whole = ev if ev.flow is None or film.lubricant is not None else coupled.film_state(P)
+        dR = film.gap_slope(P, 1.0, whole, coupled.moving) @ (L / c)
         if coupled.gamma_dot:
             t = jacobian_tables(op)
             dL = np.einsum("jeq,jen->eqn", t.dphi[:, 0], L[op.mesh.basis.element_dofs])
@@ -316,8 +335,9 @@ class ModalStateEHD:
         res = self._solve(coupled)
         self._P = res.pressure
         ev = coupled.film_state(res.pressure)
+        fields = friction_fields(ev.fields, self.roughness, self.bearing.clearance)
         sol = film_outputs(self.bearing, state, coupled.op, res, ev.values, ev.load,
-                           ev.fields, "reynolds", "full", (), "fem-P1/ehd-states",
+                           fields, "reynolds", "full", (), "fem-P1/ehd-states",
                            gap=coupled.gap)
         sol = replace(sol, deformation=coupled.deflection)     # [m], opening the gap
         if coupled.contact is None:

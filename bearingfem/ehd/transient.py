@@ -34,7 +34,7 @@ from ..elastic import ElasticBush, bush_compliance
 from ..fe.assembly import fe_operator
 from ..fe.general import film_system
 from ..fe.kernel import fe_pressure, solve_film
-from ..fe.mixed import film_contact, with_contact
+from ..fe.mixed import film_contact, refuse_rough_flow, with_contact
 from ..fields import FilmFields
 from ..scales import force_factor
 from ..film import film_thickness, inertial_from_theta
@@ -206,6 +206,7 @@ class TransientEHD(StatelessRun):
 
     def __init__(self, bearing: Bearing, lubricant=None, bush=None, roughness=None,
                  n_theta: int = 48, n_z: int = 8, modes: int = 0, film_step: float = 0.0):
+        refuse_rough_flow(roughness, "transient EHD film")
         self.bearing = bearing
         self._film = dict(lubricant=lubricant, bush=bush, roughness=roughness,
                           n_theta=n_theta, n_z=n_z, modes=modes)

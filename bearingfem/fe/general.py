@@ -14,6 +14,11 @@ four products (elements x points) @ (points x local pairs) of the coefficient
 k = rho H^3/mu at the quadrature points with reference tables; the local values are then
 summed onto the fast path's sparsity pattern (``FilmOperator.indptr/indices``), so both
 paths share the free-free selection and the solvers.
+
+A rough film's flow (:mod:`bearingfem.contact.flow_factors`) makes the coefficient a
+diagonal tensor, rho (phi_x H^3, phi_z H^3)/mu: each axis a then has its own metric
+J^-1[c, a] J^-1[d, a] |det J|, and the Couette content rho H becomes rho E(h_T)/c plus
+the shear flow's (omega / w) rho sigma phi_s / c.
 """
 from __future__ import annotations
 
@@ -23,6 +28,7 @@ import numpy as np
 
 from ..bearing import Bearing, JournalState
 from ..caches import cached
+from ..contact.flow_factors import FlowFields
 from ..fields import EdgeProfile, FilmFields, tilted_gap
 from ..film import film_thickness
 from ..scales import moment_factor
@@ -38,6 +44,7 @@ class GeneralAssembly:
 
     op: FilmOperator
     metric: np.ndarray       # (2, 2, elements): (J^-1 J^-T) |det J|
+    axis_metric: np.ndarray  # (2, 2, 2, elements): [a, c, d] J^-1[c, a] J^-1[d, a] |det J|
     grad_theta: np.ndarray   # (2, elements): (J^-1)[c, 0] |det J|, d/dtheta of ref. grads
     det: np.ndarray          # (elements,) |det J|
     stiff_tables: np.ndarray  # (2, 2, points, nb*nb): W_q dphi_ic dphi_jd
@@ -46,11 +53,15 @@ class GeneralAssembly:
     positions: np.ndarray    # (elements, nb*nb): place of each local entry in the pattern
     dofs: np.ndarray         # (elements, nb)
 
-    def stiffness_values(self, k: np.ndarray) -> np.ndarray:
+    def stiffness_values(self, k) -> np.ndarray:
         """Values on the pattern of the stiffness of -div(k grad P), k at the quadrature
-        points (elements x points)."""
-        local = sum(self.metric[c, d][:, None] * (k @ self.stiff_tables[c, d])
-                    for c in range(2) for d in range(2))
+        points (elements x points), or a pair (k_theta, k_zeta): the diagonal tensor's."""
+        if isinstance(k, tuple):
+            local = sum(self.axis_metric[a, c, d][:, None] * (k[a] @ self.stiff_tables[c, d])
+                        for a in range(2) for c in range(2) for d in range(2))
+        else:
+            local = sum(self.metric[c, d][:, None] * (k @ self.stiff_tables[c, d])
+                        for c in range(2) for d in range(2))
         n = len(self.op.indices)
         return np.bincount(self.positions.ravel(), local.ravel(), minlength=n + 1)[:n]
 
@@ -69,6 +80,7 @@ class ElementTables:
     :class:`GeneralAssembly` that need no sparsity pattern)."""
 
     metric: np.ndarray       # (2, 2, elements): (J^-1 J^-T) |det J|
+    axis_metric: np.ndarray  # (2, 2, 2, elements): [a, c, d] J^-1[c, a] J^-1[d, a] |det J|
     grad_theta: np.ndarray   # (2, elements)
     det: np.ndarray          # (elements,)
     stiff_tables: np.ndarray  # (2, 2, points, nb*nb)
@@ -101,8 +113,9 @@ def element_tables(basis) -> ElementTables:
     dphi = np.array([basis.elem.lbasis(X, i)[1] for i in range(nb)])     # (nb, 2, points)
     # physical gradient component a: sum_c invJ[c, a] dphi_c
     metric = np.einsum("cae,dae->cde", invJ, invJ) * det
+    axis_metric = np.einsum("cae,dae->acde", invJ, invJ) * det
     stiff = np.einsum("q,icq,jdq->cdqij", W, dphi, dphi).reshape(2, 2, len(W), nb * nb)
-    return ElementTables(metric=metric, grad_theta=invJ[:, 0] * det, det=det,
+    return ElementTables(metric=metric, axis_metric=axis_metric, grad_theta=invJ[:, 0] * det, det=det,
                          stiff_tables=stiff, grad_tables=np.einsum("q,icq->cqi", W, dphi),
                          value_table=(W * phi).T,
                          dofs=np.ascontiguousarray(basis.element_dofs.T))
@@ -122,14 +135,18 @@ def general_assembly(op: FilmOperator) -> GeneralAssembly:
     # right triangles): they go to a spare slot past the pattern's end, dropped.
     positions[keys[positions] != local] = len(keys)
     return GeneralAssembly(
-        op=op, metric=t.metric, grad_theta=t.grad_theta, det=t.det,
+        op=op, metric=t.metric, axis_metric=t.axis_metric, grad_theta=t.grad_theta, det=t.det,
         stiff_tables=t.stiff_tables, grad_tables=t.grad_tables, value_table=t.value_table,
         positions=positions, dofs=dofs)
 
 
-def film_system(op: FilmOperator, fields, wedge_speed: float, eps: float = 0.0):
+def film_system(op: FilmOperator, fields, wedge_speed: float, eps: float = 0.0,
+                flow: FlowFields | None = None):
     """(stiffness values on the pattern, load) of the film with evaluated
-    :class:`~bearingfem.fields.FilmFields` ``fields`` at wedge speed w [rad/s].
+    :class:`~bearingfem.fields.FilmFields` ``fields`` at wedge speed w [rad/s]; ``flow``
+    the rough gap's coefficient fields at the quadrature points
+    (:func:`~bearingfem.contact.flow_factors.flow_fields` of ``fields.gap``; None: the
+    smooth film's, H^3 and H).
 
     The Couette content rho H is split into a reference cylinder 1 + eps cos(theta), whose
     term is the fast path's exact load (strong form, :meth:`FilmOperator.load`), and the
@@ -138,10 +155,19 @@ def film_system(op: FilmOperator, fields, wedge_speed: float, eps: float = 0.0):
     any other film converges as before (the split changes the quadrature error only)."""
     ga = general_assembly(op)
     rho, H = fields.density, fields.gap
-    k = rho * H ** 3 / fields.viscosity
-    squeeze = -12.0 * (rho * fields.gap_rate + fields.density_rate * H)
-    departure = rho * H - film_thickness(op.qp_theta, eps)
-    load = ga.load(6.0 * wedge_speed * departure, squeeze)
+    if flow is None:
+        k = rho * H ** 3 / fields.viscosity
+        squeeze = -12.0 * (rho * fields.gap_rate + fields.density_rate * H)
+        departure = rho * H - film_thickness(op.qp_theta, eps)
+        couette = 6.0 * wedge_speed * departure
+    else:
+        k = tuple(rho * c / fields.viscosity for c in flow.conductance)
+        E = flow.mean_gap
+        squeeze = -12.0 * (rho * flow.gap_slope * fields.gap_rate + fields.density_rate * E)
+        # (U1 + U2)/2 carries the mean gap, (U1 - U2)/2 = omega R/2 the shear flow
+        couette = (6.0 * wedge_speed * (rho * E - film_thickness(op.qp_theta, eps))
+                   + 6.0 * flow.shear_speed * rho * flow.shear)
+    load = ga.load(couette, squeeze)
     if eps:
         load = load + op.load(eps, 0.0, wedge_speed)
     return ga.stiffness_values(k), load

@@ -114,13 +114,14 @@ def rigid_force(bearing: Bearing, state: JournalState, op: FilmOperator, cavitat
 def solve_film(bearing: Bearing, state: JournalState, op: FilmOperator, element: str,
                cavitation: str, method: str = "active-set", tol: float = 1e-10,
                cavitated_shear: str = "full", grooves=(), film=None,
-               gap=None) -> FilmSolution:
+               gap=None, flow=None) -> FilmSolution:
     """The whole film on ``op`` (a mesh in the film frame): the rigid cylinder of ``state``
     when ``film`` is None, else a film on general fields (:func:`general_film`, with its
-    ``gap``); grooves held at their pressures."""
+    ``gap``) and a rough gap's flow ``flow`` (:class:`~bearingfem.contact.FlowFields` at
+    the quadrature points, None: the smooth film's); grooves held at their pressures."""
     system = None
-    if film is not None and not film.is_rigid(op, state):   # rigid data: the fast path
-        system = film_system(op, film, state.wedge_speed, state.eps)
+    if film is not None and (flow is not None or not film.is_rigid(op, state)):
+        system = film_system(op, film, state.wedge_speed, state.eps, flow)
     res = fe_pressure(op, state, cavitation, method, tol,
                       dirichlet=groove_pressures(bearing, op, grooves), system=system)
     values, load = system if system is not None else (

@@ -10,7 +10,8 @@ Rules for writing a route
 1. ``name``: the problem kind it solves (the key in ``ROUTES``), and ``summary``: one
    line saying which problems those are.
 2. ``uses``: every option (:data:`~bearingfem.routes.problem.OPTION_DEFAULTS`) the route
-   reads. An option set away from its default that the route does not use is refused by
+   reads; ``rough_flow``: True where it takes a rough gap's flow (Patir & Cheng's flow
+   factors, given on the roughness: ``roughness.flow``, refused by that name elsewhere). An option set away from its default that the route does not use is refused by
    :meth:`Route.check` with a ValueError naming it and the route, before any work: no
    option is ever ignored in silence.
 3. ``check_options(problem)``: what the route alone refuses (an element it cannot take,
@@ -46,11 +47,15 @@ class Route:
     name: str = ""
     summary: str = ""
     uses: frozenset = frozenset()
+    rough_flow: bool = False
 
     def check(self, problem: FilmProblem) -> FilmProblem:
         """``problem``, or a ValueError naming the options this route does not use (rule 2)
         or refuses (rule 3)."""
         unused = [k for k in problem.given() if k not in self.uses]
+        if problem.rough_flow and not self.rough_flow:
+            # the flow factors ride on the roughness: refused by their own name
+            unused.append("roughness.flow")
         if unused:
             names = ", ".join(unused)
             raise ValueError(

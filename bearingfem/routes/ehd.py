@@ -25,6 +25,7 @@ class ElasticFilm(Route):
     uses = frozenset({"element", "method", "tol", "cavitated_shear", "supply_angle", "half",
                       "grooves", "fields", "tilt", "tilt_rate", "profile", "lubricant", "bush",
                       "roughness", "start"})
+    rough_flow = True
 
     def check_options(self, p: FilmProblem) -> None:
         check_ehd(p.lubricant, p.bush, p.fields, p.element, p.cavitation)

@@ -8,6 +8,7 @@ from ..fe.general import general_film
 from ..fe.grooved import (groove_operator_for, grooved_derivatives, grooved_force,
                           grooved_solution)
 from ..fe.kernel import rigid_force, solve_film
+from ..fe.mixed import film_flow
 from ..fe.sensitivity import fe_force_derivatives
 from .base import Route
 from .problem import FilmProblem
@@ -87,10 +88,11 @@ class GroovedFilm(Route):
 
 class GeneralFilm(Route):
     name = "general"
-    summary = "a film on general fields (gap, viscosity, density), a tilted journal or a " \
-              "bush edge profile, whole length"
+    summary = "a film on general fields (gap, viscosity, density), a tilted journal, a " \
+              "bush edge profile or a rough gap's flow, whole length"
     uses = _SOLVER | {"supply_angle", "half", "grooves", "fields", "tilt", "tilt_rate",
                       "profile"}
+    rough_flow = True
 
     def solve(self, p: FilmProblem):
         op = fe_operator(p.bearing, p.state, p.n_theta, p.n_z, p.element, p.supply_angle,
@@ -98,5 +100,13 @@ class GeneralFilm(Route):
         film, gap = general_film(p.bearing, p.state, op, p.fields, p.tilt, p.tilt_rate,
                                  p.profile)
         sol = solve_film(p.bearing, p.state, op, p.element, p.cavitation, p.method, p.tol,
-                         p.cavitated_shear, p.grooves, film, gap)
+                         p.cavitated_shear, p.grooves, film, gap,
+                         film_flow(p.bearing, p.state, p.roughness, film.gap))
         return self.with_contact(p, sol, op, film.gap)
+
+    def total_force(self, p: FilmProblem, warm=None):
+        """The film's force plus the summits' on the film's own mesh and gap, from one
+        whole solve (the general film has no separate contact mesh)."""
+        sol = self.solve(p)
+        f, c = sol.force_local, sol.asperity_force_local
+        return (float(f[0] + c[0]), float(f[1] + c[1])), None

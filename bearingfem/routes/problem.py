@@ -83,9 +83,14 @@ class FilmProblem:
     @property
     def general(self) -> bool:
         """The film on general fields (gap, viscosity, density): fields, a tilt, a bush edge
-        profile or the EHD film. Its whole length is meshed (no mid-plane symmetry)."""
+        profile, a rough gap's flow or the EHD film. Its whole length is meshed (no mid-plane symmetry)."""
         return (self.fields is not None or self.tilted or self.profile is not None
-                or self.elastic)
+                or self.elastic or self.rough_flow)
+
+    @property
+    def rough_flow(self) -> bool:
+        """The film's flow through a rough gap (``roughness.flow``, Patir & Cheng)."""
+        return self.roughness is not None and self.roughness.flow is not None
 
     @property
     def kind(self) -> str:
