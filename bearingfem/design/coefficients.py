@@ -124,7 +124,9 @@ def _order(m, options) -> float | None:
     """K and C's nominal convergence order: 1 for a cavitated film (the partials hold the
     discrete cavitated set, whose edge moves by whole cells: C of L/D 0.2, eps 0.6, P2 at
     48 / 96 / 192 x 6 is 2.0e-2, 6e-5, 1.4e-3 from the converged; a pair at order 2 erred
-    low 5x), else the film force's (None)."""
+    low 5x; at L/D 1, eps 0.8, P2 24 x 8 / 48 x 16 / 96 x 32, K is 3.3e-3, 5.0e-3, 3.3e-3
+    and C 3.3e-2, 2.2e-2, 1.3e-2 from P2 256 x 64: K too is not safe at order 2), else the
+    film force's (None)."""
     cavitation = options.get("cavitation", m.defaults.get("cavitation", "reynolds"))
     return None if cavitation == "none" else 1.0
 
