@@ -3,7 +3,7 @@ uniform mesh that reaches the same accuracy (found by search here).
 
     python -m benchmarks.accuracy_rtol            # ~2 min: three states x three tolerances
     python -m benchmarks.accuracy_rtol --quick    # one state, one tolerance (smoke)
-    python -m benchmarks.accuracy_rtol --lund-thomsen   # the ten rows at rtol 2e-3 (~1 min)
+    python -m benchmarks.accuracy_rtol --lund-thomsen   # the ten rows, ROSS beside (~3 min)
 
 For each state the true error of every uniform mesh of a grid (P1 and P2; n_theta from 8
 to 256, n_z half, once or twice n_theta (L/D) / pi, at least 2) is measured against a converged film (P2 384 x 64);
@@ -16,9 +16,11 @@ the memo holding the mesh that sufficed at a state 2 % away in eps.
 
 ``--lund-thomsen``: Lund & Thomsen's ten two-groove rows (studies/lund_thomsen.py),
 equilibrium at rtol 2e-3 and K, C at rtol 2e-3 with the eps error passed on, one design
-loop (the memo carried from row to row, caches cold at the start), against P2 on 144 cells
-around (n_z ~ 144 L/D / 3: the study's converged mesh): |d eps|, the largest K and B
-entry errors relative to each matrix's largest entry, and the time.
+loop (the memo carried from row to row, caches cold at the start), beside the same loop on
+uniform P2 36 x 8 and 72 x 12 with ``estimate=True`` and beside ROSS 3.1's 40 x 20 film
+(.venv-ross31, ``benchmarks/_ross31_env.py``; ``--no-ross``: ours only), against P2 on 144
+cells around (n_z ~ 144 L/D / 3: the study's converged mesh): |d eps|, the largest K and
+C entry errors relative to each matrix's largest entry (inertial frame), and CPU time.
 """
 from __future__ import annotations
 
