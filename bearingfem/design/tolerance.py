@@ -59,9 +59,9 @@ def answer_to_tolerance(m: FilmModel, what: str, key, options: dict, evaluate: C
     if (rtol is not None and toward is not None and options.get("grooves")
             and "grading" in m.defaults and options.get("grading") is None
             and toward[1] >= GRADED_FROM_EPS):
-        # the angle on a 5 deg grid: nearby states (a design loop's, an equilibrium's and
+        # the angle on a 15 deg grid: nearby states (a design loop's, an equilibrium's and
         # its coefficients') share meshes, operators and factors; the grading is broad
-        step = math.pi / 36.0
+        step = math.pi / 12.0
         graded = (step * round(float(toward[0]) / step), GRADING_STRENGTH)
 
     def run(n_theta, n_z, el):
