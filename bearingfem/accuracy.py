@@ -1,13 +1,14 @@
 """Answers to a requested accuracy: a mesh chosen to reach a relative tolerance, with the
 error estimate that says it did.
 
-The estimate is the h/2h difference of the answer on a pair of meshes, the fine one twice
-the coarse one in both directions, turned into the fine mesh's error by Richardson's
+The estimate is the h/2h difference of the answer on a pair of meshes, the fine one about
+twice the coarse one in both directions, turned into the fine mesh's error by Richardson's
 argument: with e(h) ~ C h^p,
 
-    e_fine ~ |q_fine - q_coarse| / (r^p - 1),   r = h_coarse / h_fine = 2,
+    e_fine ~ |q_fine - q_coarse| / (r^p - 1),   r = h_coarse / h_fine ~ 2,
 
-and p the lower of the element's nominal order (the force of a P1 film converges as h^2;
+r the smaller of the two directions' ratios (the grid's rounding can make one 1.5), and
+p the lower of the element's nominal order (the force of a P1 film converges as h^2;
 a P2 film as h^4 without cavitation and as h^2 with it, the free boundary limiting it) and
 the order observed on three meshes (never below 1; from one pair alone, at most 2). Taking
 the lower order makes the estimate err high before the asymptotic range, where the
@@ -16,13 +17,19 @@ effectivity (estimate / true error) is measured in tests/test_accuracy.py and
 docs/accuracy.md; ``SAFETY`` is the factor that keeps it above 1 over the measured meshes
 and states.
 
-The mesh: from a start pair the estimate and its order predict the mesh that reaches the
-tolerance, (h / h_needed) = (e / rtol)^(1/p); the next pair is solved there (its coarse
-half is the last fine mesh when the prediction asks for a doubling, so no solve is
-wasted), until the estimate is within the tolerance. What sufficed is kept in a small memo
-under a key the caller gives (the bearing and film options, not the state), so that the
-next state of a design loop starts at the pair that sufficed (one doubling coarser when
-its estimate was under rtol / 16) and usually needs that one pair alone.
+The mesh: the pair is a mesh and its half (about half as many cells each way). When its
+estimate is above the tolerance, one more solve, the mesh with n_z halved only, splits the
+estimate into its theta and z parts (that solve against the half differs in theta alone,
+the mesh against it in z alone), and the next mesh is the least one whose two parts, each
+falling as its direction's h^p, reach the tolerance with a 10 % margin (each direction
+half of it, the optimum for a sum of two powers; a factor of 1.5 to 4 on the larger part's
+direction, neither coarser; a factor near 2 taken as 2, so that this mesh is the next
+one's half and a family of three gives an observed order). A short bearing, whose error
+lives around the bearing, then gets meshes like 160 x 10 instead of the start's shape.
+What sufficed is kept in a small memo under a key the caller gives (the bearing and film
+options, not the state) with the estimate and its split, and the next call of a design
+loop starts at the mesh the split predicts for its tolerance: the memo's mesh, or coarser
+(at most 0.7x each way, with a margin of 2) when the estimate there showed slack.
 
 This module knows nothing about films: it takes ``evaluate(n_theta, n_z, element)`` and a
 ``difference(fine, coarse)`` of what is asked for (a film's force, an equilibrium's eps,
@@ -76,6 +83,7 @@ class AccuracyRecord:
     memo : whether the search started from the mesh that sufficed at an earlier call
     factor : the estimate per unit h/2h difference, SAFETY / (r^p - 1): an entry's error is
         ``factor`` times its change between the pair
+    grading : the grooved mesh's (angle [rad], strength) the search chose, or None
     """
 
     rtol: float | None
@@ -90,6 +98,7 @@ class AccuracyRecord:
     memo: bool = False
     factor: float = 0.0
     estimates: tuple = field(default=(), repr=False)
+    grading: tuple | None = None
 
 
 def check_rtol(rtol, name: str = "rtol") -> float:
@@ -165,14 +174,6 @@ def estimate_error(scales, differences, order: float):
     return richardson_error(d, scales[-1] / scales[-2], p), p
 
 
-def _mesh(scale: float, shape: tuple, multiple: int = 2) -> tuple:
-    """(n_theta, n_z) at ``scale`` times the shape (a, b): n_theta a multiple of
-    ``multiple``, n_z even."""
-    a, b = shape
-    m = max(2, int(multiple))
-    return (max(8, m * math.ceil(a * scale / m)), max(2, 2 * math.ceil(b * scale / 2.0)))
-
-
 def grid_multiple(edges, largest: int = 360) -> int:
     """The least n (even, <= ``largest``) whose grid of 2 pi / n cells around puts a node
     on every angle of ``edges`` [rad] (relative to the first), e.g. a groove's edges; 2
@@ -187,87 +188,149 @@ def grid_multiple(edges, largest: int = 360) -> int:
     return 2
 
 
+def _grid(n_theta: float, n_z: float, multiple: int, least: tuple = (8, 2)) -> tuple:
+    """(n_theta, n_z) at least ``least`` and rounded up onto the grid: n_theta a multiple
+    of ``multiple`` (nodes on the grooves' edges, :func:`grid_multiple`), n_z even."""
+    m = max(2, int(multiple))
+    return (m * max(math.ceil(least[0] / m), math.ceil(n_theta / m - 1e-9)),
+            2 * max(math.ceil(least[1] / 2), math.ceil(n_z / 2 - 1e-9)))
+
+
+def _fine(n_theta: float, n_z: float, multiple: int) -> tuple:
+    """A mesh the search answers on: on the grid, large enough for a half partner."""
+    return _grid(n_theta, n_z, multiple, least=(16, 4))
+
+
+def _half(mesh: tuple, multiple: int) -> tuple:
+    """The h/2h partner of ``mesh``: about half as many cells each way, on the grid."""
+    return _grid(mesh[0] / 2.0, mesh[1] / 2.0, multiple)
+
+
+def _refinement(error: float, share: float, up: float, down: float) -> float:
+    """The factor on a direction's cell count that brings its ``error`` to ``share``: at
+    the order ``up`` when refining, the order ``down`` when coarsening (the higher order:
+    a coarsening predicted at too low an order would be too bold), within [0.5, 4]."""
+    if error <= 0.0:
+        return 0.5
+    ratio = error / share
+    return min(4.0, max(0.5, ratio ** (1.0 / (up if ratio > 1.0 else down))))
+
+
+def _predict(mesh: tuple, split: tuple, target: float, up: float, down: float,
+             multiple: int, grow: bool, least: float = 1.0) -> tuple:
+    """The least mesh whose error, ``split`` = (theta part, z part) of ``mesh``'s
+    estimate each falling as its direction's h^order, is ``target``: each direction gets
+    half the target (the least cells n_theta n_z for a sum of two powers), what one
+    direction cannot use (its factor at the bound ``least``) goes to the other. ``grow``:
+    the larger part's direction at least 1.5x finer (the search must advance)."""
+    e_t, e_z = split
+    r_t = max(least, _refinement(e_t, 0.5 * target, up, down))
+    r_z = max(least, _refinement(e_z, 0.5 * target, up, down))
+    rest = lambda e, r: target - e / r ** (up if r > 1.0 else down)    # noqa: E731
+    if r_z == least and rest(e_z, r_z) > 0.5 * target:
+        r_t = max(least, _refinement(e_t, rest(e_z, r_z), up, down))
+    elif r_t == least and rest(e_t, r_t) > 0.5 * target:
+        r_z = max(least, _refinement(e_z, rest(e_t, r_t), up, down))
+    if grow:
+        if e_t >= e_z:
+            r_t = max(r_t, 1.5)
+        else:
+            r_z = max(r_z, 1.5)
+    # a doubling (or keeping) reuses solves: this mesh, or the split's (n_theta, n_z / 2),
+    # becomes the next one's partner, for the cost of a 1.5x step
+    snap = lambda r: 2.0 if 1.5 <= r <= 2.3 else 1.0 if 0.85 <= r <= 1.2 else r  # noqa: E731
+    return _fine(mesh[0] * snap(r_t), mesh[1] * snap(r_z), multiple)
+
+
 def refine_to_tolerance(evaluate: Callable, difference: Callable, rtol: float, *,
                         element: str, start_mesh: tuple, order: float,
                         key: Hashable | None = None, error_of=None,
                         n_theta_multiple: int = 2):
     """(answer, coarse answer, :class:`AccuracyRecord`): ``evaluate(n_theta, n_z,
-    element)`` on the least mesh of the family ``start_mesh`` x scale whose estimated error is within ``rtol``.
+    element)`` on a mesh whose estimated error is within ``rtol``, refined around and
+    along as the estimate's split says.
 
     ``difference(fine, coarse)`` is the relative difference of two answers (what the
     tolerance is on); ``order`` the nominal convergence order of that quantity; ``key``
     names the memo entry (None: no memo); ``error_of(answer)`` a floor of the answer's
     error besides the mesh's (None: 0); ``n_theta_multiple``: n_theta is kept a multiple
-    of it (:func:`grid_multiple`: nodes on the grooves' edges). Raises :class:`ConvergenceError` when the
-    mesh would pass :data:`MAX_CELLS`.
+    of it (:func:`grid_multiple`: nodes on the grooves' edges). Raises
+    :class:`ConvergenceError` when the mesh would pass :data:`MAX_CELLS`.
     """
     rtol = check_rtol(rtol)
     t0 = time.perf_counter()
-    shape = tuple(int(v) for v in start_mesh)
-    if n_theta_multiple > 2:     # the start as near its shape as the grid allows, its
-        m = n_theta_multiple     # coarse half still on the grid
-        shape = (m * max(2, round(shape[0] / m)), shape[1])
+    multiple = max(2, int(n_theta_multiple))
     by_mesh: dict = {}
     solved: list = []
 
-    def at(scale):
-        m = _mesh(scale, shape, n_theta_multiple)
-        if m[0] * m[1] > MAX_CELLS:
+    def at(mesh):
+        if mesh[0] * mesh[1] > MAX_CELLS:
             raise ConvergenceError(
                 f"the mesh search for rtol = {rtol:g} ({element})", len(solved), None,
-                f"{m[0]} x {m[1]} cells, past the largest mesh ({MAX_CELLS} cells); ask "
-                f"for a looser rtol" + ("" if element == "P2" else " or element P2"))
-        if m not in by_mesh:
-            by_mesh[m] = evaluate(m[0], m[1], element)
-            solved.append(m)
-        return m, by_mesh[m]
+                f"{mesh[0]} x {mesh[1]} cells, past the largest mesh ({MAX_CELLS} cells); "
+                f"ask for a looser rtol" + ("" if element == "P2" else " or element P2"))
+        if mesh not in by_mesh:
+            by_mesh[mesh] = evaluate(mesh[0], mesh[1], element)
+            solved.append(mesh)
+        return by_mesh[mesh]
 
-    memo_key = None if key is None else (key, element, shape, n_theta_multiple)
-    scale = 1.0
+    target = rtol / 1.1            # a 10 % margin on the predicted meshes
+    memo_key = None if key is None else (key, element, multiple)
     remembered = memo_key is not None and memo_key in _MEMO
+    share = None                   # the theta part's share of the error, once split
     if remembered:
-        scale = _MEMO[memo_key]
+        mesh, error, share, p = _MEMO[memo_key]
         _MEMO.move_to_end(memo_key)
-    history: list = []      # (scale, mesh, answer, difference to the previous or None)
+        # the memo's mesh, or coarser when its estimate showed slack: a margin of 2 for
+        # the state's change since, and at most 0.7x each way (a cavitated film's error is
+        # not monotone in the mesh: a bolder step is often undone at the cost of a search)
+        fine = _predict(mesh, (error * share, error * (1.0 - share)), rtol / 2.0, p, order,
+                        multiple, grow=False, least=0.7)
+    else:
+        fine = _fine(*start_mesh, multiple)
+    last = None                    # (fine, coarse, difference) of the last pair
     estimates: list = []
-    p_used = order
     while True:
-        coarse_scale = scale / 2.0
-        if not history or not math.isclose(history[-1][0], coarse_scale):
-            mc, qc = at(coarse_scale)
-            d_prev = None
-            if history:
-                d_prev = difference(qc, history[-1][2])
-            history.append((coarse_scale, mc, qc, d_prev))
-        mf, qf = at(scale)
-        d = difference(qf, history[-1][2])
-        history.append((scale, mf, qf, d))
-        err, p_used = estimate_error([h[0] for h in history[-3:]],
-                                     [h[3] for h in history[-2:]], order)
+        coarse = _half(fine, multiple)
+        # the coarse one first: an evaluation warm-started from the last (an equilibrium's
+        # Newton) then starts the fine one near its answer
+        q_coarse = at(coarse)
+        q_fine = at(fine)
+        d = difference(q_fine, q_coarse)
+        r = min(fine[0] / coarse[0], fine[1] / coarse[1])
+        if last is not None and last[0] == coarse and _half(coarse, multiple) == last[1]:
+            r0 = min(coarse[0] / last[1][0], coarse[1] / last[1][1])   # one family of three
+            err, p = estimate_error([1.0, r0, r0 * r], [last[2], d], order)
+        else:
+            err, p = estimate_error([1.0, r], [d], order)
         if error_of is not None:
-            err = max(err, error_of(qf))
-        estimates.append((mf, err))
+            err = max(err, error_of(q_fine))
+        estimates.append((fine, err))
         if err <= rtol:
             break
-        # the scale that reaches rtol with a 10 % margin, at least 1.5x, at most 4x finer
-        grow = min(4.0, max(1.5, 1.1 * (err / rtol) ** (1.0 / p_used)))
-        if grow < 2.2:
-            grow = 2.0          # a doubling reuses this mesh as the next pair's coarse one
-        scale *= grow
+        # the split: the partner refined around only (n_theta's, n_z halved) separates
+        # the theta part (it against the partner) from the z part (the fine one against it)
+        if coarse[1] < fine[1]:
+            q_mid = at((fine[0], coarse[1]))
+            e_t = difference(q_mid, q_coarse) / ((fine[0] / coarse[0]) ** p - 1.0)
+            e_z = difference(q_fine, q_mid) / ((fine[1] / coarse[1]) ** p - 1.0)
+            share = e_t / (e_t + e_z) if e_t + e_z > 0.0 else 0.5
+        elif share is None:
+            share = 0.5
+        last = (fine, coarse, d)
+        # neither direction coarser: a split from one coarse pair is too rough for it
+        fine = _predict(fine, (err * share, err * (1.0 - share)), target, p, order,
+                        multiple, grow=True, least=1.0)
     if memo_key is not None:
-        # next call: the pair that sufficed; one doubling coarser when its estimate was
-        # under rtol / 16 (a predicted shrink by less is often undone by a pre-asymptotic
-        # estimate, costing a search)
-        _MEMO[memo_key] = max(1.0, scale / 2.0 if err < rtol / 16.0 else scale)
+        _MEMO[memo_key] = (fine, float(err), 0.5 if share is None else share, p)
         while len(_MEMO) > _MEMO_SIZE:
             _MEMO.popitem(last=False)
     record = AccuracyRecord(
-        rtol=rtol, error=float(err), element=element, mesh=mf, partner=history[-2][1],
-        order=float(p_used), meshes=tuple(solved), solves=len(solved),
+        rtol=rtol, error=float(err), element=element, mesh=fine, partner=coarse,
+        order=float(p), meshes=tuple(solved), solves=len(solved),
         seconds=time.perf_counter() - t0, memo=remembered,
-        factor=SAFETY / ((scale / history[-2][0]) ** p_used - 1.0),
-        estimates=tuple(estimates))
-    return qf, history[-2][2], record
+        factor=SAFETY / (r ** p - 1.0), estimates=tuple(estimates))
+    return q_fine, q_coarse, record
 
 
 def estimate_at(evaluate: Callable, difference: Callable, mesh: tuple, *, element: str,

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import math
 import time
+from dataclasses import replace
 
 import numpy as np
 
@@ -112,7 +113,10 @@ def _design_case(params: dict) -> dict:
     b, s = _film_inputs(p)
     model = film_model(p["model"])
     opts = _film_options(p)
-    kc = coefficients(b, s, p["model"], frame="load", **opts)
+    # a model on a mesh gives K and C's estimated errors too (one half-mesh linearisation
+    # more): the chart's error bars
+    on_mesh = {"n_theta", "n_z"} <= set(model.defaults)
+    kc = coefficients(b, s, p["model"], frame="load", estimate=on_mesh, **opts)
     k, c = kc.dimensionless()
     f_r, f_t = model.film_force(b, s, **opts)
     load = math.hypot(f_r, f_t)
@@ -127,6 +131,11 @@ def _design_case(params: dict) -> dict:
     for name, m in (("K", k), ("C", c)):
         for (i, j), v in np.ndenumerate(m):
             out[f"{name}{i + 1}{j + 1}"] = float(v)
+    if kc.K_error is not None:      # the entries' errors in the same units
+        k_err, c_err = replace(kc, K=kc.K_error, C=kc.C_error).dimensionless()
+        for name, m in (("K", k_err), ("C", c_err)):
+            for (i, j), v in np.ndenumerate(m):
+                out[f"{name}{i + 1}{j + 1}_error"] = float(v)
     return out
 
 

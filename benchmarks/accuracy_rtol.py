@@ -3,27 +3,32 @@ uniform mesh that reaches the same accuracy (found by search here).
 
     python -m benchmarks.accuracy_rtol            # ~2 min: three states x three tolerances
     python -m benchmarks.accuracy_rtol --quick    # one state, one tolerance (smoke)
-    python -m benchmarks.accuracy_rtol --lund-thomsen   # the ten rows at rtol 2e-3 (~1 min)
+    python -m benchmarks.accuracy_rtol --lund-thomsen   # the ten rows, ROSS beside (~3 min)
 
 For each state the true error of every uniform mesh of a grid (P1 and P2; n_theta from 8
 to 256, n_z half, once or twice n_theta (L/D) / pi, at least 2) is measured against a converged film (P2 384 x 64);
 an ``rtol`` solve reports its estimate and is measured too; the cheapest uniform mesh whose
 true error is at most the rtol solve's is the baseline. Times: best of ``--repeat`` runs,
-one process, warm operator caches for both (meshes built once, as in any loop). "cold":
+one process, CPU time (the machine is shared: wall time measures the neighbours), warm
+operator caches for both (meshes built once, as in any loop). "cold":
 the mesh search from the start pair (memo cleared); "loop": a design loop's next call,
 the memo holding the mesh that sufficed at a state 2 % away in eps.
 
 ``--lund-thomsen``: Lund & Thomsen's ten two-groove rows (studies/lund_thomsen.py),
 equilibrium at rtol 2e-3 and K, C at rtol 2e-3 with the eps error passed on, one design
-loop (the memo carried from row to row, caches cold at the start), against P2 on 144 cells
-around (n_z ~ 144 L/D / 3: the study's converged mesh): |d eps|, the largest K and B
-entry errors relative to each matrix's largest entry, and the time.
+loop (the memo carried from row to row, caches cold at the start), beside the same loop on
+uniform P2 36 x 8 and 72 x 12 with ``estimate=True`` and beside ROSS 3.1's 40 x 20 film
+(.venv-ross31, ``benchmarks/_ross31_env.py``; ``--no-ross``: ours only), against P2 on 144
+cells around (n_z ~ 144 L/D / 3: the study's converged mesh): |d eps|, the largest K and
+C entry errors relative to each matrix's largest entry (inertial frame), and CPU time.
 """
 from __future__ import annotations
 
 import argparse
 import itertools
 import math
+
+import numpy as np
 
 from bearingfem import Bearing, JournalState, solve_reynolds
 from bearingfem.accuracy import clear_memo, force_difference
@@ -38,9 +43,10 @@ STATES = [("L/D 1, eps 0.8, Reynolds", 1.0, 0.8, "reynolds"),
 
 
 def best(fn, repeat):
-    """(best wall time [s], result) of ``repeat`` calls (the benchmarks' one timer)."""
+    """(best CPU time [s], result) of ``repeat`` calls (the benchmarks' one timer; CPU time:
+    on a shared machine wall time measures the neighbours)."""
     t = best_of(fn, repeat)
-    return t.wall, t.out
+    return t.cpu, t.out
 
 
 def uniform_table(b, s, cavitation, ref, repeat):
@@ -56,40 +62,113 @@ def uniform_table(b, s, cavitation, ref, repeat):
     return rows
 
 
-def lund_thomsen(rtol=2e-3):
-    """The ten rows as one design loop; prints a row per case and the totals."""
+def _ross_rows(cases, repeat):
+    """ROSS 3.1's equilibrium + K, C of each case on its 40 x 20 film (.venv-ross31, one
+    process; the numba warm-up excluded): rows of benchmarks/_ross31_fluid_film.py."""
+    import json
+    import os
+    import subprocess
+    from pathlib import Path
+
+    from . import _ross31_env
+    _ross31_env.install()
+    spec = dict(cases=[dict(c, design_meshes=[ROSS_MESH]) for c in cases])
+    script = Path(__file__).with_name("_ross31_fluid_film.py")
+    r = subprocess.run([str(_ross31_env.python()), str(script), json.dumps(spec),
+                        "--repeat", str(repeat + 1)], capture_output=True, text=True,
+                       env={**os.environ, "MPLBACKEND": "Agg"})
+    if r.returncode != 0:
+        raise RuntimeError(f"ROSS run failed:\n{r.stderr[-2000:]}")
+    return [row for row in json.loads(r.stdout.strip().splitlines()[-1])
+            if row["kind"] == "design"]
+
+
+#: ROSS's film on each pad (elements around x along): its literature test's mesh
+ROSS_MESH = (40, 20)
+
+
+def _errors(eps, K, C, ref):
+    """|d eps|, max|dK| / max|K|, max|dC| / max|C| against ``ref`` (eps, K, C)."""
+    e0, K0, C0 = ref
+    return (abs(eps - e0), float(np.abs(K - K0).max() / np.abs(K0).max()),
+            float(np.abs(C - C0).max() / np.abs(C0).max()))
+
+
+def lund_thomsen(rtol=2e-3, repeat=3, with_ross=True):
+    """The ten rows as one design loop (the memo carried from row to row; caches and memo
+    cleared before the loop, best of ``repeat`` loops), beside ROSS 3.1's 40 x 20 film on
+    each row in the same run; errors against P2 on 144 cells around (the study's converged
+    mesh), K and C in the inertial frame (ROSS's). Besides ``rtol``: the same loop on one
+    uniform P2 mesh for all rows (36 x 8 and 72 x 12 cells, n_z for L/D 1; half for 0.5),
+    with ``estimate=True`` (the error of the mesh given, one half-mesh solve more)."""
+    from bearingfem.caches import clear_caches
     from bearingfem.design import coefficients, equilibrium
     from bearingfem.design.groups import load_from_sommerfeld
     from studies.lund_thomsen import GROOVES, LOAD_DIRECTION, OMEGA, TABLE, bearing, mesh
-    clear_memo()
     film = dict(grooves=GROOVES, cavitation="reynolds")
+    rows = [(ld, S, bearing(ld), load_from_sommerfeld(bearing(ld), S, OMEGA))
+            for ld, table in TABLE.items() for S, *_ in table]
+
+    def loop(**how):
+        out = []
+        for ld, S, b, W in rows:
+            o = dict(film, **how)
+            if "n_z" in o:
+                o["n_z"] = max(4, round(o["n_z"] * ld))
+            eq = equilibrium(b, W, OMEGA, "fem", direction=LOAD_DIRECTION, **o)
+            kc = coefficients(b, eq.state, "fem", eps_error=eq.eps_error, **o)
+            out.append((eq, kc))
+        return out
+
+    variants = [(f"rtol {rtol:g}", dict(rtol=rtol)),
+                ("P2 36x8 estimate", dict(n_theta=36, n_z=8, element="P2", estimate=True)),
+                ("P2 72x12 estimate", dict(n_theta=72, n_z=12, element="P2", estimate=True))]
+    timed = [best_of(lambda: loop(**how), repeat, before=lambda: (clear_caches(), clear_memo()))
+             for _, how in variants]
+    refs = []
+    for ld, S, b, W in rows:
+        o = mesh(ld, 144, "P2")
+        eq = equilibrium(b, W, OMEGA, "fem", direction=LOAD_DIRECTION, **o)
+        kc = coefficients(b, eq.state, "fem", **o)
+        refs.append((eq.eps, np.asarray(kc.K), np.asarray(kc.C)))
+    ross = []
+    if with_ross:
+        cases = [dict(name=f"{ld}-{S}", radius=b.radius, length=b.length,
+                      clearance=b.clearance, viscosity=b.viscosity, omega=OMEGA,
+                      pad_centres=[0.5 * math.pi, 1.5 * math.pi],
+                      pad_arcs=[math.radians(160.0)] * 2, load=[0.0, -W], static=[0.5, 0.0])
+                 for ld, S, b, W in rows]
+        ross = _ross_rows(cases, repeat)
     print(f"{'L/D':>4s} {'S':>6s} {'eps':>8s} {'d eps':>8s} {'eps_err':>8s} {'K err':>8s} "
-          f"{'B err':>8s} {'kc.error':>8s} {'eq mesh':>9s} {'kc mesh':>9s} {'s':>6s}")
-    total, worst = 0.0, [0.0, 0.0, 0.0]
-    for ld, rows in TABLE.items():
-        b = bearing(ld)
-        for S, *_ in rows:
-            W = load_from_sommerfeld(b, S, OMEGA)
-            def design(b=b, W=W):
-                eq = equilibrium(b, W, OMEGA, "fem", direction=LOAD_DIRECTION, rtol=rtol,
-                                 **film)
-                return eq, coefficients(b, eq.state, "fem", frame="load", rtol=rtol,
-                                        eps_error=eq.eps_error, **film)
-            timed = best_of(design)
-            t, (eq, kc) = timed.wall, timed.out
-            total += t
-            ref_o = mesh(ld, 144, "P2")
-            eqr = equilibrium(b, W, OMEGA, "fem", direction=LOAD_DIRECTION, **ref_o)
-            kr = coefficients(b, eqr.state, "fem", frame="load", **ref_o)
-            de = abs(eq.eps - eqr.eps)
-            eK = abs(kc.K - kr.K).max() / abs(kr.K).max()
-            eB = abs(kc.C - kr.C).max() / abs(kr.C).max()
-            worst = [max(worst[0], de), max(worst[1], eK), max(worst[2], eB)]
-            print(f"{ld:4g} {S:6g} {eq.eps:8.5f} {de:8.1e} {eq.eps_error:8.1e} {eK:8.1e} "
-                  f"{eB:8.1e} {kc.error:8.1e} {'{}x{}'.format(*eq.accuracy.mesh):>9s} "
-                  f"{'{}x{}'.format(*kc.accuracy.mesh):>9s} {t:6.2f}")
-    print(f"ten rows: {total:.2f} s; largest |d eps| {worst[0]:.1e}, K {100 * worst[1]:.2f} %, "
-          f"B {100 * worst[2]:.2f} % of the largest entry")
+          f"{'C err':>8s} {'kc.error':>8s} {'eq mesh':>9s} {'kc mesh':>9s} {'solves':>6s} | "
+          f"{'ROSS d eps':>10s} {'K err':>8s} {'C err':>8s} {'CPU s':>6s}")
+    worst_ross = np.zeros(3)
+    for i, ((ld, S, b, W), (eq, kc), ref) in enumerate(zip(rows, timed[0].out, refs)):
+        e = _errors(eq.eps, np.asarray(kc.K), np.asarray(kc.C), ref)
+        line = (f"{ld:4g} {S:6g} {eq.eps:8.5f} {e[0]:8.1e} {eq.eps_error:8.1e} {e[1]:8.1e} "
+                f"{e[2]:8.1e} {kc.error:8.1e} {'{}x{}'.format(*eq.accuracy.mesh):>9s} "
+                f"{'{}x{}'.format(*kc.accuracy.mesh):>9s} "
+                f"{eq.accuracy.solves + kc.accuracy.solves:6d} |")
+        if ross:
+            r = ross[i]
+            er = _errors(r["eps"], np.array(r["K"]), np.array(r["C"]), ref)
+            worst_ross = np.maximum(worst_ross, er)
+            line += f" {er[0]:10.1e} {er[1]:8.1e} {er[2]:8.1e} {r['cpu_s']:6.3f}"
+        print(line)
+    c_ross = sum(r["cpu_s"] for r in ross)
+    if ross:
+        print(f"ROSS {ROSS_MESH[0]}x{ROSS_MESH[1]}: ten rows {sum(r['time_s'] for r in ross):.3f}"
+              f" s wall, {c_ross:.3f} s CPU; largest |d eps| {worst_ross[0]:.1e}, K "
+              f"{100 * worst_ross[1]:.2f} %, C {100 * worst_ross[2]:.2f} %")
+    for (name, _), t in zip(variants, timed):
+        worst, est = np.zeros(3), np.zeros(2)
+        for (eq, kc), ref in zip(t.out, refs):
+            worst = np.maximum(worst, _errors(eq.eps, np.asarray(kc.K), np.asarray(kc.C), ref))
+            est = np.maximum(est, (eq.eps_error, kc.error))
+        print(f"ours, {name:18s}: ten rows {t.wall:.3f} s wall, {t.cpu:.3f} s CPU (best of "
+              f"{repeat}); largest |d eps| {worst[0]:.1e} (estimated {est[0]:.1e}), K "
+              f"{100 * worst[1]:.2f} %, C {100 * worst[2]:.2f} % (estimated {100 * est[1]:.2f} %)"
+              + (f"; ROSS / ours {c_ross / t.cpu:.1f}x CPU" if ross else ""))
 
 
 def main(argv=None):
@@ -97,9 +176,10 @@ def main(argv=None):
     p.add_argument("--quick", action="store_true")
     p.add_argument("--repeat", type=int, default=5)
     p.add_argument("--lund-thomsen", action="store_true")
+    p.add_argument("--no-ross", action="store_true", help="--lund-thomsen: ours only")
     a = p.parse_args(argv)
     if a.lund_thomsen:
-        return lund_thomsen()
+        return lund_thomsen(repeat=a.repeat, with_ross=not a.no_ross)
     states = STATES[:1] if a.quick else STATES
     tolerances = (1e-2,) if a.quick else (1e-2, 1e-3, 1e-4)
     print(f"{'state':28s} {'rtol':>7s} {'estimate':>9s} {'true':>9s} {'mesh':>12s} "
@@ -122,7 +202,7 @@ def main(argv=None):
                                 before=lambda: (clear_memo(),
                                                 solve_reynolds(b, near, rtol=rtol,
                                                                cavitation=cav)))
-                return timed.wall, timed.out
+                return timed.cpu, timed.out
             cold()                                                   # build its meshes
             t_cold, sol = best(cold, a.repeat)
             t_loop = min(loop()[0] for _ in range(a.repeat))

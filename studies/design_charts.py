@@ -5,7 +5,9 @@
 Writes the sweep's cases and results.csv, then design-chart.png (eps, attitude angle,
 friction variable (R/c) f and flow variable Q/(R c N L) against the Sommerfeld number)
 and design-coefficients.png (K c / W and C c omega / W in the load frame: axis 1 along the
-load, axis 2 turned +90 deg in the sense of rotation), one line per L/D.
+load, axis 2 turned +90 deg in the sense of rotation), one line per L/D, with error bars
+(each entry's estimated discretisation error, ``coefficients(estimate=True)``) where they
+are larger than the line (:data:`BAR_FROM`).
 """
 from __future__ import annotations
 
@@ -22,6 +24,19 @@ PANELS = [("eps", "eccentricity ratio eps [-]", "linear"),
           ("attitude_deg", "attitude angle [deg]", "linear"),
           ("friction_variable", "friction variable (R/c) f [-]", "log"),
           ("flow_variable", "side flow Q_s / (R c N L) [-]", "linear")]
+
+
+#: An entry's error bar is drawn where it is larger than the line: its relative error
+#: above this (a 1.5 pt line on a panel ~4 decades over ~300 pt is ~2 % of a value)
+BAR_FROM = 0.02
+
+
+def error_bars(values, errors):
+    """(mask, errors) of the points whose error bar would show: |error| > BAR_FROM |value|
+    (rows without errors, e.g. a closed-form model's: none)."""
+    v = np.abs(np.asarray(values, float))
+    e = np.asarray([np.nan if x in ("", None) else x for x in errors], float)
+    return np.nan_to_num(e, nan=0.0) > BAR_FROM * v, e
 
 
 def _by_ld(rows):
@@ -66,12 +81,18 @@ def plot_design_charts(rows, out) -> list[Path]:
                 line, = ax.plot(S, np.abs(v), "-", label=f"L/D = {ld:g}")
                 ax.plot(S[v >= 0], v[v >= 0], "o", ms=3, color=line.get_color())
                 ax.plot(S[v < 0], -v[v < 0], "o", ms=4, mfc="none", color=line.get_color())
+                show, err = error_bars(v, [r.get(f"{name}{ij}_error") for r in rs])
+                if show.any():    # the estimate, clipped above zero on the log axis
+                    lo = np.minimum(err[show], 0.999 * np.abs(v[show]))
+                    ax.errorbar(S[show], np.abs(v[show]), yerr=[lo, err[show]], fmt="none",
+                                capsize=2, lw=0.8, color=line.get_color())
             ax.set(xscale="log", yscale="log", xlabel="Sommerfeld number S [-]",
                    ylabel=f"|{unit}|, {name}_{ij} [-]")
             ax.grid(True, which="both", alpha=0.3)
     axes[0, 0].legend(fontsize=8)
     fig.suptitle(title + "; load frame: 1 along the load, 2 turned +90 deg; "
-                 "open markers: negative values", fontsize=10)
+                 "open markers: negative values; bars: estimated mesh error where "
+                 f"above {100 * BAR_FROM:g} %", fontsize=10)
     p2 = out / "design-coefficients.png"
     fig.savefig(p2, dpi=110)
     plt.close(fig)

@@ -184,3 +184,59 @@ def test_the_finite_volume_model_to_a_tolerance():
                       cavitation="gumbel")
     assert eq.eps_error <= 1e-2 * eq.eps
     assert abs(eq.eps - ref.eps) <= eq.eps_error
+
+
+def _cells(sol):
+    return sol.accuracy.mesh[0] * sol.accuracy.mesh[1]
+
+
+def test_a_short_bearing_is_refined_around_more_than_along():
+    """L/D 0.2, eps 0.6, Reynolds' condition, rtol 1e-4: the error lives around the bearing
+    (P2 resolves the nearly parabolic axial profile in a few cells), so the search refines
+    theta more than z: it ends with n_theta / n_z at least twice the start's (24 / 4), the
+    true error within the request and the estimate (fails with the split dropped, both
+    directions refined alike)."""
+    clear_memo()
+    s = JournalState(eps=0.6, omega=250.0)
+    sol = solve_reynolds(B02, s, rtol=1e-4, cavitation="reynolds")
+    nt, nz = sol.accuracy.mesh
+    assert nt / nz >= 2.0 * 24 / 4
+    true = force_difference(solve_reynolds(B02, s, 384, 64, "P2", "reynolds"), sol)
+    assert true <= sol.force_error <= 1e-4
+
+
+def test_the_memo_steps_down_where_the_estimate_shows_slack():
+    """A design loop's next call with a looser tolerance (or a state that needs less)
+    starts coarser than the mesh that sufficed, not on it, and still passes (fails with
+    the memo's mesh reused as it is: the same 96-cell mesh for rtol 1e-2)."""
+    clear_memo()
+    s = JournalState(eps=0.8, omega=250.0)
+    tight = solve_reynolds(B1, s, rtol=1e-4, cavitation="reynolds")
+    loose = solve_reynolds(B1, s, rtol=1e-2, cavitation="reynolds")
+    assert loose.accuracy.memo and _cells(loose) < _cells(tight)
+    assert force_difference(_reference(B1, s, "reynolds"), loose) <= loose.force_error <= 1e-2
+
+
+def test_a_grooved_search_grades_its_mesh_toward_the_least_film():
+    """Lund & Thomsen's L/D 0.5 bearing at eps ~0.57: coefficients(rtol=) on a mesh graded
+    toward the journal's angle; the answer is the film on the mesh and grading its record
+    names (fails with the grading recorded but not given to the film), and K, C are within
+    their estimates of a converged film's (P2 144 x 24, give or take its own error: 2.3e-4
+    of the largest entry against P2 288 x 48)."""
+    from bearingfem import Groove
+    grooves = (Groove(angle=0.0, width=math.radians(20.0)),
+               Groove(angle=math.pi, width=math.radians(20.0)))
+    b = Bearing(radius=0.05, length=0.05, clearance=1e-4, viscosity=0.01)
+    s = JournalState(eps=0.57, omega=100.0, gamma=-0.78)
+    film = dict(grooves=grooves, cavitation="reynolds")
+    clear_memo()
+    kc = coefficients(b, s, "fem", rtol=1e-2, **film)
+    assert kc.accuracy.grading is not None
+    assert kc.accuracy.grading[0] == pytest.approx(-0.78, abs=math.pi / 24)
+    nt, nz = kc.accuracy.mesh
+    same = coefficients(b, s, "fem", n_theta=nt, n_z=nz, element="P2",
+                        grading=kc.accuracy.grading, **film)
+    np.testing.assert_allclose(kc.K, same.K, rtol=1e-12)
+    ref = coefficients(b, s, "fem", n_theta=144, n_z=24, element="P2", **film)
+    assert np.all(np.abs(kc.K - ref.K) <= kc.K_error + 3e-4 * np.abs(ref.K).max())
+    assert np.all(np.abs(kc.C - ref.C) <= kc.C_error + 3e-4 * np.abs(ref.C).max())

@@ -4,7 +4,7 @@ import math
 import pytest
 
 from bearingfem import Bearing, JournalState, solve_reynolds
-from studies.design_charts import plot_design_charts
+from studies.design_charts import error_bars, plot_design_charts
 from bearingfem_app.sweep import parse_sweep, run_case, sweep_cases
 
 
@@ -32,3 +32,23 @@ def test_design_sweep_validates_and_plots(tmp_path):
     assert all(p.stat().st_size > 10_000 for p in paths)
     with pytest.raises(ValueError, match="sweep.vary.eps_dot is not a design sweep parameter"):
         parse_sweep({"kind": "design", "vary": {"eps_dot": [1.0]}})
+
+
+def test_design_case_carries_the_coefficients_errors():
+    """A mesh model's chart point carries each K, C entry's estimated error (dimensionless,
+    as the entry), and the entries of a finer film (P2 144 x 24) lie within them (fails with
+    the errors cut tenfold); a closed-form model's carries none."""
+    base = dict(eps=0.6, length_ratio=1.0, model="fem", element="P2", cavitation="reynolds",
+                omega=250.0)
+    row = run_case("design", dict(base, n_theta=72, n_z=12))
+    fine = run_case("design", dict(base, n_theta=144, n_z=24))
+    for n in (f"{m}{i}{j}" for m in "KC" for i in "12" for j in "12"):
+        assert 0.0 < row[f"{n}_error"] and abs(row[n] - fine[n]) <= row[f"{n}_error"], n
+    short = run_case("design", dict(eps=0.6, model="short"))
+    assert "K11_error" not in short
+
+
+def test_error_bars_where_larger_than_the_line():
+    show, err = error_bars([1.0, 1.0, -2.0, 3.0], [0.001, 0.05, 0.1, ""])
+    assert show.tolist() == [False, True, True, False]
+    assert err[1] == 0.05

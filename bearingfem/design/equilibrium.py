@@ -24,6 +24,7 @@ from dataclasses import replace
 import numpy as np
 from scipy.optimize import brentq, root
 
+from ..accuracy import check_rtol
 from ..bearing import Bearing, JournalState, check_finite, check_surface_speed
 from ..errors import ConvergenceError
 from ..reynolds import solve_reynolds
@@ -89,6 +90,10 @@ def equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
         return thd_equilibrium(bearing, load, omega, model, direction=direction,
                                eps_max=eps_max, isothermal=equilibrium, **options)
     if rtol is not None or estimate:
+        if rtol is not None and xtol == 1e-13:
+            # the root to 1e-4 of the accuracy asked: its error then leaves the mesh
+            # pairs' differences alone, and Newton takes a step fewer
+            xtol = 1e-4 * check_rtol(rtol)
         return _equilibrium_with_error(bearing, load, omega, model, rtol, dict(
             direction=direction, eps_max=eps_max, xtol=xtol, start=start), options)
     tilt = check_tilt("tilt", options.pop("tilt", (0.0, 0.0)))
@@ -167,11 +172,16 @@ def _equilibrium_with_error(bearing, load, omega, model, rtol, how, options):
         qf = _position(fine)
         return float(np.linalg.norm(qf - _position(coarse)) / np.linalg.norm(qf))
 
+    toward = None
+    if rtol is not None and options.get("grooves"):
+        # a grooved film is graded toward where the closed form puts the journal
+        q = closed_form_start(bearing, omega, load_vector(load, how["direction"]))
+        toward = (math.atan2(q[1], q[0]), math.hypot(*q))
     # the memo (a design loop's next load starts at the mesh that sufficed) is keyed on
     # the bearing's shape and the film options, not the load
     eq, _, record = answer_to_tolerance(m, "equilibrium", round(bearing.length_ratio, 12),
                                         options, evaluate, difference, rtol,
-                                        bearing.length_ratio)
+                                        bearing.length_ratio, toward=toward)
     return replace(eq, eps_error=record.error * eq.eps, accuracy=record)
 
 
