@@ -160,7 +160,11 @@ def _with_ranges(st: "Stability") -> "Stability":
     m_range = w_range = None
     if crossing.any():
         m = k_eq[crossing] / nu2[crossing]
-        m_range = (float(m.min()), float(m.max()))
+        # the threshold m = K_eq / nu^2 is continuous over the box: where some corners
+        # have no crossing it runs to infinity (nu^2 -> 0+, stable for any mass) or to
+        # zero (K_eq -> 0+, unstable for any mass) inside it, not to a corner's value
+        m_range = (0.0 if np.any(k_eq <= 0.0) else float(m.min()),
+                   math.inf if np.any((k_eq > 0.0) & (nu2 <= 0.0)) else float(m.max()))
         if omega:
             w = np.sqrt(nu2[crossing]) / omega
             w_range = (float(w.min()), float(w.max()))
