@@ -1,14 +1,25 @@
 """The thermal film: pressure, film fraction and temperature coupled through the viscosity.
 
-A fixed point (Picard) on the temperature field: at the temperatures T_k the oil's
-viscosity mu(p_k, T_k) at the film's quadrature points makes a viscosity field
-(:class:`~bearingfem.fields.FilmFields`) for the isothermal film solver, whose pressure
-(and JFO fraction) gives the flow and dissipation of the energy equation
-(:mod:`bearingfem.thermal.energy`, the grooves' mixing solved with it) gives T, and
-Anderson's acceleration (:class:`Anderson`) of the iterates gives T_{k+1}. Why a fixed
-point: the film and the energy equation each are one linear (or complementarity) solve,
-and the coupling is one-way per step through mu(T); Anderson's mixing takes it where plain
-relaxation would crawl (measured: docs/thd.md).
+A fixed point on the temperature field with the dissipation's temperature dependence
+taken implicitly: at the temperatures T_k the oil's viscosity mu(p_k, T_k) at the film's
+quadrature points makes a viscosity field (:class:`~bearingfem.fields.FilmFields`) for the
+isothermal film, whose pressure (and JFO fraction) gives the flow and dissipation of the
+energy equation (:mod:`bearingfem.thermal.energy`, the grooves' mixing solved with it),
+and the energy equation gives T_{k+1} with the dissipation linearised about T_k,
+
+    Phi(T) = Phi_k + (d Phi/d T) (T - T_k),   d Phi/d T = Phi_k (d mu/d T) / mu,
+
+the slope of a film whose viscosity changes uniformly (its shear term ~ mu at any
+pressure, its pressure-flow term ~ mu because the pressure follows the viscosity). Why:
+the dissipation falling as the oil heats is the loop's strongest feedback; lagged, it
+makes a fixed point of factor ~0.3 (10 steps to 1e-6 K on the designer's bearing), taken
+implicitly it leaves the pressure's lag only (factor ~1e-2, 6 steps; docs/thd.md). At the
+fixed point T_{k+1} = T_k, so the linearisation changes the path, not the answer.
+
+Each step reuses what the mesh fixes: the film's stiffness is assembled from its element
+tables (:func:`~bearingfem.fe.general.general_assembly`), its cavitated set and factors
+start from the last step's, and the energy equation is assembled on its operator's tables
+(:func:`~bearingfem.thermal.energy.energy_operator`).
 
 Converged when the largest change of the nodal temperatures is below ``temperature_tol``
 [K] and the pressure's largest change below ``pressure_rtol`` of its peak; otherwise
@@ -20,7 +31,7 @@ from dataclasses import replace
 
 import numpy as np
 from scipy.sparse.linalg import splu
-from skfem import LinearForm
+from skfem import BilinearForm
 from skfem.models.poisson import mass
 
 from ..bearing import Bearing, JournalState
@@ -31,47 +42,17 @@ from ..fields import FilmFields
 from ..film import film_thickness
 from ..lubricant import Lubricant
 from ..solution import FilmSolution
-from ..thermal.energy import Mixing, arc_basis, film_edges, film_flow, solve_energy
+from ..fe.general import general_assembly, general_film
+from ..fe.kernel import fe_pressure, film_outputs, groove_pressures
+from ..thermal.energy import Mixing, energy_operator, solve_energy
 from ..thermal.spec import Thermal, ThermalRecord
 from .base import Route
-from .fe import GeneralFilm
 from .jfo import JFOFilm
 from .problem import OPTION_DEFAULTS, FilmProblem
 
 __all__ = ["ThermalFilm", "solve_thd", "ThermalRecord", "groove_mixing"]
 
 CAVITATION = ("reynolds", "jfo")
-ANDERSON_DEPTH = 3     # past iterates Anderson's mixing combines
-
-
-@LinearForm
-def _value_form(v, w):
-    return w["f"] * v
-
-
-class Anderson:
-    """Anderson's (1965) acceleration of the fixed point T -> G(T) (Walker & Ni's form):
-    the next iterate combines the last ``depth`` + 1 iterates with the weights that make
-    their residuals G(T) - T least in the 2-norm, relaxed by ``relaxation``. Why: the
-    groove's carried-over oil makes the plain iteration's factor approach -1 (an inlet
-    that overshoots each step); mixing the history removes it (measured in docs/thd.md).
-    """
-
-    def __init__(self, relaxation: float, depth: int):
-        self.relaxation, self.depth = relaxation, depth
-        self.x, self.f = [], []
-
-    def step(self, x: np.ndarray, g: np.ndarray) -> np.ndarray:
-        self.x.append(x)
-        self.f.append(g - x)
-        self.x, self.f = self.x[-self.depth - 1:], self.f[-self.depth - 1:]
-        f = self.f[-1]
-        if len(self.f) > 1:
-            dF = np.column_stack([b - a for a, b in zip(self.f[:-1], self.f[1:])])
-            dX = np.column_stack([b - a for a, b in zip(self.x[:-1], self.x[1:])])
-            gamma = np.linalg.lstsq(dF, f, rcond=None)[0]
-            return x + self.relaxation * f - (dX + self.relaxation * dF) @ gamma
-        return x + self.relaxation * f
 
 
 def check_thermal(lubricant, thermal, state, cavitation, element):
@@ -100,21 +81,26 @@ def check_thermal(lubricant, thermal, state, cavitation, element):
         raise ValueError(f"element must be 'P1' with cavitation 'jfo', got {element!r}")
 
 
+@BilinearForm
+def _theta_gradient_form(u, v, w):
+    return u.grad[0] * v
+
+
 @cached(maxsize=16)
-def _projector(mesh):
-    """L2 projection onto the film's nodes of values at its quadrature points (the mass
-    matrix factorised once per mesh)."""
+def _theta_derivative(mesh):
+    """Nodal P -> the L2 projection onto the nodes of dP/dtheta (the mass matrix
+    factorised once per mesh)."""
     basis = mesh.basis
     lu = splu(mass.assemble(basis).tocsc())
-    return lambda values: lu.solve(_value_form.assemble(basis, f=values))
+    B = _theta_gradient_form.assemble(basis).tocsr()
+    return lambda P: lu.solve(B @ P)
 
 
 def _column_flows(bearing, state, mesh, edges, P, fraction, mu_nodal):
     """Nodal q_theta [m^2/s] (Couette + Poiseuille, dp/dtheta projected on the nodes) and
     each arc column's flow int q_theta dz [m^3/s]."""
     R, c = bearing.radius, bearing.clearance
-    basis = mesh.basis
-    dP = _projector(mesh)(np.asarray(basis.interpolate(P).grad[0]))
+    dP = _theta_derivative(mesh)(P)
     h = c * film_thickness(mesh.theta, state.eps)
     q = (0.5 * state.omega * R * fraction * h
          - h ** 3 / (12.0 * mu_nodal) * bearing.pressure_scale / R * dP)
@@ -152,6 +138,63 @@ def groove_mixing(bearing, state, mesh, edges, P, fraction, mu_nodal,
     return Mixing(fresh=tuple(fresh), dofs=tuple(dofs), weights=tuple(weights))
 
 
+class _ReynoldsFilm:
+    """The Reynolds-condition film on a viscosity field, on the tables of its mesh: the
+    stiffness of -div(H^3/m grad P) by :func:`~bearingfem.fe.general.general_assembly`'s
+    products (no form re-run), the load fixed (the viscosity does not enter it), and each
+    solve started from the last one's cavitated set and factors (consecutive viscosity
+    fields differ little, so the old factors precondition the new stiffness)."""
+
+    def __init__(self, bearing, state, op, element, grooves, tol):
+        self.bearing, self.state, self.op, self.tol = bearing, state, op, tol
+        self.element, self.grooves = element, grooves
+        self.rigid, self.gap = general_film(bearing, state, op, FilmFields())
+        self.cubed = self.rigid.gap ** 3
+        self.load = op.load(state.eps, 0.0, state.wedge_speed)
+        self.held = groove_pressures(bearing, op, grooves)
+        self.last = None
+
+    def solve(self, ratio: np.ndarray):
+        """(nodal pressure [Pa], nodal fraction) on the viscosity ``ratio`` mu/mu_ref at
+        the quadrature points."""
+        self.values = general_assembly(self.op).stiffness_values(self.cubed / ratio)
+        warm = self.last
+        self.last = fe_pressure(self.op, self.state, "reynolds", tol=self.tol,
+                                active0=None if warm is None else warm.active,
+                                factor=None if warm is None else warm.factor,
+                                dirichlet=self.held, system=(self.values, self.load))
+        self.ratio = ratio
+        return self.last.pressure * self.bearing.pressure_scale, np.ones(self.op.mesh.ndofs)
+
+    def solution(self) -> FilmSolution:
+        """The last solve's :class:`FilmSolution` (the general film's outputs)."""
+        return film_outputs(self.bearing, self.state, self.op, self.last, self.values,
+                            self.load, replace(self.rigid, viscosity=self.ratio),
+                            "reynolds", "full", self.grooves,
+                            f"fem-{self.element}/active-set", self.gap)
+
+
+class _JFOFilm:
+    """The JFO film on a viscosity field (its route, whole length)."""
+
+    def __init__(self, problem):
+        self.problem, self.route = problem, JFOFilm()
+
+    def solve(self, ratio: np.ndarray):
+        self.last = self.route.solve(replace(self.problem, fields=FilmFields(viscosity=ratio)))
+        frac = self.last.fraction
+        return self.last.pressure, np.ones(len(frac)) if frac is None else frac
+
+    def solution(self) -> FilmSolution:
+        return self.last
+
+
+def _dissipation_slope(lubricant, flow, mu, p, T):
+    """d Phi / d T [W/(m^2 K)] of a film whose viscosity changes uniformly (module
+    docstring): Phi (d mu/d T) / mu at the energy equation's points."""
+    return flow.dissipation * lubricant.viscosity_temperature_derivative(T, p) / mu
+
+
 def solve_thd(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z: int = 20, *,
               lubricant: Lubricant, thermal: Thermal, grooves=(), cavitation="reynolds",
               element="P1", supply_angle=None, tol: float = 1e-10,
@@ -172,8 +215,7 @@ def solve_thd(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z: in
         applied with the previous iterate's pressure
     thermal : :class:`~bearingfem.thermal.Thermal`
     temperature_tol : [K]; pressure_rtol : relative to the peak; the fixed point's tests
-    relaxation : r in (0, 1] of T_{k+1} = T_k + r (T - T_k), the step of Anderson's
-        acceleration (:class:`Anderson`)
+    relaxation : r in (0, 1] of T_{k+1} = T_k + r (T - T_k), T the energy equation's
     max_iterations : fixed-point steps before ConvergenceError
     start : a thermal :class:`FilmSolution` on the same mesh whose temperatures start the
         fixed point (default: the supply temperature everywhere)
@@ -196,15 +238,15 @@ def solve_thd(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z: in
         raise ValueError("a thermal film needs an oil supply: give grooves or a "
                          "supply_angle")
     op = fe_operator(bearing, state, n_theta, n_z, element, supply_angle, False, grooves)
-    # the isothermal film on the viscosity field of each iterate: the general film's route
-    # (the JFO film's with cavitation "jfo"), the whole length meshed
-    film = JFOFilm() if cavitation == "jfo" else GeneralFilm()
-    problem = FilmProblem(bearing, state, n_theta, n_z, element, cavitation, tol=tol,
-                          supply_angle=supply_angle, grooves=tuple(grooves),
-                          fields=FilmFields())
     mesh = op.mesh
-    edges = film_edges(mesh)
-    arcs = arc_basis(mesh, edges)
+    if cavitation == "jfo":
+        film = _JFOFilm(FilmProblem(bearing, state, n_theta, n_z, element, cavitation,
+                                    tol=tol, supply_angle=supply_angle,
+                                    grooves=tuple(grooves), fields=FilmFields()))
+    else:
+        film = _ReynoldsFilm(bearing, state, op, element, tuple(grooves), tol)
+    eop = energy_operator(mesh)
+    edges = eop.edges
     ts = thermal.supply_temperature
     n = mesh.ndofs
     if start is not None and getattr(start, "temperature", None) is not None \
@@ -213,30 +255,30 @@ def solve_thd(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z: in
     else:
         T, p = np.full(n, ts), np.zeros(n)
     walls = thermal.walls
-    anderson = Anderson(relaxation, ANDERSON_DEPTH)
     change = dp = np.inf
     for it in range(1, max_iterations + 1):
         mu_q = lubricant.viscosity_at(op.at_quadrature(p), temperature=op.at_quadrature(T))
-        sol = film.solve(replace(problem, fields=FilmFields(viscosity=mu_q / bearing.viscosity)))
-        P = sol.pressure / bearing.pressure_scale
-        fraction = np.ones(n) if sol.fraction is None else sol.fraction
-        mu_arc = lubricant.viscosity_at(np.asarray(arcs.interpolate(sol.pressure)),
-                                        temperature=np.asarray(arcs.interpolate(T)))
-        flow = film_flow(bearing, state, arcs, P, fraction, mu_arc, lubricant)
+        pressure, fraction = film.solve(mu_q / bearing.viscosity)
+        P = pressure / bearing.pressure_scale
+        p_arc, T_arc = eop.at_points(pressure), eop.at_points(T)
+        mu_arc = lubricant.viscosity_at(p_arc, temperature=T_arc)
+        flow = eop.flow(bearing, state, P, fraction, mu_arc, lubricant)
         mixing = groove_mixing(bearing, state, mesh, edges, P, fraction,
-                               lubricant.viscosity_at(sol.pressure, temperature=T), thermal)
-        energy = solve_energy(bearing, arcs, edges, flow, mixing, walls)
+                               lubricant.viscosity_at(pressure, temperature=T), thermal)
+        slope = _dissipation_slope(lubricant, flow, mu_arc, p_arc, T_arc)
+        energy = solve_energy(bearing, eop, flow, mixing, walls, linearised=(slope, T_arc))
         change = float(np.max(np.abs(energy.temperature - T)))
-        peak = max(float(np.max(np.abs(sol.pressure))), 1e-300)
-        dp = float(np.max(np.abs(sol.pressure - p))) / peak
-        p = sol.pressure
+        peak = max(float(np.max(np.abs(pressure))), 1e-300)
+        dp = float(np.max(np.abs(pressure - p))) / peak
+        p = pressure
         if change < temperature_tol and dp < pressure_rtol:
             T = energy.temperature
             break
-        T = anderson.step(T, energy.temperature)
+        T = T + relaxation * (energy.temperature - T)
     else:
         raise ConvergenceError("thermal film (temperature fixed point)", max_iterations,
                                change, f"eps = {state.eps:.6g}; pressure change {dp:.3g}")
+    sol = film.solution()
     record = ThermalRecord(balance=energy.balance,
                            journal_temperature=energy.journal_temperature,
                            inlet_temperatures=tuple(float(T[d[0]]) for d in edges.inflow),
