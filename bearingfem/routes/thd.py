@@ -21,9 +21,10 @@ tables (:func:`~bearingfem.fe.general.general_assembly`), its cavitated set and 
 start from the last step's, and the energy equation is assembled on its operator's tables
 (:func:`~bearingfem.thermal.energy.energy_operator`).
 
-Converged when the largest change of the nodal temperatures is below ``temperature_tol``
-[K] and the pressure's largest change below ``pressure_rtol`` of its peak; otherwise
-:class:`~bearingfem.errors.ConvergenceError`.
+Converged when the last energy solve changed no nodal temperature by more than
+``temperature_tol`` [K] and the film solved on its temperatures changed the pressure by
+less than ``pressure_rtol`` of its peak: the film returned is the one on the returned
+temperatures; otherwise :class:`~bearingfem.errors.ConvergenceError`.
 """
 from __future__ import annotations
 
@@ -259,6 +260,13 @@ def solve_thd(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z: in
     for it in range(1, max_iterations + 1):
         mu_q = lubricant.viscosity_at(op.at_quadrature(p), temperature=op.at_quadrature(T))
         pressure, fraction = film.solve(mu_q / bearing.viscosity)
+        peak = max(float(np.max(np.abs(pressure))), 1e-300)
+        dp = float(np.max(np.abs(pressure - p))) / peak
+        p = pressure
+        if change < temperature_tol and dp < pressure_rtol:
+            # the film on T, and T within the tolerance of the energy equation's T on the
+            # last film: converged without another energy solve
+            break
         P = pressure / bearing.pressure_scale
         p_arc, T_arc = eop.at_points(pressure), eop.at_points(T)
         mu_arc = lubricant.viscosity_at(p_arc, temperature=T_arc)
@@ -268,12 +276,6 @@ def solve_thd(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z: in
         slope = _dissipation_slope(lubricant, flow, mu_arc, p_arc, T_arc)
         energy = solve_energy(bearing, eop, flow, mixing, walls, linearised=(slope, T_arc))
         change = float(np.max(np.abs(energy.temperature - T)))
-        peak = max(float(np.max(np.abs(pressure))), 1e-300)
-        dp = float(np.max(np.abs(pressure - p))) / peak
-        p = pressure
-        if change < temperature_tol and dp < pressure_rtol:
-            T = energy.temperature
-            break
         T = T + relaxation * (energy.temperature - T)
     else:
         raise ConvergenceError("thermal film (temperature fixed point)", max_iterations,
