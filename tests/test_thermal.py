@@ -14,9 +14,8 @@ from bearingfem import Bearing, Groove, JournalState, Lubricant, solve_reynolds
 from bearingfem.fe.mesh import film_mesh
 from bearingfem.routes.thd import solve_thd
 from bearingfem.thermal import Thermal
-from bearingfem.fe.assembly import fe_operator
 from bearingfem.fields import FilmFields
-from bearingfem.routes.thd import groove_mixing
+from bearingfem.routes.thd import groove_mixing, thermal_operator
 from bearingfem.thermal.energy import (EnergyFlow, Mixing, _supg_tau, energy_operator,
                                        energy_system, film_flow, solve_energy)
 
@@ -326,12 +325,14 @@ def _reference_energy(op, flow, mixing, walls):
 
 def _plain_fixed_point(thermal, n=(48, 8)):
     """T_{k+1} = the energy equation's T on the film of mu(p_k, T_k), the dissipation
-    lagged, each film by the general-field route, each energy equation by the forms."""
+    lagged, each film by the general-field route on the film frame's mesh (the thermal
+    film's bearing-fixed mesh turned by gamma: the same nodes and points in the same
+    order), each energy equation by the forms."""
     op = energy_operator(film_mesh_of(n))
     mesh = op.basis
     T = np.full(op.N, SUPPLY)
     p = np.zeros(op.N)
-    fop = fe_operator(BEARING, STATE, *n, "P1", None, False, GROOVES)
+    fop = thermal_operator(BEARING, STATE, *n, grooves=GROOVES)
     for _ in range(200):
         mu_q = VG32.viscosity_at(fop.at_quadrature(p), temperature=fop.at_quadrature(T))
         sol = solve_reynolds(BEARING, STATE, *n, grooves=GROOVES, half=False,
@@ -351,7 +352,7 @@ def _plain_fixed_point(thermal, n=(48, 8)):
 
 
 def film_mesh_of(n):
-    return fe_operator(BEARING, STATE, *n, "P1", None, False, GROOVES).mesh
+    return thermal_operator(BEARING, STATE, *n, grooves=GROOVES).mesh
 
 
 @pytest.mark.parametrize("thermal", [

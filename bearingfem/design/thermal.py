@@ -25,7 +25,7 @@ from ..errors import ConvergenceError
 from ..reynolds import solve_reynolds
 from ..fields import FilmFields
 from ..film import local_to_inertial
-from ..routes.thd import check_thermal, solve_thd
+from ..routes.thd import ReynoldsFieldFilm, check_thermal, solve_thd, thermal_operator
 from .records import EPS_MAX, DynamicCoefficients, Equilibrium, least_film, load_vector
 from .groups import sommerfeld_number
 
@@ -53,17 +53,31 @@ def _solve_tol(mesh: dict) -> dict:
 
 
 def frozen_film(bearing: Bearing, thd, mesh: dict):
-    """A function state -> FilmSolution: the isothermal film with ``thd``'s viscosity
-    field frozen at its quadrature points (the same places in the bearing for every
-    state); at ``thd``'s state it is ``thd``'s film."""
+    """A function state -> the film's inertial force [N]: the isothermal film with
+    ``thd``'s viscosity field frozen at its quadrature points (the same places in the
+    bearing for every state); at ``thd``'s state it is ``thd``'s film. The Reynolds film is
+    solved on the thermal film's bearing-fixed mesh (one operator for every state, each
+    solve started from the last one's cavitated set and factors); the JFO film by its
+    route."""
     ratio = thd.thermal.viscosity_quadrature / bearing.viscosity
-    # the JFO film has no projected-iteration tolerance: tol is the Reynolds films'
-    keys = ("grooves", "supply_angle") + (() if mesh["cavitation"] == "jfo" else ("tol",))
-    opts = {k: v for k, v in mesh.items() if k in keys}
+    if mesh["cavitation"] == "jfo":
+        opts = {k: v for k, v in mesh.items() if k in ("grooves", "supply_angle")}
+
+        def film(state):
+            return np.array(solve_reynolds(
+                bearing, state, mesh["n_theta"], mesh["n_z"], mesh["element"], "jfo",
+                fields=FilmFields(viscosity=ratio), **opts).force, float)
+        return film
+    warm = []
 
     def film(state):
-        return solve_reynolds(bearing, state, mesh["n_theta"], mesh["n_z"], mesh["element"],
-                              mesh["cavitation"], fields=FilmFields(viscosity=ratio), **opts)
+        op = thermal_operator(bearing, state, mesh["n_theta"], mesh["n_z"], mesh["element"],
+                              mesh["supply_angle"], mesh["grooves"])
+        f = ReynoldsFieldFilm(bearing, state, op, mesh["element"], tuple(mesh["grooves"]),
+                              mesh.get("tol", 1e-10), warm[-1] if warm else None)
+        f.solve(ratio)
+        warm[:] = [f]
+        return f.force()
     return film
 
 
@@ -84,11 +98,11 @@ def _jacobian(film, q, omega, clearance, velocity=False):
         d = np.zeros(2)
         d[j] = STEP if not velocity else STEP * abs(omega)
         if velocity:
-            fp = _inertial_force(film(_state(q, d, omega, clearance)))
-            fm = _inertial_force(film(_state(q, -d, omega, clearance)))
+            fp = film(_state(q, d, omega, clearance))
+            fm = film(_state(q, -d, omega, clearance))
         else:
-            fp = _inertial_force(film(_state(q + d, np.zeros(2), omega, clearance)))
-            fm = _inertial_force(film(_state(q - d, np.zeros(2), omega, clearance)))
+            fp = film(_state(q + d, np.zeros(2), omega, clearance))
+            fm = film(_state(q - d, np.zeros(2), omega, clearance))
         J[:, j] = (fp - fm) / (2.0 * d[j])
     return J
 

@@ -28,6 +28,7 @@ temperatures; otherwise :class:`~bearingfem.errors.ConvergenceError`.
 """
 from __future__ import annotations
 
+import math
 from dataclasses import replace
 
 import numpy as np
@@ -43,15 +44,19 @@ from ..fields import FilmFields
 from ..film import film_thickness
 from ..lubricant import Lubricant
 from ..solution import FilmSolution
-from ..fe.general import general_assembly, general_film
+from ..solvers.cavitation import LCPResult
+from ..fe.general import film_moment, general_assembly
 from ..fe.kernel import fe_pressure, film_outputs, groove_pressures
+from ..film import local_to_inertial, source_coefficients
+from ..scales import force_factor
 from ..thermal.energy import Mixing, energy_operator, solve_energy
 from ..thermal.spec import Thermal, ThermalRecord
 from .base import Route
 from .jfo import JFOFilm
 from .problem import OPTION_DEFAULTS, FilmProblem
 
-__all__ = ["ThermalFilm", "solve_thd", "ThermalRecord", "groove_mixing"]
+__all__ = ["ThermalFilm", "solve_thd", "ThermalRecord", "groove_mixing", "thermal_operator",
+           "ReynoldsFieldFilm"]
 
 CAVITATION = ("reynolds", "jfo")
 
@@ -102,7 +107,7 @@ def _column_flows(bearing, state, mesh, edges, P, fraction, mu_nodal):
     each arc column's flow int q_theta dz [m^3/s]."""
     R, c = bearing.radius, bearing.clearance
     dP = _theta_derivative(mesh)(P)
-    h = c * film_thickness(mesh.theta, state.eps)
+    h = c * film_thickness(mesh.theta - state.gamma, state.eps)
     q = (0.5 * state.omega * R * fraction * h
          - h ** 3 / (12.0 * mu_nodal) * bearing.pressure_scale / R * dP)
     flows = R * np.bincount(edges.column_index, edges.column_weight * q[edges.column_dofs],
@@ -139,21 +144,45 @@ def groove_mixing(bearing, state, mesh, edges, P, fraction, mu_nodal,
     return Mixing(fresh=tuple(fresh), dofs=tuple(dofs), weights=tuple(weights))
 
 
-class _ReynoldsFilm:
-    """The Reynolds-condition film on a viscosity field, on the tables of its mesh: the
-    stiffness of -div(H^3/m grad P) by :func:`~bearingfem.fe.general.general_assembly`'s
-    products (no form re-run), the load fixed (the viscosity does not enter it), and each
-    solve started from the last one's cavitated set and factors (consecutive viscosity
-    fields differ little, so the old factors precondition the new stiffness)."""
+def thermal_operator(bearing, state, n_theta, n_z, element="P1", supply_angle=None,
+                     grooves=()):
+    """The whole-length film operator of a thermal film, fixed in the bearing: the film
+    frame's mesh at gamma = 0, its first coordinate the bearing angle phi = theta + gamma.
+    Why: the grooves (or the supply line) are fixed in the bearing, so one mesh, its
+    tables and its energy operator serve every journal position (an equilibrium's steps,
+    K and C), where the film frame's mesh turns with gamma and is rebuilt at each. The
+    film frame's mesh at any gamma is this mesh turned (same nodes, elements and
+    quadrature points in the same order), so a field on one is the field on the other."""
+    return fe_operator(bearing, replace(state, gamma=0.0), n_theta, n_z, element,
+                       supply_angle, False, grooves)
 
-    def __init__(self, bearing, state, op, element, grooves, tol):
+
+def _turned_load(op, state) -> np.ndarray:
+    """The load of the source a_sin sin(theta) + a_cos cos(theta) on the bearing-fixed
+    mesh, theta = phi - gamma: sin and cos of the difference on op's phi loads."""
+    a_sin, a_cos = source_coefficients(state.eps, state.eps_dot, state.wedge_speed)
+    c, s = math.cos(state.gamma), math.sin(state.gamma)
+    return (a_sin * c + a_cos * s) * op.b_sin + (a_cos * c - a_sin * s) * op.b_cos
+
+
+class ReynoldsFieldFilm:
+    """The Reynolds-condition film of a journal ``state`` on the bearing-fixed mesh of
+    :func:`thermal_operator` with a viscosity field: the stiffness of -div(H^3/m grad P)
+    by :func:`~bearingfem.fe.general.general_assembly`'s products (no form re-run), the
+    load fixed (the viscosity does not enter it), and each solve started from the last
+    one's cavitated set and factors (``warm``: an earlier film on the same operator, e.g.
+    the last thermal step's or a neighbouring state's, or an :class:`LCPResult`)."""
+
+    def __init__(self, bearing, state, op, element, grooves, tol, warm=None):
         self.bearing, self.state, self.op, self.tol = bearing, state, op, tol
         self.element, self.grooves = element, grooves
-        self.rigid, self.gap = general_film(bearing, state, op, FilmFields())
-        self.cubed = self.rigid.gap ** 3
-        self.load = op.load(state.eps, 0.0, state.wedge_speed)
+        theta = op.qp_theta - state.gamma
+        self.fields = FilmFields(gap=film_thickness(theta, state.eps),
+                                 gap_rate=state.eps_dot * np.cos(theta))
+        self.cubed = self.fields.gap ** 3
+        self.load = _turned_load(op, state)
         self.held = groove_pressures(bearing, op, grooves)
-        self.last = None
+        self.last = warm.last if isinstance(warm, ReynoldsFieldFilm) else warm
 
     def solve(self, ratio: np.ndarray):
         """(nodal pressure [Pa], nodal fraction) on the viscosity ``ratio`` mu/mu_ref at
@@ -167,12 +196,30 @@ class _ReynoldsFilm:
         self.ratio = ratio
         return self.last.pressure * self.bearing.pressure_scale, np.ones(self.op.mesh.ndofs)
 
+    def force_local(self) -> tuple:
+        """(F_r, F_t) [N] of the last solve: the integrals of P (cos, sin) phi turned into
+        the journal's frame."""
+        ic, is_ = self.op.force_integrals(self.last.pressure)
+        k = force_factor(self.bearing, False)
+        c, s = math.cos(self.state.gamma), math.sin(self.state.gamma)
+        return (k * (ic * c + is_ * s), k * (is_ * c - ic * s))
+
+    def force(self) -> np.ndarray:
+        """The last solve's force on the journal [N], inertial (x, y)."""
+        return np.array(local_to_inertial(*self.force_local(), self.state.gamma), float)
+
     def solution(self) -> FilmSolution:
-        """The last solve's :class:`FilmSolution` (the general film's outputs)."""
-        return film_outputs(self.bearing, self.state, self.op, self.last, self.values,
-                            self.load, replace(self.rigid, viscosity=self.ratio),
-                            "reynolds", "full", self.grooves,
-                            f"fem-{self.element}/active-set", self.gap)
+        """The last solve's :class:`FilmSolution` (the general film's outputs), nodes
+        reported at their film angles."""
+        mesh = self.op.mesh
+        sol = film_outputs(self.bearing, self.state, self.op, self.last, self.values,
+                           self.load, FilmFields(gap=self.fields.gap, viscosity=self.ratio),
+                           "reynolds", "full", self.grooves,
+                           f"fem-{self.element}/active-set",
+                           film_thickness(mesh.theta - self.state.gamma, self.state.eps),
+                           force=self.force_local(), theta=mesh.theta - self.state.gamma)
+        # the mesh's angle is already inertial: the moment's lever turns by 0, not gamma
+        return replace(sol, moment=film_moment(self.bearing, self.op, self.last.pressure, 0.0))
 
 
 class _JFOFilm:
@@ -238,14 +285,18 @@ def solve_thd(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z: in
     if not grooves and supply_angle is None:
         raise ValueError("a thermal film needs an oil supply: give grooves or a "
                          "supply_angle")
-    op = fe_operator(bearing, state, n_theta, n_z, element, supply_angle, False, grooves)
+    op = thermal_operator(bearing, state, n_theta, n_z, element, supply_angle, grooves)
     mesh = op.mesh
     if cavitation == "jfo":
         film = _JFOFilm(FilmProblem(bearing, state, n_theta, n_z, element, cavitation,
                                     tol=tol, supply_angle=supply_angle,
                                     grooves=tuple(grooves), fields=FilmFields()))
     else:
-        film = _ReynoldsFilm(bearing, state, op, element, tuple(grooves), tol)
+        # a start's cavitated set starts the first film (no coarse levels needed)
+        warm = None
+        if start is not None and np.shape(start.pressure) == (op.mesh.ndofs,):
+            warm = LCPResult(start.pressure, 0, 0.0, True, np.asarray(start.pressure) <= 0.0)
+        film = ReynoldsFieldFilm(bearing, state, op, element, tuple(grooves), tol, warm)
     eop = energy_operator(mesh)
     edges = eop.edges
     ts = thermal.supply_temperature

@@ -231,9 +231,12 @@ def _flow(bearing, state, theta, dP, F, mu, lubricant) -> EnergyFlow:
 def film_flow(bearing, state, basis, P, fraction, viscosity, lubricant) -> EnergyFlow:
     """:class:`EnergyFlow` at ``basis``'s quadrature points from the nodal dimensionless
     pressure ``P`` (p = mu0 (R/c)^2 P), nodal film ``fraction`` (1 outside a JFO cavity)
-    and the viscosity ``viscosity`` [Pa s] at the quadrature points (elements x points)."""
+    and the viscosity ``viscosity`` [Pa s] at the quadrature points (elements x points);
+    ``basis`` on a mesh fixed in the bearing (its angle phi = theta + gamma, as the
+    thermal film's: :func:`bearingfem.routes.thd.thermal_operator`)."""
     f = basis.interpolate(P)
-    return _flow(bearing, state, basis.global_coordinates()[0], np.asarray(f.grad),
+    return _flow(bearing, state, basis.global_coordinates()[0] - state.gamma,
+                 np.asarray(f.grad),
                  np.asarray(basis.interpolate(fraction)), np.asarray(viscosity), lubricant)
 
 
@@ -256,7 +259,7 @@ class EnergyOperator:
 
     basis: object              # the arcs' basis (:func:`arc_basis`)
     edges: FilmEdges
-    theta: np.ndarray          # (elements, points) theta at the quadrature points
+    theta: np.ndarray          # (elements, points) the mesh's angle at the quadrature points
     dx: np.ndarray             # (elements, points) quadrature weight times |det J|
     phi: np.ndarray            # (nb, elements, points) basis values
     grad: np.ndarray           # (nb, 2, elements, points) basis gradients (theta, zeta)
@@ -300,8 +303,10 @@ class EnergyOperator:
                          (self.d_zeta @ P).reshape(self.dx.shape)])
 
     def flow(self, bearing, state, P, fraction, viscosity, lubricant) -> EnergyFlow:
-        """:func:`film_flow` on the arcs, by the operator's maps."""
-        return _flow(bearing, state, self.theta, self.gradient(P), self.at_points(fraction),
+        """:func:`film_flow` on the arcs, by the operator's maps (the mesh fixed in the
+        bearing: the film angle is the mesh's angle less gamma)."""
+        return _flow(bearing, state, self.theta - state.gamma, self.gradient(P),
+                     self.at_points(fraction),
                      np.asarray(viscosity), lubricant)
 
     def matrix(self, local: np.ndarray) -> sp.csr_matrix:
