@@ -88,6 +88,7 @@ class EnergyBalance:
     journal: float
     grooves: float
     residual: float
+    stored: float = 0.0     # a time step's int rho cp h dT/dt (0 in a steady film)
 
 
 @dataclass(frozen=True, eq=False)
@@ -102,7 +103,7 @@ class EnergySolution:
     @cached_property
     def balance(self) -> EnergyBalance:
         """Where the heat goes: the assembled rows summed with v = 1 (module docstring)."""
-        R, op, flow, phi, walls, A, b, c_all, half = self.parts
+        R, op, flow, phi, walls, A, b, c_all, half, storage = self.parts
         hb, ta, hj, _ = walls
         T, t_journal = self.temperature, self.journal_temperature
         reactions = A @ T + c_all * t_journal - b
@@ -114,10 +115,13 @@ class EnergySolution:
         bush = float(np.sum(hb * (Tv - ta) * dA))
         journal = float(np.sum(hj * (Tv - t_journal) * dA))
         grooves = -float(np.sum(reactions[op.held]))
-        residual = dissipation - (convected + bush + journal + grooves)
-        factor = 2.0 if half else 1.0
-        return EnergyBalance(*(factor * v for v in (dissipation, convected, bush, journal,
-                                                    grooves, residual)))
+        stored = 0.0 if storage is None else \
+            float(np.sum(storage[0] * (Tv - storage[1]) * dA))
+        residual = dissipation - (convected + bush + journal + grooves + stored)
+        k = 2.0 if half else 1.0
+        return EnergyBalance(dissipation=k * dissipation, convected=k * convected,
+                             bush=k * bush, journal=k * journal, grooves=k * grooves,
+                             residual=k * residual, stored=k * stored)
 
 
 @dataclass(frozen=True, eq=False)
@@ -432,7 +436,7 @@ class Mixing:
 
 
 def solve_energy(bearing, op: EnergyOperator, flow: EnergyFlow, mixing: Mixing, walls,
-                 half: bool = False, linearised=None) -> EnergySolution:
+                 half: bool = False, linearised=None, storage=None) -> EnergySolution:
     """Solve the energy equation (module docstring) on the arcs of ``op``
     (:func:`energy_operator`).
 
@@ -444,6 +448,9 @@ def solve_energy(bearing, op: EnergyOperator, flow: EnergyFlow, mixing: Mixing, 
         Phi + a (T - T0) (its first-order change with the temperature [W/(m^2 K)] about
         T0), the Newton step of a coupled solve; the balance's ``dissipation`` is that
         linearised one
+    storage : None (steady), or (C, T_old) at the quadrature points: one backward-Euler
+        step of rho cp h dT/dt, C = rho cp h / dt [W/(m^2 K)] and T_old the last step's
+        temperatures [K] (the balance's ``stored``)
     """
     R = bearing.radius
     hb, ta, hj, tj = walls
@@ -451,6 +458,8 @@ def solve_energy(bearing, op: EnergyOperator, flow: EnergyFlow, mixing: Mixing, 
     if linearised is not None:
         a, T0 = linearised
         s, f = s - a, f - a * T0
+    if storage is not None:
+        s, f = s + storage[0], f + storage[0] * storage[1]
     A, b, test = energy_system(op, flow, s, f, R)
     N, held = op.N, op.held
     rhs = b.copy()
@@ -489,4 +498,5 @@ def solve_energy(bearing, op: EnergyOperator, flow: EnergyFlow, mixing: Mixing, 
     phi = flow.dissipation if linearised is None else \
         flow.dissipation + linearised[0] * (op.at_points(T) - linearised[1])
     return EnergySolution(temperature=T, journal_temperature=t_journal,
-                          parts=(bearing.radius, op, flow, phi, walls, A, b, c_all, half))
+                          parts=(bearing.radius, op, flow, phi, walls, A, b, c_all, half,
+                                 storage))
