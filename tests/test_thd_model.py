@@ -130,6 +130,15 @@ def test_bad_options_name_the_parameter(options, name):
         FILM_MODELS["fem-thd"].along_run(BEARING, options).start(state, 0.0)
 
 
+def test_reversed_rotation_is_refused_at_a_film_step():
+    run = FILM_MODELS["fem-thd"].along_run(BEARING, dict(MESH, lubricant=VG32,
+                                                         thermal=THERMAL))
+    t, state = _orbit(0)
+    run.start(state, t)
+    with pytest.raises(ValueError, match="omega"):
+        run.commit(replace(state, omega=-OMEGA), 1e-3)
+
+
 def test_scene_names_the_oil_and_the_heat_exchanges():
     """[effects.lubrication] with model "fem-thd": oil = "ISO VG 32" is the grade's
     Lubricant, a [thermal] table the Thermal; a grade that is not one is refused by name."""

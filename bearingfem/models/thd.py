@@ -15,7 +15,9 @@ solve_energy` with ``storage``), on the film of the committed state; between fil
 film is solved on the kept viscosity field, and the change of force a film step makes is
 faded in over the next (:func:`~bearingfem.transient.faded_force`), as the JFO film's.
 Each film step's energy balance (dissipation = convected + conducted + grooves + stored)
-is kept with its film (``FilmStep.solution.thermal``).
+is kept with its film (``FilmStep.solution.thermal``). The journal must turn one way,
+omega > 0, at every film step (the oil enters at the grooves' trailing edges): a pin
+whose rotation reverses, as the slider-crank's piston pin, is refused (ValueError).
 """
 from __future__ import annotations
 
@@ -162,6 +164,10 @@ class ThermalRun(StatelessRun):
     def _advance(self, state, dt):
         """(T, viscosity at the film's points, energy solution) one backward-Euler step
         of the energy equation on the film of ``state`` with the kept viscosity."""
+        if not state.omega > 0.0:
+            raise ValueError(f"film model 'fem-thd' needs omega > 0 at every film step (the "
+                             f"oil enters at the grooves' trailing edges; a journal whose "
+                             f"rotation reverses is not modelled), got {state.omega!r}")
         b, oil, op = self.bearing, self.lubricant, self._operator(state)
         eop = energy_operator(op.mesh)
         film = self._film(state, self.mu)
