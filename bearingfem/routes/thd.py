@@ -56,7 +56,7 @@ from .jfo import JFOFilm
 from .problem import OPTION_DEFAULTS, FilmProblem
 
 __all__ = ["ThermalFilm", "solve_thd", "ThermalRecord", "groove_mixing", "thermal_operator",
-           "ReynoldsFieldFilm"]
+           "ReynoldsFieldFilm", "ThermalIteration"]
 
 CAVITATION = ("reynolds", "jfo")
 
@@ -230,11 +230,15 @@ class _JFOFilm:
 
     def solve(self, ratio: np.ndarray):
         self.last = self.route.solve(replace(self.problem, fields=FilmFields(viscosity=ratio)))
+        self.ratio = ratio
         frac = self.last.fraction
         return self.last.pressure, np.ones(len(frac)) if frac is None else frac
 
     def solution(self) -> FilmSolution:
         return self.last
+
+    def force(self) -> np.ndarray:
+        return np.array(self.last.force, float)
 
 
 def _dissipation_slope(lubricant, flow, mu, p, T):
@@ -285,61 +289,103 @@ def solve_thd(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z: in
     if not grooves and supply_angle is None:
         raise ValueError("a thermal film needs an oil supply: give grooves or a "
                          "supply_angle")
-    op = thermal_operator(bearing, state, n_theta, n_z, element, supply_angle, grooves)
-    mesh = op.mesh
-    if cavitation == "jfo":
-        film = _JFOFilm(FilmProblem(bearing, state, n_theta, n_z, element, cavitation,
-                                    tol=tol, supply_angle=supply_angle,
-                                    grooves=tuple(grooves), fields=FilmFields()))
-    else:
-        # a start's cavitated set starts the first film (no coarse levels needed)
-        warm = None
-        if start is not None and np.shape(start.pressure) == (op.mesh.ndofs,):
-            warm = LCPResult(start.pressure, 0, 0.0, True, np.asarray(start.pressure) <= 0.0)
-        film = ReynoldsFieldFilm(bearing, state, op, element, tuple(grooves), tol, warm)
-    eop = energy_operator(mesh)
-    edges = eop.edges
-    ts = thermal.supply_temperature
-    n = mesh.ndofs
-    if start is not None and getattr(start, "temperature", None) is not None \
-            and len(start.temperature) == n:
-        T, p = np.array(start.temperature, float), np.array(start.pressure, float)
-    else:
-        T, p = np.full(n, ts), np.zeros(n)
-    walls = thermal.walls
-    change = dp = np.inf
-    for it in range(1, max_iterations + 1):
-        mu_q = lubricant.viscosity_at(op.at_quadrature(p), temperature=op.at_quadrature(T))
-        pressure, fraction = film.solve(mu_q / bearing.viscosity)
-        peak = max(float(np.max(np.abs(pressure))), 1e-300)
-        dp = float(np.max(np.abs(pressure - p))) / peak
-        p = pressure
-        if change < temperature_tol and dp < pressure_rtol:
+    it = ThermalIteration(bearing, state, n_theta, n_z, lubricant=lubricant,
+                          thermal=thermal, grooves=grooves, cavitation=cavitation,
+                          element=element, supply_angle=supply_angle, tol=tol, start=start)
+    for _ in range(max_iterations):
+        it.film(state)
+        if it.change < temperature_tol and it.pressure_change < pressure_rtol:
             # the film on T, and T within the tolerance of the energy equation's T on the
             # last film: converged without another energy solve
-            break
-        P = pressure / bearing.pressure_scale
-        p_arc, T_arc = eop.at_points(pressure), eop.at_points(T)
-        mu_arc = lubricant.viscosity_at(p_arc, temperature=T_arc)
-        flow = eop.flow(bearing, state, P, fraction, mu_arc, lubricant)
-        mixing = groove_mixing(bearing, state, mesh, edges, P, fraction,
-                               lubricant.viscosity_at(pressure, temperature=T), thermal)
-        slope = _dissipation_slope(lubricant, flow, mu_arc, p_arc, T_arc)
-        energy = solve_energy(bearing, eop, flow, mixing, walls, linearised=(slope, T_arc))
-        change = float(np.max(np.abs(energy.temperature - T)))
-        T = T + relaxation * (energy.temperature - T)
-    else:
-        raise ConvergenceError("thermal film (temperature fixed point)", max_iterations,
-                               change, f"eps = {state.eps:.6g}; pressure change {dp:.3g}")
-    sol = film.solution()
-    record = ThermalRecord(balance=energy.balance,
-                           journal_temperature=energy.journal_temperature,
-                           inlet_temperatures=tuple(float(T[d[0]]) for d in edges.inflow),
-                           viscosity=lubricant.viscosity_at(sol.pressure, temperature=T),
-                           viscosity_quadrature=mu_q,
-                           iterations=it, temperature_change=change, pressure_change=dp)
-    return replace(sol, temperature=T, temperature_max=float(np.max(T)), thermal=record,
-                   method=sol.method + "/thd")
+            return it.solution()
+        it.energy(state, relaxation)
+    raise ConvergenceError("thermal film (temperature fixed point)", max_iterations,
+                           it.change, f"eps = {state.eps:.6g}; pressure change "
+                           f"{it.pressure_change:.3g}")
+
+
+class ThermalIteration:
+    """The thermal film's steps (module docstring) on the bearing-fixed mesh, for a
+    journal that may move between them (an equilibrium's search takes a position step
+    between the film and the energy equation): :meth:`film` solves the film at a state on
+    the viscosity of the kept temperatures, :meth:`energy` the energy equation on that
+    film. ``start``: a thermal :class:`FilmSolution` on the same mesh whose temperatures
+    (and cavitated set) start the iteration; default: the supply temperature."""
+
+    def __init__(self, bearing, state, n_theta, n_z, *, lubricant, thermal, grooves=(),
+                 cavitation="reynolds", element="P1", supply_angle=None, tol=1e-10,
+                 start=None):
+        self.bearing, self.lubricant, self.thermal = bearing, lubricant, thermal
+        self.grooves, self.element, self.tol = tuple(grooves), element, tol
+        self.op = op = thermal_operator(bearing, state, n_theta, n_z, element, supply_angle,
+                                        grooves)
+        self.eop = energy_operator(op.mesh)
+        n = op.mesh.ndofs
+        fresh = start is None or getattr(start, "temperature", None) is None \
+            or len(start.temperature) != n
+        if cavitation == "jfo":
+            self._jfo = FilmProblem(bearing, state, n_theta, n_z, element, cavitation,
+                                    tol=tol, supply_angle=supply_angle,
+                                    grooves=self.grooves, fields=FilmFields())
+            self.last = None
+        else:
+            # a start's cavitated set starts the first film (no coarse levels needed)
+            self._jfo = None
+            self.last = None if fresh else LCPResult(start.pressure, 0, 0.0, True,
+                                                     np.asarray(start.pressure) <= 0.0)
+        self.T = np.full(n, thermal.supply_temperature) if fresh else \
+            np.array(start.temperature, float)
+        self.p = np.zeros(n) if fresh else np.array(start.pressure, float)
+        self.change = self.pressure_change = np.inf
+        self.iterations, self.energy_solution = 0, None
+
+    def film(self, state):
+        """Solve the film at ``state`` on mu(p, T) of the kept pressure and temperatures;
+        keeps its pressure and the change from the last one (relative to its peak)."""
+        b, oil, op = self.bearing, self.lubricant, self.op
+        self.mu = oil.viscosity_at(op.at_quadrature(self.p), temperature=op.at_quadrature(self.T))
+        if self._jfo is not None:
+            f = _JFOFilm(replace(self._jfo, state=state))
+        else:
+            f = ReynoldsFieldFilm(b, state, op, self.element, self.grooves, self.tol,
+                                  self.last)
+        pressure, self.fraction = f.solve(self.mu / b.viscosity)
+        self.last, self.state = f, state
+        peak = max(float(np.max(np.abs(pressure))), 1e-300)
+        self.pressure_change = float(np.max(np.abs(pressure - self.p))) / peak
+        self.p = pressure
+        self.iterations += 1
+        return f
+
+    def energy(self, state, relaxation=1.0):
+        """The energy equation on the last film (its state ``state``), the dissipation
+        implicit to first order: T moves by ``relaxation`` of the change it asks."""
+        b, oil, eop, T = self.bearing, self.lubricant, self.eop, self.T
+        P = self.p / b.pressure_scale
+        p_arc, T_arc = eop.at_points(self.p), eop.at_points(T)
+        mu_arc = oil.viscosity_at(p_arc, temperature=T_arc)
+        flow = eop.flow(b, state, P, self.fraction, mu_arc, oil)
+        mixing = groove_mixing(b, state, self.op.mesh, eop.edges, P, self.fraction,
+                               oil.viscosity_at(self.p, temperature=T), self.thermal)
+        slope = _dissipation_slope(oil, flow, mu_arc, p_arc, T_arc)
+        energy = solve_energy(b, eop, flow, mixing, self.thermal.walls,
+                              linearised=(slope, T_arc))
+        self.change = float(np.max(np.abs(energy.temperature - T)))
+        self.T = T + relaxation * (energy.temperature - T)
+        self.energy_solution = energy
+        return energy
+
+    def solution(self) -> FilmSolution:
+        """The last film's :class:`FilmSolution` with the temperatures and the record."""
+        sol, energy, T, oil = self.last.solution(), self.energy_solution, self.T, self.lubricant
+        record = ThermalRecord(
+            balance=energy.balance, journal_temperature=energy.journal_temperature,
+            inlet_temperatures=tuple(float(T[d[0]]) for d in self.eop.edges.inflow),
+            viscosity=oil.viscosity_at(sol.pressure, temperature=T),
+            viscosity_quadrature=self.mu, iterations=self.iterations,
+            temperature_change=self.change, pressure_change=self.pressure_change)
+        return replace(sol, temperature=T, temperature_max=float(np.max(T)), thermal=record,
+                       method=sol.method + "/thd")
 
 
 class ThermalFilm(Route):
