@@ -22,6 +22,14 @@ length along the flow. The film is convection-dominated (Pe ~ 1e3 .. 1e5), so th
 scheme is close to a pure upwind transport; its order on smooth fields is shown by a
 manufactured solution (tests/test_thermal.py).
 
+Assembled by array products on element tables built once per mesh
+(:class:`EnergyOperator`: the arcs' basis values and gradients at the quadrature points;
+the coefficients change at every thermal step, the mesh does not) and solved by a banded
+LU (the dofs along theta then zeta give a half-bandwidth of about n_z), each groove's
+carried-over oil (a rank-one coupling of its held rows to the upstream exit) by
+Woodbury's identity and a zero-flux journal by eliminating its one unknown. A time step
+(``storage``) adds rho cp h (T - T_old)/dt, backward Euler.
+
 The equation lives on the film's arcs only: the elements inside a groove are left out (a
 groove is a well-mixed volume at its inlet temperature T_in), so the groove's leading
 edge is an outflow boundary (natural condition) and its trailing edge the next arc's inflow
@@ -79,8 +87,9 @@ class EnergyBalance:
     """Where the film's heat goes [W] (whole bearing): ``dissipation`` = ``convected``
     (int rho cp q . grad T, the oil's temperature rise along its paths) + ``bush`` +
     ``journal`` (conducted) + ``grooves`` (minus the held nodes' reactions: what holding
-    the inlet temperatures takes away); ``residual`` = dissipation - (convected + bush +
-    journal + grooves)."""
+    the inlet temperatures takes away) + ``stored`` (a time step's int rho cp h dT/dt, 0 in
+    a steady film); ``residual`` = dissipation - (convected + bush + journal + grooves +
+    stored)."""
 
     dissipation: float
     convected: float
@@ -88,7 +97,7 @@ class EnergyBalance:
     journal: float
     grooves: float
     residual: float
-    stored: float = 0.0     # a time step's int rho cp h dT/dt (0 in a steady film)
+    stored: float = 0.0
 
 
 @dataclass(frozen=True, eq=False)
