@@ -1,50 +1,76 @@
 """What a thermal film costs beside the isothermal film of the same mesh.
 
-    python -m benchmarks.thd
+    python -m benchmarks.thd [--profile]
 
 The 50 mm bearing of studies/thd_designer.py (ISO VG 32 at 40 C, two 20 deg grooves,
 3000 rpm) at eps 0.7: the isothermal grooved film (``solve_reynolds``, its default route)
 and the thermal film (``solve_thd``, adiabatic, carry-over 0.8; cold start, and warm from
-the film at eps 0.69, as an equilibrium's steps are), one process, best of 3 wall times
-(caches built first). Columns: time [ms], fixed-point steps, ratio to the isothermal
-solve, and the time split of one thermal step (film / energy equation + mixing).
+the film at eps 0.69, as an equilibrium's steps are), one process, best of 5 CPU times
+(caches built first; OMP_NUM_THREADS=1). Columns: time [ms], film solves of the thermal
+film, ratio to the isothermal solve. ``--profile``: where one cold 96 x 16 thermal solve
+spends its time (cProfile, CPU clock, functions above 3 % of the total).
 """
 from __future__ import annotations
 
+import argparse
+import cProfile
+import pstats
+import time
 
 from bearingfem import JournalState, solve_reynolds
 from bearingfem.routes.thd import solve_thd
-from .common import best_of
 from bearingfem.thermal import Thermal
 from studies.thd_designer import BEARING, GROOVES, OIL, OMEGA, SUPPLY
 
+from .common import best_of
+
 MESHES = ((48, 8), (96, 16), (192, 32))
 THERMAL = Thermal(SUPPLY, carry_over=0.8)
+STATE = JournalState(eps=0.7, omega=OMEGA, gamma=-1.0)
+NEAR = JournalState(eps=0.69, omega=OMEGA, gamma=-1.0)
 
 
-def best(f, repeat=3):
-    """(best wall time [s], result) of ``repeat`` calls (the benchmarks' one timer)."""
+def cpu(f, repeat=5):
+    """(best CPU time [s], result) of ``repeat`` calls."""
     t = best_of(f, repeat)
-    return t.wall, t.out
+    return t.cpu, t.out
 
 
-def main():
-    state = JournalState(eps=0.7, omega=OMEGA, gamma=-1.0)
-    near = JournalState(eps=0.69, omega=OMEGA, gamma=-1.0)
-    print(f"{'mesh':>7} {'iso ms':>8} {'THD cold ms':>11} {'steps':>5} {'ratio':>6} "
-          f"{'THD warm ms':>11} {'steps':>5} {'ratio':>6}")
+def profile(n=(96, 16)):
+    thd = dict(lubricant=OIL, thermal=THERMAL, grooves=GROOVES)
+    solve_thd(BEARING, STATE, *n, **thd)
+    pr = cProfile.Profile(time.process_time)
+    pr.runcall(solve_thd, BEARING, STATE, *n, **thd)
+    stats = pstats.Stats(pr)
+    total = stats.total_tt
+    print(f"one thermal solve {n[0]}x{n[1]}: {1e3 * total:.1f} ms CPU under the profiler")
+    rows = sorted(((v[3], f"{k[0].split('/')[-1]}:{k[2]}") for k, v in stats.stats.items()),
+                  reverse=True)
+    for cum, name in rows:
+        if cum >= 0.03 * total:
+            print(f"  {1e3 * cum:8.1f} ms {100 * cum / total:5.1f} %  {name}")
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--profile", action="store_true")
+    args = ap.parse_args(argv)
+    print(f"{'mesh':>7} {'iso ms':>8} {'THD cold ms':>11} {'films':>5} {'ratio':>6} "
+          f"{'THD warm ms':>11} {'films':>5} {'ratio':>6}")
     for n in MESHES:
         kw = dict(grooves=GROOVES)
-        solve_reynolds(BEARING, state, *n, **kw)
-        t_iso, _ = best(lambda: solve_reynolds(BEARING, state, *n, **kw))
+        solve_reynolds(BEARING, STATE, *n, **kw)
+        t_iso, _ = cpu(lambda: solve_reynolds(BEARING, STATE, *n, **kw), 10)
         thd = dict(lubricant=OIL, thermal=THERMAL, grooves=GROOVES)
-        solve_thd(BEARING, state, *n, **thd)
-        t_cold, cold = best(lambda: solve_thd(BEARING, state, *n, **thd))
-        start = solve_thd(BEARING, near, *n, **thd)
-        t_warm, warm = best(lambda: solve_thd(BEARING, state, *n, start=start, **thd))
+        solve_thd(BEARING, STATE, *n, **thd)
+        t_cold, cold = cpu(lambda: solve_thd(BEARING, STATE, *n, **thd))
+        start = solve_thd(BEARING, NEAR, *n, **thd)
+        t_warm, warm = cpu(lambda: solve_thd(BEARING, STATE, *n, start=start, **thd))
         print(f"{n[0]:>3}x{n[1]:<3} {1e3 * t_iso:8.1f} {1e3 * t_cold:11.1f} "
               f"{cold.thermal.iterations:5d} {t_cold / t_iso:6.1f} {1e3 * t_warm:11.1f} "
               f"{warm.thermal.iterations:5d} {t_warm / t_iso:6.1f}", flush=True)
+    if args.profile:
+        profile()
 
 
 if __name__ == "__main__":

@@ -26,7 +26,8 @@ gaps between the pads), model "fem" with cavitation "reynolds" (P1), and
 
 Columns: eccentricity, attitude [deg], power loss [W], maximum film temperature [K]
 (ROSS: the pad surface's, ``tpad_max``), K [N/m] and C [N s/m] (inertial x, y), and
-the time of equilibrium + K, C [s] (wall, one run). Our K, C are the frozen-viscosity
+the time of equilibrium + K, C [s] (wall and CPU, one run after a warm-up run, as
+ROSS's). Our K, C are the frozen-viscosity
 film's; ROSS perturbs its film with the temperatures of the equilibrium as well.
 """
 from __future__ import annotations
@@ -87,9 +88,10 @@ def setup(inputs: dict):
 
 
 def ours(bearing, load, omega, grooves, oil, thermal, mesh):
-    """(row dict, equilibrium) of our film: equilibrium + K, C, timed (wall, one run)."""
+    """(row dict, equilibrium) of our film: equilibrium + K, C, timed (wall and CPU, one
+    run; the caller runs it once before, as ROSS is run once before its timed run)."""
     opts = dict(n_theta=mesh[0], n_z=mesh[1], grooves=grooves, cavitation="reynolds")
-    t0 = time.perf_counter()
+    t0, c0 = time.perf_counter(), time.process_time()
     if thermal is None:
         eq = equilibrium(bearing, load, omega, "fem", **opts)
         kc = coefficients(bearing, eq.state, "fem", **opts)
@@ -99,11 +101,11 @@ def ours(bearing, load, omega, grooves, oil, thermal, mesh):
         kc = coefficients(bearing, eq.state, "fem", lubricant=oil, thermal=thermal,
                           solution=eq.solution, **opts)
         t_max = eq.solution.temperature_max
-    wall = time.perf_counter() - t0
+    wall, cpu = time.perf_counter() - t0, time.process_time() - c0
     sol = eq.solution
     power = abs(sol.friction_torque * omega)
     row = dict(eps=eq.eps, attitude=math.degrees(eq.attitude), power=power, t_max=t_max,
-               time=wall, **{k: v for k, v in zip(KEYS, [*kc.K.ravel(), *kc.C.ravel()])})
+               time=wall, cpu=cpu, **{k: v for k, v in zip(KEYS, [*kc.K.ravel(), *kc.C.ravel()])})
     return row, eq
 
 
@@ -111,13 +113,14 @@ def ross_row(outputs: dict) -> dict:
     o = outputs
     t_max = o["tpad_max"][0] if o.get("max_pad_temperature", [0.0])[0] else float("nan")
     return dict(eps=o["eccentricity"][0], attitude=math.degrees(o["attitude"][0]),
-                power=o["power_loss"][0], t_max=t_max, time=float("nan"),
+                power=o["power_loss"][0], t_max=t_max, time=float("nan"), cpu=float("nan"),
                 **{k: o[k][0] for k in KEYS})
 
 
 def ross_times(data: dict, names) -> dict:
-    """Wall time [s] of ROSS's ``driver.run_case`` on each fixture's inputs (equilibrium +
-    K, C, as ROSS's bearing classes call it), after one warm-up run (numba compiled)."""
+    """(wall, CPU) time [s] of ROSS's ``driver.run_case`` on each fixture's inputs
+    (equilibrium + K, C, as ROSS's bearing classes call it), after one warm-up run (numba
+    compiled)."""
     code = r"""
 import json, sys, time
 from ross.bearings.fluid_film.driver import run_case
@@ -125,9 +128,9 @@ cases = json.loads(sys.stdin.read())
 out = {}
 for name, inputs in cases.items():
     run_case(**inputs)
-    t0 = time.perf_counter()
+    t0, c0 = time.perf_counter(), time.process_time()
     run_case(**inputs)
-    out[name] = time.perf_counter() - t0
+    out[name] = (time.perf_counter() - t0, time.process_time() - c0)
 print(json.dumps(out))
 """
     cases = json.dumps({n: data[n]["inputs"] for n in names})
@@ -147,7 +150,7 @@ print(json.dumps(out))
 
 def fmt(row: dict) -> str:
     t = "    -  " if math.isnan(row["t_max"]) else f"{row['t_max']:6.1f} "
-    tm = "    -" if math.isnan(row["time"]) else f"{row['time']:5.2f}"
+    tm = " ".join("    -" if math.isnan(row[k]) else f"{row[k]:5.2f}" for k in ("time", "cpu"))
     return (f"{row['eps']:7.4f} {row['attitude']:7.2f} {row['power']:8.0f} {t}"
             + " ".join(f"{row[k]:10.3e}" for k in KEYS) + f" {tm}")
 
@@ -163,16 +166,17 @@ def main(argv=None):
     bearing, load, omega, grooves, oil, thermals = setup(data["fixed_adiabatic"]["inputs"])
     times = ross_times(data, CASES) if args.ross else {}
     head = (f"{'case':<30} {'eps':>7} {'att deg':>7} {'loss W':>8} {'Tmax K':>6} "
-            + " ".join(f"{k:>10}" for k in KEYS) + f" {'t s':>5}")
+            + " ".join(f"{k:>10}" for k in KEYS) + f" {'t s':>5} {'cpu s':>5}")
     print(head)
     print("-" * len(head))
     pairs = (("isothermal", "fixed_isoviscous"), ("adiabatic", "fixed_adiabatic"),
              ("conducting", "fixed_full"))
     for ours_name, ross_name in pairs:
         row = ross_row(data[ross_name]["outputs"])
-        row["time"] = times.get(ross_name, float("nan"))
+        row["time"], row["cpu"] = times.get(ross_name, (float("nan"), float("nan")))
         print(f"{'ROSS ' + ross_name:<30} " + fmt(row))
         for mesh in meshes:
+            ours(bearing, load, omega, grooves, oil, thermals[ours_name], mesh)   # warm
             r, eq = ours(bearing, load, omega, grooves, oil, thermals[ours_name], mesh)
             label = f"ours {ours_name} {mesh[0]}x{mesh[1]}"
             print(f"{label:<30} " + fmt(r), flush=True)
@@ -186,7 +190,7 @@ def main(argv=None):
                 print(f"{'':<30}   inlets {', '.join(f'{t:.1f}' for t in rec.inlet_temperatures)}"
                       f" K; journal {rec.journal_temperature:.1f} K; balance residual "
                       f"{rec.balance.residual:.1e} W of {rec.balance.dissipation:.0f} W; "
-                      f"fixed-point steps {rec.iterations}", flush=True)
+                      f"film solves {rec.iterations}", flush=True)
 
 
 if __name__ == "__main__":

@@ -16,11 +16,12 @@ try:
 except ModuleNotFoundError:  # Python < 3.11
     import tomli as tomllib
 
-from bearingfem import Bearing, ElasticBush, Roughness
+from bearingfem import Bearing, ElasticBush, Groove, Roughness
 from bearingfem.bearing import plausibility_errors
 from bearingfem.accuracy import check_rtol
 from bearingfem.lubricant import ISO_VG, Lubricant
 from bearingfem.models import film_model
+from bearingfem.thermal import Thermal
 from .parameters import Mechanism
 
 __all__ = ["Scene", "load_scene", "parse_scene", "INTEGRATORS"]
@@ -196,15 +197,22 @@ def oil_viscosity(grade, temperature_c: float, names=("oil", "oil_temperature"))
     """An ISO VG grade ('ISO VG 32', 'VG32', '32' or 32) at ``temperature_c`` [degC] -> its
     dynamic viscosity [Pa s] (:meth:`bearingfem.lubricant.Lubricant.iso_vg`, a VI 100
     mineral oil); ``names``: how the caller spells the two inputs."""
-    m = _GRADE.match(str(grade)) if isinstance(grade, (str, int)) else None
-    if not m or int(m.group(1)) not in ISO_VG:
-        raise ValueError(f"{names[0]} must be an ISO VG grade, one of "
-                         f"{', '.join(f'ISO VG {g}' for g in sorted(ISO_VG))}, got {grade!r}")
+    g = _grade(grade, names[0])
     if not (math.isfinite(temperature_c) and -50.0 <= temperature_c <= 200.0):
         raise ValueError(f"{names[1]} must lie in [-50, 200] degC (an oil film's), "
                          f"got {temperature_c!r}")
-    oil = Lubricant.iso_vg(int(m.group(1)))
+    oil = Lubricant.iso_vg(g)
     return float(oil.viscosity_at(0.0, temperature=temperature_c + 273.15))
+
+
+def _grade(grade, name: str) -> int:
+    """An ISO VG grade ('ISO VG 32', 'VG32', '32' or 32) as its number; ValueError naming
+    ``name`` otherwise."""
+    m = _GRADE.match(str(grade)) if isinstance(grade, (str, int)) else None
+    if not m or int(m.group(1)) not in ISO_VG:
+        raise ValueError(f"{name} must be an ISO VG grade, one of "
+                         f"{', '.join(f'ISO VG {g}' for g in sorted(ISO_VG))}, got {grade!r}")
+    return int(m.group(1))
 
 
 def _lubrication(t: _Table) -> Lubrication:
@@ -227,7 +235,17 @@ def _lubrication(t: _Table) -> Lubrication:
             raise ValueError(f"{t.where}: give rtol or the mesh (n_theta, n_z), not both")
     if "roughness" in given and "roughness" in m.defaults:   # mixed lubrication
         given["roughness"] = _roughness(_Table(given["roughness"], f"{t.where}.roughness"))
-    for key, cls in (("lubricant", Lubricant), ("bush", ElasticBush)):   # the EHD film
+    if isinstance(given.get("grooves"), list):    # [[...grooves]] tables: angle, width [rad]
+        try:
+            given["grooves"] = tuple(Groove(**g) for g in given["grooves"])
+        except (TypeError, ValueError) as err:
+            raise ValueError(f"{t.where}.grooves: {err}") from None
+    if "oil" in given and "lubricant" in m.defaults:    # the thermal film's oil by grade
+        if "lubricant" in given:
+            raise ValueError(f"{t.where} takes one of oil (an ISO VG grade) or lubricant")
+        given["lubricant"] = Lubricant.iso_vg(_grade(given.pop("oil"), f"{t.where}.oil"))
+    for key, cls in (("lubricant", Lubricant), ("bush", ElasticBush),     # the EHD film
+                     ("thermal", Thermal)):                               # the THD film
         if isinstance(given.get(key), dict) and key in m.defaults:
             try:
                 given[key] = cls(**given[key])

@@ -20,11 +20,12 @@ fem-table         FE forces tabulated and interpolated                ``table``
 fem-jfo           mass-conserving film, transient along a run         ``jfo``
 fem-jfo-compr.    compressible mass-conserving film                   ``jfo``
 fem-ehd           elastic bush, pressure-dependent oil, summits       ``ehd``
+fem-thd           thermal film, temperatures advancing along a run    ``thd``
 ================  =================================================  ==================
 """
 from __future__ import annotations
 
-from . import closed, ehd, fem, fvm, jfo, table  # noqa: F401  (each registers its models)
+from . import closed, ehd, fem, fvm, jfo, table, thd  # noqa: F401  (each registers its models)
 from .registry import (FILM_MODELS, OPTION_RULES, FilmModel, film_model, numeric_models,
                        register, solve_film)
 

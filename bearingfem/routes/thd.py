@@ -1,26 +1,39 @@
 """The thermal film: pressure, film fraction and temperature coupled through the viscosity.
 
-A fixed point (Picard) on the temperature field: at the temperatures T_k the oil's
-viscosity mu(p_k, T_k) at the film's quadrature points makes a viscosity field
-(:class:`~bearingfem.fields.FilmFields`) for the isothermal film solver, whose pressure
-(and JFO fraction) gives the flow and dissipation of the energy equation
-(:mod:`bearingfem.thermal.energy`, the grooves' mixing solved with it) gives T, and
-Anderson's acceleration (:class:`Anderson`) of the iterates gives T_{k+1}. Why a fixed
-point: the film and the energy equation each are one linear (or complementarity) solve,
-and the coupling is one-way per step through mu(T); Anderson's mixing takes it where plain
-relaxation would crawl (measured: docs/thd.md).
+A fixed point on the temperature field with the dissipation's temperature dependence
+taken implicitly: at the temperatures T_k the oil's viscosity mu(p_k, T_k) at the film's
+quadrature points makes a viscosity field (:class:`~bearingfem.fields.FilmFields`) for the
+isothermal film, whose pressure (and JFO fraction) gives the flow and dissipation of the
+energy equation (:mod:`bearingfem.thermal.energy`, the grooves' mixing solved with it),
+and the energy equation gives T_{k+1} with the dissipation linearised about T_k,
 
-Converged when the largest change of the nodal temperatures is below ``temperature_tol``
-[K] and the pressure's largest change below ``pressure_rtol`` of its peak; otherwise
-:class:`~bearingfem.errors.ConvergenceError`.
+    Phi(T) = Phi_k + (d Phi/d T) (T - T_k),   d Phi/d T = Phi_k (d mu/d T) / mu,
+
+the slope of a film whose viscosity changes uniformly (its shear term ~ mu at any
+pressure, its pressure-flow term ~ mu because the pressure follows the viscosity). Why:
+the dissipation falling as the oil heats is the loop's strongest feedback; lagged, it
+makes a fixed point of factor ~0.3 (10 steps to 1e-6 K on the designer's bearing), taken
+implicitly it leaves the pressure's lag only (factor ~1e-2, 6 steps; docs/thd.md). At the
+fixed point T_{k+1} = T_k, so the linearisation changes the path, not the answer.
+
+Each step reuses what the mesh fixes: the film's stiffness is assembled from its element
+tables (:func:`~bearingfem.fe.general.general_assembly`), its cavitated set and factors
+start from the last step's, and the energy equation is assembled on its operator's tables
+(:func:`~bearingfem.thermal.energy.energy_operator`).
+
+Converged when the last energy solve changed no nodal temperature by more than
+``temperature_tol`` [K] and the film solved on its temperatures changed the pressure by
+less than ``pressure_rtol`` of its peak: the film returned is the one on the returned
+temperatures; otherwise :class:`~bearingfem.errors.ConvergenceError`.
 """
 from __future__ import annotations
 
+import math
 from dataclasses import replace
 
 import numpy as np
 from scipy.sparse.linalg import splu
-from skfem import LinearForm
+from skfem import BilinearForm
 from skfem.models.poisson import mass
 
 from ..bearing import Bearing, JournalState
@@ -31,47 +44,21 @@ from ..fields import FilmFields
 from ..film import film_thickness
 from ..lubricant import Lubricant
 from ..solution import FilmSolution
-from ..thermal.energy import Mixing, arc_basis, film_edges, film_flow, solve_energy
+from ..solvers.cavitation import LCPResult
+from ..fe.general import film_moment, general_assembly
+from ..fe.kernel import fe_pressure, film_outputs, groove_pressures
+from ..film import local_to_inertial, source_coefficients
+from ..scales import force_factor
+from ..thermal.energy import Mixing, energy_operator, solve_energy
 from ..thermal.spec import Thermal, ThermalRecord
 from .base import Route
-from .fe import GeneralFilm
 from .jfo import JFOFilm
 from .problem import OPTION_DEFAULTS, FilmProblem
 
-__all__ = ["ThermalFilm", "solve_thd", "ThermalRecord", "groove_mixing"]
+__all__ = ["ThermalFilm", "solve_thd", "ThermalRecord", "groove_mixing", "thermal_operator",
+           "ReynoldsFieldFilm", "ThermalIteration"]
 
 CAVITATION = ("reynolds", "jfo")
-ANDERSON_DEPTH = 3     # past iterates Anderson's mixing combines
-
-
-@LinearForm
-def _value_form(v, w):
-    return w["f"] * v
-
-
-class Anderson:
-    """Anderson's (1965) acceleration of the fixed point T -> G(T) (Walker & Ni's form):
-    the next iterate combines the last ``depth`` + 1 iterates with the weights that make
-    their residuals G(T) - T least in the 2-norm, relaxed by ``relaxation``. Why: the
-    groove's carried-over oil makes the plain iteration's factor approach -1 (an inlet
-    that overshoots each step); mixing the history removes it (measured in docs/thd.md).
-    """
-
-    def __init__(self, relaxation: float, depth: int):
-        self.relaxation, self.depth = relaxation, depth
-        self.x, self.f = [], []
-
-    def step(self, x: np.ndarray, g: np.ndarray) -> np.ndarray:
-        self.x.append(x)
-        self.f.append(g - x)
-        self.x, self.f = self.x[-self.depth - 1:], self.f[-self.depth - 1:]
-        f = self.f[-1]
-        if len(self.f) > 1:
-            dF = np.column_stack([b - a for a, b in zip(self.f[:-1], self.f[1:])])
-            dX = np.column_stack([b - a for a, b in zip(self.x[:-1], self.x[1:])])
-            gamma = np.linalg.lstsq(dF, f, rcond=None)[0]
-            return x + self.relaxation * f - (dX + self.relaxation * dF) @ gamma
-        return x + self.relaxation * f
 
 
 def check_thermal(lubricant, thermal, state, cavitation, element):
@@ -100,22 +87,27 @@ def check_thermal(lubricant, thermal, state, cavitation, element):
         raise ValueError(f"element must be 'P1' with cavitation 'jfo', got {element!r}")
 
 
+@BilinearForm
+def _theta_gradient_form(u, v, w):
+    return u.grad[0] * v
+
+
 @cached(maxsize=16)
-def _projector(mesh):
-    """L2 projection onto the film's nodes of values at its quadrature points (the mass
-    matrix factorised once per mesh)."""
+def _theta_derivative(mesh):
+    """Nodal P -> the L2 projection onto the nodes of dP/dtheta (the mass matrix
+    factorised once per mesh)."""
     basis = mesh.basis
     lu = splu(mass.assemble(basis).tocsc())
-    return lambda values: lu.solve(_value_form.assemble(basis, f=values))
+    B = _theta_gradient_form.assemble(basis).tocsr()
+    return lambda P: lu.solve(B @ P)
 
 
 def _column_flows(bearing, state, mesh, edges, P, fraction, mu_nodal):
     """Nodal q_theta [m^2/s] (Couette + Poiseuille, dp/dtheta projected on the nodes) and
     each arc column's flow int q_theta dz [m^3/s]."""
     R, c = bearing.radius, bearing.clearance
-    basis = mesh.basis
-    dP = _projector(mesh)(np.asarray(basis.interpolate(P).grad[0]))
-    h = c * film_thickness(mesh.theta, state.eps)
+    dP = _theta_derivative(mesh)(P)
+    h = c * film_thickness(mesh.theta - state.gamma, state.eps)
     q = (0.5 * state.omega * R * fraction * h
          - h ** 3 / (12.0 * mu_nodal) * bearing.pressure_scale / R * dP)
     flows = R * np.bincount(edges.column_index, edges.column_weight * q[edges.column_dofs],
@@ -152,6 +144,109 @@ def groove_mixing(bearing, state, mesh, edges, P, fraction, mu_nodal,
     return Mixing(fresh=tuple(fresh), dofs=tuple(dofs), weights=tuple(weights))
 
 
+def thermal_operator(bearing, state, n_theta, n_z, element="P1", supply_angle=None,
+                     grooves=()):
+    """The whole-length film operator of a thermal film, fixed in the bearing: the film
+    frame's mesh at gamma = 0, its first coordinate the bearing angle phi = theta + gamma.
+    Why: the grooves (or the supply line) are fixed in the bearing, so one mesh, its
+    tables and its energy operator serve every journal position (an equilibrium's steps,
+    K and C), where the film frame's mesh turns with gamma and is rebuilt at each. The
+    film frame's mesh at any gamma is this mesh turned (same nodes, elements and
+    quadrature points in the same order), so a field on one is the field on the other."""
+    return fe_operator(bearing, replace(state, gamma=0.0), n_theta, n_z, element,
+                       supply_angle, False, grooves)
+
+
+def _turned_load(op, state) -> np.ndarray:
+    """The load of the source a_sin sin(theta) + a_cos cos(theta) on the bearing-fixed
+    mesh, theta = phi - gamma: sin and cos of the difference on op's phi loads."""
+    a_sin, a_cos = source_coefficients(state.eps, state.eps_dot, state.wedge_speed)
+    c, s = math.cos(state.gamma), math.sin(state.gamma)
+    return (a_sin * c + a_cos * s) * op.b_sin + (a_cos * c - a_sin * s) * op.b_cos
+
+
+class ReynoldsFieldFilm:
+    """The Reynolds-condition film of a journal ``state`` on the bearing-fixed mesh of
+    :func:`thermal_operator` with a viscosity field: the stiffness of -div(H^3/m grad P)
+    by :func:`~bearingfem.fe.general.general_assembly`'s products (no form re-run), the
+    load fixed (the viscosity does not enter it), and each solve started from the last
+    one's cavitated set and factors (``warm``: an earlier film on the same operator, e.g.
+    the last thermal step's or a neighbouring state's, or an :class:`LCPResult`)."""
+
+    def __init__(self, bearing, state, op, element, grooves, tol, warm=None):
+        self.bearing, self.state, self.op, self.tol = bearing, state, op, tol
+        self.element, self.grooves = element, grooves
+        theta = op.qp_theta - state.gamma
+        self.fields = FilmFields(gap=film_thickness(theta, state.eps),
+                                 gap_rate=state.eps_dot * np.cos(theta))
+        self.cubed = self.fields.gap ** 3
+        self.load = _turned_load(op, state)
+        self.held = groove_pressures(bearing, op, grooves)
+        self.last = warm.last if isinstance(warm, ReynoldsFieldFilm) else warm
+
+    def solve(self, ratio: np.ndarray):
+        """(nodal pressure [Pa], nodal fraction) on the viscosity ``ratio`` mu/mu_ref at
+        the quadrature points."""
+        self.values = general_assembly(self.op).stiffness_values(self.cubed / ratio)
+        warm = self.last
+        self.last = fe_pressure(self.op, self.state, "reynolds", tol=self.tol,
+                                active0=None if warm is None else warm.active,
+                                factor=None if warm is None else warm.factor,
+                                dirichlet=self.held, system=(self.values, self.load))
+        self.ratio = ratio
+        return self.last.pressure * self.bearing.pressure_scale, np.ones(self.op.mesh.ndofs)
+
+    def force_local(self) -> tuple:
+        """(F_r, F_t) [N] of the last solve: the integrals of P (cos, sin) phi turned into
+        the journal's frame."""
+        ic, is_ = self.op.force_integrals(self.last.pressure)
+        k = force_factor(self.bearing, False)
+        c, s = math.cos(self.state.gamma), math.sin(self.state.gamma)
+        return (k * (ic * c + is_ * s), k * (is_ * c - ic * s))
+
+    def force(self) -> np.ndarray:
+        """The last solve's force on the journal [N], inertial (x, y)."""
+        return np.array(local_to_inertial(*self.force_local(), self.state.gamma), float)
+
+    def solution(self) -> FilmSolution:
+        """The last solve's :class:`FilmSolution` (the general film's outputs), nodes
+        reported at their film angles."""
+        mesh = self.op.mesh
+        sol = film_outputs(self.bearing, self.state, self.op, self.last, self.values,
+                           self.load, FilmFields(gap=self.fields.gap, viscosity=self.ratio),
+                           "reynolds", "full", self.grooves,
+                           f"fem-{self.element}/active-set",
+                           film_thickness(mesh.theta - self.state.gamma, self.state.eps),
+                           force=self.force_local(), theta=mesh.theta - self.state.gamma)
+        # the mesh's angle is already inertial: the moment's lever turns by 0, not gamma
+        return replace(sol, moment=film_moment(self.bearing, self.op, self.last.pressure, 0.0))
+
+
+class _JFOFilm:
+    """The JFO film on a viscosity field (its route, whole length)."""
+
+    def __init__(self, problem):
+        self.problem, self.route = problem, JFOFilm()
+
+    def solve(self, ratio: np.ndarray):
+        self.last = self.route.solve(replace(self.problem, fields=FilmFields(viscosity=ratio)))
+        self.ratio = ratio
+        frac = self.last.fraction
+        return self.last.pressure, np.ones(len(frac)) if frac is None else frac
+
+    def solution(self) -> FilmSolution:
+        return self.last
+
+    def force(self) -> np.ndarray:
+        return np.array(self.last.force, float)
+
+
+def _dissipation_slope(lubricant, flow, mu, p, T):
+    """d Phi / d T [W/(m^2 K)] of a film whose viscosity changes uniformly (module
+    docstring): Phi (d mu/d T) / mu at the energy equation's points."""
+    return flow.dissipation * lubricant.viscosity_temperature_derivative(T, p) / mu
+
+
 def solve_thd(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z: int = 20, *,
               lubricant: Lubricant, thermal: Thermal, grooves=(), cavitation="reynolds",
               element="P1", supply_angle=None, tol: float = 1e-10,
@@ -172,8 +267,7 @@ def solve_thd(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z: in
         applied with the previous iterate's pressure
     thermal : :class:`~bearingfem.thermal.Thermal`
     temperature_tol : [K]; pressure_rtol : relative to the peak; the fixed point's tests
-    relaxation : r in (0, 1] of T_{k+1} = T_k + r (T - T_k), the step of Anderson's
-        acceleration (:class:`Anderson`)
+    relaxation : r in (0, 1] of T_{k+1} = T_k + r (T - T_k), T the energy equation's
     max_iterations : fixed-point steps before ConvergenceError
     start : a thermal :class:`FilmSolution` on the same mesh whose temperatures start the
         fixed point (default: the supply temperature everywhere)
@@ -195,56 +289,107 @@ def solve_thd(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z: in
     if not grooves and supply_angle is None:
         raise ValueError("a thermal film needs an oil supply: give grooves or a "
                          "supply_angle")
-    op = fe_operator(bearing, state, n_theta, n_z, element, supply_angle, False, grooves)
-    # the isothermal film on the viscosity field of each iterate: the general film's route
-    # (the JFO film's with cavitation "jfo"), the whole length meshed
-    film = JFOFilm() if cavitation == "jfo" else GeneralFilm()
-    problem = FilmProblem(bearing, state, n_theta, n_z, element, cavitation, tol=tol,
-                          supply_angle=supply_angle, grooves=tuple(grooves),
-                          fields=FilmFields())
-    mesh = op.mesh
-    edges = film_edges(mesh)
-    arcs = arc_basis(mesh, edges)
-    ts = thermal.supply_temperature
-    n = mesh.ndofs
-    if start is not None and getattr(start, "temperature", None) is not None \
-            and len(start.temperature) == n:
-        T, p = np.array(start.temperature, float), np.array(start.pressure, float)
-    else:
-        T, p = np.full(n, ts), np.zeros(n)
-    walls = thermal.walls
-    anderson = Anderson(relaxation, ANDERSON_DEPTH)
-    change = dp = np.inf
-    for it in range(1, max_iterations + 1):
-        mu_q = lubricant.viscosity_at(op.at_quadrature(p), temperature=op.at_quadrature(T))
-        sol = film.solve(replace(problem, fields=FilmFields(viscosity=mu_q / bearing.viscosity)))
-        P = sol.pressure / bearing.pressure_scale
-        fraction = np.ones(n) if sol.fraction is None else sol.fraction
-        mu_arc = lubricant.viscosity_at(np.asarray(arcs.interpolate(sol.pressure)),
-                                        temperature=np.asarray(arcs.interpolate(T)))
-        flow = film_flow(bearing, state, arcs, P, fraction, mu_arc, lubricant)
-        mixing = groove_mixing(bearing, state, mesh, edges, P, fraction,
-                               lubricant.viscosity_at(sol.pressure, temperature=T), thermal)
-        energy = solve_energy(bearing, arcs, edges, flow, mixing, walls)
-        change = float(np.max(np.abs(energy.temperature - T)))
-        peak = max(float(np.max(np.abs(sol.pressure))), 1e-300)
-        dp = float(np.max(np.abs(sol.pressure - p))) / peak
-        p = sol.pressure
-        if change < temperature_tol and dp < pressure_rtol:
-            T = energy.temperature
-            break
-        T = anderson.step(T, energy.temperature)
-    else:
-        raise ConvergenceError("thermal film (temperature fixed point)", max_iterations,
-                               change, f"eps = {state.eps:.6g}; pressure change {dp:.3g}")
-    record = ThermalRecord(balance=energy.balance,
-                           journal_temperature=energy.journal_temperature,
-                           inlet_temperatures=tuple(float(T[d[0]]) for d in edges.inflow),
-                           viscosity=lubricant.viscosity_at(sol.pressure, temperature=T),
-                           viscosity_quadrature=mu_q,
-                           iterations=it, temperature_change=change, pressure_change=dp)
-    return replace(sol, temperature=T, temperature_max=float(np.max(T)), thermal=record,
-                   method=sol.method + "/thd")
+    it = ThermalIteration(bearing, state, n_theta, n_z, lubricant=lubricant,
+                          thermal=thermal, grooves=grooves, cavitation=cavitation,
+                          element=element, supply_angle=supply_angle, tol=tol, start=start)
+    for _ in range(max_iterations):
+        it.film(state)
+        if it.change < temperature_tol and it.pressure_change < pressure_rtol:
+            # the film on T, and T within the tolerance of the energy equation's T on the
+            # last film: converged without another energy solve
+            return it.solution()
+        it.energy(state, relaxation)
+    raise ConvergenceError("thermal film (temperature fixed point)", max_iterations,
+                           it.change, f"eps = {state.eps:.6g}; pressure change "
+                           f"{it.pressure_change:.3g}")
+
+
+class ThermalIteration:
+    """The thermal film's steps (module docstring) on the bearing-fixed mesh, for a
+    journal that may move between them (an equilibrium's search takes a position step
+    between the film and the energy equation): :meth:`film` solves the film at a state on
+    the viscosity of the kept temperatures, :meth:`energy` the energy equation on that
+    film. ``start``: a thermal :class:`FilmSolution` on the same mesh whose temperatures
+    (and cavitated set) start the iteration; default: the supply temperature."""
+
+    def __init__(self, bearing, state, n_theta, n_z, *, lubricant, thermal, grooves=(),
+                 cavitation="reynolds", element="P1", supply_angle=None, tol=1e-10,
+                 start=None):
+        self.bearing, self.lubricant, self.thermal = bearing, lubricant, thermal
+        self.grooves, self.element, self.tol = tuple(grooves), element, tol
+        self.op = op = thermal_operator(bearing, state, n_theta, n_z, element, supply_angle,
+                                        grooves)
+        self.eop = energy_operator(op.mesh)
+        n = op.mesh.ndofs
+        fresh = start is None or getattr(start, "temperature", None) is None \
+            or len(start.temperature) != n
+        if cavitation == "jfo":
+            self._jfo = FilmProblem(bearing, state, n_theta, n_z, element, cavitation,
+                                    tol=tol, supply_angle=supply_angle,
+                                    grooves=self.grooves, fields=FilmFields())
+            self.last = None
+        else:
+            # a start's cavitated set starts the first film (no coarse levels needed)
+            self._jfo = None
+            self.last = None if fresh else LCPResult(start.pressure, 0, 0.0, True,
+                                                     np.asarray(start.pressure) <= 0.0)
+        self.T = np.full(n, thermal.supply_temperature) if fresh else \
+            np.array(start.temperature, float)
+        self.p = np.zeros(n) if fresh else np.array(start.pressure, float)
+        self.change = self.pressure_change = np.inf
+        self.iterations, self.energy_solution = 0, None
+
+    def film(self, state):
+        """Solve the film at ``state`` on mu(p, T) of the kept pressure and temperatures;
+        keeps its pressure and the change from the last one (relative to its peak)."""
+        b, oil, op = self.bearing, self.lubricant, self.op
+        self.mu = oil.viscosity_at(op.at_quadrature(self.p), temperature=op.at_quadrature(self.T))
+        if self._jfo is not None:
+            f = _JFOFilm(replace(self._jfo, state=state))
+        else:
+            # the last film's cavitated set starts this one, not its factors: between
+            # thermal steps the viscosity moves too much for them to precondition CG
+            # (measured: CG ran out of its 20 steps at every step)
+            warm = self.last.last if isinstance(self.last, ReynoldsFieldFilm) else self.last
+            warm = None if warm is None else replace(warm, factor=None)
+            f = ReynoldsFieldFilm(b, state, op, self.element, self.grooves, self.tol, warm)
+        pressure, self.fraction = f.solve(self.mu / b.viscosity)
+        self.last, self.state = f, state
+        peak = max(float(np.max(np.abs(pressure))), 1e-300)
+        self.pressure_change = float(np.max(np.abs(pressure - self.p))) / peak
+        self.p = pressure
+        self.iterations += 1
+        return f
+
+    def energy(self, state, relaxation=1.0):
+        """The energy equation on the last film (its state ``state``), the dissipation
+        implicit to first order: T moves by ``relaxation`` of the change it asks."""
+        b, oil, eop, T = self.bearing, self.lubricant, self.eop, self.T
+        P = self.p / b.pressure_scale
+        p_arc, T_arc = eop.at_points(self.p), eop.at_points(T)
+        mu_arc = oil.viscosity_at(p_arc, temperature=T_arc)
+        flow = eop.flow(b, state, P, self.fraction, mu_arc, oil)
+        mixing = groove_mixing(b, state, self.op.mesh, eop.edges, P, self.fraction,
+                               oil.viscosity_at(self.p, temperature=T), self.thermal)
+        slope = _dissipation_slope(oil, flow, mu_arc, p_arc, T_arc)
+        energy = solve_energy(b, eop, flow, mixing, self.thermal.walls,
+                              linearised=(slope, T_arc))
+        self.change = float(np.max(np.abs(energy.temperature - T)))
+        self.T = T + relaxation * (energy.temperature - T)
+        self.energy_solution = energy
+        return energy
+
+    def solution(self) -> FilmSolution:
+        """The last film's :class:`FilmSolution` with the temperatures and the record."""
+        sol, energy, T, oil = self.last.solution(), self.energy_solution, self.T, self.lubricant
+        record = ThermalRecord(
+            balance=energy.balance, journal_temperature=energy.journal_temperature,
+            inlet_temperatures=tuple(float(T[d[0]]) for d in self.eop.edges.inflow),
+            viscosity=oil.viscosity_at(sol.pressure, temperature=T),
+            viscosity_quadrature=self.mu, iterations=self.iterations,
+            temperature_change=self.change, pressure_change=self.pressure_change)
+        return replace(sol, temperature=T, temperature_max=float(np.max(T)), thermal=record,
+                       method=sol.method + "/thd")
 
 
 class ThermalFilm(Route):

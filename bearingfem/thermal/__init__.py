@@ -1,7 +1,8 @@
 """Thermal films (THD): the film-averaged energy equation (:mod:`.energy`) and what a
 thermal film is asked (:class:`Thermal`). The film and the energy equation are coupled
 through the oil's viscosity against temperature (:mod:`bearingfem.lubricant`) by the
-thermal route, :mod:`bearingfem.routes.thd` (``solve_reynolds(..., thermal=)``)."""
+thermal route, :mod:`bearingfem.routes.thd` (``solve_reynolds(..., thermal=)``). The
+bush's heat conduction on its finite-element mesh: :mod:`.bush`."""
 from .spec import Thermal, ThermalRecord
 from .energy import EnergyBalance, EnergySolution, solve_energy
 

@@ -22,6 +22,14 @@ length along the flow. The film is convection-dominated (Pe ~ 1e3 .. 1e5), so th
 scheme is close to a pure upwind transport; its order on smooth fields is shown by a
 manufactured solution (tests/test_thermal.py).
 
+Assembled by array products on element tables built once per mesh
+(:class:`EnergyOperator`: the arcs' basis values and gradients at the quadrature points;
+the coefficients change at every thermal step, the mesh does not) and solved by a banded
+LU (the dofs along theta then zeta give a half-bandwidth of about n_z), each groove's
+carried-over oil (a rank-one coupling of its held rows to the upstream exit) by
+Woodbury's identity and a zero-flux journal by eliminating its one unknown. A time step
+(``storage``) adds rho cp h (T - T_old)/dt, backward Euler.
+
 The equation lives on the film's arcs only: the elements inside a groove are left out (a
 groove is a well-mixed volume at its inlet temperature T_in), so the groove's leading
 edge is an outflow boundary (natural condition) and its trailing edge the next arc's inflow
@@ -45,17 +53,19 @@ Reference: A.N. Brooks and T.J.R. Hughes, Comput. Methods Appl. Mech. Eng. 32 (1
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 import scipy.sparse as sp
-from scipy.sparse.linalg import splu
-from skfem import Basis, BilinearForm, LinearForm
+from scipy.linalg import solve_banded
+from skfem import Basis
 
 from ..caches import cached
 from ..film import film_thickness
 
 __all__ = ["EnergyFlow", "EnergySolution", "EnergyBalance", "solve_energy", "film_flow",
+           "EnergyOperator", "energy_operator", "energy_system",
            "film_edges", "FilmEdges", "Mixing"]
 
 
@@ -69,6 +79,7 @@ class EnergyFlow:
     beta_zeta: np.ndarray
     diffusivity: np.ndarray
     dissipation: np.ndarray
+    shear: np.ndarray | None = None    # its Couette part F mu U^2/h [W/m^2]
 
 
 @dataclass(frozen=True)
@@ -76,8 +87,9 @@ class EnergyBalance:
     """Where the film's heat goes [W] (whole bearing): ``dissipation`` = ``convected``
     (int rho cp q . grad T, the oil's temperature rise along its paths) + ``bush`` +
     ``journal`` (conducted) + ``grooves`` (minus the held nodes' reactions: what holding
-    the inlet temperatures takes away); ``residual`` = dissipation - (convected + bush +
-    journal + grooves)."""
+    the inlet temperatures takes away) + ``stored`` (a time step's int rho cp h dT/dt, 0 in
+    a steady film); ``residual`` = dissipation - (convected + bush + journal + grooves +
+    stored)."""
 
     dissipation: float
     convected: float
@@ -85,16 +97,40 @@ class EnergyBalance:
     journal: float
     grooves: float
     residual: float
+    stored: float = 0.0
 
 
 @dataclass(frozen=True, eq=False)
 class EnergySolution:
     """Nodal temperature [K] (held nodes included), the journal's temperature [K] and the
-    balance."""
+    balance (computed when asked: a thermal iteration needs only the last one's)."""
 
     temperature: np.ndarray
     journal_temperature: float
-    balance: EnergyBalance
+    parts: tuple = field(default=(), repr=False)        # what the balance is made of
+
+    @cached_property
+    def balance(self) -> EnergyBalance:
+        """Where the heat goes: the assembled rows summed with v = 1 (module docstring)."""
+        R, op, flow, phi, walls, A, b, c_all, half, storage = self.parts
+        hb, ta, hj, _ = walls
+        T, t_journal = self.temperature, self.journal_temperature
+        reactions = A @ T + c_all * t_journal - b
+        Tv, gT = op.at_points(T), op.gradient(T)
+        dA = R ** 2 * op.dx
+        convected = float(np.sum(R * (flow.beta_theta * gT[0] + flow.beta_zeta * gT[1])
+                                 * op.dx))
+        dissipation = float(np.sum(phi * dA))
+        bush = float(np.sum(hb * (Tv - ta) * dA))
+        journal = float(np.sum(hj * (Tv - t_journal) * dA))
+        grooves = -float(np.sum(reactions[op.held]))
+        stored = 0.0 if storage is None else \
+            float(np.sum(storage[0] * (Tv - storage[1]) * dA))
+        residual = dissipation - (convected + bush + journal + grooves + stored)
+        k = 2.0 if half else 1.0
+        return EnergyBalance(dissipation=k * dissipation, convected=k * convected,
+                             bush=k * bush, journal=k * journal, grooves=k * grooves,
+                             residual=k * residual, stored=k * stored)
 
 
 @dataclass(frozen=True, eq=False)
@@ -188,65 +224,33 @@ def film_edges(mesh) -> FilmEdges:
                      column_weight=weight)
 
 
-def film_flow(bearing, state, basis, P, fraction, viscosity, lubricant) -> EnergyFlow:
-    """:class:`EnergyFlow` at ``basis``'s quadrature points from the nodal dimensionless
-    pressure ``P`` (p = mu0 (R/c)^2 P), nodal film ``fraction`` (1 outside a JFO cavity)
-    and the viscosity ``viscosity`` [Pa s] at the quadrature points (elements x points)."""
+def _flow(bearing, state, theta, dP, F, mu, lubricant) -> EnergyFlow:
+    """:class:`EnergyFlow` from the dimensionless pressure's gradient ``dP`` (2, ...) in
+    (theta, zeta), the film fraction and viscosity [Pa s] at the same points."""
     R, c = bearing.radius, bearing.clearance
     U = state.omega * R
-    theta = basis.global_coordinates()[0]
     h = c * film_thickness(np.asarray(theta), state.eps)
-    f = basis.interpolate(P)
     scale = bearing.pressure_scale / R                 # dp/dx = scale dP/dtheta
-    dpx, dpz = scale * np.asarray(f.grad[0]), scale * np.asarray(f.grad[1])
-    F = np.asarray(basis.interpolate(fraction))
-    mu = np.asarray(viscosity)
+    dpx, dpz = scale * dP[0], scale * dP[1]
     k3 = h ** 3 / (12.0 * mu)
     rho_cp = lubricant.mass_density * lubricant.specific_heat
     return EnergyFlow(beta_theta=rho_cp * (0.5 * U * F * h - k3 * dpx),
                       beta_zeta=-rho_cp * k3 * dpz,
                       diffusivity=lubricant.conductivity * h,
-                      dissipation=F * mu * U ** 2 / h + k3 * (dpx ** 2 + dpz ** 2))
+                      dissipation=F * mu * U ** 2 / h + k3 * (dpx ** 2 + dpz ** 2),
+                      shear=F * mu * U ** 2 / h)
 
 
-def _supg_tau(basis, flow: EnergyFlow, R: float) -> np.ndarray:
-    """SUPG's tau [m^2 K / W] at the quadrature points: h_e / (2 |beta|) xi(Pe)."""
-    m = basis.mesh
-    idx = basis.tind if basis.tind is not None else np.arange(m.t.shape[1])
-    x = m.p[:, m.t[:, idx]]                               # (2, 3, elements)
-    dth = (x[0].max(axis=0) - x[0].min(axis=0))[:, None]
-    dze = (x[1].max(axis=0) - x[1].min(axis=0))[:, None]
-    bt, bz = flow.beta_theta, flow.beta_zeta
-    speed = np.hypot(bt, bz)
-    safe = np.where(speed > 0.0, speed, 1.0)
-    he = R * (np.abs(bt) * dth + np.abs(bz) * dze) / safe     # length along the flow [m]
-    pe = speed * he / (2.0 * flow.diffusivity)
-    # coth(Pe) - 1/Pe, its series Pe/3 below 1e-3 (no cancellation)
-    xi = np.where(pe > 1e-3, 1.0 / np.tanh(np.maximum(pe, 1e-3)) - 1.0 / np.maximum(pe, 1e-3),
-                  pe / 3.0)
-    return np.where(speed > 0.0, he * xi / (2.0 * safe), 0.0)
-
-
-@BilinearForm
-def _energy_form(u, v, w):
-    # per d(theta) d(zeta): R beta.grad T v + k h grad T.grad v + R^2 s T v
-    #   + tau (beta.grad v)(beta.grad T + R s T); gradients in (theta, zeta)
-    bu = w["bt"] * u.grad[0] + w["bz"] * u.grad[1]
-    bv = w["bt"] * v.grad[0] + w["bz"] * v.grad[1]
-    return (w["R"] * bu * v + w["D"] * (u.grad[0] * v.grad[0] + u.grad[1] * v.grad[1])
-            + w["R"] ** 2 * w["s"] * u * v + w["tau"] * bv * (bu + w["R"] * w["s"] * u))
-
-
-@LinearForm
-def _energy_load(v, w):
-    # R^2 f v + tau (beta.grad v) R f: the source f and its SUPG share
-    bv = w["bt"] * v.grad[0] + w["bz"] * v.grad[1]
-    return w["R"] ** 2 * w["f"] * v + w["tau"] * bv * w["R"] * w["f"]
-
-
-@LinearForm
-def _value_load(v, w):
-    return w["R"] ** 2 * w["f"] * v
+def film_flow(bearing, state, basis, P, fraction, viscosity, lubricant) -> EnergyFlow:
+    """:class:`EnergyFlow` at ``basis``'s quadrature points from the nodal dimensionless
+    pressure ``P`` (p = mu0 (R/c)^2 P), nodal film ``fraction`` (1 outside a JFO cavity)
+    and the viscosity ``viscosity`` [Pa s] at the quadrature points (elements x points);
+    ``basis`` on a mesh fixed in the bearing (its angle phi = theta + gamma, as the
+    thermal film's: :func:`bearingfem.routes.thd.thermal_operator`)."""
+    f = basis.interpolate(P)
+    return _flow(bearing, state, basis.global_coordinates()[0] - state.gamma,
+                 np.asarray(f.grad),
+                 np.asarray(basis.interpolate(fraction)), np.asarray(viscosity), lubricant)
 
 
 @cached(maxsize=16)
@@ -256,6 +260,176 @@ def arc_basis(mesh, edges: FilmEdges):
     b = mesh.basis
     return Basis(b.mesh, b.elem, intorder=4 if mesh.basis.Nbfun == 3 else 6,
                  elements=edges.elements, dofs=b.dofs)
+
+
+@dataclass(frozen=True, eq=False)
+class EnergyOperator:
+    """The energy equation's tables on one film mesh, built once (:func:`energy_operator`):
+    the arcs' basis functions and gradients at the quadrature points, the maps from nodal
+    values to those points, and where each element entry lands in the matrix. A solve
+    assembles by array products on these tables (no form is re-run): the coefficients
+    change at every thermal iteration, the mesh does not."""
+
+    basis: object              # the arcs' basis (:func:`arc_basis`)
+    edges: FilmEdges
+    theta: np.ndarray          # (elements, points) the mesh's angle at the quadrature points
+    dx: np.ndarray             # (elements, points) quadrature weight times |det J|
+    phi: np.ndarray            # (nb, elements, points) basis values
+    grad: np.ndarray           # (nb, 2, elements, points) basis gradients (theta, zeta)
+    cell: np.ndarray           # (2, elements, 1) the element's extent in theta and zeta
+    value: sp.csr_matrix       # nodal -> values at the points (flattened)
+    d_theta: sp.csr_matrix     # nodal -> d/dtheta at the points
+    d_zeta: sp.csr_matrix      # nodal -> d/dzeta at the points
+    indptr: np.ndarray         # the matrix pattern (all dofs)
+    indices: np.ndarray
+    positions: np.ndarray      # (nb * nb * elements,) place of each local entry
+    free_rows: np.ndarray      # (nnz,) 1.0 on entries of free rows, 0.0 on held rows
+    held: np.ndarray
+    N: int
+    band: int                  # half-bandwidth of the pattern in the band order
+    band_rank: np.ndarray      # (N,) each dof's place in the band order
+    band_index: np.ndarray     # (nnz,) each pattern entry's place in the band storage
+    affine_p1: bool            # linear triangles: gradients constant on each element
+
+    def band_solve(self, data: np.ndarray, rhs: np.ndarray) -> np.ndarray:
+        """Solve M x = rhs, M the pattern's matrix of ``data`` with its held rows zero and
+        ones on their diagonal; ``rhs`` (N,) or (N, k). Why a band: the dofs ordered
+        along theta, then zeta, give a half-bandwidth of about n_z, and a banded LU
+        (LAPACK) costs a fifth of a general sparse one here."""
+        n, w = self.N, self.band
+        ab = np.bincount(self.band_index, data * self.free_rows,
+                         minlength=(2 * w + 1) * n).reshape(2 * w + 1, n)
+        ab[w, self.band_rank[self.held]] = 1.0
+        x = solve_banded((w, w), ab, np.asarray(rhs)[self.band_order], overwrite_ab=True,
+                         check_finite=False)
+        return x[self.band_rank]
+
+    @property
+    def band_order(self) -> np.ndarray:
+        return np.argsort(self.band_rank)
+
+    def at_points(self, T: np.ndarray) -> np.ndarray:
+        return (self.value @ T).reshape(self.dx.shape)
+
+    def gradient(self, P: np.ndarray) -> np.ndarray:
+        """(2, elements, points) d/dtheta, d/dzeta of nodal ``P``."""
+        return np.stack([(self.d_theta @ P).reshape(self.dx.shape),
+                         (self.d_zeta @ P).reshape(self.dx.shape)])
+
+    def flow(self, bearing, state, P, fraction, viscosity, lubricant) -> EnergyFlow:
+        """:func:`film_flow` on the arcs, by the operator's maps (the mesh fixed in the
+        bearing: the film angle is the mesh's angle less gamma)."""
+        return _flow(bearing, state, self.theta - state.gamma, self.gradient(P),
+                     self.at_points(fraction),
+                     np.asarray(viscosity), lubricant)
+
+    def matrix(self, local: np.ndarray) -> sp.csr_matrix:
+        """The (N, N) matrix of element matrices ``local`` (nb, nb, elements)."""
+        n = len(self.indices)
+        data = np.bincount(self.positions, local.ravel(), minlength=n)
+        return sp.csr_matrix((data, self.indices, self.indptr), shape=(self.N, self.N))
+
+    def vector(self, local: np.ndarray) -> np.ndarray:
+        """The (N,) vector of element vectors ``local`` (nb, elements)."""
+        dofs = self.basis.element_dofs
+        return np.bincount(dofs.ravel(), local.ravel(), minlength=self.N)
+
+
+def energy_operator(mesh) -> EnergyOperator:
+    """The :class:`EnergyOperator` of a film mesh (cached per mesh)."""
+    edges = film_edges(mesh)
+    return _energy_operator(mesh, edges)
+
+
+@cached(maxsize=16)
+def _energy_operator(mesh, edges: FilmEdges) -> EnergyOperator:
+    basis = arc_basis(mesh, edges)
+    nb, N = basis.Nbfun, basis.N
+    dofs = basis.element_dofs                                 # (nb, elements)
+    phi = np.array([np.asarray(basis.basis[i][0]) for i in range(nb)])
+    grad = np.array([np.asarray(basis.basis[i][0].grad) for i in range(nb)])
+    E, Q = basis.dx.shape
+    rows = np.repeat(np.arange(E * Q), nb)
+    cols = np.repeat(dofs.T, Q, axis=0).ravel()
+
+    def interp(values):                                      # (nb, E, Q) -> (E*Q, N)
+        return sp.csr_matrix((np.moveaxis(values, 0, -1).ravel(), (rows, cols)),
+                             shape=(E * Q, N))
+    m = basis.mesh
+    x = m.p[:, m.t[:, basis.tind]]                            # (2, 3, elements)
+    cell = (x.max(axis=1) - x.min(axis=1))[:, :, None]
+    r = np.broadcast_to(dofs[:, None, :], (nb, nb, E)).ravel()
+    c = np.broadcast_to(dofs[None, :, :], (nb, nb, E)).ravel()
+    pattern = sp.csr_matrix((np.ones(len(r)), (r, c)), shape=(N, N))
+    pattern.sum_duplicates()
+    pattern.sort_indices()
+    keys = np.repeat(np.arange(N, dtype=np.int64), np.diff(pattern.indptr)) * N \
+        + pattern.indices
+    positions = np.searchsorted(keys, r.astype(np.int64) * N + c)
+    held = edges.held
+    free_rows = np.ones(pattern.nnz)
+    is_held = np.zeros(N, bool)
+    is_held[held] = True
+    free_rows[np.repeat(is_held, np.diff(pattern.indptr))] = 0.0
+    # the band order: along theta, then zeta (or the other way, whichever band is narrower)
+    rows_all = np.repeat(np.arange(N), np.diff(pattern.indptr))
+    best = None
+    for major, minor in ((mesh.theta, mesh.zeta), (mesh.zeta, mesh.theta)):
+        order = np.lexsort((np.round(minor, 12), np.round(major, 12)))
+        rank = np.empty(N, int)
+        rank[order] = np.arange(N)
+        w = int(np.max(np.abs(rank[rows_all] - rank[pattern.indices])))
+        if best is None or w < best[0]:
+            best = (w, rank)
+    band, rank = best
+    band_index = (band + rank[rows_all] - rank[pattern.indices]) * N + rank[pattern.indices]
+    return EnergyOperator(
+        basis=basis, edges=edges, theta=np.asarray(basis.global_coordinates()[0]),
+        dx=np.asarray(basis.dx), phi=phi, grad=grad, cell=cell, value=interp(phi),
+        d_theta=interp(grad[:, 0]), d_zeta=interp(grad[:, 1]), indptr=pattern.indptr,
+        indices=pattern.indices, positions=positions, free_rows=free_rows, held=held, N=N,
+        band=band, band_rank=rank, band_index=band_index,
+        affine_p1=bool(nb == 3 and np.allclose(grad, grad[..., :1], rtol=1e-12, atol=0.0)))
+
+
+def _supg_tau(op: EnergyOperator, flow: EnergyFlow, R: float) -> np.ndarray:
+    """SUPG's tau [m^2 K / W] at the quadrature points: h_e / (2 |beta|) xi(Pe)."""
+    bt, bz = flow.beta_theta, flow.beta_zeta
+    speed = np.hypot(bt, bz)
+    safe = np.where(speed > 0.0, speed, 1.0)
+    he = R * (np.abs(bt) * op.cell[0] + np.abs(bz) * op.cell[1]) / safe   # along the flow [m]
+    pe = speed * he / (2.0 * flow.diffusivity)
+    # coth(Pe) - 1/Pe, its series Pe/3 below 1e-3 (no cancellation)
+    xi = np.where(pe > 1e-3, 1.0 / np.tanh(np.maximum(pe, 1e-3)) - 1.0 / np.maximum(pe, 1e-3),
+                  pe / 3.0)
+    return np.where(speed > 0.0, he * xi / (2.0 * safe), 0.0)
+
+
+def energy_system(op: EnergyOperator, flow: EnergyFlow, s, f, R: float):
+    """(A, b, test) of the Galerkin/SUPG energy equation with reaction ``s`` [W/(m^2 K)]
+    and source ``f`` [W/m^2] at the quadrature points, per d(theta) d(zeta):
+
+        a(T, v) = int (R v + tau beta.grad v) (beta.grad T + R s T) + k h grad T.grad v
+        l(v) = int (R v + tau beta.grad v) R f
+
+    (gradients in theta, zeta), ``test`` the weighted test functions (R v + tau beta.grad
+    v) dx (nb, elements, points) for further loads."""
+    tau = _supg_tau(op, flow, R)
+    bt, bz = flow.beta_theta, flow.beta_zeta
+    g = op.grad
+    bu = bt * g[:, 0] + bz * g[:, 1]                          # (nb, E, Q) beta.grad phi
+    test = (R * op.phi + tau * bu) * op.dx
+    Ddx = flow.diffusivity * op.dx
+    local = np.einsum("ieq,jeq->ije", test, bu + R * s * op.phi)
+    if op.affine_p1:
+        # gradients constant on each element: the diffusion's points summed first
+        g1, D = g[:, :, :, 0], np.sum(Ddx, axis=1)
+        local += np.einsum("ie,je->ije", g1[:, 0] * D, g1[:, 0])
+        local += np.einsum("ie,je->ije", g1[:, 1] * D, g1[:, 1])
+    else:
+        local += np.einsum("ieq,jeq->ije", g[:, 0] * Ddx, g[:, 0])
+        local += np.einsum("ieq,jeq->ije", g[:, 1] * Ddx, g[:, 1])
+    return op.matrix(local), op.vector(np.einsum("ieq,eq->ie", test, R * f)), test
 
 
 @dataclass(frozen=True, eq=False)
@@ -277,68 +451,68 @@ class Mixing:
                    weights=tuple(np.zeros(0) for _ in temperatures))
 
 
-def solve_energy(bearing, basis, edges: FilmEdges, flow: EnergyFlow, mixing: Mixing,
-                 walls, half: bool = False) -> EnergySolution:
-    """Solve the energy equation (module docstring) on the arcs' ``basis``.
+def solve_energy(bearing, op: EnergyOperator, flow: EnergyFlow, mixing: Mixing, walls,
+                 half: bool = False, linearised=None, storage=None) -> EnergySolution:
+    """Solve the energy equation (module docstring) on the arcs of ``op``
+    (:func:`energy_operator`).
 
     mixing : :class:`Mixing`: each groove's (or the supply line's) inlet temperature, held
         at its inflow edge and interior
     walls : (H_b [W/(m^2 K)], T_a [K], H_j [W/(m^2 K)], T_j [K] or None: zero net flux)
     half : the mesh is the half z >= 0 (the balance is doubled to the whole bearing)
+    linearised : None, or (a, T0) at the quadrature points: the dissipation is taken as
+        Phi + a (T - T0) (its first-order change with the temperature [W/(m^2 K)] about
+        T0), the Newton step of a coupled solve; the balance's ``dissipation`` is that
+        linearised one
+    storage : None (steady), or (C, T_old) at the quadrature points: one backward-Euler
+        step of rho cp h dT/dt, C = rho cp h / dt [W/(m^2 K)] and T_old the last step's
+        temperatures [K] (the balance's ``stored``)
     """
     R = bearing.radius
     hb, ta, hj, tj = walls
-    tau = _supg_tau(basis, flow, R)
-    common = dict(bt=flow.beta_theta, bz=flow.beta_zeta, tau=tau, R=R)
-    A = _energy_form.assemble(basis, D=flow.diffusivity, s=hb + hj, **common).tocsr()
-    b = _energy_load.assemble(basis, f=flow.dissipation + hb * ta, **common)
-    N = basis.N
-    held = edges.held
-    free = np.setdiff1d(np.arange(N), held)
-    # held rows: T_i - sum(w T_out) = fresh, one per held dof of each groove
-    rows, cols, vals, rhs_held = [], [], [], np.zeros(N)
-    for k, (d_in, d_int) in enumerate(zip(edges.inflow, edges.interior)):
-        d = np.concatenate([d_in, d_int]).astype(int)
-        src = np.asarray(mixing.dofs[k], int)
-        rows.append(np.repeat(d, 1 + len(src)))
-        cols.append(np.column_stack([d, np.broadcast_to(src, (len(d), len(src)))]).ravel())
-        vals.append(np.tile(np.concatenate([[1.0], -np.asarray(mixing.weights[k])]), len(d)))
-        rhs_held[d] = mixing.fresh[k]
-    rows, cols, vals = (np.concatenate(x) for x in (rows, cols, vals))
-    H = sp.csr_matrix((vals, (rows, cols)), shape=(N, N))[held]
+    s, f = hb + hj, flow.dissipation + hb * ta
+    if linearised is not None:
+        a, T0 = linearised
+        s, f = s - a, f - a * T0
+    if storage is not None:
+        s, f = s + storage[0], f + storage[0] * storage[1]
+    A, b, test = energy_system(op, flow, s, f, R)
+    N, held = op.N, op.held
+    rhs = b.copy()
     zero_flux = hj > 0.0 and tj is None
     t_journal = ta if tj is None else float(tj)
-    cj = -_energy_load.assemble(basis, f=np.full_like(tau, hj), **common) if hj > 0.0 \
-        else np.zeros(N)
+    # the journal's share of the wall term, -int (R v + tau beta.grad v) R H_j T_j
+    c_all = -op.vector(np.sum(test, axis=2) * R * hj) if hj > 0.0 else np.zeros(N)
+    cj = c_all.copy()
+    cj[held] = 0.0
+    if not zero_flux:
+        rhs -= cj * t_journal
+    # held rows: T_i - sum(w T_out) = fresh per groove; the band holds T_i, the carried
+    # share is a rank-one term per groove, U_k V_k^T (U_k: the groove's held rows,
+    # V_k: -w on its upstream exit), taken by Woodbury's identity
+    G = len(op.edges.inflow)
+    U, V = np.zeros((N, G)), np.zeros((N, G))
+    for k, (d_in, d_int) in enumerate(zip(op.edges.inflow, op.edges.interior)):
+        d = np.concatenate([d_in, d_int]).astype(int)
+        rhs[d] = mixing.fresh[k]
+        U[d, k] = 1.0
+        V[np.asarray(mixing.dofs[k], int), k] = -np.asarray(mixing.weights[k])
+    X = op.band_solve(A.data, np.column_stack([rhs, U, cj]))
+    Z = X[:, 1:G + 1]
+    small = np.eye(G) + V.T @ Z
+    X = X - Z @ np.linalg.solve(small, V.T @ X)
+    T, t_cj = X[:, 0], X[:, -1]
     if zero_flux:
-        # the journal temperature as one more unknown: column cj, constraint row mj
-        mj = _value_load.assemble(basis, f=np.full_like(tau, hj), R=R)
-        K = sp.bmat([[A[free], sp.csr_matrix(cj[free][:, None])],
-                     [H, None],
-                     [sp.csr_matrix(mj[None, :]), sp.csr_matrix([[-float(mj.sum())]])]],
-                    format="csc")
-        x = splu(K).solve(np.concatenate([b[free], rhs_held[held], [0.0]]))
-        T, t_journal = x[:-1], float(x[-1])
-    else:
-        K = sp.vstack([A[free], H], format="csc")
-        T = splu(K).solve(np.concatenate([b[free] - cj[free] * t_journal, rhs_held[held]]))
-    bj = cj * t_journal
+        # the journal temperature as one more unknown: K T + cj t = rhs with the row
+        # int H_j (T - t) dA = 0, eliminated: T = T0 - t T_c, t = m.T0 / (m.T_c + sum m)
+        mj = op.vector(np.sum(op.phi * op.dx, axis=2) * R ** 2 * hj)
+        t_journal = float(mj @ T / (mj @ t_cj + mj.sum()))
+        T = T - t_journal * t_cj
     if not np.all(np.isfinite(T)):
         raise ValueError("the energy equation gave a non-finite temperature (a film "
                          "without flow through it?)")
-    # the balance: rows summed with v = 1 (module docstring)
-    reactions = A @ T + bj - b
-    factor = 2.0 if half else 1.0
-    Tq = basis.interpolate(T)
-    dA = R ** 2 * np.asarray(basis.dx)
-    Tv, gT = np.asarray(Tq), np.asarray(Tq.grad)
-    convected = float(np.sum(R * (flow.beta_theta * gT[0] + flow.beta_zeta * gT[1])
-                             * np.asarray(basis.dx)))
-    dissipation = float(np.sum(flow.dissipation * dA))
-    bush = float(np.sum(hb * (Tv - ta) * dA))
-    journal = float(np.sum(hj * (Tv - t_journal) * dA))
-    grooves = -float(np.sum(reactions[held]))
-    residual = dissipation - (convected + bush + journal + grooves)
-    balance = EnergyBalance(*(factor * v for v in (dissipation, convected, bush, journal,
-                                                    grooves, residual)))
-    return EnergySolution(temperature=T, journal_temperature=t_journal, balance=balance)
+    phi = flow.dissipation if linearised is None else \
+        flow.dissipation + linearised[0] * (op.at_points(T) - linearised[1])
+    return EnergySolution(temperature=T, journal_temperature=t_journal,
+                          parts=(bearing.radius, op, flow, phi, walls, A, b, c_all, half,
+                                 storage))

@@ -92,7 +92,8 @@ class ThermalRecord:
     """What a thermal solve found besides the film: the energy balance [W], the journal's
     temperature [K], each groove's (or the supply line's) inlet temperature [K], the
     viscosity [Pa s] at the nodes and at the film's quadrature points (the field the film
-    was solved with), the fixed point's iterations and last changes (temperature [K],
+    was solved with), the film solves of the thermal iteration (an equilibrium's: over its
+    whole search) and the last changes (temperature [K],
     pressure relative to its peak)."""
 
     balance: object            # the energy equation's EnergyBalance [W]

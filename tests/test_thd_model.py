@@ -1,0 +1,154 @@
+"""The mechanism's thermal film ("fem-thd"): its isothermal limit is the "fem" model's run,
+its film steps keep the energy balance (each step to round-off, and the stored heat
+summed over the steps is the film's change of heat content), its steps settle on the
+steady thermal film, and a scene names its oil and heat exchanges."""
+import math
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from bearingfem import Bearing, Groove, JournalState, Lubricant
+from bearingfem.film import film_thickness
+from bearingfem.models import FILM_MODELS
+from bearingfem.routes.thd import solve_thd, thermal_operator
+from bearingfem.thermal import Thermal
+from bearingfem.thermal.energy import energy_operator
+
+VG32 = Lubricant.iso_vg(32)
+SUPPLY = 313.15
+BEARING = Bearing(radius=0.025, length=0.025, clearance=50e-6,
+                  viscosity=float(VG32.viscosity_at(temperature=SUPPLY)))
+GROOVES = (Groove(angle=0.0, width=math.radians(20.0)),
+           Groove(angle=math.pi, width=math.radians(20.0)))
+OMEGA = 3000.0 * 2.0 * math.pi / 60.0
+MESH = dict(n_theta=48, n_z=8, grooves=GROOVES)
+THERMAL = Thermal(SUPPLY, carry_over=0.8)
+
+
+def _orbit(k):
+    """A whirling, squeezing journal at step k of 1 ms."""
+    t = 1e-3 * k
+    w = 2.0 * math.pi * 50.0
+    return t, JournalState(eps=0.6 + 0.1 * math.sin(w * t), omega=OMEGA,
+                           gamma=-1.0 + 0.2 * math.sin(0.5 * w * t),
+                           eps_dot=0.1 * w * math.cos(w * t),
+                           gamma_dot=0.1 * w * math.cos(0.5 * w * t))
+
+
+def test_isothermal_limit_is_the_fem_models_run():
+    """An oil without a temperature law: along an orbit with squeeze and whirl, the
+    fem-thd run's force (film steps committed at every state) is the "fem" model's run
+    with Reynolds' condition to 1e-10 of its size (2e-13 measured), and the steady force
+    at a state alone too. Fails if the bearing-fixed mesh's film is not turned into the
+    journal's frame (gamma), or the kept viscosity is not taken relative to the bearing's."""
+    flat = Lubricant(0.0278, mass_density=870.0, specific_heat=1950.0, conductivity=0.13)
+    oily = replace(BEARING, viscosity=0.0278)     # the bearing's own is a scale only
+    thd = FILM_MODELS["fem-thd"].along_run(BEARING, dict(MESH, lubricant=flat,
+                                                         thermal=THERMAL))
+    fem = FILM_MODELS["fem"].along_run(oily, dict(MESH, cavitation="reynolds"))
+    for k in range(8):
+        t, state = _orbit(k)
+        a, b = np.array(thd.force(state, t)), np.array(fem.force(state, t))
+        assert np.max(np.abs(a - b)) < 1e-10 * np.hypot(*b), (k, a, b)
+        thd.commit(state, t)
+        fem.commit(state, t)
+    _, state = _orbit(3)
+    steady = FILM_MODELS["fem-thd"].film_force(BEARING, state, lubricant=flat,
+                                               thermal=THERMAL, **MESH)
+    iso = FILM_MODELS["fem"].film_force(oily, state, cavitation="reynolds", **MESH)
+    assert np.max(np.abs(np.subtract(steady, iso))) < 1e-10 * np.hypot(*iso)
+
+
+def _heat_content(state, T):
+    """int rho cp h T dA over the arcs [J] (the energy equation's storage term's
+    integrand, on its own points)."""
+    op = thermal_operator(BEARING, state, MESH["n_theta"], MESH["n_z"], grooves=GROOVES)
+    eop = energy_operator(op.mesh)
+    h = BEARING.clearance * film_thickness(eop.theta - state.gamma, state.eps)
+    return float(np.sum(VG32.mass_density * VG32.specific_heat * h * eop.at_points(T)
+                        * BEARING.radius ** 2 * eop.dx))
+
+
+def test_film_steps_keep_the_energy_balance_and_settle_on_the_steady_film():
+    """From the supply temperature at a fixed state, film steps of 20 ms: each step's
+    balance dissipation = convected + grooves + stored closes to 1e-10; the stored heat
+    summed over the steps (times dt) is the film's change of heat content int rho cp h T
+    dA to 1e-10 (backward Euler telescopes); the oil heats monotonically towards, and
+    after 40 steps sits on, the steady thermal film's temperatures (1e-6 K). Fails if the
+    storage term's old temperatures enter with the wrong sign or the step's dt is not
+    the time since the last film step."""
+    state = JournalState(eps=0.7, omega=OMEGA, gamma=-1.0)
+    run = FILM_MODELS["fem-thd"].along_run(BEARING, dict(MESH, lubricant=VG32,
+                                                         thermal=THERMAL, initial="supply"))
+    run.start(state, 0.0)
+    T0 = run.snapshot().temperature
+    dt, stored, peaks = 2e-2, 0.0, []
+    for k in range(1, 41):
+        step = run.commit(state, k * dt)
+        bal = step.solution.thermal.balance
+        assert abs(bal.residual) < 1e-10 * bal.dissipation
+        stored += bal.stored * dt
+        peaks.append(step.solution.temperature_max)
+    T = run.snapshot().temperature
+    change = _heat_content(state, T) - _heat_content(state, T0)
+    assert stored == pytest.approx(change, rel=1e-10)
+    assert np.all(np.diff(peaks[:10]) > 0.0)
+    steady = solve_thd(BEARING, state, MESH["n_theta"], MESH["n_z"], lubricant=VG32,
+                       thermal=THERMAL, grooves=GROOVES)
+    assert np.max(np.abs(T - steady.temperature)) < 1e-6
+    assert abs(bal.stored) < 1e-6 * bal.dissipation
+
+
+def test_run_starts_on_the_steady_film_and_snapshots_restore():
+    """initial "steady": the first film is the steady thermal film's (force to 1e-10);
+    a snapshot restored gives the same next film step (bit for bit)."""
+    _, state = _orbit(0)
+    run = FILM_MODELS["fem-thd"].along_run(BEARING, dict(MESH, lubricant=VG32,
+                                                         thermal=THERMAL))
+    f = np.array(run.force(state, 0.0))
+    steady = FILM_MODELS["fem-thd"].film_force(BEARING, state, lubricant=VG32,
+                                               thermal=THERMAL, **MESH)
+    assert np.max(np.abs(f - steady)) < 1e-10 * np.hypot(*steady)
+    kept = run.snapshot()
+    t, s1 = _orbit(1)
+    a = run.commit(s1, t)
+    run.restore(kept)
+    b = run.commit(s1, t)
+    np.testing.assert_array_equal(a.solution.temperature, b.solution.temperature)
+    assert a.force_local == b.force_local
+
+
+@pytest.mark.parametrize("options, name", [
+    (dict(MESH, thermal=THERMAL), "lubricant"),
+    (dict(n_theta=48, n_z=8, lubricant=VG32, thermal=THERMAL), "grooves"),
+    (dict(MESH, lubricant=VG32, thermal=THERMAL, initial="cold"), "initial"),
+])
+def test_bad_options_name_the_parameter(options, name):
+    _, state = _orbit(0)
+    with pytest.raises(ValueError, match=name):
+        FILM_MODELS["fem-thd"].along_run(BEARING, options).start(state, 0.0)
+
+
+def test_reversed_rotation_is_refused_at_a_film_step():
+    run = FILM_MODELS["fem-thd"].along_run(BEARING, dict(MESH, lubricant=VG32,
+                                                         thermal=THERMAL))
+    t, state = _orbit(0)
+    run.start(state, t)
+    with pytest.raises(ValueError, match="omega"):
+        run.commit(replace(state, omega=-OMEGA), 1e-3)
+
+
+def test_scene_names_the_oil_and_the_heat_exchanges():
+    """[effects.lubrication] with model "fem-thd": oil = "ISO VG 32" is the grade's
+    Lubricant, a [thermal] table the Thermal; a grade that is not one is refused by name."""
+    from mechanism.scene import _lubrication, _Table
+    table = dict(model="fem-thd", n_theta=48, n_z=8, oil="ISO VG 32",
+                 grooves=[dict(angle=0.0, width=0.35), dict(angle=math.pi, width=0.35)],
+                 thermal=dict(supply_temperature=SUPPLY, carry_over=0.8))
+    lub = _lubrication(_Table(dict(table), "effects.lubrication"))
+    assert lub.options["lubricant"].viscosity_at(temperature=SUPPLY) == \
+        pytest.approx(VG32.viscosity_at(temperature=SUPPLY), rel=1e-14)
+    assert lub.options["thermal"] == THERMAL
+    with pytest.raises(ValueError, match="effects.lubrication.oil"):
+        _lubrication(_Table(dict(table, oil="ISO VG 33"), "effects.lubrication"))
