@@ -126,8 +126,8 @@ def test_ehd_film_is_the_3d_solids():
 
 def test_rigid_limit():
     """E = 1e30 Pa: the Fourier solid does not move (< 1e-20 m) and the EHD film is the
-    rigid film (load to 1e-9) at a light state. Fails with the m = 0 block's torsion
-    left free (singular) or the spectrum's scale off by the solid's modulus."""
+    rigid film (load to 1e-9) at a light state. Fails with the section's Lame parameters
+    fixed at bronze's (the bush's modulus ignored)."""
     light = JournalState(eps=0.6, gamma=0.2, omega=250.0)
     stiff = ElasticBush(outer_radius=B, modulus=1e30, poisson=0.34)
     ehd = solve_reynolds(SEED, light, 48, 4, bush=stiff)
@@ -138,7 +138,8 @@ def test_rigid_limit():
 
 def test_names_and_refine_theta():
     """"solid-3d" is a model; the Fourier solid is exact in theta, so ``refine_theta``
-    does not change it; its columns are real and even in theta (the bush's mirror)."""
+    does not change it; its columns are real and even in theta (the bush's mirror).
+    Fails with the columns turned by one film cell."""
     bush = ElasticBush(**BRONZE)
     a = bush_compliance(bush, R, L, 16, 3, n_radial=2).columns
     b = bush_compliance(bush, R, L, 16, 3, n_radial=2, refine_theta=2).columns
