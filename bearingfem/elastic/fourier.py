@@ -121,22 +121,67 @@ def banded(stiffness, load, held, surface, read, rank) -> Banded:
 
 @dataclass(frozen=True, eq=False)
 class SectionSystem:
-    """The (r, z) section of the bush, K_m = K_0 + m K_1 + m^2 K_2 in band storage on
-    the dofs free at m > 0 (``harmonic``) and at m = 0 (``axisymmetric``: the torsion V
-    held as well)."""
+    """The (r, z) section of the bush: K_0, K_1, K_2 (sparse, all dofs), the film's load
+    (dofs, n_z), the dofs held (``held``; at m = 0 ``torsion``, V held as well), the inner
+    surface's U dofs (increasing z) and the film nodes among them (``read``), each dof's
+    band rank and radial line, and the radial lines' depth below the film [m]."""
 
-    harmonic: Banded
-    axisymmetric: Banded
+    stiffness: tuple
+    load: np.ndarray
+    held: np.ndarray
+    torsion: np.ndarray
+    surface: np.ndarray
+    read: np.ndarray
+    rank: np.ndarray
+    radial: np.ndarray
+    depth: np.ndarray
+    radius: float
+    decay: float | None
+
+    def lines(self, m: int) -> int:
+        """Radial lines harmonic m is solved on: those above the depth ``decay`` R / m
+        and the first below it, held (all of them for m = 0 or ``decay=None``)."""
+        if m == 0 or self.decay is None:
+            return self.depth.size
+        reach = self.decay * self.radius / m
+        return int(min(self.depth.size, np.searchsorted(self.depth, reach) + 1))
+
+    def banded(self, m: int) -> Banded:
+        """The band system of harmonic m (its held dofs and depth)."""
+        held = self.torsion if m == 0 else self.held
+        deep = np.flatnonzero(self.radial >= self.lines(m) - 1)
+        if self.lines(m) < self.depth.size:
+            held = np.union1d(held, deep)
+        return banded(self.stiffness, self.load, held, self.surface, self.read, self.rank)
 
     def block(self, m: int) -> np.ndarray:
         """G_m (n_z, n_z) [m/Pa]: U at film node l under the unit hat load of node k
         (the film pressure P_k(z) cos m theta): one banded Cholesky factorisation (K_m is
         symmetric positive definite once the outer surface is held)."""
-        return (self.axisymmetric if m == 0 else self.harmonic).block(m)
+        return self.banded(m).block(m)
+
+    def blocks(self, harmonics) -> np.ndarray:
+        """G_m (len(harmonics), n_z, n_z) [m/Pa], harmonics of one depth sharing their
+        band system."""
+        harmonics = [int(m) for m in harmonics]
+        out = np.empty((len(harmonics), self.read.size, self.load.shape[1]))
+        key = [(m == 0, self.lines(m)) for m in harmonics]
+        for level in set(key):
+            chosen = [i for i, k in enumerate(key) if k == level]
+            system = self.banded(harmonics[chosen[0]])
+            for i in chosen:
+                out[i] = system.block(harmonics[i])
+        return out
+
+
+#: Depth, in R / m, below which harmonic m is held (its field decays like
+#: (1 + m d / R) e^(-m d / R) with the depth d: 2e-6 at 16); None solves every harmonic
+#: on the whole wall. Measured in docs/elastic-bush.md.
+DECAY = 16.0
 
 
 def section_system(bush, radius: float, film: FilmGrid, refine_z: int, n_radial: int,
-                   grading: float) -> SectionSystem:
+                   grading: float, decay: float | None = DECAY) -> SectionSystem:
     """Assemble the section of ``bush`` under the film grid: bilinear quadrilaterals,
     ``n_radial`` cells across the wall (graded as the 3-D solid's), ``refine_z`` cells
     per film cell along z."""
@@ -176,19 +221,20 @@ def section_system(bush, radius: float, film: FilmGrid, refine_z: int, n_radial:
     read = np.arange(0, surface.size, refine_z)             # film nodes among them
     # dof rank: axial layer, then radial layer, then component
     layer = np.searchsorted(heights, z - 1e-9 * film.length)
-    radial = np.searchsorted(radii, r - tol)
-    node_rank = (layer * radii.size + radial) * 3
-    rank = np.empty(basis.N, int)
+    line = np.searchsorted(radii, r - tol)
+    node_rank = (layer * radii.size + line) * 3
+    rank, radial = np.empty(basis.N, int), np.empty(basis.N, int)
     for c in range(3):
         rank[basis.nodal_dofs[c]] = node_rank + c
+        radial[basis.nodal_dofs[c]] = line
     torsion = np.union1d(held, basis.nodal_dofs[1])
-    return SectionSystem(*(banded(stiffness, rhs, h, surface, read, rank)
-                           for h in (held, torsion)))
+    return SectionSystem(stiffness, rhs, held, torsion, surface, read, rank, radial,
+                         radii - radius, radius, decay)
 
 
 def harmonic_blocks(system: SectionSystem, harmonics) -> np.ndarray:
     """G_m (len(harmonics), n_z, n_z) [m/Pa] for each harmonic m >= 0."""
-    return np.stack([system.block(int(m)) for m in harmonics])
+    return system.blocks(harmonics)
 
 
 def fourier_spectrum(system: SectionSystem, n_theta: int, aliases: int | None) -> np.ndarray:
