@@ -12,13 +12,16 @@ u_z = W(r, z) cos m theta, and the strains are (cylindrical coordinates)
 integral is pi for both parts (m > 0), so per unit pi the stiffness is
 K_m = K_0 + m K_1 + m^2 K_2 (the strains are affine in m): three matrices assembled once.
 At m = 0 the sine part is the torsion V, which the film's pressure does not load: held.
-A pressure P(z) cos m theta on r = R (traction -p n = p e_r) does the work R Int P dU dz per unit pi, the same
-load vector for every m. A rigid translation (m = 1: U = 1, V = -1, W = 0) and a rigid
-tilt (m = 1: U = z, V = -z, W = -r) strain nothing (tested).
+A pressure P(z) cos m theta on r = R (traction -p n = p e_r) does the work
+R Int P dU dz per unit pi: the same load vector for every m. A rigid translation (m = 1:
+U = 1, V = -1, W = 0) and a rigid tilt (m = 1: U = z, V = -z, W = -r) strain nothing
+(tested).
 
-Each harmonic is one banded Cholesky factorisation of 3 (n_radial + 1)(n_axial + 1)
-unknowns (band ~ 3 (n_radial + 1)) with n_z right-hand sides: the block G_m (n_z x n_z) of radial deflection at the film nodes under
-a unit pressure hat at each film node's z, times cos m theta.
+Each harmonic is one banded Cholesky factorisation (band ~ 3 (n_radial + 1)) and one
+triangular band solve for the surface block of K_m^-1: the block G_m (n_z x n_z) of
+radial deflection at the film nodes under a unit pressure hat at each film node's z,
+times cos m theta. Harmonic m's field decays into the wall within a few R / m, so it is
+solved on the radial lines above the depth :data:`DECAY` R / m only.
 """
 from __future__ import annotations
 
@@ -32,8 +35,8 @@ from skfem import (Basis, BilinearForm, ElementQuad1, ElementVector, FacetBasis,
 from .mesh import radial_lines
 from .surface import FilmGrid
 
-__all__ = ["Banded", "SectionSystem", "section_system", "harmonic_blocks", "fourier_spectrum",
-           "fourier_columns"]
+__all__ = ["Banded", "SectionSystem", "section_system", "harmonic_blocks",
+           "fourier_spectrum", "fourier_columns", "DECAY"]
 
 
 def _strains(u, r):
@@ -237,7 +240,8 @@ def harmonic_blocks(system: SectionSystem, harmonics) -> np.ndarray:
     return system.blocks(harmonics)
 
 
-def fourier_spectrum(system: SectionSystem, n_theta: int, aliases: int | None) -> np.ndarray:
+def fourier_spectrum(system: SectionSystem, n_theta: int,
+                     aliases: int | None) -> np.ndarray:
     """The film grid's spectrum (n_theta // 2 + 1, n_z, n_z) [m/Pa] (numpy's rfft
     convention, that of :attr:`~.compliance.BushCompliance.spectrum`).
 
