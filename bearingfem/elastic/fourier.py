@@ -77,6 +77,10 @@ def harmonic_forms(lam: float, mu: float):
     return k0, k1, k2
 
 
+#: Groups of surface columns solved apart in :meth:`Banded.block`.
+CHUNKS = 4
+
+
 @dataclass(frozen=True, eq=False)
 class Banded:
     """K_0, K_1, K_2 on the free dofs of one set of held dofs, in LAPACK's upper band
@@ -93,14 +97,22 @@ class Banded:
         """G_m (n_z, n_z) [m/Pa]: U at film node l under the unit hat load of node k.
 
         With K_m = C^T C (banded Cholesky), the surface block of K_m^-1 is Y^T Y,
-        Y = C^-T E_s (E_s: the surface dofs' unit columns): one triangular band solve,
-        half the work of a full solve with n_z right-hand sides."""
+        Y = C^-T E_s (E_s: the surface dofs' unit columns): triangular band solves,
+        under half the work of a full solve with n_z right-hand sides."""
         band = self.bands[0] + m * self.bands[1] + (m * m) * self.bands[2]
         factor, info = dpbtrf(band, overwrite_ab=1)
         if info != 0:                        # held outer surface: K_m is positive definite
             raise ValueError(f"the section's stiffness of harmonic {m} is not positive "
                              f"definite (LAPACK dpbtrf info {info})")
-        y, _ = dtbtrs(factor, self.unit, uplo="U", trans="T")
+        # column j of Y is zero above its dof (C^T is lower triangular): solve each group
+        # of columns on the trailing rows from its first dof only (5/8 of the work)
+        y = np.zeros_like(self.unit)
+        starts = np.argmax(self.unit, axis=0)                   # increasing (z order)
+        for group in np.array_split(np.arange(starts.size), CHUNKS):
+            if group.size:
+                first = starts[group[0]]
+                y[first:, group], _ = dtbtrs(factor[:, first:], self.unit[first:, group],
+                                             uplo="U", trans="T")
         return (y[:, self.read].T @ y) @ self.load
 
 
