@@ -184,8 +184,8 @@ def bush_compliance(bush: ElasticBush, radius: float, length: float, n_theta: in
     """Build the compliance of ``bush`` under a film of radius ``radius`` and ``length``
     [m] on a film grid of ``n_theta`` nodes around and ``n_z`` along (ends included).
 
-    The bush mesh refines the film grid ``refine_theta`` times in theta and ``refine_z``
-    times in z (solid only); ``n_radial`` cells cross the wall, growing outward to
+    The bush mesh refines the film grid ``refine_theta`` times in theta (ring and 3-D
+    solid) and ``refine_z`` times in z (the solids); ``n_radial`` cells cross the wall, growing outward to
     ``grading`` times the inner one. Defaults: inner cells about as deep radially as they
     are wide, axially one cell per film cell. The solid (``model="solid"``) is solved per
     theta harmonic on its (r, z) section (:mod:`.fourier`), exact in theta, so
