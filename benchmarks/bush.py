@@ -1,11 +1,11 @@
 """The elastic bush's film-surface compliance: what it costs to build and apply, and what a
 reduced (truncated singular) basis loses, for the seed's piston pin.
 
-    python -m benchmarks.bush            # 192 x 8 film nodes, ring and solid (~1-2 min)
+    python -m benchmarks.bush            # 192 x 8 film nodes, ring and the two solids
     python -m benchmarks.bush --quick    # smoke run (48 x 4)
 
 Bush: R 10 mm, outer 16 mm, length 4 mm, bronze E 110 GPa, nu 0.34, outer surface held,
-ends free (solid). Load: a Hertz-like film pressure 0.8 GPa * sqrt(1 - (s/a)^2) over the
+ends free (solid: per circumferential harmonic; solid-3d: hexahedra). Load: a Hertz-like film pressure 0.8 GPa * sqrt(1 - (s/a)^2) over the
 arc |s| < a = 1.5 mm (3 mm), uniform along the length. "error" is max |w_k - w| / max |w|
 for that load; "operator" the reduced operator's relative 2-norm error sigma_{k+1} /
 sigma_1. Times: one run, best of ``--repeat`` for the applications (the machine is
@@ -44,7 +44,7 @@ def main(argv=None):
     print(f"{'model':6} {'build [s]':>10} {'w max [um]':>11} {'w mid [um]':>11} "
           f"{'w end [um]':>11}")
     built = {}
-    for model in ("ring", "solid"):
+    for model in ("ring", "solid", "solid-3d"):
         t = best_of(lambda: bush_compliance(ElasticBush(**BRONZE, model=model), RADIUS, LENGTH,
                                             n_theta, n_z))
         c, build = t.out, t.wall

@@ -4,7 +4,7 @@ meshes refined twice at a time, the load |F|, the peak pressure and the least fi
 against the finest mesh's value and Richardson's extrapolation of the last three, with the
 time of each cold solve (compliance build included) in one run.
 
-    python -m studies.ehd_mesh            # ring and liner to 384 x 32, solid to 192 x 16
+    python -m studies.ehd_mesh            # every bush model to 384 x 32
     python -m studies.ehd_mesh --quick    # 48 x 4 .. 96 x 8
 """
 from __future__ import annotations
@@ -21,7 +21,7 @@ BRONZE = dict(outer_radius=0.016, modulus=110e9, poisson=0.34)
 HEAVY = JournalState(eps=0.995, gamma=0.0, omega=250.0)
 MESHES = {"ring": [(48, 4), (96, 8), (192, 16), (384, 32)],
           "liner": [(48, 4), (96, 8), (192, 16), (384, 32)],
-          "solid": [(48, 4), (96, 8), (192, 16)]}
+          "solid": [(48, 4), (96, 8), (192, 16), (384, 32)]}
 
 
 def richardson(a, b, c):

@@ -97,8 +97,8 @@ def test_plane_strain_solid_converges_to_exact(n):
     cos(n theta) pressure: Lame (n = 0) and Michell (n = 2) at second order (measured
     1.99, 1.90 from 16 to 32 cells; errors 3.7e-3, 1.9e-2 at 32). Fails with the end
     faces left free (the solid then is not in plane strain: errors 0.18 and 0.16)."""
-    coarse = ring_error(n, 16, "solid", ends="plane-strain")
-    fine = ring_error(n, 32, "solid", ends="plane-strain")
+    coarse = ring_error(n, 16, "solid-3d", ends="plane-strain")
+    fine = ring_error(n, 32, "solid-3d", ends="plane-strain")
     assert fine < (5e-3 if n == 0 else 2.5e-2)
     assert np.log2(coarse / fine) > 1.8
 
@@ -112,7 +112,7 @@ def test_plane_strain_solid_equals_ring_on_the_same_section():
     bush = dict(outer_radius=OUTER, modulus=E, poisson=NU)
     ring = bush_compliance(ElasticBush(**bush, model="ring"), INNER, 0.004, 24, 3,
                            n_radial=3)
-    solid = bush_compliance(ElasticBush(**bush, model="solid", ends="plane-strain"),
+    solid = bush_compliance(ElasticBush(**bush, model="solid-3d", ends="plane-strain"),
                             INNER, 0.004, 24, 3, n_radial=3, refine_z=2)
     theta = 2 * np.pi * np.arange(24) / 24
     p = (1 + np.cos(theta) + 0.5 * np.sin(3 * theta) ** 2)[:, None] * np.ones(3)

@@ -8,11 +8,14 @@ from ..bearing import check_finite, check_positive
 
 __all__ = ["ElasticBush", "MODELS", "ENDS"]
 
-#: "solid": the bush as a 3-D body by finite elements; "ring": a plane-strain ring per
-#: axial slice of the film, slices independent; "liner": a thin liner (wall t =
-#: outer_radius - R << R) compressing locally, w = t p / M (Winkler, :mod:`.liner`).
-MODELS = ("solid", "ring", "liner")
-#: End faces of the solid: "free" (traction-free) or "plane-strain" (held axially, free to
+#: "solid": the bush as a 3-D body, by finite elements on its (r, z) section per
+#: circumferential harmonic (:mod:`.fourier`); "solid-3d": the same body by 3-D finite
+#: elements (hexahedra, one sparse LU of the whole bush: the comparison, costly);
+#: "ring": a plane-strain ring per axial slice of the film, slices independent; "liner":
+#: a thin liner (wall t = outer_radius - R << R) compressing locally, w = t p / M
+#: (Winkler, :mod:`.liner`).
+MODELS = ("solid", "ring", "liner", "solid-3d")
+#: End faces of the solid (both forms): "free" (traction-free) or "plane-strain" (held axially, free to
 #: slide radially and tangentially, so a z-independent load gives the plane-strain field).
 ENDS = ("free", "plane-strain")
 
@@ -27,8 +30,8 @@ class ElasticBush:
     outer_radius : radius of the held outer surface [m], > R (checked where R is known)
     modulus : Young's modulus E [Pa], > 0
     poisson : Poisson's ratio nu, in (-1, 0.5)
-    model : "solid", "ring" or "liner" (see :data:`MODELS`); the liner's thickness is the
-        wall, outer_radius - R
+    model : "solid", "ring", "liner" or "solid-3d" (see :data:`MODELS`); the liner's
+        thickness is the wall, outer_radius - R
     ends : end faces of the solid model (see :data:`ENDS`); the ring and liner ignore it
     """
 

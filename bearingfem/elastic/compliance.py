@@ -18,12 +18,18 @@ import numpy as np
 from ..bearing import check_positive
 from ..validation import check_int
 from .bush import ElasticBush
+from .fourier import fourier_columns
 from .liner import liner_columns
 from .ring import ring_columns
 from .solid import solid_columns, solid_system
 from .surface import FilmGrid
 
 __all__ = ["BushCompliance", "ReducedCompliance", "bush_compliance", "discretise"]
+
+#: Aliases |q| <= ALIASES of each film harmonic summed by the Fourier solid
+#: (:func:`.fourier.fourier_spectrum`); 0 is the trigonometric interpolation of the nodal
+#: pressure (docs/elastic-bush.md has the measurement that chose it).
+ALIASES = 0
 
 
 def check_pressure(pressure, shape) -> np.ndarray:
@@ -178,11 +184,14 @@ def bush_compliance(bush: ElasticBush, radius: float, length: float, n_theta: in
     """Build the compliance of ``bush`` under a film of radius ``radius`` and ``length``
     [m] on a film grid of ``n_theta`` nodes around and ``n_z`` along (ends included).
 
-    The bush mesh refines the film grid ``refine_theta`` times in theta and ``refine_z``
-    times in z (solid only); ``n_radial`` cells cross the wall, growing outward to
+    The bush mesh refines the film grid ``refine_theta`` times in theta (ring and 3-D
+    solid) and ``refine_z`` times in z (the solids); ``n_radial`` cells cross the wall, growing outward to
     ``grading`` times the inner one. Defaults: inner cells about as deep radially as they
-    are wide, axially one cell per film cell (the solid's cost is its sparse LU). The
-    liner (``model="liner"``) has no mesh: its compliance is local (:mod:`.liner`).
+    are wide, axially one cell per film cell. The solid (``model="solid"``) is solved per
+    theta harmonic on its (r, z) section (:mod:`.fourier`), exact in theta, so
+    ``refine_theta`` does not enter it; ``"solid-3d"`` meshes the whole body (its cost is
+    one 3-D sparse LU). The liner (``model="liner"``) has no mesh: its compliance is local
+    (:mod:`.liner`).
     """
     d = discretise(bush, radius, length, n_theta, n_z, refine_theta, refine_z, n_radial,
                    grading)
@@ -191,6 +200,9 @@ def bush_compliance(bush: ElasticBush, radius: float, length: float, n_theta: in
     elif bush.model == "ring":
         columns = ring_columns(bush, d.radius, d.film, d.refine_theta, d.n_radial,
                                d.grading)
+    elif bush.model == "solid":
+        columns = fourier_columns(bush, d.radius, d.film, d.refine_z, d.n_radial,
+                                  d.grading, ALIASES)
     else:
         system = solid_system(bush, d.radius, d.film, d.refine_theta, d.refine_z,
                               d.n_radial, d.grading)

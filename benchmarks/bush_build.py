@@ -1,0 +1,114 @@
+"""The solid bush's compliance build: the 3-D solid (``model="solid-3d"``, one sparse LU
+of the hexahedral body) against the solid per circumferential harmonic (``model="solid"``,
+one banded Cholesky of the (r, z) section per harmonic), time and peak memory per film
+grid, and the steady EHD film on the latter.
+
+    python -m benchmarks.bush_build                 # 48 x 8 .. 480 x 80, 3-D up to 120
+    python -m benchmarks.bush_build --old-max 96 --quick
+
+Each cell is one fresh Python process (its peak RSS, ``resource.getrusage``, over ~100 MB
+of imports): ``bush_compliance(bush, R, L, n_theta, n_z + 1)`` (the film grid of
+``solve_reynolds(..., n_theta, n_z)``), timed, then for the harmonic solid the seed pin's
+heavy state solved on it (``solve_reynolds(..., bush=compliance)``: the film operator and
+the Newton solve from the rigid film, the compliance given). "q1" is the harmonic solid
+with the alias sum to |q| <= 1 (three times the harmonics). Case: R 10 mm, L 4 mm, c 20
+um, 250 rad/s, eps 0.995, gamma 0.2, bronze bush (E 110 GPa, nu 0.34, outer radius 16 mm,
+free ends), Reynolds' condition. Times are one run on a shared machine: compare the
+ratios within one run.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+MESHES = [(48, 8), (96, 16), (120, 20), (240, 40), (480, 80)]
+
+
+def child(model: str, n_theta: int, n_z: int):
+    """Build (and for "solid", solve on) the compliance; print one JSON line."""
+    import resource
+    import time
+
+    import numpy as np
+
+    import bearingfem.elastic.compliance as compliance
+    from bearingfem import ElasticBush, JournalState, solve_reynolds
+    from bearingfem.bearing import seed_bearing
+    seed = seed_bearing(0.2)
+    base = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+    if model == "q1":
+        compliance.ALIASES = 1
+    bush = ElasticBush(outer_radius=0.016, modulus=110e9, poisson=0.34,
+                       model="solid-3d" if model == "solid-3d" else "solid")
+    t = time.perf_counter()
+    c = compliance.bush_compliance(bush, seed.radius, seed.length, n_theta, n_z + 1)
+    out = dict(build=time.perf_counter() - t, base=base,
+               build_rss=resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024)
+    if model == "solid":
+        t = time.perf_counter()
+        sol = solve_reynolds(seed, JournalState(eps=0.995, gamma=0.2, omega=250.0),
+                             n_theta, n_z, bush=c)
+        out.update(solve=time.perf_counter() - t, iterations=sol.iterations,
+                   force=float(np.linalg.norm(sol.force)), p_max=sol.pressure_max,
+                   h_min=float(np.min(sol.film_thickness)),
+                   rss=resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024)
+    print(json.dumps(out))
+
+
+def run(model: str, mesh):
+    env = dict(os.environ, PYTHONPATH=str(ROOT), OMP_NUM_THREADS="1",
+               OPENBLAS_NUM_THREADS="1", MPLBACKEND="Agg")
+    cmd = [sys.executable, str(Path(__file__).resolve()), "--child", model, *map(str, mesh)]
+    proc = subprocess.run(cmd, env=env, cwd="/tmp", capture_output=True, text=True)
+    if proc.returncode:
+        lines = proc.stderr.strip().splitlines()
+        return dict(error=lines[-1][:60] if lines else f"exit {proc.returncode}")
+    return json.loads(proc.stdout.strip().splitlines()[-1])
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--old-max", type=int, default=120,
+                        help="largest n_theta the 3-D solid is built at")
+    parser.add_argument("--q1-max", type=int, default=240,
+                        help="largest n_theta the alias sum |q| <= 1 is built at")
+    parser.add_argument("--quick", action="store_true", help="48 x 8 and 96 x 16 only")
+    parser.add_argument("--child", nargs=3, default=None)
+    args = parser.parse_args(argv)
+    if args.child:
+        model, n_theta, n_z = args.child
+        return child(model, int(n_theta), int(n_z))
+    meshes = MESHES[:2] if args.quick else MESHES
+    print(f"{'mesh':>7} {'3d[s]':>7} {'3d[MB]':>7} {'new[s]':>7} {'new[MB]':>7} "
+          f"{'q1[s]':>7} {'solve[s]':>8} {'MB':>6} {'iters':>5} {'|F|[N]':>8} "
+          f"{'p_max[MPa]':>10} {'h_min[um]':>9}")
+    rows = []
+    for mesh in meshes:
+        old = run("solid-3d", mesh) if mesh[0] <= args.old_max else None
+        q1 = run("q1", mesh) if mesh[0] <= args.q1_max else None
+        new = run("solid", mesh)
+        rows.append(dict(mesh=mesh, old=old, new=new, q1=q1))
+
+        def cell(r, key, fmt):
+            width = fmt.split(".")[0]
+            return (format("-", ">" + width) if r is None or key not in r and
+                    "error" not in r else
+                    format(r["error"][:int(width)], ">" + width) if "error" in r else
+                    format(r[key], fmt))
+        print(f"{mesh[0]:>3}x{mesh[1]:<3} {cell(old, 'build', '7.2f')} "
+              f"{cell(old, 'build_rss', '7.0f')} {cell(new, 'build', '7.2f')} "
+              f"{cell(new, 'build_rss', '7.0f')} {cell(q1, 'build', '7.2f')} "
+              f"{cell(new, 'solve', '8.2f')} {cell(new, 'rss', '6.0f')} "
+              f"{cell(new, 'iterations', '5d')} {cell(new, 'force', '8.2f')} "
+              f"{new.get('p_max', float('nan')) / 1e6:10.2f} "
+              f"{new.get('h_min', float('nan')) * 1e6:9.3f}", flush=True)
+    return rows
+
+
+if __name__ == "__main__":
+    main()
