@@ -24,7 +24,7 @@ __all__ = ["LineContact", "line_contact", "DEFAULT_NODES"]
 # limit up to Moes M ~ 100 (measured second-order: at M = 97, L = 6.8 the errors of h_c
 # are 1.2 % at 1000 nodes and 0.3 % at 2000 against the Richardson limit; docs/ehl.md).
 DEFAULT_NODES = 1500
-NODES_RANGE = (64, 6000)
+NODES_RANGE = (64, 64000)
 COARSEST = 200
 #: The load ramp: the fraction doubles; a failed ratio is cut to its square root, down to 1.02.
 LOAD_STEPS = Ratios(2.0, 1.02)

@@ -36,8 +36,8 @@ import scipy.sparse.linalg as spla
 
 from ..errors import ConvergenceError
 from .halfspace import LineCompliance
-from .multilevel import (Level, distribution_1d, interpolation, krylov_step, near_field,
-                         restriction)
+from .multilevel import (REUSE_PRODUCTS, Level, distribution_1d, interpolation, krylov_step,
+                         near_field, restriction)
 
 __all__ = ["DimensionlessLine", "NewtonRecord", "solve_dimensionless", "DENSE_NODES"]
 
@@ -72,6 +72,9 @@ DENSE_NODES = 500
 #: halved down to at most COARSE_NODES, solved there by a dense LU.
 NEAR_WIDTH = 8
 COARSE_NODES = 300
+#: Where GMRES fails (seen near the rigid limit, M ~ 0.1) grids up to this many nodes take
+#: the dense step instead (its matrix: 8 n^2 bytes).
+DENSE_FALLBACK = 3000
 UPWIND = (1.5, -2.0, 0.5)      # second-order upwind weights of q_i, q_{i-1}, q_{i-2}
 
 
@@ -104,6 +107,7 @@ class _System:
         self.dx = prob.X[1] - prob.X[0]
         self.compliance = LineCompliance(self.n, self.dx)
         self.K = None            # dense influence matrix, built on first Jacobian
+        self.levels = None       # the multilevel step's (grids, GMRES products, held rows)
         self.geometry = prob.X**2 / 2
         k = self.compliance.kernel[:3]
         self.wedge_stiffness = (1.5 * k[0] - 2.0 * k[1] + 0.5 * k[2]) / self.dx
@@ -249,20 +253,34 @@ def _dense_step(S: _System, P, H, ef, r, s, phi):
 def _krylov_step(S: _System, P, H, ef, r, s, phi, tol):
     """The same step by GMRES on all nodes, preconditioned by a V-cycle
     (:mod:`bearingfem.ehl.multilevel`): boundary and cavitated rows are dP_i = -P_i.
-    Where GMRES does not converge the step is the dense one."""
+    The V-cycle's grids are kept from the last step while its cavitated set holds and
+    GMRES was quick; if GMRES fails with kept grids they are rebuilt, and if it fails on
+    fresh ones the step is the dense one on grids up to DENSE_FALLBACK nodes (else None:
+    Newton stops and raises)."""
     n = S.n
     fixed = np.ones(n, bool)
     fixed[1:-1] = _cavitated(P[1:-1], s * r[1:-1])
     rhs = np.append(np.where(fixed, -P, -r), -phi[-1])
     scale = np.ones(n + 1)
     scale[1:n - 1] = np.where(fixed[1:-1], 1.0, s)           # GMRES's residual is Newton's phi
-    levels = _levels(S.prob, S.load, P, H, fixed)
-    JH = S.jacobian(P, H, ef)[1]
+    JP, JH = S.jacobian(P, H, ef)
+
+    def block(dP):
+        return np.where(fixed, dP, JP @ dP + JH @ S.compliance.deflection(dP))
+
     column = np.where(fixed, 0.0, np.asarray(JH.sum(axis=1)).ravel())
-    x, _ = krylov_step(levels, column, np.full(n, S.dx), rhs, scale, 1e-3 * tol)
-    if x is None:          # seen only near the rigid limit (M ~ 0.1): the dense step then
-        return _dense_step(S, P, H, ef, r, s, phi)
-    return np.append(x[1:-2], x[-1])
+    kept = S.levels
+    if kept is not None and (kept[1] > REUSE_PRODUCTS or not np.array_equal(kept[2], fixed)):
+        kept = None
+    for levels in ([kept[0]] if kept else []) + [None]:
+        levels = _levels(S.prob, S.load, P, H, fixed) if levels is None else levels
+        x, products = krylov_step(block, levels, column, np.full(n, S.dx), rhs, scale,
+                                  1e-3 * tol)
+        if x is not None:
+            S.levels = (levels, products, fixed)
+            return np.append(x[1:-2], x[-1])
+    S.levels = None
+    return _dense_step(S, P, H, ef, r, s, phi) if n <= DENSE_FALLBACK else None
 
 
 def _levels(prob: DimensionlessLine, load: float, P, H, fixed) -> list[Level]:

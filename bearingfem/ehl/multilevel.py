@@ -40,10 +40,14 @@ import scipy.sparse.linalg as spla
 __all__ = ["Level", "vcycle", "krylov_step", "interpolation", "distribution_1d",
            "distribution_2d", "near_field"]
 
+#: A V-cycle's grids are kept for the next Newton step while its cavitated set holds and
+#: GMRES took at most this many products (rebuilding them is most of a step's cost).
+REUSE_PRODUCTS = 12
 #: GMRES stops at this fraction of the Newton residual (an inexact Newton step whose
 #: error is far below the next residual: quadratic convergence is kept).
-RELATIVE = 1e-8
-MAX_PRODUCTS = 200
+RELATIVE = 1e-5
+ACCEPT = 0.5
+MAX_PRODUCTS = 300
 
 
 @dataclass(frozen=True)
@@ -69,18 +73,19 @@ def vcycle(levels: list[Level], r: np.ndarray, k: int = 0) -> np.ndarray:
     return x + level.smooth(r - level.matvec(x))
 
 
-def krylov_step(levels: list[Level], column: np.ndarray, row: np.ndarray, rhs: np.ndarray,
-                row_scale: np.ndarray, atol: float) -> tuple[np.ndarray | None, int]:
+def krylov_step(block: Callable[[np.ndarray], np.ndarray], levels: list[Level],
+                column: np.ndarray, row: np.ndarray, rhs: np.ndarray, row_scale: np.ndarray,
+                atol: float) -> tuple[np.ndarray | None, int]:
     """(x, GMRES products) for the bordered system [[A, column], [row, 0]] x = rhs, A the
-    pressure block of ``levels[0]``, to RELATIVE of |row_scale rhs| (or ``atol``); x is
-    None when GMRES does not get there in MAX_PRODUCTS.
+    pressure block (applied by ``block``), to RELATIVE of |row_scale rhs| (or ``atol``); x
+    is None when GMRES does not get there in MAX_PRODUCTS. ``levels`` may be those of an
+    earlier Newton iterate (a preconditioner needs only be near A).
 
     Right-preconditioned: A^-1 by one V-cycle, and H0 by the Schur complement
     row . A^-1 column with A^-1 column by one V-cycle too (H0 kept off the grids: its
     column is weak against the pressures' where the film is near rigid, and a coarse
     grid's error in it would be amplified)."""
     n = rhs.size
-    top = levels[0]
     z = vcycle(levels, column)
     schur = float(row @ z)
 
@@ -90,7 +95,7 @@ def krylov_step(levels: list[Level], column: np.ndarray, row: np.ndarray, rhs: n
         return np.append(x1 - y * z, y)
 
     def apply(x):
-        return np.append(top.matvec(x[:-1]) + column * x[-1], row @ x[:-1])
+        return np.append(block(x[:-1]) + column * x[-1], row @ x[:-1])
 
     AM = spla.LinearOperator((n, n), dtype=float,
                              matvec=lambda v: row_scale * apply(precondition(v / row_scale)))
@@ -102,7 +107,13 @@ def krylov_step(levels: list[Level], column: np.ndarray, row: np.ndarray, rhs: n
     y, info = spla.gmres(AM, row_scale * rhs, rtol=RELATIVE, atol=atol, restart=50,
                          maxiter=MAX_PRODUCTS // 50, callback=tally, callback_type="pr_norm")
     x = precondition(y / row_scale)
-    return (x if info == 0 and np.all(np.isfinite(x)) else None), count[0]
+    # GMRES may stall short of RELATIVE in rounding (its residual recurrence drifts from the
+    # true one); an inexact Newton step to ACCEPT still converges, and the line search
+    # guards it
+    residual = np.linalg.norm(row_scale * (apply(x) - rhs))
+    good = np.isfinite(residual) and residual <= max(ACCEPT * np.linalg.norm(row_scale * rhs),
+                                                     atol)
+    return (x if good else None), count[0]
 
 
 def interpolation(fine: np.ndarray, coarse: np.ndarray) -> sp.csr_matrix:
