@@ -58,7 +58,7 @@ def route_rows(grids, repeat, w=5e5):
         new = best_of(lambda: line_contact(**CONTACT, load_per_length=w, nodes=n), repeat)
         with dense_route():
             old = best_of(lambda: line_contact(**CONTACT, load_per_length=w, nodes=n), repeat)
-        rows.append(dict(nodes=n, dense=old.wall, multilevel=new.wall,
+        rows.append(dict(nodes=n, dense=old.cpu, multilevel=new.cpu,
                          iterations=new.out.iterations, M=new.out.moes_M,
                          film=np.abs(new.out.film - old.out.film).max() / old.out.film_central,
                          pressure=np.abs(new.out.pressure - old.out.pressure).max()
@@ -104,10 +104,10 @@ def main(argv=None):
     else:
         grids, loads = (500, 1000, 2000, 4000), (1e5, 1e6)
         load_sweep, sizes = (1e5, 3e5, 1e6, 2e6), (1000, 4000, 16000)
-        route_grids, spike_grids = (1000, 2000, 4000), (1500, 3000, 6000, 12000, 24000)
+        route_grids, spike_grids = (1000, 2000, 4000), (1500, 3000, 6000, 8000, 12000, 24000)
 
     routes = route_rows(route_grids, args.repeat)
-    print("Newton step: dense LU (before) vs multilevel Newton-Krylov, w = 5e5 N/m, one run")
+    print("Newton step: dense LU (before) vs multilevel Newton-Krylov, w = 5e5 N/m, one run, CPU time")
     print(f"{'nodes':>6} {'M':>5} {'dense [s]':>9} {'multilevel [s]':>14} {'Newton':>6} "
           f"{'film diff':>9} {'p diff':>8}")
     for r in routes:

@@ -74,7 +74,7 @@ def route_rows(U, W, grids):
         new = best_of(run)
         with dense_route():
             old = best_of(run)
-        rows.append(dict(nodes=n, dense=old.wall, multilevel=new.wall,
+        rows.append(dict(nodes=n, dense=old.cpu, multilevel=new.cpu,
                          iterations=new.out.iterations,
                          film=np.abs(new.out.film - old.out.film).max() / old.out.film_central))
     return rows
@@ -99,7 +99,7 @@ def main(argv=None):
     grids = (17, 25) if args.quick else (33, 49, 65, 97, 129, 193)
     cases = [(1.683e-11, 3.686e-7)] if args.quick else [(1.683e-11, 3.686e-7), (1.0e-11, 7.37e-7)]
     routes = route_rows(*cases[0], (41,) if args.quick else (49, 97))
-    print("Newton step: dense LU (before) vs multilevel Newton-Krylov, one run")
+    print("Newton step: dense LU (before) vs multilevel Newton-Krylov, one run, CPU time")
     print(f"{'nodes':>5} {'dense [s]':>9} {'multilevel [s]':>14} {'Newton':>6} {'film diff':>9}")
     for r in routes:
         print(f"{r['nodes']:5d} {r['dense']:9.2f} {r['multilevel']:14.2f} {r['iterations']:6d} "

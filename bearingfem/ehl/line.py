@@ -36,8 +36,8 @@ import scipy.sparse.linalg as spla
 
 from ..errors import ConvergenceError
 from .halfspace import LineCompliance
-from .multilevel import (REUSE_PRODUCTS, Level, distribution_1d, interpolation, krylov_step,
-                         near_field, restriction)
+from .multilevel import (REUSE_PRODUCTS, SWEEPS, Level, distribution_1d, interpolation,
+                         krylov_step, near_field, restriction)
 
 __all__ = ["DimensionlessLine", "NewtonRecord", "solve_dimensionless", "DENSE_NODES"]
 
@@ -107,7 +107,7 @@ class _System:
         self.dx = prob.X[1] - prob.X[0]
         self.compliance = LineCompliance(self.n, self.dx)
         self.K = None            # dense influence matrix, built on first Jacobian
-        self.levels = None       # the multilevel step's (grids, GMRES products, held rows)
+        self.levels = None       # the multilevel step's (grids, GMRES products, held, sweeps)
         self.geometry = prob.X**2 / 2
         k = self.compliance.kernel[:3]
         self.wedge_stiffness = (1.5 * k[0] - 2.0 * k[1] + 0.5 * k[2]) / self.dx
@@ -272,12 +272,15 @@ def _krylov_step(S: _System, P, H, ef, r, s, phi, tol):
     kept = S.levels
     if kept is not None and (kept[1] > REUSE_PRODUCTS or not np.array_equal(kept[2], fixed)):
         kept = None
-    for levels in ([kept[0]] if kept else []) + [None]:
-        levels = _levels(S.prob, S.load, P, H, fixed) if levels is None else levels
+    # the kept grids, else fresh ones
+    attempts = ([(kept[0], kept[3])] if kept else []) + [(None, SWEEPS)]
+    for levels, sweeps in attempts:
+        if levels is None:
+            levels = _levels(S.prob, S.load, P, H, fixed)
         x, products = krylov_step(block, levels, column, np.full(n, S.dx), rhs, scale,
-                                  1e-3 * tol)
+                                  1e-3 * tol, sweeps)
         if x is not None:
-            S.levels = (levels, products, fixed)
+            S.levels = (levels, products, fixed, sweeps)
             return np.append(x[1:-2], x[-1])
     S.levels = None
     return _dense_step(S, P, H, ef, r, s, phi) if n <= DENSE_FALLBACK else None
