@@ -232,10 +232,9 @@ def test_load_continuation_reaches_the_cold_start_answer(monkeypatch):
     np.testing.assert_allclose(ramped.pressure, cold.pressure, rtol=0, atol=1e-5 * cold.pressure_max)
 
 
-@pytest.mark.slow
 @pytest.mark.parametrize("U, W", [(1.683e-11, 3.686e-7), (1.0e-11, 7.37e-7)])
 def test_fine_grid_films_against_hamrock_dowson(U, W):
-    """81 nodes (~20-40 s): h_c and h_min within 10 % of Hamrock & Dowson's fits. Measured
+    """81 nodes (~2 s with the multilevel step; 20-40 s dense): h_c and h_min within 10 % of Hamrock & Dowson's fits. Measured
     (benchmarks/ehl_point.py): h_c/fit 0.925, 0.917 and h_min/fit 1.057, 0.901 at 81
     nodes for M = 26, 78; Richardson limits of h_c 0.943, 0.957 (docs/ehl.md). The 10 %
     is the fit's ~5 % plus the mesh error left at 81 nodes (h_c still rising 0.6-1.5 %
