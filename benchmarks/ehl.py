@@ -107,7 +107,8 @@ def main(argv=None):
         route_grids, spike_grids = (1000, 2000, 4000), (1500, 3000, 6000, 8000, 12000, 24000)
 
     routes = route_rows(route_grids, args.repeat)
-    print("Newton step: dense LU (before) vs multilevel Newton-Krylov, w = 5e5 N/m, one run, CPU time")
+    print("Newton step: dense LU (before) vs multilevel Newton-Krylov, w = 5e5 N/m, "
+          "one run, CPU time")
     print(f"{'nodes':>6} {'M':>5} {'dense [s]':>9} {'multilevel [s]':>14} {'Newton':>6} "
           f"{'film diff':>9} {'p diff':>8}")
     for r in routes:
@@ -121,7 +122,8 @@ def main(argv=None):
     oils = [("Barus", Lubricant(viscosity=0.04, barus=2e-8, density="dowson-higginson")),
             ("Roelands", Lubricant(viscosity=0.04, roelands=0.6, density="dowson-higginson"))]
     spikes = spike_rows(spike_grids, oils)
-    print("Moderate case (R 20 mm, E' 226 GPa, mu0 0.04 Pa s, u_m 2 m/s, w 2e5 N/m): peak pressure vs nodes")
+    print("Moderate case (R 20 mm, E' 226 GPa, mu0 0.04 Pa s, u_m 2 m/s, w 2e5 N/m): "
+          "peak pressure vs nodes")
     print(f"{'oil':>8} {'nodes':>6} {'M':>5} {'L':>5} {'time [s]':>8} {'h_c [nm]':>9} "
           f"{'h_min [nm]':>10} {'p_max/p_h':>9}")
     for r in spikes:

@@ -11,8 +11,12 @@ import pytest
 
 from bearingfem import Lubricant, line_contact, point_contact
 from bearingfem.ehl import line, multilevel, point
+from bearingfem.ehl.contact import _pressure_laws
+from bearingfem.ehl.halfspace import LineCompliance
 from bearingfem.ehl.line import DimensionlessLine, _System, _cavitated
 from bearingfem.ehl.point import DimensionlessPoint, _PointSystem
+from bearingfem.ehl.pointcontact import _start, hertz_point
+from bearingfem.ehl.pointspace import PointCompliance
 
 OIL = Lubricant(viscosity=0.0117, barus=2e-8, density="dowson-higginson")
 STEEL = dict(radius=0.02, reduced_modulus=2.26e11)
@@ -25,7 +29,6 @@ def _line_iterate(n):
     b, ph = coarse.hertz_half_width, coarse.hertz_pressure
     Xc = coarse.x / b
     X = np.linspace(Xc[0], Xc[-1], n)
-    from bearingfem.ehl.contact import _pressure_laws
     eta, rho = _pressure_laws(OIL, ph)
     lam = 12 * OIL.viscosity * 1.0 * 0.02**2 / (b**3 * ph)
     prob = DimensionlessLine(X, lam, eta, rho)
@@ -96,8 +99,6 @@ def test_krylov_failure_falls_back_to_the_dense_step(monkeypatch):
 def test_distribution_and_near_field():
     """T's distributed columns sum to zero (they do not move the load); the near field
     equals the dense K T inside its band, in 1-D and 2-D."""
-    from bearingfem.ehl.halfspace import LineCompliance
-    from bearingfem.ehl.pointspace import PointCompliance
     free = np.ones(40, bool)
     free[30:] = False
     T = multilevel.distribution_1d(free)
@@ -116,8 +117,8 @@ def test_distribution_and_near_field():
     c2 = PointCompliance(9, 7, 0.2, 0.2)
     dense2 = c2.matrix() @ T2.toarray()
     near2 = multilevel.near_field(c2.kernel, T2, 2).toarray()
-    (ri, rj), (ci, cj) = np.divmod(i := np.arange(63)[:, None] * np.ones(63, int), 7), \
-        np.divmod(np.ones(63, int)[:, None] * np.arange(63), 7)
+    rows, cols = np.indices((63, 63))
+    (ri, rj), (ci, cj) = np.divmod(rows, 7), np.divmod(cols, 7)
     band2 = (np.abs(ri - ci) <= 2) & (np.abs(rj - cj) <= 2)
     np.testing.assert_allclose(near2[band2], dense2[band2], rtol=0, atol=1e-14)
     assert np.all(near2[~band2] == 0.0)
@@ -129,8 +130,6 @@ def test_point_krylov_step_equals_dense_step():
     dropped or the mirror of the row scale wrong."""
     R, E = 0.0127, 2.26e11
     oil = Lubricant(viscosity=0.04, barus=2e-8, density="dowson-higginson")
-    from bearingfem.ehl.contact import _pressure_laws
-    from bearingfem.ehl.pointcontact import _start, hertz_point
     u, w = 1.683e-11 * E * R / 0.04, 3.686e-7 * E * R**2
     hz = hertz_point(R, E, w)
     eta, rho = _pressure_laws(oil, hz.pressure)
