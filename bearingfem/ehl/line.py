@@ -17,10 +17,11 @@ rho_r, eta_r the density and viscosity ratios of :class:`~bearingfem.lubricant.L
 The Poiseuille term is central (second order); the wedge term is Venner & Lubrecht's
 second-order upwind (1.5 q_i - 2 q_{i-1} + 0.5 q_{i-2})/dX, q = rho_r H, stable where the
 film is stiff. All unknowns (P at the inner nodes, H0) are solved at once by a damped
-semismooth Newton method on min(P_i, s_i r_i) = 0 (s_i > 0 a row scale) with the dense
-Jacobian (the elastic block is the full influence matrix), as Houpert & Hamrock
-(J. Tribol. 108, 1986, 411-420) did; the residual itself is evaluated with the FFT
-deflection. Steps are projected on P >= 0 and damped by backtracking on |phi|_2; the
+semismooth Newton method on min(P_i, s_i r_i) = 0 (s_i > 0 a row scale), as Houpert &
+Hamrock (J. Tribol. 108, 1986, 411-420) did; the residual is evaluated with the FFT
+deflection. Each step is the dense LU of the Jacobian (the elastic block the full
+influence matrix) on grids of up to DENSE_NODES nodes, and GMRES with a multilevel
+preconditioner on finer ones (:mod:`bearingfem.ehl.multilevel`). Steps are projected on P >= 0 and damped by backtracking on |phi|_2; the
 linear system is equilibrated by rows and columns. Starting guesses, mesh sequencing and
 load continuation are in :mod:`bearingfem.ehl.contact`.
 """

@@ -9,9 +9,10 @@ Each Newton step of :mod:`bearingfem.ehl.line` and :mod:`bearingfem.ehl.point` s
 Jacobian blocks and K the dense half-space influence matrix. Here K is applied by the
 zero-padded FFT (:mod:`~bearingfem.ehl.halfspace`, :mod:`~bearingfem.ehl.pointspace`),
 so a product costs N log N, and the step is found by right-preconditioned GMRES. The
-preconditioner is one V-cycle over grids halved down to a dense solve of ~100 nodes a
-side (rediscretised: each grid's Jacobian at the finer grid's state interpolated onto it,
-linear interpolation and its row-normalised transpose between grids):
+preconditioner is one V-cycle for the pressure block over grids halved down to a dense
+solve (<= 300 nodes on a line, <= 1000 on a plane; rediscretised: each grid's Jacobian
+at the finer grid's state interpolated onto it, linear interpolation and its
+row-normalised transpose between grids), with H0 by the Schur complement:
 
 * the smoother solves the near field exactly: J T with the elastic part truncated to
   offsets <= w cells, by a sparse LU, and steps T y. T distributes each change of a free
@@ -23,9 +24,9 @@ linear interpolation and its row-normalised transpose between grids):
   its second difference (Laplacian), which falls as 1/j^2 (1/r^3), so the truncated near
   field stays close to J T at every frequency and the smoother is stable;
 * the coarse grid takes what the near field misses, the long-range part of the
-  deflection, exactly at the coarsest grid (dense LU, the load row and H0 included).
+  deflection, exactly at the coarsest grid (dense LU).
 
-The products per step then stay near constant as the grid refines (4-7 on 500 ... 4000
+The products per step then stay near constant as the grid refines (1-6 on 250 ... 12000
 nodes, docs/ehl.md), so a step costs O(N log N).
 """
 from __future__ import annotations
@@ -37,15 +38,18 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-__all__ = ["Level", "vcycle", "krylov_step", "interpolation", "distribution_1d",
-           "distribution_2d", "near_field"]
+__all__ = ["Level", "vcycle", "krylov_step", "interpolation", "restriction",
+           "distribution_1d", "distribution_2d", "near_field"]
 
 #: A V-cycle's grids are kept for the next Newton step while its cavitated set holds and
 #: GMRES took at most this many products (rebuilding them is most of a step's cost).
 REUSE_PRODUCTS = 12
-#: GMRES stops at this fraction of the Newton residual (an inexact Newton step whose
-#: error is far below the next residual: quadratic convergence is kept).
+#: GMRES stops at this fraction of the Newton residual (an inexact Newton step: Newton
+#: converges at least linearly by this factor; its own test on the residual decides).
 RELATIVE = 1e-5
+#: A step whose true residual is above this fraction is refused. Near a fine grid's
+#: rounding floor GMRES's recurrence runs on below the true residual; a step that halves
+#: it still moves Newton on (and its line search judges).
 ACCEPT = 0.5
 MAX_PRODUCTS = 300
 #: Smoothing steps either side of each coarse-grid correction: V(2, 2). V(1, 1) serves as

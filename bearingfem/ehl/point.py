@@ -15,9 +15,10 @@ Hertz units (X = x/a, P = p/p_h, H = h R/a^2, :mod:`bearingfem.ehl.pointspace`)
 (Venner & Lubrecht, Multilevel methods in lubrication, Elsevier 2000, Ch. 9). Poiseuille
 terms central (face coefficients the mean of the nodes'), the wedge second-order upwind
 along X (first order next to the inlet), as in :mod:`bearingfem.ehl.line`; the same
-damped, projected semismooth Newton method on (P, H0) with the dense Jacobian (the
-elastic block is the full influence matrix) on the y >= 0 half of the grid, so grids up to
-~97 nodes along x.
+damped, projected semismooth Newton method on (P, H0): each step by the dense Jacobian
+(the elastic block the full influence matrix) on the y >= 0 half of the grid up to
+DENSE_POINT_NODES nodes along x, by GMRES with a multilevel preconditioner on the whole
+grid beyond (:mod:`bearingfem.ehl.multilevel`).
 """
 from __future__ import annotations
 
