@@ -20,11 +20,14 @@ from .line import DimensionlessLine, solve_dimensionless
 
 __all__ = ["LineContact", "line_contact", "DEFAULT_NODES"]
 
-# Film nodes over the default domain: central and minimum film within ~1 % of the mesh
-# limit up to Moes M ~ 100 (measured second-order: at M = 97, L = 6.8 the errors of h_c
-# are 1.2 % at 1000 nodes and 0.3 % at 2000 against the Richardson limit; docs/ehl.md).
-DEFAULT_NODES = 1500
-NODES_RANGE = (64, 6000)
+# Film nodes over the default domain. The films are within ~1 % of the mesh limit from
+# 1500 nodes up to Moes M ~ 100 (second order: at M = 97, L = 6.8 h_c is 1.2 % off at 1000
+# nodes, 0.3 % at 2000); the outlet pressure spike needs far more: at M = 7.4, L = 10.9
+# (Roelands oil) p_max is 9.9 / 5.7 / 2.8 / 1.8 / 1.1 % below its Richardson limit at
+# 1500 / 3000 / 6000 / 8000 / 12000 nodes (docs/ehl.md), so the default is 8000
+# (a few seconds with the multilevel Newton step).
+DEFAULT_NODES = 8000
+NODES_RANGE = (64, 64000)
 COARSEST = 200
 #: The load ramp: the fraction doubles; a failed ratio is cut to its square root, down to 1.02.
 LOAD_STEPS = Ratios(2.0, 1.02)

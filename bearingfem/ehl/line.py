@@ -17,10 +17,11 @@ rho_r, eta_r the density and viscosity ratios of :class:`~bearingfem.lubricant.L
 The Poiseuille term is central (second order); the wedge term is Venner & Lubrecht's
 second-order upwind (1.5 q_i - 2 q_{i-1} + 0.5 q_{i-2})/dX, q = rho_r H, stable where the
 film is stiff. All unknowns (P at the inner nodes, H0) are solved at once by a damped
-semismooth Newton method on min(P_i, s_i r_i) = 0 (s_i > 0 a row scale) with the dense
-Jacobian (the elastic block is the full influence matrix), as Houpert & Hamrock
-(J. Tribol. 108, 1986, 411-420) did; the residual itself is evaluated with the FFT
-deflection. Steps are projected on P >= 0 and damped by backtracking on |phi|_2; the
+semismooth Newton method on min(P_i, s_i r_i) = 0 (s_i > 0 a row scale), as Houpert &
+Hamrock (J. Tribol. 108, 1986, 411-420) did; the residual is evaluated with the FFT
+deflection. Each step is the dense LU of the Jacobian (the elastic block the full
+influence matrix) on grids of up to DENSE_NODES nodes, and GMRES with a multilevel
+preconditioner on finer ones (:mod:`bearingfem.ehl.multilevel`). Steps are projected on P >= 0 and damped by backtracking on |phi|_2; the
 linear system is equilibrated by rows and columns. Starting guesses, mesh sequencing and
 load continuation are in :mod:`bearingfem.ehl.contact`.
 """
@@ -32,11 +33,14 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.linalg
 import scipy.sparse as sp
+import scipy.sparse.linalg as spla
 
 from ..errors import ConvergenceError
 from .halfspace import LineCompliance
+from .multilevel import (REUSE_PRODUCTS, SWEEPS, Level, distribution_1d, interpolation,
+                         krylov_step, near_field, restriction)
 
-__all__ = ["DimensionlessLine", "NewtonRecord", "solve_dimensionless"]
+__all__ = ["DimensionlessLine", "NewtonRecord", "solve_dimensionless", "DENSE_NODES"]
 
 
 @dataclass(frozen=True)
@@ -61,6 +65,17 @@ class NewtonRecord:
 
 
 CAVITATION_GUARD = 0.01
+#: Grids up to this many nodes take the dense Newton step (an LU of the whole Jacobian);
+#: finer ones the multilevel Newton-Krylov step (:mod:`bearingfem.ehl.multilevel`). The
+#: two agree to the solver's tolerance; the dense one is the faster below ~500 nodes.
+DENSE_NODES = 500
+#: The multilevel step: its near field spans this many cells either side; grids are
+#: halved down to at most COARSE_NODES, solved there by a dense LU.
+NEAR_WIDTH = 8
+COARSE_NODES = 300
+#: Where GMRES fails (seen near the rigid limit, M ~ 0.1) grids up to this many nodes take
+#: the dense step instead (its matrix: 8 n^2 bytes).
+DENSE_FALLBACK = 3000
 UPWIND = (1.5, -2.0, 0.5)      # second-order upwind weights of q_i, q_{i-1}, q_{i-2}
 
 
@@ -93,6 +108,7 @@ class _System:
         self.dx = prob.X[1] - prob.X[0]
         self.compliance = LineCompliance(self.n, self.dx)
         self.K = None            # dense influence matrix, built on first Jacobian
+        self.levels = None       # the multilevel step's (grids, GMRES products, held, sweeps)
         self.geometry = prob.X**2 / 2
         k = self.compliance.kernel[:3]
         self.wedge_stiffness = (1.5 * k[0] - 2.0 * k[1] + 0.5 * k[2]) / self.dx
@@ -169,9 +185,13 @@ class _System:
 
 
 def solve_dimensionless(prob: DimensionlessLine, P0: np.ndarray, H0: float, *,
-                        tol: float = 1e-9, max_iter: int = 60, load: float = 1.0) -> NewtonRecord:
+                        tol: float = 1e-9, max_iter: int = 60, load: float = 1.0,
+                        dense_nodes: int | None = None) -> NewtonRecord:
     """Damped semismooth Newton on (P, H0) for dX sum P = load pi/2; raises
-    ConvergenceError if it stalls."""
+    ConvergenceError if it stalls. Each step is solved densely on grids of up to
+    ``dense_nodes`` nodes (default DENSE_NODES), by the multilevel Newton-Krylov step on
+    finer ones."""
+    dense_nodes = DENSE_NODES if dense_nodes is None else dense_nodes
     S = _System(prob, load)
     n = S.n
     P = np.asarray(P0, float).copy()
@@ -179,20 +199,12 @@ def solve_dimensionless(prob: DimensionlessLine, P0: np.ndarray, H0: float, *,
     phi, H, r, ef, s = S.merit(P, H0)
     norm = np.linalg.norm(phi)              # the line search's merit; convergence in max-norm
     worst = float(np.abs(phi).max())
+    inner = slice(1, n - 1)
     for it in range(1, max_iter + 1):
-        if S.K is None:
-            S.K = S.compliance.matrix()
-        JP, JH = S.jacobian(P, H, ef)
-        inner = slice(1, n - 1)
-        J = np.zeros((n - 1, n - 1))                   # unknowns: P_1..P_{n-2}, H0
-        dense = (JH[inner] @ S.K)[:, inner] + JP[inner][:, inner].toarray()
-        J[:-1, :-1] = s[:, None] * dense
-        J[:-1, -1] = s * np.asarray(JH[inner].sum(axis=1)).ravel()
-        active = _cavitated(P[inner], s * r[inner])
-        J[:-1][active] = 0.0
-        J[np.flatnonzero(active), np.flatnonzero(active)] = 1.0
-        J[-1, :-1] = S.dx
-        step = _equilibrated_step(J, phi)
+        if n <= dense_nodes:
+            step = _dense_step(S, P, H, ef, r, s, phi)
+        else:
+            step = _krylov_step(S, P, H, ef, r, s, phi, tol)
         if step is None:
             break
         t = 1.0
@@ -219,6 +231,95 @@ def solve_dimensionless(prob: DimensionlessLine, P0: np.ndarray, H0: float, *,
             return NewtonRecord(np.maximum(P, 0.0), H, float(H0), it, worst)
     raise ConvergenceError("EHL line contact Newton (complementarity residual)", it, worst,
                            f"lambda = {prob.lam:.4g}, tolerance {tol:.0e}")
+
+
+def _dense_step(S: _System, P, H, ef, r, s, phi):
+    """The Newton step from the dense Jacobian (elastic block: the full influence matrix)."""
+    n = S.n
+    if S.K is None:
+        S.K = S.compliance.matrix()
+    JP, JH = S.jacobian(P, H, ef)
+    inner = slice(1, n - 1)
+    J = np.zeros((n - 1, n - 1))                   # unknowns: P_1..P_{n-2}, H0
+    dense = (JH[inner] @ S.K)[:, inner] + JP[inner][:, inner].toarray()
+    J[:-1, :-1] = s[:, None] * dense
+    J[:-1, -1] = s * np.asarray(JH[inner].sum(axis=1)).ravel()
+    active = _cavitated(P[inner], s * r[inner])
+    J[:-1][active] = 0.0
+    J[np.flatnonzero(active), np.flatnonzero(active)] = 1.0
+    J[-1, :-1] = S.dx
+    return _equilibrated_step(J, phi)
+
+
+def _krylov_step(S: _System, P, H, ef, r, s, phi, tol):
+    """The same step by GMRES on all nodes, preconditioned by a V-cycle
+    (:mod:`bearingfem.ehl.multilevel`): boundary and cavitated rows are dP_i = -P_i.
+    The V-cycle's grids are kept from the last step while its cavitated set holds and
+    GMRES was quick; if GMRES fails with kept grids they are rebuilt, and if it fails on
+    fresh ones the step is the dense one on grids up to DENSE_FALLBACK nodes (else None:
+    Newton stops and raises)."""
+    n = S.n
+    fixed = np.ones(n, bool)
+    fixed[1:-1] = _cavitated(P[1:-1], s * r[1:-1])
+    rhs = np.append(np.where(fixed, -P, -r), -phi[-1])
+    scale = np.ones(n + 1)
+    scale[1:n - 1] = np.where(fixed[1:-1], 1.0, s)           # GMRES's residual is Newton's phi
+    JP, JH = S.jacobian(P, H, ef)
+
+    def block(dP):
+        return np.where(fixed, dP, JP @ dP + JH @ S.compliance.deflection(dP))
+
+    column = np.where(fixed, 0.0, np.asarray(JH.sum(axis=1)).ravel())
+    kept = S.levels
+    if kept is not None and (kept[1] > REUSE_PRODUCTS or not np.array_equal(kept[2], fixed)):
+        kept = None
+    # the kept grids, else fresh ones
+    attempts = ([(kept[0], kept[3])] if kept else []) + [(None, SWEEPS)]
+    for levels, sweeps in attempts:
+        if levels is None:
+            levels = _levels(S.prob, S.load, P, H, fixed)
+        x, products = krylov_step(block, levels, column, np.full(n, S.dx), rhs, scale,
+                                  1e-3 * tol, sweeps)
+        if x is not None:
+            S.levels = (levels, products, fixed, sweeps)
+            return np.append(x[1:-2], x[-1])
+    S.levels = None
+    return _dense_step(S, P, H, ef, r, s, phi) if n <= DENSE_FALLBACK else None
+
+
+def _levels(prob: DimensionlessLine, load: float, P, H, fixed) -> list[Level]:
+    """The V-cycle's grids for the pressure block from ``prob``'s (state P, H; rows
+    ``fixed`` held) down, each with half the cells, to at most COARSE_NODES nodes."""
+    levels = []
+    while True:
+        S = _System(prob, load)
+        free = ~fixed
+        _, ef = S.reynolds(P, H)
+        JP, JH = S.jacobian(P, H, ef)
+
+        def matvec(dP, S=S, JP=JP, JH=JH, free=free):
+            return np.where(free, JP @ dP + JH @ S.compliance.deflection(dP), dP)
+
+        if S.n <= COARSE_NODES:
+            A = free[:, None] * (JH @ S.compliance.matrix() + JP.toarray())
+            A[np.flatnonzero(fixed), np.flatnonzero(fixed)] = 1.0
+            lu = scipy.linalg.lu_factor(A, check_finite=False)
+            levels.append(Level(matvec, lambda v, lu=lu: scipy.linalg.lu_solve(lu, v)))
+            return levels
+        T = distribution_1d(free)
+        near = sp.diags(free.astype(float)) @ (JH @ near_field(S.compliance.kernel, T,
+                                                               NEAR_WIDTH) + JP @ T) \
+            + sp.diags(fixed.astype(float)) @ T
+        lu = spla.splu(near.tocsc())
+        Xc = np.linspace(prob.X[0], prob.X[-1], (S.n + 1) // 2)
+        # corrections from the coarse grid leave held nodes alone
+        prolong = (sp.diags(free.astype(float)) @ interpolation(prob.X, Xc)).tocsr()
+        levels.append(Level(matvec, lambda v, lu=lu, T=T: T @ lu.solve(v), prolong,
+                            restriction(prolong)))
+        fixed = np.interp(Xc, prob.X, fixed.astype(float)) > 0.5
+        fixed[0] = fixed[-1] = True
+        P, H = np.interp(Xc, prob.X, P), np.interp(Xc, prob.X, H)
+        prob = DimensionlessLine(Xc, prob.lam, prob.eta, prob.rho)
 
 
 def _equilibrated_step(J: np.ndarray, phi: np.ndarray):

@@ -15,22 +15,38 @@ Hertz units (X = x/a, P = p/p_h, H = h R/a^2, :mod:`bearingfem.ehl.pointspace`)
 (Venner & Lubrecht, Multilevel methods in lubrication, Elsevier 2000, Ch. 9). Poiseuille
 terms central (face coefficients the mean of the nodes'), the wedge second-order upwind
 along X (first order next to the inlet), as in :mod:`bearingfem.ehl.line`; the same
-damped, projected semismooth Newton method on (P, H0) with the dense Jacobian (the
-elastic block is the full influence matrix) on the y >= 0 half of the grid, so grids up to
-~97 nodes along x.
+damped, projected semismooth Newton method on (P, H0): each step by the dense Jacobian
+(the elastic block the full influence matrix) on the y >= 0 half of the grid up to
+DENSE_POINT_NODES nodes along x, by GMRES with a multilevel preconditioner on the whole
+grid beyond (:mod:`bearingfem.ehl.multilevel`).
 """
 from __future__ import annotations
 
 from dataclasses import dataclass
 
 import numpy as np
+import scipy.linalg
 import scipy.sparse as sp
+import scipy.sparse.linalg as spla
 
 from ..errors import ConvergenceError
 from .line import UPWIND, NewtonRecord, _cavitated, _complementarity, _equilibrated_step
+from .multilevel import (REUSE_PRODUCTS, SWEEPS, Level, distribution_2d, interpolation,
+                         krylov_step, near_field, restriction)
 from .pointspace import HERTZ_POINT_LOAD, PointCompliance
 
-__all__ = ["DimensionlessPoint", "solve_point"]
+__all__ = ["DimensionlessPoint", "solve_point", "DENSE_POINT_NODES"]
+
+#: Grids of up to this many nodes along x take the dense Newton step (an LU of the whole
+#: Jacobian on the y >= 0 half); finer ones the multilevel Newton-Krylov step
+#: (:mod:`bearingfem.ehl.multilevel`) on the whole grid. The two agree to the tolerance.
+DENSE_POINT_NODES = 33
+#: The multilevel step: near field to this many cells either way; grids halved down to at
+#: most COARSE_POINTS nodes, solved there by a dense LU.
+NEAR_WIDTH = 1
+COARSE_POINTS = 1000
+#: Where GMRES fails, grids up to this many nodes along x take the dense step instead.
+DENSE_FALLBACK = 97
 
 
 @dataclass(frozen=True)
@@ -98,6 +114,7 @@ class _PointSystem:
         self.compliance = PointCompliance(nx, ny, d, d)
         self.spectrum = self.compliance.spectrum()
         self.K = None
+        self.levels = None             # (grids, GMRES products, held, sweeps) of the last step
         self.geometry = ((prob.X[:, None] ** 2 + prob.Y[None, :] ** 2) / 2).ravel()
         k = self.compliance.kernel[:3, 0]
         self.wedge_stiffness = (UPWIND[0] * k[0] + UPWIND[1] * k[1] + UPWIND[2] * k[2]) / d
@@ -146,9 +163,12 @@ class _PointSystem:
 
 
 def solve_point(prob: DimensionlessPoint, P0: np.ndarray, H0: float, *, tol: float = 1e-8,
-                max_iter: int = 60, load: float = 1.0) -> NewtonRecord:
+                max_iter: int = 60, load: float = 1.0,
+                dense_nodes: int | None = None) -> NewtonRecord:
     """Damped semismooth Newton on (P, H0) for dX dY sum P = load 2 pi/3; raises
-    ConvergenceError if it stalls. P0 is (nx, ny); the record's pressure and film too."""
+    ConvergenceError if it stalls. P0 is (nx, ny); the record's pressure and film too.
+    Each step is solved densely on grids of up to ``dense_nodes`` nodes along x (default
+    DENSE_POINT_NODES), by the multilevel Newton-Krylov step on finer ones."""
     Y = np.asarray(prob.Y, float)
     if Y.size % 2 == 0 or not np.allclose(Y, -Y[::-1], rtol=0, atol=1e-12 * np.abs(Y).max()):
         raise ValueError("Y must be symmetric about 0 with an odd number of nodes")
@@ -159,24 +179,9 @@ def solve_point(prob: DimensionlessPoint, P0: np.ndarray, H0: float, *, tol: flo
     P = P.ravel()[S.mirror]                  # symmetric in Y
     phi, H, r, s = S.merit(P, H0)
     norm, worst, it = np.linalg.norm(phi), float(np.abs(phi).max()), 0
-    # dV/dP_half: each unknown's column plus its mirror's
-    Y_index = i % S.shape[1]
-    off_axis = Y_index > S.shape[1] // 2
-    K = S.compliance.matrix(None, i)
-    K[:, off_axis] += S.compliance.matrix(None, i[off_axis] - 2 * (Y_index[off_axis] - S.shape[1] // 2))
-    weight = np.asarray(S.E.sum(axis=0)).ravel()       # 2 off the axis, 1 on it
+    dense = S.shape[0] <= (DENSE_POINT_NODES if dense_nodes is None else dense_nodes)
     for it in range(1, max_iter + 1):
-        JP, JH = S.jacobian(P, H)
-        m = i.size
-        J = np.empty((m + 1, m + 1))
-        J[:-1, :-1] = s[:, None] * (JH[i] @ K + (JP[i] @ S.E).toarray())
-        J[:-1, -1] = s * np.asarray(JH[i].sum(axis=1)).ravel()
-        active = _cavitated(P[i], s * r[i])
-        J[:-1][active] = 0.0
-        J[np.flatnonzero(active), np.flatnonzero(active)] = 1.0
-        J[-1, :-1] = S.d**2 * weight
-        J[-1, -1] = 0.0
-        step = _equilibrated_step(J, phi)
+        step = (_dense_step if dense else _krylov_step)(S, P, H, r, s, phi, tol)
         if step is None:
             break
         t = 1.0
@@ -202,3 +207,108 @@ def solve_point(prob: DimensionlessPoint, P0: np.ndarray, H0: float, *, tol: flo
                                 float(H0), it, worst)
     raise ConvergenceError("EHL point contact Newton (complementarity residual)", it, worst,
                            f"lambda = {prob.lam:.4g}, tolerance {tol:.0e}")
+
+
+def _dense_step(S: _PointSystem, P, H, r, s, phi, tol):
+    """The Newton step from the dense Jacobian on the y >= 0 half (each unknown's influence
+    column plus its mirror's)."""
+    i = S.half
+    if S.K is None:
+        Y_index = i % S.shape[1]
+        off_axis = Y_index > S.shape[1] // 2
+        K = S.compliance.matrix(None, i)
+        K[:, off_axis] += S.compliance.matrix(
+            None, i[off_axis] - 2 * (Y_index[off_axis] - S.shape[1] // 2))
+        S.K = K
+    weight = np.asarray(S.E.sum(axis=0)).ravel()       # 2 off the axis, 1 on it
+    JP, JH = S.jacobian(P, H)
+    m = i.size
+    J = np.empty((m + 1, m + 1))
+    J[:-1, :-1] = s[:, None] * (JH[i] @ S.K + (JP[i] @ S.E).toarray())
+    J[:-1, -1] = s * np.asarray(JH[i].sum(axis=1)).ravel()
+    active = _cavitated(P[i], s * r[i])
+    J[:-1][active] = 0.0
+    J[np.flatnonzero(active), np.flatnonzero(active)] = 1.0
+    J[-1, :-1] = S.d**2 * weight
+    J[-1, -1] = 0.0
+    return _equilibrated_step(J, phi)
+
+
+def _krylov_step(S: _PointSystem, P, H, r, s, phi, tol):
+    """The same step by GMRES on the whole grid, preconditioned by a V-cycle
+    (:mod:`bearingfem.ehl.multilevel`): boundary and cavitated rows are dP = -P. Grids
+    kept and rebuilt as the line contact's (:func:`bearingfem.ehl.line._krylov_step`);
+    where GMRES fails on fresh ones the step is the dense one up to DENSE_FALLBACK nodes
+    along x (else None: Newton stops and raises)."""
+    i = S.half
+    n = P.size
+    s_full = S.E @ s                                  # each inner node its y >= 0 twin's
+    fixed = ~(S.E @ (~_cavitated(P[i], s * r[i])).astype(float)).astype(bool)
+    rhs = np.append(np.where(fixed, -P, -r), -phi[-1])
+    scale = np.append(np.where(fixed, 1.0, s_full), 1.0)
+    JP, JH = S.jacobian(P, H)
+
+    def block(dP):
+        V = S.compliance.deflection(dP.reshape(S.shape), S.spectrum).ravel()
+        return np.where(fixed, dP, JP @ dP + JH @ V)
+
+    column = np.where(fixed, 0.0, np.asarray(JH.sum(axis=1)).ravel())
+    kept = S.levels
+    if kept is not None and (kept[1] > REUSE_PRODUCTS or not np.array_equal(kept[2], fixed)):
+        kept = None
+    attempts = ([(kept[0], kept[3])] if kept else []) + [(None, SWEEPS)]
+    for levels, sweeps in attempts:
+        if levels is None:
+            levels = _levels(S.prob, S.load, P, H, fixed.reshape(S.shape))
+        x, products = krylov_step(block, levels, column, np.full(n, S.d**2), rhs, scale,
+                                  1e-3 * tol, sweeps)
+        if x is not None:
+            S.levels = (levels, products, fixed, sweeps)
+            return np.append(x[i], x[-1])
+    S.levels = None
+    return _dense_step(S, P, H, r, s, phi, tol) if S.shape[0] <= DENSE_FALLBACK else None
+
+
+def _levels(prob: DimensionlessPoint, load: float, P, H, fixed) -> list[Level]:
+    """The V-cycle's grids for the pressure block from ``prob``'s (state P, H flat; nodes
+    ``fixed`` (nx, ny) held) down, every other node kept, to at most COARSE_POINTS nodes."""
+    levels = []
+    while True:
+        S = _PointSystem(prob, load)
+        free = ~fixed.ravel()
+        JP, JH = S.jacobian(P, H)
+
+        def matvec(dP, S=S, JP=JP, JH=JH, free=free):
+            V = S.compliance.deflection(dP.reshape(S.shape), S.spectrum).ravel()
+            return np.where(free, JP @ dP + JH @ V, dP)
+
+        if free.size <= COARSE_POINTS or min(S.shape) < 5:
+            A = free[:, None] * (JH @ S.compliance.matrix() + JP.toarray())
+            held = np.flatnonzero(~free)
+            A[held, held] = 1.0
+            lu = scipy.linalg.lu_factor(A, check_finite=False)
+            levels.append(Level(matvec, lambda v, lu=lu: scipy.linalg.lu_solve(lu, v)))
+            return levels
+        T = distribution_2d(~fixed)
+        near = sp.diags(free.astype(float)) @ (JH @ near_field(S.compliance.kernel, T,
+                                                               NEAR_WIDTH) + JP @ T) \
+            + sp.diags((~free).astype(float)) @ T
+        lu = spla.splu(near.tocsc())
+        Xc, Yc = prob.X[::2], prob.Y[(prob.Y.size // 2) % 2::2]     # Yc keeps Y = 0
+        # bilinear interpolation; corrections from the coarse grid leave held nodes alone
+        prolong = (sp.diags(free.astype(float))
+                   @ sp.kron(interpolation(prob.X, Xc), interpolation(prob.Y, Yc))).tocsr()
+        levels.append(Level(matvec, lambda v, lu=lu, T=T: T @ lu.solve(v), prolong,
+                            restriction(prolong)))
+        coarse = sp.kron(interpolation(prob.X, Xc), interpolation(prob.Y, Yc)).T.tocsr()
+        inject = coarse.multiply(1.0 / np.maximum(np.asarray(coarse.sum(axis=1)), 1e-300)).tocsr()
+        fixed = (inject @ (~free).astype(float) > 0.5).reshape(Xc.size, Yc.size)
+        fixed[0, :] = fixed[-1, :] = fixed[:, 0] = fixed[:, -1] = True
+        P, H = _bilinear(prob, P, Xc, Yc), _bilinear(prob, H, Xc, Yc)
+        prob = DimensionlessPoint(Xc, Yc, prob.lam, prob.eta, prob.rho)
+
+
+def _bilinear(prob, F, Xc, Yc):
+    """F (flat on prob's grid) at the nodes Xc x Yc, a subset of prob's along each axis."""
+    F = F.reshape(prob.X.size, prob.Y.size)
+    return F[np.searchsorted(prob.X, Xc)][:, np.searchsorted(prob.Y, Yc)].ravel()

@@ -10,6 +10,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+import scipy.interpolate
 
 from ..errors import ConvergenceError
 from ..lubricant import Lubricant
@@ -21,8 +22,11 @@ from .point import DimensionlessPoint, solve_point
 __all__ = ["PointContact", "point_contact", "HertzPoint", "hertz_point", "hamrock_dowson_point",
            "DEFAULT_POINT_NODES"]
 
-DEFAULT_POINT_NODES = 33        # along the rolling direction; ~1 s (docs/ehl.md)
-POINT_NODES_RANGE = (17, 97)    # the dense Newton Jacobian grows as nodes^4
+# nodes along the rolling direction: h_c within 1-3.5 % of its mesh limit at M = 26 ... 78
+# (second order; 10-30 % at 33 nodes), a few seconds with the multilevel step (docs/ehl.md)
+DEFAULT_POINT_NODES = 97
+COARSEST = 33                   # mesh sequencing starts on a grid of at least this many
+POINT_NODES_RANGE = (17, 257)
 SIDE = 2.0                      # [a] the domain spans |Y| <= SIDE
 #: The load ramp from a quarter: the fraction doubles; a failed step is not retried.
 LOAD_STEPS = Ratios(2.0, 2.0)
@@ -75,7 +79,7 @@ class PointContact:
     hertz_pressure: float          # [Pa] p_h
     moes_M: float                  # Moes load parameter M = W (2U)^(-3/4)
     moes_L: float                  # Moes lubricant parameter L = G (2U)^(1/4)
-    iterations: int                # Newton iterations over all continuation steps
+    iterations: int                # Newton iterations over all grids and continuation steps
     continuation_steps: int        # 1 for a cold start that converged
     residual: float                # final complementarity residual (Hertz units)
 
@@ -92,8 +96,10 @@ def point_contact(*, radius: float, reduced_modulus: float, lubricant: Lubricant
     lubricant : the oil (viscosity and density laws).
     mean_speed : u_m = (u1 + u2)/2 [m/s], > 0, along x.
     load : w [N], > 0.
-    nodes : nodes along x over [inlet, outlet], in [17, 97]; square cells, the y extent
-        is |y| <= 2 a. Cost grows as nodes^6 (dense Newton), ~1 s at 33.
+    nodes : nodes along x over [inlet, outlet], in [17, 257]; square cells, the y extent
+        is |y| <= 2 a. An odd count lets the mesh sequence halve the cells (from >= 33
+        nodes). Grids above 33 nodes take the multilevel Newton step: ~0.1 s at 33, ~3-5 s
+        at 97, ~30-70 s at 193.
     inlet, outlet : domain ends in Hertz radii a (inlet <= -1.5, outlet >= 1).
     """
     R = _positive("radius", radius, "m")
@@ -122,16 +128,31 @@ def point_contact(*, radius: float, reduced_modulus: float, lubricant: Lubricant
     lam = 12.0 * mu0 * u * R**2 / (a**3 * ph)
     eta, rho = _pressure_laws(lubricant, ph)
 
-    d = (outlet - inlet) / (nodes - 1)
-    half = int(math.ceil(SIDE / d))
-    X = inlet + d * np.arange(nodes)
-    Y = d * np.arange(-half, half + 1)
-    prob = DimensionlessPoint(X, Y, lam, eta, rho)
     # the first film guess: Hamrock-Dowson's for a piezoviscous oil, else a rigid-like
     # film from the isoviscous lambda (H ~ lambda^(2/3) at light load)
     guess = hamrock_dowson_point(R, E, mu0, u, w, alpha).central / film_scale if alpha > 0 \
         else lam ** (2.0 / 3.0)
-    record, steps, iterations = _solve_with_continuation(prob, guess, tol)
+    # mesh sequencing: the coarsest grid (>= COARSEST nodes along x) from a cold start, each
+    # finer one (twice the cells) from the coarser answer, as the line contact does
+    grids = [nodes]
+    while (grids[-1] + 1) // 2 >= COARSEST and grids[-1] % 2 == 1:
+        grids.append((grids[-1] + 1) // 2)
+    record = None
+    for n in reversed(grids):
+        d = (outlet - inlet) / (n - 1)
+        half = int(math.ceil(SIDE / d))
+        X = inlet + d * np.arange(n)
+        Y = d * np.arange(-half, half + 1)
+        prob = DimensionlessPoint(X, Y, lam, eta, rho)
+        if record is None:
+            record, steps, iterations = _solve_with_continuation(prob, guess, tol)
+        else:
+            P0 = scipy.interpolate.RegularGridInterpolator(
+                (X_coarse, Y_coarse), record.pressure, bounds_error=False,
+                fill_value=0.0)(np.stack(np.meshgrid(X, Y, indexing="ij"), axis=-1))
+            record = solve_point(prob, P0, record.approach, tol=tol)
+            iterations += record.iterations
+        X_coarse, Y_coarse = X, Y
     x, y = a * X, a * Y
     h, p = film_scale * record.film, ph * record.pressure
     return PointContact(
