@@ -17,6 +17,7 @@ except ModuleNotFoundError:  # Python < 3.11
     import tomli as tomllib
 
 from bearingfem import Bearing, ElasticBush, Roughness
+from bearingfem.fields import EdgeProfile
 from bearingfem.bearing import plausibility_errors
 from bearingfem.accuracy import check_rtol
 from bearingfem.lubricant import ISO_VG, Lubricant
@@ -227,7 +228,8 @@ def _lubrication(t: _Table) -> Lubrication:
             raise ValueError(f"{t.where}: give rtol or the mesh (n_theta, n_z), not both")
     if "roughness" in given and "roughness" in m.defaults:   # mixed lubrication
         given["roughness"] = _roughness(_Table(given["roughness"], f"{t.where}.roughness"))
-    for key, cls in (("lubricant", Lubricant), ("bush", ElasticBush)):   # the EHD film
+    for key, cls in (("lubricant", Lubricant), ("bush", ElasticBush),    # the EHD film
+                     ("profile", EdgeProfile)):
         if isinstance(given.get(key), dict) and key in m.defaults:
             try:
                 given[key] = cls(**given[key])

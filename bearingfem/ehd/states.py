@@ -164,14 +164,17 @@ class ModalStateEHD:
     docstring): ``state_size`` = modes; :meth:`rates` gives the force and dq/dt.
 
     Parameters: bearing; lubricant, bush (an :class:`~bearingfem.ElasticBush`), n_theta,
-    n_z, modes (>= 1) as "fem-ehd"; relaxation tau [s] > 0.
+    n_z, modes (>= 1) as "fem-ehd"; relaxation tau [s] > 0; profile a bush edge profile
+    (:class:`~bearingfem.fields.EdgeProfile`, fixed to the bush: it adds to the gap, not to
+    its rate) or None.
     """
 
     memory = True
     has_tangent = True       # contract rule 17: tangent() after a rates call
 
     def __init__(self, bearing: Bearing, lubricant=None, bush=None, n_theta: int = 48,
-                 n_z: int = 8, modes: int = 16, relaxation: float = 1e-5, roughness=None):
+                 n_z: int = 8, modes: int = 16, relaxation: float = 1e-5, roughness=None,
+                 profile=None):
         if bush is None:
             raise ValueError("bush is required for the modal-state EHD film")
         if not int(modes) >= 1:
@@ -179,6 +182,7 @@ class ModalStateEHD:
         if not (np.isfinite(relaxation) and relaxation > 0.0):
             raise ValueError(f"relaxation must be > 0 [s], got {relaxation!r}")
         self.bearing, self.lubricant, self.roughness = bearing, lubricant, roughness
+        self.profile = None if profile is None else profile.check(bearing)
         self.n_theta, self.n_z = int(n_theta), int(n_z)
         comp = ehd_compliance(bush, bearing.radius, bearing.length, self.n_theta, self.n_z,
                               int(modes))
@@ -213,6 +217,9 @@ class ModalStateEHD:
         dw = np.einsum("jeq,je->eq", t.dphi[:, 0], w[m.basis.element_dofs]) / t.dx
         rigid_rate = state.eps_dot * np.cos(th) + state.gamma_dot * dw / c
         gap0 = film_thickness(m.theta, state.eps) + w / c
+        if self.profile is not None:        # the bore's crown or chamfer: fixed, no rate
+            gap_q = gap_q + self.profile.film_gap(b, op.qp_zeta)
+            gap0 = gap0 + self.profile.film_gap(b, m.zeta)
         contact, gap_nodes, moving = None, gap0, None   # the gap as it is (not floored)
         if self.roughness is not None:
             # the summits carry what the film cannot where the gap nearly closes: their
