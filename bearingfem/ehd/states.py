@@ -27,6 +27,7 @@ from __future__ import annotations
 from dataclasses import replace
 
 import numpy as np
+import scipy.sparse as sp
 
 from ..bearing import Bearing, JournalState
 from ..contract import FilmStep, StateTangent
@@ -77,7 +78,7 @@ class _CoupledFilm:
 
     def _at(self, P):
         qdot = self.rates(P)
-        rate = self.rigid_rate + (self.frame.squeeze @ qdot).reshape(self.rigid_rate.shape)
+        rate = self.rigid_rate + self.frame.squeeze(qdot).reshape(self.rigid_rate.shape)
         return replace(self.film, base=replace(self.film.base, gap_rate=rate)), qdot
 
     def film_state(self, P, s=1.0):
@@ -116,7 +117,11 @@ class _CoupledFilm:
         d R_i / d(dH/dt)_q = 12 rho phi_i dx (kept per density)."""
         rho = np.broadcast_to(ev.fields.density, self.op.qp_weight.shape)
         if self._G is None or not np.array_equal(rho, self._G[0]):
-            self._G = (rho, self.rate_load(ev, self.frame.squeeze))
+            # G = I^T W I L / c (I the points' interpolation, W the weights): through the
+            # sparse nodal product, not the dense (points, n) squeeze
+            w = sp.diags((12.0 * rho * self.op.qp_weight).ravel())
+            I = self.op.qp_interp
+            self._G = (rho, np.asarray((I.T @ (w @ I)) @ self.frame.left) / self.frame.clearance)
         return self._G[1]
 
     def rate_load(self, ev, M: np.ndarray) -> np.ndarray:
@@ -139,17 +144,22 @@ class _CoupledFilm:
 
 class _Frame:
     """What depends on the journal angle gamma alone, on one film mesh: the frame shift,
-    the modes' nodal shapes L (nodes, n) [1], their squeeze d(dH/dt)/d(dq/dt) at the
-    points (E*Q, n) [1/m], and the rates' factor V (:meth:`rates_factor`). Kept while gamma
+    the modes' nodal shapes L (nodes, n) [1], their squeeze at the points
+    (:meth:`squeeze`), and the rates' factor V (:meth:`rates_factor`). Kept while gamma
     holds: the integrator's difference Jacobian moves the modal coordinates and the
     speeds at the same gamma."""
 
     def __init__(self, op, gamma: float, left_grid, modal, clearance: float):
-        self.op, self.gamma, self.modal = op, gamma, modal
+        self.op, self.gamma, self.modal, self.clearance = op, gamma, modal, clearance
         self.shift = FrameShift(node_grid(op.mesh), gamma)
         self.left = self.shift.to_nodes(left_grid)
-        self.squeeze = np.asarray(op.qp_interp @ self.left / clearance)
         self._V = None
+
+    def squeeze(self, qdot: np.ndarray) -> np.ndarray:
+        """dH/dt at the points (E*Q,) [1/s] of the modal rates ``qdot`` [m/s]: the nodal
+        deflection rate L qdot / c interpolated (nodes first: the dense (points, n) factor
+        costs some 20x more to apply)."""
+        return self.op.qp_interp @ (self.left @ qdot) / self.clearance
 
     def rates_factor(self, scale: float, relaxation: float) -> np.ndarray:
         """V (nodes, n) with d(dq/dt)/dP = V^T: the same at every pressure and q."""
