@@ -17,11 +17,12 @@ except ModuleNotFoundError:  # Python < 3.11
     import tomli as tomllib
 
 from bearingfem import Bearing, ElasticBush, Roughness
-from bearingfem.fields import EdgeProfile
-from bearingfem.bearing import plausibility_errors
 from bearingfem.accuracy import check_rtol
+from bearingfem.bearing import plausibility_errors
+from bearingfem.fields import EdgeProfile
 from bearingfem.lubricant import ISO_VG, Lubricant
 from bearingfem.models import film_model
+
 from .parameters import Mechanism
 
 __all__ = ["Scene", "load_scene", "parse_scene", "INTEGRATORS"]

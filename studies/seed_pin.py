@@ -2,7 +2,7 @@
 where the least film sits, and the bush's deflection at the peak joint load.
 
     python -m studies.seed_pin [--meshes 48 4 96 8 192 16] [--modes 64] [--crown 2]
-        [--turns 5] [--figure docs/img/ehd_states_deflection.png] [--save DIR | --load DIR]
+        [--turns 5] [--figure results/seed_pin_deflection.png] [--save DIR | --load PATTERN]
 
 Each mesh: the rigid JFO run (``paper-short-jfo``) and the EHD run
 (``paper-short-ehd``, the bush's ``--modes`` integrated with the journal, tau 1e-5 s,
@@ -15,8 +15,9 @@ previous mesh, and the cost against the rigid JFO run; then, on each mesh, where
 least film of the last turn sits (crank angle, the bush's angle, z over L/2, the
 summits' share then) and its position along the turn every 30 degrees of crank.
 Writes the finest mesh's bush deflection and pressure at the peak joint load of the last
-turn to ``--figure``. ``--save DIR`` keeps each run (DIR/<n_theta>x<n_z>); ``--load DIR``
-reads runs kept so (no timing then).
+turn to ``--figure``. ``--save DIR`` keeps each run (DIR/<n_theta>x<n_z>); ``--load PATTERN``
+reads the runs from PATTERN with {mesh} as 48x4 (DIR/{mesh} for runs kept by ``--save``;
+no timing then).
 """
 from __future__ import annotations
 
@@ -29,11 +30,17 @@ from bearingfem import ElasticJournalState
 from bearingfem.fields import EdgeProfile
 from bearingfem.film import inertial_from_theta
 from bearingfem.models import film_model
+from benchmarks.common import OILS, scene
+from benchmarks.ehd_states import (
+    ROUGH,
+    RUNS,
+    last_turn,
+    last_turn_work,
+    rigid_jfo,
+    states_run,
+)
 from mechanism.result import film_column, load_result
 
-from benchmarks.common import OILS, scene
-from benchmarks.ehd_states import (ROUGH, RUNS, last_turn, last_turn_work, rigid_jfo,
-                                   states_run)
 from .ehd_paper import render_deflection
 
 STATE = ("eps", "eps_dot", "gamma", "gamma_dot", "omega")
@@ -105,7 +112,7 @@ def main(argv=None):
     ap.add_argument("--modes", type=int, default=64)
     ap.add_argument("--crown", type=float, default=2.0, help="crown depth [um] (0: sharp)")
     ap.add_argument("--turns", type=float, default=5.0)
-    ap.add_argument("--figure", default="docs/img/ehd_states_deflection.png")
+    ap.add_argument("--figure", default="results/seed_pin_deflection.png")
     g = ap.add_mutually_exclusive_group()
     g.add_argument("--save", metavar="DIR", default=None)
     g.add_argument("--load", metavar="PATTERN", default=None,

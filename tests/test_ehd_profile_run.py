@@ -2,9 +2,11 @@
 its modal-state coupling ("states"), its kept film ("kept", "tangent") and the scene
 option [effects.lubrication.profile]."""
 import dataclasses
+from pathlib import Path
 
 import numpy as np
 import pytest
+import tomllib
 
 from bearingfem import Bearing, ElasticBush, JournalState, solve_reynolds
 from bearingfem.contact import Roughness
@@ -14,6 +16,7 @@ from bearingfem.fe.assembly import fe_operator
 from bearingfem.fields import EdgeProfile
 from bearingfem.film import film_thickness
 from bearingfem.models.ehd import ehd_run_film
+from mechanism.scene import parse_scene
 
 B = Bearing(radius=0.01, length=0.004, clearance=20e-6, viscosity=0.0117)
 SOLID = ElasticBush(outer_radius=0.016, modulus=110e9, poisson=0.34, model="solid")
@@ -103,9 +106,6 @@ def test_the_scene_takes_the_profile_and_names_what_it_refuses():
     """[effects.lubrication.profile] kind/depth/length is the model's EdgeProfile; bad
     values are named with their table; the transient EHD-JFO film refuses one by name, as
     does a profile longer than half the bush."""
-    from mechanism.scene import parse_scene
-    import tomllib
-    from pathlib import Path
     data = tomllib.loads(Path("scenes/paper-short-ehd.toml").read_text())
     data["effects"]["lubrication"]["profile"] = dict(kind="chamfer", depth=1e-6,
                                                      length=5e-4)
