@@ -1,7 +1,8 @@
 """The seed pin at 250 rad/s with the bush's modes integrated (fem-ehd coupling 'states').
 
     python -m benchmarks.ehd_states [--turns 0.1] [--mesh 48 4] [--runs base rtol tau ...]
-        [--modes 16 24 ...] [--progress] [--save DIR] [--differences]
+        [--modes 16 24 ...] [--crown DEPTH_UM [LENGTH_MM]] [--progress] [--save DIR]
+        [--differences]
 
 A tenth of a turn from top dead centre (benchmarks/ehd_step.py's window), rough surfaces
 (sigma 0.2 um, E* 80.8 GPa, K 1e-3), one run per row: steps, CPU time, peak eps, least film
@@ -10,7 +11,11 @@ integration loop cut where a film solve failed, the least film and peak pressure
 last whole turn (the periodic state), and the rigid JFO run of the same mesh for the cost
 ratio. With ``--differences`` each row runs again with the integrator's own difference
 Jacobian (the film's tangent hidden, contract rule 17), in the same process: the
-tangent's saving. docs/ehd-states.md has a table of it.
+tangent's saving. ``--crown`` gives the bush a crowned bore (an
+:class:`~bearingfem.fields.EdgeProfile`, depth [um] at the ends over the given length at
+each end [mm], default the whole length); the last turn's summits' share (their load's
+time integral over the total force's) and mean friction power (film shear and summits'
+Coulomb friction) are printed after each row. docs/ehd-states.md has tables of it.
 """
 from __future__ import annotations
 
@@ -21,6 +26,7 @@ import dataclasses
 import numpy as np
 
 from bearingfem.contact import Roughness
+from bearingfem.fields import EdgeProfile
 from mechanism import load_scene, simulate
 from mechanism.effects import FilmEffect
 from mechanism.result import film_column
@@ -47,10 +53,10 @@ def without_tangent():
         FilmEffect.has_tangent = kept
 
 
-def states_run(turns, nt, nz, rtol, tau, modes, oil, progress=False):
+def states_run(turns, nt, nz, rtol, tau, modes, oil, progress=False, profile=None):
     sc = scene("paper-short-ehd", 250.0, turns, n_theta=nt, n_z=nz, modes=modes,
                film_step=0.0, lubricant=OILS[oil], coupling="states", relaxation=tau,
-               roughness=ROUGH)
+               roughness=ROUGH, profile=profile)
     sc = dataclasses.replace(sc, run=dataclasses.replace(sc.run, rtol=rtol))
     t = best_of(lambda: simulate(sc, progress=progress))
     return t.out, t.cpu
@@ -77,6 +83,26 @@ def last_turn(r, turns):
     return 1e6 * float(np.min(r.film_min[on])), float(np.max(p, initial=-np.inf)) / 1e6
 
 
+def last_turn_work(r, turns, bearing_radius, friction=ROUGH.friction):
+    """(summits' share [1], their peak load [N], mean friction power [W]) over the run's
+    last whole turn: the time integral of the summits' load over that of the joint film's
+    total force, and the mean of (film shear + summits' Coulomb force) R |omega|."""
+    if turns < 1 or not len(r.eps):
+        return (float("nan"),) * 3
+    t0 = r.t[np.argmax(r.crank_angle >= 2 * np.pi * (np.floor(turns) - 1))]
+    rec = np.asarray(r.film_record)
+    rec = rec[film_column(rec, "t") >= t0]
+    t = film_column(rec, "t")
+    a = film_column(rec, "asperity_load")
+    f = np.hypot(film_column(rec, "force_x"), film_column(rec, "force_y"))
+    om = film_column(rec, "omega")
+    power = (film_column(rec, "friction_force") * np.sign(om) + friction * a) \
+        * bearing_radius * np.abs(om)
+    span = t[-1] - t[0]
+    return (np.trapezoid(a, t) / np.trapezoid(f, t), float(a.max()),
+            np.trapezoid(power, t) / span)
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--turns", type=float, default=0.1)
@@ -88,16 +114,27 @@ def main(argv=None):
                     help="each run's progress on stderr (five turns take minutes to hours)")
     ap.add_argument("--differences", action="store_true",
                     help="each row again with the integrator's difference Jacobian")
+    ap.add_argument("--crown", type=float, nargs="+", default=None,
+                    metavar=("DEPTH_UM", "LENGTH_MM"),
+                    help="a crowned bush bore: depth [um] at the ends, over LENGTH_MM at each "
+                         "end (default: the whole length)")
     ap.add_argument("--save", metavar="DIR", default=None,
                     help="write each run's result to DIR/<run>-<modes>modes (its film record "
                          "and modal states, for a look at where the least film falls)")
     a = ap.parse_args(argv)
     nt, nz = a.mesh
+    radius = load_scene("paper-short-ehd").bearing.radius
+    profile = None
+    if a.crown:
+        profile = EdgeProfile("crown", a.crown[0] * 1e-6,
+                              None if len(a.crown) < 2 else a.crown[1] * 1e-3)
     # warm-up: the first run of a process builds the meshes' operators and tables
     rigid_jfo(0.002, nt, nz)
-    states_run(0.002, nt, nz, *RUNS["base"])
+    rtol0, tau0, modes0, oil0 = RUNS[a.runs[0]]
+    states_run(0.002, nt, nz, rtol0, tau0, (a.modes or [modes0])[0], oil0, profile=profile)
     base = rigid_jfo(a.turns, nt, nz)
-    print(f"seed pin, 250 rad/s, {a.turns:g} turn, {nt} x {nz}; rigid JFO run {base:.2f} s CPU")
+    print(f"seed pin, 250 rad/s, {a.turns:g} turn, {nt} x {nz}; rigid JFO run {base:.2f} s CPU"
+          + ("" if profile is None else f"; bush bore {profile}"))
     print(f"{'run':>9} {'rtol':>6} {'tau[s]':>7} {'modes':>5} {'oil':>8} {'steps':>6} "
           f"{'rhs':>6} {'CPU[s]':>7} {'x JFO':>6} {'peak eps':>9} {'h_min[um]':>9} "
           f"{'p_max[MPa]':>10} {'cuts':>4} {'last turn: h_min[um]':>20} {'p_max[MPa]':>10}")
@@ -106,7 +143,7 @@ def main(argv=None):
     for name, modes, diff in rows:
         rtol, tau, _, oil = RUNS[name]
         with without_tangent() if diff else contextlib.nullcontext():
-            r, cpu = states_run(a.turns, nt, nz, rtol, tau, modes, oil, a.progress)
+            r, cpu = states_run(a.turns, nt, nz, rtol, tau, modes, oil, a.progress, profile)
         p = film_column(r.film_record, "pressure_max")
         p_max = p.max() / 1e6 if p.size else float("nan")
         note = "" if not r.partial else f"  (stopped: {r.message[:60]})"
@@ -120,6 +157,9 @@ def main(argv=None):
               f"{1e6 * r.film_min.min() if len(r.eps) else float('nan'):9.3f} {p_max:10.1f} "
               f"{len(r.stats.get('step_cuts', ())):4d} {h_last:20.3f} {p_last:10.1f}" + note,
               flush=True)
+        share, a_max, power = last_turn_work(r, a.turns, radius)
+        print(f"{'':>9} last turn: summits' share {share:.4f}, their peak load {a_max:.1f} N, "
+              f"friction power {power:.2f} W", flush=True)
 
 
 if __name__ == "__main__":

@@ -17,11 +17,13 @@ except ModuleNotFoundError:  # Python < 3.11
     import tomli as tomllib
 
 from bearingfem import Bearing, ElasticBush, Groove, Roughness
-from bearingfem.bearing import plausibility_errors
 from bearingfem.accuracy import check_rtol
+from bearingfem.bearing import plausibility_errors
+from bearingfem.fields import EdgeProfile
 from bearingfem.lubricant import ISO_VG, Lubricant
 from bearingfem.models import film_model
 from bearingfem.thermal import Thermal
+
 from .parameters import Mechanism
 
 __all__ = ["Scene", "load_scene", "parse_scene", "INTEGRATORS"]
@@ -245,7 +247,7 @@ def _lubrication(t: _Table) -> Lubrication:
             raise ValueError(f"{t.where} takes one of oil (an ISO VG grade) or lubricant")
         given["lubricant"] = Lubricant.iso_vg(_grade(given.pop("oil"), f"{t.where}.oil"))
     for key, cls in (("lubricant", Lubricant), ("bush", ElasticBush),     # the EHD film
-                     ("thermal", Thermal)):                               # the THD film
+                     ("profile", EdgeProfile), ("thermal", Thermal)):     # and the THD film
         if isinstance(given.get(key), dict) and key in m.defaults:
             try:
                 given[key] = cls(**given[key])

@@ -33,6 +33,7 @@ from __future__ import annotations
 from dataclasses import replace
 
 import numpy as np
+import scipy.sparse as sp
 
 from ..bearing import Bearing, JournalState
 from ..contact.flow_factors import FLOW_FLOOR
@@ -85,7 +86,7 @@ class _CoupledFilm:
 
     def _at(self, P):
         qdot = self.rates(P)
-        rate = self.rigid_rate + (self.frame.squeeze @ qdot).reshape(self.rigid_rate.shape)
+        rate = self.rigid_rate + self.frame.squeeze(qdot).reshape(self.rigid_rate.shape)
         return replace(self.film, base=replace(self.film.base, gap_rate=rate)), qdot
 
     def film_state(self, P, s=1.0):
@@ -126,7 +127,11 @@ class _CoupledFilm:
         kept per density: the gap is this film's)."""
         rho = np.broadcast_to(ev.fields.density, self.op.qp_weight.shape)
         if self._G is None or not np.array_equal(rho, self._G[0]):
-            self._G = (rho, self.rate_load(ev, self.frame.squeeze))
+            # G = I^T W I L / c (I the points' interpolation, W the weights): through the
+            # sparse nodal product, not the dense (points, n) squeeze
+            w = sp.diags((12.0 * rho * self.op.qp_weight).ravel())
+            I = self.op.qp_interp
+            self._G = (rho, np.asarray((I.T @ (w @ I)) @ self.frame.left) / self.frame.clearance)
         return self._G[1]
 
     def rate_load(self, ev, M: np.ndarray) -> np.ndarray:
@@ -151,17 +156,22 @@ class _CoupledFilm:
 
 class _Frame:
     """What depends on the journal angle gamma alone, on one film mesh: the frame shift,
-    the modes' nodal shapes L (nodes, n) [1], their squeeze d(dH/dt)/d(dq/dt) at the
-    points (E*Q, n) [1/m], and the rates' factor V (:meth:`rates_factor`). Kept while gamma
+    the modes' nodal shapes L (nodes, n) [1], their squeeze at the points
+    (:meth:`squeeze`), and the rates' factor V (:meth:`rates_factor`). Kept while gamma
     holds: the integrator's difference Jacobian moves the modal coordinates and the
     speeds at the same gamma."""
 
     def __init__(self, op, gamma: float, left_grid, modal, clearance: float):
-        self.op, self.gamma, self.modal = op, gamma, modal
+        self.op, self.gamma, self.modal, self.clearance = op, gamma, modal, clearance
         self.shift = FrameShift(node_grid(op.mesh), gamma)
         self.left = self.shift.to_nodes(left_grid)
-        self.squeeze = np.asarray(op.qp_interp @ self.left / clearance)
         self._V = None
+
+    def squeeze(self, qdot: np.ndarray) -> np.ndarray:
+        """dH/dt at the points (E*Q,) [1/s] of the modal rates ``qdot`` [m/s]: the nodal
+        deflection rate L qdot / c interpolated (nodes first: the dense (points, n) factor
+        costs some 20x more to apply)."""
+        return self.op.qp_interp @ (self.left @ qdot) / self.clearance
 
     def rates_factor(self, scale: float, relaxation: float) -> np.ndarray:
         """V (nodes, n) with d(dq/dt)/dP = V^T: the same at every pressure and q."""
@@ -176,14 +186,17 @@ class ModalStateEHD:
     docstring): ``state_size`` = modes; :meth:`rates` gives the force and dq/dt.
 
     Parameters: bearing; lubricant, bush (an :class:`~bearingfem.ElasticBush`), n_theta,
-    n_z, modes (>= 1) as "fem-ehd"; relaxation tau [s] > 0.
+    n_z, modes (>= 1) as "fem-ehd"; relaxation tau [s] > 0; profile a bush edge profile
+    (:class:`~bearingfem.fields.EdgeProfile`, fixed to the bush: it adds to the gap, not to
+    its rate) or None.
     """
 
     memory = True
     has_tangent = True       # contract rule 17: tangent() after a rates call
 
     def __init__(self, bearing: Bearing, lubricant=None, bush=None, n_theta: int = 48,
-                 n_z: int = 8, modes: int = 16, relaxation: float = 1e-5, roughness=None):
+                 n_z: int = 8, modes: int = 16, relaxation: float = 1e-5, roughness=None,
+                 profile=None):
         if bush is None:
             raise ValueError("bush is required for the modal-state EHD film")
         if not int(modes) >= 1:
@@ -191,6 +204,7 @@ class ModalStateEHD:
         if not (np.isfinite(relaxation) and relaxation > 0.0):
             raise ValueError(f"relaxation must be > 0 [s], got {relaxation!r}")
         self.bearing, self.lubricant, self.roughness = bearing, lubricant, roughness
+        self.profile = None if profile is None else profile.check(bearing)
         self.n_theta, self.n_z = int(n_theta), int(n_z)
         comp = ehd_compliance(bush, bearing.radius, bearing.length, self.n_theta, self.n_z,
                               int(modes))
@@ -225,6 +239,9 @@ class ModalStateEHD:
         dw = np.einsum("jeq,je->eq", t.dphi[:, 0], w[m.basis.element_dofs]) / t.dx
         rigid_rate = state.eps_dot * np.cos(th) + state.gamma_dot * dw / c
         gap0 = film_thickness(m.theta, state.eps) + w / c
+        if self.profile is not None:        # the bore's crown or chamfer: fixed, no rate
+            gap_q = gap_q + self.profile.film_gap(b, op.qp_zeta)
+            gap0 = gap0 + self.profile.film_gap(b, m.zeta)
         contact, gap_nodes, moving = None, gap0, None   # the gap as it is (not floored)
         if self.roughness is not None and self.roughness.flow is not None:
             # the summits carry what the film cannot; the film's flow through the rough

@@ -111,7 +111,7 @@ class TangentEHD(TransientEHD):
         if k.origin is not None:
             dh = dh + np.tensordot(ds, k.deflection_slope, axes=1)
         h0 = (1.0 - np.cos(alpha) * self._origin[0] - np.sin(alpha) * self._origin[1]
-              + k.deflection)
+              + k.deflection + k.profile_gap)
         return float(np.max(np.abs(dh) / h0))
 
 

@@ -62,18 +62,18 @@ def ehd_compliance(bush: ElasticBush, radius: float, length: float, n_theta: int
 
 def ehd_solution(bearing: Bearing, state: JournalState, lubricant, bush, roughness,
                  n_theta: int, n_z: int, modes: int, start: FilmSolution | None = None,
-                 ) -> FilmSolution:
+                 profile=None) -> FilmSolution:
     """The full EHD film at ``state`` (P1, Swift-Stieber cavitation; ``start`` a previous
-    solution of the same mesh for a warm start)."""
+    solution of the same mesh for a warm start; ``profile`` a bush edge profile or None)."""
     comp = None if bush is None else ehd_compliance(
         bush, bearing.radius, bearing.length, n_theta, n_z, modes)
-    if comp is None and lubricant is None:      # the rigid isoviscous film: no Newton
+    if comp is None and lubricant is None and profile is None:   # rigid isoviscous: no Newton
         op = fe_operator(bearing, state, n_theta, n_z, "P1", None, True)
         sol = solve_film(bearing, state, op, "P1", "reynolds")
         return sol if roughness is None else with_contact(
             sol, film_contact(bearing, state, op, roughness))
     return solve_elastic_film(bearing, state, n_theta, n_z, "reynolds", lubricant=lubricant,
-                              bush=comp, roughness=roughness, start=start)
+                              bush=comp, roughness=roughness, start=start, profile=profile)
 
 
 def total_force(sol: FilmSolution) -> tuple:
@@ -96,6 +96,8 @@ class KeptFilm:
     origin: np.ndarray | None = None          # s_n (5,): the state of the solve
     deflection_slope: np.ndarray | None = None    # d(w/c)/ds (5, n_theta, n_z + 1)
     pressure_slope: np.ndarray | None = None      # dp/ds [Pa] (5, n_theta, n_z + 1)
+    profile: object = None          # the bush's EdgeProfile (fixed to the bush) or None
+    profile_gap: np.ndarray | float = 0.0     # its h_p/c on the grid's zeta (n_z + 1,)
 
     def grids(self, state: JournalState) -> tuple:
         """(w/c, p) grids at ``state``: the kept ones moved along their tangent (the kept
@@ -110,7 +112,8 @@ class KeptFilm:
         # grid plus w_n); the deflection's change dw closes it in log h (g exp(dw / g):
         # the same first derivative, and it stays > 0, where a linear step closes the thin
         # film at the bush's free ends) and opens it linearly (C1 across dw = 0)
-        g = 1.0 - s[0] * np.cos(alpha) - s[1] * np.sin(alpha) + self.deflection
+        g = (1.0 - s[0] * np.cos(alpha) - s[1] * np.sin(alpha) + self.deflection
+             + self.profile_gap)
         dw = np.tensordot(ds, self.deflection_slope, axes=1)
         safe = np.where(g > 0.0, g, 1.0)
         closing = g * np.expm1(np.minimum(dw, 0.0) / safe)
@@ -135,11 +138,13 @@ class KeptFilm:
         points: the rigid gap plus the kept deflection, and the lubricant's ratios at the
         kept pressure, both read at the mesh nodes (moved to the film angle of ``state``)
         and interpolated by the elements as the EHD film does: at the state of the solve
-        they are that solve's fields."""
+        they are that solve's fields (the edge profile at the points, as the solve's)."""
         alpha = inertial_from_theta(op.mesh.theta, state.gamma)
         w_grid, p_grid = self.grids(state)
         w = op.at_quadrature(self.at(w_grid, alpha, op.mesh.zeta))
         gap = film_thickness(op.qp_theta, state.eps) + w
+        if self.profile is not None:
+            gap = gap + self.profile.film_gap(bearing, op.qp_zeta)
         if lubricant is None:
             return FilmFields(gap=gap)
         p = op.at_quadrature(self.at(p_grid, alpha, op.mesh.zeta))
@@ -156,9 +161,10 @@ def state_coordinates(state: JournalState) -> np.ndarray:
 
 
 def kept_film(bearing: Bearing, state: JournalState, sol: FilmSolution, n_theta: int,
-              n_z: int) -> KeptFilm:
+              n_z: int, profile=None) -> KeptFilm:
     """The deflection and pressure of the EHD solution ``sol`` at ``state`` on the film
-    grid (its mesh is the periodic whole-length one: nodes at theta = 2 pi j / n_theta)."""
+    grid (its mesh is the periodic whole-length one: nodes at theta = 2 pi j / n_theta), and
+    the bush edge ``profile`` the solve had (None: none)."""
     theta, zeta = np.asarray(sol.theta), np.asarray(sol.z) / bearing.radius
     lam = bearing.length / (2 * bearing.radius)
     j = np.rint(theta / (2 * np.pi / n_theta)).astype(int) % n_theta
@@ -176,7 +182,9 @@ def kept_film(bearing: Bearing, state: JournalState, sol: FilmSolution, n_theta:
             raise ValueError(f"the EHD solution's nodes do not cover the {n_theta} x {n_z} "
                              "film grid (n_theta, n_z must be the solve's mesh)")
         grids.append(g)
-    return KeptFilm(float(inertial_from_theta(0.0, state.gamma)), *grids, half_width=lam)
+    edge = 0.0 if profile is None else profile.film_gap(bearing, np.linspace(-lam, lam, n_z + 1))
+    return KeptFilm(float(inertial_from_theta(0.0, state.gamma)), *grids, half_width=lam,
+                    profile=profile, profile_gap=edge)
 
 
 @dataclass(frozen=True)
@@ -200,16 +208,19 @@ class TransientEHD(StatelessRun):
     bearing : the bearing
     lubricant, bush, roughness, n_theta, n_z, modes : the film (:func:`ehd_solution`)
     film_step : [s] time between full EHD solves (0: one at every accepted step)
+    profile : a bush edge profile (:class:`~bearingfem.fields.EdgeProfile`) or None
     """
 
     memory = True
 
     def __init__(self, bearing: Bearing, lubricant=None, bush=None, roughness=None,
-                 n_theta: int = 48, n_z: int = 8, modes: int = 0, film_step: float = 0.0):
+                 n_theta: int = 48, n_z: int = 8, modes: int = 0, film_step: float = 0.0,
+                 profile=None):
         refuse_rough_flow(roughness, "transient EHD film")
         self.bearing = bearing
         self._film = dict(lubricant=lubricant, bush=bush, roughness=roughness,
-                          n_theta=n_theta, n_z=n_z, modes=modes)
+                          n_theta=n_theta, n_z=n_z, modes=modes,
+                          profile=None if profile is None else profile.check(bearing))
         self.film_step = float(film_step)
         self.steps = 0
         self._kept: KeptFilm | None = None
@@ -222,7 +233,8 @@ class TransientEHD(StatelessRun):
         return ehd_solution(self.bearing, state, start=self._solution, **self._film)
 
     def _keep(self, state: JournalState, sol: FilmSolution) -> KeptFilm:
-        return kept_film(self.bearing, state, sol, self._film["n_theta"], self._film["n_z"])
+        f = self._film
+        return kept_film(self.bearing, state, sol, f["n_theta"], f["n_z"], f["profile"])
 
     def _keep_at(self, state: JournalState, sol: FilmSolution) -> KeptFilm:
         """The kept film of a film step (:class:`~bearingfem.ehd.tangent.TangentEHD` adds

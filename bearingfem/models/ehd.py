@@ -10,6 +10,7 @@ from ..ehd.states import ModalStateEHD
 from ..ehd.tangent import TangentEHD
 from ..ehd.transient import TransientEHD, ehd_compliance, ehd_solution
 from ..elastic import ElasticBush
+from ..fields import EdgeProfile
 from ..lubricant import Lubricant
 from ..reynolds import solve_reynolds
 from .jfo import JFO_AMBIENT
@@ -22,60 +23,78 @@ RELAXATION = (1e-12, 1.0)
 
 
 def ehd_jfo_solution(bearing, state, lubricant, bush, roughness, n_theta: int, n_z: int,
-                     modes: int):
+                     modes: int, profile=None):
     """The steady EHD-JFO film of "fem-ehd" with ``cavitation="jfo"`` (whole length, oil
-    around it at :data:`~bearingfem.models.jfo.JFO_AMBIENT`)."""
+    around it at :data:`~bearingfem.models.jfo.JFO_AMBIENT`; ``profile`` a bush edge
+    profile or None)."""
     comp = None if bush is None else ehd_compliance(bush, bearing.radius, bearing.length,
                                                      n_theta, n_z, modes)
     return solve_reynolds(bearing, state, n_theta, n_z, "P1", "jfo", half=False,
                           lubricant=lubricant, bush=comp, roughness=roughness,
-                          ambient_pressure=JFO_AMBIENT)
+                          ambient_pressure=JFO_AMBIENT, profile=profile)
 
 
 def ehd_model_solution(bearing, state, lubricant, bush, roughness, n_theta: int, n_z: int,
                        modes: int, film_step: float = 0.0, cavitation: str = "reynolds",
-                       coupling: str = "kept", relaxation: float = 1e-5):
+                       coupling: str = "kept", relaxation: float = 1e-5, profile=None):
     """The "fem-ehd" model's steady film for its ``cavitation`` (a cold full solve;
-    ``film_step``, ``coupling`` and ``relaxation`` are for time integration only)."""
+    ``film_step``, ``coupling`` and ``relaxation`` are for time integration only;
+    ``profile`` a bush edge profile, :class:`~bearingfem.fields.EdgeProfile`, or None)."""
+    if profile is not None:
+        profile.check(bearing)
     if cavitation == "jfo":
-        return ehd_jfo_solution(bearing, state, lubricant, bush, roughness, n_theta, n_z, modes)
-    return ehd_solution(bearing, state, lubricant, bush, roughness, n_theta, n_z, modes)
+        return ehd_jfo_solution(bearing, state, lubricant, bush, roughness, n_theta, n_z, modes,
+                                profile)
+    return ehd_solution(bearing, state, lubricant, bush, roughness, n_theta, n_z, modes,
+                        profile=profile)
 
 
 def ehd_run_film(bearing, lubricant=None, bush=None, roughness=None, n_theta: int = 48,
                  n_z: int = 8, modes: int = 0, film_step: float = 0.0,
                  cavitation: str = "reynolds", coupling: str = "kept",
-                 relaxation: float = 1e-5):
+                 relaxation: float = 1e-5, profile=None):
     """The "fem-ehd" model's RunFilm for its ``cavitation``: "reynolds" (Swift-Stieber,
     :class:`~bearingfem.ehd.transient.TransientEHD`, or with ``coupling`` "tangent"
     :class:`~bearingfem.ehd.tangent.TangentEHD`) or "jfo" (:class:`TransientEHDJFO`, oil
     around the film at 1e5 Pa); ``coupling`` "states": the bush's modes integrated with
     the journal (:class:`~bearingfem.ehd.states.ModalStateEHD`, Reynolds' condition, a
-    bush, ``relaxation`` [s] its Kelvin-Voigt time)."""
+    bush, ``relaxation`` [s] its Kelvin-Voigt time). ``profile``: a bush edge profile
+    (:class:`~bearingfem.fields.EdgeProfile`) in the gap of the Reynolds-condition films;
+    the transient EHD-JFO film takes none."""
+    if profile is not None:
+        profile.check(bearing)
     if coupling == "states":
         if cavitation != "reynolds" or not modes:
             raise ValueError("coupling 'states' takes cavitation 'reynolds' and modes >= 1 "
                              f"(got {cavitation!r}, modes {modes})")
         return ModalStateEHD(bearing, lubricant, bush, n_theta, n_z, modes, relaxation,
-                             roughness)
+                             roughness, profile)
     o = dict(lubricant=lubricant, bush=bush, roughness=roughness, n_theta=n_theta, n_z=n_z,
              modes=modes, film_step=film_step)
     if cavitation == "jfo":
         if coupling == "tangent":
             raise ValueError("coupling 'tangent' takes cavitation 'reynolds', got 'jfo'")
+        if profile is not None:
+            # its kept film's volumes and content are those of the bore without one
+            raise ValueError("profile takes cavitation 'reynolds' along a run (the "
+                             "transient EHD-JFO film has no edge profile), got 'jfo'")
         return TransientEHDJFO(bearing, **o, ambient_pressure=JFO_AMBIENT)
-    return (TangentEHD if coupling == "tangent" else TransientEHD)(bearing, **o)
+    return (TangentEHD if coupling == "tangent" else TransientEHD)(bearing, **o,
+                                                                   profile=profile)
 
 
 class EHDModel(FilmModel):
     """Options: ``lubricant`` and ``bush`` objects (or None), ``modes`` the number of
     compliance vectors (0: the full compliance), ``roughness``, the mesh, ``film_step``
-    [s], ``cavitation``, ``coupling`` and ``relaxation`` [s] (:func:`ehd_run_film`)."""
+    [s], ``cavitation``, ``coupling``, ``relaxation`` [s] and ``profile`` (a bush edge
+    profile, :class:`~bearingfem.fields.EdgeProfile`, or None) (:func:`ehd_run_film`)."""
 
     name = "fem-ehd"
     defaults = dict(n_theta=48, n_z=8, lubricant=None, bush=None, roughness=None, modes=64,
-                    film_step=0.0, cavitation="reynolds", coupling="kept", relaxation=1e-5)
+                    film_step=0.0, cavitation="reynolds", coupling="kept", relaxation=1e-5,
+                    profile=None)
     rules = {"lubricant": ("instance", (Lubricant,)), "bush": ("instance", (ElasticBush,)),
+             "profile": ("instance", (EdgeProfile,)),
              "modes": ("int", (0, None)), "cavitation": ("choice", ("reynolds", "jfo")),
              "coupling": ("choice", ("kept", "tangent", "states")),
              "relaxation": ("number", RELAXATION)}
