@@ -126,6 +126,8 @@ class _CoupledFilm:
         d R_i / d(dH/dt)_q = 12 rho phi_i dx (times dE(h_T)/dh with a rough gap's flow;
         kept per density: the gap is this film's)."""
         rho = np.broadcast_to(ev.fields.density, self.op.qp_weight.shape)
+        if ev.flow is not None:     # the squeeze moves the mean gap: dE(h_T)/dh dH/dt
+            rho = rho * ev.flow.gap_slope
         if self._G is None or not np.array_equal(rho, self._G[0]):
             # G = I^T W I L / c (I the points' interpolation, W the weights): through the
             # sparse nodal product, not the dense (points, n) squeeze
