@@ -89,7 +89,7 @@ def test_krylov_failure_falls_back_to_the_dense_step(monkeypatch):
     film), and above it Newton stops and raises ConvergenceError."""
     S, P, H0 = _line_iterate(800)
     phi, H, r, ef, s = S.merit(P, H0)
-    monkeypatch.setattr(line, "krylov_step", lambda *a: (None, 300))
+    monkeypatch.setattr(multilevel, "krylov_step", lambda *a: (None, 300))
     dense = line._dense_step(S, P, H, ef, r, s, phi)
     np.testing.assert_array_equal(line._krylov_step(S, P, H, ef, r, s, phi, 1e-9), dense)
     monkeypatch.setattr(line, "DENSE_FALLBACK", 500)

@@ -37,8 +37,8 @@ import scipy.sparse.linalg as spla
 
 from ..errors import ConvergenceError
 from .halfspace import LineCompliance
-from .multilevel import (REUSE_PRODUCTS, SWEEPS, Level, distribution_1d, interpolation,
-                         krylov_step, near_field, restriction)
+from .multilevel import (Level, distribution_1d, interpolation, multilevel_step, near_field,
+                         restriction)
 
 __all__ = ["DimensionlessLine", "NewtonRecord", "solve_dimensionless", "DENSE_NODES"]
 
@@ -108,7 +108,7 @@ class _System:
         self.dx = prob.X[1] - prob.X[0]
         self.compliance = LineCompliance(self.n, self.dx)
         self.K = None            # dense influence matrix, built on first Jacobian
-        self.levels = None       # the multilevel step's (grids, GMRES products, held, sweeps)
+        self.levels = None       # the multilevel step's KeptLevels
         self.geometry = prob.X**2 / 2
         k = self.compliance.kernel[:3]
         self.wedge_stiffness = (1.5 * k[0] - 2.0 * k[1] + 0.5 * k[2]) / self.dx
@@ -270,20 +270,11 @@ def _krylov_step(S: _System, P, H, ef, r, s, phi, tol):
         return np.where(fixed, dP, JP @ dP + JH @ S.compliance.deflection(dP))
 
     column = np.where(fixed, 0.0, np.asarray(JH.sum(axis=1)).ravel())
-    kept = S.levels
-    if kept is not None and (kept[1] > REUSE_PRODUCTS or not np.array_equal(kept[2], fixed)):
-        kept = None
-    # the kept grids, else fresh ones
-    attempts = ([(kept[0], kept[3])] if kept else []) + [(None, SWEEPS)]
-    for levels, sweeps in attempts:
-        if levels is None:
-            levels = _levels(S.prob, S.load, P, H, fixed)
-        x, products = krylov_step(block, levels, column, np.full(n, S.dx), rhs, scale,
-                                  1e-3 * tol, sweeps)
-        if x is not None:
-            S.levels = (levels, products, fixed, sweeps)
-            return np.append(x[1:-2], x[-1])
-    S.levels = None
+    x, S.levels = multilevel_step(block, column, np.full(n, S.dx), rhs, scale, 1e-3 * tol,
+                                  S.levels, fixed,
+                                  lambda: _levels(S.prob, S.load, P, H, fixed))
+    if x is not None:
+        return np.append(x[1:-2], x[-1])
     return _dense_step(S, P, H, ef, r, s, phi) if n <= DENSE_FALLBACK else None
 
 

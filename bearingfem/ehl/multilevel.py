@@ -38,7 +38,8 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-__all__ = ["Level", "vcycle", "krylov_step", "interpolation", "restriction",
+__all__ = ["Level", "KeptLevels", "vcycle", "krylov_step", "multilevel_step",
+           "interpolation", "restriction",
            "distribution_1d", "distribution_2d", "near_field"]
 
 #: A V-cycle's grids are kept for the next Newton step while its cavitated set holds and
@@ -69,6 +70,36 @@ class Level:
     smooth: Callable[[np.ndarray], np.ndarray]
     prolong: sp.csr_matrix | None = None
     restrict: sp.csr_matrix | None = None
+
+
+@dataclass(frozen=True, eq=False)
+class KeptLevels:
+    """A V-cycle's grids kept from the last Newton step: the GMRES products the step took
+    on them, the held set they were built for and the sweeps they ran with."""
+
+    levels: list
+    products: int
+    fixed: np.ndarray
+    sweeps: int
+
+
+def multilevel_step(block, column, weights, rhs, scale, tol: float,
+                    kept: KeptLevels | None, fixed: np.ndarray,
+                    build: Callable[[], list]) -> tuple:
+    """(x or None, the grids to keep or None): :func:`krylov_step` on the ``kept`` grids
+    while they serve (the same held set, at most :data:`REUSE_PRODUCTS` products last
+    time), else, or if that fails, on fresh ones from ``build()``."""
+    if kept is not None and (kept.products > REUSE_PRODUCTS
+                             or not np.array_equal(kept.fixed, fixed)):
+        kept = None
+    attempts = ([(kept.levels, kept.sweeps)] if kept else []) + [(None, SWEEPS)]
+    for levels, sweeps in attempts:
+        if levels is None:
+            levels = build()
+        x, products = krylov_step(block, levels, column, weights, rhs, scale, tol, sweeps)
+        if x is not None:
+            return x, KeptLevels(levels, products, fixed, sweeps)
+    return None, None
 
 
 def vcycle(levels: list[Level], r: np.ndarray, k: int = 0, sweeps: int = 1) -> np.ndarray:

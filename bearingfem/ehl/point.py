@@ -31,8 +31,8 @@ import scipy.sparse.linalg as spla
 
 from ..errors import ConvergenceError
 from .line import UPWIND, NewtonRecord, _cavitated, _complementarity, _equilibrated_step
-from .multilevel import (REUSE_PRODUCTS, SWEEPS, Level, distribution_2d, interpolation,
-                         krylov_step, near_field, restriction)
+from .multilevel import (Level, distribution_2d, interpolation, multilevel_step, near_field,
+                         restriction)
 from .pointspace import HERTZ_POINT_LOAD, PointCompliance
 
 __all__ = ["DimensionlessPoint", "solve_point", "DENSE_POINT_NODES"]
@@ -114,7 +114,7 @@ class _PointSystem:
         self.compliance = PointCompliance(nx, ny, d, d)
         self.spectrum = self.compliance.spectrum()
         self.K = None
-        self.levels = None             # (grids, GMRES products, held, sweeps) of the last step
+        self.levels = None             # the last step's KeptLevels
         self.geometry = ((prob.X[:, None] ** 2 + prob.Y[None, :] ** 2) / 2).ravel()
         k = self.compliance.kernel[:3, 0]
         self.wedge_stiffness = (UPWIND[0] * k[0] + UPWIND[1] * k[1] + UPWIND[2] * k[2]) / d
@@ -253,19 +253,11 @@ def _krylov_step(S: _PointSystem, P, H, r, s, phi, tol):
         return np.where(fixed, dP, JP @ dP + JH @ V)
 
     column = np.where(fixed, 0.0, np.asarray(JH.sum(axis=1)).ravel())
-    kept = S.levels
-    if kept is not None and (kept[1] > REUSE_PRODUCTS or not np.array_equal(kept[2], fixed)):
-        kept = None
-    attempts = ([(kept[0], kept[3])] if kept else []) + [(None, SWEEPS)]
-    for levels, sweeps in attempts:
-        if levels is None:
-            levels = _levels(S.prob, S.load, P, H, fixed.reshape(S.shape))
-        x, products = krylov_step(block, levels, column, np.full(n, S.d**2), rhs, scale,
-                                  1e-3 * tol, sweeps)
-        if x is not None:
-            S.levels = (levels, products, fixed, sweeps)
-            return np.append(x[i], x[-1])
-    S.levels = None
+    x, S.levels = multilevel_step(block, column, np.full(n, S.d**2), rhs, scale, 1e-3 * tol,
+                                  S.levels, fixed,
+                                  lambda: _levels(S.prob, S.load, P, H, fixed.reshape(S.shape)))
+    if x is not None:
+        return np.append(x[i], x[-1])
     return _dense_step(S, P, H, r, s, phi, tol) if S.shape[0] <= DENSE_FALLBACK else None
 
 
