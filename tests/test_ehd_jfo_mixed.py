@@ -5,7 +5,6 @@ mixed EHD film is (tests/test_ehd_mixed.py): the balance's exact Jacobian agains
 differences, the infinitely stiff bush (today's rigid mixed JFO film) and the returned
 deformation against the bush's compliance built apart on the grid."""
 import numpy as np
-import pytest
 
 from bearingfem import ElasticBush, JournalState, solve_reynolds
 from bearingfem.ehd.jfo import jfo_coupling

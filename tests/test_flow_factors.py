@@ -27,8 +27,8 @@ from bearingfem.fields import FilmFields
 from bearingfem.routes import film_problem, route_for
 from bearingfem.ehd.states import ModalStateEHD
 from bearingfem.lubricant import Lubricant
-from studies.flow_factors import (_cells_gap, cell_factors, cell_flow_factor,
-                                  gaussian_surface, longitudinal_exact, measured_factors,
+from studies.flow_factors import (cell_factors, cell_flow_factor,
+                                  longitudinal_exact, measured_factors,
                                   transverse_exact, transverse_shear_exact)
 
 B = seed_bearing()                                   # c = 20 um

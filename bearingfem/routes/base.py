@@ -11,7 +11,8 @@ Rules for writing a route
    line saying which problems those are.
 2. ``uses``: every option (:data:`~bearingfem.routes.problem.OPTION_DEFAULTS`) the route
    reads; ``rough_flow``: True where it takes a rough gap's flow (Patir & Cheng's flow
-   factors, given on the roughness: ``roughness.flow``, refused by that name elsewhere). An option set away from its default that the route does not use is refused by
+   factors, given on the roughness: ``roughness.flow``, refused by that name elsewhere).
+   An option set away from its default that the route does not use is refused by
    :meth:`Route.check` with a ValueError naming it and the route, before any work: no
    option is ever ignored in silence.
 3. ``check_options(problem)``: what the route alone refuses (an element it cannot take,
