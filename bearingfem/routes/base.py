@@ -39,7 +39,13 @@ from ..fe.mixed import film_contact, with_contact
 from ..solution import FilmSolution, ForceDerivatives
 from .problem import FilmProblem
 
-__all__ = ["Route"]
+__all__ = ["Route", "film_and_summits"]
+
+
+def film_and_summits(sol: FilmSolution) -> tuple:
+    """(F_r, F_t) [N]: a solution's film force plus its summits' (solved with the film)."""
+    f, c = sol.force_local, sol.asperity_force_local
+    return float(f[0] + c[0]), float(f[1] + c[1])
 
 
 class Route:

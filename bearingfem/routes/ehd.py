@@ -6,19 +6,25 @@ from dataclasses import replace
 
 from ..ehd.film import check_ehd, solve_elastic_film
 from ..ehd.jfo import check_ehd_jfo, solve_elastic_jfo_film
-from .base import Route
+from .base import Route, film_and_summits
 from .problem import FilmProblem
 
 __all__ = ["ElasticFilm", "ElasticJFOFilm"]
 
 
-def _total(sol) -> tuple:
-    """The film's force plus the summits' (solved with the film) [N]."""
-    f, c = sol.force_local, sol.asperity_force_local
-    return float(f[0] + c[0]), float(f[1] + c[1])
+class _ElasticRoute(Route):
+    """The EHD routes' light path: the whole film, its summits solved with it."""
+
+    def total_force(self, p: FilmProblem, warm=None):
+        """The film and its summits, solved together; ``warm``: the last call's film on
+        the same mesh, which starts Newton (the same answer to ``tol``)."""
+        if warm is not None and p.start is None:
+            p = replace(p, start=warm)
+        sol = self.solve(p)
+        return film_and_summits(sol), sol
 
 
-class ElasticFilm(Route):
+class ElasticFilm(_ElasticRoute):
     name = "ehd"
     summary = "a lubricant (pressure-viscosity/density law) or a bush, cavitation 'none' " \
               "or 'reynolds', P1, whole length"
@@ -30,14 +36,6 @@ class ElasticFilm(Route):
     def check_options(self, p: FilmProblem) -> None:
         check_ehd(p.lubricant, p.bush, p.fields, p.element, p.cavitation)
 
-    def total_force(self, p: FilmProblem, warm=None):
-        """The film and its summits, solved together; ``warm``: the last call's film on
-        the same mesh, which starts Newton (the same answer to ``tol``)."""
-        if warm is not None and p.start is None:
-            p = replace(p, start=warm)
-        sol = self.solve(p)
-        return _total(sol), sol
-
     def solve(self, p: FilmProblem):
         return solve_elastic_film(
             p.bearing, p.state, p.n_theta, p.n_z, p.cavitation, element=p.element,
@@ -48,7 +46,7 @@ class ElasticFilm(Route):
             roughness=p.roughness, start=p.start)
 
 
-class ElasticJFOFilm(Route):
+class ElasticJFOFilm(_ElasticRoute):
     name = "ehd-jfo"
     summary = "the JFO film with a bush or a pressure-viscosity law, whole length"
     uses = frozenset({"element", "tol", "supply_angle", "half", "grooves",
@@ -56,13 +54,6 @@ class ElasticJFOFilm(Route):
 
     def check_options(self, p: FilmProblem) -> None:
         check_ehd_jfo(p.lubricant, p.fields, p.tilt, p.tilt_rate)
-
-    def total_force(self, p: FilmProblem, warm=None):
-        """The film and its summits, solved together (as :class:`ElasticFilm`'s)."""
-        if warm is not None and p.start is None:
-            p = replace(p, start=warm)
-        sol = self.solve(p)
-        return _total(sol), sol
 
     def solve(self, p: FilmProblem):
         return solve_elastic_jfo_film(

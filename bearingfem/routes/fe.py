@@ -10,7 +10,7 @@ from ..fe.grooved import (groove_operator_for, grooved_derivatives, grooved_forc
 from ..fe.kernel import rigid_force, solve_film
 from ..fe.mixed import film_flow
 from ..fe.sensitivity import fe_force_derivatives
-from .base import Route
+from .base import Route, film_and_summits
 from .problem import FilmProblem
 
 __all__ = ["RigidFilm", "GroovedFilm", "GeneralFilm"]
@@ -107,6 +107,4 @@ class GeneralFilm(Route):
     def total_force(self, p: FilmProblem, warm=None):
         """The film's force plus the summits' on the film's own mesh and gap, from one
         whole solve (the general film has no separate contact mesh)."""
-        sol = self.solve(p)
-        f, c = sol.force_local, sol.asperity_force_local
-        return (float(f[0] + c[0]), float(f[1] + c[1])), None
+        return film_and_summits(self.solve(p)), None
