@@ -108,7 +108,14 @@ def test_deformation_includes_the_summits_share():
     applied to film plus nodal asperity pressure on the returned film thickness, to the
     solver's 1e-10; and it differs from C p alone by more than 1e-8 m here. Fails with
     p_a left out of the bush's load (w = C p)."""
-    sol = solve_reynolds(SEED, HEAVY, *N, bush=RING, roughness=ROUGH)
+    assert_deformation_carries_the_summits(
+        solve_reynolds(SEED, HEAVY, *N, bush=RING, roughness=ROUGH))
+
+
+def assert_deformation_carries_the_summits(sol):
+    """``sol.deformation`` (ring bush RING, roughness ROUGH, mesh N) is the compliance built
+    apart on the grid applied to the film's plus the summits' nodal pressure, to 1e-10,
+    and differs from the film's pressure alone by more than 1e-8 m."""
     comp = bush_compliance(RING, SEED.radius, SEED.length, N[0], N[1] + 1)
     pa = ROUGH.pressure(sol.film_thickness)
     total, j, k = grid(sol, *N, sol.pressure + pa)
