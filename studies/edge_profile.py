@@ -13,7 +13,6 @@ sharp and crowned.
 """
 from __future__ import annotations
 
-import argparse
 import time
 
 import numpy as np
@@ -21,6 +20,8 @@ import numpy as np
 from bearingfem import ElasticBush, ElasticJournalState, JournalState, solve_reynolds
 from bearingfem.bearing import seed_bearing
 from bearingfem.fields import EdgeProfile
+
+from .ehd_mesh import bush_study_args
 
 BRONZE = dict(outer_radius=0.016, modulus=110e9, poisson=0.34)
 HEAVY = JournalState(eps=0.995, gamma=0.0, omega=250.0)
@@ -42,11 +43,7 @@ def least_film(sol, length):
 
 
 def main(argv=None):
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--quick", action="store_true")
-    parser.add_argument("--models", default="ring,liner,solid",
-                        help="comma list of bush models")
-    args = parser.parse_args(argv)
+    args = bush_study_args(argv, __doc__.splitlines()[0])
     b = seed_bearing(0.2)
     models = ["ring"] if args.quick else args.models.split(",")
     print(f"{'bush':>6} {'profile':>18} {'mesh':>8} {'|F| [N]':>8} {'p_max[MPa]':>10} "

@@ -34,12 +34,17 @@ def richardson(a, b, c):
     return c + d2 / (2**order - 1), order
 
 
-def main(argv=None):
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+def bush_study_args(argv, description: str) -> argparse.Namespace:
+    """The options of a study over the bush models: --quick, --models."""
+    parser = argparse.ArgumentParser(description=description)
     parser.add_argument("--quick", action="store_true")
     parser.add_argument("--models", default="ring,liner,solid",
                         help="comma list of bush models")
-    args = parser.parse_args(argv)
+    return parser.parse_args(argv)
+
+
+def main(argv=None):
+    args = bush_study_args(argv, __doc__.splitlines()[0])
     b = seed_bearing(0.2)
     out = {}
     print(f"{'bush':>6} {'mesh':>8} {'|F| [N]':>9} {'p_max[MPa]':>10} {'h_min[um]':>9} "
