@@ -15,9 +15,13 @@ solve_energy` with ``storage``), on the film of the committed state; between fil
 film is solved on the kept viscosity field, and the change of force a film step makes is
 faded in over the next (:func:`~bearingfem.transient.faded_force`), as the JFO film's.
 Each film step's energy balance (dissipation = convected + conducted + grooves + stored)
-is kept with its film (``FilmStep.solution.thermal``). The journal must turn one way,
-omega > 0, at every film step (the oil enters at the grooves' trailing edges): a pin
-whose rotation reverses, as the slider-crank's piston pin, is refused (ValueError).
+is kept with its film (``FilmStep.solution.thermal``). The journal may turn either way:
+with omega < 0 the oil enters each arc at the grooves' leading edges (the energy
+equation's inlet and outlet edges swap, :func:`~bearingfem.thermal.energy.energy_operator`
+with ``reverse``), so a pin whose rotation reverses, as the slider-crank's piston pin,
+runs with temperature. At a film step with omega = 0 exactly no Couette flow carries heat
+and the inlets are undefined: the temperatures are held and the step is taken at the next
+accepted state (over the whole time since the last film step).
 """
 from __future__ import annotations
 
@@ -102,8 +106,13 @@ class ThermalRun(StatelessRun):
 
     def start(self, state: JournalState, t: float) -> None:
         """Begin at ``state``, time ``t`` [s], with the initial temperatures (ValueError
-        first when the options lack the oil, the heat exchanges or the grooves)."""
+        first when the options lack the oil, the heat exchanges or the grooves, or the
+        steady start has a journal at rest)."""
         _check(self.lubricant, self.thermal, self.grooves)
+        if self.initial == "steady" and state.omega == 0.0:
+            raise ValueError("initial 'steady' needs omega != 0 at the first state (a "
+                             "journal at rest has no steady thermal film); use initial "
+                             "'supply'")
         if self.initial == "steady":
             sol = solve_thd(self.bearing, _steady(state), self.n_theta, self.n_z,
                             lubricant=self.lubricant, thermal=self.thermal,
@@ -140,6 +149,9 @@ class ThermalRun(StatelessRun):
         dt = since_film_step(t, self.t)
         if dt <= 1e-12 * max(abs(self.t), 1e-3) or not dt > self.film_step:
             return None
+        if state.omega == 0.0:
+            # no Couette flow, no inlet edge: the temperatures are held, the step deferred
+            return None
         before = self.force(state, t)
         old = self.T
         T, mu, energy = self._advance(state, dt)
@@ -164,12 +176,8 @@ class ThermalRun(StatelessRun):
     def _advance(self, state, dt):
         """(T, viscosity at the film's points, energy solution) one backward-Euler step
         of the energy equation on the film of ``state`` with the kept viscosity."""
-        if not state.omega > 0.0:
-            raise ValueError(f"film model 'fem-thd' needs omega > 0 at every film step (the "
-                             f"oil enters at the grooves' trailing edges; a journal whose "
-                             f"rotation reverses is not modelled), got {state.omega!r}")
         b, oil, op = self.bearing, self.lubricant, self._operator(state)
-        eop = energy_operator(op.mesh)
+        eop = energy_operator(op.mesh, state.omega < 0.0)
         film = self._film(state, self.mu)
         pressure = film.last.pressure * b.pressure_scale
         P, ones = film.last.pressure, np.ones(op.mesh.ndofs)
@@ -201,14 +209,15 @@ class ThermalRun(StatelessRun):
     def replay(self, start: tuple, steps):
         """The film steps of a run taken again from ``start`` = (t, JournalState) and the
         committed (t, JournalState): yields (t, FilmSolution) per step, the same solves on
-        the same data as the run."""
+        the same data as the run (a state at rest defers its step: it yields none)."""
         t0, s0 = start
         self.start(s0, t0)
         for t, state in steps:
             self.film_step, keep = 0.0, self.film_step
             step = self.commit(state, t)
             self.film_step = keep
-            yield self.t, step.solution
+            if step is not None:
+                yield self.t, step.solution
 
 
 class ThermalModel(FilmModel):

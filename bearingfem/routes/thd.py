@@ -77,9 +77,10 @@ def check_thermal(lubricant, thermal, state, cavitation, element):
                          "law or bulk_modulus)")
     if state.eps_dot != 0.0 or state.gamma_dot != 0.0:
         raise ValueError("a thermal film is steady: eps_dot and gamma_dot must be 0")
-    if not state.omega > 0.0:
-        raise ValueError(f"omega must be > 0 for a thermal film (the oil enters at the "
-                         f"grooves' trailing edges), got {state.omega!r}")
+    if not (math.isfinite(state.omega) and state.omega != 0.0):
+        raise ValueError(f"omega must be finite and nonzero for a thermal film (its sign "
+                         f"says at which groove edges the oil enters; a journal at rest "
+                         f"carries no oil through), got {state.omega!r}")
     if cavitation not in CAVITATION:
         raise ValueError(f"cavitation must be one of {CAVITATION} for a thermal film, got "
                          f"{cavitation!r}")
@@ -121,8 +122,11 @@ def groove_mixing(bearing, state, mesh, edges, P, fraction, mu_nodal,
     ``carry_over``): the upstream arc's exit temperature, flow-weighted over its last line
     (trapezoidal in z), carried by lambda Q_out, Q_out the arc's least column flow (what
     passes its cavity), mixed with fresh oil up to the next arc's inlet flow Q_in:
-    T_in = ((Q_in - C) T_supply + C T_out) / Q_in, C = min(lambda Q_out, Q_in)."""
+    T_in = ((Q_in - C) T_supply + C T_out) / Q_in, C = min(lambda Q_out, Q_in). With
+    omega < 0 (``edges`` reversed) the flows are counted along the oil's way."""
     q, flows = _column_flows(bearing, state, mesh, edges, P, fraction, mu_nodal)
+    if state.omega < 0.0:
+        q, flows = -q, -flows
     column = np.full(mesh.ndofs, -1)
     column[edges.column_dofs] = edges.column_index
     ts, lam = thermal.supply_temperature, thermal.carry_over
@@ -258,7 +262,8 @@ def solve_thd(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z: in
     Parameters
     ----------
     bearing, state : the bearing (its ``viscosity`` is only the film's reference scale)
-        and a steady journal state (eps_dot = gamma_dot = 0, omega > 0)
+        and a steady journal state (eps_dot = gamma_dot = 0; omega nonzero, its sign
+        picks the groove edges the oil enters at)
     n_theta, n_z, element, cavitation ("reynolds" or "jfo"), grooves, supply_angle, tol :
         as :func:`~bearingfem.solve_reynolds`; a supply (grooves or
         supply_angle) is needed. The whole length is meshed.
@@ -319,7 +324,7 @@ class ThermalIteration:
         self.grooves, self.element, self.tol = tuple(grooves), element, tol
         self.op = op = thermal_operator(bearing, state, n_theta, n_z, element, supply_angle,
                                         grooves)
-        self.eop = energy_operator(op.mesh)
+        self.eop = energy_operator(op.mesh, state.omega < 0.0)
         n = op.mesh.ndofs
         fresh = start is None or getattr(start, "temperature", None) is None \
             or len(start.temperature) != n
@@ -364,7 +369,8 @@ class ThermalIteration:
     def energy(self, state, relaxation=1.0):
         """The energy equation on the last film (its state ``state``), the dissipation
         implicit to first order: T moves by ``relaxation`` of the change it asks."""
-        b, oil, eop, T = self.bearing, self.lubricant, self.eop, self.T
+        b, oil, T = self.bearing, self.lubricant, self.T
+        self.eop = eop = energy_operator(self.op.mesh, state.omega < 0.0)
         P = self.p / b.pressure_scale
         p_arc, T_arc = eop.at_points(self.p), eop.at_points(T)
         mu_arc = oil.viscosity_at(p_arc, temperature=T_arc)

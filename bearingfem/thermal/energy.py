@@ -34,8 +34,10 @@ The equation lives on the film's arcs only: the elements inside a groove are lef
 groove is a well-mixed volume at its inlet temperature T_in), so the groove's leading
 edge is an outflow boundary (natural condition) and its trailing edge the next arc's inflow
 (T = T_in). A supply line is a groove of zero width (inflow at the mesh's first line,
-outflow at its last). The axial ends are natural: a Reynolds-condition film's end flux
-points out (p >= 0 inside, 0 at the ends).
+outflow at its last). A journal turning the other way (omega < 0) carries the oil towards
+decreasing angle: the edges swap (``energy_operator(mesh, reverse=True)``), the film's
+mirror image. The axial ends are natural: a Reynolds-condition film's end flux points out
+(p >= 0 inside, 0 at the ends).
 
 Energy balance: the rows of the assembled system sum, for the test function 1 (whose
 gradient and hence SUPG term vanish), to
@@ -170,9 +172,12 @@ def _same_angle(a, b, tol=1e-9):
 
 
 @cached(maxsize=16)
-def film_edges(mesh) -> FilmEdges:
+def film_edges(mesh, reverse: bool = False) -> FilmEdges:
     """The :class:`FilmEdges` of a film mesh with grooves or a supply line (not periodic:
-    a thermal film needs fresh oil); cached per mesh (the meshes are cached)."""
+    a thermal film needs fresh oil); cached per mesh (the meshes are cached).
+    ``reverse``: the journal turns the other way (omega < 0), so the oil runs towards
+    decreasing angle: each groove's leading edge is the inlet of the arc before it and its
+    trailing edge that arc's exit, and an arc runs into the groove at its start."""
     if mesh.periodic:
         raise ValueError("a thermal film needs an oil supply: give grooves or a "
                          "supply_angle")
@@ -192,12 +197,14 @@ def film_edges(mesh) -> FilmEdges:
     inflow, outflow, interior = [], [], []
     for k, (lo, hi) in enumerate(arcs):
         if mesh.arcs:
-            inflow.append(np.flatnonzero(on_arc & _same_angle(th, hi)))
-            outflow.append(np.flatnonzero(on_arc & _same_angle(th, lo)))
+            enter, leave = (lo, hi) if reverse else (hi, lo)
+            inflow.append(np.flatnonzero(on_arc & _same_angle(th, enter)))
+            outflow.append(np.flatnonzero(on_arc & _same_angle(th, leave)))
             interior.append(np.setdiff1d(mesh.grooves[k], np.flatnonzero(on_arc)))
         else:          # the supply line: the mesh's first and last lines
-            inflow.append(np.flatnonzero(np.isclose(th, t_lo, rtol=0.0, atol=1e-9)))
-            outflow.append(np.flatnonzero(np.isclose(th, t_hi, rtol=0.0, atol=1e-9)))
+            enter, leave = (t_hi, t_lo) if reverse else (t_lo, t_hi)
+            inflow.append(np.flatnonzero(np.isclose(th, enter, rtol=0.0, atol=1e-9)))
+            outflow.append(np.flatnonzero(np.isclose(th, leave, rtol=0.0, atol=1e-9)))
             interior.append(np.zeros(0, int))
     # the arc columns and the groove each arc runs into (relative position from the
     # mesh's first line; the first groove's leading edge is the last line)
@@ -213,11 +220,18 @@ def film_edges(mesh) -> FilmEdges:
     weight[:-1] += half
     weight[1:] += half
     rel_col = column_theta - t_lo
-    rel_lo = np.array([np.mod(lo - t_lo, turn) for lo, _ in arcs])
-    rel_lo = np.where(rel_lo < 1e-9, t_hi - t_lo, rel_lo)
-    order = np.argsort(rel_lo)
-    pos = np.searchsorted(rel_lo[order], rel_col - 1e-9)
-    column_groove = order[np.minimum(pos, len(order) - 1)]
+    if reverse:
+        # the groove at the arc's start: the last trailing edge at or before the column
+        rel_hi = np.array([np.mod(hi - t_lo, turn) for _, hi in arcs])
+        order = np.argsort(rel_hi)
+        pos = np.searchsorted(rel_hi[order], rel_col + 1e-9, side="right") - 1
+        column_groove = order[np.mod(pos, len(order))]
+    else:
+        rel_lo = np.array([np.mod(lo - t_lo, turn) for lo, _ in arcs])
+        rel_lo = np.where(rel_lo < 1e-9, t_hi - t_lo, rel_lo)
+        order = np.argsort(rel_lo)
+        pos = np.searchsorted(rel_lo[order], rel_col - 1e-9)
+        column_groove = order[np.minimum(pos, len(order) - 1)]
     return FilmEdges(elements=elements, inflow=tuple(inflow), outflow=tuple(outflow),
                      interior=tuple(interior), column_theta=column_theta,
                      column_groove=column_groove, column_dofs=dofs, column_index=col,
@@ -335,10 +349,11 @@ class EnergyOperator:
         return np.bincount(dofs.ravel(), local.ravel(), minlength=self.N)
 
 
-def energy_operator(mesh) -> EnergyOperator:
-    """The :class:`EnergyOperator` of a film mesh (cached per mesh)."""
-    edges = film_edges(mesh)
-    return _energy_operator(mesh, edges)
+def energy_operator(mesh, reverse: bool = False) -> EnergyOperator:
+    """The :class:`EnergyOperator` of a film mesh (cached per mesh), for a journal turning
+    towards increasing angle (omega > 0) or, ``reverse``, the other way: the held inlet
+    rows sit on the other edges (:func:`film_edges`)."""
+    return _energy_operator(mesh, film_edges(mesh, bool(reverse)))
 
 
 @cached(maxsize=16)
