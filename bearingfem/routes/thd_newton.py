@@ -39,6 +39,7 @@ from dataclasses import replace
 
 import numpy as np
 import scipy.sparse as sp
+from scipy.linalg import lapack
 from scipy.sparse.linalg import LinearOperator, gmres, splu
 from skfem import BilinearForm
 from skfem.models.poisson import mass
@@ -48,6 +49,7 @@ from ..errors import ConvergenceError
 from ..fe.general import general_assembly
 from ..film import film_thickness
 from ..solvers.cavitation import LCPResult
+from ..solvers.linsolve import principal_block
 from ..thermal.energy import EnergySolution
 from ..thermal.jacobian import energy_linearisation
 from ..thermal.spec import ThermalRecord
@@ -148,7 +150,6 @@ class ThermalNewton:
         self.active = np.asarray(film.last.active, bool).copy()
         self.T = it.T.copy()
         edges = self.eop.edges
-        self.T_in = np.array([self.T[d[0]] for d in edges.inflow])
         _, ta, hj, tj = self.thermal.walls
         self.zero_flux = hj > 0.0 and tj is None
         self.mj = self.eop.vector(np.sum(self.eop.phi * self.eop.dx, axis=2)
@@ -158,120 +159,184 @@ class ThermalNewton:
         self.fraction = np.ones(self.op.mesh.ndofs)
         self.held = self.eop.held
         self.free_rows = np.setdiff1d(np.arange(self.eop.N), self.held)
+        # each groove's held rows (T_i = its inlet temperature)
+        self.groove_rows = [np.concatenate([d_in, d_int]).astype(int)
+                            for d_in, d_int in zip(edges.inflow, edges.interior)]
         self.steps, self.history, self.krylov = 0, [], 0
+        self.change = self.pressure_change = np.inf
+        self._film_state = None
 
     # -- the system --------------------------------------------------------------------
-    def _film_blocks(self, state, unknown):
-        """(film residual on ``unknown``, d/dP (unknown x unknown), d/dT (unknown x N),
-        stiffness values, load, viscosity ratio at the film's points)."""
-        b, op, oil, ga = self.bearing, self.op, self.oil, self.ga
+    def _film(self, state) -> ReynoldsFieldFilm:
+        if self._film_state is None or self._film_state[0] != state:
+            self._film_state = (state, ReynoldsFieldFilm(
+                self.bearing, state, self.op, self.it.element, self.it.grooves, self.it.tol))
+        return self._film_state[1]
+
+    def system(self, state) -> dict:
+        """The residual and the Jacobian's blocks at the kept fields (``unknown``: the
+        film's unknown dofs)."""
+        b, op, oil, ga, eop = self.bearing, self.op, self.oil, self.ga, self.eop
         ps = b.pressure_scale
-        film = ReynoldsFieldFilm(b, state, op, self.it.element, self.it.grooves, self.it.tol)
+        film = self._film(state)
+        unknown = np.setdiff1d(op.mesh.free, np.flatnonzero(self.active))
+        # the film: K(mu) P - b and its change with mu at its points
         p_q, T_q = op.at_quadrature(self.P * ps), op.at_quadrature(self.T)
-        mu = oil.viscosity_at(p_q, temperature=T_q)
+        mu, mu_p, mu_T = oil.viscosity_and_slopes(p_q, T_q)
         ratio = mu / b.viscosity
         k = film.cubed / ratio
         values = ga.stiffness_values(k)
         K = op.matrix(values)
-        load = film.load
-        r = (K @ self.P - load)[unknown]
-        # d(K P)_i / d k at each point: sum_cd metric sum_i' table[i, i'] P_i'
+        r_film = K @ self.P - film.load
         E, nb = ga.dofs.shape
         Q = ga.stiff_tables.shape[2]
+        # d(K P)_i / d k at each point: sum_cd metric sum_i' table[i, i'] P_i'
         tables = ga.stiff_tables.reshape(2, 2, Q, nb, nb)
-        G = np.einsum("cde,cdqij,ej->eqi", ga.metric, tables, self.P[ga.dofs])
-        rows = np.broadcast_to(ga.dofs[:, None, :], G.shape).ravel()
-        cols = np.broadcast_to(np.arange(E * Q).reshape(E, Q, 1), G.shape).ravel()
+        G = np.einsum("cde,cdqij,ej->eqi", ga.metric, tables, self.P[ga.dofs],
+                      optimize=True)
         dk_dmu = -k / mu
-        mu_T = oil.viscosity_temperature_derivative(T_q, p_q)
-        Gm = sp.csr_matrix(((G * (dk_dmu * mu_T)[:, :, None]).ravel(), (rows, cols)),
-                           shape=(op.mesh.ndofs, E * Q))
-        d_T = (Gm @ op.qp_interp).tocsr()[unknown]
-        d_P = K[unknown][:, unknown]
-        if oil.pressure_viscosity != 0.0:
-            mu_p = oil.viscosity_derivative(p_q, temperature=T_q)
-            Gp = sp.csr_matrix(((G * (dk_dmu * mu_p * ps)[:, :, None]).ravel(),
-                                (rows, cols)), shape=(op.mesh.ndofs, E * Q))
-            d_P = d_P + (Gp @ op.qp_interp).tocsr()[unknown][:, unknown]
-        return r, d_P, d_T, values, load, ratio, K
-
-    def system(self, state):
-        """(residual, Jacobian (csc), unknown film dofs, parts) at the kept fields."""
-        b, eop, edges = self.bearing, self.eop, self.eop.edges
-        unknown = np.setdiff1d(self.op.mesh.free, np.flatnonzero(self.active))
-        r_f, Pp, Pt, values, load, ratio, K = self._film_blocks(state, unknown)
+        Kuu = principal_block(K, unknown)
+        if np.any(mu_p):
+            Gp = G * (dk_dmu * mu_p * ps)[:, :, None]
+            rows = np.broadcast_to(ga.dofs[:, None, :], G.shape).ravel()
+            cols = np.broadcast_to(np.arange(E * Q).reshape(E, Q, 1), G.shape).ravel()
+            Kp = (sp.csr_matrix((Gp.ravel(), (rows, cols)), shape=(op.mesh.ndofs, E * Q))
+                  @ op.qp_interp).tocsr()
+            Kuu = Kuu + principal_block(Kp, unknown)
         lin = energy_linearisation(b, state, eop, self.P, self.fraction, self.T,
-                                   self.t_journal, self.oil, self.thermal.walls)
-        mix = mixing_linearisation(b, state, self.op.mesh, edges, self.P, self.fraction,
-                                   self.T, self.oil, self.thermal)
-        N, G, fr = eop.N, len(edges.inflow), self.free_rows
-        nu = len(unknown)
-        # the energy rows
-        Ep = lin.d_pressure[fr][:, unknown]
-        Et = lin.d_temperature[fr]
-        # held rows: T_i - T_in[k]
-        h_rows, h_groove = [], []
-        for k, (d_in, d_int) in enumerate(zip(edges.inflow, edges.interior)):
-            d = np.concatenate([d_in, d_int]).astype(int)
-            h_rows.append(d)
-            h_groove.append(np.full(len(d), k))
-        h_rows, h_groove = np.concatenate(h_rows), np.concatenate(h_groove)
-        nh = len(h_rows)
-        Ht = sp.csr_matrix((np.ones(nh), (np.arange(nh), h_rows)), shape=(nh, N))
-        Hg = sp.csr_matrix((-np.ones(nh), (np.arange(nh), h_groove)), shape=(nh, G))
-        Mp = sp.csr_matrix(np.array([-m[1][unknown] for m in mix]))
-        Mt = sp.csr_matrix(np.array([-m[2] for m in mix]))
-        blocks = [[Pp, Pt, None], [Ep, Et, None], [None, Ht, Hg],
-                  [Mp, Mt, sp.identity(G, format="csr")]]
-        res = [r_f, lin.residual[fr], self.T[h_rows] - self.T_in[h_groove],
-               self.T_in - np.array([m[0] for m in mix])]
+                                   self.t_journal, oil, self.thermal.walls)
+        mix = mixing_linearisation(b, state, op.mesh, eop.edges, self.P, self.fraction,
+                                   self.T, oil, self.thermal)
+        # the temperature rows: the energy equation's free rows, T_i - M_k on the held
+        r_T = lin.residual.copy()
+        for rows, m in zip(self.groove_rows, mix):
+            r_T[rows] = self.T[rows] - m[0]
+        r_j = float(self.mj @ self.T - self.t_journal * self.mj.sum()) if self.zero_flux \
+            else 0.0
+        return dict(unknown=unknown, r_film=r_film[unknown], r_T=r_T, r_j=r_j, K=K,
+                    load=film.load, values=values, ratio=ratio, Kuu=Kuu,
+                    film_slope=G * (dk_dmu * mu_T)[:, :, None], lin=lin, mix=mix)
+
+    def _step(self, s, eta):
+        """The Newton step (dP on the unknown dofs, dT, dT_j): the film eliminated, its
+        Schur complement on the temperatures by GMRES (relative tolerance ``eta``) with
+        the temperature block's inverse on the right (a banded LU of the energy rows, the
+        held rows' mixing by Woodbury's identity, the journal's row bordered). Why: one
+        LU of the coupled system fills in ~10 times the blocks' (the coupling joins the
+        two graphs); the blocks' LUs cost about one film and one energy solve, and the
+        film's coupling leaves a few Krylov steps."""
+        eop, lin, N = self.eop, s["lin"], self.eop.N
+        film = splu(s["Kuu"].tocsc())
+        # the temperature block: band (energy rows, held rows' identity) - U W^T
+        w = eop.band
+        ab = np.zeros((3 * w + 1, N))
+        ab[w:] = np.bincount(eop.band_index, lin.d_temperature * eop.free_rows,
+                             minlength=(2 * w + 1) * N).reshape(2 * w + 1, N)
+        ab[2 * w, eop.band_rank[self.held]] = 1.0
+        lu, piv, info = lapack.dgbtrf(ab, w, w, overwrite_ab=1)
+        if info != 0:
+            raise ConvergenceError("thermal Newton step (singular temperature block)", 0,
+                                   float(info))
+        order, rank = eop.band_order, eop.band_rank
+
+        def band(v):
+            x, _ = lapack.dgbtrs(lu, w, w, v[order], piv)
+            return x[rank]
+        nG = len(self.groove_rows)
+        U = self._groove_indicator()
+        W = np.column_stack([m[2] for m in s["mix"]]) if nG else np.zeros((N, 0))
+        ZU = np.column_stack([band(U[:, k]) for k in range(nG)]) if nG else U
+        small = np.linalg.inv(np.eye(nG) - W.T @ ZU) if nG else np.zeros((0, 0))
+
+        def block(v):                  # (band - U W^T)^-1 v
+            x = band(v)
+            return x + ZU @ (small @ (W.T @ x))
+        cj = lin.d_journal.copy()
+        cj[self.held] = 0.0
         if self.zero_flux:
-            for row in blocks:
-                row.append(None)
-            blocks[1][3] = sp.csr_matrix(lin.d_journal[fr][:, None])
-            blocks.append([None, sp.csr_matrix(self.mj[None, :]), None,
-                           sp.csr_matrix([[-self.mj.sum()]])])
-            res.append(np.array([self.mj @ self.T - self.t_journal * self.mj.sum()]))
-        J = sp.bmat(blocks, format="csc")
-        parts = dict(values=values, load=load, ratio=ratio, K=K, lin=lin, unknown=unknown)
-        return np.concatenate(res), J, nu, parts
+            Zc = block(cj)
+            denom = float(self.mj @ Zc + self.mj.sum())
 
-    def _step(self, J, r, nu):
-        """The Newton step J dx = -r by GMRES, preconditioned by the block lower triangle:
-        the film's block, then the energy block (operator, held, mixing and journal rows)
-        on what the film's step leaves. Why: one LU of the coupled system fills in ~10
-        times a block's (the coupling blocks join the two meshes' graphs); the blocks'
-        LUs cost about one film and one energy solve, and the coupling is weak enough
-        for a few Krylov steps (``krylov``) to take the step to round-off."""
-        J = J.tocsr()
-        film = splu(J[:nu][:, :nu].tocsc())
-        energy = splu(J[nu:][:, nu:].tocsc())
-        coupling = J[nu:][:, :nu]
+        def t_solve(z):               # the temperature block with the journal's border
+            if not self.zero_flux:
+                return block(z[:N]), 0.0
+            y = block(z[:N])
+            t = (float(self.mj @ y) - z[N]) / denom
+            return y - t * Zc, t
+        film_from_T, T_from_P = self._film_from_T, self._T_from_P
+        n = N + int(self.zero_flux)
 
-        def precondition(v):
-            y = np.empty_like(v)
-            y[:nu] = film.solve(v[:nu])
-            y[nu:] = energy.solve(v[nu:] - coupling @ y[:nu])
-            return y
-        n = J.shape[0]
-        M = LinearOperator((n, n), precondition)
+        def extend(v):
+            return np.concatenate([v, [0.0]]) if self.zero_flux else v
+
+        def schur(z):                   # z -> (T-block - E K^-1 C) T-block^-1 z
+            dT, _ = t_solve(z)
+            return z - extend(T_from_P(s, film.solve(film_from_T(s, dT))))
+        rhs = -extend(s["r_T"]) + extend(T_from_P(s, film.solve(s["r_film"])))
+        if self.zero_flux:
+            rhs[N] = -s["r_j"]
         count = [0]
 
         def counter(_):
             count[0] += 1
-        dx, info = gmres(J, -r, M=M, rtol=1e-12, atol=0.0, restart=40, maxiter=2,
-                         callback=counter, callback_type="pr_norm")
+        z, info = gmres(LinearOperator((n, n), schur), rhs, rtol=eta, atol=0.0,
+                        restart=30, maxiter=3, callback=counter, callback_type="pr_norm")
         self.krylov += count[0]
         if info != 0:
             raise ConvergenceError("thermal Newton step (GMRES)", count[0], float(
-                np.linalg.norm(J @ dx + r) / max(np.linalg.norm(r), 1e-300)))
-        return dx
+                np.linalg.norm(schur(z) - rhs) / max(np.linalg.norm(rhs), 1e-300)))
+        dT, dt = t_solve(z)
+        dP = -film.solve(s["r_film"] + film_from_T(s, dT))
+        return dP, dT, dt
 
-    def _settle_set(self, parts) -> bool:
+    def _groove_indicator(self) -> np.ndarray:
+        """(N, grooves): 1 on each groove's held rows."""
+        U = np.zeros((self.eop.N, len(self.groove_rows)))
+        for k, rows in enumerate(self.groove_rows):
+            U[rows, k] = 1.0
+        return U
+
+    def _film_from_T(self, s, dT):
+        """The film rows' change for a nodal temperature change ``dT`` (through mu at its
+        points): sum_q d(K P)_i/d k dk/dmu dmu/dT dT(q)."""
+        slope, dofs, op = s["film_slope"], self.ga.dofs, self.op
+        E, Q = slope.shape[:2]
+        v = (op.qp_interp @ dT).reshape(E, Q)
+        return np.bincount(dofs.ravel(), np.einsum("eqi,eq->ei", slope, v).ravel(),
+                           minlength=op.mesh.ndofs)[s["unknown"]]
+
+    def _T_from_P(self, s, dP_u):
+        """The temperature rows' change for a pressure change on the unknown dofs: the
+        energy equation's free rows and the held rows' mixing (-dM_k/dP)."""
+        lin, eop = s["lin"], self.eop
+        dP = np.zeros(self.op.mesh.ndofs)
+        dP[s["unknown"]] = dP_u
+        if "EP" not in s:
+            s["EP"] = lin.matrix(lin.d_pressure * eop.free_rows)
+        out = s["EP"] @ dP
+        for rows, m in zip(self.groove_rows, s["mix"]):
+            out[rows] -= m[1] @ dP
+        return out
+
+    def apply(self, s, dP_u, dT, dt=0.0):
+        """The block Jacobian of the system ``s`` times (dP on the unknown dofs, dT, dT_j):
+        (film rows, temperature rows, journal row) [as the residuals]."""
+        lin, eop = s["lin"], self.eop
+        film = s["Kuu"] @ dP_u + self._film_from_T(s, dT)
+        temp = lin.matrix(lin.d_temperature * eop.free_rows) @ dT + self._T_from_P(s, dP_u)
+        cj = lin.d_journal.copy()
+        cj[self.held] = 0.0
+        temp += cj * dt
+        for rows, m in zip(self.groove_rows, s["mix"]):
+            temp[rows] += dT[rows] - m[2] @ dT
+        journal = float(self.mj @ dT - dt * self.mj.sum()) if self.zero_flux else 0.0
+        return film, temp, journal
+
+    def _settle_set(self, s) -> bool:
         """Update the cavitated set (module docstring); True if it did not move."""
         free = self.op.mesh.free
-        r = parts["K"] @ self.P - parts["load"]
-        scale = max(float(np.max(np.abs(parts["load"][free]))), np.finfo(float).tiny)
+        r = s["K"] @ self.P - s["load"]
+        scale = max(float(np.max(np.abs(s["load"][free]))), np.finfo(float).tiny)
         on = np.zeros(self.op.mesh.ndofs, bool)
         on[free] = True
         new = np.where(self.active, r > -self.it.tol * scale, self.P < 0.0) & on
@@ -282,37 +347,34 @@ class ThermalNewton:
 
     def solve(self, state, temperature_tol=1e-6, pressure_rtol=1e-8, max_iterations=30):
         """Newton steps at ``state`` from the kept fields to the tolerances (module
-        docstring); the last assembled parts are kept for :meth:`solution`."""
+        docstring); the last assembled system is kept for :meth:`solution`."""
         small = False
         for _ in range(max_iterations + 1):
-            r, J, nu, parts = self.system(state)
-            if self.steps and not self._settle_set(parts):
-                # the set moved: the system on the new set
-                small = False
-                r, J, nu, parts = self.system(state)
-            self.history.append(float(np.max(np.abs(r[nu:nu + len(self.free_rows)]),
-                                             initial=0.0)))
+            s = self.system(state)
+            if self.steps and not self._settle_set(s):
+                small = False          # the set moved: the system on the new set
+                s = self.system(state)
+            r = float(np.max(np.abs(s["r_T"][self.free_rows]), initial=0.0))
+            self.history.append(r)
             if small:
-                self.parts, self.state = parts, state
+                self.parts, self.state = s, state
                 return self
-            dx = self._step(J, r, nu)
-            N, G = self.eop.N, len(self.T_in)
-            dP = dx[:nu]
-            dT = dx[nu:nu + N]
-            self.P[parts["unknown"]] += dP
+            # inexact steps: the Krylov tolerance follows the residual (quadratic
+            # convergence kept), 1e-12 at the least
+            eta = min(1e-4, max(1e-12, 1e-2 * r / max(self.history[0], 1e-300)))
+            dP, dT, dt = self._step(s, eta)
+            if not (np.all(np.isfinite(dP)) and np.all(np.isfinite(dT))):
+                break
+            self.P[s["unknown"]] += dP
             self.T += dT
-            self.T_in += dx[nu + N:nu + N + G]
-            if self.zero_flux:
-                self.t_journal += float(dx[-1])
+            self.t_journal += dt
             self.steps += 1
             peak = max(float(np.max(np.abs(self.P))), 1e-300)
             self.change = float(np.max(np.abs(dT)))
             self.pressure_change = float(np.max(np.abs(dP), initial=0.0)) / peak
-            if not np.all(np.isfinite(dx)):
-                break
             small = self.change < temperature_tol and self.pressure_change < pressure_rtol
         raise ConvergenceError("thermal film (coupled Newton)", max_iterations,
-                               getattr(self, "change", np.inf), f"eps = {state.eps:.6g}")
+                               self.change, f"eps = {state.eps:.6g}")
 
     def film(self) -> ReynoldsFieldFilm:
         """The film of the kept fields (its outputs, force) at the last state."""
@@ -320,8 +382,7 @@ class ThermalNewton:
         f = ReynoldsFieldFilm(self.bearing, self.state, self.op, self.it.element,
                               self.it.grooves, self.it.tol)
         f.values, f.ratio = p["values"], p["ratio"]
-        f.last = LCPResult(self.P.copy(), self.steps, 0.0, True,
-                           self.active.copy(), None)
+        f.last = LCPResult(self.P.copy(), self.steps, 0.0, True, self.active.copy(), None)
         return f
 
     def solution(self):

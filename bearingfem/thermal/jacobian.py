@@ -34,20 +34,27 @@ __all__ = ["EnergyLinearisation", "energy_linearisation", "supg_tau_derivatives"
 
 @dataclass(frozen=True, eq=False)
 class EnergyLinearisation:
-    """The energy equation at nodal (P, T, T_j): ``residual`` (N,) [W/m^2 per d(theta)
-    d(zeta), as assembled], ``d_temperature`` (N, N) its derivative with respect to nodal
-    T [W/K ...], ``d_pressure`` (N, N) with respect to the dimensionless nodal P,
-    ``d_journal`` (N,) with respect to the journal's temperature; ``flow``, ``A``, ``b``,
-    ``c_all``: the assembled system (for the energy balance)."""
+    """The energy equation at nodal (P, T, T_j): ``residual`` (N,) [as assembled, per
+    d(theta) d(zeta)], its derivatives with respect to nodal T (``d_temperature``) and to
+    the dimensionless nodal P (``d_pressure``) as values on the operator's pattern
+    (:meth:`~bearingfem.thermal.energy.EnergyOperator.matrix`'s), ``d_journal`` (N,)
+    with respect to the journal's temperature; ``flow``, ``A``, ``b``, ``c_all``: the
+    assembled system (for the energy balance)."""
 
+    op: EnergyOperator
     residual: np.ndarray
-    d_temperature: sp.csr_matrix
-    d_pressure: sp.csr_matrix
+    d_temperature: np.ndarray
+    d_pressure: np.ndarray
     d_journal: np.ndarray
     flow: EnergyFlow
     A: sp.csr_matrix
     b: np.ndarray
     c_all: np.ndarray
+
+    def matrix(self, data: np.ndarray) -> sp.csr_matrix:
+        """The (N, N) matrix of pattern values ``data`` (e.g. ``d_pressure``)."""
+        op = self.op
+        return sp.csr_matrix((data, op.indices, op.indptr), shape=(op.N, op.N))
 
 
 def supg_tau_derivatives(op: EnergyOperator, flow: EnergyFlow, R: float):
@@ -88,9 +95,7 @@ def energy_linearisation(bearing, state, op: EnergyOperator, P, fraction, T,
     sc = ps / R
     hb, ta, hj, _ = walls
     p_q, T_q = op.at_points(P) * ps, op.at_points(T)
-    mu = lubricant.viscosity_at(p_q, temperature=T_q)
-    mu_T = lubricant.viscosity_temperature_derivative(T_q, p_q)
-    mu_p = lubricant.viscosity_derivative(p_q, temperature=T_q)
+    mu, mu_p, mu_T = lubricant.viscosity_and_slopes(p_q, T_q)
     flow = op.flow(bearing, state, P, fraction, mu, lubricant)
     s, f = hb + hj, flow.dissipation + hb * ta
     A, b, test = energy_system(op, flow, s, f, R)
@@ -109,22 +114,33 @@ def energy_linearisation(bearing, state, op: EnergyOperator, P, fraction, T,
     g = op.grad
     bu = bt * g[:, 0] + bz * g[:, 1]                       # (nb, E, Q)
     weight = R * op.phi + tau * bu
+    if op.affine_p1:        # the gradients are the element's at every point
+        g0, g1 = g[:, 0, :, :1], g[:, 1, :, :1]
+    else:
+        g0, g1 = g[:, 0], g[:, 1]
 
     def row_weights(dbt, dbz, dphi):
         """(nb, E, Q) d r_i per unit change of a point variable moving beta, Phi."""
         dtau = tau_t * dbt + tau_z * dbz
-        return op.dx * ((dtau * bu + tau * (dbt * g[:, 0] + dbz * g[:, 1])) * e
+        return op.dx * ((dtau * bu + tau * (dbt * g0 + dbz * g1)) * e
                         + weight * (dbt * gT[0] + dbz * gT[1] - R * dphi))
 
-    zero = np.zeros_like(k3)
-    x_t = row_weights(-rho_cp * k3 * sc, zero, 2.0 * k3 * sc * dpx)
-    x_z = row_weights(zero, -rho_cp * k3 * sc, 2.0 * k3 * sc * dpz)
+    x_t = row_weights(-rho_cp * k3 * sc, 0.0, 2.0 * k3 * sc * dpx)
+    x_z = row_weights(0.0, -rho_cp * k3 * sc, 2.0 * k3 * sc * dpz)
     F = op.at_points(fraction)
     x_mu = row_weights(rho_cp * k3 / mu * dpx, rho_cp * k3 / mu * dpz,
                        F * U ** 2 / h - k3 / mu * (dpx ** 2 + dpz ** 2))
-    local_p = (np.einsum("ieq,jeq->ije", x_t, g[:, 0]) + np.einsum("ieq,jeq->ije", x_z, g[:, 1])
-               + np.einsum("ieq,jeq->ije", x_mu * (mu_p * ps), op.phi))
+    if op.affine_p1:        # sum the points first
+        local_p = (np.einsum("ie,je->ije", x_t.sum(axis=2), g0[..., 0])
+                   + np.einsum("ie,je->ije", x_z.sum(axis=2), g1[..., 0]))
+    else:
+        local_p = np.einsum("ieq,jeq->ije", x_t, g0) + np.einsum("ieq,jeq->ije", x_z, g1)
+    if np.any(mu_p):
+        local_p = local_p + np.einsum("ieq,jeq->ije", x_mu * (mu_p * ps), op.phi)
     local_t = np.einsum("ieq,jeq->ije", x_mu * mu_T, op.phi)
-    return EnergyLinearisation(residual=residual, d_temperature=A + op.matrix(local_t),
-                               d_pressure=op.matrix(local_p), d_journal=c_all, flow=flow,
-                               A=A, b=b, c_all=c_all)
+    n = len(op.indices)
+    return EnergyLinearisation(
+        op=op, residual=residual,
+        d_temperature=A.data + np.bincount(op.positions, local_t.ravel(), minlength=n),
+        d_pressure=np.bincount(op.positions, local_p.ravel(), minlength=n),
+        d_journal=c_all, flow=flow, A=A, b=b, c_all=c_all)
