@@ -1,37 +1,40 @@
 """The Reynolds-condition thermal film by a coupled Newton on pressure and temperature.
 
 Unknowns: the dimensionless pressure P on the film's free, uncavitated dofs, the nodal
-temperature T on every dof of the energy equation, each groove's inlet temperature T_in
-(the mixing of :func:`~bearingfem.routes.thd.groove_mixing`) and, for a zero-flux journal,
-its temperature T_j. Equations: the film K(mu) P = b on those dofs (mu = mu(p, T) at the
+temperature T on every dof of the energy equation and, for a zero-flux journal, its
+temperature T_j. Equations: the film K(mu) P = b on those dofs (mu = mu(p, T) at the
 film's quadrature points), the energy equation on its free rows
-(:func:`~bearingfem.thermal.jacobian.energy_linearisation`), T = T_in on each groove's
-held rows, T_in = the mixing of the upstream exit, and the journal's zero net flux.
+(:func:`~bearingfem.thermal.jacobian.energy_linearisation`), T_i = M_k(P, T) on groove
+k's held rows (its inlet temperature, the mixing of the upstream exit:
+:func:`mixing_linearisation`, :func:`~bearingfem.routes.thd.groove_mixing`'s formula),
+and the journal's zero net flux.
 
-The block Jacobian is exact (tested against finite differences):
+The block Jacobian is exact (tested against central differences, :meth:`ThermalNewton.apply`):
 
-    | K + dK/dp P     dK/dT P      0     0     |   film rows
-    | dE/dP           dE/dT        0     dE/dTj |   energy rows (free)
-    | 0               I            -1    0     |   held rows
-    | -dM/dP          -dM/dT       1     0     |   mixing rows (one per groove)
-    | 0               m_j          0     -sum m_j |   journal row
+    | K (+ dK/dp P)     dK/dT P              0        |   film rows
+    | dE/dP             dE/dT                dE/dT_j  |   energy rows (free)
+    | -dM_k/dP          I - dM_k/dT          0        |   held rows
+    | 0                 m_j                  -sum m_j |   journal row
 
 with dK/dT P the film's change through mu(p, T) at its quadrature points, dE/dP the
 energy equation's through the Poiseuille flow, its dissipation and the SUPG weight,
-dE/dT its operator plus the same through mu, and dM the mixing's through the exit
-flows (the projected dP/dtheta) and the viscosity at the nodes. One sparse LU per step.
+dE/dT its operator plus the same through mu, and dM_k the mixing's through the exit and
+column flows (the projected dP/dtheta) and the viscosity at the nodes (rank one per
+groove). A step eliminates the film (its LU) and solves the Schur complement on the
+temperatures by GMRES with the temperature block's inverse on the right (:meth:`_step`).
 
-The cavitated set is held during the Newton steps and updated as the isothermal active
+The cavitated set is held during a step and updated after it as the isothermal active
 set does (an uncavitated dof with P < 0 joins, a cavitated one whose multiplier
-K P - b is negative leaves) once the steps have converged; it rarely moves after the
-first film's. Converged when a step moved no temperature by more than
-``temperature_tol`` [K] and no pressure by more than ``pressure_rtol`` of its peak, at
-a settled set (the residual after such a step is of its square: round-off).
+K P - b is negative leaves); it rarely moves after the first film's. Converged when a
+step moved no temperature by more than ``temperature_tol`` [K] and no pressure by more
+than ``pressure_rtol`` of its peak and the set did not move (the residual after such a
+step is of its square: round-off), else :class:`~bearingfem.errors.ConvergenceError`.
 
-Why Newton over the fixed point (:class:`~bearingfem.routes.thd.ThermalIteration`): the
-fixed point contracts by about 1e-2 per step, each step a film and an energy solve (6
-film and 5 energy solves to 1e-6 K); Newton's steps each cost one assembly and one LU of
-the coupled system and converge quadratically from the fixed point's first step (docs/thd.md).
+Beside the fixed point (:class:`~bearingfem.routes.thd.ThermalIteration`, the default):
+the same answer; quadratic convergence (five steps from the supply temperature's film
+to round-off) against the fixed point's factor of about 1e-2 per step, but each step
+assembles the coupling blocks and costs about two fixed-point steps, so at the meshes
+measured it is the slower of the two (docs/thd.md, Cost).
 """
 from __future__ import annotations
 
