@@ -1,9 +1,12 @@
 """The thermal film's coupled Newton: its block Jacobian against central differences of
 its residual, quadratic convergence, and the plain fixed point's answer."""
+from dataclasses import replace
+
 import numpy as np
 import pytest
 
 from bearingfem import Lubricant
+from bearingfem.errors import ConvergenceError
 from bearingfem.routes.thd import ThermalIteration
 from bearingfem.routes.thd_newton import ThermalNewton, solve_thd_newton
 from bearingfem.thermal import Thermal
@@ -101,3 +104,26 @@ def test_newton_refuses_the_jfo_film():
                           grooves=GROOVES, cavitation="jfo")
     with pytest.raises(ValueError, match="Reynolds-condition"):
         ThermalNewton(it)
+
+
+def test_warm_start_lands_on_the_cold_answer_and_unconverged_raises():
+    """From a neighbouring state's film (an equilibrium's step) the Newton lands where it
+    lands cold (1e-9 K, force 1e-10) in fewer steps; one step allowed from the supply
+    temperature raises ConvergenceError, and bad input names its parameter."""
+    cold = solve_thd_newton(BEARING, STATE, 24, 6, lubricant=VG32, thermal=CASES[1],
+                            grooves=GROOVES)
+    near = solve_thd_newton(BEARING, replace(STATE, eps=0.58), 24, 6, lubricant=VG32,
+                            thermal=CASES[1], grooves=GROOVES)
+    warm = solve_thd_newton(BEARING, STATE, 24, 6, lubricant=VG32, thermal=CASES[1],
+                            grooves=GROOVES, start=near)
+    assert np.max(np.abs(warm.temperature - cold.temperature)) < 1e-9
+    assert np.allclose(warm.force, cold.force, rtol=1e-10, atol=0.0)
+    assert warm.thermal.iterations < cold.thermal.iterations
+    with pytest.raises(ConvergenceError):
+        solve_thd_newton(BEARING, STATE, 24, 6, lubricant=VG32, thermal=CASES[1],
+                         grooves=GROOVES, max_iterations=1)
+    with pytest.raises(ValueError, match="thermal"):
+        solve_thd_newton(BEARING, STATE, 24, 6, lubricant=VG32, thermal=None,
+                         grooves=GROOVES)
+    with pytest.raises(ValueError, match="supply"):
+        solve_thd_newton(BEARING, STATE, 24, 6, lubricant=VG32, thermal=CASES[1])
