@@ -344,6 +344,21 @@ class Lubricant:
             return mu * dlog * s**self.roelands
         return mu * dlog
 
+    def viscosity_and_slopes(self, p, temperature) -> tuple:
+        """(mu [Pa s], d mu/dp [Pa s/Pa], d mu/dT [Pa s/K]) at gauge pressure p [Pa] and
+        ``temperature`` [K], the temperature law evaluated once (a coupled Newton's
+        Jacobian needs all three at every point); the same values as
+        :meth:`viscosity_at`, :meth:`viscosity_derivative` and
+        :meth:`viscosity_temperature_derivative`."""
+        mu_t, dlog = self._viscosity_ambient(np.asarray(temperature, dtype=float))
+        p = np.asarray(p, dtype=float) + np.zeros_like(mu_t)
+        log_ratio, slope = self._log_viscosity_ratio(p, mu_t)
+        mu = mu_t * np.exp(log_ratio)
+        d_t = mu * dlog
+        if self.roelands is not None:     # Roelands' exponent grows with ln mu_T
+            d_t = d_t * np.maximum(1.0 + p / ROELANDS_P0, 1e-12) ** self.roelands
+        return mu, mu * slope, d_t
+
     def kinematic_viscosity_at(self, temperature=None) -> np.ndarray:
         """Kinematic viscosity mu/rho [m^2/s] at ambient pressure and ``temperature`` [K];
         needs ``mass_density``."""

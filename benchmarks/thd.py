@@ -7,8 +7,10 @@ The 50 mm bearing of studies/thd_designer.py (ISO VG 32 at 40 C, two 20 deg groo
 and the thermal film (``solve_thd``, adiabatic, carry-over 0.8; cold start, and warm from
 the film at eps 0.69, as an equilibrium's steps are), one process, best of 5 CPU times
 (caches built first; OMP_NUM_THREADS=1). Columns: time [ms], film solves of the thermal
-film, ratio to the isothermal solve. ``--profile``: where one cold 96 x 16 thermal solve
-spends its time (cProfile, CPU clock, functions above 3 % of the total).
+film, ratio to the isothermal solve; then the same film by the coupled Newton
+(``solve_thd_newton``, cold and warm; "steps": its film solve plus its Newton steps).
+``--profile``: where one cold 96 x 16 thermal solve of each spends its time (cProfile,
+CPU clock, functions above 3 % of the total).
 """
 from __future__ import annotations
 
@@ -19,6 +21,7 @@ import time
 
 from bearingfem import JournalState, solve_reynolds
 from bearingfem.routes.thd import solve_thd
+from bearingfem.routes.thd_newton import solve_thd_newton
 from bearingfem.thermal import Thermal
 from studies.thd_designer import BEARING, GROOVES, OIL, OMEGA, SUPPLY
 
@@ -38,17 +41,19 @@ def cpu(f, repeat=5):
 
 def profile(n=(96, 16)):
     thd = dict(lubricant=OIL, thermal=THERMAL, grooves=GROOVES)
-    solve_thd(BEARING, STATE, *n, **thd)
-    pr = cProfile.Profile(time.process_time)
-    pr.runcall(solve_thd, BEARING, STATE, *n, **thd)
-    stats = pstats.Stats(pr)
-    total = stats.total_tt
-    print(f"one thermal solve {n[0]}x{n[1]}: {1e3 * total:.1f} ms CPU under the profiler")
-    rows = sorted(((v[3], f"{k[0].split('/')[-1]}:{k[2]}") for k, v in stats.stats.items()),
-                  reverse=True)
-    for cum, name in rows:
-        if cum >= 0.03 * total:
-            print(f"  {1e3 * cum:8.1f} ms {100 * cum / total:5.1f} %  {name}")
+    for solve in (solve_thd, solve_thd_newton):
+        solve(BEARING, STATE, *n, **thd)
+        pr = cProfile.Profile(time.process_time)
+        pr.runcall(solve, BEARING, STATE, *n, **thd)
+        stats = pstats.Stats(pr)
+        total = stats.total_tt
+        print(f"one thermal solve ({solve.__name__}) {n[0]}x{n[1]}: {1e3 * total:.1f} ms "
+              f"CPU under the profiler")
+        rows = sorted(((v[3], f"{k[0].split('/')[-1]}:{k[2]}")
+                       for k, v in stats.stats.items()), reverse=True)
+        for cum, name in rows:
+            if cum >= 0.03 * total:
+                print(f"  {1e3 * cum:8.1f} ms {100 * cum / total:5.1f} %  {name}")
 
 
 def main(argv=None):
@@ -56,7 +61,8 @@ def main(argv=None):
     ap.add_argument("--profile", action="store_true")
     args = ap.parse_args(argv)
     print(f"{'mesh':>7} {'iso ms':>8} {'THD cold ms':>11} {'films':>5} {'ratio':>6} "
-          f"{'THD warm ms':>11} {'films':>5} {'ratio':>6}")
+          f"{'THD warm ms':>11} {'films':>5} {'ratio':>6} | {'Newton cold':>11} {'steps':>5} "
+          f"{'ratio':>6} {'Newton warm':>11} {'steps':>5} {'ratio':>6}")
     for n in MESHES:
         kw = dict(grooves=GROOVES)
         solve_reynolds(BEARING, STATE, *n, **kw)
@@ -66,9 +72,14 @@ def main(argv=None):
         t_cold, cold = cpu(lambda: solve_thd(BEARING, STATE, *n, **thd))
         start = solve_thd(BEARING, NEAR, *n, **thd)
         t_warm, warm = cpu(lambda: solve_thd(BEARING, STATE, *n, start=start, **thd))
+        solve_thd_newton(BEARING, STATE, *n, **thd)
+        t_nc, nc = cpu(lambda: solve_thd_newton(BEARING, STATE, *n, **thd))
+        t_nw, nw = cpu(lambda: solve_thd_newton(BEARING, STATE, *n, start=start, **thd))
         print(f"{n[0]:>3}x{n[1]:<3} {1e3 * t_iso:8.1f} {1e3 * t_cold:11.1f} "
               f"{cold.thermal.iterations:5d} {t_cold / t_iso:6.1f} {1e3 * t_warm:11.1f} "
-              f"{warm.thermal.iterations:5d} {t_warm / t_iso:6.1f}", flush=True)
+              f"{warm.thermal.iterations:5d} {t_warm / t_iso:6.1f} | {1e3 * t_nc:11.1f} "
+              f"{nc.thermal.iterations:5d} {t_nc / t_iso:6.1f} {1e3 * t_nw:11.1f} "
+              f"{nw.thermal.iterations:5d} {t_nw / t_iso:6.1f}", flush=True)
     if args.profile:
         profile()
 
