@@ -127,3 +127,8 @@ def test_warm_start_lands_on_the_cold_answer_and_unconverged_raises():
                          grooves=GROOVES)
     with pytest.raises(ValueError, match="supply"):
         solve_thd_newton(BEARING, STATE, 24, 6, lubricant=VG32, thermal=CASES[1])
+    # a journal turning the other way is the fixed point's (the Newton's mixing and SUPG
+    # derivatives are the forward film's: 8 K off at -omega before it was refused)
+    with pytest.raises(ValueError, match="state.omega"):
+        solve_thd_newton(BEARING, replace(STATE, omega=-STATE.omega), 24, 6,
+                         lubricant=VG32, thermal=CASES[1], grooves=GROOVES)

@@ -28,6 +28,7 @@ temperatures; otherwise :class:`~bearingfem.errors.ConvergenceError`.
 """
 from __future__ import annotations
 
+import math
 from dataclasses import replace
 
 import numpy as np

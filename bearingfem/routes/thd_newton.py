@@ -417,6 +417,11 @@ def solve_thd_newton(bearing, state, n_theta=120, n_z=20, *, lubricant, thermal,
     ``max_iterations`` counting Newton steps). ``sol.thermal.iterations``: the film solve
     plus the Newton steps."""
     check_thermal(lubricant, thermal, state, "reynolds", element)
+    if state.omega < 0.0:
+        # Why: its mixing and SUPG derivatives are written for oil entering at the
+        # grooves' trailing edges; the reversed film is solve_thd's (routes/thd.py)
+        raise ValueError(f"state.omega must be > 0 for the coupled Newton (got "
+                         f"{state.omega}); solve_thd solves a journal turning either way")
     if not grooves and supply_angle is None:
         raise ValueError("a thermal film needs an oil supply: give grooves or a "
                          "supply_angle")
