@@ -49,6 +49,7 @@ from ..fe.general import film_moment, general_assembly
 from ..fe.kernel import fe_pressure, film_outputs, groove_pressures
 from ..film import local_to_inertial, source_coefficients
 from ..scales import force_factor
+from ..thermal.bush import bush_wall
 from ..thermal.energy import Mixing, energy_operator, solve_energy
 from ..thermal.spec import Thermal, ThermalRecord
 from .base import Route
@@ -320,6 +321,8 @@ class ThermalIteration:
         self.op = op = thermal_operator(bearing, state, n_theta, n_z, element, supply_angle,
                                         grooves)
         self.eop = energy_operator(op.mesh)
+        self.wall = None if thermal.bush is None else \
+            bush_wall(thermal.bush, bearing.radius, bearing.length, op.mesh, self.eop)
         n = op.mesh.ndofs
         fresh = start is None or getattr(start, "temperature", None) is None \
             or len(start.temperature) != n
@@ -373,7 +376,7 @@ class ThermalIteration:
                                oil.viscosity_at(self.p, temperature=T), self.thermal)
         slope = _dissipation_slope(oil, flow, mu_arc, p_arc, T_arc)
         energy = solve_energy(b, eop, flow, mixing, self.thermal.walls,
-                              linearised=(slope, T_arc))
+                              linearised=(slope, T_arc), bush=self.wall)
         self.change = float(np.max(np.abs(energy.temperature - T)))
         self.T = T + relaxation * (energy.temperature - T)
         self.energy_solution = energy
@@ -387,7 +390,8 @@ class ThermalIteration:
             inlet_temperatures=tuple(float(T[d[0]]) for d in self.eop.edges.inflow),
             viscosity=oil.viscosity_at(sol.pressure, temperature=T),
             viscosity_quadrature=self.mu, iterations=self.iterations,
-            temperature_change=self.change, pressure_change=self.pressure_change)
+            temperature_change=self.change, pressure_change=self.pressure_change,
+            bush=energy.bush)
         return replace(sol, temperature=T, temperature_max=float(np.max(T)), thermal=record,
                        method=sol.method + "/thd")
 
