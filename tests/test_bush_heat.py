@@ -284,7 +284,7 @@ def test_bad_thermal_bush_is_refused():
         Thermal(SUPPLY, model="conducting", bush=ElasticBush(outer_radius=RO))
     fine = Thermal(SUPPLY, model="conducting",
                    bush=BushConduction(ElasticBush(outer_radius=RO), n_theta=48 * 16))
-    with pytest.raises(ValueError, match="finer than the film"):
+    with pytest.raises(ValueError, match="finer than twice the film"):
         solve_thd(BEARING, STATE, 24, 4, lubricant=VG32, thermal=fine, grooves=GROOVES)
 
 

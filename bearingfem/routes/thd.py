@@ -376,7 +376,8 @@ class ThermalIteration:
                                oil.viscosity_at(self.p, temperature=T), self.thermal)
         slope = _dissipation_slope(oil, flow, mu_arc, p_arc, T_arc)
         energy = solve_energy(b, eop, flow, mixing, self.thermal.walls,
-                              linearised=(slope, T_arc), bush=self.wall)
+                              linearised=(slope, T_arc), bush=self.wall,
+                              bush_start=getattr(self.energy_solution, "bush_inner", None))
         self.change = float(np.max(np.abs(energy.temperature - T)))
         self.T = T + relaxation * (energy.temperature - T)
         self.energy_solution = energy

@@ -114,6 +114,12 @@ class EnergySolution:
     journal_temperature: float
     parts: tuple = field(default=(), repr=False)        # what the balance is made of
 
+    @property
+    def bush_inner(self):
+        """The conducting bush's inner nodal temperatures [K] (None without one)."""
+        wall = self.parts[-1] if self.parts else None
+        return None if wall is None else wall[5] + wall[3]
+
     @cached_property
     def bush(self):
         """The conducting bush's temperatures (:class:`~bearingfem.thermal.bush.BushHeat`:
@@ -531,7 +537,7 @@ class _FilmSolver:
 
 def solve_energy(bearing, op: EnergyOperator, flow: EnergyFlow, mixing: Mixing, walls,
                  half: bool = False, linearised=None, storage=None, bush=None,
-                 bush_tol: float = 1e-12) -> EnergySolution:
+                 bush_tol: float = 1e-12, bush_start=None) -> EnergySolution:
     """Solve the energy equation (module docstring) on the arcs of ``op``
     (:func:`energy_operator`).
 
@@ -550,7 +556,8 @@ def solve_energy(bearing, op: EnergyOperator, flow: EnergyFlow, mixing: Mixing, 
         ambient T_a): the film loses H (T - T_w) to the bush's inner surface, T_w the
         bush's temperature there (module docstring of :mod:`bearingfem.thermal.bush`);
         film and bush are solved together, the bush's inner temperatures by GMRES on
-        their Schur complement to ``bush_tol`` (relative residual)
+        their Schur complement to ``bush_tol`` (relative residual), started from
+        ``bush_start`` (an earlier solution's ``bush_inner``) if given
     """
     R = bearing.radius
     hb, ta, hj, tj = walls
@@ -596,7 +603,8 @@ def solve_energy(bearing, op: EnergyOperator, flow: EnergyFlow, mixing: Mixing, 
         t_journal = float(t_lin)
     wall = None
     if bush is not None:
-        T, t_add, wall, b = _with_bush(op, solver, bush, H, test, T, ta, R, b, bush_tol)
+        T, t_add, wall, b = _with_bush(op, solver, bush, H, test, T, ta, R, b, bush_tol,
+                                       bush_start)
         if zero_flux:
             t_journal += t_add
     if not np.all(np.isfinite(T)):
@@ -609,7 +617,7 @@ def solve_energy(bearing, op: EnergyOperator, flow: EnergyFlow, mixing: Mixing, 
                                  storage, wall))
 
 
-def _with_bush(op, solver, wall, H, test, T_p, ta, R, b, tol):
+def _with_bush(op, solver, wall, H, test, T_p, ta, R, b, tol, start):
     """The film's temperatures with the conducting bush: T = T_p + L u, u the bush's inner
     nodal temperatures above the ambient and L u the film's answer to the wall load
     int (R v + tau beta.grad v) R H (I u); u = S I^T (H dA (V T - T_a - I u)) (S the
@@ -639,7 +647,8 @@ def _with_bush(op, solver, wall, H, test, T_p, ta, R, b, tol):
     rhs = S(I.T @ (HdA * ((op.value @ T_p) - ta)))
     n = I.shape[1]
     M = LinearOperator((n, n), matvec=apply, dtype=float)
-    u, info = gmres(M, rhs, rtol=tol, atol=0.0, restart=min(n, 60), maxiter=20)
+    x0 = None if start is None or np.shape(start) != (n,) else np.asarray(start) - ta
+    u, info = gmres(M, rhs, x0=x0, rtol=tol, atol=0.0, restart=min(n, 60), maxiter=20)
     res = float(np.linalg.norm(apply(u) - rhs) / max(np.linalg.norm(rhs), 1e-300))
     if info != 0 or not res <= 10.0 * tol:
         raise ConvergenceError("film and bush temperatures (GMRES)", 20 * min(n, 60), res)
