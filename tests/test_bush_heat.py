@@ -1,13 +1,37 @@
 """Heat conduction in the bush (bearingfem.thermal.bush): radial conduction through the
 wall against its closed form, an angular flux against the separated solution, the heat
-balance, bad input."""
+balance, bad input; the bush coupled to the film's energy equation: its balance, the
+uniform film against the closed-form series coefficient, the one-sparse-system solve, the
+transfer between the meshes."""
 import math
 
 import numpy as np
 import pytest
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+from skfem import Basis, BilinearForm, ElementHex1, ElementQuad1, FacetBasis, LinearForm
+from skfem.models.poisson import laplace
 
+from bearingfem import Bearing, Groove, JournalState, Lubricant
 from bearingfem.elastic import ElasticBush
-from bearingfem.thermal.bush import bush_heat, radial_conduction
+from bearingfem.routes.thd import (
+    ThermalIteration,
+    _dissipation_slope,
+    groove_mixing,
+    solve_thd,
+    thermal_operator,
+)
+from bearingfem.thermal import Thermal
+from bearingfem.thermal.bush import bush_heat, bush_wall, radial_conduction
+from bearingfem.thermal.energy import (
+    EnergyFlow,
+    Mixing,
+    _film_coefficient,
+    energy_operator,
+    energy_system,
+    solve_energy,
+)
+from bearingfem.thermal.spec import BushConduction
 
 R, RO, K, H, TA, Q = 0.025, 0.05, 50.0, 80.0, 300.0, 2e4
 
@@ -70,20 +94,6 @@ def test_bad_input_names_the_parameter(kwargs, name):
 
 
 # --- the bush coupled to the film's energy equation ------------------------------------
-
-import scipy.sparse as sp
-import scipy.sparse.linalg as spla
-from skfem import Basis, BilinearForm, ElementHex1, ElementQuad1, FacetBasis, LinearForm
-from skfem.models.poisson import laplace
-
-from bearingfem import Bearing, Groove, JournalState, Lubricant
-from bearingfem.routes.thd import (ThermalIteration, _dissipation_slope, groove_mixing,
-                                   solve_thd, thermal_operator)
-from bearingfem.thermal import Thermal
-from bearingfem.thermal.bush import bush_wall
-from bearingfem.thermal.energy import (EnergyFlow, Mixing, _film_coefficient,
-                                       energy_operator, energy_system, solve_energy)
-from bearingfem.thermal.spec import BushConduction
 
 BEARING = Bearing(radius=R, length=0.025, clearance=50e-6, viscosity=0.02)
 GROOVES = [Groove(angle=0.5 * math.pi, width=0.2), Groove(angle=-0.5 * math.pi, width=0.2)]
