@@ -13,7 +13,10 @@ carries heat), Phi = F mu U^2/h + h^3/(12 mu) |grad p|^2 the viscous dissipation
 (Couette shear and the pressure gradient's flow; their cross term vanishes across the
 film), H_b the film -> ambient coefficient through the bush and H_j the film -> journal
 coefficient (zero in the adiabatic film), T_j given or the journal's zero-net-flux
-temperature (an extra unknown with int H_j (T - T_j) dA = 0).
+temperature (an extra unknown with int H_j (T - T_j) dA = 0). With a conducting bush
+(``solve_energy(..., bush=)``) the bush's term is H (T - T_w) instead, T_w the bush's
+inner temperature from its own heat equation, solved with the film
+(:mod:`bearingfem.thermal.bush`).
 
 Discretised by Galerkin with streamline-upwind Petrov-Galerkin stabilisation (Brooks &
 Hughes 1982): the test function v gains tau beta . grad v, beta = rho cp q, with
@@ -91,7 +94,8 @@ class EnergyFlow:
 class EnergyBalance:
     """Where the film's heat goes [W] (whole bearing): ``dissipation`` = ``convected``
     (int rho cp q . grad T, the oil's temperature rise along its paths) + ``bush`` +
-    ``journal`` (conducted) + ``grooves`` (minus the held nodes' reactions: what holding
+    ``journal`` (conducted; ``bush`` the conducting bush's heat in, when it has one) +
+    ``grooves`` (minus the held nodes' reactions: what holding
     the inlet temperatures takes away) + ``stored`` (a time step's int rho cp h dT/dt, 0 in
     a steady film); ``residual`` = dissipation - (convected + bush + journal + grooves +
     stored)."""
