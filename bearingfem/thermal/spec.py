@@ -9,13 +9,16 @@ import numpy as np
 from ..elastic.bush import ElasticBush
 
 __all__ = ["Thermal", "ThermalRecord", "BushConduction", "THERMAL_MODELS",
-           "DEFAULT_WALL_COEFFICIENT"]
+           "MAX_FILM_COEFFICIENT", "DEFAULT_WALL_COEFFICIENT"]
 
 THERMAL_MODELS = ("adiabatic", "conducting")
 #: [W/(m^2 K)] film -> ambient through a steel bush and film -> journal, when the
 #: "conducting" model is given no coefficient: the order of a 50 W/(m K) bush 0.15 m thick
 #: in series with a 700 W/(m^2 K) outer convection (about 230 W/(m^2 K)).
 DEFAULT_WALL_COEFFICIENT = 250.0
+#: [W/(m^2 K)] the largest film -> bush coefficient a BushConduction takes (30x 2 k_oil/h
+#: of a 100 um film of mineral oil)
+MAX_FILM_COEFFICIENT = 1e5
 
 
 def _number(name, value, *, lo=None, hi=None, allowed=""):
@@ -47,7 +50,8 @@ class BushConduction:
     conductivity : the bush's k [W/(m K)], > 0 (default 50: steel)
     outer_coefficient : h_o, outer surface -> ambient [W/(m^2 K)], > 0 (the ambient is
         the :class:`Thermal`'s ``ambient_temperature``)
-    film_coefficient : film -> bush inner surface [W/(m^2 K)], > 0, or None: 2 k_oil F / h,
+    film_coefficient : film -> bush inner surface [W/(m^2 K)], in (0, 1e5], or None:
+        2 k_oil F / h,
         conduction across half the local film (a linear profile from the film's mean
         temperature at mid-film to the wall; F the film fraction)
     n_theta, n_radial, n_axial : the bush mesh's cells around, across the wall and along
@@ -72,8 +76,12 @@ class BushConduction:
         _number("outer_coefficient", self.outer_coefficient, lo=1e-300,
                 allowed="> 0 [W/(m^2 K)]")
         if self.film_coefficient is not None:
+            # why the cap: the film's coupling to the wall grows with it; at 1e6 the
+            # film follows the wall's interpolated temperature point by point on meshes
+            # that do not match, and the answer moves (docs/thd.md)
             _number("film_coefficient", self.film_coefficient, lo=1e-300,
-                    allowed="> 0 [W/(m^2 K)]")
+                    hi=MAX_FILM_COEFFICIENT, allowed=f"in (0, {MAX_FILM_COEFFICIENT:g}] "
+                                                     f"[W/(m^2 K)]")
         for name, lo in (("n_theta", 8), ("n_axial", 1)):
             if getattr(self, name) is not None:
                 _count(name, getattr(self, name), lo)
