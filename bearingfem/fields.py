@@ -116,7 +116,7 @@ class FilmFields:
         volumes' quadrature of the JFO balance): a function is evaluated there, nodal
         values are interpolated by ``interpolation`` (sparse, points x dofs, the points
         flattened), values at the element quadrature points are first carried to the
-        nodes by :func:`nodal_average` (positive). Checked as :meth:`on`."""
+        nodes (:func:`to_nodes`). Checked as :meth:`on`."""
         theta, zeta = np.asarray(theta, float), np.asarray(zeta, float)
         gap = ((lambda t, z: film_thickness(t, state.eps)) if self.gap is None
                else self.gap)
@@ -165,7 +165,7 @@ def _at_points(name: str, f, op, theta: np.ndarray, zeta: np.ndarray,
     else:
         v = np.asarray(f, dtype=float)
         if v.ndim == 2 and v.shape == op.qp_theta.shape:   # at the element quadrature
-            v = nodal_average(op.mesh.basis, v)
+            v = to_nodes(name, op.mesh.basis, v)
         elif not (v.ndim == 0 or (v.ndim == 1 and v.shape[0] == op.mesh.ndofs)):
             _at_quadrature(name, f, op)                     # raises, naming the field
         if v.ndim == 1:
@@ -188,6 +188,16 @@ def nodal_average(basis, v: np.ndarray) -> np.ndarray:
                       minlength=basis.N)
     den = np.bincount(dofs.ravel(), np.sum(w, axis=2).ravel(), minlength=basis.N)
     return num / den
+
+
+def to_nodes(name: str, basis, v: np.ndarray) -> np.ndarray:
+    """The field ``name``'s values at ``basis``'s quadrature points carried to its nodes:
+    the viscosity by :func:`nodal_average` (it must stay positive, and a thermal film's
+    steep one overshoots under the L2 projection), the others (gap, density, rates: the
+    JFO films' content) by the second-order L2 projection."""
+    if name == "viscosity":
+        return nodal_average(basis, v)
+    return np.asarray(basis.project(v))
 
 
 def check_tilt(name: str, tilt) -> tuple:
