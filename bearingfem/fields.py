@@ -115,8 +115,8 @@ class FilmFields:
         """These fields as arrays at any points (theta, zeta) of ``op``'s film (the control
         volumes' quadrature of the JFO balance): a function is evaluated there, nodal
         values are interpolated by ``interpolation`` (sparse, points x dofs, the points
-        flattened), values at the element quadrature points are first projected onto the
-        nodes (L2). Checked as :meth:`on`."""
+        flattened), values at the element quadrature points are first carried to the
+        nodes (:func:`to_nodes`). Checked as :meth:`on`."""
         theta, zeta = np.asarray(theta, float), np.asarray(zeta, float)
         gap = ((lambda t, z: film_thickness(t, state.eps)) if self.gap is None
                else self.gap)
@@ -165,12 +165,39 @@ def _at_points(name: str, f, op, theta: np.ndarray, zeta: np.ndarray,
     else:
         v = np.asarray(f, dtype=float)
         if v.ndim == 2 and v.shape == op.qp_theta.shape:   # at the element quadrature
-            v = np.asarray(op.mesh.basis.project(v))
+            v = to_nodes(name, op.mesh.basis, v)
         elif not (v.ndim == 0 or (v.ndim == 1 and v.shape[0] == op.mesh.ndofs)):
             _at_quadrature(name, f, op)                     # raises, naming the field
         if v.ndim == 1:
             v = (interpolation @ v).reshape(theta.shape)
     return np.broadcast_to(v, np.broadcast(theta, zeta).shape).astype(float)
+
+
+def nodal_average(basis, v: np.ndarray) -> np.ndarray:
+    """Values ``v`` at ``basis``'s quadrature points (elements x points) carried to its
+    nodes by the lumped-mass projection, v_i = int phi_i v / int phi_i: with P1's
+    non-negative shape functions each nodal value is a weighted mean of the point values,
+    so a positive field stays positive and within its bounds. Why not the L2 projection:
+    it overshoots where the field changes steeply within a cell (a thermal film's
+    viscosity at eps 0.97 projected to negative nodal values); the mean is exact for
+    constants and first order elsewhere (second at the interior nodes of a uniform mesh)."""
+    phi = np.array([np.asarray(basis.basis[i][0]) for i in range(basis.Nbfun)])
+    dofs = basis.element_dofs
+    w = phi * np.asarray(basis.dx)
+    num = np.bincount(dofs.ravel(), np.sum(w * np.asarray(v), axis=2).ravel(),
+                      minlength=basis.N)
+    den = np.bincount(dofs.ravel(), np.sum(w, axis=2).ravel(), minlength=basis.N)
+    return num / den
+
+
+def to_nodes(name: str, basis, v: np.ndarray) -> np.ndarray:
+    """The field ``name``'s values at ``basis``'s quadrature points carried to its nodes:
+    the viscosity by :func:`nodal_average` (it must stay positive, and a thermal film's
+    steep one overshoots under the L2 projection), the others (gap, density, rates: the
+    JFO films' content) by the second-order L2 projection."""
+    if name == "viscosity":
+        return nodal_average(basis, v)
+    return np.asarray(basis.project(v))
 
 
 def check_tilt(name: str, tilt) -> tuple:

@@ -20,9 +20,14 @@ gaps between the pads), model "fem" with cavitation "reynolds" (P1), and
 - adiabatic: ``Thermal(323, model="adiabatic", carry_over=0.8)``;
 - conducting: ``Thermal(323, model="conducting", carry_over=0.8)`` with the bush
   coefficient of ROSS's pad in series with its back convection,
-  1 / (t/k_pad + 1/h_back) = 230 W/(m^2 K) to the 294.3 K environment, and the journal at
+  1 / (t/k_pad + 1/h_back) = 230 W/(m^2 K) to the ambient, and the journal at
   its zero-net-flux temperature through 2 k_oil / c = 1542 W/(m^2 K) (ROSS: the journal at
-  the film's averaged temperature).
+  the film's averaged temperature). The ambient is ROSS's: its ``ta_type`` 0 takes the
+  supply temperature (323 K) for the pad's back, not the 294.3 K ``environment_temperature``;
+- conducting bush: the same with the bush conducting (``Thermal(..., bush=
+  BushConduction(ElasticBush(outer_radius=R + t_pad, model="solid"), k_pad, h_back))``,
+  the hollow cylinder R -> R + t_pad, its bush mesh n_theta x 8 x 8 unless ``--bush-mesh``
+  gives n_radial x n_axial); the film -> bush coefficient 2 k_oil / h.
 
 Columns: eccentricity, attitude [deg], power loss [W], maximum film temperature [K]
 (ROSS: the pad surface's, ``tpad_max``), K [N/m] and C [N s/m] (inertial x, y), and
@@ -40,9 +45,13 @@ import subprocess
 import time
 
 
+from dataclasses import replace
+
 from bearingfem import Bearing, Groove, Lubricant, solve_reynolds
 from bearingfem.design import coefficients, equilibrium
+from bearingfem.elastic import ElasticBush
 from bearingfem.thermal import Thermal
+from bearingfem.thermal.spec import BushConduction
 
 from . import _ross31_env
 
@@ -59,8 +68,9 @@ def fixture(name: str) -> dict:
     return json.loads(text)
 
 
-def setup(inputs: dict):
-    """(bearing, load, omega, grooves, oil, thermals) of ROSS's fixture inputs."""
+def setup(inputs: dict, bush_mesh=(8, 8)):
+    """(bearing, load, omega, grooves, oil, thermals) of ROSS's fixture inputs; the
+    conducting bush on ``bush_mesh`` (n_radial, n_axial) cells."""
     i = inputs
     R = 0.5 * i["journal_diameter"]
     oil = Lubricant.two_point((i["temp1"], i["viscosity1"]), (i["temp2"], i["viscosity2"]),
@@ -76,13 +86,20 @@ def setup(inputs: dict):
     h_bush = 1.0 / (i["pad_thickness"] / i["pad_conductivity"] + 1.0 / i["pad_convection"][0])
     h_journal = 2.0 * i["lube_conduct"] / i["radial_clearance"]
     lam = i["hot_oil_lambda"]
+    if i["ta_type"] != 0:
+        raise ValueError("only ROSS's ta_type 0 (the pad's back to the supply "
+                         "temperature) is read here")
+    conducting = Thermal(ts, model="conducting", carry_over=lam, bush_coefficient=h_bush,
+                         ambient_temperature=ts, journal_coefficient=h_journal)
+    bush = BushConduction(ElasticBush(outer_radius=R + i["pad_thickness"], model="solid"),
+                          conductivity=i["pad_conductivity"],
+                          outer_coefficient=i["pad_convection"][0],
+                          n_radial=bush_mesh[0], n_axial=bush_mesh[1])
     thermals = {
         "isothermal": None,
         "adiabatic": Thermal(ts, carry_over=lam),
-        "conducting": Thermal(ts, model="conducting", carry_over=lam,
-                              bush_coefficient=h_bush,
-                              ambient_temperature=i["environment_temperature"],
-                              journal_coefficient=h_journal),
+        "conducting": conducting,
+        "conducting bush": replace(conducting, bush_coefficient=None, bush=bush),
     }
     return bearing, (0.0, -i["weight"]), i["frequency"][0], grooves, oil, thermals
 
@@ -160,18 +177,26 @@ def main(argv=None):
     ap.add_argument("--mesh", action="append", default=None,
                     help="n_thetaxn_z of our film (repeatable; default 96x16 and 192x32)")
     ap.add_argument("--ross", action="store_true", help="also time ROSS's engine")
+    ap.add_argument("--case", action="append", default=None,
+                    choices=("isothermal", "adiabatic", "conducting", "conducting bush"),
+                    help="our cases to run (repeatable; default all)")
+    ap.add_argument("--bush-mesh", default="8x8",
+                    help="n_radialxn_axial of the conducting bush (default 8x8)")
     args = ap.parse_args(argv)
     meshes = [tuple(int(v) for v in m.split("x")) for m in (args.mesh or ["96x16", "192x32"])]
     data = {name: fixture(name) for name in CASES}
-    bearing, load, omega, grooves, oil, thermals = setup(data["fixed_adiabatic"]["inputs"])
+    bearing, load, omega, grooves, oil, thermals = setup(
+        data["fixed_adiabatic"]["inputs"], tuple(int(v) for v in args.bush_mesh.split("x")))
     times = ross_times(data, CASES) if args.ross else {}
     head = (f"{'case':<30} {'eps':>7} {'att deg':>7} {'loss W':>8} {'Tmax K':>6} "
             + " ".join(f"{k:>10}" for k in KEYS) + f" {'t s':>5} {'cpu s':>5}")
     print(head)
     print("-" * len(head))
     pairs = (("isothermal", "fixed_isoviscous"), ("adiabatic", "fixed_adiabatic"),
-             ("conducting", "fixed_full"))
+             ("conducting", "fixed_full"), ("conducting bush", "fixed_full"))
     for ours_name, ross_name in pairs:
+        if args.case and ours_name not in args.case:
+            continue
         row = ross_row(data[ross_name]["outputs"])
         row["time"], row["cpu"] = times.get(ross_name, (float("nan"), float("nan")))
         print(f"{'ROSS ' + ross_name:<30} " + fmt(row))
@@ -191,6 +216,10 @@ def main(argv=None):
                       f" K; journal {rec.journal_temperature:.1f} K; balance residual "
                       f"{rec.balance.residual:.1e} W of {rec.balance.dissipation:.0f} W; "
                       f"film solves {rec.iterations}", flush=True)
+                if rec.bush is not None:
+                    print(f"{'':<30}   bush: {rec.balance.bush:.0f} W through it, max "
+                          f"{rec.bush.temperature.max():.1f} K, inner mean "
+                          f"{rec.bush.inner_mean:.1f} K", flush=True)
 
 
 if __name__ == "__main__":

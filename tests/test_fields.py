@@ -9,7 +9,7 @@ from skfem.helpers import dot, grad
 from bearingfem import Bearing, JournalState, solve_reynolds
 from bearingfem.fe.general import film_system
 from bearingfem.fe.kernel import fe_operator, fe_pressure
-from bearingfem.fields import FilmFields
+from bearingfem.fields import FilmFields, nodal_average
 
 B = Bearing(radius=0.01, length=0.01, clearance=20e-6, viscosity=0.0117)
 S = JournalState(eps=0.6, eps_dot=0.1, gamma=0.3, gamma_dot=0.0, omega=250.0)
@@ -101,3 +101,29 @@ def test_fields_benchmark_smoke(capsys):
     rows = fields.main(["--quick", "--repeat", "1"])
     assert len(rows) == 6 and "general/fast" in capsys.readouterr().out
     assert all(r["gap"] < 1e-11 for r in rows)   # round-off (the rigid split)
+
+
+def test_nodal_average_is_positive_and_exact_for_constants():
+    """The quadrature values' carry to the nodes (the JFO films' control volumes and coarse
+    levels take it): constants exactly, every nodal value within the point values'
+    bounds (a field jumping by 1e4 within one cell row, where the L2 projection goes
+    negative), and a smooth field at first order (one-sided at the boundary nodes:
+    measured 0.18, 0.089, 0.044 on cos(theta)(1 + zeta) over 12, 24, 48 cells; the
+    L2 projection is second order but not positive). Fails with the L2 projection
+    (negative values) or the mean without its weights' normalisation (constants off)."""
+    errors = []
+    for n in (12, 24, 48):
+        op = fe_operator(Bearing(radius=0.02, length=0.02, clearance=2e-5, viscosity=0.01),
+                         JournalState(eps=0.5), n, n // 4, "P1", None, False, ())
+        basis, th, ze = op.mesh.basis, op.qp_theta, op.qp_zeta
+        assert np.allclose(nodal_average(basis, np.full(th.shape, 3.5)), 3.5, rtol=1e-14)
+        step = np.where(np.abs(np.mod(th, 2 * np.pi) - 2.0) < np.pi / n, 1e4, 1.0)
+        v = nodal_average(basis, step)
+        assert np.all(v >= 1.0 - 1e-12) and np.all(v <= 1e4 + 1e-8)
+        assert np.min(np.asarray(basis.project(step))) < 0.0     # what it replaces
+        smooth = np.cos(th) * (1.0 + ze)
+        x = op.mesh.theta, op.mesh.zeta
+        errors.append(np.max(np.abs(nodal_average(basis, smooth)
+                                    - np.cos(x[0]) * (1.0 + x[1]))))
+    orders = np.log2(np.array(errors[:-1]) / np.array(errors[1:]))
+    assert np.all(orders > 0.95), (errors, orders)

@@ -6,7 +6,8 @@ import pytest
 
 from bearingfem import Bearing, Groove, JournalState, fvm_reynolds, solve_reynolds
 from bearingfem.fe.jfo import solve_jfo
-from bearingfem.fe.jfo_fields import balance_films, field_balance_film, rigid_balance_film
+from bearingfem.fe.jfo_fields import (_as_functions, balance_films, field_balance_film,
+                                      rigid_balance_film)
 from bearingfem.fe.kernel import fe_operator
 from bearingfem.fields import FilmFields
 
@@ -182,3 +183,18 @@ def test_full_jfo_film_on_fields_is_the_reynolds_film():
         # a uniform ambient carries no force on the whole circumference
         gaps.append(np.hypot(*np.subtract(jfo.force, rey.force)) / np.hypot(*rey.force))
     assert gaps[0] / gaps[1] > 3.5 and gaps[1] / gaps[2] > 3.5 and gaps[2] < 1e-3
+
+
+def test_coarse_levels_keep_a_positive_field_positive():
+    """The nested solve's coarse levels take a quadrature-point field by its nodal mean
+    (``nodal_average``): a viscosity jumping by 1e4 within one column of cells stays within
+    its bounds at any point (the L2 projection it replaced: nodal values -4.1e3 to 1.3e4).
+    Fails with the L2 projection back."""
+    b = Bearing(radius=0.02, length=0.02, clearance=2e-5, viscosity=0.01)
+    op = fe_operator(b, JournalState(eps=0.5), 24, 6, "P1", None, False, ())
+    th = op.qp_theta
+    step = np.where(np.abs(np.mod(th, 2 * np.pi) - 2.0) < np.pi / 24, 1e4, 1.0)
+    f = _as_functions(FilmFields(viscosity=step), op).viscosity
+    t, z = np.meshgrid(np.linspace(0.0, 2 * np.pi, 721), np.linspace(-0.5, 0.5, 41))
+    v = f(t, z)
+    assert np.min(v) >= 1.0 - 1e-9 and np.max(v) <= 1e4 * (1 + 1e-12)

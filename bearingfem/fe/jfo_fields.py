@@ -27,7 +27,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from ..bearing import Bearing, JournalState
-from ..fields import FilmFields, check_tilt, tilted_gap
+from ..fields import FilmFields, check_tilt, tilted_gap, to_nodes
 from ..film import film_thickness
 from .assembly import FilmOperator
 from .general import film_system, general_film
@@ -160,7 +160,7 @@ def _as_functions(spec: FilmFields, op: FilmOperator) -> FilmFields:
             return f
         v = np.asarray(f, float)
         if v.ndim == 2 and v.shape == op.qp_theta.shape:
-            v = np.asarray(op.mesh.basis.project(v))
+            v = to_nodes(name, op.mesh.basis, v)
         if v.shape != (op.mesh.ndofs,):
             FilmFields(**{name: f}).on(op, JournalState(eps=0.0))    # raises by name
         return lambda t, z: (prolongation(op.mesh, np.ravel(t), np.ravel(z)) @ v

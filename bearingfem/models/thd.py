@@ -59,6 +59,9 @@ def _check(lubricant, thermal, grooves):
         raise ValueError("film model 'fem-thd' takes flooded grooves (fraction 1): its "
                          "film has Reynolds' condition")
     check_thermal(lubricant, thermal, JournalState(0.5, omega=1.0), "reynolds", "P1")
+    if thermal.bush is not None:
+        raise ValueError("film model 'fem-thd' takes the bush as bush_coefficient: the "
+                         "conducting bush (thermal.bush) has no heat capacity along a run")
 
 
 @dataclass(frozen=True)

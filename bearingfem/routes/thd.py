@@ -45,6 +45,7 @@ from ..film import film_thickness
 from ..lubricant import Lubricant
 from ..solution import FilmSolution
 from ..solvers.cavitation import LCPResult
+from ..thermal.bush import bush_wall
 from ..thermal.energy import Mixing, energy_operator, solve_energy
 from ..thermal.spec import Thermal, ThermalRecord
 from .base import Route
@@ -257,6 +258,8 @@ class ThermalIteration:
         self.op = op = thermal_operator(bearing, state, n_theta, n_z, element, supply_angle,
                                         grooves)
         self.eop = energy_operator(op.mesh, state.omega < 0.0)
+        self.wall = None if thermal.bush is None else \
+            bush_wall(thermal.bush, bearing.radius, bearing.length, op.mesh, self.eop)
         n = op.mesh.ndofs
         fresh = start is None or getattr(start, "temperature", None) is None \
             or len(start.temperature) != n
@@ -311,7 +314,8 @@ class ThermalIteration:
                                oil.viscosity_at(self.p, temperature=T), self.thermal)
         slope = _dissipation_slope(oil, flow, mu_arc, p_arc, T_arc)
         energy = solve_energy(b, eop, flow, mixing, self.thermal.walls,
-                              linearised=(slope, T_arc))
+                              linearised=(slope, T_arc), bush=self.wall,
+                              bush_start=getattr(self.energy_solution, "bush_inner", None))
         self.change = float(np.max(np.abs(energy.temperature - T)))
         self.T = T + relaxation * (energy.temperature - T)
         self.energy_solution = energy
@@ -325,7 +329,8 @@ class ThermalIteration:
             inlet_temperatures=tuple(float(T[d[0]]) for d in self.eop.edges.inflow),
             viscosity=oil.viscosity_at(sol.pressure, temperature=T),
             viscosity_quadrature=self.mu, iterations=self.iterations,
-            temperature_change=self.change, pressure_change=self.pressure_change)
+            temperature_change=self.change, pressure_change=self.pressure_change,
+            bush=energy.bush)
         return replace(sol, temperature=T, temperature_max=float(np.max(T)), thermal=record,
                        method=sol.method + "/thd")
 

@@ -2,8 +2,10 @@
 thermal film is asked (:class:`Thermal`). The film and the energy equation are coupled
 through the oil's viscosity against temperature (:mod:`bearingfem.lubricant`) by the
 thermal route, :mod:`bearingfem.routes.thd` (``solve_reynolds(..., thermal=)``). The
-bush's heat conduction on its finite-element mesh: :mod:`.bush`."""
-from .spec import Thermal, ThermalRecord
+bush's heat conduction on its finite-element mesh, coupled to the film when a
+:class:`Thermal` has a ``bush`` (:class:`BushConduction`): :mod:`.bush`."""
+from .spec import BushConduction, Thermal, ThermalRecord
 from .energy import EnergyBalance, EnergySolution, solve_energy
 
-__all__ = ["Thermal", "EnergyBalance", "EnergySolution", "solve_energy", "ThermalRecord"]
+__all__ = ["Thermal", "BushConduction", "EnergyBalance", "EnergySolution", "solve_energy",
+           "ThermalRecord"]

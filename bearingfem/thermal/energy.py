@@ -13,7 +13,10 @@ carries heat), Phi = F mu U^2/h + h^3/(12 mu) |grad p|^2 the viscous dissipation
 (Couette shear and the pressure gradient's flow; their cross term vanishes across the
 film), H_b the film -> ambient coefficient through the bush and H_j the film -> journal
 coefficient (zero in the adiabatic film), T_j given or the journal's zero-net-flux
-temperature (an extra unknown with int H_j (T - T_j) dA = 0).
+temperature (an extra unknown with int H_j (T - T_j) dA = 0). With a conducting bush
+(``solve_energy(..., bush=)``) the bush's term is H (T - T_w) instead, T_w the bush's
+inner temperature from its own heat equation, solved with the film
+(:mod:`bearingfem.thermal.bush`).
 
 Discretised by Galerkin with streamline-upwind Petrov-Galerkin stabilisation (Brooks &
 Hughes 1982): the test function v gains tau beta . grad v, beta = rho cp q, with
@@ -61,9 +64,12 @@ from functools import cached_property
 import numpy as np
 import scipy.sparse as sp
 from scipy.linalg import solve_banded
+from scipy.linalg.lapack import dgbtrf, dgbtrs
+from scipy.sparse.linalg import LinearOperator, gmres
 from skfem import Basis
 
 from ..caches import cached
+from ..errors import ConvergenceError
 from ..film import film_thickness
 
 __all__ = ["EnergyFlow", "EnergySolution", "EnergyBalance", "solve_energy", "film_flow",
@@ -82,13 +88,16 @@ class EnergyFlow:
     diffusivity: np.ndarray
     dissipation: np.ndarray
     shear: np.ndarray | None = None    # its Couette part F mu U^2/h [W/m^2]
+    gap: np.ndarray | None = None      # the film thickness h [m]
+    fraction: np.ndarray | None = None  # the film fraction F
 
 
 @dataclass(frozen=True)
 class EnergyBalance:
     """Where the film's heat goes [W] (whole bearing): ``dissipation`` = ``convected``
     (int rho cp q . grad T, the oil's temperature rise along its paths) + ``bush`` +
-    ``journal`` (conducted) + ``grooves`` (minus the held nodes' reactions: what holding
+    ``journal`` (conducted; ``bush`` the conducting bush's heat in, when it has one) +
+    ``grooves`` (minus the held nodes' reactions: what holding
     the inlet temperatures takes away) + ``stored`` (a time step's int rho cp h dT/dt, 0 in
     a steady film); ``residual`` = dissipation - (convected + bush + journal + grooves +
     stored)."""
@@ -111,10 +120,26 @@ class EnergySolution:
     journal_temperature: float
     parts: tuple = field(default=(), repr=False)        # what the balance is made of
 
+    @property
+    def bush_inner(self):
+        """The conducting bush's inner nodal temperatures [K] (None without one)."""
+        wall = self.parts[-1] if self.parts else None
+        return None if wall is None else wall[5] + wall[3]
+
+    @cached_property
+    def bush(self):
+        """The conducting bush's temperatures (:class:`~bearingfem.thermal.bush.BushHeat`:
+        nodal [K], heat in and out [W], inner mean [K]), or None."""
+        wall = self.parts[-1] if self.parts else None
+        if wall is None:
+            return None
+        bush_wall, _, _, _, loads, ta = wall
+        return bush_wall.response.field(loads, ta)
+
     @cached_property
     def balance(self) -> EnergyBalance:
         """Where the heat goes: the assembled rows summed with v = 1 (module docstring)."""
-        R, op, flow, phi, walls, A, b, c_all, half, storage = self.parts
+        R, op, flow, phi, walls, A, b, c_all, half, storage, wall = self.parts
         hb, ta, hj, _ = walls
         T, t_journal = self.temperature, self.journal_temperature
         reactions = A @ T + c_all * t_journal - b
@@ -124,6 +149,8 @@ class EnergySolution:
                                  * op.dx))
         dissipation = float(np.sum(phi * dA))
         bush = float(np.sum(hb * (Tv - ta) * dA))
+        if wall is not None:                    # the conducting bush: H (T - T_w)
+            bush += float(np.sum(wall[1] * (Tv - wall[2]) * dA))
         journal = float(np.sum(hj * (Tv - t_journal) * dA))
         grooves = -float(np.sum(reactions[op.held]))
         stored = 0.0 if storage is None else \
@@ -252,7 +279,8 @@ def _flow(bearing, state, theta, dP, F, mu, lubricant) -> EnergyFlow:
                       beta_zeta=-rho_cp * k3 * dpz,
                       diffusivity=lubricant.conductivity * h,
                       dissipation=F * mu * U ** 2 / h + k3 * (dpx ** 2 + dpz ** 2),
-                      shear=F * mu * U ** 2 / h)
+                      shear=F * mu * U ** 2 / h, gap=h,
+                      fraction=np.broadcast_to(F, np.shape(h)))
 
 
 def film_flow(bearing, state, basis, P, fraction, viscosity, lubricant) -> EnergyFlow:
@@ -317,6 +345,26 @@ class EnergyOperator:
         x = solve_banded((w, w), ab, np.asarray(rhs)[self.band_order], overwrite_ab=True,
                          check_finite=False)
         return x[self.band_rank]
+
+    def band_factor(self, data: np.ndarray):
+        """The LU factors of the matrix :meth:`band_solve` solves with (LAPACK's banded
+        LU, kept): a function rhs (N,) or (N, k) -> x, for solves that come one at a
+        time (the conducting bush's iteration)."""
+        n, w = self.N, self.band
+        ab = np.zeros((3 * w + 1, n))
+        ab[w:] = np.bincount(self.band_index, data * self.free_rows,
+                             minlength=(2 * w + 1) * n).reshape(2 * w + 1, n)
+        ab[2 * w, self.band_rank[self.held]] = 1.0
+        lu, piv, info = dgbtrf(ab, w, w)
+        if info != 0:
+            raise ValueError("the energy equation's matrix is singular (a film without "
+                             "flow through it?)")
+        order, rank = self.band_order, self.band_rank
+
+        def solve(rhs):
+            x, info = dgbtrs(lu, w, w, np.asarray(rhs, float)[order], piv)
+            return x[rank]
+        return solve
 
     @property
     def band_order(self) -> np.ndarray:
@@ -466,8 +514,49 @@ class Mixing:
                    weights=tuple(np.zeros(0) for _ in temperatures))
 
 
+def _film_coefficient(wall, flow: EnergyFlow) -> np.ndarray:
+    """Film -> bush coefficient H [W/(m^2 K)] at the points: the spec's, or 2 k F / h,
+    conduction across half the local film (k h is the flow's diffusivity)."""
+    given = wall.spec.film_coefficient
+    if given is not None:
+        return np.full_like(flow.diffusivity, float(given))
+    if flow.gap is None or flow.fraction is None:
+        raise ValueError("a conducting bush needs the flow's gap and fraction (film_flow)")
+    return 2.0 * flow.fraction * flow.diffusivity / flow.gap ** 2
+
+
+class _FilmSolver:
+    """The film's energy system factorised once: x(rhs) with the held rows' carried-over
+    oil (rank one per groove) by Woodbury's identity and the zero-flux journal
+    eliminated; linear in ``rhs`` (N,) or (N, k). Returns (T, journal temperature's
+    share of rhs)."""
+
+    def __init__(self, op, A, U, V, cj, mj):
+        self.band = op.band_factor(A.data)
+        Z = self.band(U) if U.shape[1] else U
+        self.Z, self.V = Z, V
+        self.small = np.eye(U.shape[1]) + V.T @ Z
+        self.mj = mj
+        if mj is not None:
+            self.Tc = self._woodbury(self.band(cj))
+            self.den = float(mj @ self.Tc + mj.sum())
+
+    def _woodbury(self, X):
+        if not self.Z.shape[1]:
+            return X
+        return X - self.Z @ np.linalg.solve(self.small, self.V.T @ X)
+
+    def __call__(self, rhs):
+        X = self._woodbury(self.band(rhs))
+        if self.mj is None:
+            return X, 0.0
+        t = (self.mj @ X) / self.den
+        return X - np.multiply.outer(self.Tc, t) if X.ndim == 2 else X - t * self.Tc, t
+
+
 def solve_energy(bearing, op: EnergyOperator, flow: EnergyFlow, mixing: Mixing, walls,
-                 half: bool = False, linearised=None, storage=None) -> EnergySolution:
+                 half: bool = False, linearised=None, storage=None, bush=None,
+                 bush_tol: float = 1e-12, bush_start=None) -> EnergySolution:
     """Solve the energy equation (module docstring) on the arcs of ``op``
     (:func:`energy_operator`).
 
@@ -482,6 +571,12 @@ def solve_energy(bearing, op: EnergyOperator, flow: EnergyFlow, mixing: Mixing, 
     storage : None (steady), or (C, T_old) at the quadrature points: one backward-Euler
         step of rho cp h dT/dt, C = rho cp h / dt [W/(m^2 K)] and T_old the last step's
         temperatures [K] (the balance's ``stored``)
+    bush : None, or a conducting bush (:func:`bearingfem.thermal.bush.bush_wall`, its
+        ambient T_a): the film loses H (T - T_w) to the bush's inner surface, T_w the
+        bush's temperature there (module docstring of :mod:`bearingfem.thermal.bush`);
+        film and bush are solved together, the bush's inner temperatures by GMRES on
+        their Schur complement to ``bush_tol`` (relative residual), started from
+        ``bush_start`` (an earlier solution's ``bush_inner``) if given
     """
     R = bearing.radius
     hb, ta, hj, tj = walls
@@ -491,6 +586,12 @@ def solve_energy(bearing, op: EnergyOperator, flow: EnergyFlow, mixing: Mixing, 
         s, f = s - a, f - a * T0
     if storage is not None:
         s, f = s + storage[0], f + storage[0] * storage[1]
+    H = None
+    if bush is not None:
+        if half:
+            raise ValueError("a conducting bush needs the whole-length film (half=False)")
+        H = _film_coefficient(bush, flow)
+        s, f = s + H, f + H * ta
     A, b, test = energy_system(op, flow, s, f, R)
     N, held = op.N, op.held
     rhs = b.copy()
@@ -512,17 +613,19 @@ def solve_energy(bearing, op: EnergyOperator, flow: EnergyFlow, mixing: Mixing, 
         rhs[d] = mixing.fresh[k]
         U[d, k] = 1.0
         V[np.asarray(mixing.dofs[k], int), k] = -np.asarray(mixing.weights[k])
-    X = op.band_solve(A.data, np.column_stack([rhs, U, cj]))
-    Z = X[:, 1:G + 1]
-    small = np.eye(G) + V.T @ Z
-    X = X - Z @ np.linalg.solve(small, V.T @ X)
-    T, t_cj = X[:, 0], X[:, -1]
+    # the journal temperature as one more unknown: K T + cj t = rhs with the row
+    # int H_j (T - t) dA = 0, eliminated: T = T0 - t T_c, t = m.T0 / (m.T_c + sum m)
+    mj = op.vector(np.sum(op.phi * op.dx, axis=2) * R ** 2 * hj) if zero_flux else None
+    solver = _FilmSolver(op, A, U, V, cj, mj)
+    T, t_lin = solver(rhs)
     if zero_flux:
-        # the journal temperature as one more unknown: K T + cj t = rhs with the row
-        # int H_j (T - t) dA = 0, eliminated: T = T0 - t T_c, t = m.T0 / (m.T_c + sum m)
-        mj = op.vector(np.sum(op.phi * op.dx, axis=2) * R ** 2 * hj)
-        t_journal = float(mj @ T / (mj @ t_cj + mj.sum()))
-        T = T - t_journal * t_cj
+        t_journal = float(t_lin)
+    wall = None
+    if bush is not None:
+        T, t_add, wall, b = _with_bush(op, solver, bush, H, test, T, ta, R, b, bush_tol,
+                                       bush_start)
+        if zero_flux:
+            t_journal += t_add
     if not np.all(np.isfinite(T)):
         raise ValueError("the energy equation gave a non-finite temperature (a film "
                          "without flow through it?)")
@@ -530,4 +633,55 @@ def solve_energy(bearing, op: EnergyOperator, flow: EnergyFlow, mixing: Mixing, 
         flow.dissipation + linearised[0] * (op.at_points(T) - linearised[1])
     return EnergySolution(temperature=T, journal_temperature=t_journal,
                           parts=(bearing.radius, op, flow, phi, walls, A, b, c_all, half,
-                                 storage))
+                                 storage, wall))
+
+
+def _with_bush(op, solver, wall, H, test, T_p, ta, R, b, tol, start):
+    """The film's temperatures with the conducting bush: T = T_p + L u, u the bush's inner
+    nodal temperatures above the ambient and L u the film's answer to the wall load
+    int (R v + tau beta.grad v) R H (I u); u = S I^T (H dA (V T - T_a - I u)) (S the
+    bush's inner response, I the transfer), solved for u by GMRES on
+    (1 + S I^T H dA (I - V L)) u = S I^T H dA (V T_p - T_a). Why GMRES: each product costs
+    one banded solve, one FFT and three sparse products, and the operator is the identity
+    plus a part bounded by H over the bush's conductance (about 17 iterations from zero
+    at 2 k_oil/h); the dense complement would take a film solve per inner node."""
+    I, S = wall.transfer, wall.response.inner_response
+    dA = (R ** 2 * op.dx).ravel()
+    HdA = np.ravel(H) * dA
+    # the products GMRES repeats, as sparse matrices built once per solve: the film's
+    # wall load C u (held rows zero), and the bush's loads B_f T - B_w u
+    E, Q = op.dx.shape
+    dofs = op.basis.element_dofs
+    weighted = test * (R * H)
+    P = sp.csr_matrix((weighted.ravel(), (np.repeat(dofs, Q, axis=1).ravel(),
+                                          np.tile(np.arange(E * Q), dofs.shape[0]))),
+                      shape=(op.N, E * Q))
+    C_all = (P @ I).tocsr()
+    keep = np.ones(op.N)
+    keep[op.held] = 0.0
+    C = sp.diags(keep) @ C_all
+    IH = (I.T @ sp.diags(HdA)).tocsr()
+    B_f, B_w = (IH @ op.value).tocsr(), (IH @ I).tocsr()
+
+    def film(u):
+        return solver(C @ u)
+
+    def apply(u):
+        Tu, _ = film(u)
+        return u - S(B_f @ Tu - B_w @ u)
+
+    rhs = S(B_f @ T_p - ta * np.asarray(IH.sum(axis=1)).ravel())
+    n = I.shape[1]
+    M = LinearOperator((n, n), matvec=apply, dtype=float)
+    x0 = None if start is None or np.shape(start) != (n,) else np.asarray(start) - ta
+    u, info = gmres(M, rhs, x0=x0, rtol=tol, atol=0.0, restart=min(n, 60), maxiter=20)
+    res = float(np.linalg.norm(apply(u) - rhs) / max(np.linalg.norm(rhs), 1e-300))
+    if info != 0 or not res <= 10.0 * tol:
+        raise ConvergenceError("film and bush temperatures (GMRES)", 20 * min(n, 60), res)
+    Tu, t_add = film(u)
+    T = T_p + Tu
+    Tw = ta + (I @ u).reshape(op.dx.shape)                 # the wall's temperature [K]
+    flux_dA = HdA * ((op.value @ T) - np.ravel(Tw))
+    return T, float(t_add), (wall, H, Tw, u, wall.loads(flux_dA), ta), b + C_all @ u
+
+

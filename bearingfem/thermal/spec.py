@@ -6,13 +6,19 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["Thermal", "ThermalRecord", "THERMAL_MODELS", "DEFAULT_WALL_COEFFICIENT"]
+from ..elastic.bush import ElasticBush
+
+__all__ = ["Thermal", "ThermalRecord", "BushConduction", "THERMAL_MODELS",
+           "MAX_FILM_COEFFICIENT", "DEFAULT_WALL_COEFFICIENT"]
 
 THERMAL_MODELS = ("adiabatic", "conducting")
 #: [W/(m^2 K)] film -> ambient through a steel bush and film -> journal, when the
 #: "conducting" model is given no coefficient: the order of a 50 W/(m K) bush 0.15 m thick
 #: in series with a 700 W/(m^2 K) outer convection (about 230 W/(m^2 K)).
 DEFAULT_WALL_COEFFICIENT = 250.0
+#: [W/(m^2 K)] the largest film -> bush coefficient a BushConduction takes (30x 2 k_oil/h
+#: of a 100 um film of mineral oil)
+MAX_FILM_COEFFICIENT = 1e5
 
 
 def _number(name, value, *, lo=None, hi=None, allowed=""):
@@ -23,6 +29,69 @@ def _number(name, value, *, lo=None, hi=None, allowed=""):
             (hi is not None and value > hi):
         raise ValueError(f"{name} must be finite and {allowed}, got {value!r}")
     return value
+
+
+def _count(name, value, lo):
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < lo:
+        raise ValueError(f"{name} must be an integer >= {lo}, got {value!r}")
+    return int(value)
+
+
+@dataclass(frozen=True)
+class BushConduction:
+    """The bush as a conducting body: the film's heat enters its inner surface and leaves
+    its outer surface by convection (:mod:`bearingfem.thermal.bush`).
+
+    Parameters
+    ----------
+    bush : :class:`~bearingfem.elastic.ElasticBush`, its geometry: ``outer_radius`` [m] and
+        ``model`` ("solid" or "solid-3d": the hollow cylinder of hexahedra, end faces
+        insulated; "ring" or "liner": the annulus, the same at every z)
+    conductivity : the bush's k [W/(m K)], > 0 (default 50: steel)
+    outer_coefficient : h_o, outer surface -> ambient [W/(m^2 K)], > 0 (the ambient is
+        the :class:`Thermal`'s ``ambient_temperature``)
+    film_coefficient : film -> bush inner surface [W/(m^2 K)], in (0, 1e5], or None:
+        2 k_oil F / h,
+        conduction across half the local film (a linear profile from the film's mean
+        temperature at mid-film to the wall; F the film fraction)
+    n_theta, n_radial, n_axial : the bush mesh's cells around, across the wall and along
+        (n_theta, n_axial None: the film's n_theta and n_z); ``grading`` the radial growth
+        (:func:`~bearingfem.elastic.mesh.radial_lines`)
+    """
+
+    bush: ElasticBush
+    conductivity: float = 50.0
+    outer_coefficient: float = 700.0
+    film_coefficient: float | None = None
+    n_theta: int | None = None
+    n_radial: int = 8
+    n_axial: int | None = None
+    grading: float = 1.0
+
+    def __post_init__(self):
+        if not isinstance(self.bush, ElasticBush):
+            raise ValueError(f"bush must be an ElasticBush (its outer_radius and model), "
+                             f"got {type(self.bush).__name__}")
+        _number("conductivity", self.conductivity, lo=1e-300, allowed="> 0 [W/(m K)]")
+        _number("outer_coefficient", self.outer_coefficient, lo=1e-300,
+                allowed="> 0 [W/(m^2 K)]")
+        if self.film_coefficient is not None:
+            # why the cap: the film's coupling to the wall grows with it; at 1e6 the
+            # film follows the wall's interpolated temperature point by point on meshes
+            # that do not match, and the answer moves (docs/thd.md)
+            _number("film_coefficient", self.film_coefficient, lo=1e-300,
+                    hi=MAX_FILM_COEFFICIENT, allowed=f"in (0, {MAX_FILM_COEFFICIENT:g}] "
+                                                     f"[W/(m^2 K)]")
+        for name, lo in (("n_theta", 8), ("n_axial", 1)):
+            if getattr(self, name) is not None:
+                _count(name, getattr(self, name), lo)
+        _count("n_radial", self.n_radial, 1)
+        _number("grading", self.grading, lo=1e-300, allowed="> 0")
+
+    @property
+    def solid(self) -> bool:
+        """The hollow cylinder (3-D) rather than the annulus (the same at every z)."""
+        return self.bush.model in ("solid", "solid-3d")
 
 
 @dataclass(frozen=True)
@@ -46,6 +115,9 @@ class Thermal:
         ("conducting" only; default 250)
     journal_temperature : the journal's temperature [K], or None: the one temperature of
         the journal at which the film's net heat flux into it is zero
+    bush : None (the bush as ``bush_coefficient``), or :class:`BushConduction`: the heat
+        enters the bush's inner surface and is conducted through its finite-element mesh
+        to the ambient ("conducting" only; ``bush_coefficient`` then not given)
     """
 
     supply_temperature: float
@@ -55,6 +127,7 @@ class Thermal:
     ambient_temperature: float | None = None
     journal_coefficient: float | None = None
     journal_temperature: float | None = None
+    bush: BushConduction | None = None
 
     def __post_init__(self):
         _number("supply_temperature", self.supply_temperature, lo=1e-300, allowed="> 0 [K]")
@@ -72,14 +145,27 @@ class Thermal:
             value = getattr(self, name)
             if value is not None:
                 _number(name, value, lo=1e-300, allowed="> 0 [K]")
+        if self.bush is not None:
+            if not isinstance(self.bush, BushConduction):
+                raise ValueError(f"bush must be a BushConduction, got "
+                                 f"{type(self.bush).__name__}")
+            if self.model != "conducting":
+                raise ValueError("bush is for model='conducting'; the adiabatic film "
+                                 "exchanges no heat with its walls")
+            if self.bush_coefficient is not None:
+                raise ValueError("give bush_coefficient or bush, not both: the conducting "
+                                 "bush replaces the coefficient")
 
     @property
     def walls(self) -> tuple:
         """(bush coefficient, ambient temperature, journal coefficient, journal
-        temperature or None) [W/(m^2 K), K]: zeros for the adiabatic film."""
+        temperature or None) [W/(m^2 K), K]: zeros for the adiabatic film; the bush
+        coefficient 0 when the ``bush`` conducts (its heat is the bush's own term)."""
         if self.model == "adiabatic":
             return 0.0, self.supply_temperature, 0.0, None
         hb = DEFAULT_WALL_COEFFICIENT if self.bush_coefficient is None else self.bush_coefficient
+        if self.bush is not None:
+            hb = 0.0
         hj = DEFAULT_WALL_COEFFICIENT if self.journal_coefficient is None \
             else self.journal_coefficient
         ta = self.supply_temperature if self.ambient_temperature is None \
@@ -93,8 +179,9 @@ class ThermalRecord:
     temperature [K], each groove's (or the supply line's) inlet temperature [K], the
     viscosity [Pa s] at the nodes and at the film's quadrature points (the field the film
     was solved with), the film solves of the thermal iteration (an equilibrium's: over its
-    whole search) and the last changes (temperature [K],
-    pressure relative to its peak)."""
+    whole search), the last changes (temperature [K], pressure relative to its peak) and,
+    with a conducting bush, its temperature field (:class:`~bearingfem.thermal.bush.
+    BushHeat`)."""
 
     balance: object            # the energy equation's EnergyBalance [W]
     journal_temperature: float
@@ -104,3 +191,4 @@ class ThermalRecord:
     iterations: int
     temperature_change: float
     pressure_change: float
+    bush: object = None        # the conducting bush's BushHeat, or None
