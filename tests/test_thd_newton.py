@@ -10,6 +10,7 @@ from bearingfem.errors import ConvergenceError
 from bearingfem.routes.thd import ThermalIteration
 from bearingfem.routes.thd_newton import ThermalNewton, solve_thd_newton
 from bearingfem.thermal import Thermal
+from tests.test_bush_heat import _conducting
 from tests.test_thermal import BEARING, GROOVES, STATE, SUPPLY, VG32, _plain_fixed_point
 
 CASES = [
@@ -132,3 +133,7 @@ def test_warm_start_lands_on_the_cold_answer_and_unconverged_raises():
     with pytest.raises(ValueError, match="state.omega"):
         solve_thd_newton(BEARING, replace(STATE, omega=-STATE.omega), 24, 6,
                          lubricant=VG32, thermal=CASES[1], grooves=GROOVES)
+    # a conducting bush is the fixed point's too (its energy solve carries the bush)
+    with pytest.raises(ValueError, match="thermal.bush"):
+        solve_thd_newton(BEARING, STATE, 24, 6, lubricant=VG32,
+                         thermal=_conducting("ring"), grooves=GROOVES)

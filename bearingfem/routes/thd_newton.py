@@ -395,7 +395,7 @@ class ThermalNewton:
         energy = EnergySolution(
             temperature=self.T, journal_temperature=self.t_journal,
             parts=(b.radius, eop, lin.flow, lin.flow.dissipation, self.thermal.walls, lin.A,
-                   lin.b, lin.c_all, False, None))
+                   lin.b, lin.c_all, False, None, None))
         T = self.T
         record = ThermalRecord(
             balance=energy.balance, journal_temperature=self.t_journal,
@@ -417,6 +417,9 @@ def solve_thd_newton(bearing, state, n_theta=120, n_z=20, *, lubricant, thermal,
     ``max_iterations`` counting Newton steps). ``sol.thermal.iterations``: the film solve
     plus the Newton steps."""
     check_thermal(lubricant, thermal, state, "reynolds", element)
+    if thermal is not None and thermal.bush is not None:
+        raise ValueError("thermal.bush (a conducting bush) is solve_thd's: the coupled "
+                         "Newton takes the walls as heat-transfer coefficients")
     if state.omega < 0.0:
         # Why: its mixing and SUPG derivatives are written for oil entering at the
         # grooves' trailing edges; the reversed film is solve_thd's (routes/thd.py)
