@@ -58,10 +58,12 @@ class FilmSolution:
 
     force_local: tuple
     force: tuple
-    pressure: np.ndarray
-    theta: np.ndarray
-    z: np.ndarray
-    film_thickness: np.ndarray
+    # the nodal fields stay out of the repr (thousands of numbers): print(sol) reads as a
+    # record, sol.summary() as lines with units
+    pressure: np.ndarray = field(repr=False)
+    theta: np.ndarray = field(repr=False)
+    z: np.ndarray = field(repr=False)
+    film_thickness: np.ndarray = field(repr=False)
     pressure_max: float
     pressure_max_theta: float
     pressure_max_z: float
@@ -113,7 +115,9 @@ class FilmSolution:
         attitude = float(np.degrees(np.arctan2(ft, -fr))) if load else 0.0
         err = "" if self.force_error is None else f" (+- {100 * self.force_error:.2g} %)"
         return "\n".join([
-            f"film {self.method}, cavitation {self.cavitation}, {self.n_dofs} unknowns",
+            f"film {self.method}, cavitation {self.cavitation}, {self.n_dofs} unknowns"
+            + ("" if self.accuracy is None else "; mesh {} x {} chosen for rtol {:g}".format(
+                *self.accuracy.mesh, self.accuracy.rtol)),
             f"  force on the journal |F| {load:.6g} N{err}, attitude angle {attitude:.4g} deg; "
             f"local (F_r, F_t) ({fr:.6g}, {ft:.6g}) N; inertial (F_x, F_y) "
             f"({self.force[0]:.6g}, {self.force[1]:.6g}) N",
@@ -144,7 +148,8 @@ def film_solution(bearing, state, P, theta, zeta, force_local, *, friction, leak
     i = int(np.argmax(P))
     theta_i = float(theta[i])
     return FilmSolution(
-        force_local=(f_r, f_t), force=local_to_inertial(f_r, f_t, state.gamma),
+        force_local=(f_r, f_t),
+        force=tuple(float(f) for f in local_to_inertial(f_r, f_t, state.gamma)),
         pressure=bearing.pressure_scale * P, theta=theta, z=R * zeta,
         film_thickness=film_thickness(theta, state.eps, c) if gap is None else c * gap,
         pressure_max=bearing.pressure_scale * float(P[i]),

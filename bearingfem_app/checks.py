@@ -40,6 +40,15 @@ RULES = {
     "turns": ("--turns", 0.0, False, 1000.0, True),
 }
 
+#: dest -> (option as typed, allowed words): named with the bad numbers, before any work
+CHOICES = {
+    "cavitation": ("--cavitation", ("none", "gumbel", "reynolds", "jfo")),
+    "element": ("--element", ("P1", "P2")),
+}
+#: the commands whose films are Reynolds-family only (the JFO film is a model of its own)
+NO_JFO = {"equilibrium": "--model fem-jfo", "coefficients": "--model fem-jfo",
+          "design": "--model fem-jfo"}
+
 
 def _range(lo, lo_in, hi, hi_in):
     if lo is None and hi is None:
@@ -66,9 +75,29 @@ def check_numbers(args) -> None:
             errors.append(f"{name} must be positive (> 0), got {v!r}" if rule == "positive"
                           else f"{name} must lie {rule}, got {v!r}" if rule.startswith("in")
                           else f"{name} must be {rule}, got {v!r}")
+    errors += choice_errors(args)
     if errors:
         raise ValueError("; ".join(errors))
     check_plausible(args)
+
+
+def choice_errors(args) -> list:
+    """The word options (--cavitation, --element) outside their choices, named as typed."""
+    errors = []
+    for dest, (name, allowed) in CHOICES.items():
+        v = getattr(args, dest, None)
+        command = getattr(args, "command", None)
+        if dest == "cavitation" and str(getattr(args, "model", "")).startswith("fem-jfo"):
+            continue        # the JFO models refuse --cavitation themselves, by name
+        if dest == "cavitation" and command in NO_JFO:
+            allowed = allowed[:-1]
+            if v == "jfo":
+                errors.append(f"--cavitation jfo is not a choice of {command} (none, gumbel, "
+                              f"reynolds): the mass-conserving film is {NO_JFO[command]}")
+                continue
+        if v is not None and v not in allowed:
+            errors.append(f"{name} must be one of {', '.join(allowed)}, got {v!r}")
+    return errors
 
 
 #: the bearing's options as typed, for the plausibility messages

@@ -22,7 +22,7 @@ from .design_commands import command_coefficients, command_design, command_equil
 
 EXAMPLES = """examples:
   bearingfem simulate scenes/paper-short-fem.toml -o results/short-fem
-  bearingfem design --diameter 0.05 --ld 0.5 --clearance 50e-6 --oil 'ISO VG 32' \
+  bearingfem design --diameter 0.05 --ld 0.5 --clearance 50e-6 --oil 'ISO VG 32' \\
       --rpm 3000 --load 2000
   bearingfem solve --ld 1.0 --eps 0.6 --cavitation reynolds --supply-angle max-film
   bearingfem render --ld 1.0 --eps 0.6 --cavitation reynolds -o film.png

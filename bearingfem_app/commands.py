@@ -36,7 +36,8 @@ def command_simulate(args):
     res.save(out)
     plot_run(res, scene.bearing.clearance if scene.bearing else 1.0, out / "run.png")
     print(res.summary())
-    print(f"wrote {out / 'result.npz'}, {out / 'result.json'}, {out / 'run.png'}")
+    print(f"wrote {out / 'result.npz'}, {out / 'result.csv'}, {out / 'result.json'}, "
+          f"{out / 'run.png'}")
     if res.partial and res.message.startswith("interrupted"):
         return INTERRUPTED
     return 1 if res.partial else 0
@@ -101,6 +102,10 @@ def command_convergence(args):
     methods = tuple(args.methods.split(","))
     for m in methods:
         check_choice("--methods entry", m, ("P1", "P2", "fvm"))
+    if args.cavitation == "jfo" and "P2" in methods:
+        # refused here, not after the P1 meshes have been solved
+        raise ValueError("--cavitation jfo is solved by P1 and fvm only (the JFO content is "
+                         "balanced on P1 control volumes): give --methods P1,fvm")
     if args.ambient_pressure is not None:
         raise ValueError("--ambient-pressure does not apply to convergence (Reynolds-family "
                          "films: none, gumbel, reynolds)")
@@ -117,6 +122,9 @@ def command_convergence(args):
     for r in st.summary:
         print(f"{r['method']:6s} {r['quantity']:18s} {r['finest']:14.6g} {r['order']:7.3f} "
               f"{r['extrapolated']:14.6g} {r['gci']:9.2e}")
+    if any(math.isnan(r["order"]) for r in st.summary):
+        print("order nan: the three finest values do not change monotonically (oscillating "
+              "or already at round-off), so no order, extrapolation or GCI")
     print(f"wrote {out / 'convergence.csv'}, {out / 'convergence_summary.csv'}, "
           f"{out / 'convergence.png'}")
     return 0

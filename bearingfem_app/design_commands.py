@@ -10,6 +10,11 @@ from .options import (accuracy_options, bearing_from_args, check_output, model_o
 __all__ = ["command_equilibrium", "command_coefficients", "command_design"]
 
 
+def _options_words(opts) -> str:
+    """The film model's options as words for a header: ' (n_theta 120, element P1)'."""
+    return f" ({', '.join(f'{k} {v}' for k, v in opts.items())})" if opts else ""
+
+
 def _equilibrium_rows(eq, b):
     """What the designer reads of an equilibrium: (name, value, unit) rows (with its
     estimated error and the mesh chosen when an accuracy was asked)."""
@@ -59,7 +64,7 @@ def command_equilibrium(args):
     eq = equilibrium(b, args.load, args.omega, model, direction=math.radians(args.direction),
                      **opts, **acc)
     rows = _equilibrium_rows(eq, b)
-    print(f"equilibrium, {model} {opts or ''}: load {args.load:g} N toward "
+    print(f"equilibrium, {model}{_options_words(opts)}: load {args.load:g} N toward "
           f"{args.direction:g} deg (inertial), {args.omega:g} rad/s, L/D {args.length_ratio:g}")
     print_rows(rows)
     write_numbers(out, rows)
@@ -91,7 +96,7 @@ def command_coefficients(args):
               ("whirl frequency ratio", st.whirl_ratio, "-")]
              + ([] if kc.error is None else [("K, C estimated error", kc.error,
                                               "of the largest entry")]))
-    print(f"coefficients, {model} {opts or ''}, {args.frame} frame ({kc.method}):")
+    print(f"coefficients, {model}{_options_words(opts)}, {args.frame} frame ({kc.method}):")
     print(f"  {axes}")
     print_rows(rows)
     print(f"  {st}")
@@ -123,7 +128,7 @@ def command_design(args):
     k_rows, axes = _coefficient_rows(kc, "load")
     k_rows += [("critical mass", st.critical_mass, "kg"),
                ("whirl frequency ratio", st.whirl_ratio, "-")]
-    print(f"design point, {model} {opts or ''}: D {b.diameter * 1e3:g} mm, L/D "
+    print(f"design point, {model}{_options_words(opts)}: D {b.diameter * 1e3:g} mm, L/D "
           f"{b.length_ratio:g}, radial clearance {b.clearance * 1e6:g} um, viscosity "
           f"{b.viscosity:.4g} Pa s{_oil_words(args)}, {args.omega:g} rad/s ({args.omega * 30 / math.pi:g} rpm), "
           f"load {args.load:g} N toward {args.direction:g} deg (inertial)")

@@ -265,3 +265,16 @@ def test_oil_by_grade_is_its_viscosity_at_the_temperature():
                          (("--oil-temperature", "60"), "--oil-temperature is the --oil's")):
         r = run("equilibrium", "--load", "100", *argv)
         assert r.returncode == 2 and needle in r.stderr
+
+
+def test_headers_name_the_films_options_in_words(capsys):
+    """The designer's commands' first line names the film model's options as words (before:
+    a Python dict, "fem {'n_theta': 120, ...}"); the help's design example is one shell
+    command over two lines (before: the continuation swallowed, a run of spaces)."""
+    from bearingfem_app.cli import build_parser, main
+    assert main(["coefficients", "--ld", "1", "--eps", "0.5", "--n-theta", "24",
+                 "--n-z", "4"]) == 0
+    first = capsys.readouterr().out.splitlines()[0]
+    assert first.startswith("coefficients, fem (n_theta 24, n_z 4, element P1, "
+                            "cavitation reynolds)") and "{" not in first
+    assert "--oil 'ISO VG 32' \\\n      --rpm 3000" in build_parser().format_help()

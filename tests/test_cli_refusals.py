@@ -246,3 +246,37 @@ def test_a_scene_no_journal_bearing_has_is_refused_and_leaves_nothing(capsys, he
     line = refused(capsys, "simulate", "d20.toml", "-o", "out")
     assert "scene.bearing.diameter 20 m" in line and "typed in mm" in line
     assert not (here / "out").exists()
+
+
+def test_word_options_are_named_with_the_numbers(capsys):
+    """Old: a misspelt --cavitation was reported alone, after the numbers' refusal had been
+    fixed, as 'cavitation must be ...' (no option named); --element likewise."""
+    line = refused(capsys, "solve", "--clearance", "-1", "--cavitation", "reynold",
+                   "--element", "p2")
+    for name in ("--clearance", "--cavitation must be one of", "'reynold'",
+                 "--element must be one of", "'p2'"):
+        assert name in line
+
+
+def test_design_commands_point_the_jfo_film_to_its_model(capsys):
+    """Old: 'cavitation must be one of 'none', 'gumbel', 'reynolds', got 'jfo'' with no
+    word of the fem-jfo model that solves it."""
+    assert "--model fem-jfo" in refused(capsys, "equilibrium", "--load", "100",
+                                        "--cavitation", "jfo")
+
+
+def test_jfo_convergence_refuses_p2_before_any_solve(capsys, here):
+    """Old: the P1 meshes were solved (their lines printed), then the P2 film refused."""
+    assert main(["convergence", "--cavitation", "jfo", "--supply-angle", "max-film",
+                 "--levels", "3", "-o", "conv"]) == 2
+    out, err = capsys.readouterr()
+    assert out == "" and "--methods P1,fvm" in err and not (here / "conv").exists()
+
+
+def test_convergence_says_what_an_order_nan_means(capsys, here):
+    """A P2 force that oscillates at the finest meshes has no observed order; the table
+    says why instead of leaving a bare nan. Old: the nan alone."""
+    assert main(["convergence", "--ld", "1", "--eps", "0.6", "--levels", "3",
+                 "--methods", "P2", "--n-theta", "48", "--n-z", "8", "-o", "conv"]) == 0
+    out = capsys.readouterr().out
+    assert " nan " in out and "order nan: the three finest values do not change" in out

@@ -69,3 +69,23 @@ def test_local_to_inertial_is_a_rotation_by_gamma():
     ref = (f_r + 1j * f_t) * np.exp(1j * gamma)
     fx, fy = local_to_inertial(f_r, f_t, gamma)
     assert fx == pytest.approx(ref.real, rel=1e-13) and fy == pytest.approx(ref.imag, rel=1e-13)
+
+
+@pytest.mark.parametrize("model", ["short", "long", "fem"])
+def test_half_frequency_whirl_carries_no_load(model):
+    """A journal whirling at half its spin (gamma_dot = omega / 2, eps_dot = 0) drags the
+    oil round exactly as fast as the wedge recedes: seen from the line of centres the
+    journal turns at omega - gamma_dot and the bush at -gamma_dot, and the wedge term of
+    Reynolds' equation carries their sum, omega - 2 gamma_dot = 0. Every film model then
+    has zero force, while the same journal without whirl carries its load. Only the
+    closed forms' hand-written partials noticed omega - gamma_dot before (the wedge term's
+    own tests never whirl the journal)."""
+    from bearingfem import Bearing, JournalState
+    from bearingfem.models import film_model
+    b = Bearing(radius=0.01, length=0.01, clearance=20e-6, viscosity=0.0117)
+    m = film_model(model)
+    opts = dict(n_theta=48, n_z=8) if model == "fem" else {}
+    still = np.hypot(*m.film_force(b, JournalState(0.6, omega=250.0), **opts))
+    whirl = np.hypot(*m.film_force(b, JournalState(0.6, gamma_dot=125.0, omega=250.0),
+                                   **opts))
+    assert still > 10.0 and whirl <= 1e-12 * still

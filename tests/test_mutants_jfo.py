@@ -103,3 +103,20 @@ def test_jfo_friction_shears_only_the_oil_present():
     tau = mu * state.omega * R / H * PHI + H / (2 * R) * dP * (P > 0)
     friction = 2 * np.trapezoid(tau.sum(axis=1) * dth * R, Z[:, 0])   # both halves
     assert sol.friction_force == pytest.approx(friction, rel=0.01)
+
+
+def test_a_squeeze_film_that_never_cavitates_records_no_rupture():
+    """Plates closing at a steady rate (h = 1 - t/2, h' < 0) keep the whole film above
+    ambient: the exact solver must report no rupture, the front at the plate's middle, and
+    the load the parallel-plate squeeze film's by hand, W = p_a l + mu |h'| l^3 / h^3 (the
+    pressure p_a + 6 mu |h'| x (l - x) / h^3 integrated). Fails with the full film's exit
+    test `t_open >= t_end` written `>` (a rupture recorded at t_end; docs/mutation.md left
+    it without a test in the first round)."""
+    from bearingfem.closed.squeeze_film import oscillating_squeeze
+    l, mu, pa = 1.0, 1.0 / 12.0, 0.025
+    ex = oscillating_squeeze(lambda t: 1.0 - 0.5 * t, lambda t: -0.5 + 0.0 * t, 1.0,
+                             length=l, viscosity=mu, ambient_pressure=pa, n_t=201)
+    assert ex.rupture_times == () and ex.collapse_times == ()
+    assert np.all(ex.front == 0.5 * l)
+    h = 1.0 - 0.5 * ex.t
+    assert ex.load == pytest.approx(pa * l + mu * 0.5 * l ** 3 / h ** 3, rel=1e-12)

@@ -66,3 +66,46 @@ def test_orbit_starts_along_the_load_and_returns_to_its_equilibrium():
     assert orbit.distance == pytest.approx(np.hypot(orbit.x - x_eq[0], orbit.y - x_eq[1]),
                                            rel=1e-12, abs=1e-15)
     assert orbit.distance[-1] < 0.05 * orbit.distance[0]
+
+
+@pytest.mark.parametrize("spread", [1e-3, 3e-2])
+def test_whirl_ratio_range_is_the_corners_own_whirl_ratios(film, spread):
+    """The whirl ratio's range over K +- K_error, C +- C_error (vectorised over the 256
+    corners in `_with_ranges`) against a second method: `lund_stability` run on each corner
+    alone, with no error (its scalar path). The range must be those ratios' (min, max) and
+    hold the nominal ratio. No test read `whirl_ratio_range` before: it survived the sqrt
+    left out (nu^2 / omega^2 for nu / omega), and any factor."""
+    kc = film[1]
+    K_err, C_err = spread * np.abs(kc.K), spread * np.abs(kc.C)
+    st = lund_stability(replace(kc, K_error=K_err, C_error=C_err))
+    assert st.verdict is Verdict.CRITICAL_MASS and st.whirl_ratio_range is not None
+    ratios = []
+    for signs in np.array(np.meshgrid(*[[-1.0, 1.0]] * 8, indexing="ij")).reshape(8, -1).T:
+        corner = replace(kc, K=kc.K + signs[:4].reshape(2, 2) * K_err,
+                         C=kc.C + signs[4:].reshape(2, 2) * C_err)
+        one = lund_stability(corner)
+        assert one.verdict is Verdict.CRITICAL_MASS      # every corner has its crossing
+        ratios.append(one.whirl_ratio)
+    assert st.whirl_ratio_range == pytest.approx((min(ratios), max(ratios)), rel=1e-12)
+    lo, hi = st.whirl_ratio_range
+    assert lo < st.whirl_ratio < hi
+
+
+@pytest.mark.parametrize("frame", ["local", "load"])
+def test_entry_errors_turned_to_a_frame_bound_every_corner(film, frame):
+    """K and C's entry errors turned to another frame against a second method: every one
+    of the 16 corners of K +- K_error (and of C) turned to that frame must stay within
+    the turned errors of the turned nominal entry. `in_frame` turns the errors as
+    magnitudes, |T| E |T|^T; with T itself (signed), errors cancel and come out smaller
+    than the corners' spread or negative, which no test noticed before."""
+    kc = film[1]
+    K_err, C_err = 0.05 * np.abs(kc.K), 0.05 * np.abs(kc.C)
+    inertial = replace(kc, K_error=K_err, C_error=C_err)
+    turned = inertial.in_frame(frame)
+    T = turned.axes @ inertial.axes.T
+    for M, E, M_t, E_t in ((kc.K, K_err, turned.K, turned.K_error),
+                           (kc.C, C_err, turned.C, turned.C_error)):
+        assert np.all(E_t >= 0.0)
+        for signs in np.array(np.meshgrid(*[[-1.0, 1.0]] * 4, indexing="ij")).reshape(4, -1).T:
+            corner = T @ (M + signs.reshape(2, 2) * E) @ T.T
+            assert np.all(np.abs(corner - M_t) <= E_t * (1 + 1e-12) + 1e-12 * np.abs(M_t))

@@ -1,0 +1,29 @@
+"""The film's result record (bearingfem.solution.FilmSolution) as a user reads it."""
+from bearingfem import Bearing, JournalState, solve_reynolds
+
+
+def test_printed_solution_is_a_record_not_its_fields():
+    """print(sol) shows the record's numbers, not the nodal fields (before: every pressure,
+    theta, z and film thickness, ~1300 numbers each at README example 1's 120 x 20 mesh,
+    and a printed Equilibrium carried them too); the fields are still there, and the
+    inertial force is plain floats like the local one (before: np.float64(...) in print)."""
+    b = Bearing(radius=0.01, length=0.004, clearance=20e-6, viscosity=0.0117)
+    sol = solve_reynolds(b, JournalState(0.6, omega=250.0), 120, 20, "P1", "reynolds")
+    text = repr(sol)
+    assert len(text) < 2000 and "array(" not in text and "np.float64" not in text
+    assert "pressure_max=" in text and "force_local=" in text
+    assert sol.pressure.shape == sol.theta.shape == sol.z.shape == sol.film_thickness.shape
+    assert len(sol.pressure) > 1000
+    assert all(type(f) is float for f in sol.force)
+
+
+def test_summary_names_the_mesh_an_accuracy_chose():
+    """A solve asked for an accuracy says which mesh it chose (before: its unknowns only,
+    so `bearingfem solve --rtol` never said on which mesh its answer was found); a solve
+    on a given mesh prints no such words."""
+    b = Bearing(radius=0.01, length=0.004, clearance=20e-6, viscosity=0.0117)
+    s = JournalState(0.6, omega=250.0)
+    sol = solve_reynolds(b, s, cavitation="reynolds", rtol=1e-2)
+    n_theta, n_z = sol.accuracy.mesh
+    assert f"mesh {n_theta} x {n_z} chosen for rtol 0.01" in sol.summary().splitlines()[0]
+    assert "chosen" not in solve_reynolds(b, s, 24, 4).summary()
