@@ -30,7 +30,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.linalg.lapack import dpbtrf, dtbtrs
 from skfem import (Basis, BilinearForm, ElementQuad1, ElementVector, FacetBasis,
-                   LinearForm, MeshQuad1, asm)
+                   MeshQuad1, asm)
 
 from .mesh import radial_lines
 from .surface import FilmGrid
@@ -212,27 +212,27 @@ def section_system(bush, radius: float, film: FilmGrid, refine_z: int, n_radial:
     r, z = mesh.p
     tol = 1e-9 * (bush.outer_radius - radius)
     inner = mesh.facets_satisfying(lambda x: np.abs(x[0] - radius) < tol)
-    surface = FacetBasis(mesh, element, facets=inner, intorder=4)
+    facets = FacetBasis(mesh, element, facets=inner, intorder=4)
+
+    @BilinearForm
+    def traction(u, v, w):
+        # the film pushes the bush outward: traction -p n = p e_r (n = -e_r on r = R)
+        return u[0] * v[0] * w.x[0]
+
+    inner_nodes = np.flatnonzero((np.abs(r - radius) < tol))
+    inner_nodes = inner_nodes[np.argsort(z[inner_nodes])]
+    surface = basis.nodal_dofs[0, inner_nodes]             # increasing z
+    # the film's hats are linear between its nodes, so P1 on the section's surface
+    # nodes (refine_z whole): their loads are one surface mass times their nodal values
     dz = film.length / (film.n_z - 1)
-
-    def load(k):
-        @LinearForm
-        def traction(v, w):
-            # the film pushes the bush outward: traction -p n = p e_r (n = -e_r on r = R)
-            hat = np.maximum(0.0, 1.0 - np.abs(w.x[1] - film.heights[k]) / dz)
-            return hat * v[0] * w.x[0]
-        return asm(traction, surface)
-
-    rhs = np.column_stack([load(k) for k in range(film.n_z)])
+    hats = np.maximum(0.0, 1.0 - np.abs(z[inner_nodes][:, None] - film.heights) / dz)
+    rhs = np.asarray(asm(traction, facets).tocsc()[:, surface] @ hats)
     outer = np.abs(r - bush.outer_radius) < tol
     held = [basis.nodal_dofs[:, outer].ravel()]
     if bush.ends == "plane-strain":
         ends = np.abs(np.abs(z) - 0.5 * film.length) < 1e-9 * film.length
         held.append(basis.nodal_dofs[2, ends])
     held = np.unique(np.concatenate(held))
-    inner_nodes = np.flatnonzero((np.abs(r - radius) < tol))
-    inner_nodes = inner_nodes[np.argsort(z[inner_nodes])]
-    surface = basis.nodal_dofs[0, inner_nodes]             # increasing z
     read = np.arange(0, surface.size, refine_z)             # film nodes among them
     # dof rank: axial layer, then radial layer, then component
     layer = np.searchsorted(heights, z - 1e-9 * film.length)
