@@ -5,6 +5,8 @@ grid, and the steady EHD film on the latter.
 
     python -m benchmarks.bush_build                 # 48 x 8 .. 480 x 80, 3-D up to 120
     python -m benchmarks.bush_build --old-max 96 --quick
+    python -m benchmarks.bush_build --old-max 0 --q1-max 0 --finest --before DIR
+                          # to 960 x 160, the harmonic solid also from the checkout DIR
 
 Each cell is one fresh Python process (its peak RSS, ``resource.getrusage``, over ~100 MB
 of imports): ``bush_compliance(bush, R, L, n_theta, n_z + 1)`` (the film grid of
@@ -14,7 +16,9 @@ the Newton solve from the rigid film, the compliance given). "q1" is the harmoni
 with the alias sum to |q| <= 1 (three times the harmonics). Case: R 10 mm, L 4 mm, c 20
 um, 250 rad/s, eps 0.995, gamma 0.2, bronze bush (E 110 GPa, nu 0.34, outer radius 16 mm,
 free ends), Reynolds' condition. Times are one run on a shared machine: compare the
-ratios within one run.
+ratios within one run ("cpu": the process's CPU time, less moved by the other jobs on a
+shared machine than the wall time). ``--before DIR``: the harmonic solid of another checkout (its
+build, solve and memory; "same": its load over this tree's, minus one) in the same run.
 """
 from __future__ import annotations
 
@@ -27,6 +31,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 MESHES = [(48, 8), (96, 16), (120, 20), (240, 40), (480, 80)]
+FINEST = (960, 160)
 
 
 def child(model: str, n_theta: int, n_z: int):
@@ -45,23 +50,24 @@ def child(model: str, n_theta: int, n_z: int):
         compliance.ALIASES = 1
     bush = ElasticBush(outer_radius=0.016, modulus=110e9, poisson=0.34,
                        model="solid-3d" if model == "solid-3d" else "solid")
-    t = time.perf_counter()
+    t, cpu = time.perf_counter(), time.process_time()
     c = compliance.bush_compliance(bush, seed.radius, seed.length, n_theta, n_z + 1)
-    out = dict(build=time.perf_counter() - t, base=base,
+    out = dict(build=time.perf_counter() - t, build_cpu=time.process_time() - cpu, base=base,
                build_rss=resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024)
     if model == "solid":
-        t = time.perf_counter()
+        t, cpu = time.perf_counter(), time.process_time()
         sol = solve_reynolds(seed, JournalState(eps=0.995, gamma=0.2, omega=250.0),
                              n_theta, n_z, bush=c)
-        out.update(solve=time.perf_counter() - t, iterations=sol.iterations,
+        out.update(solve=time.perf_counter() - t, solve_cpu=time.process_time() - cpu,
+                   iterations=sol.iterations,
                    force=float(np.linalg.norm(sol.force)), p_max=sol.pressure_max,
                    h_min=float(np.min(sol.film_thickness)),
                    rss=resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024)
     print(json.dumps(out))
 
 
-def run(model: str, mesh):
-    env = dict(os.environ, PYTHONPATH=str(ROOT), OMP_NUM_THREADS="1",
+def run(model: str, mesh, tree: Path = ROOT):
+    env = dict(os.environ, PYTHONPATH=str(tree), OMP_NUM_THREADS="1",
                OPENBLAS_NUM_THREADS="1", MPLBACKEND="Agg")
     cmd = [sys.executable, str(Path(__file__).resolve()), "--child", model, *map(str, mesh)]
     proc = subprocess.run(cmd, env=env, cwd="/tmp", capture_output=True, text=True)
@@ -78,21 +84,28 @@ def main(argv=None):
     parser.add_argument("--q1-max", type=int, default=240,
                         help="largest n_theta the alias sum |q| <= 1 is built at")
     parser.add_argument("--quick", action="store_true", help="48 x 8 and 96 x 16 only")
+    parser.add_argument("--finest", action="store_true", help="also 960 x 160")
+    parser.add_argument("--before", type=Path, default=None,
+                        help="a checkout whose harmonic solid runs beside this one's")
     parser.add_argument("--child", nargs=3, default=None)
     args = parser.parse_args(argv)
     if args.child:
         model, n_theta, n_z = args.child
         return child(model, int(n_theta), int(n_z))
-    meshes = MESHES[:2] if args.quick else MESHES
+    meshes = MESHES[:2] if args.quick else MESHES + [FINEST] * args.finest
     print(f"{'mesh':>7} {'3d[s]':>7} {'3d[MB]':>7} {'new[s]':>7} {'new[MB]':>7} "
           f"{'q1[s]':>7} {'solve[s]':>8} {'MB':>6} {'iters':>5} {'|F|[N]':>8} "
-          f"{'p_max[MPa]':>10} {'h_min[um]':>9}")
+          f"{'p_max[MPa]':>10} {'h_min[um]':>9}"
+          + f" {'cpu':>6} {'cpu':>7}"
+          + (f" {'bef[s]':>7} {'cpu':>6} {'solve[s]':>8} {'cpu':>7} {'MB':>6} {'same':>8}"
+             if args.before else ""))
     rows = []
     for mesh in meshes:
         old = run("solid-3d", mesh) if mesh[0] <= args.old_max else None
         q1 = run("q1", mesh) if mesh[0] <= args.q1_max else None
         new = run("solid", mesh)
-        rows.append(dict(mesh=mesh, old=old, new=new, q1=q1))
+        before = run("solid", mesh, args.before) if args.before else None
+        rows.append(dict(mesh=mesh, old=old, new=new, q1=q1, before=before))
 
         def cell(r, key, fmt):
             width = fmt.split(".")[0]
@@ -106,7 +119,16 @@ def main(argv=None):
               f"{cell(new, 'solve', '8.2f')} {cell(new, 'rss', '6.0f')} "
               f"{cell(new, 'iterations', '5d')} {cell(new, 'force', '8.2f')} "
               f"{new.get('p_max', float('nan')) / 1e6:10.2f} "
-              f"{new.get('h_min', float('nan')) * 1e6:9.3f}", flush=True)
+              f"{new.get('h_min', float('nan')) * 1e6:9.3f} "
+              f"{cell(new, 'build_cpu', '6.2f')} {cell(new, 'solve_cpu', '7.2f')}"
+              + ("" if before is None else
+                 f" {cell(before, 'build', '7.2f')} {cell(before, 'build_cpu', '6.2f')} "
+                 f"{cell(before, 'solve', '8.2f')} {cell(before, 'solve_cpu', '7.2f')} "
+                 f"{cell(before, 'rss', '6.0f')} " + (format(before['force'] / new['force']
+                                                             - 1.0, '8.1e')
+                                                      if 'force' in before and 'force'
+                                                      in new else format('-', '>8'))),
+              flush=True)
     return rows
 
 

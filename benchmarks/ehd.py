@@ -2,7 +2,7 @@
 mesh, cold and warm, full and reduced (modal) compliance, and what the bush changes.
 
     python -m benchmarks.ehd            # 192 x 8 cells, ring bush (~1 min)
-    python -m benchmarks.ehd --solid    # also the 3-D solid bush (build ~35 s)
+    python -m benchmarks.ehd --solid    # also the solid bush (per harmonic)
     python -m benchmarks.ehd --quick    # smoke run (48 x 4)
 
 Seed pin: R 10 mm, L/D 0.2, c 20 um, mu 0.0117 Pa s, 250 rad/s; bronze bush E 110 GPa,
@@ -47,7 +47,7 @@ def main(argv=None):
           f"{t_jfo * 1e3:.1f} ms, rigid Reynolds (half mesh) {t_rigid * 1e3:.1f} ms")
     print(f"{'bush':>6} {'compliance':>11} {'oil':>5} {'build[s]':>9} {'cold[s]':>8} "
           f"{'iters':>5} {'warm[s]':>8} {'iters':>5} {'x JFO':>6} {'p_max[MPa]':>11} "
-          f"{'h_mid[um]':>10} {'w_max[um]':>10}")
+          f"{'h_mid[um]':>10} {'w_max[um]':>10} {'h_min[um]':>10} {'|F|[N]':>8}")
     rows = []
     for model in models:
         bush = ElasticBush(model=model, **BRONZE)
@@ -78,7 +78,8 @@ def main(argv=None):
                       f"{build if kind == 'full' else 0.0:9.2f} {t_cold:8.3f} "
                       f"{cold.iterations:5d} {t_warm:8.3f} {warm.iterations:5d} "
                       f"{t_warm / t_jfo:6.1f} {warm.pressure_max / 1e6:11.2f} "
-                      f"{mid_film(warm) * 1e6:10.3f} {w * 1e6:10.3f}"
+                      f"{mid_film(warm) * 1e6:10.3f} {w * 1e6:10.3f} "
+                      f"{warm.film_min * 1e6:10.3f} {np.linalg.norm(warm.force):8.1f}"
                       + ("" if rows[-1]["same"] < 1e-6 else
                          f"  (cold start found another branch: p_max "
                          f"{cold.pressure_max / 1e6:.0f} MPa)"))

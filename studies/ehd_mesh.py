@@ -2,7 +2,8 @@
 250 rad/s, Reynolds' condition; bronze bush E 110 GPa, nu 0.34, outer radius 16 mm) on
 meshes refined twice at a time, the load |F|, the peak pressure and the least film, each
 against the finest mesh's value and Richardson's extrapolation of the last three, with the
-time of each cold solve (compliance build included) in one run.
+time of each cold solve (compliance build included) and its process's peak memory (each
+row a fresh process: ``resource.getrusage``, ~100 MB of it imports) in one run.
 
     python -m studies.ehd_mesh            # every bush model to 384 x 32
     python -m studies.ehd_mesh --quick    # 48 x 4 .. 96 x 8
@@ -10,7 +11,12 @@ time of each cold solve (compliance build included) in one run.
 from __future__ import annotations
 
 import argparse
+import json
+import os
+import subprocess
+import sys
 import time
+from pathlib import Path
 
 import numpy as np
 
@@ -43,26 +49,41 @@ def bush_study_args(argv, description: str) -> argparse.Namespace:
     return parser.parse_args(argv)
 
 
+def solve(model: str, n_theta: int, n_z: int):
+    """One cold solve (compliance build included): load [N], peak pressure [Pa], least
+    film [m], time [s], the process's peak memory [MB]."""
+    import resource
+    t = time.perf_counter()
+    sol = solve_reynolds(seed_bearing(0.2), HEAVY, n_theta, n_z,
+                         bush=ElasticBush(model=model, **BRONZE))
+    return (float(np.hypot(*sol.force_local)), sol.pressure_max, sol.film_min,
+            time.perf_counter() - t, resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024)
+
+
+def fresh(model: str, n):
+    """:func:`solve` in a fresh process (its peak memory that solve's alone)."""
+    root = Path(__file__).resolve().parents[1]
+    env = dict(os.environ, PYTHONPATH=str(root))
+    code = (f"import json; from studies.ehd_mesh import solve; "
+            f"print(json.dumps(solve({model!r}, {n[0]}, {n[1]})))")
+    proc = subprocess.run([sys.executable, "-c", code], env=env, cwd=root,
+                          capture_output=True, text=True, check=True)
+    return json.loads(proc.stdout.strip().splitlines()[-1])
+
+
 def main(argv=None):
     args = bush_study_args(argv, __doc__.splitlines()[0])
-    b = seed_bearing(0.2)
     out = {}
     print(f"{'bush':>6} {'mesh':>8} {'|F| [N]':>9} {'p_max[MPa]':>10} {'h_min[um]':>9} "
-          f"{'time[s]':>8} {'dF/F_fin':>9} {'dp/p_fin':>9}")
+          f"{'time[s]':>8} {'MB':>6} {'dF/F_fin':>9} {'dp/p_fin':>9}")
     for model in args.models.split(","):
         meshes = MESHES[model]
         meshes = meshes[:2] if args.quick else meshes
-        bush = ElasticBush(model=model, **BRONZE)
-        rows = []
-        for n in meshes:
-            t = time.perf_counter()
-            sol = solve_reynolds(b, HEAVY, *n, bush=bush)
-            rows.append((n, float(np.hypot(*sol.force_local)), sol.pressure_max,
-                         sol.film_min, time.perf_counter() - t))
+        rows = [(n, *fresh(model, n)) for n in meshes]
         F_fin, p_fin = rows[-1][1], rows[-1][2]
-        for n, F, p, h, s in rows:
+        for n, F, p, h, s, mb in rows:
             print(f"{model:>6} {n[0]:>4}x{n[1]:<3} {F:9.2f} {p / 1e6:10.2f} {h * 1e6:9.3f} "
-                  f"{s:8.2f} {abs(F / F_fin - 1):9.2e} {abs(p / p_fin - 1):9.2e}",
+                  f"{s:8.2f} {mb:6.0f} {abs(F / F_fin - 1):9.2e} {abs(p / p_fin - 1):9.2e}",
                   flush=True)
         if len(rows) >= 3:
             for name, k in (("|F|", 1), ("p_max", 2), ("h_min", 3)):

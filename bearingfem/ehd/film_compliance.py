@@ -19,6 +19,7 @@ from scipy.fft import irfft, rfft
 
 from ..caches import cached
 from ..elastic import BushCompliance, ElasticBush, ReducedCompliance, bush_compliance
+from ..elastic.harmonic import HarmonicBlocks
 
 __all__ = ["dof_compliance", "DofCompliance", "CirculantCompliance", "BushJacobian"]
 
@@ -42,14 +43,15 @@ class DofCompliance:
 class CirculantCompliance:
     """The full compliance on the film's dofs, applied per theta harmonic by FFT: the
     pressure is read on the (n_theta, n_z + 1) bush grid (one dof per grid node,
-    ``source``), each harmonic m multiplied by its block ``spectrum[m]`` ((n_z + 1)^2, or
-    its diagonal (n_z + 1) where the slices do not couple: the ring; a local compliance,
-    the liner's, is one factor per axial node, applied without FFT), and the deflection
-    read back at every dof (``node``: its grid node). Cost per product
-    n_theta log n_theta (n_z + 1) plus n_theta (n_z + 1)^2 (or n_theta (n_z + 1) diagonal);
-    no dense matrix unless :attr:`left` is asked for."""
+    ``source``), each harmonic m multiplied by its real block ((n_z + 1)^2,
+    :class:`~bearingfem.elastic.harmonic.HarmonicBlocks`, banded in z where the bush's
+    kernel is local; or its diagonal (n_z + 1) where the slices do not couple: the ring; a
+    local compliance, the liner's, is one factor per axial node, applied without FFT), and
+    the deflection read back at every dof (``node``: its grid node). Cost per product
+    n_theta log n_theta (n_z + 1) plus the blocks' numbers (at most n_theta (n_z + 1)^2 / 2;
+    n_theta (n_z + 1) diagonal); no dense matrix unless :attr:`left` is asked for."""
 
-    spectrum: np.ndarray      # (n_theta // 2 + 1, nz, nz), (.., nz) diagonal or (nz,) local
+    spectrum: HarmonicBlocks | np.ndarray  # blocks; (M, nz) diagonal or (nz,) local
     shape: tuple              # (n_theta, nz)
     node: np.ndarray          # grid node of each dof (C order of the grid)
     source: np.ndarray        # the dof whose pressure each grid node takes
@@ -65,14 +67,13 @@ class CirculantCompliance:
         (C order of the grid; or (grid nodes, k))."""
         extra = p.shape[1:]
         grid = p.reshape(self.shape + extra)
-        if self.spectrum.ndim == 1:          # local: each node's own compliance
+        if isinstance(self.spectrum, HarmonicBlocks):
+            harmonics = self.spectrum.apply(rfft(grid, axis=0))
+        elif self.spectrum.ndim == 1:        # local: each node's own compliance
             return (self.spectrum.reshape((-1,) + (1,) * len(extra)) * grid).reshape(p.shape)
-        harmonics = rfft(grid, axis=0)
-        if self.spectrum.ndim == 2:
-            harmonics = self.spectrum.reshape(self.spectrum.shape + (1,) * len(extra)) \
-                * harmonics
         else:
-            harmonics = np.einsum("mlk,mk...->ml...", self.spectrum, harmonics)
+            harmonics = self.spectrum.reshape(self.spectrum.shape + (1,) * len(extra)) \
+                * rfft(grid, axis=0)
         return irfft(harmonics, n=self.shape[0], axis=0).reshape((-1,) + extra)
 
     @cached_property
@@ -158,8 +159,8 @@ def dof_compliance(bush, bearing, op) -> CirculantCompliance | DofCompliance:
         spectrum = bush.spectrum
         diagonal = np.einsum("mll->ml", spectrum)
         if np.array_equal(spectrum, diagonal[:, :, None] * np.eye(shape[1])):
-            spectrum = diagonal                # slices uncoupled: the ring
-        return CirculantCompliance(spectrum, shape, node, rep)
+            return CirculantCompliance(diagonal, shape, node, rep)  # slices uncoupled: ring
+        return CirculantCompliance(bush.blocks, shape, node, rep)
     right = np.zeros((mesh.ndofs, bush.n_vectors))
     right[rep] = bush.right[grid_nodes]
     return DofCompliance(bush.left[node], bush.singular, right)

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -19,6 +20,7 @@ from ..bearing import check_positive
 from ..validation import check_int
 from .bush import ElasticBush
 from .fourier import fourier_columns
+from .harmonic import HarmonicBlocks, banded_spectrum
 from .liner import liner_columns
 from .ring import ring_columns
 from .solid import solid_columns, solid_system
@@ -67,6 +69,13 @@ class BushCompliance:
         """Block-diagonal form: ``spectrum[m]`` (n_z x n_z) acts on the m-th theta harmonic
         of the pressure (m = 0 .. n_theta // 2, numpy's rfft convention)."""
         return np.fft.rfft(self.columns, axis=0)
+
+    @cached_property
+    def blocks(self) -> HarmonicBlocks:
+        """The spectrum's real blocks (the bush is symmetric under theta -> -theta), banded
+        in z where the kernel is local: the operator kept to :data:`~.harmonic.BAND_TOL`
+        (relative, 2-norm; :mod:`.harmonic`). Built once, on demand."""
+        return banded_spectrum(self.spectrum)
 
     def deflection(self, pressure) -> np.ndarray:
         """Nodal radial deflection [m] (n_theta, n_z) under nodal pressure [Pa]."""

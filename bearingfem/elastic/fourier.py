@@ -26,11 +26,13 @@ solved on the radial lines above the depth :data:`DECAY` R / m only.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
+from scipy.linalg.blas import dsyrk
 from scipy.linalg.lapack import dpbtrf, dtbtrs
 from skfem import (Basis, BilinearForm, ElementQuad1, ElementVector, FacetBasis,
-                   LinearForm, MeshQuad1, asm)
+                   MeshQuad1, asm)
 
 from .mesh import radial_lines
 from .surface import FilmGrid
@@ -93,6 +95,11 @@ class Banded:
     load: np.ndarray
     read: np.ndarray
 
+    @cached_property
+    def starts(self) -> np.ndarray:
+        """The row of each surface column's unit entry (increasing: z order)."""
+        return np.argmax(self.unit, axis=0)
+
     def block(self, m: int) -> np.ndarray:
         """G_m (n_z, n_z) [m/Pa]: U at film node l under the unit hat load of node k.
 
@@ -107,13 +114,16 @@ class Banded:
         # column j of Y is zero above its dof (C^T is lower triangular): solve each group
         # of columns on the trailing rows from its first dof only (5/8 of the work)
         y = np.zeros_like(self.unit)
-        starts = np.argmax(self.unit, axis=0)                   # increasing (z order)
+        starts = self.starts
         for group in np.array_split(np.arange(starts.size), CHUNKS):
             if group.size:
                 first = starts[group[0]]
                 y[first:, group], _ = dtbtrs(factor[:, first:], self.unit[first:, group],
                                              uplo="U", trans="T")
-        return (y[:, self.read].T @ y) @ self.load
+        # Y^T Y by BLAS syrk (its upper triangle: half the flops of the product)
+        gram = dsyrk(1.0, y.T)
+        gram = np.triu(gram) + np.triu(gram, 1).T
+        return gram[self.read] @ self.load
 
 
 def banded(stiffness, load, held, surface, read, rank) -> Banded:
@@ -212,27 +222,27 @@ def section_system(bush, radius: float, film: FilmGrid, refine_z: int, n_radial:
     r, z = mesh.p
     tol = 1e-9 * (bush.outer_radius - radius)
     inner = mesh.facets_satisfying(lambda x: np.abs(x[0] - radius) < tol)
-    surface = FacetBasis(mesh, element, facets=inner, intorder=4)
+    facets = FacetBasis(mesh, element, facets=inner, intorder=4)
+
+    @BilinearForm
+    def traction(u, v, w):
+        # the film pushes the bush outward: traction -p n = p e_r (n = -e_r on r = R)
+        return u[0] * v[0] * w.x[0]
+
+    inner_nodes = np.flatnonzero((np.abs(r - radius) < tol))
+    inner_nodes = inner_nodes[np.argsort(z[inner_nodes])]
+    surface = basis.nodal_dofs[0, inner_nodes]             # increasing z
+    # the film's hats are linear between its nodes, so P1 on the section's surface
+    # nodes (refine_z whole): their loads are one surface mass times their nodal values
     dz = film.length / (film.n_z - 1)
-
-    def load(k):
-        @LinearForm
-        def traction(v, w):
-            # the film pushes the bush outward: traction -p n = p e_r (n = -e_r on r = R)
-            hat = np.maximum(0.0, 1.0 - np.abs(w.x[1] - film.heights[k]) / dz)
-            return hat * v[0] * w.x[0]
-        return asm(traction, surface)
-
-    rhs = np.column_stack([load(k) for k in range(film.n_z)])
+    hats = np.maximum(0.0, 1.0 - np.abs(z[inner_nodes][:, None] - film.heights) / dz)
+    rhs = np.asarray(asm(traction, facets).tocsc()[:, surface] @ hats)
     outer = np.abs(r - bush.outer_radius) < tol
     held = [basis.nodal_dofs[:, outer].ravel()]
     if bush.ends == "plane-strain":
         ends = np.abs(np.abs(z) - 0.5 * film.length) < 1e-9 * film.length
         held.append(basis.nodal_dofs[2, ends])
     held = np.unique(np.concatenate(held))
-    inner_nodes = np.flatnonzero((np.abs(r - radius) < tol))
-    inner_nodes = inner_nodes[np.argsort(z[inner_nodes])]
-    surface = basis.nodal_dofs[0, inner_nodes]             # increasing z
     read = np.arange(0, surface.size, refine_z)             # film nodes among them
     # dof rank: axial layer, then radial layer, then component
     layer = np.searchsorted(heights, z - 1e-9 * film.length)
