@@ -2,19 +2,34 @@
 over meshes, states, elements and cavitation models, the true error against a converged
 film (P2 on 384 x 64 cells, within ~3e-6 of the 768 x 128 film at eps <= 0.9).
 
-    python -m studies.effectivity          # ~2 min (run under the heavy-work lock)
+    python -m studies.effectivity                 # ~2 min (run under the heavy-work lock)
+    python -m studies.effectivity --coefficients  # K and C on Lund & Thomsen's rows, ~2 min
 
 Prints one row per (state, element, mesh) and the least and largest effectivity per
 element and cavitation model: the estimate is meant to err high (effectivity >= 1).
+
+``--coefficients``: the same for K and C (``coefficients(estimate=True)``: the h/2h pair
+with the half mesh, at the order :mod:`bearingfem.design.coefficients` uses) of the
+two-groove bearing at Lund & Thomsen's ten equilibria (studies/lund_thomsen.py), P2 on
+uniform meshes and on meshes graded toward the least film as the search grades them,
+against P2 on 288 cells around graded (benchmarks/accuracy_rtol.py's reference).
 """
 from __future__ import annotations
 
+import argparse
 import itertools
+import math
 
 import numpy as np
 
 from bearingfem import Bearing, JournalState, solve_reynolds
 from bearingfem.accuracy import estimate_error, force_difference, nominal_order
+from bearingfem.design import coefficients, equilibrium
+from bearingfem.design.groups import load_from_sommerfeld
+from bearingfem.design.tolerance import GRADING_STRENGTH
+
+from .lund_thomsen import GROOVES, LOAD_DIRECTION, OMEGA, TABLE, bearing
+from .lund_thomsen import mesh as study_mesh
 
 LEVELS = {"P1": [(24 * 2 ** k, 4 * 2 ** k) for k in range(4)],     # 24 x 4 .. 192 x 32
           "P2": [(12 * 2 ** k, 2 * 2 ** k) for k in range(4)]}     # 12 x 2 .. 96 x 16
@@ -40,7 +55,55 @@ def effectivities(ld, eps, cavitation, element):
     return rows
 
 
-def main():
+#: cells around of the coefficients' meshes (multiples of 18: nodes on the grooves' edges)
+KC_LEVELS = (72, 108, 144, 216)
+
+
+def coefficient_effectivities(progress=print):
+    """[(L/D, S, graded, mesh, estimate, true error)] of K and C (the larger of the two
+    matrices' largest-entry errors, relative to each one's largest entry) at Lund &
+    Thomsen's ten equilibria."""
+    film = dict(grooves=GROOVES, cavitation="reynolds", element="P2")
+    rows = []
+    for ld, table in TABLE.items():
+        for S, *_ in table:
+            b = bearing(ld)
+            eq = equilibrium(b, load_from_sommerfeld(b, S, OMEGA), OMEGA, "fem",
+                             direction=LOAD_DIRECTION, **study_mesh(ld, 144, "P2"))
+            s = eq.state
+            step = math.pi / 12.0       # the search's grading: the angle on a 15 deg grid
+            grading = (step * round(s.gamma / step), GRADING_STRENGTH)
+            reference = dict(study_mesh(ld, 288, "P2"), grading=(s.gamma, GRADING_STRENGTH))
+            ref = coefficients(b, s, "fem", **reference)
+            for graded, nt in itertools.product((False, True), KC_LEVELS):
+                nz = max(4, 2 * round(nt * ld / math.pi / 2.0))
+                o = dict(film, n_theta=nt, n_z=nz, **({"grading": grading} if graded else {}))
+                kc = coefficients(b, s, "fem", estimate=True, **o)
+                true = max(np.abs(kc.K - ref.K).max() / np.abs(ref.K).max(),
+                           np.abs(kc.C - ref.C).max() / np.abs(ref.C).max())
+                rows.append((ld, S, graded, (nt, nz), kc.error, true))
+                progress(f"{ld:4g} {S:6g} {'graded' if graded else 'uniform':>8} "
+                         f"{nt:4d}x{nz:<3d} {kc.error:9.2e} {true:9.2e} {kc.error / true:7.2f}")
+    return rows
+
+
+def coefficients_main():
+    print(f"{'L/D':>4} {'S':>6} {'mesh':>8} {'':>8} {'estimate':>9} {'true':>9} {'eff':>7}")
+    rows = coefficient_effectivities()
+    print("\n mesh     pairs  least  median effectivity  largest true error  low (< 1)")
+    for nt in KC_LEVELS:
+        e = [(est / true, true) for _, _, _, m, est, true in rows if m[0] == nt]
+        eff = [x for x, _ in e]
+        print(f"{nt:5d}   {len(e):6d} {min(eff):6.2f} {np.median(eff):7.2f} "
+              f"{max(t for _, t in e):19.2e} {sum(x < 1.0 for x in eff):10d}")
+
+
+def main(argv=None):
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("--coefficients", action="store_true",
+                   help="K and C on Lund & Thomsen's rows instead of the film force")
+    if p.parse_args(argv).coefficients:
+        return coefficients_main()
     table = {}
     print(f"{'L/D':>4} {'eps':>5} {'cavitation':>10} {'el':>3} {'mesh':>9} "
           f"{'estimate':>9} {'true':>9} {'eff':>6}")

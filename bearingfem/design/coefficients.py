@@ -126,7 +126,10 @@ def _order(m, options) -> float | None:
     48 / 96 / 192 x 6 is 2.0e-2, 6e-5, 1.4e-3 from the converged; a pair at order 2 erred
     low 5x; at L/D 1, eps 0.8, P2 24 x 8 / 48 x 16 / 96 x 32, K is 3.3e-3, 5.0e-3, 3.3e-3
     and C 3.3e-2, 2.2e-2, 1.3e-2 from P2 256 x 64: K too is not safe at order 2), else the
-    film force's (None)."""
+    film force's (None). Even at order 1 a pair can err low: the held set's error behaves
+    like noise in where the nodes fall relative to the boundary, so two meshes can agree
+    by luck (Lund & Thomsen's rows: ``python -m studies.effectivity --coefficients``,
+    docs/accuracy.md)."""
     cavitation = options.get("cavitation", m.defaults.get("cavitation", "reynolds"))
     return None if cavitation == "none" else 1.0
 
