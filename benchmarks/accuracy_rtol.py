@@ -4,6 +4,7 @@ uniform mesh that reaches the same accuracy (found by search here).
     python -m benchmarks.accuracy_rtol            # ~2 min: three states x three tolerances
     python -m benchmarks.accuracy_rtol --quick    # one state, one tolerance (smoke)
     python -m benchmarks.accuracy_rtol --lund-thomsen   # the ten rows, ROSS beside (~3 min)
+    python -m benchmarks.accuracy_rtol --lund-thomsen --profile   # where their time goes
 
 For each state the true error of every uniform mesh of a grid (P1 and P2; n_theta from 8
 to 256, n_z half, once or twice n_theta (L/D) / pi, at least 2) is measured against a converged film (P2 384 x 64);
@@ -25,8 +26,11 @@ C entry errors relative to each matrix's largest entry (inertial frame), and CPU
 from __future__ import annotations
 
 import argparse
+import cProfile
 import itertools
 import math
+import pstats
+import time
 
 import numpy as np
 
@@ -100,17 +104,13 @@ def _errors(eps, K, C, ref):
             float(np.abs(C - C0).max() / np.abs(C0).max()))
 
 
-def lund_thomsen(rtol=2e-3, repeat=3, with_ross=True):
-    """The ten rows as one design loop (the memo carried from row to row; caches and memo
-    cleared before the loop, best of ``repeat`` loops), beside ROSS 3.1's 40 x 20 film on
-    each row in the same run; errors against the :data:`REFERENCE` film, K and C in the
-    inertial frame (ROSS's). Besides ``rtol``: the same loop on one
-    uniform P2 mesh for all rows (36 x 8 and 72 x 12 cells, n_z for L/D 1; half for 0.5),
-    with ``estimate=True`` (the error of the mesh given, one half-mesh solve more)."""
-    from bearingfem.caches import clear_caches
+def _ten_rows():
+    """(rows, loop): Lund & Thomsen's ten rows (L/D, S, bearing, load [N]) and
+    ``loop(**how)``, the design loop over them (equilibrium, then K and C with the eps
+    error passed on) with the mesh options ``how`` ([(eq, kc)] per row)."""
     from bearingfem.design import coefficients, equilibrium
     from bearingfem.design.groups import load_from_sommerfeld
-    from studies.lund_thomsen import GROOVES, LOAD_DIRECTION, OMEGA, TABLE, bearing, mesh
+    from studies.lund_thomsen import GROOVES, LOAD_DIRECTION, OMEGA, TABLE, bearing
     film = dict(grooves=GROOVES, cavitation="reynolds")
     rows = [(ld, S, bearing(ld), load_from_sommerfeld(bearing(ld), S, OMEGA))
             for ld, table in TABLE.items() for S, *_ in table]
@@ -125,7 +125,47 @@ def lund_thomsen(rtol=2e-3, repeat=3, with_ross=True):
             kc = coefficients(b, eq.state, "fem", eps_error=eq.eps_error, **o)
             out.append((eq, kc))
         return out
+    return rows, loop
 
+
+#: What the profile of the ten rows' loop names: label -> (file, function)
+PROFILED = {"equilibria": ("design/equilibrium.py", "equilibrium"),
+            "K, C searches (with the eps shift)": ("design/coefficients.py", "_with_error"),
+            "grooved tables built": ("fe/grooved_build.py", "build_grooved_tables"),
+            "sparse LU factorisations": ("solvers/linsolve.py", "factorise")}
+
+
+def lund_thomsen_profile(rtol=2e-3):
+    """Where one rtol loop over the ten rows (caches and memo cleared) spends its time:
+    cProfile on the CPU clock, the shares of :data:`PROFILED` (overlapping: the builds and
+    factorisations are inside the equilibria and searches)."""
+    from bearingfem.caches import clear_caches
+    _, loop = _ten_rows()
+    clear_caches()
+    clear_memo()
+    pr = cProfile.Profile(time.process_time)
+    pr.runcall(loop, rtol=rtol)
+    stats = pstats.Stats(pr)
+    total = stats.total_tt
+    print(f"one rtol {rtol:g} loop: {total:.3f} s CPU under the profiler")
+    for label, (path, name) in PROFILED.items():
+        hits = [v for k, v in stats.stats.items() if k[0].endswith(path) and k[2] == name]
+        cum = sum(v[3] for v in hits)
+        print(f"  {label:36s} {sum(v[0] for v in hits):5d} calls {cum:7.3f} s "
+              f"{100 * cum / total:5.1f} %")
+
+
+def lund_thomsen(rtol=2e-3, repeat=3, with_ross=True):
+    """The ten rows as one design loop (the memo carried from row to row; caches and memo
+    cleared before the loop, best of ``repeat`` loops), beside ROSS 3.1's 40 x 20 film on
+    each row in the same run; errors against the :data:`REFERENCE` film, K and C in the
+    inertial frame (ROSS's). Besides ``rtol``: the same loop on one
+    uniform P2 mesh for all rows (36 x 8 and 72 x 12 cells, n_z for L/D 1; half for 0.5),
+    with ``estimate=True`` (the error of the mesh given, one half-mesh solve more)."""
+    from bearingfem.caches import clear_caches
+    from bearingfem.design import coefficients, equilibrium
+    from studies.lund_thomsen import LOAD_DIRECTION, OMEGA, mesh
+    rows, loop = _ten_rows()
     variants = [(f"rtol {rtol:g}", dict(rtol=rtol)),
                 ("P2 36x8 estimate", dict(n_theta=36, n_z=8, element="P2", estimate=True)),
                 ("P2 72x12 estimate", dict(n_theta=72, n_z=12, element="P2", estimate=True))]
@@ -191,8 +231,12 @@ def main(argv=None):
     p.add_argument("--repeat", type=int, default=5)
     p.add_argument("--lund-thomsen", action="store_true")
     p.add_argument("--no-ross", action="store_true", help="--lund-thomsen: ours only")
+    p.add_argument("--profile", action="store_true",
+                   help="--lund-thomsen: where one rtol loop spends its time, instead")
     a = p.parse_args(argv)
     if a.lund_thomsen:
+        if a.profile:
+            return lund_thomsen_profile()
         return lund_thomsen(repeat=a.repeat, with_ross=not a.no_ross)
     states = STATES[:1] if a.quick else STATES
     tolerances = (1e-2,) if a.quick else (1e-2, 1e-3, 1e-4)
