@@ -4,6 +4,7 @@ uniform mesh that reaches the same accuracy (found by search here).
     python -m benchmarks.accuracy_rtol            # ~2 min: three states x three tolerances
     python -m benchmarks.accuracy_rtol --quick    # one state, one tolerance (smoke)
     python -m benchmarks.accuracy_rtol --lund-thomsen   # the ten rows, ROSS beside (~3 min)
+    python -m benchmarks.accuracy_rtol --lund-thomsen --profile   # where their time goes
 
 For each state the true error of every uniform mesh of a grid (P1 and P2; n_theta from 8
 to 256, n_z half, once or twice n_theta (L/D) / pi, at least 2) is measured against a converged film (P2 384 x 64);
@@ -18,15 +19,18 @@ the memo holding the mesh that sufficed at a state 2 % away in eps.
 equilibrium at rtol 2e-3 and K, C at rtol 2e-3 with the eps error passed on, one design
 loop (the memo carried from row to row, caches cold at the start), beside the same loop on
 uniform P2 36 x 8 and 72 x 12 with ``estimate=True`` and beside ROSS 3.1's 40 x 20 film
-(.venv-ross31, ``benchmarks/_ross31_env.py``; ``--no-ross``: ours only), against P2 on 144
-cells around (n_z ~ 144 L/D / 3: the study's converged mesh): |d eps|, the largest K and
+(.venv-ross31, ``benchmarks/_ross31_env.py``; ``--no-ross``: ours only), against P2 on 288
+cells around graded toward the least film (:data:`REFERENCE`): |d eps|, the largest K and
 C entry errors relative to each matrix's largest entry (inertial frame), and CPU time.
 """
 from __future__ import annotations
 
 import argparse
+import cProfile
 import itertools
 import math
+import pstats
+import time
 
 import numpy as np
 
@@ -85,6 +89,12 @@ def _ross_rows(cases, repeat):
 
 #: ROSS's film on each pad (elements around x along): its literature test's mesh
 ROSS_MESH = (40, 20)
+#: The ten rows' reference film: P2 on this many cells around (n_z ~ n_theta L/D / 3) graded
+#: toward the least film at this strength; K and C there are within 2e-4 of P2 432 x 72
+#: (L/D 0.5, S 0.244 and 0.58) and 5e-5 of 432 x 144 (L/D 1, S 0.108), graded alike
+#: (docs/accuracy.md). P2 144 uniform, the study's mesh, is up to 0.2 % off (K of a
+#: cavitated film converges slowly and irregularly)
+REFERENCE = (288, 0.6)
 
 
 def _errors(eps, K, C, ref):
@@ -94,17 +104,13 @@ def _errors(eps, K, C, ref):
             float(np.abs(C - C0).max() / np.abs(C0).max()))
 
 
-def lund_thomsen(rtol=2e-3, repeat=3, with_ross=True):
-    """The ten rows as one design loop (the memo carried from row to row; caches and memo
-    cleared before the loop, best of ``repeat`` loops), beside ROSS 3.1's 40 x 20 film on
-    each row in the same run; errors against P2 on 144 cells around (the study's converged
-    mesh), K and C in the inertial frame (ROSS's). Besides ``rtol``: the same loop on one
-    uniform P2 mesh for all rows (36 x 8 and 72 x 12 cells, n_z for L/D 1; half for 0.5),
-    with ``estimate=True`` (the error of the mesh given, one half-mesh solve more)."""
-    from bearingfem.caches import clear_caches
+def _ten_rows():
+    """(rows, loop): Lund & Thomsen's ten rows (L/D, S, bearing, load [N]) and
+    ``loop(**how)``, the design loop over them (equilibrium, then K and C with the eps
+    error passed on) with the mesh options ``how`` ([(eq, kc)] per row)."""
     from bearingfem.design import coefficients, equilibrium
     from bearingfem.design.groups import load_from_sommerfeld
-    from studies.lund_thomsen import GROOVES, LOAD_DIRECTION, OMEGA, TABLE, bearing, mesh
+    from studies.lund_thomsen import GROOVES, LOAD_DIRECTION, OMEGA, TABLE, bearing
     film = dict(grooves=GROOVES, cavitation="reynolds")
     rows = [(ld, S, bearing(ld), load_from_sommerfeld(bearing(ld), S, OMEGA))
             for ld, table in TABLE.items() for S, *_ in table]
@@ -119,18 +125,66 @@ def lund_thomsen(rtol=2e-3, repeat=3, with_ross=True):
             kc = coefficients(b, eq.state, "fem", eps_error=eq.eps_error, **o)
             out.append((eq, kc))
         return out
+    return rows, loop
 
+
+#: What the profile of the ten rows' loop names: label -> (file, function)
+PROFILED = {"equilibria": ("design/equilibrium.py", "equilibrium"),
+            "K, C searches (with the eps shift)": ("design/coefficients.py", "_with_error"),
+            "grooved tables built": ("fe/grooved_build.py", "build_grooved_tables"),
+            "sparse LU factorisations": ("solvers/linsolve.py", "factorise")}
+
+
+def lund_thomsen_profile(rtol=2e-3):
+    """Where one rtol loop over the ten rows (caches and memo cleared) spends its time:
+    cProfile on the CPU clock, the shares of :data:`PROFILED` (overlapping: the builds and
+    factorisations are inside the equilibria and searches)."""
+    from bearingfem.caches import clear_caches
+    _, loop = _ten_rows()
+    clear_caches()
+    clear_memo()
+    pr = cProfile.Profile(time.process_time)
+    pr.runcall(loop, rtol=rtol)
+    stats = pstats.Stats(pr)
+    total = stats.total_tt
+    print(f"one rtol {rtol:g} loop: {total:.3f} s CPU under the profiler")
+    for label, (path, name) in PROFILED.items():
+        hits = [v for k, v in stats.stats.items() if k[0].endswith(path) and k[2] == name]
+        cum = sum(v[3] for v in hits)
+        print(f"  {label:36s} {sum(v[0] for v in hits):5d} calls {cum:7.3f} s "
+              f"{100 * cum / total:5.1f} %")
+
+
+def lund_thomsen(rtol=2e-3, repeat=3, with_ross=True):
+    """The ten rows as one design loop (the memo carried from row to row; caches and memo
+    cleared before the loop, best of ``repeat`` loops), beside ROSS 3.1's 40 x 20 film on
+    each row in the same run; errors against the :data:`REFERENCE` film, K and C in the
+    inertial frame (ROSS's). Besides ``rtol``: the same loop on one
+    uniform P2 mesh for all rows (36 x 8 and 72 x 12 cells, n_z for L/D 1; half for 0.5),
+    with ``estimate=True`` (the error of the mesh given, one half-mesh solve more)."""
+    from bearingfem.caches import clear_caches
+    from bearingfem.design import coefficients, equilibrium
+    from studies.lund_thomsen import LOAD_DIRECTION, OMEGA, mesh
+    rows, loop = _ten_rows()
     variants = [(f"rtol {rtol:g}", dict(rtol=rtol)),
                 ("P2 36x8 estimate", dict(n_theta=36, n_z=8, element="P2", estimate=True)),
                 ("P2 72x12 estimate", dict(n_theta=72, n_z=12, element="P2", estimate=True))]
     timed = [best_of(lambda: loop(**how), repeat, before=lambda: (clear_caches(), clear_memo()))
              for _, how in variants]
-    refs = []
+    refs, old_refs = [], []
     for ld, S, b, W in rows:
         o = mesh(ld, 144, "P2")
         eq = equilibrium(b, W, OMEGA, "fem", direction=LOAD_DIRECTION, **o)
         kc = coefficients(b, eq.state, "fem", **o)
+        old_refs.append((eq.eps, np.asarray(kc.K), np.asarray(kc.C)))
+        # the reference: P2 on 288 cells around graded toward the least film (REFERENCE)
+        o = dict(mesh(ld, REFERENCE[0], "P2"), grading=(eq.state.gamma, REFERENCE[1]))
+        eq = equilibrium(b, W, OMEGA, "fem", direction=LOAD_DIRECTION, start=eq, **o)
+        kc = coefficients(b, eq.state, "fem", **o)
         refs.append((eq.eps, np.asarray(kc.K), np.asarray(kc.C)))
+    old = np.max([_errors(e, K, C, ref) for (e, K, C), ref in zip(old_refs, refs)], axis=0)
+    print(f"reference P2 {REFERENCE[0]} graded ({REFERENCE[1]}); P2 144 uniform (the study's "
+          f"mesh) from it: |d eps| {old[0]:.1e}, K {100 * old[1]:.2f} %, C {100 * old[2]:.2f} %")
     ross = []
     if with_ross:
         cases = [dict(name=f"{ld}-{S}", radius=b.radius, length=b.length,
@@ -177,8 +231,12 @@ def main(argv=None):
     p.add_argument("--repeat", type=int, default=5)
     p.add_argument("--lund-thomsen", action="store_true")
     p.add_argument("--no-ross", action="store_true", help="--lund-thomsen: ours only")
+    p.add_argument("--profile", action="store_true",
+                   help="--lund-thomsen: where one rtol loop spends its time, instead")
     a = p.parse_args(argv)
     if a.lund_thomsen:
+        if a.profile:
+            return lund_thomsen_profile()
         return lund_thomsen(repeat=a.repeat, with_ross=not a.no_ross)
     states = STATES[:1] if a.quick else STATES
     tolerances = (1e-2,) if a.quick else (1e-2, 1e-3, 1e-4)

@@ -244,3 +244,29 @@ def test_a_grooved_search_grades_its_mesh_toward_the_least_film():
     ref = coefficients(b, s, "fem", n_theta=144, n_z=24, element="P2", **film)
     assert np.all(np.abs(kc.K - ref.K) <= kc.K_error + 3e-4 * np.abs(ref.K).max())
     assert np.all(np.abs(kc.C - ref.C) <= kc.C_error + 3e-4 * np.abs(ref.C).max())
+    # every pair also against its half mesh shifted (a cavitated film's K and C)
+    assert kc.accuracy.solves == len(kc.accuracy.meshes) + len(kc.accuracy.estimates)
+
+
+def test_a_shifted_partner_sees_what_the_pair_agrees_on_by_luck():
+    """An answer whose error is noise in where the nodes fall (K and C of a cavitated
+    film) can agree with its half mesh by luck: here every mesh is 1e-3 off, so the pair's
+    difference is 0; the half mesh shifted is 1e-3 off the other way, and with it the
+    estimate is at least the true error and the farther partner is returned (fails with
+    the shifted partner's difference ignored)."""
+    def answer(n_theta, n_z, element):
+        return 1.0 + 1e-3
+
+    def shifted(n_theta, n_z, element):
+        return 1.0 - 1e-3
+
+    def difference(fine, coarse):
+        return abs(fine - coarse) / abs(fine)
+
+    how = dict(element="P2", start_mesh=(24, 4), order=1.0)
+    _, partner, lucky = refine_to_tolerance(answer, difference, 1e-2, **how)
+    assert lucky.error == 0.0                      # the pair alone errs low
+    q, partner, record = refine_to_tolerance(answer, difference, 1e-2, shifted=shifted, **how)
+    assert record.error >= abs(q - 1.0) / 1.0
+    assert partner == shifted(24, 4, "P2")
+    assert record.solves == len(record.meshes) + 1
