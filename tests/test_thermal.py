@@ -16,8 +16,9 @@ from bearingfem.routes.thd import solve_thd
 from bearingfem.thermal import Thermal
 from bearingfem.fields import FilmFields
 from bearingfem.routes.thd import groove_mixing, thermal_operator
-from bearingfem.thermal.energy import (EnergyFlow, Mixing, _supg_tau, energy_operator,
-                                       energy_system, film_flow, solve_energy)
+from bearingfem.thermal.energy import (EnergyFlow, Mixing, energy_operator, energy_system,
+                                       film_flow, solve_energy)
+from bearingfem.thermal.operator import _supg_tau
 
 BEARING = Bearing(radius=0.025, length=0.025, clearance=50e-6, viscosity=0.02)
 GROOVES = [Groove(angle=0.5 * math.pi, width=0.2), Groove(angle=-0.5 * math.pi, width=0.2)]

@@ -3,7 +3,7 @@ nodal pressure and temperature: the energy block of a coupled (pressure, tempera
 Newton (:mod:`bearingfem.routes.thd_newton`).
 
 The residual is the one :func:`~bearingfem.thermal.energy.solve_energy` solves for (its
-matrix and load from :func:`~bearingfem.thermal.energy.energy_system`, so a term added
+matrix and load from :func:`~bearingfem.thermal.operator.energy_system`, so a term added
 there flows through), on every row; held rows are the caller's. Per quadrature point,
 with the test function's weight w_i = (R v_i + tau beta . grad v_i) dx,
 
@@ -16,7 +16,7 @@ components) or of mu at a point is
     delta r_i = sum_q [(delta tau beta . grad v_i + tau delta beta . grad v_i) e
                        + (R v_i + tau beta . grad v_i)(delta beta . grad T - R delta Phi)] dx,
 
-each assembled on the operator's tables (:class:`~bearingfem.thermal.energy.EnergyOperator`)
+each assembled on the operator's tables (:class:`~bearingfem.thermal.operator.EnergyOperator`)
 against the trial basis (gradients for grad P, values times d mu/dp or d mu/dT for mu).
 """
 from __future__ import annotations
@@ -27,7 +27,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from ..film import film_thickness
-from .energy import EnergyFlow, EnergyOperator, energy_system
+from .operator import EnergyFlow, EnergyOperator, energy_system
 
 __all__ = ["EnergyLinearisation", "energy_linearisation", "supg_tau_derivatives"]
 
@@ -37,7 +37,7 @@ class EnergyLinearisation:
     """The energy equation at nodal (P, T, T_j): ``residual`` (N,) [as assembled, per
     d(theta) d(zeta)], its derivatives with respect to nodal T (``d_temperature``) and to
     the dimensionless nodal P (``d_pressure``) as values on the operator's pattern
-    (:meth:`~bearingfem.thermal.energy.EnergyOperator.matrix`'s), ``d_journal`` (N,)
+    (:meth:`~bearingfem.thermal.operator.EnergyOperator.matrix`'s), ``d_journal`` (N,)
     with respect to the journal's temperature; ``flow``, ``A``, ``b``, ``c_all``: the
     assembled system (for the energy balance)."""
 
@@ -59,7 +59,7 @@ class EnergyLinearisation:
 
 def supg_tau_derivatives(op: EnergyOperator, flow: EnergyFlow, R: float):
     """(tau, d tau/d beta_theta, d tau/d beta_zeta) at the quadrature points: tau of
-    :func:`~bearingfem.thermal.energy._supg_tau`, written as tau = a xi(Pe) / (2 |beta|^2)
+    :func:`~bearingfem.thermal.operator._supg_tau`, written as tau = a xi(Pe) / (2 |beta|^2)
     with a = R (|beta_theta| dtheta_e + |beta_zeta| dzeta_e) = h_e |beta| and
     Pe = a / (2 k h)."""
     bt, bz, D = flow.beta_theta, flow.beta_zeta, flow.diffusivity
