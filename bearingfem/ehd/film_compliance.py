@@ -72,7 +72,9 @@ class CirculantCompliance:
             harmonics = self.spectrum.reshape(self.spectrum.shape + (1,) * len(extra)) \
                 * harmonics
         else:
-            harmonics = np.einsum("mlk,mk...->ml...", self.spectrum, harmonics)
+            # batched block products (the matmul's BLAS; einsum loops over the columns)
+            harmonics = np.matmul(self.spectrum, harmonics.reshape(harmonics.shape[:2] + (-1,)))
+            harmonics = harmonics.reshape(harmonics.shape[:2] + extra)
         return irfft(harmonics, n=self.shape[0], axis=0).reshape((-1,) + extra)
 
     @cached_property

@@ -549,21 +549,24 @@ class FullStateEHD(ModalStateEHD):
             w = sp.diags((12.0 * rho * op.qp_weight).ravel())
             dR = dR + op.qp_interp.T @ (w @ (D @ T)) * (coupled.gamma_dot / c)
         dR = dR.toarray()
+        # K = C T^T (grid x nodes): the grid's quasi-static deflection per nodal pressure,
+        # formed once (one FFT of N columns); every dense product below is K's
+        K = frame.comply(T.T.toarray())
         dpa = (sp.csr_matrix(T.shape) if coupled.contact is None else
                sp.diags(self.roughness.pressure_derivative(c * coupled.gap)) @ T)   # [Pa/m]
-        dpa = dpa.toarray()
-        rates_q = (frame.comply(frame.shift.to_grid(dpa)) - np.eye(n)) / self.tau
+        rates_q = np.asarray((dpa.T @ K.T).T)
+        rates_q[np.diag_indices(n)] -= 1.0
+        rates_q /= self.tau
         G = coupled.squeeze_load(ev)
         dR += G @ rates_q
         free = op.mesh.free
         J, U, _ = coupled.jacobian(P, 1.0, ev)
         I = free[~res.active[free]]
-        bush = U.coupling @ _GridCompliance(frame).apply(np.eye(T.shape[0]))
-        M = (J.toarray() + np.asarray(bush))[np.ix_(I, I)]
+        M = J[I][:, I].toarray() + np.asarray(U.coupling[I] @ K[:, I])
         dP = np.zeros_like(dR)
-        dP[I] = la.lu_solve(la.lu_factor(M, check_finite=False), -dR[I],
-                            check_finite=False)
+        dP[I] = la.lu_solve(la.lu_factor(M, overwrite_a=True, check_finite=False), -dR[I],
+                            overwrite_b=True, check_finite=False)
         k = force_factor(self.bearing, False)
-        ic, is_ = op.force_integrals((dP + dpa / film.scale).T)
-        rates = rates_q + (film.scale / self.tau) * frame.comply(frame.shift.to_grid(dP))
+        ic, is_ = op.force_integrals((dP + dpa.toarray() / film.scale).T)
+        rates = rates_q + (film.scale / self.tau) * (K[:, I] @ dP[I])
         return StateTangent(force_local=k * np.vstack([ic, is_]), rates=rates)
