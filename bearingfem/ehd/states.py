@@ -27,6 +27,11 @@ bush. The film's flow through the rough gap is Patir & Cheng's average flow mode
 the roughness has ``flow`` factors (:mod:`bearingfem.contact.flow_factors`: any nominal
 gap, the surfaces pressed through included; tests/test_flow_factors.py); without them the
 smooth film's flow sees the gap floored at FLOW_FLOOR sigma.
+
+:class:`FullStateEHD` (``modes`` 0) integrates the whole deflection on the bush's grid
+instead (q = w, no modes chosen), w + tau dw/dt = C (p + p_a) with C the full compliance
+applied per theta harmonic; its Newton carries the dense squeeze term matrix-free (GMRES)
+and its tangent is dense (docs/ehd-states.md, "The whole deflection integrated").
 """
 from __future__ import annotations
 
