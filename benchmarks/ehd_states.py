@@ -1,7 +1,7 @@
 """The seed pin at 250 rad/s with the bush's modes integrated (fem-ehd coupling 'states').
 
     python -m benchmarks.ehd_states [--turns 0.1] [--mesh 48 4] [--runs base rtol tau ...]
-        [--modes 16 24 ...] [--crown DEPTH_UM [LENGTH_MM]] [--progress] [--save DIR]
+        [--modes 16 24 ... | 0] [--crown DEPTH_UM [LENGTH_MM]] [--progress] [--save DIR]
         [--differences]
 
 A tenth of a turn from top dead centre (benchmarks/ehd_step.py's window), rough surfaces
@@ -109,7 +109,8 @@ def main(argv=None):
     ap.add_argument("--mesh", type=int, nargs=2, default=(48, 4))
     ap.add_argument("--runs", nargs="+", default=list(RUNS), choices=list(RUNS))
     ap.add_argument("--modes", type=int, nargs="+", default=None,
-                    help="run each selected row at each of these numbers of modes")
+                    help="run each selected row at each of these numbers of modes (0: the "
+                         "whole deflection integrated, no modes)")
     ap.add_argument("--progress", action="store_true",
                     help="each run's progress on stderr (five turns take minutes to hours)")
     ap.add_argument("--differences", action="store_true",
@@ -159,7 +160,8 @@ def main(argv=None):
               flush=True)
         share, a_max, power = last_turn_work(r, a.turns, radius)
         print(f"{'':>9} last turn: summits' share {share:.4f}, their peak load {a_max:.1f} N, "
-              f"friction power {power:.2f} W", flush=True)
+              f"friction power {power:.2f} W; integrator Jacobians {r.stats['jacobians']}",
+              flush=True)
 
 
 if __name__ == "__main__":

@@ -94,6 +94,14 @@ class BushJacobian:
 
     coupling: sp.spmatrix
     compliance: CirculantCompliance
+    #: (U_k, V_k) (dofs, k): a low-rank part U_k V_k^T of T_H C that the Newton step's
+    #: preconditioner adds to the sparse part by Woodbury (None: the sparse part alone)
+    low_rank: tuple | None = None
+    #: GMRES's relative residual for the Newton step (None: the newton module's
+    #: KRYLOV_TOL, the direct solve's step to round-off); a looser one makes an inexact
+    #: Newton (Dembo, Eisenstat & Steihaug, SIAM J. Numer. Anal. 19 (1982) 400-408),
+    #: converged by the same residual test
+    tolerance: float | None = None
 
     def apply(self, x: np.ndarray) -> np.ndarray:
         """T_H C x (x on the dofs, or (dofs, k))."""
@@ -110,7 +118,8 @@ class BushJacobian:
 
     def plus(self, coupling) -> "BushJacobian":
         """T_H C + coupling C (another sparse derivative in the deflection)."""
-        return BushJacobian(self.coupling + coupling, self.compliance)
+        return BushJacobian(self.coupling + coupling, self.compliance, self.low_rank,
+                            self.tolerance)
 
 
 @cached(maxsize=8)

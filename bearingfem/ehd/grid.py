@@ -80,6 +80,14 @@ class FrameShift:
         G = np.asarray(G)
         return (1 - self.frac) * G[self._from0] + self.frac * G[self._from1]
 
+    def matrix(self) -> sp.csr_matrix:
+        """:meth:`to_nodes` as a sparse (nodes x grid) matrix (two entries a row)."""
+        n = self._from0.size
+        rows = np.concatenate([np.arange(n), np.arange(n)])
+        vals = np.concatenate([np.full(n, 1 - self.frac), np.full(n, self.frac)])
+        return sp.csr_matrix((vals, (rows, np.concatenate([self._from0, self._from1]))),
+                             shape=(n, n))
+
     def to_grid(self, F: np.ndarray) -> np.ndarray:
         """Film nodal values (nodes, ...) -> grid values (grid, ...): to_nodes' transpose."""
         F = np.asarray(F)

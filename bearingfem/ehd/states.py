@@ -27,12 +27,18 @@ bush. The film's flow through the rough gap is Patir & Cheng's average flow mode
 the roughness has ``flow`` factors (:mod:`bearingfem.contact.flow_factors`: any nominal
 gap, the surfaces pressed through included; tests/test_flow_factors.py); without them the
 smooth film's flow sees the gap floored at FLOW_FLOOR sigma.
+
+:class:`FullStateEHD` (``modes`` 0) integrates the whole deflection on the bush's grid
+instead (q = w, no modes chosen), w + tau dw/dt = C (p + p_a) with C the full compliance
+applied per theta harmonic; its Newton carries the dense squeeze term matrix-free (GMRES)
+and its tangent is dense (docs/ehd-states.md, "The whole deflection integrated").
 """
 from __future__ import annotations
 
 from dataclasses import replace
 
 import numpy as np
+import scipy.linalg as la
 import scipy.sparse as sp
 
 from ..bearing import Bearing, JournalState
@@ -47,11 +53,12 @@ from ..film import film_thickness, local_to_inertial
 from ..scales import force_factor
 from ..solution import FilmSolution
 from .coupling import FilmState, ehd_film, jacobian_tables
+from .film_compliance import BushJacobian, CirculantCompliance
 from .grid import FrameShift, node_grid
 from .newton import EHDResult, _chord, _Factor, _newton, continuation
 from .transient import ehd_compliance
 
-__all__ = ["ModalStateEHD", "StateTangent"]
+__all__ = ["ModalStateEHD", "FullStateEHD", "StateTangent"]
 
 #: Newton's tolerance on the film's residual (as the steady EHD solve's).
 TOL = 1e-10
@@ -82,7 +89,7 @@ class _CoupledFilm:
     def rates(self, P):
         """dq/dt [m/s] at nodal P (dimensionless, p = scale P)."""
         p = self.film.scale * P if self.contact is None else self.film.scale * P + self.contact
-        return (self.modal @ self.frame.shift.to_grid(p) - self.q) / self.tau
+        return (self.frame.comply(self.frame.shift.to_grid(p)) - self.q) / self.tau
 
     def _at(self, P):
         qdot = self.rates(P)
@@ -133,7 +140,8 @@ class _CoupledFilm:
             # sparse nodal product, not the dense (points, n) squeeze
             w = sp.diags((12.0 * rho * self.op.qp_weight).ravel())
             I = self.op.qp_interp
-            self._G = (rho, np.asarray((I.T @ (w @ I)) @ self.frame.left) / self.frame.clearance)
+            G = (I.T @ (w @ I)) @ self.frame.left / self.frame.clearance
+            self._G = (rho, G if sp.issparse(G) else np.asarray(G))
         return self._G[1]
 
     def rate_load(self, ev, M: np.ndarray) -> np.ndarray:
@@ -153,7 +161,7 @@ class _CoupledFilm:
             J, _, _ = film.jacobian(P, s, ev)
             if self.film.lubricant is None:
                 self._J = J
-        return J, self.squeeze_load(ev), self.frame.rates_factor(self.film.scale, self.tau)
+        return (J,) + self.frame.newton_part(self.squeeze_load(ev), self.film.scale, self.tau)
 
 
 class _Frame:
@@ -169,11 +177,25 @@ class _Frame:
         self.left = self.shift.to_nodes(left_grid)
         self._V = None
 
+    def deflection(self, q: np.ndarray) -> np.ndarray:
+        """The nodal deflection w = L q [m] of the states q."""
+        return self.left @ q
+
+    def comply(self, p_grid: np.ndarray) -> np.ndarray:
+        """S R^T p [m] of the grid's pressure ``p_grid`` [Pa]: the states' quasi-static
+        value."""
+        return self.modal @ p_grid
+
     def squeeze(self, qdot: np.ndarray) -> np.ndarray:
         """dH/dt at the points (E*Q,) [1/s] of the modal rates ``qdot`` [m/s]: the nodal
         deflection rate L qdot / c interpolated (nodes first: the dense (points, n) factor
         costs some 20x more to apply)."""
-        return self.op.qp_interp @ (self.left @ qdot) / self.clearance
+        return self.op.qp_interp @ self.deflection(qdot) / self.clearance
+
+    def newton_part(self, G, scale: float, relaxation: float) -> tuple:
+        """(U, V): the Newton matrix's bush part U V^T = G d(dq/dt)/dP, U = G the squeeze
+        load of unit rates, V the rates' factor (a low rank: Woodbury)."""
+        return G, self.rates_factor(scale, relaxation)
 
     def rates_factor(self, scale: float, relaxation: float) -> np.ndarray:
         """V (nodes, n) with d(dq/dt)/dP = V^T: the same at every pressure and q."""
@@ -221,6 +243,9 @@ class ModalStateEHD:
         self._rated = None      # the last rates call's (film, solve): what tangent() takes
 
     # -- the film at (state, q) ---------------------------------------------------------
+    def _new_frame(self, op, gamma: float) -> _Frame:
+        return _Frame(op, gamma, self.left, self.modal, self.bearing.clearance)
+
     def _coupled(self, state: JournalState, q: np.ndarray) -> _CoupledFilm:
         b = self.bearing
         op = fe_operator(b, state, self.n_theta, self.n_z, "P1", None, False)
@@ -228,8 +253,8 @@ class ModalStateEHD:
         c = b.clearance
         frame = self._frame
         if frame is None or frame.op is not op or frame.gamma != state.gamma:
-            frame = self._frame = _Frame(op, state.gamma, self.left, self.modal, c)
-        w = frame.left @ q                                          # nodal deflection [m]
+            frame = self._frame = self._new_frame(op, state.gamma)
+        w = frame.deflection(q)                                     # nodal deflection [m]
         # the rigid gap, negative beyond the clearance circle where the bush opens it
         # (an evaluation whose whole gap closes fails, and the integrator cuts its step)
         th = op.qp_theta
@@ -398,3 +423,155 @@ class ModalStateEHD:
         """Nothing: a step's film needs its states, which a replay is not given; the run
         keeps them (its ``film_z``) and :meth:`solution` solves a step's film from them."""
         return iter(())
+
+
+#: Leading modes of the full compliance in the full-state film's preconditioner (the
+#: sparse film plus their low-rank squeeze, by Woodbury): GMRES then resolves the rest.
+PRECONDITIONER_MODES = 32
+#: GMRES's relative residual for the full-state film's Newton and chord steps: an inexact
+#: Newton, converged by the film's own residual test (TOL); 1e-3 took half the CPU of
+#: 1e-12 on the seed pin's first 2 % of a turn (48 x 4), the results equal to 2e-7
+STEP_TOLERANCE = 1e-3
+
+
+class _GridCompliance:
+    """The film nodes' pressure to the bush grid's quasi-static deflection, C T^T
+    (:meth:`_FullFrame.comply` after the frame shift's transpose), for
+    :class:`~.film_compliance.BushJacobian`."""
+
+    def __init__(self, frame: "_FullFrame"):
+        self.frame = frame
+
+    def apply(self, x: np.ndarray) -> np.ndarray:
+        return self.frame.comply(self.frame.shift.to_grid(x))
+
+    @property
+    def left(self) -> np.ndarray:
+        """The dense (grid, nodes) matrix (checks and the tangent's dense solve)."""
+        return self.apply(np.eye(self.frame.size))
+
+
+class _FullFrame(_Frame):
+    """:class:`_Frame` for the full deflection as the states (q = w on the bush grid, no
+    modes): L is the frame shift to the film nodes (sparse, two entries a row) and S R^T
+    the whole compliance, applied per theta harmonic (FFT, one (n_z + 1)^2 block each)."""
+
+    def __init__(self, op, gamma: float, compliance: CirculantCompliance, low,
+                 clearance: float):
+        self.op, self.gamma, self.clearance = op, gamma, clearance
+        self.compliance, self.modal, self._V = compliance, None, None
+        self.low = low      # the compliance's leading singular triples (the preconditioner's)
+        self.shift = FrameShift(node_grid(op.mesh), gamma)
+        self.left = self.shift.matrix()                          # (nodes, grid), sparse
+        self.size = self.left.shape[1]
+
+    def deflection(self, q: np.ndarray) -> np.ndarray:
+        return self.shift.to_nodes(q)
+
+    def comply(self, p_grid: np.ndarray) -> np.ndarray:
+        return self.compliance.on_grid(p_grid)
+
+    def newton_part(self, G, scale: float, relaxation: float) -> tuple:
+        """The bush part (scale / tau) G C T^T, matrix-free: a
+        :class:`~.film_compliance.BushJacobian`, which the Newton step solves by GMRES
+        preconditioned by the film's sparse LU."""
+        if self._V is None:     # V_k of the low-rank part: the same at every pressure and q
+            self._V = (scale / relaxation) * self.shift.to_nodes(self.low.right
+                                                                 * self.low.singular)
+        low = (np.asarray(G @ self.low.left), self._V)
+        return BushJacobian((scale / relaxation) * G, _GridCompliance(self), low,
+                            STEP_TOLERANCE), None
+
+    def rates_factor(self, scale: float, relaxation: float) -> np.ndarray:
+        raise ValueError("the full-state film has no low-rank rates factor")
+
+
+class FullStateEHD(ModalStateEHD):
+    """The "fem-ehd" film with the bush's whole deflection on its grid as integration
+    states (``modes`` 0: no truncation): q = w, N = n_theta (n_z + 1) states,
+    q + tau dq/dt = C (p + p_a) with C the full compliance applied per theta harmonic
+    (the bush is axisymmetric: FFT in theta, one (n_z + 1)^2 block per harmonic).
+
+    The film's Newton carries the squeeze term G (C p - q) / tau through GMRES
+    preconditioned by the film's sparse LU (:class:`~.newton._KrylovLU`); the tangent
+    (contract rule 17) is dense, N x N, from one dense LU of the Newton matrix. With all
+    n_theta (n_z + 1) modes the modal film is this one in another basis (q_modal = L^T w,
+    L orthogonal; tests/test_ehd_states_full.py).
+
+    Parameters: as :class:`ModalStateEHD` without ``modes``.
+    """
+
+    def __init__(self, bearing: Bearing, lubricant=None, bush=None, n_theta: int = 48,
+                 n_z: int = 8, relaxation: float = 1e-5, roughness=None, profile=None):
+        if bush is None:
+            raise ValueError("bush is required for the full-state EHD film")
+        if not (np.isfinite(relaxation) and relaxation > 0.0):
+            raise ValueError(f"relaxation must be > 0 [s], got {relaxation!r}")
+        self.bearing, self.lubricant, self.roughness = bearing, lubricant, roughness
+        self.profile = None if profile is None else profile.check(bearing)
+        self.n_theta, self.n_z = int(n_theta), int(n_z)
+        comp = ehd_compliance(bush, bearing.radius, bearing.length, self.n_theta, self.n_z, 0)
+        n = comp.shape[0] * comp.shape[1]
+        self.compliance = CirculantCompliance(comp.spectrum, comp.shape, np.arange(n),
+                                              np.arange(n))
+        self.left = self.modal = None
+        # the Newton step's preconditioner: the sparse film plus these leading modes
+        self._low = comp.reduced(min(PRECONDITIONER_MODES, n))
+        self.tau = float(relaxation)
+        self.state_size = n
+        self.steps = 0
+        self._P, self._factor, self._frame, self._rated = None, [], None, None
+
+    def _new_frame(self, op, gamma: float) -> _FullFrame:
+        return _FullFrame(op, gamma, self.compliance, self._low, self.bearing.clearance)
+
+    def tangent(self) -> StateTangent:
+        """As :meth:`ModalStateEHD.tangent`, with L the (sparse) frame shift and the
+        pressure's response dP/dq = -M^-1 dR/dq from a dense LU of the Newton matrix M on
+        the rows not held cavitated (N columns: one dense factorisation, cost N^3 / 3)."""
+        if self._rated is None:
+            raise ValueError("tangent() differentiates the last rates() call: call rates first")
+        coupled, res = self._rated
+        op, frame, film = coupled.op, coupled.frame, coupled.film
+        c, P, n = self.bearing.clearance, res.pressure, self.state_size
+        ev = coupled.evaluate(P)
+        T = frame.left                                              # (nodes, grid) sparse
+        whole = ev if ev.flow is None or film.lubricant is not None else coupled.film_state(P)
+        dR = film.gap_slope(P, 1.0, whole, coupled.moving) @ (T / c)
+        if coupled.gamma_dot:
+            # the whirl's squeeze gamma_dot dw/dalpha / c at the points, as a sparse map
+            t = jacobian_tables(op)
+            dofs = op.mesh.basis.element_dofs                        # (j, e)
+            E, Q = t.dx.shape
+            rows = np.broadcast_to((np.arange(E)[:, None] * Q + np.arange(Q))[None],
+                                   t.dphi[:, 0].shape)
+            cols = np.broadcast_to(dofs[:, :, None], t.dphi[:, 0].shape)
+            D = sp.csr_matrix(((t.dphi[:, 0] / t.dx[None]).ravel(),
+                               (rows.ravel(), cols.ravel())), shape=(E * Q, T.shape[0]))
+            rho = np.broadcast_to(ev.fields.density, op.qp_weight.shape)
+            if ev.flow is not None:
+                rho = rho * ev.flow.gap_slope
+            w = sp.diags((12.0 * rho * op.qp_weight).ravel())
+            dR = dR + op.qp_interp.T @ (w @ (D @ T)) * (coupled.gamma_dot / c)
+        dR = dR.toarray()
+        # K = C T^T (grid x nodes): the grid's quasi-static deflection per nodal pressure,
+        # formed once (one FFT of N columns); every dense product below is K's
+        K = frame.comply(T.T.toarray())
+        dpa = (sp.csr_matrix(T.shape) if coupled.contact is None else
+               sp.diags(self.roughness.pressure_derivative(c * coupled.gap)) @ T)   # [Pa/m]
+        rates_q = np.asarray((dpa.T @ K.T).T)
+        rates_q[np.diag_indices(n)] -= 1.0
+        rates_q /= self.tau
+        G = coupled.squeeze_load(ev)
+        dR += G @ rates_q
+        free = op.mesh.free
+        J, U, _ = coupled.jacobian(P, 1.0, ev)
+        I = free[~res.active[free]]
+        M = J[I][:, I].toarray() + np.asarray(U.coupling[I] @ K[:, I])
+        dP = np.zeros_like(dR)
+        dP[I] = la.lu_solve(la.lu_factor(M, overwrite_a=True, check_finite=False), -dR[I],
+                            overwrite_b=True, check_finite=False)
+        k = force_factor(self.bearing, False)
+        ic, is_ = op.force_integrals((dP + dpa.toarray() / film.scale).T)
+        rates = rates_q + (film.scale / self.tau) * (K[:, I] @ dP[I])
+        return StateTangent(force_local=k * np.vstack([ic, is_]), rates=rates)

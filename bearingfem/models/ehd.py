@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from ..bearing import ELASTIC_EPS_CAP
 from ..ehd.jfo_run import TransientEHDJFO
-from ..ehd.states import ModalStateEHD
+from ..ehd.states import FullStateEHD, ModalStateEHD
 from ..ehd.tangent import TangentEHD
 from ..ehd.transient import TransientEHD, ehd_compliance, ehd_solution
 from ..elastic import ElasticBush
@@ -58,15 +58,18 @@ def ehd_run_film(bearing, lubricant=None, bush=None, roughness=None, n_theta: in
     :class:`~bearingfem.ehd.tangent.TangentEHD`) or "jfo" (:class:`TransientEHDJFO`, oil
     around the film at 1e5 Pa); ``coupling`` "states": the bush's modes integrated with
     the journal (:class:`~bearingfem.ehd.states.ModalStateEHD`, Reynolds' condition, a
-    bush, ``relaxation`` [s] its Kelvin-Voigt time). ``profile``: a bush edge profile
+    bush, ``relaxation`` [s] its Kelvin-Voigt time; ``modes`` 0: the whole deflection on
+    the bush's grid, no truncation, :class:`~bearingfem.ehd.states.FullStateEHD`). ``profile``: a bush edge profile
     (:class:`~bearingfem.fields.EdgeProfile`) in the gap of the Reynolds-condition films;
     the transient EHD-JFO film takes none."""
     if profile is not None:
         profile.check(bearing)
     if coupling == "states":
-        if cavitation != "reynolds" or not modes:
-            raise ValueError("coupling 'states' takes cavitation 'reynolds' and modes >= 1 "
-                             f"(got {cavitation!r}, modes {modes})")
+        if cavitation != "reynolds":
+            raise ValueError(f"coupling 'states' takes cavitation 'reynolds', got {cavitation!r}")
+        if not modes:       # the full compliance: the whole deflection integrated
+            return FullStateEHD(bearing, lubricant, bush, n_theta, n_z, relaxation, roughness,
+                                profile)
         return ModalStateEHD(bearing, lubricant, bush, n_theta, n_z, modes, relaxation,
                              roughness, profile)
     o = dict(lubricant=lubricant, bush=bush, roughness=roughness, n_theta=n_theta, n_z=n_z,
