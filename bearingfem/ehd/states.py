@@ -512,7 +512,7 @@ class FullStateEHD(ModalStateEHD):
         self.n_theta, self.n_z = int(n_theta), int(n_z)
         comp = ehd_compliance(bush, bearing.radius, bearing.length, self.n_theta, self.n_z, 0)
         n = comp.shape[0] * comp.shape[1]
-        self.compliance = CirculantCompliance(comp.spectrum, comp.shape, np.arange(n),
+        self.compliance = CirculantCompliance(comp.blocks, comp.shape, np.arange(n),
                                               np.arange(n))
         self.left = self.modal = None
         # the Newton step's preconditioner: the sparse film plus these leading modes
