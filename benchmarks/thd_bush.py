@@ -24,7 +24,6 @@ import argparse
 import math
 
 import numpy as np
-import scipy.sparse as sp
 from scipy.sparse.linalg import splu
 
 import bearingfem.thermal.energy as energy_module
@@ -39,9 +38,10 @@ from bearingfem.routes.thd import (
 )
 from bearingfem.thermal import Thermal
 from bearingfem.thermal.bush import bush_response, bush_wall
-from bearingfem.thermal.energy import _film_coefficient, energy_system, solve_energy
+from bearingfem.thermal.energy import solve_energy
 from bearingfem.thermal.spec import BushConduction
 from studies.thd_designer import BEARING, GROOVES, OIL, OMEGA, SUPPLY
+from tests.test_bush_heat import one_sparse_system
 
 from .common import best_of
 
@@ -68,44 +68,12 @@ def first_step(mesh):
 
 
 def one_system(it, flow, mixing, lin):
-    """The film rows, the whole bush and the journal's row in one sparse matrix; its
-    sparse LU and solve (the answer is the bush-coupled solve's: tests/test_bush_heat.py
-    checks the same system to 1e-8 K)."""
-    op, wall = it.eop, it.wall
-    hb, ta, hj, _ = BUSH.walls
-    Hf = _film_coefficient(wall, flow)
-    a, T0 = lin
-    A, b, test = energy_system(op, flow, hb + hj + Hf - a, flow.dissipation - a * T0, R)
-    N, held = op.N, op.held
-    free = np.setdiff1d(np.arange(N), held)
-    E, Q = op.dx.shape
-    dofs = op.basis.element_dofs
-    P = sp.csr_matrix((test.ravel(), (np.repeat(dofs, Q, axis=1).ravel(),
-                                      np.tile(np.arange(E * Q), dofs.shape[0]))),
-                      shape=(N, E * Q))
-    Kb = wall.response.matrix
-    Nb, n_inner = Kb.shape[0], wall.transfer.shape[1]
-    I = sp.hstack([wall.transfer, sp.csr_matrix((E * Q, Nb - n_inner))]).tocsr()
-    D = sp.diags((Hf * R ** 2 * op.dx).ravel())
-    C = P @ sp.diags((R * Hf).ravel()) @ I
-    cj = -op.vector(np.sum(test, axis=2) * R * hj)
-    mj = op.vector(np.sum(op.phi * op.dx, axis=2) * R ** 2 * hj)
-    rows, cols, vals, rhs_held = [], [], [], np.zeros(N)
-    for k, (d_in, d_int) in enumerate(zip(op.edges.inflow, op.edges.interior)):
-        d = np.concatenate([d_in, d_int]).astype(int)
-        src = np.asarray(mixing.dofs[k], int)
-        for i in d:
-            rows += [i] * (1 + len(src))
-            cols += [i, *src]
-            vals += [1.0, *(-np.asarray(mixing.weights[k]))]
-        rhs_held[d] = mixing.fresh[k]
-    Hh = sp.csr_matrix((vals, (rows, cols)), shape=(N, N))[held]
-    g_out = Kb @ np.full(Nb, ta)             # the Robin rows' ambient: K 1 = h_o int v
-    M = sp.bmat([[A[free], -C[free], sp.csr_matrix(cj[free][:, None])], [Hh, None, None],
-                 [-(I.T @ D @ op.value), Kb + I.T @ D @ I, None],
-                 [sp.csr_matrix(mj[None, :]), None, sp.csr_matrix([[-float(mj.sum())]])]],
-                format="csc")
-    rhs = np.concatenate([b[free], rhs_held[held], g_out, [0.0]])
+    """The film rows, the whole bush (its assembled matrix, the one the response is built
+    from) and the journal's row in one sparse matrix (tests/test_bush_heat's
+    one_sparse_system, which checks the same system to 1e-8 K); its sparse LU and solve."""
+    Kb = it.wall.response.matrix
+    g_out = Kb @ np.full(Kb.shape[0], BUSH.walls[1])    # the Robin rows' ambient: K 1 = h_o int v
+    M, rhs = one_sparse_system(it, flow, mixing, lin, it.wall, BUSH, Kb, g_out)
     return lambda: splu(M).solve(rhs)
 
 

@@ -32,6 +32,7 @@ from bearingfem.thermal.energy import (
     solve_energy,
 )
 from bearingfem.thermal.spec import BushConduction
+from tests.test_thermal import held_rows
 
 R, RO, K, H, TA, Q = 0.025, 0.05, 50.0, 80.0, 300.0, 2e4
 
@@ -200,10 +201,11 @@ def _unit_load(v, w):
     return v
 
 
-def _monolithic(it, flow, mixing, linearised, wall, thermal):
-    """The film's energy equation, the whole bush and the zero-flux journal as one sparse
-    system (film rows by the operator's tables, the bush by scikit-fem's Laplace and
-    Robin forms on the bush mesh, absolute bush temperatures), solved by a sparse LU."""
+def one_sparse_system(it, flow, mixing, linearised, wall, thermal, Kb, g_out):
+    """The film's energy equation, the whole bush (its matrix ``Kb`` and outer load
+    ``g_out``) and the zero-flux journal as one sparse matrix and right-hand side, the
+    unknowns (film T, bush T, journal T); film rows by the operator's tables, the held
+    rows written out (tests/test_thermal.held_rows)."""
     op, Rb = it.eop, BEARING.radius
     hb, ta, hj, _ = thermal.walls
     Hf = _film_coefficient(wall, flow)
@@ -217,6 +219,26 @@ def _monolithic(it, flow, mixing, linearised, wall, thermal):
     P = sp.csr_matrix((test.ravel(), (np.repeat(dofs, Q, axis=1).ravel(),
                                       np.tile(np.arange(E * Q), dofs.shape[0]))),
                       shape=(N, E * Q))
+    Nb, n_inner = Kb.shape[0], wall.transfer.shape[1]
+    I = sp.hstack([wall.transfer, sp.csr_matrix((E * Q, Nb - n_inner))]).tocsr()
+    D = sp.diags((Hf * Rb ** 2 * op.dx).ravel())
+    C = P @ sp.diags((Rb * Hf).ravel()) @ I                      # film rows <- bush
+    cj = -op.vector(np.sum(test, axis=2) * Rb * hj)
+    mj = op.vector(np.sum(op.phi * op.dx, axis=2) * Rb ** 2 * hj)
+    Hh, rhs_held = held_rows(op.edges, mixing, N)
+    M = sp.bmat([
+        [A[free], -C[free], sp.csr_matrix(cj[free][:, None])],
+        [Hh, None, None],
+        [-(I.T @ D @ op.value), Kb + I.T @ D @ I, None],
+        [sp.csr_matrix(mj[None, :]), None, sp.csr_matrix([[-float(mj.sum())]])]],
+        format="csc")
+    return M, np.concatenate([b[free], rhs_held[held], g_out, [0.0]])
+
+
+def _monolithic(it, flow, mixing, linearised, wall, thermal):
+    """:func:`one_sparse_system` with the bush assembled apart (scikit-fem's Laplace and
+    Robin forms on the bush mesh, absolute bush temperatures), solved by a sparse LU."""
+    ta = thermal.walls[1]
     bm = wall.response.mesh
     elem = ElementHex1() if wall.spec.solid else ElementQuad1()
     basis = Basis(bm.mesh, elem)
@@ -226,29 +248,9 @@ def _monolithic(it, flow, mixing, linearised, wall, thermal):
     scale = 1.0 if wall.spec.solid else BEARING.length
     Kb = scale * (K * laplace.assemble(basis) + H * _robin_form.assemble(outer))
     g_out = scale * H * ta * _unit_load.assemble(outer)
-    Nb, n_inner = Kb.shape[0], wall.transfer.shape[1]
-    I = sp.hstack([wall.transfer, sp.csr_matrix((E * Q, Nb - n_inner))]).tocsr()
-    D = sp.diags((Hf * Rb ** 2 * op.dx).ravel())
-    C = P @ sp.diags((Rb * Hf).ravel()) @ I                      # film rows <- bush
-    cj = -op.vector(np.sum(test, axis=2) * Rb * hj)
-    mj = op.vector(np.sum(op.phi * op.dx, axis=2) * Rb ** 2 * hj)
-    rows, cols, vals, rhs_held = [], [], [], np.zeros(N)
-    for k, (d_in, d_int) in enumerate(zip(op.edges.inflow, op.edges.interior)):
-        d = np.concatenate([d_in, d_int]).astype(int)
-        src = np.asarray(mixing.dofs[k], int)
-        for i in d:
-            rows += [i] * (1 + len(src))
-            cols += [i, *src]
-            vals += [1.0, *(-np.asarray(mixing.weights[k]))]
-        rhs_held[d] = mixing.fresh[k]
-    Hh = sp.csr_matrix((vals, (rows, cols)), shape=(N, N))[held]
-    M = sp.bmat([
-        [A[free], -C[free], sp.csr_matrix(cj[free][:, None])],
-        [Hh, None, None],
-        [-(I.T @ D @ op.value), Kb + I.T @ D @ I, None],
-        [sp.csr_matrix(mj[None, :]), None, sp.csr_matrix([[-float(mj.sum())]])]],
-        format="csc")
-    x = spla.spsolve(M, np.concatenate([b[free], rhs_held[held], g_out, [0.0]]))
+    M, rhs = one_sparse_system(it, flow, mixing, linearised, wall, thermal, Kb, g_out)
+    x = spla.spsolve(M, rhs)
+    N, Nb = it.eop.N, Kb.shape[0]
     return x[:N], x[N:N + Nb], float(x[-1])
 
 

@@ -12,22 +12,14 @@ from scipy.spatial import cKDTree
 from skfem import MeshTri1
 
 import bearingfem.fe.mesh as film_meshes
-from bearingfem import Bearing, Groove, JournalState, Lubricant, clear_caches
+from bearingfem import JournalState, Lubricant, clear_caches
 from bearingfem.film import film_thickness
 from bearingfem.models import FILM_MODELS
 from bearingfem.routes.thd import solve_thd, thermal_operator
 from bearingfem.thermal import Thermal
 from bearingfem.thermal.energy import energy_operator
+from tests.test_thd_model import BEARING, GROOVES, MESH, OMEGA, SUPPLY, THERMAL, VG32
 
-VG32 = Lubricant.iso_vg(32)
-SUPPLY = 313.15
-BEARING = Bearing(radius=0.025, length=0.025, clearance=50e-6,
-                  viscosity=float(VG32.viscosity_at(temperature=SUPPLY)))
-GROOVES = (Groove(angle=0.0, width=math.radians(20.0)),
-           Groove(angle=math.pi, width=math.radians(20.0)))
-OMEGA = 3000.0 * 2.0 * math.pi / 60.0
-MESH = dict(n_theta=48, n_z=8, grooves=GROOVES)
-THERMAL = Thermal(SUPPLY, carry_over=0.8)
 TIGHT = dict(temperature_tol=1e-11, pressure_rtol=1e-13)
 AXIS = 0.5          # the supply line's angle, the mirror's axis [rad]
 

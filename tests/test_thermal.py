@@ -12,12 +12,17 @@ from skfem import BilinearForm, LinearForm
 
 from bearingfem import Bearing, Groove, JournalState, Lubricant, solve_reynolds
 from bearingfem.fe.mesh import film_mesh
-from bearingfem.routes.thd import solve_thd
-from bearingfem.thermal import Thermal
 from bearingfem.fields import FilmFields
-from bearingfem.routes.thd import groove_mixing, thermal_operator
-from bearingfem.thermal.energy import (EnergyFlow, Mixing, energy_operator, energy_system,
-                                       film_flow, solve_energy)
+from bearingfem.routes.thd import groove_mixing, solve_thd, thermal_operator
+from bearingfem.thermal import Thermal
+from bearingfem.thermal.energy import (
+    EnergyFlow,
+    Mixing,
+    energy_operator,
+    energy_system,
+    film_flow,
+    solve_energy,
+)
 from bearingfem.thermal.operator import _supg_tau
 
 BEARING = Bearing(radius=0.025, length=0.025, clearance=50e-6, viscosity=0.02)
@@ -290,6 +295,22 @@ def _value_load(v, w):
     return w["R"] ** 2 * w["f"] * v
 
 
+def held_rows(edges, mixing, N):
+    """The held (inflow and groove) rows as equations: T_i - sum_k w_k T_src,k = fresh for
+    each groove's held dofs (its mixing written out row by row, independently of the
+    operator's Woodbury form). Returns (rows at ``edges.held``, (N,) right-hand side)."""
+    rows, cols, vals, rhs_held = [], [], [], np.zeros(N)
+    for k, (d_in, d_int) in enumerate(zip(edges.inflow, edges.interior)):
+        d = np.concatenate([d_in, d_int]).astype(int)
+        src = np.asarray(mixing.dofs[k], int)
+        for i in d:
+            rows += [i] * (1 + len(src))
+            cols += [i, *src]
+            vals += [1.0, *(-np.asarray(mixing.weights[k]))]
+        rhs_held[d] = mixing.fresh[k]
+    return sp.csr_matrix((vals, (rows, cols)), shape=(N, N))[edges.held], rhs_held
+
+
 def _reference_energy(op, flow, mixing, walls):
     """The energy equation assembled by the forms above and solved by a general sparse LU
     (the held rows and the zero-flux journal as extra rows): nodal T and T_j."""
@@ -301,16 +322,7 @@ def _reference_energy(op, flow, mixing, walls):
     b = _energy_load.assemble(basis, f=flow.dissipation + hb * ta, **common)
     N, held = basis.N, edges.held
     free = np.setdiff1d(np.arange(N), held)
-    rows, cols, vals, rhs_held = [], [], [], np.zeros(N)
-    for k, (d_in, d_int) in enumerate(zip(edges.inflow, edges.interior)):
-        d = np.concatenate([d_in, d_int]).astype(int)
-        src = np.asarray(mixing.dofs[k], int)
-        for i in d:
-            rows += [i] * (1 + len(src))
-            cols += [i, *src]
-            vals += [1.0, *(-np.asarray(mixing.weights[k]))]
-        rhs_held[d] = mixing.fresh[k]
-    H = sp.csr_matrix((vals, (rows, cols)), shape=(N, N))[held]
+    H, rhs_held = held_rows(edges, mixing, N)
     cj = -_energy_load.assemble(basis, f=np.full_like(tau, hj), **common)
     if hj > 0.0 and tj is None:
         mj = _value_load.assemble(basis, f=np.full_like(tau, hj), R=R)
