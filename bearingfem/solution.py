@@ -125,7 +125,8 @@ class FilmSolution:
             f"{np.degrees(self.pressure_max_theta):.1f} deg from the maximum film; "
             f"minimum film {self.film_min * 1e6:.4g} um",
             f"  cavitated area {100 * self.cavitated_fraction:.1f} % of the film; friction "
-            f"{self.friction_force:.6g} N; side leakage {self.side_leakage:.6g} m^3/s",
+            f"{self.friction_force:.6g} N; side leakage {self.side_leakage:.6g} m^3/s "
+            "(net, out of both ends)",
             f"  solver: {self.iterations} iterations, complementarity residual "
             f"{self.residual:.1e}" + ("" if self.converged else " (NOT converged)")]
             + ([] if self.fraction is None else [
