@@ -15,7 +15,11 @@ solve_energy` with ``storage``), on the film of the committed state; between fil
 film is solved on the kept viscosity field, and the change of force a film step makes is
 faded in over the next (:func:`~bearingfem.transient.faded_force`), as the JFO film's.
 Each film step's energy balance (dissipation = convected + conducted + grooves + stored)
-is kept with its film (``FilmStep.solution.thermal``). The journal may turn either way:
+is kept with its film (``FilmStep.solution.thermal``). A conducting bush
+(``Thermal(bush=BushConduction(...))``) enters each film step as a quasi-steady conductor:
+its steady inner response (:mod:`bearingfem.thermal.bush`, no heat capacity) solved
+together with the film's backward-Euler step, i.e. the bush follows the film at once
+(its thermal time constant, seconds, taken as short against the film steps; docs/thd.md). The journal may turn either way:
 with omega < 0 the oil enters each arc at the grooves' leading edges (the energy
 equation's inlet and outlet edges swap, :func:`~bearingfem.thermal.energy.energy_operator`
 with ``reverse``), so a pin whose rotation reverses, as the slider-crank's piston pin,
@@ -35,6 +39,7 @@ from ..film import film_thickness
 from ..lubricant import Lubricant
 from ..routes.thd import (ReynoldsFieldFilm, check_thermal, groove_mixing, solve_thd,
                           thermal_operator)
+from ..thermal.bush import bush_wall
 from ..thermal.energy import energy_operator, solve_energy
 from ..thermal.spec import Thermal, ThermalRecord
 from ..transient import faded_force, since_film_step
@@ -59,9 +64,6 @@ def _check(lubricant, thermal, grooves):
         raise ValueError("film model 'fem-thd' takes flooded grooves (fraction 1): its "
                          "film has Reynolds' condition")
     check_thermal(lubricant, thermal, JournalState(0.5, omega=1.0), "reynolds", "P1")
-    if thermal.bush is not None:
-        raise ValueError("film model 'fem-thd' takes the bush as bush_coefficient: the "
-                         "conducting bush (thermal.bush) has no heat capacity along a run")
 
 
 @dataclass(frozen=True)
@@ -78,6 +80,7 @@ class ThermalSnapshot:
     fade: float
     steps: int
     warm: object = None     # the last film's solve, which starts the next (its cost only)
+    bush_inner: object = None   # the conducting bush's inner temperatures [K] (GMRES start)
 
 
 class ThermalRun(StatelessRun):
@@ -100,7 +103,7 @@ class ThermalRun(StatelessRun):
         self.bearing, self.n_theta, self.n_z = bearing, n_theta, n_z
         self.grooves, self.lubricant, self.thermal = tuple(grooves), lubricant, thermal
         self.film_step, self.initial = float(film_step), initial
-        self.T = self.mu = None
+        self.T = self.mu = self._bush = None
         self.t, self.steps, self._jump, self._fade, self._warm = 0.0, 0, (0.0, 0.0), 1.0, None
 
     def _operator(self, state):
@@ -128,6 +131,7 @@ class ThermalRun(StatelessRun):
                 0.0, temperature=op.at_quadrature(self.T))
         self.t, self.steps, self._jump, self._fade, self._warm = float(t), 0, (0.0, 0.0), \
             1.0, None
+        self._bush = None
 
     def _film(self, state, viscosity) -> ReynoldsFieldFilm:
         f = ReynoldsFieldFilm(self.bearing, state, self._operator(state), "P1", self.grooves,
@@ -171,7 +175,7 @@ class ThermalRun(StatelessRun):
                                    temperature=T),
                                viscosity_quadrature=mu, iterations=1,
                                temperature_change=float(np.max(np.abs(T - old))),
-                               pressure_change=0.0)
+                               pressure_change=0.0, bush=energy.bush)
         sol = replace(film.solution(), temperature=T, temperature_max=float(np.max(T)),
                       thermal=record)
         return FilmStep(t, state, after, sol)
@@ -193,8 +197,14 @@ class ThermalRun(StatelessRun):
         capacity = oil.mass_density * oil.specific_heat * h / dt
         # the dissipation implicit to first order, as the steady film's steps take it
         slope = flow.dissipation * oil.viscosity_temperature_derivative(T_arc, p_arc) / mu_arc
+        # the conducting bush as a quasi-steady conductor: its steady inner response
+        # (no heat capacity) joined to the film's backward-Euler step (module docstring)
+        wall = None if self.thermal.bush is None else \
+            bush_wall(self.thermal.bush, b.radius, b.length, op.mesh, eop)
         energy = solve_energy(b, eop, flow, mixing, self.thermal.walls,
-                              linearised=(slope, T_arc), storage=(capacity, T_arc))
+                              linearised=(slope, T_arc), storage=(capacity, T_arc),
+                              bush=wall, bush_start=self._bush)
+        self._bush = energy.bush_inner
         T = energy.temperature
         mu = oil.viscosity_at(op.at_quadrature(pressure), temperature=op.at_quadrature(T))
         return T, mu, energy
@@ -202,12 +212,12 @@ class ThermalRun(StatelessRun):
     def snapshot(self) -> ThermalSnapshot:
         return ThermalSnapshot(self.t, self.T, self.mu, self._jump, self._fade, self.steps,
                                self._warm.last if isinstance(self._warm, ReynoldsFieldFilm)
-                               else self._warm)
+                               else self._warm, self._bush)
 
     def restore(self, snapshot: ThermalSnapshot) -> None:
         self.t, self.T, self.mu = snapshot.t, snapshot.temperature, snapshot.viscosity
         self._jump, self._fade, self.steps = snapshot.jump, snapshot.fade, snapshot.steps
-        self._warm = snapshot.warm
+        self._warm, self._bush = snapshot.warm, snapshot.bush_inner
 
     def replay(self, start: tuple, steps):
         """The film steps of a run taken again from ``start`` = (t, JournalState) and the
