@@ -12,7 +12,9 @@ Each cell is one fresh Python process (its peak RSS, ``resource.getrusage``, ove
 of imports): ``bush_compliance(bush, R, L, n_theta, n_z + 1)`` (the film grid of
 ``solve_reynolds(..., n_theta, n_z)``), timed, then for the harmonic solid the seed pin's
 heavy state solved on it (``solve_reynolds(..., bush=compliance)``: the film operator and
-the Newton solve from the rigid film, the compliance given). "q1" is the harmonic solid
+the Newton solve, the compliance given; from 240 x 40 up its Newton starts from the film
+of the mesh half as fine, whose solve and compliance build are in "solve", and "iters" are
+the Newton steps on the film's own mesh). "q1" is the harmonic solid
 with the alias sum to |q| <= 1 (three times the harmonics). Case: R 10 mm, L 4 mm, c 20
 um, 250 rad/s, eps 0.995, gamma 0.2, bronze bush (E 110 GPa, nu 0.34, outer radius 16 mm,
 free ends), Reynolds' condition. Times are one run on a shared machine: compare the

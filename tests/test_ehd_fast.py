@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 import bearingfem.ehd.coupling as coupling
+import bearingfem.ehd.film as film
 import bearingfem.ehd.newton as newton
 from bearingfem import ElasticBush, JournalState, solve_reynolds
 from bearingfem.bearing import seed_bearing
@@ -118,3 +119,67 @@ def test_a_solve_reports_its_progress(caplog):
     assert steps and steps[-1].startswith("EHD Newton (load continuation): coupling s = 1 "
                                           "converged")
     assert len(newton_its) >= sol.iterations
+
+
+@pytest.mark.parametrize("model, kw", [
+    ("ring", {}), ("solid", dict(lubricant=OIL)),
+    ("solid", dict(cavitation="jfo", ambient_pressure=1e5,
+                   lubricant=Lubricant(viscosity=SEED.viscosity, barus=2e-8)))])
+def test_film_ordering_keeps_the_solve(model, kw, monkeypatch):
+    """The Newton block's SuperLU ordering (newton.ORDERING, minimum degree on B^T + B)
+    against SuperLU's default (COLAMD), seed pin, eps 0.995 (Reynolds) / 0.8 (JFO, soft
+    bush): the same Newton steps, load to 1e-8 (measured 1e-15 .. 1e-16: the same LU up to
+    round-off), and GMRES takes as many products within one per solve (the same
+    preconditioner). Fails with the block factorised untransposed (a wrong
+    preconditioner: GMRES still converges, in more products)."""
+    counts = {}
+
+    def counted(solve):
+        def wrapper(self, rhs):
+            before = self.products
+            out = solve(self, rhs)
+            counts.setdefault(newton.ORDERING, []).append(self.products - before)
+            return out
+        return wrapper
+    monkeypatch.setattr(newton._KrylovLU, "solve", counted(newton._KrylovLU.solve))
+    soft = model == "solid" and "cavitation" in kw
+    bush = ElasticBush(model=model, **(SOFT if soft else BRONZE))
+    state = JournalState(eps=0.8, gamma=0.4, omega=250.0) if soft else HEAVY
+    new = solve_reynolds(SEED, state, 48, 8, bush=bush, **kw)
+    monkeypatch.setattr(newton, "ORDERING", "COLAMD")
+    old = solve_reynolds(SEED, state, 48, 8, bush=bush, **kw)
+    assert new.iterations == old.iterations
+    force_new, force_old = np.asarray(new.force), np.asarray(old.force)
+    assert np.linalg.norm(force_new - force_old) <= 1e-8 * np.linalg.norm(force_old)
+    a, b = np.array(counts["MMD_AT_PLUS_A"]), np.array(counts["COLAMD"])
+    assert a.size == b.size and np.max(np.abs(a - b)) <= 1
+
+
+@pytest.mark.parametrize("model, oil", [("ring", None), ("solid", OIL), ("liner", OIL)])
+def test_nested_start_keeps_the_solve(model, oil, monkeypatch):
+    """A cold solve on a mesh of more than film.NESTED_NODES nodes starts Newton from the
+    film of the mesh half as fine (nested iteration). Seed pin, eps 0.995 (liner: soft,
+    eps 0.9), 48 x 8 nested from 24 x 4 against the cold load continuation: the load to
+    1e-8 (measured 2e-16 .. 7e-11: both converge to the solver's tolerance), in fewer
+    Newton steps on the fine mesh. Fails with the coarse pressure interpolated at the
+    wrong angles (a start that stalls: the cold route after MAX_NEWTON wasted steps)."""
+    bush = ElasticBush(model=model, **(SOFT if model == "liner" else BRONZE))
+    state = JournalState(eps=0.9, gamma=0.3, omega=250.0) if model == "liner" else HEAVY
+    prebuilt = bush_compliance(bush, SEED.radius, SEED.length, 48, 9)
+    monkeypatch.setattr(film, "NESTED_NODES", 200)
+    nested = solve_reynolds(SEED, state, 48, 8, bush=prebuilt, lubricant=oil)
+    monkeypatch.setattr(film, "NESTED_NODES", 10**9)
+    cold = solve_reynolds(SEED, state, 48, 8, bush=prebuilt, lubricant=oil)
+    force_nested, force_cold = np.asarray(nested.force), np.asarray(cold.force)
+    assert np.linalg.norm(force_nested - force_cold) <= 1e-8 * np.linalg.norm(force_cold)
+    assert nested.iterations < cold.iterations
+
+
+def test_nested_solve_still_raises(monkeypatch):
+    """A Krylov solve held to one product fails on every level: the nested start gives
+    up and the cold route raises ConvergenceError (no film is returned)."""
+    monkeypatch.setattr(film, "NESTED_NODES", 200)
+    monkeypatch.setattr(newton, "KRYLOV_RESTART", 1)
+    monkeypatch.setattr(newton, "KRYLOV_MAXITER", 1)
+    with pytest.raises(ConvergenceError):
+        solve_reynolds(SEED, HEAVY, 48, 8, bush=ElasticBush(model="ring", **BRONZE))
