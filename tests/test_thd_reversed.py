@@ -1,8 +1,9 @@
 """The thermal film of a journal turning the other way (omega < 0): the oil enters each arc
 at the grooves' leading edges. Checked by symmetry (the mirror image of a bearing at
 -omega is the bearing's film mirrored), by the isothermal limit along an orbit whose
-rotation reverses (the "fem" model's run), and by the energy balance of film steps
-through a reversal and a state at rest (omega = 0: the temperatures held)."""
+rotation reverses (the "fem" model's run), by the energy balance of film steps
+through a reversal and a state at rest (omega = 0: the temperatures held), and the
+thermal equilibrium with its K and C mirrored in the load line."""
 import math
 from dataclasses import replace
 
@@ -212,3 +213,38 @@ def test_film_steps_through_a_reversal_keep_the_balance_and_hold_at_rest():
     steady = solve_thd(BEARING, replace(state, omega=-OMEGA), MESH["n_theta"], MESH["n_z"],
                        lubricant=VG32, thermal=THERMAL, grooves=GROOVES)
     assert np.max(np.abs(T - steady.temperature)) < 1e-6
+
+
+def test_reversed_thermal_equilibrium_is_the_mirror_image():
+    """Grooves at 0 and pi (mirror images about the vertical), a load straight down: the
+    thermal equilibrium and its frozen-viscosity K and C at -omega are those at +omega
+    mirrored in the load line (eps and T_max equal, the attitude and gamma's cosine
+    opposite, K and C conjugated by diag(-1, 1)). The toolkit's mesh is not mirrored in
+    that line (its diagonals lean one way, the seam at the first groove's leading edge),
+    so the two are two discretisations: without carry-over they differ at 24x4, 48x8,
+    96x16 by eps 9.0e-3, 2.7e-3, 6.0e-4; attitude 2.4e-2, 3.7e-3, 1.1e-3 rad; T_max 1.11,
+    0.35, 0.074 K; K 1.9e-2, 3.9e-3, 3.4e-3 and C 8.3e-2, 1.8e-2, 2.5e-3 of their largest
+    entries: the tolerances are twice the 48x8 differences. omega = 0 is refused by
+    name. Fails with the forward energy operator at omega < 0 (the heat carried against
+    the oil's way: the film leaves the oil's range), with the attitude's sign not flipped,
+    or with K and C perturbed at +|omega|."""
+    from bearingfem.design import coefficients, equilibrium
+    opts = dict(n_theta=48, n_z=8, grooves=GROOVES, cavitation="reynolds", lubricant=VG32,
+                thermal=Thermal(SUPPLY, carry_over=0.0))
+    load, flip = (0.0, -2000.0), np.diag([-1.0, 1.0])
+    a = equilibrium(BEARING, load, OMEGA, "fem", **opts)
+    b = equilibrium(BEARING, load, -OMEGA, "fem", **opts)
+    for eq in (a, b):
+        assert math.hypot(*np.add(eq.film_force, load)) < 1e-9 * 2000.0
+    assert a.attitude > 0.0 > b.attitude
+    assert b.eps == pytest.approx(a.eps, abs=6e-3)
+    assert -b.attitude == pytest.approx(a.attitude, abs=8e-3)
+    assert math.remainder(b.state.gamma - (math.pi - a.state.gamma), 2.0 * math.pi) == \
+        pytest.approx(0.0, abs=8e-3)
+    assert b.solution.temperature_max == pytest.approx(a.solution.temperature_max, abs=0.7)
+    ka = coefficients(BEARING, a.state, "fem", solution=a.solution, **opts)
+    kb = coefficients(BEARING, b.state, "fem", solution=b.solution, **opts)
+    for x, y, tol in ((ka.K, kb.K, 8e-3), (ka.C, kb.C, 4e-2)):
+        assert np.max(np.abs(x - flip @ y @ flip)) < tol * np.max(np.abs(x))
+    with pytest.raises(ValueError, match="omega"):
+        equilibrium(BEARING, load, 0.0, "fem", **opts)

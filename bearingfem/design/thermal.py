@@ -10,6 +10,9 @@ node by node. Its first Jacobian is the isothermal film's with the viscosity fie
 equilibrium at the effective viscosity: the one that carries, at the isothermal
 equilibrium of the supply temperature, the thermal film's force there.
 ``Equilibrium.iterations`` counts the film solves.
+Either way round: at omega < 0 the thermal film's oil enters at the grooves' leading
+edges (:mod:`bearingfem.routes.thd`) and the attitude is negative, as the isothermal
+equilibrium's; omega = 0 is refused (no Couette flow, no thermal film).
 
 Coefficients: K and C of the film with its converged viscosity field frozen (central
 differences in x, y and their rates on the film with that field), the usual THD
@@ -134,8 +137,11 @@ def thd_equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
     final_tol = options.get("temperature_tol", 1e-6)
     wx, wy = load_vector(load, direction)
     W = math.hypot(wx, wy)
-    if not omega > 0.0:
-        raise ValueError(f"omega must be > 0 for a thermal film, got {omega!r}")
+    if omega == 0.0:
+        # its sign says at which groove edges the oil enters (either way round)
+        raise ValueError("omega must be nonzero for a thermal film (a journal at rest "
+                         "carries no oil through: no Couette flow, no thermal film), got "
+                         f"{omega!r}")
     check_thermal(lubricant, thermal, JournalState(0.5, omega=omega), mesh["cavitation"],
                   mesh["element"])
     # the isothermal equilibrium at the supply temperature starts the search
