@@ -32,8 +32,6 @@ from bearingfem.caches import clear_caches
 from bearingfem.elastic import ElasticBush
 from bearingfem.routes.thd import (
     ThermalIteration,
-    _dissipation_slope,
-    groove_mixing,
     solve_thd,
 )
 from bearingfem.thermal import Thermal
@@ -58,13 +56,7 @@ def first_step(mesh):
     it = ThermalIteration(BEARING, STATE, *mesh, lubricant=OIL, thermal=BUSH,
                           grooves=GROOVES)
     it.film(STATE)
-    eop, P = it.eop, it.p / BEARING.pressure_scale
-    p_arc, T_arc = eop.at_points(it.p), eop.at_points(it.T)
-    mu = OIL.viscosity_at(p_arc, temperature=T_arc)
-    flow = eop.flow(BEARING, STATE, P, it.fraction, mu, OIL)
-    mixing = groove_mixing(BEARING, STATE, it.op.mesh, eop.edges, P, it.fraction,
-                           OIL.viscosity_at(it.p, temperature=it.T), BUSH)
-    return it, flow, mixing, (_dissipation_slope(OIL, flow, mu, p_arc, T_arc), T_arc)
+    return (it, *it.energy_step(STATE))
 
 
 def one_system(it, flow, mixing, lin):

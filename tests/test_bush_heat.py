@@ -16,8 +16,6 @@ from bearingfem import Bearing, Groove, JournalState, Lubricant
 from bearingfem.elastic import ElasticBush
 from bearingfem.routes.thd import (
     ThermalIteration,
-    _dissipation_slope,
-    groove_mixing,
     solve_thd,
     thermal_operator,
 )
@@ -182,13 +180,7 @@ def _frozen_film(thermal, n):
     it = ThermalIteration(BEARING, STATE, *n, lubricant=VG32, thermal=thermal,
                           grooves=GROOVES)
     it.film(STATE)
-    eop, P = it.eop, it.p / BEARING.pressure_scale
-    p_arc, T_arc = eop.at_points(it.p), eop.at_points(it.T)
-    mu = VG32.viscosity_at(p_arc, temperature=T_arc)
-    flow = eop.flow(BEARING, STATE, P, it.fraction, mu, VG32)
-    mixing = groove_mixing(BEARING, STATE, it.op.mesh, eop.edges, P, it.fraction,
-                           VG32.viscosity_at(it.p, temperature=it.T), thermal)
-    return it, flow, mixing, (_dissipation_slope(VG32, flow, mu, p_arc, T_arc), T_arc)
+    return (it, *it.energy_step(STATE))
 
 
 @BilinearForm

@@ -30,6 +30,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import replace
+from typing import NamedTuple
 
 import numpy as np
 from scipy.sparse.linalg import splu
@@ -46,7 +47,7 @@ from ..lubricant import Lubricant
 from ..solution import FilmSolution
 from ..solvers.cavitation import LCPResult
 from ..thermal.bush import bush_wall
-from ..thermal.energy import Mixing, energy_operator, solve_energy
+from ..thermal.energy import EnergyFlow, Mixing, energy_operator, solve_energy
 from ..thermal.spec import Thermal, ThermalRecord
 from .base import Route
 from .thd_film import ReynoldsFieldFilm
@@ -178,6 +179,15 @@ class _JFOFilm:
         return np.array(self.last.force, float)
 
 
+class EnergyStep(NamedTuple):
+    """One thermal step's energy-equation inputs: the film's flow, the grooves' mixing and
+    the dissipation linearised about the step's temperatures, (slope [W/(m^2 K)], T [K])
+    at the quadrature points."""
+    flow: EnergyFlow
+    mixing: Mixing
+    linearised: tuple
+
+
 def _dissipation_slope(lubricant, flow, mu, p, T):
     """d Phi / d T [W/(m^2 K)] of a film whose viscosity changes uniformly (module
     docstring): Phi (d mu/d T) / mu at the energy equation's points."""
@@ -301,9 +311,10 @@ class ThermalIteration:
         self.iterations += 1
         return f
 
-    def energy(self, state, relaxation=1.0):
-        """The energy equation on the last film (its state ``state``), the dissipation
-        implicit to first order: T moves by ``relaxation`` of the change it asks."""
+    def energy_step(self, state) -> EnergyStep:
+        """What the energy equation takes on the last film (its state ``state``): the
+        film's flow, the grooves' mixing and the dissipation linearised about the current
+        temperatures."""
         b, oil, T = self.bearing, self.lubricant, self.T
         self.eop = eop = energy_operator(self.op.mesh, state.omega < 0.0)
         P = self.p / b.pressure_scale
@@ -313,8 +324,14 @@ class ThermalIteration:
         mixing = groove_mixing(b, state, self.op.mesh, eop.edges, P, self.fraction,
                                oil.viscosity_at(self.p, temperature=T), self.thermal)
         slope = _dissipation_slope(oil, flow, mu_arc, p_arc, T_arc)
-        energy = solve_energy(b, eop, flow, mixing, self.thermal.walls,
-                              linearised=(slope, T_arc), bush=self.wall,
+        return EnergyStep(flow, mixing, (slope, T_arc))
+
+    def energy(self, state, relaxation=1.0):
+        """The energy equation on the last film (its state ``state``), the dissipation
+        implicit to first order: T moves by ``relaxation`` of the change it asks."""
+        step, T = self.energy_step(state), self.T
+        energy = solve_energy(self.bearing, self.eop, step.flow, step.mixing,
+                              self.thermal.walls, linearised=step.linearised, bush=self.wall,
                               bush_start=getattr(self.energy_solution, "bush_inner", None))
         self.change = float(np.max(np.abs(energy.temperature - T)))
         self.T = T + relaxation * (energy.temperature - T)
