@@ -8,21 +8,16 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from bearingfem import Bearing, Groove, JournalState, Lubricant
+from bearingfem import JournalState, Lubricant
+from bearingfem.elastic import ElasticBush
 from bearingfem.film import film_thickness
 from bearingfem.models import FILM_MODELS
 from bearingfem.routes.thd import solve_thd, thermal_operator
-from bearingfem.elastic import ElasticBush
 from bearingfem.thermal import BushConduction, Thermal
 from bearingfem.thermal.energy import energy_operator
+from studies.thd_designer import BEARING, GROOVES, OMEGA, SUPPLY
+from studies.thd_designer import OIL as VG32
 
-VG32 = Lubricant.iso_vg(32)
-SUPPLY = 313.15
-BEARING = Bearing(radius=0.025, length=0.025, clearance=50e-6,
-                  viscosity=float(VG32.viscosity_at(temperature=SUPPLY)))
-GROOVES = (Groove(angle=0.0, width=math.radians(20.0)),
-           Groove(angle=math.pi, width=math.radians(20.0)))
-OMEGA = 3000.0 * 2.0 * math.pi / 60.0
 MESH = dict(n_theta=48, n_z=8, grooves=GROOVES)
 THERMAL = Thermal(SUPPLY, carry_over=0.8)
 BUSH = Thermal(SUPPLY, model="conducting", carry_over=0.8, ambient_temperature=300.0,
