@@ -27,6 +27,7 @@ from bearingfem.fields import FilmFields
 from bearingfem.routes import film_problem, route_for
 from bearingfem.ehd.states import ModalStateEHD
 from bearingfem.lubricant import Lubricant
+from tests.test_ehd_states import differenced_jacobian
 from studies.flow_factors import (cell_factors, cell_flow_factor,
                                   longitudinal_exact, measured_factors,
                                   transverse_exact, transverse_shear_exact)
@@ -310,12 +311,7 @@ def test_steady_ehd_jacobian_with_flow_factors(with_bush):
     J, U, V = film.jacobian(P)
     full = J.toarray() if U is None else (
         J.toarray() + (U if V is None else U @ V.T))
-    h = 1e-6 * np.max(np.abs(P))
-    fd = np.empty_like(full)
-    for j in range(P.size):
-        d = np.zeros_like(P)
-        d[j] = h
-        fd[:, j] = (film.evaluate(P + d).residual - film.evaluate(P - d).residual) / (2 * h)
+    fd = differenced_jacobian(lambda x: film.evaluate(x).residual, P)
     assert np.max(np.abs(full - fd)) < 1e-6 * np.max(np.abs(fd))
 
 
