@@ -32,12 +32,13 @@ is not built on fields).
 from __future__ import annotations
 
 import math
+from collections import OrderedDict
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from ..bearing import Bearing, JournalState
-from ..caches import cached
+from ..caches import cached, kept
 from ..errors import ConvergenceError
 from ..film import cubed_thickness_coefficients, film_thickness, source_coefficients
 from ..scales import force_factor
@@ -204,6 +205,43 @@ def _grooved_coarse_level(gop: GroovedOperator):
 FIRST_COLD_START_DOFS = 500
 
 
+def _first_set(op, P0, values, load, G) -> np.ndarray:
+    """The cavitated set of the semismooth Newton step from the start pressure ``P0`` (on
+    ``op``'s free dofs): where the active-set method takes a start pressure."""
+    free = op.mesh.free
+    K = op.free_stiffness(0.0, values)
+    b = (load - op.matrix(values) @ G)[free]
+    active = np.zeros(op.mesh.ndofs, bool)
+    active[free] = P0 < (K @ P0 - b) / K.diagonal()
+    return active
+
+
+#: The last grooved films solved, by film key and mesh family (L/D, grooves' arcs): a
+#: mesh search solves one state on several meshes (a pair, its split, a shifted partner),
+#: and each new mesh then starts from the film already solved on another one, interpolated
+#: (:func:`_other_mesh_active`), instead of building and solving its coarse levels
+_FILMS: "OrderedDict[tuple, tuple]" = kept(OrderedDict())
+_FILMS_SIZE = 8
+
+
+def _family(gop) -> tuple:
+    m = gop.op.mesh
+    return (round(m.length_ratio, 12), m.arcs)
+
+
+def _other_mesh_active(gop, key, values, load, G):
+    """The first cavitated set from this very film solved on another mesh of the family
+    (its pressure interpolated to this mesh's free dofs), or None when there is none."""
+    kept_film = _FILMS.get((key, _family(gop)))
+    if kept_film is None or kept_film[0] is gop.op.mesh:
+        return None
+    mesh, pressure = kept_film
+    m = gop.op.mesh
+    free = m.free
+    P0 = np.maximum(prolongation(mesh, m.theta[free], m.zeta[free]) @ pressure, 0.0)
+    return _first_set(gop.op, P0, values, load, G)
+
+
 def _coarse_active(gop, bearing, state, grooves, tol, values, load, G):
     """The first cavitated set from the film solved on the coarser levels (the
     multilevel start of :mod:`bearingfem.fe.multilevel`, here with the grooved film). The
@@ -218,15 +256,7 @@ def _coarse_active(gop, bearing, state, grooves, tol, values, load, G):
         return None
     coarse, prolong = level
     res = grooved_pressure(coarse, bearing, state, grooves, "reynolds", tol=tol)
-    op = gop.op
-    free = op.mesh.free
-    P0 = np.maximum(prolong @ res.pressure, 0.0)
-    K = op.free_stiffness(0.0, values)
-    b = (load - op.matrix(values) @ G)[free]
-    active = np.zeros(op.mesh.ndofs, bool)
-    # the semismooth Newton step from P0, as the active set takes a start pressure
-    active[free] = P0 < (K @ P0 - b) / K.diagonal()
-    return active
+    return _first_set(gop.op, np.maximum(prolong @ res.pressure, 0.0), values, load, G)
 
 
 def _film_key(bearing, state, grooves, cavitation, method="active-set", tol=1e-10):
@@ -264,11 +294,24 @@ def grooved_pressure(gop: GroovedOperator, bearing: Bearing, state: JournalState
         except ConvergenceError:     # a set from too far away: start from the coarse levels
             res = None
     if res is None:
+        other = _other_mesh_active(gop, key, values, load, G)
+        if other is not None:
+            try:
+                res = fe_pressure(gop.op, state, cavitation, method, tol, active0=other,
+                                  dirichlet=G, system=(values, load))
+            except ConvergenceError:     # too far: start from the coarse levels
+                res = None
+    if res is None:
         res = fe_pressure(gop.op, state, cavitation, method, tol,
                           active0=_coarse_active(gop, bearing, state, grooves, tol, values,
                                                  load, G),
                           dirichlet=G, system=(values, load))
     gop.last.update(key=key, result=res)
+    if cavitation == "reynolds" and method == "active-set":
+        _FILMS[(key, _family(gop))] = (gop.op.mesh, res.pressure)
+        _FILMS.move_to_end((key, _family(gop)))
+        while len(_FILMS) > _FILMS_SIZE:
+            _FILMS.popitem(last=False)
     return res
 
 
