@@ -224,19 +224,34 @@ _FILMS: "OrderedDict[tuple, tuple]" = kept(OrderedDict())
 _FILMS_SIZE = 8
 
 
+@dataclass(frozen=True)
+class _Nodes:
+    """What interpolating from a mesh needs (:func:`~bearingfem.fe.multilevel.prolongation`),
+    without the mesh's basis (kept films would otherwise hold large meshes alive)."""
+
+    theta: np.ndarray
+    zeta: np.ndarray
+    periodic: bool
+    shape: tuple
+
+
 def _family(gop) -> tuple:
     m = gop.op.mesh
     return (round(m.length_ratio, 12), m.arcs)
+
+
+def _shape(m) -> tuple:
+    return (m.n_theta, m.n_z, m.ndofs, m.grading)
 
 
 def _other_mesh_active(gop, key, values, load, G):
     """The first cavitated set from this very film solved on another mesh of the family
     (its pressure interpolated to this mesh's free dofs), or None when there is none."""
     kept_film = _FILMS.get((key, _family(gop)))
-    if kept_film is None or kept_film[0] is gop.op.mesh:
+    m = gop.op.mesh
+    if kept_film is None or kept_film[0].shape == _shape(m):
         return None
     mesh, pressure = kept_film
-    m = gop.op.mesh
     free = m.free
     P0 = np.maximum(prolongation(mesh, m.theta[free], m.zeta[free]) @ pressure, 0.0)
     return _first_set(gop.op, P0, values, load, G)
@@ -275,7 +290,9 @@ def grooved_pressure(gop: GroovedOperator, bearing: Bearing, state: JournalState
     on their dofs). The Reynolds active set starts from ``start`` (a cavitated set over
     the dofs, e.g. a nearby state's ``LCPResult.active``) or, without one (or when it
     does not settle), from the coarser levels: the answer is the same to the solver's
-    tolerance. With ``reuse`` the last solve on this operator is returned when it was of
+    tolerance; a mesh new to the state starts from the state's film on another mesh when
+    one was solved (:data:`_FILMS`). With ``reuse`` the last solve on this operator is
+    returned when it was of
     this very film (K/C after the film's solve). Every solve is kept as
     ``gop.last``."""
     key = _film_key(bearing, state, grooves, cavitation, method, tol)
@@ -308,7 +325,9 @@ def grooved_pressure(gop: GroovedOperator, bearing: Bearing, state: JournalState
                           dirichlet=G, system=(values, load))
     gop.last.update(key=key, result=res)
     if cavitation == "reynolds" and method == "active-set":
-        _FILMS[(key, _family(gop))] = (gop.op.mesh, res.pressure)
+        m = gop.op.mesh
+        _FILMS[(key, _family(gop))] = (_Nodes(m.theta, m.zeta, m.periodic, _shape(m)),
+                                       res.pressure)
         _FILMS.move_to_end((key, _family(gop)))
         while len(_FILMS) > _FILMS_SIZE:
             _FILMS.popitem(last=False)
@@ -396,7 +415,8 @@ def grooved_solution(bearing: Bearing, state: JournalState, gop: GroovedOperator
                      element: str) -> FilmSolution:
     """The whole grooved film (:func:`~bearingfem.solve_reynolds`'s outputs),
     nodes reported at their film angles theta = phi - gamma; a cold solve (the active set
-    from the coarser levels, never from an earlier call's set), except that the film of the
+    from the coarser levels, or from this very film solved on another mesh; never from
+    another state's set), except that the film of the
     designer's last partials (:func:`grooved_derivatives`) is taken when it was this very
     film (an equilibrium's answer: the same film to the solver's tolerance)."""
     op = gop.op
