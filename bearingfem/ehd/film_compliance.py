@@ -162,13 +162,15 @@ def dof_compliance(bush, bearing, op) -> CirculantCompliance | DofCompliance:
     if grid_nodes.size != shape[0] * shape[1]:
         raise ValueError("the bush needs the whole-length P1 film mesh")
     if isinstance(bush, BushCompliance):
-        own = np.einsum("ll->l", bush.columns[0])
-        if not np.any(bush.columns[1:]) and np.array_equal(bush.columns[0], np.diag(own)):
-            return CirculantCompliance(own, shape, node, rep)       # local: the liner
-        spectrum = bush.spectrum
-        diagonal = np.einsum("mll->ml", spectrum)
-        if np.array_equal(spectrum, diagonal[:, :, None] * np.eye(shape[1])):
-            return CirculantCompliance(diagonal, shape, node, rep)  # slices uncoupled: ring
+        # the columns' diagonals (j, l, l); nothing off them: slices uncoupled, and nothing
+        # at j > 0 either: local. Read from the real columns: no complex spectrum of the
+        # whole (n_theta, nz, nz) is made for a ring or a liner
+        diagonal = np.einsum("jll->jl", bush.columns)
+        if np.count_nonzero(bush.columns) == np.count_nonzero(diagonal):
+            if not np.any(diagonal[1:]):
+                return CirculantCompliance(diagonal[0].copy(), shape, node, rep)  # liner
+            return CirculantCompliance(np.fft.rfft(diagonal, axis=0), shape, node,
+                                       rep)                                        # ring
         return CirculantCompliance(bush.blocks, shape, node, rep)
     right = np.zeros((mesh.ndofs, bush.n_vectors))
     right[rep] = bush.right[grid_nodes]
