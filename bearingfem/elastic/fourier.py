@@ -332,6 +332,7 @@ def fourier_columns(bush, radius: float, film: FilmGrid, refine_z: int, n_radial
                     grading: float, aliases: int | None) -> np.ndarray:
     """Compliance columns (n_theta, n_z, n_z) [m/Pa] of the solid bush (see
     :mod:`.compliance`): the inverse real FFT of :func:`fourier_spectrum`."""
-    system = section_system(bush, radius, film, refine_z, n_radial, grading)
+    system = section_system(bush, radius, film, refine_z, n_radial, grading,
+                            octave=OCTAVES)
     spectrum = fourier_spectrum(system, film.n_theta, aliases)
     return np.fft.irfft(spectrum, n=film.n_theta, axis=0)
