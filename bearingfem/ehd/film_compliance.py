@@ -162,11 +162,11 @@ def dof_compliance(bush, bearing, op) -> CirculantCompliance | DofCompliance:
     if grid_nodes.size != shape[0] * shape[1]:
         raise ValueError("the bush needs the whole-length P1 film mesh")
     if isinstance(bush, BushCompliance):
-        # the columns' diagonals (j, l, l); nothing off them: slices uncoupled, and nothing
-        # at j > 0 either: local. Read from the real columns: no complex spectrum of the
-        # whole (n_theta, nz, nz) is made for a ring or a liner
-        diagonal = np.einsum("jll->jl", bush.columns)
-        if np.count_nonzero(bush.columns) == np.count_nonzero(diagonal):
+        # slices uncoupled (the columns' diagonals alone stored), and nothing at j > 0
+        # either: local. No complex spectrum of the whole (n_theta, nz, nz) is made for a
+        # ring or a liner
+        if bush.uncoupled:
+            diagonal = bush.stored
             if not np.any(diagonal[1:]):
                 return CirculantCompliance(diagonal[0].copy(), shape, node, rep)  # liner
             return CirculantCompliance(np.fft.rfft(diagonal, axis=0), shape, node,
