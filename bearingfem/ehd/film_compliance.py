@@ -116,6 +116,17 @@ class BushJacobian:
     def __array__(self, dtype=None, copy=None):
         return self.toarray() if dtype is None else self.toarray().astype(dtype)
 
+    def local(self) -> np.ndarray | None:
+        """Each dof's own compliance [m/Pa] where C is local and takes every dof's own
+        pressure (the liner without a supply line's seam): T_H C is then the sparse T_H
+        with its columns scaled by it. None otherwise."""
+        c = self.compliance
+        if not (isinstance(c.spectrum, np.ndarray) and c.spectrum.ndim == 1):
+            return None
+        if not np.array_equal(c.source[c.node], np.arange(c.node.size)):
+            return None
+        return c.spectrum[c.node % c.shape[1]]
+
     def plus(self, coupling) -> "BushJacobian":
         """T_H C + coupling C (another sparse derivative in the deflection)."""
         return BushJacobian(self.coupling + coupling, self.compliance, self.low_rank,
