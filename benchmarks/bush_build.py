@@ -22,7 +22,7 @@ with the alias sum to |q| <= 1 (three times the harmonics). Case: R 10 mm, L 4 m
 um, 250 rad/s, eps 0.995, gamma 0.2, bronze bush (E 110 GPa, nu 0.34, outer radius 16 mm,
 free ends), Reynolds' condition. Times are one run on a shared machine: compare the
 ratios within one run ("cpu": the process's CPU time, less moved by the other jobs on a
-shared machine than the wall time). ``--before DIR``: the harmonic solid of another checkout (its
+shared machine than the wall time). ``--before DIR``: the same bush (``--model``) from another checkout (its
 build, solve and memory; "same": its load over this tree's, minus one) in the same run.
 """
 from __future__ import annotations
@@ -93,7 +93,7 @@ def main(argv=None):
     parser.add_argument("--quick", action="store_true", help="48 x 8 and 96 x 16 only")
     parser.add_argument("--finest", action="store_true", help="also 960 x 160")
     parser.add_argument("--before", type=Path, default=None,
-                        help="a checkout whose harmonic solid runs beside this one's")
+                        help="a checkout whose bush (--model) runs beside this one's")
     parser.add_argument("--model", choices=SOLVED, default="solid",
                         help="the bush built and solved on in the new and before columns")
     parser.add_argument("--from-theta", type=int, default=0,
