@@ -21,7 +21,10 @@ Each harmonic is one banded Cholesky factorisation (band ~ 3 (n_radial + 1)) and
 triangular band solve for the surface block of K_m^-1: the block G_m (n_z x n_z) of
 radial deflection at the film nodes under a unit pressure hat at each film node's z,
 times cos m theta. Harmonic m's field decays into the wall within a few R / m, so it is
-solved on the radial lines above the depth :data:`DECAY` R / m only.
+solved on the radial lines above the depth :data:`DECAY` R / m only. From m = 16 on, the
+blocks are interpolated per octave of harmonics from a few solved at Chebyshev points
+(:data:`OCTAVES`; m G_m is analytic in a real m): the band solves are ~16 + 13 log2(n_theta
+/ 32), not n_theta / 2 + 1.
 """
 from __future__ import annotations
 
@@ -34,6 +37,7 @@ from scipy.linalg.lapack import dpbtrf, dtbtrs
 from skfem import (Basis, BilinearForm, ElementQuad1, ElementVector, FacetBasis,
                    MeshQuad1, asm)
 
+from ..validation import check_int
 from .mesh import radial_lines
 from .surface import FilmGrid
 
@@ -149,7 +153,10 @@ class SectionSystem:
     """The (r, z) section of the bush: K_0, K_1, K_2 (sparse, all dofs), the film's load
     (dofs, n_z), the dofs held (``held``; at m = 0 ``torsion``, V held as well), the inner
     surface's U dofs (increasing z) and the film nodes among them (``read``), each dof's
-    band rank and radial line, and the radial lines' depth below the film [m]."""
+    band rank and radial line, and the radial lines' depth below the film [m];
+    ``decay`` the depth rule (:data:`DECAY`) and ``octave`` the Chebyshev points per octave
+    of interpolated harmonics (:data:`OCTAVES`; None for both: every harmonic solved on
+    the whole wall)."""
 
     stiffness: tuple
     load: np.ndarray
@@ -218,8 +225,8 @@ class SectionSystem:
         for every real m >= 0), solved at ``octave`` Chebyshev points of [low, top] (top
         the largest harmonic asked for) on the depth of ``low`` (the deepest of the
         octave) and evaluated by the barycentric formula. Measured on the seed pin's bush
-        (docs/elastic-bush.md): 11 points keep every octave's blocks within 1e-10 of the
-        operator's 2-norm, 15 within 3e-13; spectral convergence in the points."""
+        (docs/elastic-bush.md), per octave, of the operator's 2-norm: 11 points 1e-16 ..
+        3.1e-9, 15 points 4e-17 .. 3.4e-12 (spectral convergence in the points)."""
         top = int(harmonics.max())
         k = self.octave - 1
         points = 0.5 * (low + top) + 0.5 * (top - low) * np.cos(np.pi * np.arange(k + 1) / k)
@@ -253,7 +260,9 @@ def section_system(bush, radius: float, film: FilmGrid, refine_z: int, n_radial:
                    octave: int | None = OCTAVES) -> SectionSystem:
     """Assemble the section of ``bush`` under the film grid: bilinear quadrilaterals,
     ``n_radial`` cells across the wall (graded as the 3-D solid's), ``refine_z`` cells
-    per film cell along z."""
+    per film cell along z; ``decay`` and ``octave`` as :class:`SectionSystem`'s."""
+    if octave is not None:
+        octave = check_int("octave", octave, 2)
     radii = radial_lines(radius, bush.outer_radius, n_radial, grading)
     heights = np.linspace(-0.5 * film.length, 0.5 * film.length,
                           (film.n_z - 1) * refine_z + 1)
