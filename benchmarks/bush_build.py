@@ -7,6 +7,8 @@ grid, and the steady EHD film on the latter.
     python -m benchmarks.bush_build --old-max 96 --quick
     python -m benchmarks.bush_build --old-max 0 --q1-max 0 --finest --before DIR
                           # to 960 x 160, the harmonic solid also from the checkout DIR
+    python -m benchmarks.bush_build --old-max 0 --q1-max 0 --finest --from-theta 240 \
+        --model ring --before DIR        # the same with the ring bush (or liner)
 
 Each cell is one fresh Python process (its peak RSS, ``resource.getrusage``, over ~100 MB
 of imports): ``bush_compliance(bush, R, L, n_theta, n_z + 1)`` (the film grid of
@@ -14,12 +16,13 @@ of imports): ``bush_compliance(bush, R, L, n_theta, n_z + 1)`` (the film grid of
 heavy state solved on it (``solve_reynolds(..., bush=compliance)``: the film operator and
 the Newton solve, the compliance given; from 240 x 40 up its Newton starts from the film
 of the mesh half as fine, whose solve and compliance build are in "solve", and "iters" are
-the Newton steps on the film's own mesh). "q1" is the harmonic solid
+the Newton steps on the film's own mesh; ``--model ring`` or ``liner``: that bush instead
+of the harmonic solid in the new and before columns). "q1" is the harmonic solid
 with the alias sum to |q| <= 1 (three times the harmonics). Case: R 10 mm, L 4 mm, c 20
 um, 250 rad/s, eps 0.995, gamma 0.2, bronze bush (E 110 GPa, nu 0.34, outer radius 16 mm,
 free ends), Reynolds' condition. Times are one run on a shared machine: compare the
 ratios within one run ("cpu": the process's CPU time, less moved by the other jobs on a
-shared machine than the wall time). ``--before DIR``: the harmonic solid of another checkout (its
+shared machine than the wall time). ``--before DIR``: the same bush (``--model``) from another checkout (its
 build, solve and memory; "same": its load over this tree's, minus one) in the same run.
 """
 from __future__ import annotations
@@ -34,6 +37,8 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 MESHES = [(48, 8), (96, 16), (120, 20), (240, 40), (480, 80)]
 FINEST = (960, 160)
+#: Bush models whose compliance is also solved on (``--model``).
+SOLVED = ("solid", "ring", "liner")
 
 
 def child(model: str, n_theta: int, n_z: int):
@@ -51,12 +56,12 @@ def child(model: str, n_theta: int, n_z: int):
     if model == "q1":
         compliance.ALIASES = 1
     bush = ElasticBush(outer_radius=0.016, modulus=110e9, poisson=0.34,
-                       model="solid-3d" if model == "solid-3d" else "solid")
+                       model=model if model in ("solid-3d", "ring", "liner") else "solid")
     t, cpu = time.perf_counter(), time.process_time()
     c = compliance.bush_compliance(bush, seed.radius, seed.length, n_theta, n_z + 1)
     out = dict(build=time.perf_counter() - t, build_cpu=time.process_time() - cpu, base=base,
                build_rss=resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024)
-    if model == "solid":
+    if model in SOLVED:
         t, cpu = time.perf_counter(), time.process_time()
         sol = solve_reynolds(seed, JournalState(eps=0.995, gamma=0.2, omega=250.0),
                              n_theta, n_z, bush=c)
@@ -88,13 +93,18 @@ def main(argv=None):
     parser.add_argument("--quick", action="store_true", help="48 x 8 and 96 x 16 only")
     parser.add_argument("--finest", action="store_true", help="also 960 x 160")
     parser.add_argument("--before", type=Path, default=None,
-                        help="a checkout whose harmonic solid runs beside this one's")
+                        help="a checkout whose bush (--model) runs beside this one's")
+    parser.add_argument("--model", choices=SOLVED, default="solid",
+                        help="the bush built and solved on in the new and before columns")
+    parser.add_argument("--from-theta", type=int, default=0,
+                        help="skip the meshes of fewer n_theta")
     parser.add_argument("--child", nargs=3, default=None)
     args = parser.parse_args(argv)
     if args.child:
         model, n_theta, n_z = args.child
         return child(model, int(n_theta), int(n_z))
     meshes = MESHES[:2] if args.quick else MESHES + [FINEST] * args.finest
+    meshes = [m for m in meshes if m[0] >= args.from_theta]
     print(f"{'mesh':>7} {'3d[s]':>7} {'3d[MB]':>7} {'new[s]':>7} {'new[MB]':>7} "
           f"{'q1[s]':>7} {'solve[s]':>8} {'MB':>6} {'iters':>5} {'|F|[N]':>8} "
           f"{'p_max[MPa]':>10} {'h_min[um]':>9}"
@@ -105,8 +115,8 @@ def main(argv=None):
     for mesh in meshes:
         old = run("solid-3d", mesh) if mesh[0] <= args.old_max else None
         q1 = run("q1", mesh) if mesh[0] <= args.q1_max else None
-        new = run("solid", mesh)
-        before = run("solid", mesh, args.before) if args.before else None
+        new = run(args.model, mesh)
+        before = run(args.model, mesh, args.before) if args.before else None
         rows.append(dict(mesh=mesh, old=old, new=new, q1=q1, before=before))
 
         def cell(r, key, fmt):

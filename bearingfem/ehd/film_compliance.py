@@ -116,6 +116,17 @@ class BushJacobian:
     def __array__(self, dtype=None, copy=None):
         return self.toarray() if dtype is None else self.toarray().astype(dtype)
 
+    def local(self) -> np.ndarray | None:
+        """Each dof's own compliance [m/Pa] where C is local and takes every dof's own
+        pressure (the liner without a supply line's seam): T_H C is then the sparse T_H
+        with its columns scaled by it. None otherwise."""
+        c = self.compliance
+        if not (isinstance(c.spectrum, np.ndarray) and c.spectrum.ndim == 1):
+            return None
+        if not np.array_equal(c.source[c.node], np.arange(c.node.size)):
+            return None
+        return c.spectrum[c.node % c.shape[1]]
+
     def plus(self, coupling) -> "BushJacobian":
         """T_H C + coupling C (another sparse derivative in the deflection)."""
         return BushJacobian(self.coupling + coupling, self.compliance, self.low_rank,
@@ -162,13 +173,15 @@ def dof_compliance(bush, bearing, op) -> CirculantCompliance | DofCompliance:
     if grid_nodes.size != shape[0] * shape[1]:
         raise ValueError("the bush needs the whole-length P1 film mesh")
     if isinstance(bush, BushCompliance):
-        own = np.einsum("ll->l", bush.columns[0])
-        if not np.any(bush.columns[1:]) and np.array_equal(bush.columns[0], np.diag(own)):
-            return CirculantCompliance(own, shape, node, rep)       # local: the liner
-        spectrum = bush.spectrum
-        diagonal = np.einsum("mll->ml", spectrum)
-        if np.array_equal(spectrum, diagonal[:, :, None] * np.eye(shape[1])):
-            return CirculantCompliance(diagonal, shape, node, rep)  # slices uncoupled: ring
+        # slices uncoupled (the columns' diagonals alone stored), and nothing at j > 0
+        # either: local. No complex spectrum of the whole (n_theta, nz, nz) is made for a
+        # ring or a liner
+        if bush.uncoupled:
+            diagonal = bush.stored
+            if not np.any(diagonal[1:]):
+                return CirculantCompliance(diagonal[0].copy(), shape, node, rep)  # liner
+            return CirculantCompliance(np.fft.rfft(diagonal, axis=0), shape, node,
+                                       rep)                                        # ring
         return CirculantCompliance(bush.blocks, shape, node, rep)
     right = np.zeros((mesh.ndofs, bush.n_vectors))
     right[rep] = bush.right[grid_nodes]

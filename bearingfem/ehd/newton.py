@@ -111,9 +111,18 @@ class _Factor:
 
     @classmethod
     def at(cls, film, P, s, free, held, ev):
-        """The factorised system of ``film`` at P (``ev`` its evaluation)."""
+        """The factorised system of ``film`` at P (``ev`` its evaluation). A local
+        compliance's T_H C (the liner's) is sparse on the film's own pattern: it is added
+        to J, and the Newton matrix factorised whole (no GMRES)."""
         J, U, V = film.jacobian(P, s, ev)
-        return cls(J, U, V, jacobian_tables(film.op), free, held)
+        tables = jacobian_tables(film.op)
+        own = U.local() if isinstance(U, BushJacobian) else None
+        if own is not None:
+            T = U.coupling
+            if (sp.isspmatrix_csr(T) and np.array_equal(T.indptr, J.indptr)
+                    and np.array_equal(T.indices, J.indices)):
+                J, U = tables.pattern.matrix(J.data + T.data * own[T.indices]), None
+        return cls(J, U, V, tables, free, held)
 
     def with_held(self, held):
         """The same Jacobian with other held rows (no Jacobian built)."""

@@ -50,25 +50,42 @@ class BushCompliance:
 
     Attributes
     ----------
-    columns : (n_theta, n_z, n_z) [m/Pa], see the module docstring
+    stored : (n_theta, n_z, n_z) [m/Pa], the columns (see the module docstring); or
+        (n_theta, n_z), their diagonals, where the axial slices do not couple (the ring,
+        the liner): memory n_theta n_z, not n_theta n_z^2
     bush, radius, length : what it was built for ([m])
     """
 
-    columns: np.ndarray
+    stored: np.ndarray
     bush: ElasticBush
     radius: float
     length: float
 
     @property
+    def uncoupled(self) -> bool:
+        """Whether the axial slices do not couple (only the columns' diagonals stored)."""
+        return self.stored.ndim == 2
+
+    @property
+    def columns(self) -> np.ndarray:
+        """(n_theta, n_z, n_z) [m/Pa], see the module docstring (made on each call where
+        only the diagonals are stored)."""
+        if self.uncoupled:
+            return self.stored[:, :, None] * np.eye(self.stored.shape[1])
+        return self.stored
+
+    @property
     def shape(self) -> tuple[int, int]:
         """The film grid (n_theta, n_z) the operator acts on."""
-        return self.columns.shape[:2]
+        return self.stored.shape[:2]
 
     @property
     def spectrum(self) -> np.ndarray:
         """Block-diagonal form: ``spectrum[m]`` (n_z x n_z) acts on the m-th theta harmonic
         of the pressure (m = 0 .. n_theta // 2, numpy's rfft convention)."""
-        return np.fft.rfft(self.columns, axis=0)
+        if self.uncoupled:
+            return np.fft.rfft(self.stored, axis=0)[:, :, None] * np.eye(self.shape[1])
+        return np.fft.rfft(self.stored, axis=0)
 
     @cached_property
     def blocks(self) -> HarmonicBlocks:
@@ -80,7 +97,10 @@ class BushCompliance:
     def deflection(self, pressure) -> np.ndarray:
         """Nodal radial deflection [m] (n_theta, n_z) under nodal pressure [Pa]."""
         p = check_pressure(pressure, self.shape)
-        harmonics = np.einsum("mlk,mk->ml", self.spectrum, np.fft.rfft(p, axis=0))
+        if self.uncoupled:
+            harmonics = np.fft.rfft(self.stored, axis=0) * np.fft.rfft(p, axis=0)
+        else:
+            harmonics = np.einsum("mlk,mk->ml", self.spectrum, np.fft.rfft(p, axis=0))
         return np.fft.irfft(harmonics, n=self.shape[0], axis=0)
 
     def matrix(self) -> np.ndarray:

@@ -25,9 +25,9 @@ def liner_stiffness(modulus: float, poisson: float) -> float:
 
 
 def liner_columns(bush, radius: float, film: FilmGrid) -> np.ndarray:
-    """Compliance columns (n_theta, n_z, n_z) [m/Pa] of the liner of thickness
-    outer_radius - radius: t / M at the loaded node itself, zero elsewhere (local)."""
-    columns = np.zeros((film.n_theta, film.n_z, film.n_z))
-    columns[0] = np.eye(film.n_z) * (bush.outer_radius - radius) / liner_stiffness(
-        bush.modulus, bush.poisson)
-    return columns
+    """The compliance columns' diagonals (n_theta, n_z) [m/Pa] of the liner of thickness
+    outer_radius - radius: t / M at the loaded node itself (j = 0), zero elsewhere
+    (local: the columns are zero off their diagonals, and are not stored)."""
+    diagonals = np.zeros((film.n_theta, film.n_z))
+    diagonals[0] = (bush.outer_radius - radius) / liner_stiffness(bush.modulus, bush.poisson)
+    return diagonals
