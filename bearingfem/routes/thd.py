@@ -59,6 +59,13 @@ __all__ = ["ThermalFilm", "solve_thd", "ThermalRecord", "groove_mixing", "therma
 
 CAVITATION = ("reynolds", "jfo")
 
+#: The largest relative change of the film's coefficient h^3/mu at any quadrature point
+#: for which the last film's factors precondition CG on the next film instead of a new
+#: factorisation: its preconditioned spectrum then lies in [1 - d, 1 + d] (each element's
+#: stiffness scales by its points' ratios), so CG gains a factor of about d/2 a step
+#: (about 9 steps to its 1e-12 at d = 0.05, against a factorisation's 25-35 solves).
+FACTOR_REUSE = 0.05
+
 
 def check_thermal(lubricant, thermal, state, cavitation, element):
     """What a thermal film needs before any work (ValueError naming the parameter)."""
@@ -288,22 +295,28 @@ class ThermalIteration:
         self.p = np.zeros(n) if fresh else np.array(start.pressure, float)
         self.change = self.pressure_change = np.inf
         self.iterations, self.energy_solution = 0, None
+        self._factored = None      # the film coefficient h^3/mu the kept factors belong to
 
     def film(self, state):
         """Solve the film at ``state`` on mu(p, T) of the kept pressure and temperatures;
         keeps its pressure and the change from the last one (relative to its peak)."""
         b, oil, op = self.bearing, self.lubricant, self.op
         self.mu = oil.viscosity_at(op.at_quadrature(self.p), temperature=op.at_quadrature(self.T))
+        ratio = self.mu / b.viscosity
         if self._jfo is not None:
             f = _JFOFilm(replace(self._jfo, state=state))
         else:
-            # the last film's cavitated set starts this one, not its factors: between
-            # thermal steps the viscosity moves too much for them to precondition CG
-            # (measured: CG ran out of its 20 steps at every step)
-            warm = self.last.last if isinstance(self.last, ReynoldsFieldFilm) else self.last
-            warm = None if warm is None else replace(warm, factor=None)
-            f = ReynoldsFieldFilm(b, state, op, self.element, self.grooves, self.tol, warm)
-        pressure, self.fraction = f.solve(self.mu / b.viscosity)
+            # the last film's cavitated set starts this one; its factors too while the
+            # film's coefficient h^3/mu is within FACTOR_REUSE of theirs (module docstring)
+            f = ReynoldsFieldFilm(b, state, op, self.element, self.grooves, self.tol,
+                                  self.last)
+            coefficient = f.cubed / ratio
+            if self._factored is None or float(np.max(np.abs(
+                    coefficient / self._factored - 1.0))) > FACTOR_REUSE:
+                f.forget_factors()
+        pressure, self.fraction = f.solve(ratio)
+        if self._jfo is None and f.last.factorisations:
+            self._factored = coefficient
         self.last, self.state = f, state
         peak = max(float(np.max(np.abs(pressure))), 1e-300)
         self.pressure_change = float(np.max(np.abs(pressure - self.p))) / peak
