@@ -183,8 +183,9 @@ def thd_equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
     # position), a nearer start than the supply temperature's (measured on the ROSS
     # fixture at 48x8: eps 0.6119 against the answer's 0.6139, from 0.5473)
     ratio = float(np.hypot(*film.force())) / W
+    # Newton's isothermal search starts from the supply temperature's equilibrium
     start = isothermal(replace(cold, viscosity=cold.viscosity * ratio), (wx, wy), omega,
-                       iso_model, eps_max=eps_max, **iso_opts)
+                       iso_model, eps_max=eps_max, start=start, **iso_opts)
     q = np.array([start.eps * math.cos(start.state.gamma),
                   start.eps * math.sin(start.state.gamma)])
     film = balance(q, 1e-2, 1e-4)
