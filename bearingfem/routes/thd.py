@@ -195,10 +195,10 @@ class EnergyStep(NamedTuple):
     linearised: tuple
 
 
-def _dissipation_slope(lubricant, flow, mu, p, T):
+def _dissipation_slope(flow, mu, dmu_dT):
     """d Phi / d T [W/(m^2 K)] of a film whose viscosity changes uniformly (module
     docstring): Phi (d mu/d T) / mu at the energy equation's points."""
-    return flow.dissipation * lubricant.viscosity_temperature_derivative(T, p) / mu
+    return flow.dissipation * dmu_dT / mu
 
 
 def solve_thd(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z: int = 20, *,
@@ -332,12 +332,12 @@ class ThermalIteration:
         self.eop = eop = energy_operator(self.op.mesh, state.omega < 0.0)
         P = self.p / b.pressure_scale
         p_arc, T_arc = eop.at_points(self.p), eop.at_points(T)
-        mu_arc = oil.viscosity_at(p_arc, temperature=T_arc)
+        # the viscosity and its temperature slope from one evaluation of the law
+        mu_arc, _, dmu_dT = oil.viscosity_and_slopes(p_arc, T_arc)
         flow = eop.flow(b, state, P, self.fraction, mu_arc, oil)
         mixing = groove_mixing(b, state, self.op.mesh, eop.edges, P, self.fraction,
                                oil.viscosity_at(self.p, temperature=T), self.thermal)
-        slope = _dissipation_slope(oil, flow, mu_arc, p_arc, T_arc)
-        return EnergyStep(flow, mixing, (slope, T_arc))
+        return EnergyStep(flow, mixing, (_dissipation_slope(flow, mu_arc, dmu_dT), T_arc))
 
     def energy(self, state, relaxation=1.0):
         """The energy equation on the last film (its state ``state``), the dissipation

@@ -11,6 +11,7 @@ import numpy as np
 from ..fe.general import film_moment, general_assembly
 from ..fe.kernel import fe_pressure, film_outputs, groove_pressures
 from ..fe.multilevel import COARSE_SOLVES, coarse_level
+from ..solvers.blocksolve import inactive_solve
 from ..solvers.cavitation import active_set, active_set_iterations
 from ..fields import FilmFields
 from ..film import film_thickness, local_to_inertial, source_coefficients
@@ -119,6 +120,42 @@ class ReynoldsFieldFilm:
     def force(self) -> np.ndarray:
         """The last solve's force on the journal [N], inertial (x, y)."""
         return np.array(local_to_inertial(*self.force_local(), self.state.gamma), float)
+
+    def force_partials(self) -> tuple:
+        """(dF/dq, dF/dv) [N] of the last solve's film with its viscosity field held: the
+        inertial force's derivatives in the journal position q = e/c and its rate
+        v = (de/dt)/c [1/s], (2, 2) each (column j: the j-th component), exact at the
+        solve's cavitated set. On the bearing-fixed mesh the gap is
+        H = 1 + q_x cos(phi) + q_y sin(phi) and the source's load
+        (6 omega q_x - 12 v_y) b_sin - (6 omega q_y + 12 v_x) b_cos (the turned wedge and
+        squeeze of :func:`_turned_load`, linear in q and v); the inertial force is
+        k (P . b_cos, P . b_sin) whatever gamma. So dP solves the film's inactive block
+        with the load's partial less dK/dq P, dK/dq the stiffness of 3 H^2 dH/dq / m:
+        four right-hand sides on one factorisation, where central differences take
+        eight films."""
+        op, res, omega = self.op, self.last, self.state.omega
+        if self.state.eps_dot != 0.0 or self.state.gamma_dot != 0.0:
+            raise ValueError("force_partials: the film must be steady (eps_dot = "
+                             "gamma_dot = 0)")
+        P, free = res.pressure, op.mesh.free
+        assembly = general_assembly(op)
+        slope = 3.0 * self.fields.gap ** 2 / self.ratio
+        rhs = np.column_stack([
+            6.0 * omega * op.b_sin - op.matrix(assembly.stiffness_values(
+                slope * np.cos(op.qp_theta))) @ P,
+            -6.0 * omega * op.b_cos - op.matrix(assembly.stiffness_values(
+                slope * np.sin(op.qp_theta))) @ P,
+            -12.0 * op.b_cos, -12.0 * op.b_sin])
+        inactive = ~res.active[free]
+        K = op.free_stiffness(self.state.eps, self.values)
+        # the solve's factors when it made them (CG preconditioned by another film's
+        # factors leaves those, not this K's: then a factorisation here)
+        dP = np.zeros((op.mesh.ndofs, 4))
+        dP[free] = inactive_solve(K, res.factor if res.factorisations else None, inactive,
+                                  rhs[free])
+        k = force_factor(self.bearing, False)
+        J = k * np.stack([dP.T @ op.b_cos, dP.T @ op.b_sin])        # (2, 4)
+        return J[:, :2], J[:, 2:]
 
     def solution(self) -> FilmSolution:
         """The last solve's :class:`FilmSolution` (the general film's outputs), nodes
