@@ -5,10 +5,13 @@ each evaluation the thermal iteration (:class:`bearingfem.routes.thd.ThermalIter
 continued from the last position's temperatures and cavitated set to a temperature
 tolerance that follows the force residual (inexact steps): the thermal film's mesh is
 fixed in the bearing, so one operator serves every position and the fields carry over
-node by node. Its first Jacobian is the thermal film's with the viscosity field frozen
-(its exact derivatives at the film just solved, cheap and smooth), from the isothermal
-equilibrium at the effective viscosity: the one that carries, at the isothermal
-equilibrium of the supply temperature, the thermal film's force there.
+node by node. It starts at the isothermal equilibrium of the supply temperature, its
+first Jacobian the thermal film's there with the viscosity field frozen (its exact
+derivatives at the film just solved, cheap and smooth): the first step is the
+frozen-viscosity Newton step, which takes in the oil's heating (a second isothermal
+equilibrium at the viscosity that carries the thermal film's force there started
+nearer, measured on the ROSS fixture at 48x8, but cost more than the two Broyden steps
+it saved).
 ``Equilibrium.iterations`` counts the film solves.
 Either way round: at omega < 0 the thermal film's oil enters at the grooves' leading
 edges (:mod:`bearingfem.routes.thd`) and the attitude is negative, as the isothermal
@@ -207,17 +210,6 @@ def thd_equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
         raise ConvergenceError("thermal film (temperature fixed point)", max_iterations,
                                it.change, f"eps = {state.eps:.6g}")
 
-    film = balance(q, 1e-2, 1e-4)
-    # the isothermal film whose viscosity carries, at q, the thermal film's force there:
-    # its equilibrium is the thermal one's to first order (a film's force ~ mu at a fixed
-    # position), a nearer start than the supply temperature's (measured on the ROSS
-    # fixture at 48x8: eps 0.6119 against the answer's 0.6139, from 0.5473)
-    ratio = float(np.hypot(*film.force())) / W
-    # Newton's isothermal search starts from the supply temperature's equilibrium
-    start = isothermal(replace(cold, viscosity=cold.viscosity * ratio), (wx, wy), omega,
-                       iso_model, eps_max=eps_max, start=start, **iso_opts)
-    q = np.array([start.eps * math.cos(start.state.gamma),
-                  start.eps * math.sin(start.state.gamma)])
     film = balance(q, 1e-2, 1e-4)
     # the first Jacobian: the film just solved at q, its viscosity held (the JFO film's
     # by central differences)
