@@ -111,7 +111,9 @@ def test_equilibrium_is_the_thermal_films_balance():
     """The thermal equilibrium (exact first Jacobian, inexact steps that keep the film
     before their last energy solve) against the plain thermal film solved afresh at its
     position: the load balanced to 1e-8 of it (measured 4e-10), the temperatures to
-    2e-6 K (each within the 1e-6 K tolerance of the fixed point; measured 7e-9 K), and
+    2e-6 K (each within the 1e-6 K tolerance of the fixed point; measured 7e-9 K), the
+    film returned the one on the temperatures returned (its viscosity theirs, bit for
+    bit; fails with the final step accepted as an inexact one, planted), and
     K, C (exact derivatives) the frozen film's central differences to 1e-7 (measured
     1.4e-9 and 4e-12)."""
     load = (0.0, -2000.0)
@@ -121,6 +123,11 @@ def test_equilibrium_is_the_thermal_films_balance():
     again = solve_thd(BEARING, eq.state, 48, 8, thermal=thermal, **OPTS)
     assert math.hypot(*np.add(again.force, load)) < 1e-8 * 2000.0
     assert np.max(np.abs(again.temperature - eq.solution.temperature)) < 2e-6
+    # the film returned is on the temperatures returned (not the one before the last
+    # energy solve, which an inexact step keeps)
+    op = thermal_operator(BEARING, eq.state, 48, 8, "P1", None, GROOVES)
+    mu = VG32.viscosity_at(temperature=op.at_quadrature(eq.solution.temperature))
+    assert np.array_equal(mu, eq.solution.thermal.viscosity_quadrature)
     kc = coefficients(BEARING, eq.state, "fem", lubricant=VG32, thermal=thermal,
                       solution=eq.solution, **opts)
     mesh = dict(opts, element="P1", supply_angle=None)
