@@ -62,8 +62,8 @@ def test_turned_guess_starts_at_the_journals_cavity():
     """The first film of a cold thermal solve (the bearing-fixed mesh, gamma = -1) from
     the coarser levels turned to the journal: the same cavitated film as from the
     unturned levels (pressure to 1e-12 of its peak; measured 8e-16), in at most 2
-    active-set solves where the unturned levels' (the journal at gamma = 0) take 6. Fails with the levels
-    turned by +gamma (planted)."""
+    active-set solves where the unturned levels' (the journal at gamma = 0) take 6.
+    Fails with the levels turned by +gamma (planted)."""
     n = (96, 16)
     op = thermal_operator(BEARING, STATE, *n, "P1", None, GROOVES)
     ratio = np.ones_like(op.qp_theta)
@@ -89,7 +89,8 @@ def test_force_partials_are_central_differences(state):
     against central differences of the same film (step 1e-5 c in position, 1e-5 omega c
     in velocity, as before): to 1e-7 of the largest entry (measured 1.2e-9 and 1.7e-10
     at eps 0.7, 5e-10 and 2e-12 reversed at eps 0.4: the differences' truncation and
-    round-off), on the thermal film's viscosity field. Fails without the stiffness's dK/dq P term (planted)."""
+    round-off), on the thermal film's viscosity field. Fails without the stiffness's
+    dK/dq P term (planted)."""
     n = (48, 8)
     sol = solve_thd(BEARING, state, *n, thermal=THERMALS[0], **OPTS)
     mu = sol.thermal.viscosity_quadrature

@@ -20,9 +20,9 @@ equilibrium's; omega = 0 is refused (no Couette flow, no thermal film).
 Coefficients: K and C of the film with its converged viscosity field frozen (its exact
 derivatives in x, y and their rates at the film's cavitated set,
 :meth:`~bearingfem.routes.thd_film.ReynoldsFieldFilm.force_partials`; the JFO film's by
-central differences), the usual THD linearisation (the temperature field does not follow a vibration at the rotor's
-frequencies); ROSS 3.1's fluid-film engine perturbs its Reynolds equation about the
-converged film the same way.
+central differences), the usual THD linearisation (the temperature field does not
+follow a vibration at the rotor's frequencies); ROSS 3.1's fluid-film engine perturbs
+its Reynolds equation about the converged film the same way.
 """
 from __future__ import annotations
 
@@ -292,6 +292,7 @@ def thd_coefficients(bearing: Bearing, state: JournalState, frame: str = "inerti
         d_q, d_v = film.force_partials()
     K, C = -d_q / c, -d_v / c
     force = tuple(float(f) for f in solution.force)
+    method = "central-differences" if mesh["cavitation"] == "jfo" else "exact-sensitivity"
     out = DynamicCoefficients(K, C, "inertial", np.eye(2), state, force, "fem-thd",
-                              "central-differences (viscosity frozen)", c, np.zeros((2, 2)))
+                              f"{method} (viscosity frozen)", c, np.zeros((2, 2)))
     return out if frame == "inertial" else out.in_frame(frame)
