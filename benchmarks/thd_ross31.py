@@ -167,7 +167,7 @@ print(json.dumps(out))
 
 def fmt(row: dict) -> str:
     t = "    -  " if math.isnan(row["t_max"]) else f"{row['t_max']:6.1f} "
-    tm = " ".join("    -" if math.isnan(row[k]) else f"{row[k]:5.2f}" for k in ("time", "cpu"))
+    tm = " ".join("     -" if math.isnan(row[k]) else f"{row[k]:6.3f}" for k in ("time", "cpu"))
     return (f"{row['eps']:7.4f} {row['attitude']:7.2f} {row['power']:8.0f} {t}"
             + " ".join(f"{row[k]:10.3e}" for k in KEYS) + f" {tm}")
 
@@ -189,7 +189,7 @@ def main(argv=None):
         data["fixed_adiabatic"]["inputs"], tuple(int(v) for v in args.bush_mesh.split("x")))
     times = ross_times(data, CASES) if args.ross else {}
     head = (f"{'case':<30} {'eps':>7} {'att deg':>7} {'loss W':>8} {'Tmax K':>6} "
-            + " ".join(f"{k:>10}" for k in KEYS) + f" {'t s':>5} {'cpu s':>5}")
+            + " ".join(f"{k:>10}" for k in KEYS) + f" {'t s':>6} {'cpu s':>6}")
     print(head)
     print("-" * len(head))
     pairs = (("isothermal", "fixed_isoviscous"), ("adiabatic", "fixed_adiabatic"),

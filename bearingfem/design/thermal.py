@@ -5,20 +5,24 @@ each evaluation the thermal iteration (:class:`bearingfem.routes.thd.ThermalIter
 continued from the last position's temperatures and cavitated set to a temperature
 tolerance that follows the force residual (inexact steps): the thermal film's mesh is
 fixed in the bearing, so one operator serves every position and the fields carry over
-node by node. Its first Jacobian is the isothermal film's with the viscosity field frozen
-(central differences on the same mesh, cheap and smooth), from the isothermal
-equilibrium at the effective viscosity: the one that carries, at the isothermal
-equilibrium of the supply temperature, the thermal film's force there.
+node by node. It starts at the isothermal equilibrium of the supply temperature, its
+first Jacobian the thermal film's there with the viscosity field frozen (its exact
+derivatives at the film just solved, cheap and smooth): the first step is the
+frozen-viscosity Newton step, which takes in the oil's heating (a second isothermal
+equilibrium at the viscosity that carries the thermal film's force there started
+nearer, measured on the ROSS fixture at 48x8, but cost more than the two Broyden steps
+it saved).
 ``Equilibrium.iterations`` counts the film solves.
 Either way round: at omega < 0 the thermal film's oil enters at the grooves' leading
 edges (:mod:`bearingfem.routes.thd`) and the attitude is negative, as the isothermal
 equilibrium's; omega = 0 is refused (no Couette flow, no thermal film).
 
-Coefficients: K and C of the film with its converged viscosity field frozen (central
-differences in x, y and their rates on the film with that field), the usual THD
-linearisation (the temperature field does not follow a vibration at the rotor's
-frequencies); ROSS 3.1's fluid-film engine perturbs its Reynolds equation about the
-converged film the same way.
+Coefficients: K and C of the film with its converged viscosity field frozen (its exact
+derivatives in x, y and their rates at the film's cavitated set,
+:meth:`~bearingfem.routes.thd_film.ReynoldsFieldFilm.force_partials`; the JFO film's by
+central differences), the usual THD linearisation (the temperature field does not
+follow a vibration at the rotor's frequencies); ROSS 3.1's fluid-film engine perturbs
+its Reynolds equation about the converged film the same way.
 """
 from __future__ import annotations
 
@@ -32,6 +36,7 @@ from ..errors import ConvergenceError
 from ..reynolds import solve_reynolds
 from ..fields import FilmFields
 from ..film import local_to_inertial
+from ..solvers.cavitation import LCPResult
 from ..routes.thd import (ReynoldsFieldFilm, ThermalIteration, check_thermal, solve_thd,
                           thermal_operator)
 from .records import EPS_MAX, DynamicCoefficients, Equilibrium, least_film, load_vector
@@ -89,6 +94,14 @@ def frozen_film(bearing: Bearing, viscosity, mesh: dict):
         warm[:] = [f]
         return f.force()
     return film
+
+
+def _warm(solution, op):
+    """The cavitated set of a thermal film's solution on ``op`` (None if not on it)."""
+    p = np.asarray(solution.pressure)
+    if p.shape != (op.mesh.ndofs,):
+        return None
+    return LCPResult(p, 0, 0.0, True, p <= 0.0)
 
 
 def _inertial_force(sol):
@@ -164,31 +177,44 @@ def thd_equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
                           element=mesh["element"], supply_angle=mesh["supply_angle"],
                           **_solve_tol(mesh))
 
+    last = {"q": None, "film": None, "on_t": False}
+
     def balance(q, tol_t, p_rtol):
         """The film's force at q with the temperatures converged to ``tol_t`` [K] (the
-        fixed point's steps from the last position's temperatures and cavitated set)."""
+        fixed point's steps from the last position's temperatures and cavitated set).
+        At the final tolerance (``tol_t`` <= the thermal solve's) the film returned is
+        on the temperatures the last energy solve moved by less than ``tol_t``, as
+        :func:`~bearingfem.routes.thd.solve_thd`'s, its pressure changed by less than
+        ``p_rtol``; at a looser one (an inexact step) the film before that energy solve,
+        whose temperatures are as near (its pressure's change then follows theirs, ~1e-2
+        of the peak per K). At the position of the last call the fixed point continues
+        where it stopped."""
         state = _state(q, np.zeros(2), omega, c)
-        it.change = np.inf
-        for _ in range(max_iterations):
+        same = last["q"] is not None and np.array_equal(q, last["q"])
+        if same and last["on_t"]:
+            film = last["film"]
+        else:
+            if not same:
+                it.change = np.inf            # no energy solved at this position yet
             film = it.film(state)
+        last["q"] = q.copy()
+        for _ in range(max_iterations):
             if it.change < tol_t and it.pressure_change < p_rtol:
+                last.update(film=film, on_t=True)
                 return film
             it.energy(state, relaxation)
+            if tol_t > final_tol and it.change < tol_t:
+                last.update(film=film, on_t=False)
+                return film
+            film = it.film(state)
         raise ConvergenceError("thermal film (temperature fixed point)", max_iterations,
                                it.change, f"eps = {state.eps:.6g}")
 
     film = balance(q, 1e-2, 1e-4)
-    # the isothermal film whose viscosity carries, at q, the thermal film's force there:
-    # its equilibrium is the thermal one's to first order (a film's force ~ mu at a fixed
-    # position), a nearer start than the supply temperature's (measured on the ROSS
-    # fixture at 48x8: eps 0.6119 against the answer's 0.6139, from 0.5473)
-    ratio = float(np.hypot(*film.force())) / W
-    start = isothermal(replace(cold, viscosity=cold.viscosity * ratio), (wx, wy), omega,
-                       iso_model, eps_max=eps_max, **iso_opts)
-    q = np.array([start.eps * math.cos(start.state.gamma),
-                  start.eps * math.sin(start.state.gamma)])
-    film = balance(q, 1e-2, 1e-4)
-    J = _jacobian(frozen_film(bearing, it.mu, mesh), q, omega, c)
+    # the first Jacobian: the film just solved at q, its viscosity held (the JFO film's
+    # by central differences)
+    J = _jacobian(frozen_film(bearing, it.mu, mesh), q, omega, c) \
+        if mesh["cavitation"] == "jfo" else film.force_partials()[0]
     r = film.force() - target
     tol_used = 1e-2
     for _ in range(MAX_STEPS):
@@ -249,12 +275,24 @@ def thd_coefficients(bearing: Bearing, state: JournalState, frame: str = "inerti
                              cavitation=mesh["cavitation"], element=mesh["element"],
                              supply_angle=mesh["supply_angle"], **_solve_tol(mesh),
                              **solve_opts)
-    film = frozen_film(bearing, solution.thermal.viscosity_quadrature, mesh)
+    viscosity = solution.thermal.viscosity_quadrature
     c, omega = bearing.clearance, state.omega
-    q = np.array([state.eps * math.cos(state.gamma), state.eps * math.sin(state.gamma)])
-    K = -_jacobian(film, q, omega, c) / c
-    C = -_jacobian(film, q, omega, c, velocity=True) / c
+    if mesh["cavitation"] == "jfo":
+        film = frozen_film(bearing, viscosity, mesh)
+        q = np.array([state.eps * math.cos(state.gamma), state.eps * math.sin(state.gamma)])
+        d_q, d_v = _jacobian(film, q, omega, c), _jacobian(film, q, omega, c, velocity=True)
+    else:
+        # exact at the film's cavitated set (ReynoldsFieldFilm.force_partials): the same
+        # as central differences to their truncation (1e-9 measured at the step 1e-5 c)
+        op = thermal_operator(bearing, state, mesh["n_theta"], mesh["n_z"], mesh["element"],
+                              mesh["supply_angle"], mesh["grooves"])
+        film = ReynoldsFieldFilm(bearing, state, op, mesh["element"], tuple(mesh["grooves"]),
+                                 mesh.get("tol", 1e-10), _warm(solution, op))
+        film.solve(viscosity / bearing.viscosity)
+        d_q, d_v = film.force_partials()
+    K, C = -d_q / c, -d_v / c
     force = tuple(float(f) for f in solution.force)
+    method = "central-differences" if mesh["cavitation"] == "jfo" else "exact-sensitivity"
     out = DynamicCoefficients(K, C, "inertial", np.eye(2), state, force, "fem-thd",
-                              "central-differences (viscosity frozen)", c, np.zeros((2, 2)))
+                              f"{method} (viscosity frozen)", c, np.zeros((2, 2)))
     return out if frame == "inertial" else out.in_frame(frame)

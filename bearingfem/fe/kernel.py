@@ -37,7 +37,7 @@ def groove_pressures(bearing: Bearing, op: FilmOperator, grooves) -> np.ndarray 
 def fe_pressure(op: FilmOperator, state: JournalState, cavitation="reynolds",
                 method="active-set", tol=1e-10, active0=None, colours=None,
                 factor=None, dirichlet: np.ndarray | None = None,
-                system=None) -> LCPResult:
+                system=None, guess: np.ndarray | None = None) -> LCPResult:
     """Dimensionless nodal pressure P (p = mu (R/c)^2 P) on all dofs, ambient on fixed ones.
 
     For "gumbel" the returned field is the unconstrained (full-Sommerfeld) solution; the
@@ -45,7 +45,9 @@ def fe_pressure(op: FilmOperator, state: JournalState, cavitation="reynolds",
     (from the result of a nearby state on the same operator) warm-start the solve.
     ``system`` = (stiffness values on the operator's pattern, load) of a film on general
     fields (:func:`bearingfem.fe.general.film_system`); None is the rigid cylinder of
-    ``state``, combined from the operator's terms.
+    ``state``, combined from the operator's terms. ``guess``: an approximate pressure on
+    the free dofs that places the first cavitated set when ``active0`` is None, instead
+    of the coarser levels' rigid film (:func:`~bearingfem.fe.multilevel.coarse_guess`).
     """
     free = op.mesh.free
     if system is None:
@@ -70,7 +72,8 @@ def fe_pressure(op: FilmOperator, state: JournalState, cavitation="reynolds",
             # the rigid film's coarse levels only place the first set, the fine solve is exact
             held = () if dirichlet is None else tuple(
                 float(dirichlet[dofs[0]]) if len(dofs) else 0.0 for dofs in op.mesh.grooves)
-            P0 = None if active0 is not None else coarse_guess(op, state, tol, held)
+            P0 = None if active0 is not None else \
+                guess if guess is not None else coarse_guess(op, state, tol, held)
             a0 = None if active0 is None else np.asarray(active0, bool)[free]
             res = active_set(K, b, active0=a0, P0=P0, tol=tol, factor=factor)
         P[free] = res.pressure

@@ -59,6 +59,13 @@ __all__ = ["ThermalFilm", "solve_thd", "ThermalRecord", "groove_mixing", "therma
 
 CAVITATION = ("reynolds", "jfo")
 
+#: The largest relative change of the film's coefficient h^3/mu at any quadrature point
+#: for which the last film's factors precondition CG on the next film instead of a new
+#: factorisation: its preconditioned spectrum then lies in [1 - d, 1 + d] (each element's
+#: stiffness scales by its points' ratios), so CG gains a factor of about d/2 a step
+#: (about 9 steps to its 1e-12 at d = 0.05, against a factorisation's 25-35 solves).
+FACTOR_REUSE = 0.05
+
 
 def check_thermal(lubricant, thermal, state, cavitation, element):
     """What a thermal film needs before any work (ValueError naming the parameter)."""
@@ -188,10 +195,10 @@ class EnergyStep(NamedTuple):
     linearised: tuple
 
 
-def _dissipation_slope(lubricant, flow, mu, p, T):
+def _dissipation_slope(flow, mu, dmu_dT):
     """d Phi / d T [W/(m^2 K)] of a film whose viscosity changes uniformly (module
     docstring): Phi (d mu/d T) / mu at the energy equation's points."""
-    return flow.dissipation * lubricant.viscosity_temperature_derivative(T, p) / mu
+    return flow.dissipation * dmu_dT / mu
 
 
 def solve_thd(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z: int = 20, *,
@@ -288,22 +295,28 @@ class ThermalIteration:
         self.p = np.zeros(n) if fresh else np.array(start.pressure, float)
         self.change = self.pressure_change = np.inf
         self.iterations, self.energy_solution = 0, None
+        self._factored = None      # the film coefficient h^3/mu the kept factors belong to
 
     def film(self, state):
         """Solve the film at ``state`` on mu(p, T) of the kept pressure and temperatures;
         keeps its pressure and the change from the last one (relative to its peak)."""
         b, oil, op = self.bearing, self.lubricant, self.op
         self.mu = oil.viscosity_at(op.at_quadrature(self.p), temperature=op.at_quadrature(self.T))
+        ratio = self.mu / b.viscosity
         if self._jfo is not None:
             f = _JFOFilm(replace(self._jfo, state=state))
         else:
-            # the last film's cavitated set starts this one, not its factors: between
-            # thermal steps the viscosity moves too much for them to precondition CG
-            # (measured: CG ran out of its 20 steps at every step)
-            warm = self.last.last if isinstance(self.last, ReynoldsFieldFilm) else self.last
-            warm = None if warm is None else replace(warm, factor=None)
-            f = ReynoldsFieldFilm(b, state, op, self.element, self.grooves, self.tol, warm)
-        pressure, self.fraction = f.solve(self.mu / b.viscosity)
+            # the last film's cavitated set starts this one; its factors too while the
+            # film's coefficient h^3/mu is within FACTOR_REUSE of theirs (module docstring)
+            f = ReynoldsFieldFilm(b, state, op, self.element, self.grooves, self.tol,
+                                  self.last)
+            coefficient = f.cubed / ratio
+            if self._factored is None or float(np.max(np.abs(
+                    coefficient / self._factored - 1.0))) > FACTOR_REUSE:
+                f.forget_factors()
+        pressure, self.fraction = f.solve(ratio)
+        if self._jfo is None and f.last.factorisations:
+            self._factored = coefficient
         self.last, self.state = f, state
         peak = max(float(np.max(np.abs(pressure))), 1e-300)
         self.pressure_change = float(np.max(np.abs(pressure - self.p))) / peak
@@ -319,12 +332,12 @@ class ThermalIteration:
         self.eop = eop = energy_operator(self.op.mesh, state.omega < 0.0)
         P = self.p / b.pressure_scale
         p_arc, T_arc = eop.at_points(self.p), eop.at_points(T)
-        mu_arc = oil.viscosity_at(p_arc, temperature=T_arc)
+        # the viscosity and its temperature slope from one evaluation of the law
+        mu_arc, _, dmu_dT = oil.viscosity_and_slopes(p_arc, T_arc)
         flow = eop.flow(b, state, P, self.fraction, mu_arc, oil)
         mixing = groove_mixing(b, state, self.op.mesh, eop.edges, P, self.fraction,
                                oil.viscosity_at(self.p, temperature=T), self.thermal)
-        slope = _dissipation_slope(oil, flow, mu_arc, p_arc, T_arc)
-        return EnergyStep(flow, mixing, (slope, T_arc))
+        return EnergyStep(flow, mixing, (_dissipation_slope(flow, mu_arc, dmu_dT), T_arc))
 
     def energy(self, state, relaxation=1.0):
         """The energy equation on the last film (its state ``state``), the dissipation

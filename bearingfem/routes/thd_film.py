@@ -10,6 +10,9 @@ import numpy as np
 
 from ..fe.general import film_moment, general_assembly
 from ..fe.kernel import fe_pressure, film_outputs, groove_pressures
+from ..fe.multilevel import COARSE_SOLVES, coarse_level
+from ..solvers.blocksolve import inactive_solve
+from ..solvers.cavitation import active_set, active_set_iterations
 from ..fields import FilmFields
 from ..film import film_thickness, local_to_inertial, source_coefficients
 from ..scales import force_factor
@@ -26,34 +29,83 @@ def _turned_load(op, state) -> np.ndarray:
     return (a_sin * c + a_cos * s) * op.b_sin + (a_cos * c - a_sin * s) * op.b_cos
 
 
+def turned_guess(op, state, tol: float, held: tuple = ()) -> np.ndarray | None:
+    """:func:`~bearingfem.fe.multilevel.coarse_guess` for the bearing-fixed mesh: the
+    coarser levels' rigid film of ``state`` turned by gamma (its stiffness on the gap
+    h(phi - gamma) at the level's quadrature points, its load turned), interpolated to
+    ``op``'s free dofs; None when ``op`` is the coarsest level. Why: the operator's own
+    rigid film is the journal at gamma = 0, whose cavity lies gamma away from this one's
+    (a cold 96 x 16 film at gamma = -1 took 6 active-set solves from it, 2 from this)."""
+    level = coarse_level(op)
+    if level is None:
+        return None
+    coarse, prolong = level
+    free = coarse.mesh.free
+    P = np.zeros(coarse.mesh.ndofs)
+    for dofs, p in zip(coarse.mesh.grooves, held):
+        P[dofs] = p
+    values = general_assembly(coarse).stiffness_values(
+        film_thickness(coarse.qp_theta - state.gamma, state.eps) ** 3)
+    b = _turned_load(coarse, state)
+    if held:
+        b = b - coarse.matrix(values) @ P
+    P0 = turned_guess(coarse, state, tol, held)
+    K = coarse.free_stiffness(state.eps, values)
+    # the coarsest level is solved, the others only iterated (as coarse_guess does)
+    res = (active_set(K, b[free], tol=tol) if P0 is None else
+           active_set_iterations(K, b[free], P0=P0, tol=tol, max_iter=COARSE_SOLVES))
+    P[free] = res.pressure
+    return prolong @ P
+
+
 class ReynoldsFieldFilm:
     """The Reynolds-condition film of a journal ``state`` on the bearing-fixed mesh of
     :func:`thermal_operator` with a viscosity field: the stiffness of -div(H^3/m grad P)
     by :func:`~bearingfem.fe.general.general_assembly`'s products (no form re-run), the
     load fixed (the viscosity does not enter it), and each solve started from the last
     one's cavitated set and factors (``warm``: an earlier film on the same operator, e.g.
-    the last thermal step's or a neighbouring state's, or an :class:`LCPResult`)."""
+    the last thermal step's or a neighbouring state's, or an :class:`LCPResult`; a warm
+    film of the same state on the same operator lends its gap and load too). Without a
+    warm start the first set comes from the coarser levels' film turned to the state
+    (:func:`turned_guess`)."""
 
     def __init__(self, bearing, state, op, element, grooves, tol, warm=None):
         self.bearing, self.state, self.op, self.tol = bearing, state, op, tol
         self.element, self.grooves = element, grooves
-        theta = op.qp_theta - state.gamma
-        self.fields = FilmFields(gap=film_thickness(theta, state.eps),
-                                 gap_rate=state.eps_dot * np.cos(theta))
-        self.cubed = self.fields.gap ** 3
-        self.load = _turned_load(op, state)
-        self.held = groove_pressures(bearing, op, grooves)
+        if isinstance(warm, ReynoldsFieldFilm) and warm.op is op and warm.state == state \
+                and warm.grooves == grooves:
+            self.fields, self.cubed, self.load, self.held = \
+                warm.fields, warm.cubed, warm.load, warm.held
+        else:
+            theta = op.qp_theta - state.gamma
+            self.fields = FilmFields(gap=film_thickness(theta, state.eps),
+                                     gap_rate=state.eps_dot * np.cos(theta))
+            self.cubed = self.fields.gap ** 3
+            self.load = _turned_load(op, state)
+            self.held = groove_pressures(bearing, op, grooves)
         self.last = warm.last if isinstance(warm, ReynoldsFieldFilm) else warm
+
+    def forget_factors(self) -> None:
+        """Start the next solve from the warm cavitated set alone, without its factors
+        (a new factorisation instead of CG preconditioned by them)."""
+        if self.last is not None and self.last.factor is not None:
+            self.last = replace(self.last, factor=None)
 
     def solve(self, ratio: np.ndarray):
         """(nodal pressure [Pa], nodal fraction) on the viscosity ``ratio`` mu/mu_ref at
         the quadrature points."""
         self.values = general_assembly(self.op).stiffness_values(self.cubed / ratio)
         warm = self.last
+        guess = None
+        if warm is None:
+            held = () if self.held is None else tuple(
+                float(self.held[d[0]]) if len(d) else 0.0 for d in self.op.mesh.grooves)
+            guess = turned_guess(self.op, self.state, self.tol, held)
         self.last = fe_pressure(self.op, self.state, "reynolds", tol=self.tol,
                                 active0=None if warm is None else warm.active,
                                 factor=None if warm is None else warm.factor,
-                                dirichlet=self.held, system=(self.values, self.load))
+                                dirichlet=self.held, system=(self.values, self.load),
+                                guess=guess)
         self.ratio = ratio
         return self.last.pressure * self.bearing.pressure_scale, np.ones(self.op.mesh.ndofs)
 
@@ -68,6 +120,42 @@ class ReynoldsFieldFilm:
     def force(self) -> np.ndarray:
         """The last solve's force on the journal [N], inertial (x, y)."""
         return np.array(local_to_inertial(*self.force_local(), self.state.gamma), float)
+
+    def force_partials(self) -> tuple:
+        """(dF/dq, dF/dv) [N] of the last solve's film with its viscosity field held: the
+        inertial force's derivatives in the journal position q = e/c and its rate
+        v = (de/dt)/c [1/s], (2, 2) each (column j: the j-th component), exact at the
+        solve's cavitated set. On the bearing-fixed mesh the gap is
+        H = 1 + q_x cos(phi) + q_y sin(phi) and the source's load
+        (6 omega q_x - 12 v_y) b_sin - (6 omega q_y + 12 v_x) b_cos (the turned wedge and
+        squeeze of :func:`_turned_load`, linear in q and v); the inertial force is
+        k (P . b_cos, P . b_sin) whatever gamma. So dP solves the film's inactive block
+        with the load's partial less dK/dq P, dK/dq the stiffness of 3 H^2 dH/dq / m:
+        four right-hand sides on one factorisation, where central differences take
+        eight films."""
+        op, res, omega = self.op, self.last, self.state.omega
+        if self.state.eps_dot != 0.0 or self.state.gamma_dot != 0.0:
+            raise ValueError("force_partials: the film must be steady (eps_dot = "
+                             "gamma_dot = 0)")
+        P, free = res.pressure, op.mesh.free
+        assembly = general_assembly(op)
+        slope = 3.0 * self.fields.gap ** 2 / self.ratio
+        rhs = np.column_stack([
+            6.0 * omega * op.b_sin - op.matrix(assembly.stiffness_values(
+                slope * np.cos(op.qp_theta))) @ P,
+            -6.0 * omega * op.b_cos - op.matrix(assembly.stiffness_values(
+                slope * np.sin(op.qp_theta))) @ P,
+            -12.0 * op.b_cos, -12.0 * op.b_sin])
+        inactive = ~res.active[free]
+        K = op.free_stiffness(self.state.eps, self.values)
+        # the solve's factors when it made them (CG preconditioned by another film's
+        # factors leaves those, not this K's: then a factorisation here)
+        dP = np.zeros((op.mesh.ndofs, 4))
+        dP[free] = inactive_solve(K, res.factor if res.factorisations else None, inactive,
+                                  rhs[free])
+        k = force_factor(self.bearing, False)
+        J = k * np.stack([dP.T @ op.b_cos, dP.T @ op.b_sin])        # (2, 4)
+        return J[:, :2], J[:, 2:]
 
     def solution(self) -> FilmSolution:
         """The last solve's :class:`FilmSolution` (the general film's outputs), nodes

@@ -154,22 +154,33 @@ def film_edges(mesh, reverse: bool = False) -> FilmEdges:
                      column_weight=weight)
 
 
-def _flow(bearing, state, theta, dP, F, mu, lubricant) -> EnergyFlow:
+def _flow(bearing, state, theta, dP, F, mu, lubricant, gap=None) -> EnergyFlow:
     """:class:`EnergyFlow` from the dimensionless pressure's gradient ``dP`` (2, ...) in
-    (theta, zeta), the film fraction and viscosity [Pa s] at the same points."""
+    (theta, zeta), the film fraction and viscosity [Pa s] at the same points (``gap``:
+    the film thickness [m] there, if already known)."""
     R, c = bearing.radius, bearing.clearance
     U = state.omega * R
-    h = c * film_thickness(np.asarray(theta), state.eps)
+    h = c * film_thickness(np.asarray(theta), state.eps) if gap is None else gap
     scale = bearing.pressure_scale / R                 # dp/dx = scale dP/dtheta
     dpx, dpz = scale * dP[0], scale * dP[1]
     k3 = h ** 3 / (12.0 * mu)
     rho_cp = lubricant.mass_density * lubricant.specific_heat
+    shear = F * mu * U ** 2 / h
     return EnergyFlow(beta_theta=rho_cp * (0.5 * U * F * h - k3 * dpx),
                       beta_zeta=-rho_cp * k3 * dpz,
                       diffusivity=lubricant.conductivity * h,
-                      dissipation=F * mu * U ** 2 / h + k3 * (dpx ** 2 + dpz ** 2),
-                      shear=F * mu * U ** 2 / h, gap=h,
+                      dissipation=shear + k3 * (dpx ** 2 + dpz ** 2),
+                      shear=shear, gap=h,
                       fraction=np.broadcast_to(F, np.shape(h)))
+
+
+@cached(maxsize=4)
+def _gap(op, clearance, eps, gamma) -> np.ndarray:
+    """The film thickness [m] at ``op``'s points for a journal at (eps, gamma): the same
+    at every thermal step of one position (kept for the last few)."""
+    h = clearance * film_thickness(op.theta - gamma, eps)
+    h.flags.writeable = False
+    return h
 
 
 def film_flow(bearing, state, basis, P, fraction, viscosity, lubricant) -> EnergyFlow:
@@ -240,7 +251,7 @@ class EnergyOperator:
         LU, kept): a function rhs (N,) or (N, k) -> x, for solves that come one at a
         time (the conducting bush's iteration)."""
         n, w = self.N, self.band
-        ab = np.zeros((3 * w + 1, n))
+        ab = np.zeros((3 * w + 1, n), order="F")     # LAPACK's order: no copy on the way in
         ab[w:] = np.bincount(self.band_index, data * self.free_rows,
                              minlength=(2 * w + 1) * n).reshape(2 * w + 1, n)
         ab[2 * w, self.band_rank[self.held]] = 1.0
@@ -272,7 +283,8 @@ class EnergyOperator:
         bearing: the film angle is the mesh's angle less gamma)."""
         return _flow(bearing, state, self.theta - state.gamma, self.gradient(P),
                      self.at_points(fraction),
-                     np.asarray(viscosity), lubricant)
+                     np.asarray(viscosity), lubricant,
+                     _gap(self, bearing.clearance, state.eps, state.gamma))
 
     def matrix(self, local: np.ndarray) -> sp.csr_matrix:
         """The (N, N) matrix of element matrices ``local`` (nb, nb, elements)."""

@@ -1,0 +1,141 @@
+"""The thermal fixed point's shortcuts land on the plain iteration's answer: the first
+film's cavitated set from the coarser levels turned to the journal, the last film's
+factors preconditioning CG while h^3/mu moved little, the frozen-viscosity film's exact
+force derivatives (K, C and the equilibrium's first Jacobian) against central
+differences, and an iteration stopped short still raises."""
+import math
+
+import numpy as np
+import pytest
+
+import bearingfem.routes.thd as thd_route
+from bearingfem import JournalState
+from bearingfem.design import coefficients, equilibrium
+from bearingfem.design.thermal import _jacobian, frozen_film
+from bearingfem.errors import ConvergenceError
+from bearingfem.fe.kernel import fe_pressure
+from bearingfem.routes.thd import ReynoldsFieldFilm, ThermalIteration, solve_thd, \
+    thermal_operator
+from bearingfem.routes.thd_film import _turned_load
+from bearingfem.thermal import Thermal
+from tests.test_thd_model import BEARING, GROOVES, OMEGA, SUPPLY, VG32
+
+STATE = JournalState(eps=0.7, omega=OMEGA, gamma=-1.0)
+NEAR = JournalState(eps=0.69, omega=OMEGA, gamma=-1.0)
+OPTS = dict(lubricant=VG32, grooves=GROOVES)
+THERMALS = [Thermal(SUPPLY, carry_over=0.8),
+            Thermal(SUPPLY, model="conducting", carry_over=0.5)]
+
+
+def _fresh_factors(monkeypatch):
+    """The plain iteration: every film factorised afresh (no factors carried over)."""
+    monkeypatch.setattr(thd_route, "FACTOR_REUSE", -1.0)
+
+
+@pytest.mark.parametrize("thermal", THERMALS)
+def test_reused_factors_keep_the_fixed_points_answer(thermal, monkeypatch):
+    """With the last film's factors preconditioning CG (h^3/mu within 5 %) the fixed point
+    stops at the plain iteration's answer: the same film count, temperatures to 1e-9 K
+    and force to 1e-10 (CG to 1e-12 of its load; measured 3e-12 K and 3e-15), cold at
+    96x16 and warm from the film at eps 0.69. The shortcut is taken: the late films make no
+    factorisation. Fails with CG stopped after one step (planted)."""
+    n = (96, 16)
+    fast = solve_thd(BEARING, STATE, *n, thermal=thermal, **OPTS)
+    start = solve_thd(BEARING, NEAR, *n, thermal=thermal, **OPTS)
+    warm = solve_thd(BEARING, STATE, *n, thermal=thermal, start=start, **OPTS)
+    it = ThermalIteration(BEARING, STATE, *n, thermal=thermal, **OPTS)
+    made = []
+    for _ in range(fast.thermal.iterations):
+        made.append(it.film(STATE).last.factorisations)
+        it.energy(STATE)
+    assert 0 in made[2:]
+    _fresh_factors(monkeypatch)
+    plain = solve_thd(BEARING, STATE, *n, thermal=thermal, **OPTS)
+    plain_warm = solve_thd(BEARING, STATE, *n, thermal=thermal, start=start, **OPTS)
+    for a, b in ((fast, plain), (warm, plain_warm)):
+        assert a.thermal.iterations == b.thermal.iterations
+        assert np.max(np.abs(a.temperature - b.temperature)) < 1e-9
+        assert np.max(np.abs(np.subtract(a.force, b.force))) < 1e-10 * np.hypot(*b.force)
+
+
+def test_turned_guess_starts_at_the_journals_cavity():
+    """The first film of a cold thermal solve (the bearing-fixed mesh, gamma = -1) from
+    the coarser levels turned to the journal: the same cavitated film as from the
+    unturned levels (pressure to 1e-12 of its peak; measured 8e-16), in at most 2
+    active-set solves where the unturned levels' (the journal at gamma = 0) take 6.
+    Fails with the levels turned by +gamma (planted)."""
+    n = (96, 16)
+    op = thermal_operator(BEARING, STATE, *n, "P1", None, GROOVES)
+    ratio = np.ones_like(op.qp_theta)
+    f = ReynoldsFieldFilm(BEARING, STATE, op, "P1", tuple(GROOVES), 1e-10)
+    P, _ = f.solve(ratio)
+    turned = f.last
+    plain = fe_pressure(op, STATE, "reynolds", tol=1e-10, dirichlet=f.held,
+                        system=(f.values, _turned_load(op, STATE)))
+    assert np.max(np.abs(turned.pressure - plain.pressure)) < 1e-12 * np.max(plain.pressure)
+    assert turned.iterations <= 2 < plain.iterations
+
+
+def test_unconverged_iteration_still_raises():
+    """Stopped before the temperatures settle (3 films, the reused factors in play), the
+    fixed point raises ConvergenceError, never returns."""
+    with pytest.raises(ConvergenceError):
+        solve_thd(BEARING, STATE, 96, 16, thermal=THERMALS[0], max_iterations=3, **OPTS)
+
+
+@pytest.mark.parametrize("state", [STATE, JournalState(eps=0.4, omega=-OMEGA, gamma=2.0)])
+def test_force_partials_are_central_differences(state):
+    """The frozen-viscosity film's exact derivatives (ReynoldsFieldFilm.force_partials)
+    against central differences of the same film (step 1e-5 c in position, 1e-5 omega c
+    in velocity, as before): to 1e-7 of the largest entry (measured 1.2e-9 and 1.7e-10
+    at eps 0.7, 5e-10 and 2e-12 reversed at eps 0.4: the differences' truncation and
+    round-off), on the thermal film's viscosity field. Fails without the stiffness's
+    dK/dq P term (planted)."""
+    n = (48, 8)
+    sol = solve_thd(BEARING, state, *n, thermal=THERMALS[0], **OPTS)
+    mu = sol.thermal.viscosity_quadrature
+    mesh = dict(n_theta=n[0], n_z=n[1], element="P1", cavitation="reynolds",
+                grooves=GROOVES, supply_angle=None)
+    q = np.array([state.eps * math.cos(state.gamma), state.eps * math.sin(state.gamma)])
+    c = BEARING.clearance
+    d_q = _jacobian(frozen_film(BEARING, mu, mesh), q, state.omega, c)
+    d_v = _jacobian(frozen_film(BEARING, mu, mesh), q, state.omega, c, velocity=True)
+    op = thermal_operator(BEARING, state, *n, "P1", None, GROOVES)
+    f = ReynoldsFieldFilm(BEARING, state, op, "P1", tuple(GROOVES), 1e-10)
+    f.solve(mu / BEARING.viscosity)
+    e_q, e_v = f.force_partials()
+    assert np.max(np.abs(e_q - d_q)) < 1e-7 * np.max(np.abs(d_q))
+    assert np.max(np.abs(e_v - d_v)) < 1e-7 * np.max(np.abs(d_v))
+
+
+def test_equilibrium_is_the_thermal_films_balance():
+    """The thermal equilibrium (exact first Jacobian, inexact steps that keep the film
+    before their last energy solve) against the plain thermal film solved afresh at its
+    position: the load balanced to 1e-8 of it (measured 4e-10), the temperatures to
+    2e-6 K (each within the 1e-6 K tolerance of the fixed point; measured 7e-9 K), the
+    film returned the one on the temperatures returned (its viscosity theirs, bit for
+    bit; fails with the final step accepted as an inexact one, planted), and
+    K, C (exact derivatives) the frozen film's central differences to 1e-7 (measured
+    1.4e-9 and 4e-12)."""
+    load = (0.0, -2000.0)
+    thermal = THERMALS[0]
+    opts = dict(n_theta=48, n_z=8, grooves=GROOVES, cavitation="reynolds")
+    eq = equilibrium(BEARING, load, OMEGA, "fem", lubricant=VG32, thermal=thermal, **opts)
+    again = solve_thd(BEARING, eq.state, 48, 8, thermal=thermal, **OPTS)
+    assert math.hypot(*np.add(again.force, load)) < 1e-8 * 2000.0
+    assert np.max(np.abs(again.temperature - eq.solution.temperature)) < 2e-6
+    # the film returned is on the temperatures returned (not the one before the last
+    # energy solve, which an inexact step keeps)
+    op = thermal_operator(BEARING, eq.state, 48, 8, "P1", None, GROOVES)
+    mu = VG32.viscosity_at(temperature=op.at_quadrature(eq.solution.temperature))
+    assert np.array_equal(mu, eq.solution.thermal.viscosity_quadrature)
+    kc = coefficients(BEARING, eq.state, "fem", lubricant=VG32, thermal=thermal,
+                      solution=eq.solution, **opts)
+    mesh = dict(opts, element="P1", supply_angle=None)
+    film = frozen_film(BEARING, eq.solution.thermal.viscosity_quadrature, mesh)
+    s = eq.state
+    q = np.array([s.eps * math.cos(s.gamma), s.eps * math.sin(s.gamma)])
+    K = -_jacobian(film, q, OMEGA, BEARING.clearance) / BEARING.clearance
+    C = -_jacobian(film, q, OMEGA, BEARING.clearance, velocity=True) / BEARING.clearance
+    assert np.max(np.abs(kc.K - K)) < 1e-7 * np.max(np.abs(K))
+    assert np.max(np.abs(kc.C - C)) < 1e-7 * np.max(np.abs(C))
