@@ -47,7 +47,7 @@ from ..lubricant import Lubricant
 from ..solution import FilmSolution
 from ..solvers.cavitation import LCPResult
 from ..thermal.bush import bush_wall
-from ..thermal.energy import EnergyFlow, Mixing, energy_operator, solve_energy
+from ..thermal.energy import EnergyFlow, Mixing, arc_basis, energy_operator, solve_energy
 from ..thermal.spec import Thermal, ThermalRecord
 from .base import Route
 from .thd_film import ReynoldsFieldFilm
@@ -93,20 +93,35 @@ def _theta_gradient_form(u, v, w):
 
 
 @cached(maxsize=16)
-def _theta_derivative(mesh):
-    """Nodal P -> the L2 projection onto the nodes of dP/dtheta (the mass matrix
-    factorised once per mesh)."""
-    basis = mesh.basis
-    lu = splu(mass.assemble(basis).tocsc())
-    B = _theta_gradient_form.assemble(basis).tocsr()
-    return lambda P: lu.solve(B @ P)
+def arc_theta_projection(mesh, edges):
+    """(the arcs' dofs, the LU of their mass matrix, the form int dP/dtheta v on their
+    rows): dP/dtheta projected in L2 onto the arcs' nodes from the arcs' elements alone
+    (``edges.elements``; cached per mesh and edges). Why the arcs alone: a groove holds
+    its supply pressure (zero gradient inside it), so a projection over the whole mesh
+    averages an arc's edge column with the groove's flat pressure; restricted to the arcs,
+    every groove edge is one-sided, as the energy equation's flow there is (the arcs'
+    element gradients) and the film's flux into the arc is."""
+    basis = arc_basis(mesh, edges)
+    on = np.unique(basis.element_dofs)
+    M = mass.assemble(basis).tocsr()[on][:, on]
+    B = _theta_gradient_form.assemble(basis).tocsr()[on]
+    return on, splu(M.tocsc()), B
+
+
+def arc_theta_derivative(mesh, edges, P):
+    """Nodal dP/dtheta projected on the arcs (:func:`arc_theta_projection`); 0 on the
+    dofs inside the grooves (no arc element touches them)."""
+    on, lu, B = arc_theta_projection(mesh, edges)
+    dP = np.zeros(mesh.ndofs)
+    dP[on] = lu.solve(B @ P)
+    return dP
 
 
 def _column_flows(bearing, state, mesh, edges, P, fraction, mu_nodal):
-    """Nodal q_theta [m^2/s] (Couette + Poiseuille, dp/dtheta projected on the nodes) and
-    each arc column's flow int q_theta dz [m^3/s]."""
+    """Nodal q_theta [m^2/s] (Couette + Poiseuille, dp/dtheta projected on the arcs'
+    nodes from the arcs' elements) and each arc column's flow int q_theta dz [m^3/s]."""
     R, c = bearing.radius, bearing.clearance
-    dP = _theta_derivative(mesh)(P)
+    dP = arc_theta_derivative(mesh, edges, P)
     h = c * film_thickness(mesh.theta - state.gamma, state.eps)
     q = (0.5 * state.omega * R * fraction * h
          - h ** 3 / (12.0 * mu_nodal) * bearing.pressure_scale / R * dP)
@@ -121,7 +136,9 @@ def groove_mixing(bearing, state, mesh, edges, P, fraction, mu_nodal,
     ``carry_over``): the upstream arc's exit temperature, flow-weighted over its last line
     (trapezoidal in z), carried by lambda Q_out, Q_out the arc's least column flow (what
     passes its cavity), mixed with fresh oil up to the next arc's inlet flow Q_in:
-    T_in = ((Q_in - C) T_supply + C T_out) / Q_in, C = min(lambda Q_out, Q_in). With
+    T_in = ((Q_in - C) T_supply + C T_out) / Q_in, C = min(lambda Q_out, Q_in). The flows'
+    dp/dtheta is each arc's own (:func:`arc_theta_projection`): one-sided at every
+    groove edge, so an arc's inlet and exit flows do not see the groove beside them. With
     omega < 0 (``edges`` reversed) the flows are counted along the oil's way."""
     q, flows = _column_flows(bearing, state, mesh, edges, P, fraction, mu_nodal)
     if state.omega < 0.0:
