@@ -100,7 +100,7 @@ def test_mirrored_bearing_at_reversed_rotation_is_the_mirror_image(
     -omega), a the mirror's axis, on mirrored meshes: nodal temperatures, pressures, the
     radial force and the journal's temperature equal, the tangential force opposite, each
     groove's inlet temperature and the heat balance's parts equal (measured with grooves
-    and carry-over at 36 x 8, 72 x 8, 144 x 16: 8e-12, 7e-12, 1e-11 K; force 1e-13). Fails
+    and carry-over at 36 x 8, 72 x 8, 144 x 16: 8e-12, 8e-12, 9e-12 K; force 1e-13). Fails
     if the energy equation's inlet and outlet edges are not swapped, the carried-over flow
     is counted against the oil's way, an arc runs into the wrong groove, or the mixing's
     flows take dp/dtheta across a groove's edge (the whole mesh's projection: 1e-5 K)."""
@@ -276,10 +276,11 @@ def test_grooved_film_does_not_depend_on_the_grooves_order(omega):
     leading edge, at the one groove or the other: the same nodes and elements numbered
     from another place), carry-over 0.8, near the reversed equilibrium: nodal
     temperatures, pressure, force, each groove's inlet temperature and the heat balance
-    equal to round-off (measured 7e-13 K, 8e-14 of the force). Fails with dp/dtheta
-    projected over the whole mesh (groove elements included): the inlet flow at the seam
-    is then one-sided and at the other groove averaged with the groove's flat pressure
-    (0.73 K at the inlet, 1.6 % of the force at 48 x 8, not falling with the mesh)."""
+    equal to round-off (measured 4e-12 K, 6e-14 of the force reversed; 6e-12 K, 1e-14
+    forward). Fails with dp/dtheta projected over the whole mesh (groove elements
+    included): the inlet flow at the seam is then one-sided and at the other groove
+    averaged with the groove's flat pressure (reversed: 0.72 K at the inlet and 2.1 % of
+    the force at 48 x 8, 0.78 K and 2.2 % at 96 x 16; forward 1.2e-3 K, 1.1e-4 K)."""
     state = JournalState(eps=0.76, omega=omega, gamma=-0.93 if omega > 0 else math.pi + 0.93)
     sols = [solve_thd(BEARING, state, 48, 8, lubricant=VG32, thermal=THERMAL, grooves=g,
                       **TIGHT) for g in (GROOVES, GROOVES[::-1])]
@@ -302,12 +303,13 @@ def test_reversed_thermal_equilibrium_with_carry_over_is_the_mirror_image(mirror
     down) and its frozen-viscosity K and C at -omega are those at +omega mirrored in the
     load line, on meshes mirrored in that line (the angle pi/2: it swaps the grooves and
     maps the mesh's seam onto the other groove's trailing edge): the two discrete
-    problems are one, so equal to round-off (measured at 48 x 8: eps 5e-14, attitude
-    1e-13 rad, T_max 6e-12 K, K 3e-11 and C 9e-13 of their largest entries; the
-    tolerances are the equilibrium's force tolerance, 1e-9). Fails with the mixing's flows
-    taken across the grooves' edges: the seam's inlet one-sided, its image's averaged
-    (eps 5e-4 apart at 48 x 8 on these meshes). On the toolkit's own mesh the two are two
-    discretisations: eps 7.4e-4, 2.3e-4 apart at 48 x 8, 96 x 16 (docs/thd.md)."""
+    problems are one, so equal to the solvers' round-off (measured at 48 x 8: eps 3e-12,
+    attitude 4e-12 rad, T_max 6e-10 K, K 2e-11 and C 8e-12 of their largest entries;
+    asserted 1e-9, 1e-9 rad, 1e-8 K, 1e-8). Fails with the mixing's flows taken across the
+    grooves' edges, the seam's inlet one-sided and its image's averaged: eps 3.5e-3 and
+    T_max 0.73 K apart at 48 x 8 on these meshes. On the toolkit's own mesh the two are two
+    discretisations: eps 2.3e-3, 5.6e-4, 1.5e-4 apart at 48 x 8, 96 x 16, 192 x 32, as
+    without carry-over (docs/thd.md)."""
     from bearingfem.design import coefficients, equilibrium
     mirrored_meshes(0.5 * math.pi)
     opts = dict(n_theta=48, n_z=8, grooves=GROOVES, cavitation="reynolds", lubricant=VG32,

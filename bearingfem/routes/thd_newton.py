@@ -19,7 +19,7 @@ The block Jacobian is exact (tested against central differences, :meth:`ThermalN
 with dK/dT P the film's change through mu(p, T) at its quadrature points, dE/dP the
 energy equation's through the Poiseuille flow, its dissipation and the SUPG weight,
 dE/dT its operator plus the same through mu, and dM_k the mixing's through the exit and
-column flows (dP/dtheta projected on the arcs) and the viscosity at the nodes (rank one per
+column flows (dP/dtheta by differences on the arcs) and the viscosity at the nodes (rank one per
 groove). A step eliminates the film (its LU) and solves the Schur complement on the
 temperatures by GMRES with the temperature block's inverse on the right (:meth:`_step`).
 
@@ -53,8 +53,7 @@ from ..solvers.linsolve import principal_block
 from ..thermal.energy import EnergySolution
 from ..thermal.jacobian import energy_linearisation
 from ..thermal.spec import ThermalRecord
-from .thd import (ThermalIteration, arc_theta_derivative, arc_theta_projection,
-                  check_thermal)
+from .thd import ThermalIteration, arc_theta_difference, check_thermal
 from .thd_film import ReynoldsFieldFilm
 
 __all__ = ["ThermalNewton", "mixing_linearisation", "solve_thd_newton"]
@@ -67,8 +66,8 @@ def mixing_linearisation(bearing, state, mesh, edges, P, fraction, T, lubricant,
     The least column flow and the carried flow's cap are taken on their current branch."""
     R, c, ps = bearing.radius, bearing.clearance, bearing.pressure_scale
     sc = ps / R
-    arc, lu, B = arc_theta_projection(mesh, edges)
-    dP = arc_theta_derivative(mesh, edges, P)
+    D = arc_theta_difference(mesh, edges)
+    dP = D @ P
     h = c * film_thickness(mesh.theta - state.gamma, state.eps)
     p = P * ps
     mu = lubricant.viscosity_at(p, temperature=T)
@@ -114,7 +113,7 @@ def mixing_linearisation(bearing, state, mesh, edges, P, fraction, T, lubricant,
             a[on] -= (t_mean - ts) * share / q_in * R * col_w[on]
         d_T = a * dq_dT
         d_T[o] += share * w * qo / q_sum
-        d_P = B.T @ lu.solve((-a * k3 * sc)[arc]) + a * dq_dP_local
+        d_P = D.T @ (-a * k3 * sc) + a * dq_dP_local
         out.append((value, d_P, d_T))
     return out
 
