@@ -19,8 +19,8 @@ The block Jacobian is exact (tested against central differences, :meth:`ThermalN
 with dK/dT P the film's change through mu(p, T) at its quadrature points, dE/dP the
 energy equation's through the Poiseuille flow, its dissipation and the SUPG weight,
 dE/dT its operator plus the same through mu, and dM_k the mixing's through the exit and
-column flows (dP/dtheta by differences on the arcs) and the viscosity at the nodes (rank one per
-groove). A step eliminates the film (its LU) and solves the Schur complement on the
+column flows (dP/dtheta by differences on the arcs) and the viscosity at the nodes (rank
+one per groove). A step eliminates the film (its LU) and solves the Schur complement on the
 temperatures by GMRES with the temperature block's inverse on the right (:meth:`_step`).
 
 The cavitated set is held during a step and updated after it as the isothermal active
