@@ -19,8 +19,8 @@ The block Jacobian is exact (tested against central differences, :meth:`ThermalN
 with dK/dT P the film's change through mu(p, T) at its quadrature points, dE/dP the
 energy equation's through the Poiseuille flow, its dissipation and the SUPG weight,
 dE/dT its operator plus the same through mu, and dM_k the mixing's through the exit and
-column flows (the projected dP/dtheta) and the viscosity at the nodes (rank one per
-groove). A step eliminates the film (its LU) and solves the Schur complement on the
+column flows (dP/dtheta by differences on the arcs) and the viscosity at the nodes (rank
+one per groove). A step eliminates the film (its LU) and solves the Schur complement on the
 temperatures by GMRES with the temperature block's inverse on the right (:meth:`_step`).
 
 The cavitated set is held during a step and updated after it as the isothermal active
@@ -44,10 +44,7 @@ import numpy as np
 import scipy.sparse as sp
 from scipy.linalg import lapack
 from scipy.sparse.linalg import LinearOperator, gmres, splu
-from skfem import BilinearForm
-from skfem.models.poisson import mass
 
-from ..caches import cached
 from ..errors import ConvergenceError
 from ..fe.general import general_assembly
 from ..film import film_thickness
@@ -56,23 +53,10 @@ from ..solvers.linsolve import principal_block
 from ..thermal.energy import EnergySolution
 from ..thermal.jacobian import energy_linearisation
 from ..thermal.spec import ThermalRecord
-from .thd import ThermalIteration, check_thermal
+from .thd import ThermalIteration, arc_theta_difference, check_thermal
 from .thd_film import ReynoldsFieldFilm
 
 __all__ = ["ThermalNewton", "mixing_linearisation", "solve_thd_newton"]
-
-
-@BilinearForm
-def _theta_gradient_form(u, v, w):
-    return u.grad[0] * v
-
-
-@cached(maxsize=16)
-def _theta_projection(mesh):
-    """(LU of the mass matrix, the form int dP/dtheta v): dP/dtheta projected on the
-    nodes is M^-1 B P (the mixing's flows, :func:`~bearingfem.routes.thd.groove_mixing`)."""
-    basis = mesh.basis
-    return splu(mass.assemble(basis).tocsc()), _theta_gradient_form.assemble(basis).tocsr()
 
 
 def mixing_linearisation(bearing, state, mesh, edges, P, fraction, T, lubricant, thermal):
@@ -82,8 +66,8 @@ def mixing_linearisation(bearing, state, mesh, edges, P, fraction, T, lubricant,
     The least column flow and the carried flow's cap are taken on their current branch."""
     R, c, ps = bearing.radius, bearing.clearance, bearing.pressure_scale
     sc = ps / R
-    lu, B = _theta_projection(mesh)
-    dP = lu.solve(B @ P)
+    D = arc_theta_difference(mesh, edges)
+    dP = D @ P
     h = c * film_thickness(mesh.theta - state.gamma, state.eps)
     p = P * ps
     mu = lubricant.viscosity_at(p, temperature=T)
@@ -129,7 +113,7 @@ def mixing_linearisation(bearing, state, mesh, edges, P, fraction, T, lubricant,
             a[on] -= (t_mean - ts) * share / q_in * R * col_w[on]
         d_T = a * dq_dT
         d_T[o] += share * w * qo / q_sum
-        d_P = B.T @ lu.solve(-a * k3 * sc) + a * dq_dP_local
+        d_P = D.T @ (-a * k3 * sc) + a * dq_dP_local
         out.append((value, d_P, d_T))
     return out
 
