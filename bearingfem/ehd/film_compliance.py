@@ -121,7 +121,8 @@ class BushJacobian:
         pressure (the liner without a supply line's seam): T_H C is then the sparse T_H
         with its columns scaled by it. None otherwise."""
         c = self.compliance
-        if not (isinstance(c.spectrum, np.ndarray) and c.spectrum.ndim == 1):
+        spectrum = getattr(c, "spectrum", None)       # a grid's compliance has none
+        if not (isinstance(spectrum, np.ndarray) and spectrum.ndim == 1):
             return None
         if not np.array_equal(c.source[c.node], np.arange(c.node.size)):
             return None
