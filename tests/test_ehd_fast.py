@@ -15,6 +15,7 @@ from bearingfem.elastic import bush_compliance
 from bearingfem.errors import ConvergenceError
 from bearingfem.fe.kernel import fe_operator
 from bearingfem.lubricant import Lubricant
+from bearingfem.ehd.film_compliance import BushJacobian
 
 SEED = seed_bearing(0.2)                 # R 10 mm, L 4 mm, c 20 um, mu 0.0117 Pa s
 BRONZE = dict(outer_radius=0.016, modulus=110e9, poisson=0.34)
@@ -193,7 +194,6 @@ def test_local_compliance_is_factorised_whole(monkeypatch):
     .. 6e-15 on the heavy state, 120 x 20 .. 480 x 80, where it takes half the CPU
     time). Fails with the bush's part added with its sign flipped or without the
     compliance factor (more Newton steps, or none converges)."""
-    from bearingfem.ehd.film_compliance import BushJacobian
     bush = ElasticBush(model="liner", **SOFT)
     state = JournalState(eps=0.9, gamma=0.3, omega=250.0)
 

@@ -13,6 +13,7 @@ from bearingfem.elastic.fourier import harmonic_forms, section_system
 from bearingfem.elastic.surface import FilmGrid
 from test_ehd_mixed import michell
 from test_elastic_bush import lame_exact, ring_exact
+from bearingfem.elastic import fourier
 
 R, B, L = 0.010, 0.016, 0.004
 BRONZE = dict(outer_radius=B, modulus=110e9, poisson=0.34)
@@ -206,7 +207,6 @@ def test_ehd_film_on_octaves_is_every_harmonic_solved(monkeypatch):
     barycentric weights not halved; the octave solved on the lines of its top harmonic
     (~1e-7 in the high harmonics' blocks) moves this film by less and is caught by the
     blocks' test above."""
-    from bearingfem.elastic import fourier
     seed = seed_bearing(0.2)
     state = JournalState(eps=0.995, gamma=0.2, omega=250.0)
     bush = ElasticBush(**BRONZE)

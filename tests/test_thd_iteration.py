@@ -87,7 +87,7 @@ def test_unconverged_iteration_still_raises():
 def test_force_partials_are_central_differences(state):
     """The frozen-viscosity film's exact derivatives (ReynoldsFieldFilm.force_partials)
     against central differences of the same film (step 1e-5 c in position, 1e-5 omega c
-    in velocity, as before): to 1e-7 of the largest entry (measured 1.2e-9 and 1.7e-10
+    in velocity, as before): to 1e-8 of the largest entry (measured 1.2e-9 and 1.7e-10
     at eps 0.7, 5e-10 and 2e-12 reversed at eps 0.4: the differences' truncation and
     round-off), on the thermal film's viscosity field. Fails without the stiffness's
     dK/dq P term (planted)."""
@@ -104,8 +104,8 @@ def test_force_partials_are_central_differences(state):
     f = ReynoldsFieldFilm(BEARING, state, op, "P1", tuple(GROOVES), 1e-10)
     f.solve(mu / BEARING.viscosity)
     e_q, e_v = f.force_partials()
-    assert np.max(np.abs(e_q - d_q)) < 1e-7 * np.max(np.abs(d_q))
-    assert np.max(np.abs(e_v - d_v)) < 1e-7 * np.max(np.abs(d_v))
+    assert np.max(np.abs(e_q - d_q)) < 1e-8 * np.max(np.abs(d_q))
+    assert np.max(np.abs(e_v - d_v)) < 1e-8 * np.max(np.abs(d_v))
 
 
 def test_equilibrium_is_the_thermal_films_balance():
@@ -115,7 +115,7 @@ def test_equilibrium_is_the_thermal_films_balance():
     2e-6 K (each within the 1e-6 K tolerance of the fixed point; measured 7e-9 K), the
     film returned the one on the temperatures returned (its viscosity theirs, bit for
     bit; fails with the final step accepted as an inexact one, planted), and
-    K, C (exact derivatives) the frozen film's central differences to 1e-7 (measured
+    K, C (exact derivatives) the frozen film's central differences to 1e-8 (measured
     1.4e-9 and 4e-12)."""
     load = (0.0, -2000.0)
     thermal = THERMALS[0]
@@ -137,5 +137,5 @@ def test_equilibrium_is_the_thermal_films_balance():
     q = np.array([s.eps * math.cos(s.gamma), s.eps * math.sin(s.gamma)])
     K = -_jacobian(film, q, OMEGA, BEARING.clearance) / BEARING.clearance
     C = -_jacobian(film, q, OMEGA, BEARING.clearance, velocity=True) / BEARING.clearance
-    assert np.max(np.abs(kc.K - K)) < 1e-7 * np.max(np.abs(K))
-    assert np.max(np.abs(kc.C - C)) < 1e-7 * np.max(np.abs(C))
+    assert np.max(np.abs(kc.K - K)) < 1e-8 * np.max(np.abs(K))
+    assert np.max(np.abs(kc.C - C)) < 1e-8 * np.max(np.abs(C))

@@ -20,6 +20,7 @@ from bearingfem.routes.thd import solve_thd, thermal_operator
 from bearingfem.thermal import Thermal
 from bearingfem.thermal.energy import energy_operator
 from tests.test_thd_model import BEARING, GROOVES, MESH, OMEGA, SUPPLY, THERMAL, VG32
+from bearingfem.design import coefficients, equilibrium
 
 TIGHT = dict(temperature_tol=1e-11, pressure_rtol=1e-13)
 AXIS = 0.5          # the supply line's angle, the mirror's axis [rad]
@@ -310,7 +311,6 @@ def test_reversed_thermal_equilibrium_with_carry_over_is_the_mirror_image(mirror
     T_max 0.73 K apart at 48 x 8 on these meshes. On the toolkit's own mesh the two are two
     discretisations: eps 2.3e-3, 5.6e-4, 1.5e-4 apart at 48 x 8, 96 x 16, 192 x 32, as
     without carry-over (docs/thd.md)."""
-    from bearingfem.design import coefficients, equilibrium
     mirrored_meshes(0.5 * math.pi)
     opts = dict(n_theta=48, n_z=8, grooves=GROOVES, cavitation="reynolds", lubricant=VG32,
                 thermal=THERMAL)

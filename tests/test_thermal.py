@@ -31,6 +31,7 @@ from bearingfem.thermal.energy import (
     solve_energy,
 )
 from bearingfem.thermal.operator import _supg_tau
+from studies.thd_designer import BEARING as B, GROOVES as G, OMEGA, OIL
 
 BEARING = Bearing(radius=0.025, length=0.025, clearance=50e-6, viscosity=0.02)
 GROOVES = [Groove(angle=0.5 * math.pi, width=0.2), Groove(angle=-0.5 * math.pi, width=0.2)]
@@ -445,7 +446,6 @@ def _inlet_flows(n_theta, n_z):
     the column: what the film's own equations send into the arc (its integrated flow
     balance: the same flow leaves through the exit, the ends and the cavity), from the
     element gradients the energy equation convects with, no nodal projection."""
-    from studies.thd_designer import BEARING as B, GROOVES as G, OMEGA, OIL
     state = JournalState(eps=0.76, omega=OMEGA, gamma=-0.93)
     it = ThermalIteration(B, state, n_theta, n_z, lubricant=OIL, grooves=G,
                           thermal=Thermal(SUPPLY, carry_over=0.8))
