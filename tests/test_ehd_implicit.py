@@ -161,8 +161,8 @@ def test_the_seed_pin_runs_as_with_the_states_film():
     """The seed pin at 250 rad/s, 1 % of a turn from a centred start, 24 x 4, rough (sigma
     0.2 um), 2 um crown: the implicit step against the whole deflection integrated as
     states (FullStateEHD, the integrator's error control on w): peak eps to 2e-3 and least
-    film to 2e-2 c (measured ...: the backward Euler step's O(dt) error, which the
-    integrator does not control), every accepted step recorded. Fails with the bush's
+    film to 5e-4 c (measured 8.5e-4 and 9e-5 c: the backward Euler step's O(dt) error,
+    which the integrator does not control), every accepted step recorded. Fails with the bush's
     rate dropped from the squeeze."""
     from bearingfem.contact import Roughness
     from bearingfem.fields import EdgeProfile
@@ -178,4 +178,4 @@ def test_the_seed_pin_runs_as_with_the_states_film():
     states, implicit = runs["states"], runs["implicit"]
     assert not implicit.partial and len(implicit.film_record) == implicit.stats["steps"]
     assert abs(implicit.eps.max() - states.eps.max()) < 2e-3 * states.eps.max()
-    assert abs(implicit.film_min.min() - states.film_min.min()) < 2e-2 * 20e-6
+    assert abs(implicit.film_min.min() - states.film_min.min()) < 5e-4 * 20e-6
