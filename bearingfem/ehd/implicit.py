@@ -64,6 +64,9 @@ __all__ = ["ImplicitStepEHD", "ImplicitSnapshot"]
 RATE_TOL = 1e-12
 RATE_STEPS = 30
 RATE_KRYLOV = 1e-10
+#: The GMRES tolerance of S^-1 inside the Newton matrix's products (those solved to
+#: STEP_TOLERANCE: an inexact Newton, converged by the film's residual test)
+PRODUCT_KRYLOV = 1e-6
 
 
 @dataclass(frozen=True)
@@ -96,7 +99,7 @@ class _RateCompliance:
 
     def apply(self, x: np.ndarray) -> np.ndarray:
         f = self.step
-        return f.solve_rate(f.comply(f.scale * x), self.stiffness, RATE_KRYLOV, self.s)
+        return f.solve_rate(f.comply(f.scale * x), self.stiffness, PRODUCT_KRYLOV, self.s)
 
 
 class _StepFilm:
