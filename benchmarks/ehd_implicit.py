@@ -21,6 +21,7 @@ run and prints what it computed (marked partial).
 from __future__ import annotations
 
 import argparse
+import dataclasses
 
 import numpy as np
 
@@ -34,15 +35,24 @@ from .ehd_states import ROUGH, last_turn, last_turn_work, rigid_jfo
 CROWN = EdgeProfile("crown", 2e-6)
 
 
-def implicit_run(turns, nt, nz, tau, rtol, coupling="implicit"):
+def implicit_run(turns, nt, nz, tau, rtol, coupling="implicit", progress=False):
     """(result, CPU [s]) of one run."""
-    import dataclasses
     sc = scene("paper-short-ehd", 250.0, turns, n_theta=nt, n_z=nz, modes=0, film_step=0.0,
                lubricant=OILS["iso"], coupling=coupling, relaxation=tau, roughness=ROUGH,
                profile=CROWN)
     sc = dataclasses.replace(sc, run=dataclasses.replace(sc.run, rtol=rtol))
-    t = best_of(lambda: simulate(sc, progress=False))
+    t = best_of(lambda: simulate(sc, progress=progress))
     return t.out, t.cpu
+
+
+def last_turn_numbers(r, turns, radius):
+    """(least film [um], peak pressure [MPa], summits' share, friction power [W]) over
+    the run's last whole turn; NaN where a stopped run did not reach it."""
+    if not len(r.t) or r.crank_angle[-1] < 2 * np.pi * np.floor(turns) - 1e-9:
+        return (float("nan"),) * 4
+    h, p = last_turn(r, turns)
+    share, _, power = last_turn_work(r, turns, radius)
+    return h, p, share, power
 
 
 def main(argv=None):
@@ -54,6 +64,7 @@ def main(argv=None):
     ap.add_argument("--states", action="store_true",
                     help="each mesh also with the whole deflection integrated as states")
     ap.add_argument("--save", metavar="DIR", default=None)
+    ap.add_argument("--progress", action="store_true", help="each run's progress on stderr")
     a = ap.parse_args(argv)
     radius = load_scene("paper-short-ehd").bearing.radius
     print(f"crowned seed pin (2 um), 250 rad/s, {a.turns:g} turns; last turn's numbers",
@@ -69,9 +80,8 @@ def main(argv=None):
         if a.states:
             rows.append(("states", a.tau[0], a.rtol[0]))
         for coupling, tau, rtol in rows:
-            r, cpu = implicit_run(a.turns, nt, nz, tau, rtol, coupling)
-            h, p = last_turn(r, a.turns)
-            share, _, power = last_turn_work(r, a.turns, radius)
+            r, cpu = implicit_run(a.turns, nt, nz, tau, rtol, coupling, a.progress)
+            h, p, share, power = last_turn_numbers(r, a.turns, radius)
             if a.save:
                 r.save(f"{a.save}/{coupling}-{nt}x{nz}-tau{tau:g}-rtol{rtol:g}")
             note = "" if not r.partial else f"  (partial: {r.message[:50]})"
