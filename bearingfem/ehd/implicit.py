@@ -332,8 +332,12 @@ class ImplicitStepEHD(StatelessRun):
         return _StepFilm(self, state, dt, frame)
 
     def _solve(self, film: _StepFilm) -> EHDResult:
+        """Chord steps on the last factorisation, then Newton, from the last solve's
+        pressure; where those fail, the continuation in s (the deflection's step) from the
+        s = 0 film (the states film at q = w_n) solved from that pressure, else from none."""
         free = film.op.mesh.free
         n = film.op.mesh.ndofs
+        starts = [np.zeros(n)]
         if self._P is not None and self._P.shape == (n,):
             start, chord_steps = self._P.copy(), 0
             if self._factor:
@@ -343,8 +347,12 @@ class ImplicitStepEHD(StatelessRun):
             out, its = _newton(film, start, 1.0, free, "reynolds", TOL, self._factor)
             if out is not None:
                 return EHDResult(out[0], chord_steps + its, out[1], True, out[2], 1, 0)
-        out, its = _newton(film, np.zeros(n), 0.0, free, "reynolds", TOL, self._factor)
-        if out is None:
+            starts.insert(0, self._P.copy())
+        for P in starts:
+            out, its = _newton(film, P, 0.0, free, "reynolds", TOL, self._factor)
+            if out is not None:
+                break
+        else:
             raise ConvergenceError("implicit-step EHD film", its, None, "its isoviscous start")
         return continuation(lambda s, P: _newton(film, P, s, free, "reynolds", TOL,
                                                  self._factor),
