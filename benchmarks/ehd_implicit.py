@@ -14,7 +14,7 @@ the ratio to the rigid JFO run, and over the last whole turn the least film (the
 itself, negative where the summits carry), the peak film pressure, the summits' share
 (their load's time integral over the joint force's) and the mean friction power (film
 shear and the summits' Coulomb friction), NaN for a run under a turn; and over the whole
-run its peak eps and least film. ``--states`` adds the run with the whole
+run its peak eps, least film and peak film pressure. ``--states`` adds the run with the whole
 deflection integrated as states (FullStateEHD) on each mesh. A Ctrl-C stops the row's
 run and prints what it computed (marked partial).
 """
@@ -71,7 +71,8 @@ def main(argv=None):
           flush=True)
     print(f"{'mesh':>8} {'coupling':>8} {'tau[s]':>7} {'rtol':>6} {'steps':>6} {'rhs':>6} "
           f"{'CPU[s]':>7} {'JFO[s]':>7} {'x JFO':>6} {'h_min[um]':>9} {'p_max[MPa]':>10} "
-          f"{'share':>7} {'power[W]':>8} {'run: peak eps':>13} {'h_min[um]':>9}", flush=True)
+          f"{'share':>7} {'power[W]':>8} {'run: peak eps':>13} {'h_min[um]':>9} "
+          f"{'p_max[MPa]':>10}", flush=True)
     for nt, nz in zip(a.meshes[::2], a.meshes[1::2]):
         rigid_jfo(0.002, nt, nz)                       # warm-up: the mesh's operators
         implicit_run(0.001, nt, nz, a.tau[0], a.rtol[0])
@@ -88,7 +89,8 @@ def main(argv=None):
             print(f"{nt:>4}x{nz:<3} {coupling:>8} {tau:7.0e} {rtol:6.0e} "
                   f"{r.stats['steps']:6d} {r.stats['rhs_evals']:6d} {cpu:7.1f} {base:7.1f} "
                   f"{cpu / base:6.1f} {h:9.4f} {p:10.1f} {share:7.4f} {power:8.3f} "
-                  f"{r.eps.max():13.5f} {1e6 * r.film_min.min():9.4f}" + note,
+                  f"{r.eps.max():13.5f} {1e6 * r.film_min.min():9.4f} "
+                  f"{film_column(r.film_record, 'pressure_max').max() / 1e6:10.1f}" + note,
                   flush=True)
 
 
