@@ -47,8 +47,7 @@ def test_the_force_is_continuous_across_a_commit():
     """A commit at t = 1e-7 s moves w_n to the step's w; the film at the same state and
     time (now dt = 0) has the same pressure, force and bush rate: (tau + dt) v = C p - w_n
     gives tau v = C p - (w_n + dt v). Force to 1e-7, rate to 1e-6 of their largest (each
-    film converged to 1e-10; measured in the test's run below 1e-9). Fails when the commit
-    keeps w_n, or advances it by v tau."""
+    film converged to 1e-10; measured 0 and 8e-15). Fails when the commit keeps w_n."""
     film, _, state, _ = _heavy()
     t = 1e-7
     before = film.force(state, t)
