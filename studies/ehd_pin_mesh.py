@@ -1,13 +1,14 @@
 """Which mesh direction does the crowned seed pin's least film need? The steady EHD film
-at the run's heaviest states (near top dead centre: the pin's relative speed 62.5 rad/s,
-eps 1.10-1.20 beyond the rigid clearance circle, the joint load some 3500 N in the runs of
-docs/ehd-states.md), the 3-D-equivalent per-harmonic solid bronze bush of
+at the run's eccentricities near top dead centre (the pin's relative speed 62.5 rad/s;
+eps 0.99 and 1.02; the runs of docs/ehd-states.md reach 1.29 under a 3500 N joint load,
+carried by the squeeze, which the steady film has not: beyond eps ~1.025 the steady solve
+stops, the bush not opening the gap further), the 3-D-equivalent per-harmonic solid bronze bush of
 ``paper-short-ehd``, a 2 um crown over the whole length, the benchmarks' isoviscous oil
 with Dowson-Higginson density, Reynolds' condition, no summits; theta and z refined
 separately: load |F|, peak pressure, least film and where it sits (|z|/L, theta from the
 film's origin), wall time, one run.
 
-    python -m studies.ehd_pin_mesh [--eps 1.15] [--meshes 48 4 48 16 96 8 ...]
+    python -m studies.ehd_pin_mesh [--eps 0.99 1.02] [--meshes 48 4 48 16 96 8 ...]
 """
 from __future__ import annotations
 
@@ -24,12 +25,12 @@ from benchmarks.common import OILS
 
 BUSH = ElasticBush(outer_radius=0.016, modulus=110e9, poisson=0.34, model="solid")
 CROWN = EdgeProfile("crown", 2e-6)
-MESHES = [48, 4, 48, 8, 48, 16, 96, 8, 96, 16, 96, 32, 192, 16, 192, 32, 384, 32]
+MESHES = [48, 4, 48, 16, 96, 8]
 
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--eps", type=float, nargs="+", default=[1.10, 1.17])
+    ap.add_argument("--eps", type=float, nargs="+", default=[0.99, 1.02])
     ap.add_argument("--omega", type=float, default=62.5)
     ap.add_argument("--meshes", type=int, nargs="+", default=MESHES)
     a = ap.parse_args(argv)
