@@ -108,7 +108,7 @@ def test_a_journal_held_still_relaxes_to_the_steady_full_ehd_film():
     for k in range(1, 16):
         film.commit(s, 1e-3 * k)
     F = film.force(s, film.t)
-    w, v = film.deflection_rate(s, film.t)
+    _, v = film.deflection_rate(s, film.t)
     steady = solve_reynolds(B, s, NT, NZ, "P1", "reynolds",
                             bush=ehd_compliance(SOLID, B.radius, B.length, NT, NZ, 0))
     assert np.allclose(F, steady.force_local, rtol=1e-8, atol=0)
