@@ -14,7 +14,7 @@ the ratio to the rigid JFO run, and over the last whole turn the least film (the
 itself, negative where the summits carry), the peak film pressure, the summits' share
 (their load's time integral over the joint force's) and the mean friction power (film
 shear and the summits' Coulomb friction), NaN for a run under a turn; and over the whole
-run its peak eps, least film and peak film pressure. ``--states`` adds the run with the whole
+run its peak eps, least film, peak film pressure, summits' share and friction power. ``--states`` adds the run with the whole
 deflection integrated as states (FullStateEHD) on each mesh. A Ctrl-C stops the row's
 run and prints what it computed (marked partial).
 """
@@ -45,6 +45,19 @@ def implicit_run(turns, nt, nz, tau, rtol, coupling="implicit", progress=False):
     return t.out, t.cpu
 
 
+def window_work(r, radius, friction=ROUGH.friction):
+    """(summits' share [1], mean friction power [W]) over the whole run (its film
+    record): as ``last_turn_work``, for a window under a turn."""
+    rec = np.asarray(r.film_record)
+    t = film_column(rec, "t")
+    a = film_column(rec, "asperity_load")
+    f = np.hypot(film_column(rec, "force_x"), film_column(rec, "force_y"))
+    om = film_column(rec, "omega")
+    power = (film_column(rec, "friction_force") * np.sign(om) + friction * a) \
+        * radius * np.abs(om)
+    return np.trapezoid(a, t) / np.trapezoid(f, t), np.trapezoid(power, t) / (t[-1] - t[0])
+
+
 def last_turn_numbers(r, turns, radius):
     """(least film [um], peak pressure [MPa], summits' share, friction power [W]) over
     the run's last whole turn; NaN where a stopped run did not reach it."""
@@ -72,7 +85,7 @@ def main(argv=None):
     print(f"{'mesh':>8} {'coupling':>8} {'tau[s]':>7} {'rtol':>6} {'steps':>6} {'rhs':>6} "
           f"{'CPU[s]':>7} {'JFO[s]':>7} {'x JFO':>6} {'h_min[um]':>9} {'p_max[MPa]':>10} "
           f"{'share':>7} {'power[W]':>8} {'run: peak eps':>13} {'h_min[um]':>9} "
-          f"{'p_max[MPa]':>10}", flush=True)
+          f"{'p_max[MPa]':>10} {'share':>7} {'power[W]':>8}", flush=True)
     for nt, nz in zip(a.meshes[::2], a.meshes[1::2]):
         rigid_jfo(0.002, nt, nz)                       # warm-up: the mesh's operators
         implicit_run(0.001, nt, nz, a.tau[0], a.rtol[0])
@@ -83,6 +96,7 @@ def main(argv=None):
         for coupling, tau, rtol in rows:
             r, cpu = implicit_run(a.turns, nt, nz, tau, rtol, coupling, a.progress)
             h, p, share, power = last_turn_numbers(r, a.turns, radius)
+            window_share, window_power = window_work(r, radius)
             if a.save:
                 r.save(f"{a.save}/{coupling}-{nt}x{nz}-tau{tau:g}-rtol{rtol:g}")
             note = "" if not r.partial else f"  (partial: {r.message[:50]})"
@@ -90,7 +104,8 @@ def main(argv=None):
                   f"{r.stats['steps']:6d} {r.stats['rhs_evals']:6d} {cpu:7.1f} {base:7.1f} "
                   f"{cpu / base:6.1f} {h:9.4f} {p:10.1f} {share:7.4f} {power:8.3f} "
                   f"{r.eps.max():13.5f} {1e6 * r.film_min.min():9.4f} "
-                  f"{film_column(r.film_record, 'pressure_max').max() / 1e6:10.1f}" + note,
+                  f"{film_column(r.film_record, 'pressure_max').max() / 1e6:10.1f} "
+                  f"{window_share:7.4f} {window_power:8.3f}" + note,
                   flush=True)
 
 
