@@ -5,6 +5,7 @@ modes integrated with the journal ("states")."""
 from __future__ import annotations
 
 from ..bearing import ELASTIC_EPS_CAP
+from ..ehd.implicit import ImplicitStepEHD
 from ..ehd.jfo_run import TransientEHDJFO
 from ..ehd.states import FullStateEHD, ModalStateEHD
 from ..ehd.tangent import TangentEHD
@@ -18,7 +19,7 @@ from .registry import FilmModel, register
 
 __all__ = ["EHDModel", "ehd_model_solution", "ehd_jfo_solution", "ehd_run_film"]
 
-#: Bush relaxation time's range [s] (Kelvin-Voigt, for coupling "states").
+#: Bush relaxation time's range [s] (Kelvin-Voigt, for coupling "states" and "implicit").
 RELAXATION = (1e-12, 1.0)
 
 
@@ -59,11 +60,23 @@ def ehd_run_film(bearing, lubricant=None, bush=None, roughness=None, n_theta: in
     around the film at 1e5 Pa); ``coupling`` "states": the bush's modes integrated with
     the journal (:class:`~bearingfem.ehd.states.ModalStateEHD`, Reynolds' condition, a
     bush, ``relaxation`` [s] its Kelvin-Voigt time; ``modes`` 0: the whole deflection on
-    the bush's grid, no truncation, :class:`~bearingfem.ehd.states.FullStateEHD`). ``profile``: a bush edge profile
+    the bush's grid, no truncation, :class:`~bearingfem.ehd.states.FullStateEHD`);
+    ``coupling`` "implicit": the whole deflection advanced by the film's own backward-Euler
+    step between accepted steps (:class:`~bearingfem.ehd.implicit.ImplicitStepEHD`, modes
+    0, no dense matrix). ``profile``: a bush edge profile
     (:class:`~bearingfem.fields.EdgeProfile`) in the gap of the Reynolds-condition films;
     the transient EHD-JFO film takes none."""
     if profile is not None:
         profile.check(bearing)
+    if coupling == "implicit":
+        if cavitation != "reynolds":
+            raise ValueError(f"coupling 'implicit' takes cavitation 'reynolds', got "
+                             f"{cavitation!r}")
+        if modes:
+            raise ValueError(f"coupling 'implicit' takes the full compliance (modes 0), got "
+                             f"modes {modes!r}")
+        return ImplicitStepEHD(bearing, lubricant, bush, n_theta, n_z, relaxation, roughness,
+                               profile)
     if coupling == "states":
         if cavitation != "reynolds":
             raise ValueError(f"coupling 'states' takes cavitation 'reynolds', got {cavitation!r}")
@@ -99,7 +112,7 @@ class EHDModel(FilmModel):
     rules = {"lubricant": ("instance", (Lubricant,)), "bush": ("instance", (ElasticBush,)),
              "profile": ("instance", (EdgeProfile,)),
              "modes": ("int", (0, None)), "cavitation": ("choice", ("reynolds", "jfo")),
-             "coupling": ("choice", ("kept", "tangent", "states")),
+             "coupling": ("choice", ("kept", "tangent", "states", "implicit")),
              "relaxation": ("number", RELAXATION)}
     numeric = True
     memory = True

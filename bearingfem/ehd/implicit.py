@@ -1,0 +1,446 @@
+"""The EHD film with the bush's deflection advanced by the film's own implicit step.
+
+:class:`~bearingfem.ehd.states.FullStateEHD` integrates the bush's whole deflection w with
+the journal; the integrator's Jacobian then holds dw/dt's dense N x N derivative, which
+grows past a few thousand grid nodes. Here w stays out of the integrator: the film keeps
+the deflection w_n of the last accepted step (time t_n) and, at a trial state at time t,
+steps it by backward Euler over dt = t - t_n (the Kelvin-Voigt bush of
+:mod:`~bearingfem.ehd.states`, tau its relaxation time [s]):
+
+    w = w_n + dt v,     (tau + dt) v + w_n = C (p + p_a),
+
+v = dw/dt [m/s] the bush's rate, in the film's squeeze as in the states film
+(dH/dt = dH_rigid/dt + v / c, plus the deflection passing under the whirling frame).
+Given the journal's state the gap and its rate are known functions of the pressure, so
+each trial state is one EHD solve: the film's semismooth Newton
+(:mod:`bearingfem.ehd.newton`; its load continuation's s scales the lubricant's fields
+and the deflection's step, w = w_n + s dt v, so s = 0 is the states film at q = w_n) with
+the bush's part of the Jacobian, dR/dv dv/dP, applied
+matrix-free (the compliance by FFT per theta harmonic, GMRES preconditioned by the film's
+sparse LU and the compliance's leading modes by Woodbury); no dense matrix. With the
+summits' pressure p_a (Greenwood & Tripp) v solves its own small equation inside each
+evaluation, (tau + dt) v + w_n - C (p + p_a(w_n + dt v)) = 0 (Newton, GMRES on
+(tau + dt) I + dt C T^T K T, K the summits' stiffness: compliance products only).
+
+Limits (tests/test_ehd_implicit.py): at dt = 0 the film is the states film at q = w_n
+(the same residual); its force is continuous across a commit (the committed (P, v) solve
+the next step's film at dt = 0); as dt grows with the journal held still, w tends to the
+steady EHD film's deflection; with tau -> 0, w = C (p + p_a) is the quasi-static bush,
+with its squeeze by the backward difference (w - w_n) / dt.
+
+The deflection's error is the backward Euler step's, O(dt) over the integrator's step,
+which the integrator's error control (on the journal alone) does not see: its convergence
+is measured in the integrator's tolerance (docs/ehd-states.md).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+import scipy.sparse as sp
+from scipy.sparse.linalg import LinearOperator, gmres
+
+from ..bearing import Bearing, JournalState
+from ..contact.flow_factors import FLOW_FLOOR
+from ..contract import FilmStep, StatelessRun
+from ..errors import ConvergenceError
+from ..fe.assembly import fe_operator
+from ..fe.kernel import film_outputs
+from ..fe.mixed import friction_fields
+from ..fields import FilmFields
+from ..film import film_thickness, local_to_inertial
+from ..scales import force_factor
+from .coupling import ehd_film, jacobian_tables
+from .film_compliance import BushJacobian, CirculantCompliance
+from .grid import FrameShift, node_grid
+from .newton import EHDResult, _chord, _newton, continuation
+from .states import PRECONDITIONER_MODES, STEP_TOLERANCE, TOL
+from .transient import ehd_compliance
+
+__all__ = ["ImplicitStepEHD", "ImplicitSnapshot"]
+
+#: The bush rate's own Newton (with summits): its residual test, relative to the size of
+#: its terms, and its most steps; the GMRES tolerance of each of its steps.
+RATE_TOL = 1e-12
+RATE_STEPS = 30
+RATE_KRYLOV = 1e-10
+#: The GMRES tolerance of S^-1 inside the Newton matrix's products (those solved to
+#: STEP_TOLERANCE: an inexact Newton, converged by the film's residual test)
+PRODUCT_KRYLOV = 1e-6
+
+
+@dataclass(frozen=True)
+class ImplicitSnapshot:
+    """What an :class:`ImplicitStepEHD` keeps: the time t_n [s] and deflection w_n [m]
+    (bush grid) of the last committed step, the film steps, the warm start."""
+
+    t: float
+    deflection: np.ndarray
+    steps: int
+    pressure: np.ndarray | None
+
+
+class _Evaluated:
+    """The film at one pressure: the EHD film built on its gap and rate, its evaluation,
+    the bush's rate v [m/s] and deflection w [m] on the grid, the summits' nodal pressure
+    [Pa] and their stiffness -dp_a/dh [Pa/m] (None without roughness)."""
+
+    def __init__(self, film, ev, v, w, contact, stiffness, gap, moving):
+        self.film, self.ev, self.v, self.w = film, ev, v, w
+        self.contact, self.stiffness, self.gap, self.moving = contact, stiffness, gap, moving
+
+
+class _RateCompliance:
+    """dv/dP x = scale S^-1 C T^T x (S = (tau + dt) I + dt C T^T K T): the bush's part of
+    the Newton matrix after the coupling, for :class:`~.film_compliance.BushJacobian`."""
+
+    def __init__(self, step: "_StepFilm", stiffness, s: float):
+        self.step, self.stiffness, self.s = step, stiffness, s
+
+    def apply(self, x: np.ndarray) -> np.ndarray:
+        f = self.step
+        return f.solve_rate(f.comply(f.scale * x), self.stiffness, PRODUCT_KRYLOV, self.s)
+
+
+class _StepFilm:
+    """The film of one trial state and step dt, as :func:`~.newton._newton` asks of a
+    film: ``op``, ``evaluate(P, s)``, ``jacobian(P, s, ev)``."""
+
+    def __init__(self, run: "ImplicitStepEHD", state: JournalState, dt: float, frame):
+        b = run.bearing
+        self.run, self.state, self.dt = run, state, float(dt)
+        self.op = op = fe_operator(b, state, run.n_theta, run.n_z, "P1", None, False)
+        self.frame, self.shift = frame, frame.shift
+        self.c, self.scale = b.clearance, b.pressure_scale
+        self.tau = run.tau + self.dt          # (tau + dt): the rate's factor
+        self.w_n = run._w
+        m = op.mesh
+        self.th = op.qp_theta
+        self.gap_q0 = film_thickness(self.th, state.eps)      # rigid gap at the points
+        self.gap_n0 = film_thickness(m.theta, state.eps)      # and at the nodes
+        if run.profile is not None:          # the bore's crown or chamfer: fixed, no rate
+            self.gap_q0 = self.gap_q0 + run.profile.film_gap(b, op.qp_zeta)
+            self.gap_n0 = self.gap_n0 + run.profile.film_gap(b, m.zeta)
+        self.tables = jacobian_tables(op)
+        self._last = None
+
+    # -- the bush ---------------------------------------------------------------------
+    def comply(self, p_nodes: np.ndarray) -> np.ndarray:
+        """C T^T p: the grid's quasi-static deflection [m] under nodal pressure [Pa]."""
+        return self.run.compliance.on_grid(self.shift.to_grid(p_nodes))
+
+    def solve_rate(self, b: np.ndarray, stiffness, rtol: float, s: float = 1.0) -> np.ndarray:
+        """y with S y = b, S = (tau + dt) I + s dt C T^T K T (K = diag(``stiffness``) at
+        the nodes; None: S = (tau + dt) I)."""
+        if stiffness is None or self.dt == 0.0 or s == 0.0 or not np.any(stiffness):
+            return b / self.tau
+        n = b.size
+        dt, tau = s * self.dt, self.tau
+
+        def S(y):
+            return tau * y + dt * self.comply(stiffness * self.shift.to_nodes(y))
+        y, _ = gmres(LinearOperator((n, n), matvec=S, dtype=float), b, x0=b / tau,
+                     rtol=rtol, atol=0.0, restart=60, maxiter=20)
+        return y
+
+    def _nodal_gap(self, w: np.ndarray) -> np.ndarray:
+        """The nodal gap over c (not floored) with the grid deflection w."""
+        return self.gap_n0 + self.shift.to_nodes(w) / self.c
+
+    def rate(self, P: np.ndarray, s: float = 1.0) -> tuple | None:
+        """(v, w, p_a, -dp_a/dh) at nodal P and coupling s (w = w_n + s dt v): the bush's
+        rate solved (with summits, by Newton), or None where that solve fails."""
+        p = self.scale * P
+        rough = self.run.roughness
+        step = s * self.dt
+        if rough is None:
+            v = (self.comply(p) - self.w_n) / self.tau
+            return v, self.w_n + step * v, None, None
+        v = None if self._last is None else self._last.v
+        if v is None:
+            pa = rough.pressure(self.c * self._nodal_gap(self.w_n))
+            v = (self.comply(p + pa) - self.w_n) / self.tau
+        for _ in range(RATE_STEPS):
+            w = self.w_n + step * v
+            h = self.c * self._nodal_gap(w)
+            pa = rough.pressure(h)
+            load = self.comply(p + pa)
+            r = self.tau * v + self.w_n - load
+            size = float(np.max(np.abs(self.tau * v) + np.abs(self.w_n) + np.abs(load)))
+            k = -rough.pressure_derivative(h)
+            if not np.all(np.isfinite(r)):
+                return None
+            if float(np.max(np.abs(r), initial=0.0)) <= RATE_TOL * max(size, 1e-300):
+                return v, w, pa, k
+            v = v - self.solve_rate(r, k, RATE_KRYLOV, s)
+        return None
+
+    # -- the film ---------------------------------------------------------------------
+    def at(self, P: np.ndarray, s: float = 1.0) -> _Evaluated | None:
+        """The film at nodal P built whole (kept for the Jacobian at the same P)."""
+        if self._last is not None and self._last.s == s and np.array_equal(self._last.P, P):
+            return self._last.out
+        out = self._build(P, s)
+        self._last = _Memo(P.copy(), s, out, None if out is None else out.v)
+        return out
+
+    def _build(self, P, s):
+        run, op, c, state = self.run, self.op, self.c, self.state
+        solved = self.rate(P, s)
+        if solved is None:
+            return None
+        v, w, pa, k = solved
+        wn = self.shift.to_nodes(w)
+        vn = self.shift.to_nodes(v)
+        t = self.tables
+        dofs = op.mesh.basis.element_dofs
+        # dH/dt at the points: the journal's squeeze, the bush's rate, and the deflection
+        # (fixed in the bush) passing under the whirling film frame, gamma_dot dw/dalpha
+        dw = np.einsum("jeq,je->eq", t.dphi[:, 0], wn[dofs]) / t.dx
+        rate = (state.eps_dot * np.cos(self.th) + state.gamma_dot * dw / c
+                + op.qp_interp.dot(vn).reshape(self.th.shape) / c)
+        gap_q = self.gap_q0 + op.at_quadrature(wn) / c
+        gap_n = self.gap_n0 + wn / c
+        moving = None
+        if run.roughness is not None and run.roughness.flow is None:
+            floor = FLOW_FLOOR * run.roughness.sigma / c
+            moving = (gap_q > floor).astype(float)
+            gap_q = np.maximum(gap_q, floor)
+        base = FilmFields(gap=gap_q, gap_rate=rate, viscosity=np.ones_like(gap_q),
+                          density=np.ones_like(gap_q), density_rate=np.zeros_like(gap_q))
+        film = ehd_film(run.bearing, state, op, base,
+                        gap_n if moving is None else np.maximum(gap_n, floor),
+                        run.lubricant, None, run.roughness)
+        ev = film.evaluate(P, s)
+        if ev is None:
+            return None
+        return _Evaluated(film, ev, v, w, pa, k, gap_n, moving)
+
+    def evaluate(self, P: np.ndarray, s: float = 1.0):
+        out = self.at(P, s)
+        return None if out is None else out.ev
+
+    def squeeze_load(self, ev) -> sp.csr_matrix:
+        """d R / d(dH/dt) at the points, as nodes x points: 12 rho phi_i dx (a rough gap's
+        flow: times dE(h_T)/dh)."""
+        rho = np.broadcast_to(ev.fields.density, self.op.qp_weight.shape)
+        if ev.flow is not None:
+            rho = rho * ev.flow.gap_slope
+        return self.op.qp_interp.T @ sp.diags((12.0 * rho * self.op.qp_weight).ravel())
+
+    def jacobian(self, P, s, ev):
+        """(J_sparse, BushJacobian, None): dR/dP with the gap and its rate held, and the
+        bush's part (dR/dv) (dv/dP), dv/dP = scale S^-1 C T^T matrix-free."""
+        out = self.at(P, s)
+        op, c, dt = self.op, self.c, s * self.dt
+        J, _, _ = out.film.jacobian(P, s, out.ev)
+        T = self.frame.left                                      # (nodes, grid) sparse
+        Wq = self.squeeze_load(out.ev)                           # (nodes, points)
+        # dR/dv (nodes, grid): the squeeze of v, and through w = w_n + dt v the gap and
+        # the whirl's gamma_dot dw/dalpha
+        coupling = (Wq @ (op.qp_interp @ T)) / c
+        if dt:
+            TH = out.film.gap_slope(P, s, out.ev, out.moving)
+            coupling = coupling + (dt / c) * (TH @ T)
+            if self.state.gamma_dot:
+                coupling = coupling + (dt * self.state.gamma_dot / c) * (Wq @ (self.run._whirl(op) @ T))
+        coupling = sp.csr_matrix(coupling)
+        low = self.run._low
+        V = (self.scale / self.tau) * self.shift.to_nodes(low.right * low.singular)
+        bush = BushJacobian(coupling, _RateCompliance(self, out.stiffness, s),
+                            (np.asarray(coupling @ low.left), V), STEP_TOLERANCE)
+        return J, bush, None
+
+
+@dataclass
+class _Memo:
+    P: np.ndarray
+    s: float
+    out: _Evaluated | None
+    v: np.ndarray | None
+
+
+class _Frame:
+    """The frame shift at one journal angle (kept while gamma holds)."""
+
+    def __init__(self, op, gamma: float):
+        self.op, self.gamma = op, gamma
+        self.shift = FrameShift(node_grid(op.mesh), gamma)
+        self.left = self.shift.matrix()
+
+
+class ImplicitStepEHD(StatelessRun):
+    """The "fem-ehd" film (Reynolds' condition) with the bush's whole deflection advanced
+    by the film's backward-Euler step between accepted integrator steps (module
+    docstring): a film with memory and no states of its own (contract rules 10-14); each
+    trial state is one EHD solve, no dense matrix.
+
+    Parameters: bearing; lubricant, bush (an :class:`~bearingfem.ElasticBush`), n_theta,
+    n_z as "fem-ehd"; relaxation tau [s] > 0 the bush's Kelvin-Voigt time; roughness (the
+    summits' pressure loads the bush and the journal); profile a bush edge profile or None.
+    """
+
+    memory = True
+
+    def __init__(self, bearing: Bearing, lubricant=None, bush=None, n_theta: int = 48,
+                 n_z: int = 8, relaxation: float = 1e-5, roughness=None, profile=None):
+        if bush is None:
+            raise ValueError("bush is required for the implicit-step EHD film")
+        if not (np.isfinite(relaxation) and relaxation > 0.0):
+            raise ValueError(f"relaxation must be > 0 [s], got {relaxation!r}")
+        self.bearing, self.lubricant, self.roughness = bearing, lubricant, roughness
+        self.profile = None if profile is None else profile.check(bearing)
+        self.n_theta, self.n_z = int(n_theta), int(n_z)
+        comp = ehd_compliance(bush, bearing.radius, bearing.length, self.n_theta, self.n_z, 0)
+        n = comp.shape[0] * comp.shape[1]
+        self.compliance = CirculantCompliance(comp.blocks, comp.shape, np.arange(n),
+                                              np.arange(n))
+        self._low = comp.reduced(min(PRECONDITIONER_MODES, n))
+        self.tau = float(relaxation)
+        self.size = n
+        self.steps = 0
+        self.t = 0.0
+        self._w = np.zeros(n)            # w_n [m] on the bush grid
+        self._P, self._factor, self._frame = None, [], None
+        self._whirls = {}
+
+    def _whirl(self, op) -> sp.csr_matrix:
+        """d/dalpha at the points of nodal values (points x nodes), per film operator."""
+        D = self._whirls.get(id(op))
+        if D is None:
+            t = jacobian_tables(op)
+            dofs = op.mesh.basis.element_dofs
+            E, Q = t.dx.shape
+            rows = np.broadcast_to((np.arange(E)[:, None] * Q + np.arange(Q))[None],
+                                   t.dphi[:, 0].shape)
+            cols = np.broadcast_to(dofs[:, :, None], t.dphi[:, 0].shape)
+            D = sp.csr_matrix(((t.dphi[:, 0] / t.dx[None]).ravel(),
+                               (rows.ravel(), cols.ravel())), shape=(E * Q, op.mesh.ndofs))
+            self._whirls = {id(op): D}
+        return D
+
+    def step_film(self, state: JournalState, t: float) -> _StepFilm:
+        """The film at the trial ``state`` at time ``t`` [s] (t >= the last commit's)."""
+        dt = float(t) - self.t
+        if dt < 0.0:
+            raise ValueError(f"t must be >= the last committed step's time {self.t!r} [s] "
+                             f"(the implicit-step film steps forward), got {t!r}")
+        op = fe_operator(self.bearing, state, self.n_theta, self.n_z, "P1", None, False)
+        frame = self._frame
+        if frame is None or frame.op is not op or frame.gamma != state.gamma:
+            frame = self._frame = _Frame(op, state.gamma)
+        return _StepFilm(self, state, dt, frame)
+
+    def _solve(self, film: _StepFilm) -> EHDResult:
+        """Chord steps on the last factorisation, then Newton, from the last solve's
+        pressure; where those fail, the continuation in s (the deflection's step) from the
+        s = 0 film (the states film at q = w_n) solved from that pressure, else from none."""
+        free = film.op.mesh.free
+        n = film.op.mesh.ndofs
+        starts = [np.zeros(n)]
+        if self._P is not None and self._P.shape == (n,):
+            start, chord_steps = self._P.copy(), 0
+            if self._factor:
+                out, chord_steps, start = _chord(film, start, 1.0, free, TOL, self._factor)
+                if out is not None:
+                    return EHDResult(out[0], chord_steps, out[1], True, out[2], 1, 0)
+            out, its = _newton(film, start, 1.0, free, "reynolds", TOL, self._factor)
+            if out is not None:
+                return EHDResult(out[0], chord_steps + its, out[1], True, out[2], 1, 0)
+            starts.insert(0, self._P.copy())
+        for P in starts:
+            out, its = _newton(film, P, 0.0, free, "reynolds", TOL, self._factor)
+            if out is not None:
+                break
+        else:
+            raise ConvergenceError("implicit-step EHD film", its, None, "its isoviscous start")
+        return continuation(lambda s, P: _newton(film, P, s, free, "reynolds", TOL,
+                                                 self._factor),
+                            out[0], 0.0, 1.0, 1.0, 1e-3, "implicit-step EHD film",
+                            "coupling s", "reduce the load or refine the mesh")
+
+    def _force(self, film: _StepFilm, P: np.ndarray) -> tuple:
+        """(F_r, F_t) [N]: the film's and the summits' pressure on the journal."""
+        out = film.at(P)
+        if out.contact is not None:
+            P = P + out.contact / film.scale
+        ic, is_ = film.op.force_integrals(P)
+        k = force_factor(self.bearing, False)
+        return k * float(ic), k * float(is_)
+
+    def solve(self, state: JournalState, t: float) -> tuple:
+        """(film, converged pressure result) at the trial ``state`` and time ``t``; keeps
+        only the warm start."""
+        film = self.step_film(state, t)
+        res = self._solve(film)
+        self._P = res.pressure
+        return film, res
+
+    # -- the RunFilm contract (rules 10-14) ----------------------------------------------
+    def start(self, state: JournalState, t: float) -> None:
+        """Begin with the bush undeformed at time ``t`` [s] (as the states films)."""
+        self.t, self._w, self.steps = float(t), np.zeros(self.size), 0
+        self._P, self._factor = None, []
+
+    def force(self, state: JournalState, t: float) -> tuple:
+        """(F_r, F_t) [N] at a trial ``state`` and time ``t``: w stepped from the last
+        commit over t - t_n; keeps nothing but a warm start."""
+        film, res = self.solve(state, t)
+        return self._force(film, res.pressure)
+
+    def deflection_rate(self, state: JournalState, t: float) -> tuple:
+        """(w, v) [m, m/s] on the bush grid at a trial ``state`` and time ``t``."""
+        film, res = self.solve(state, t)
+        out = film.at(res.pressure)
+        return out.w, out.v
+
+    def solution(self, state: JournalState, t: float):
+        """The whole film at a trial (``state``, ``t``): pressures, the elastic gap,
+        friction; and the step's deflection w [m] on the grid."""
+        film, res = self.solve(state, t)
+        out = film.at(res.pressure)
+        ev = out.ev
+        fields = friction_fields(ev.fields, self.roughness, self.bearing.clearance)
+        sol = film_outputs(self.bearing, state, film.op, res, ev.values, ev.load, fields,
+                           "reynolds", "full", (), "fem-P1/ehd-implicit", gap=out.gap)
+        sol = replace(sol, deformation=film.shift.to_nodes(out.w))
+        if out.contact is None:
+            return sol, out.w
+        total = self._force(film, res.pressure)
+        local = (total[0] - sol.force_local[0], total[1] - sol.force_local[1])
+        r = self.bearing.radius
+        load = r * r * float(np.sum(film.op.at_quadrature(out.contact) * film.op.qp_weight))
+        friction = self.roughness.friction * load * float(np.sign(state.omega))
+        return replace(sol, asperity_force_local=local,
+                       asperity_force=tuple(map(float, local_to_inertial(*local, state.gamma))),
+                       asperity_friction_torque=friction * r), out.w
+
+    def commit(self, state: JournalState, t: float) -> FilmStep | None:
+        """The film at the accepted step: w_n advanced to it (its record: force, least film,
+        peak); a failed solve raises and keeps the film as it was."""
+        t = float(t)
+        if t <= self.t:
+            return None
+        sol, w = self.solution(state, t)
+        self._w, self.t = w, t
+        self.steps += 1
+        f, a = sol.force_local, sol.asperity_force_local
+        return FilmStep(t, state, (f[0] + a[0], f[1] + a[1]), sol)
+
+    def snapshot(self) -> ImplicitSnapshot:
+        return ImplicitSnapshot(self.t, self._w, self.steps, self._P)
+
+    def restore(self, snapshot: ImplicitSnapshot) -> None:
+        self.t, self._w, self.steps, self._P = (snapshot.t, snapshot.deflection,
+                                                snapshot.steps, snapshot.pressure)
+        self._factor = []
+
+    def replay(self, start, steps):
+        """The committed steps taken again from ``start`` = (t, JournalState) and the
+        (t, JournalState) of each step: the same solves from the same deflections."""
+        t0, s0 = start
+        self.start(s0, t0)
+        for t, state in steps:
+            step = self.commit(state, t)
+            if step is not None:
+                yield step.t, step.solution

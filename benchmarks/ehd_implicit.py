@@ -1,0 +1,113 @@
+"""The crowned seed pin with the bush's deflection advanced by the film's implicit step
+(fem-ehd coupling 'implicit'): its convergence in the mesh, tau and the integrator's
+tolerance, and its cost against the rigid JFO run of the same mesh.
+
+    python -m benchmarks.ehd_implicit [--turns 2] [--meshes 48 4 96 8 192 16]
+        [--tau 1e-5 ...] [--rtol 1e-6 ...] [--states] [--save DIR]
+
+The seed pin at 250 rad/s from top dead centre, the bush of ``paper-short-ehd`` (the
+per-harmonic solid), a 2 um crown over the whole length, rough surfaces (sigma 0.2 um,
+E* 80.8 GPa, K 1e-3, boundary friction 0.1), the isoviscous oil with Dowson-Higginson
+density (benchmarks/ehd_states.py's); one run per row, each with the rigid JFO run of its
+mesh and turns in the same process. Printed per row: steps, right-hand sides, CPU time,
+the ratio to the rigid JFO run, and over the last whole turn the least film (the gap
+itself, negative where the summits carry), the peak film pressure, the summits' share
+(their load's time integral over the joint force's) and the mean friction power (film
+shear and the summits' Coulomb friction), NaN for a run under a turn; and over the whole
+run its peak eps, least film, peak film pressure, summits' share and friction power. ``--states`` adds the run with the whole
+deflection integrated as states (FullStateEHD) on each mesh. A Ctrl-C stops the row's
+run and prints what it computed (marked partial).
+"""
+from __future__ import annotations
+
+import argparse
+import dataclasses
+
+import numpy as np
+
+from bearingfem.fields import EdgeProfile
+from mechanism import load_scene, simulate
+from mechanism.result import film_column
+
+from .common import OILS, best_of, scene
+from .ehd_states import ROUGH, last_turn, last_turn_work, rigid_jfo
+
+CROWN = EdgeProfile("crown", 2e-6)
+
+
+def implicit_run(turns, nt, nz, tau, rtol, coupling="implicit", progress=False):
+    """(result, CPU [s]) of one run."""
+    sc = scene("paper-short-ehd", 250.0, turns, n_theta=nt, n_z=nz, modes=0, film_step=0.0,
+               lubricant=OILS["iso"], coupling=coupling, relaxation=tau, roughness=ROUGH,
+               profile=CROWN)
+    sc = dataclasses.replace(sc, run=dataclasses.replace(sc.run, rtol=rtol))
+    t = best_of(lambda: simulate(sc, progress=progress))
+    return t.out, t.cpu
+
+
+def window_work(r, radius, friction=ROUGH.friction):
+    """(summits' share [1], mean friction power [W]) over the whole run (its film
+    record): as ``last_turn_work``, for a window under a turn."""
+    rec = np.asarray(r.film_record)
+    t = film_column(rec, "t")
+    a = film_column(rec, "asperity_load")
+    f = np.hypot(film_column(rec, "force_x"), film_column(rec, "force_y"))
+    om = film_column(rec, "omega")
+    power = (film_column(rec, "friction_force") * np.sign(om) + friction * a) \
+        * radius * np.abs(om)
+    return np.trapezoid(a, t) / np.trapezoid(f, t), np.trapezoid(power, t) / (t[-1] - t[0])
+
+
+def last_turn_numbers(r, turns, radius):
+    """(least film [um], peak pressure [MPa], summits' share, friction power [W]) over
+    the run's last whole turn; NaN where a stopped run did not reach it."""
+    if not len(r.t) or r.crank_angle[-1] < 2 * np.pi * np.floor(turns) - 1e-9:
+        return (float("nan"),) * 4
+    h, p = last_turn(r, turns)
+    share, _, power = last_turn_work(r, turns, radius)
+    return h, p, share, power
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--turns", type=float, default=2.0)
+    ap.add_argument("--meshes", type=int, nargs="+", default=[48, 4, 96, 8, 192, 16])
+    ap.add_argument("--tau", type=float, nargs="+", default=[1e-5])
+    ap.add_argument("--rtol", type=float, nargs="+", default=[1e-6])
+    ap.add_argument("--states", action="store_true",
+                    help="each mesh also with the whole deflection integrated as states")
+    ap.add_argument("--save", metavar="DIR", default=None)
+    ap.add_argument("--progress", action="store_true", help="each run's progress on stderr")
+    a = ap.parse_args(argv)
+    radius = load_scene("paper-short-ehd").bearing.radius
+    print(f"crowned seed pin (2 um), 250 rad/s, {a.turns:g} turns; last turn's numbers",
+          flush=True)
+    print(f"{'mesh':>8} {'coupling':>8} {'tau[s]':>7} {'rtol':>6} {'steps':>6} {'rhs':>6} "
+          f"{'CPU[s]':>7} {'JFO[s]':>7} {'x JFO':>6} {'h_min[um]':>9} {'p_max[MPa]':>10} "
+          f"{'share':>7} {'power[W]':>8} {'run: peak eps':>13} {'h_min[um]':>9} "
+          f"{'p_max[MPa]':>10} {'share':>7} {'power[W]':>8}", flush=True)
+    for nt, nz in zip(a.meshes[::2], a.meshes[1::2]):
+        rigid_jfo(0.002, nt, nz)                       # warm-up: the mesh's operators
+        implicit_run(0.001, nt, nz, a.tau[0], a.rtol[0])
+        base = rigid_jfo(a.turns, nt, nz)
+        rows = [("implicit", tau, rtol) for tau in a.tau for rtol in a.rtol]
+        if a.states:
+            rows.append(("states", a.tau[0], a.rtol[0]))
+        for coupling, tau, rtol in rows:
+            r, cpu = implicit_run(a.turns, nt, nz, tau, rtol, coupling, a.progress)
+            h, p, share, power = last_turn_numbers(r, a.turns, radius)
+            window_share, window_power = window_work(r, radius)
+            if a.save:
+                r.save(f"{a.save}/{coupling}-{nt}x{nz}-tau{tau:g}-rtol{rtol:g}")
+            note = "" if not r.partial else f"  (partial: {r.message[:50]})"
+            print(f"{nt:>4}x{nz:<3} {coupling:>8} {tau:7.0e} {rtol:6.0e} "
+                  f"{r.stats['steps']:6d} {r.stats['rhs_evals']:6d} {cpu:7.1f} {base:7.1f} "
+                  f"{cpu / base:6.1f} {h:9.4f} {p:10.1f} {share:7.4f} {power:8.3f} "
+                  f"{r.eps.max():13.5f} {1e6 * r.film_min.min():9.4f} "
+                  f"{film_column(r.film_record, 'pressure_max').max() / 1e6:10.1f} "
+                  f"{window_share:7.4f} {window_power:8.3f}" + note,
+                  flush=True)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,213 @@
+"""The EHD film with the bush's whole deflection advanced by the film's own backward-Euler
+step (coupling "implicit", bearingfem.ehd.implicit.ImplicitStepEHD): at dt = 0 it is the
+states film (FullStateEHD) at q = w_n; its force is continuous across a commit; its
+Newton matrix against differences; a still journal relaxes to the steady EHD film with
+the full compliance; as tau -> 0 the deflection is the quasi-static bush's; a short run
+of the seed pin against the states film."""
+import numpy as np
+import pytest
+
+from bearingfem import JournalState, solve_reynolds
+from bearingfem.ehd.implicit import ImplicitStepEHD
+from bearingfem.ehd.states import FullStateEHD
+from bearingfem.ehd.transient import ehd_compliance
+from bearingfem.models.ehd import ehd_run_film
+
+from test_ehd_states import B, NT, NZ, SOLID, STALLED_Q, stalled_film
+
+
+def _heavy(tau=1e-5):
+    """The implicit film and the states film at :data:`STALLED_Q`'s state (past the
+    circle, summits carrying, cavitated, whirling, Dowson-Higginson oil, 48 x 4), and that
+    state's deflection on the bush grid, committed as w_n at t = 0."""
+    part, state = stalled_film()
+    w = part.left @ np.asarray(STALLED_Q)
+    full = FullStateEHD(B, part.lubricant, SOLID, 48, 4, tau, part.roughness)
+    film = ImplicitStepEHD(B, part.lubricant, SOLID, 48, 4, tau, part.roughness)
+    film.start(state, 0.0)
+    film._w = w.copy()
+    return film, full, state, w
+
+
+def test_at_no_step_the_film_is_the_states_film():
+    """At dt = 0 the step leaves w = w_n and (tau) v = C (p + p_a) - w_n: the states film
+    at q = w_n. Force and dw/dt to 1e-8 (measured 1e-15 and 1.2e-15; both films converged
+    to the Newton test of 1e-10). Fails with the bush's rate taken at (tau + 2 dt) or the
+    summits left out of the bush's load."""
+    film, full, state, w = _heavy()
+    F_full, rate = full.rates(state, w)
+    F = film.force(state, 0.0)
+    w_step, v = film.deflection_rate(state, 0.0)
+    assert np.allclose(F, F_full, rtol=1e-8, atol=1e-8 * np.hypot(*F_full))
+    assert np.array_equal(w_step, w)
+    assert np.max(np.abs(v - rate)) < 1e-8 * np.max(np.abs(rate))
+
+
+def test_the_force_is_continuous_across_a_commit():
+    """A commit at t = 1e-7 s moves w_n to the step's w; the film at the same state and
+    time (now dt = 0) has the same pressure, force and bush rate: (tau + dt) v = C p - w_n
+    gives tau v = C p - (w_n + dt v). Force to 1e-7, rate to 1e-6 of their largest (each
+    film converged to 1e-10; measured 0 and 8e-15). Fails when the commit keeps w_n."""
+    film, _, state, _ = _heavy()
+    t = 1e-7
+    before = film.force(state, t)
+    _, v_before = film.deflection_rate(state, t)
+    step = film.commit(state, t)
+    assert step is not None and film.steps == 1 and film.t == t
+    after = film.force(state, t)
+    _, v_after = film.deflection_rate(state, t)
+    assert np.allclose(after, before, rtol=0, atol=1e-7 * np.hypot(*before))
+    assert np.max(np.abs(v_after - v_before)) < 1e-6 * np.max(np.abs(v_before))
+    assert np.allclose(step.force_local, before, rtol=0, atol=1e-7 * np.hypot(*before))
+    # a snapshot restores the kept film: the same force after a further commit undone
+    snap = film.snapshot()
+    film.commit(state, 2 * t)
+    film.restore(snap)
+    assert np.allclose(film.force(state, t), after, rtol=0, atol=1e-9 * np.hypot(*after))
+
+
+@pytest.mark.parametrize("rough", [False, True])
+def test_the_newton_matrix_is_the_residuals_derivative(rough):
+    """dR/dP = J (gap and rate held) + (dR/dv) (dv/dP), the bush's part matrix-free (its
+    rate through the compliance by FFT; with summits, S^-1 by GMRES), at dt = 1e-6 s and
+    s = 1 and 0.5, along a random direction, against central differences of the residual
+    (step 1e-6 max |P|): to 1e-7 of the largest entry (measured 1e-13 smooth and 1e-12
+    rough; the held-gap J alone is 7e-4 off). Fails with the gap's step dt dropped from
+    the coupling, or the summits' stiffness dropped from S."""
+    film, _, state, _ = _heavy()
+    if not rough:
+        film = ImplicitStepEHD(B, film.lubricant, SOLID, 48, 4, 1e-5, None)
+        film.start(state, 0.0)
+        film._w = _heavy()[3]
+    film.force(state, 1e-7)
+    P = film._P.copy()
+    step = film.step_film(state, 1e-6)
+    free = step.op.mesh.free
+    d = np.random.default_rng(0).uniform(-1.0, 1.0, P.size) * np.max(np.abs(P))
+    h = 1e-6
+    for s in (1.0, 0.5):
+        J, U, _ = step.jacobian(P, s, step.evaluate(P, s))
+        fd = (step.evaluate(P + h * d, s).residual - step.evaluate(P - h * d, s).residual) / (2 * h)
+        an = J @ d + U.apply(d)
+        assert np.max(np.abs(an - fd)[free]) < 1e-7 * np.max(np.abs(fd[free]))
+
+
+def test_a_journal_held_still_relaxes_to_the_steady_full_ehd_film():
+    """A still journal (eps 0.9, 24 x 4, no summits) from an undeflected bush, committed
+    every 1e-3 s (a hundred relaxation times: the step is nearly the quasi-static bush; the
+    squeeze of the bush's motion slows the relaxation: at 1e-4 s steps the force is 9e-8
+    off after 30): w relaxes to the steady EHD solve with the full compliance, force to
+    1e-8 and deflection to 1e-7 of its largest, the bush's rate to 1e-9 m/s (measured after
+    15 steps: 7e-10, 8e-10, 0). Fails with the squeeze's sign flipped or w_n left out of the
+    rate."""
+    s = JournalState(eps=0.9, gamma=np.pi, omega=62.5)
+    film = ehd_run_film(B, bush=SOLID, n_theta=NT, n_z=NZ, modes=0, coupling="implicit",
+                        relaxation=1e-5)
+    assert isinstance(film, ImplicitStepEHD) and film.state_size == 0 and film.memory
+    film.start(s, 0.0)
+    for k in range(1, 16):
+        film.commit(s, 1e-3 * k)
+    F = film.force(s, film.t)
+    _, v = film.deflection_rate(s, film.t)
+    steady = solve_reynolds(B, s, NT, NZ, "P1", "reynolds",
+                            bush=ehd_compliance(SOLID, B.radius, B.length, NT, NZ, 0))
+    assert np.allclose(F, steady.force_local, rtol=1e-8, atol=0)
+    assert np.max(np.abs(v)) < 1e-9
+    sol, _ = film.solution(s, film.t)
+    assert np.allclose(sol.deformation, steady.deformation, rtol=0,
+                       atol=1e-7 * np.max(np.abs(steady.deformation)))
+
+
+def test_with_no_relaxation_time_left_the_bush_is_quasi_static():
+    """tau 1e-12 s against steps of 1e-5 s (a still journal, eps 0.9, 24 x 4, from an
+    undeflected bush): each step's deflection is C p of its own pressure (the
+    quasi-static bush) to 1e-6 of its largest (the equation leaves tau v = 1e-7 of it:
+    measured 1.0e-7 and 4.5e-8), and its rate is the backward difference (w - w_n) / dt. Fails with
+    the rate taken at tau alone (no dt)."""
+    s = JournalState(eps=0.9, gamma=np.pi, omega=62.5)
+    film = ImplicitStepEHD(B, None, SOLID, NT, NZ, 1e-12)
+    film.start(s, 0.0)
+    dt = 1e-5
+    for k in (1, 2):
+        w_n = film._w.copy()
+        film.force(s, k * dt)
+        step = film.step_film(s, k * dt)
+        out = step.at(film._P)
+        quasi = step.comply(step.scale * film._P)
+        assert np.max(np.abs(out.w - quasi)) < 1e-6 * np.max(np.abs(quasi))
+        assert np.allclose(out.v, (out.w - w_n) / dt, rtol=1e-9, atol=0)
+        film.commit(s, k * dt)
+
+
+def test_bad_input_is_refused_by_name():
+    with pytest.raises(ValueError, match="relaxation"):
+        ImplicitStepEHD(B, None, SOLID, NT, NZ, 0.0)
+    with pytest.raises(ValueError, match="bush"):
+        ImplicitStepEHD(B, None, None, NT, NZ)
+    with pytest.raises(ValueError, match="modes"):
+        ehd_run_film(B, bush=SOLID, n_theta=NT, n_z=NZ, modes=8, coupling="implicit")
+    film = ImplicitStepEHD(B, None, SOLID, NT, NZ)
+    s = JournalState(eps=0.5, omega=62.5)
+    film.start(s, 1.0)
+    with pytest.raises(ValueError, match="t must be"):
+        film.force(s, 0.5)
+    with pytest.raises(ValueError, match="state_size 0"):
+        film.rates(s, np.zeros(1), 1.0)
+
+
+@pytest.mark.slow
+def test_the_seed_pin_runs_as_with_the_states_film():
+    """The seed pin at 250 rad/s, 1 % of a turn from a centred start, 24 x 4, rough (sigma
+    0.2 um), 2 um crown: the implicit step against the whole deflection integrated as
+    states (FullStateEHD, the integrator's error control on w): peak eps to 2e-3 and least
+    film to 5e-4 c (measured 8.5e-4 and 9e-5 c: the backward Euler step's O(dt) error,
+    which the integrator does not control), every accepted step recorded. Fails with the bush's
+    rate dropped from the squeeze."""
+    from bearingfem.contact import Roughness
+    from bearingfem.fields import EdgeProfile
+    from benchmarks.ehd_run import scene
+    from mechanism import simulate
+    rough = Roughness(sigma=0.2e-6, contact_modulus=80.8e9, elastic_factor=1e-3)
+    runs = {}
+    for coupling in ("states", "implicit"):
+        sc = scene("paper-short-ehd", 250.0, 0.01, n_theta=NT, n_z=NZ, modes=0,
+                   film_step=0.0, lubricant=None, coupling=coupling, relaxation=1e-5,
+                   roughness=rough, profile=EdgeProfile("crown", 2e-6))
+        runs[coupling] = simulate(sc, progress=False)
+    states, implicit = runs["states"], runs["implicit"]
+    assert not implicit.partial and len(implicit.film_record) == implicit.stats["steps"]
+    assert abs(implicit.eps.max() - states.eps.max()) < 2e-3 * states.eps.max()
+    assert abs(implicit.film_min.min() - states.film_min.min()) < 5e-4 * 20e-6
+
+
+def test_a_ctrl_c_keeps_the_steps_taken(monkeypatch):
+    """A real Ctrl-C (SIGINT to this process) at the 80th film force of the seed pin's run
+    with the implicit film (24 x 4, rough, crowned; 0.2 turn asked): the run comes back
+    partial, marked interrupted, with every accepted step's film record (the film's
+    commits) from t = 0. Fails when the film's commit does not return its step (the
+    record is then empty)."""
+    import os
+    import signal
+    from bearingfem.contact import Roughness
+    from bearingfem.fields import EdgeProfile
+    from benchmarks.ehd_run import scene
+    from mechanism import simulate
+    from mechanism.effects import FilmEffect
+    calls = {"n": 0}
+    original = FilmEffect.force
+
+    def force(self, k):
+        calls["n"] += 1
+        if calls["n"] == 80:
+            os.kill(os.getpid(), signal.SIGINT)
+        return original(self, k)
+
+    monkeypatch.setattr(FilmEffect, "force", force)
+    rough = Roughness(sigma=0.2e-6, contact_modulus=80.8e9, elastic_factor=1e-3)
+    sc = scene("paper-short-ehd", 250.0, 0.2, n_theta=NT, n_z=NZ, modes=0, film_step=0.0,
+               lubricant=None, coupling="implicit", relaxation=1e-5, roughness=rough,
+               profile=EdgeProfile("crown", 2e-6))
+    r = simulate(sc, progress=False)
+    assert r.partial and r.message.startswith("interrupted at t = ")
+    assert r.t[0] == 0.0 and np.all(np.isfinite(r.eps))
+    assert len(r.film_record) == r.stats["steps"] > 10
