@@ -51,11 +51,10 @@ from ..fields import FilmFields
 from ..film import film_thickness, local_to_inertial
 from ..scales import force_factor
 from .coupling import ehd_film, jacobian_tables
-from .film_compliance import BushJacobian, CirculantCompliance
+from .film_compliance import BushJacobian
 from .grid import FrameShift, node_grid
 from .newton import EHDResult, _chord, _newton, continuation
-from .states import PRECONDITIONER_MODES, STEP_TOLERANCE, TOL
-from .transient import ehd_compliance
+from .states import STEP_TOLERANCE, TOL, full_bush_setup
 
 __all__ = ["ImplicitStepEHD", "ImplicitSnapshot"]
 
@@ -284,19 +283,9 @@ class ImplicitStepEHD(StatelessRun):
 
     def __init__(self, bearing: Bearing, lubricant=None, bush=None, n_theta: int = 48,
                  n_z: int = 8, relaxation: float = 1e-5, roughness=None, profile=None):
-        if bush is None:
-            raise ValueError("bush is required for the implicit-step EHD film")
-        if not (np.isfinite(relaxation) and relaxation > 0.0):
-            raise ValueError(f"relaxation must be > 0 [s], got {relaxation!r}")
-        self.bearing, self.lubricant, self.roughness = bearing, lubricant, roughness
-        self.profile = None if profile is None else profile.check(bearing)
-        self.n_theta, self.n_z = int(n_theta), int(n_z)
-        comp = ehd_compliance(bush, bearing.radius, bearing.length, self.n_theta, self.n_z, 0)
-        n = comp.shape[0] * comp.shape[1]
-        self.compliance = CirculantCompliance(comp.blocks, comp.shape, np.arange(n),
-                                              np.arange(n))
-        self._low = comp.reduced(min(PRECONDITIONER_MODES, n))
-        self.tau = float(relaxation)
+        full_bush_setup(self, "implicit-step", bearing, lubricant, bush, n_theta, n_z,
+                        relaxation, roughness, profile)
+        n = self.compliance.shape[0] * self.compliance.shape[1]
         self.size = n
         self.steps = 0
         self.t = 0.0

@@ -428,6 +428,27 @@ class ModalStateEHD:
 #: Leading modes of the full compliance in the full-state film's preconditioner (the
 #: sparse film plus their low-rank squeeze, by Woodbury): GMRES then resolves the rest.
 PRECONDITIONER_MODES = 32
+
+
+def full_bush_setup(film, name: str, bearing: Bearing, lubricant, bush, n_theta: int,
+                    n_z: int, relaxation: float, roughness, profile) -> None:
+    """What a film of the bush's whole deflection holds (:class:`FullStateEHD` and
+    :class:`~.implicit.ImplicitStepEHD`): the inputs checked, the whole compliance on the
+    bush grid applied per theta harmonic (``film.compliance``), its leading modes (the
+    Newton step's preconditioner with the sparse film, ``film._low``) and ``film.tau`` [s]."""
+    if bush is None:
+        raise ValueError(f"bush is required for the {name} EHD film")
+    if not (np.isfinite(relaxation) and relaxation > 0.0):
+        raise ValueError(f"relaxation must be > 0 [s], got {relaxation!r}")
+    film.bearing, film.lubricant, film.roughness = bearing, lubricant, roughness
+    film.profile = None if profile is None else profile.check(bearing)
+    film.n_theta, film.n_z = int(n_theta), int(n_z)
+    comp = ehd_compliance(bush, bearing.radius, bearing.length, film.n_theta, film.n_z, 0)
+    n = comp.shape[0] * comp.shape[1]
+    film.compliance = CirculantCompliance(comp.blocks, comp.shape, np.arange(n),
+                                          np.arange(n))
+    film._low = comp.reduced(min(PRECONDITIONER_MODES, n))
+    film.tau = float(relaxation)
 #: GMRES's relative residual for the full-state film's Newton and chord steps: an inexact
 #: Newton, converged by the film's own residual test (TOL); 1e-3 took half the CPU of
 #: 1e-12 on the seed pin's first 2 % of a turn (48 x 4), the results equal to 2e-7
@@ -503,21 +524,10 @@ class FullStateEHD(ModalStateEHD):
 
     def __init__(self, bearing: Bearing, lubricant=None, bush=None, n_theta: int = 48,
                  n_z: int = 8, relaxation: float = 1e-5, roughness=None, profile=None):
-        if bush is None:
-            raise ValueError("bush is required for the full-state EHD film")
-        if not (np.isfinite(relaxation) and relaxation > 0.0):
-            raise ValueError(f"relaxation must be > 0 [s], got {relaxation!r}")
-        self.bearing, self.lubricant, self.roughness = bearing, lubricant, roughness
-        self.profile = None if profile is None else profile.check(bearing)
-        self.n_theta, self.n_z = int(n_theta), int(n_z)
-        comp = ehd_compliance(bush, bearing.radius, bearing.length, self.n_theta, self.n_z, 0)
-        n = comp.shape[0] * comp.shape[1]
-        self.compliance = CirculantCompliance(comp.blocks, comp.shape, np.arange(n),
-                                              np.arange(n))
+        full_bush_setup(self, "full-state", bearing, lubricant, bush, n_theta, n_z,
+                        relaxation, roughness, profile)
+        n = self.compliance.shape[0] * self.compliance.shape[1]
         self.left = self.modal = None
-        # the Newton step's preconditioner: the sparse film plus these leading modes
-        self._low = comp.reduced(min(PRECONDITIONER_MODES, n))
-        self.tau = float(relaxation)
         self.state_size = n
         self.steps = 0
         self._P, self._factor, self._frame, self._rated = None, [], None, None
