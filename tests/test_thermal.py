@@ -524,3 +524,36 @@ def test_arc_theta_difference_is_exact_on_parabolas_and_stays_on_its_arc(element
     assert np.max(np.abs((D @ P)[on] - exact)) < 1e-10 * np.max(np.abs(exact))
     rows, cols = D.nonzero()
     assert np.all(arc_of[cols] == arc_of[rows]) and np.all(arc_of[rows] >= 0)
+
+
+def _carried_over_flux(n_theta, n_z, carry_over=0.8):
+    """Per groove, the mixing's carried share of the next arc's inlet flow times the
+    film's flux into that arc (:func:`_inlet_flows`, the weak form's), over lambda Q_out
+    (the upstream arc's least column flow): 1 where C = lambda Q_out < Q_in."""
+    state = JournalState(eps=0.76, omega=OMEGA, gamma=-0.93)
+    thermal = Thermal(SUPPLY, carry_over=carry_over)
+    it = ThermalIteration(B, state, n_theta, n_z, lubricant=OIL, grooves=G, thermal=thermal)
+    it.film(state)
+    mesh, ones = it.op.mesh, np.ones(it.op.mesh.ndofs)
+    edges, P = energy_operator(mesh).edges, it.p / B.pressure_scale
+    mu = OIL.viscosity_at(it.p, temperature=it.T)
+    mixing = groove_mixing(B, state, mesh, edges, P, ones, mu, thermal)
+    _, flows = _column_flows(B, state, mesh, edges, P, ones, mu)
+    share = 1.0 - np.array(mixing.fresh) / SUPPLY
+    q_out = np.array([np.min(flows[edges.column_groove == k])
+                      for k in range(len(edges.inflow))])
+    return share * _inlet_flows(n_theta, n_z)[:, 1] / (carry_over * q_out)
+
+
+def test_carried_oil_is_its_share_of_the_flux_into_the_next_arc():
+    """The mixing's carried share C / Q_in of the next arc's inlet flow, times the film's
+    own flux into that arc (the weak form's, not the nodal flows), is lambda Q_out (here
+    lambda Q_out < Q_in at both grooves): the designer's bearing at eps 0.76, 48 x 8 and
+    96 x 16, lambda 0.8. The ratio meets 1 as Q_in meets the flux: 1.070, 1.034 (1.017
+    at 192 x 32) at the inlet in the cavity, 0.980, 0.994 (0.998) at the pressurised one;
+    asserted within 8 % and 4 %, falling. Fails with Q_in read at the upstream arc's exit
+    column instead of the next arc's inlet (planted: 1.58 and 0.66 at 48 x 8)."""
+    coarse, fine = _carried_over_flux(48, 8), _carried_over_flux(96, 16)
+    assert np.all(np.abs(coarse - 1.0) < 0.08), coarse
+    assert np.all(np.abs(fine - 1.0) < 0.04), fine
+    assert np.all(np.abs(fine - 1.0) < np.abs(coarse - 1.0)), (coarse, fine)
