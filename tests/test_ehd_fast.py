@@ -208,3 +208,46 @@ def test_local_compliance_is_factorised_whole(monkeypatch):
     assert np.max(np.abs(whole.pressure - krylov.pressure)) <= 1e-13 * krylov.pressure_max
     assert np.max(np.abs(whole.deformation - krylov.deformation)) <= 1e-13 * np.max(
         np.abs(krylov.deformation))
+
+
+class _LocalFilm:
+    """A film of a fixed Jacobian (J, T_H C): what _Factor.at asks of a film."""
+
+    def __init__(self, op, J, bush):
+        self.op, self.J, self.bush = op, J, bush
+
+    def jacobian(self, P, s, ev):
+        return self.J, self.bush, None
+
+
+@pytest.mark.parametrize("supply_angle", [None, np.pi])
+def test_folded_local_compliance_is_the_dense_bush_part(supply_angle):
+    """Where the bush's part T_H C is folded into the sparse Newton matrix (a local
+    compliance: BushJacobian.local), the matrix factorised is J + T_H C, the dense
+    product of the coupling and the compliance matrix (BushJacobian.toarray), to 1e-14
+    of its largest entry: a random T_H and J on the film's pattern, a local compliance
+    varying along z (a liner's own compliance times 0.5 .. 1.5 across the length; the
+    uniform liner cannot tell a row scaling from a column scaling), 16 x 4, with and
+    without a supply line (whose seam's second dof takes no pressure of its own: not
+    folded). Fails with T_H scaled by rows instead of columns, or with the seam taken
+    as local (each planted)."""
+    op = fe_operator(SEED, HEAVY, 16, 4, "P1", supply_angle, False, ())
+    liner = bush_compliance(ElasticBush(model="liner", **SOFT), SEED.radius, SEED.length,
+                            16, 5)
+    c = dof_compliance(liner, SEED, op)
+    c = CirculantCompliance(c.spectrum * np.linspace(0.5, 1.5, c.shape[1]), c.shape,
+                            c.node, c.source)
+    tables = coupling.jacobian_tables(op)
+    rng = np.random.default_rng(7)
+    data = rng.uniform(-1.0, 1.0, tables.pattern.nnz)
+    data[tables.diagonal] += 20.0
+    J = tables.pattern.matrix(data)
+    T = tables.pattern.matrix(rng.uniform(-1.0, 1.0, tables.pattern.nnz) * 1e12)
+    bush = BushJacobian(T, c)
+    free = op.mesh.free
+    f = newton._Factor.at(_LocalFilm(op, J, bush), np.zeros(op.mesh.ndofs), 1.0, free,
+                          np.zeros(free.size, bool), None)
+    assert (f.U is None) == (supply_angle is None)
+    got = f.J.toarray() + (0.0 if f.U is None else f.U.toarray())
+    expect = J.toarray() + bush.toarray()
+    assert np.max(np.abs(got - expect)) <= 1e-14 * np.max(np.abs(expect))
