@@ -23,7 +23,7 @@ from .assembly import FilmOperator, film_operator
 from .mesh import MIN_N_THETA, MIN_N_Z
 
 __all__ = ["prolongation", "free_interpolation", "coarse_shape", "coarse_level", "coarse_guess",
-           "COARSEST_FREE_DOFS", "COARSE_SOLVES"]
+           "descend", "COARSEST_FREE_DOFS", "COARSE_SOLVES"]
 
 #: Below this many free dofs a cold start is cheaper than another level.
 COARSEST_FREE_DOFS = 40
@@ -126,12 +126,13 @@ def coarse_level(op: FilmOperator) -> tuple[FilmOperator, sp.csr_matrix] | None:
     return coarse, prolongation(coarse.mesh, m.theta[m.free], m.zeta[m.free])
 
 
-def coarse_guess(op: FilmOperator, state, tol: float = 1e-10,
-                 held: tuple = ()) -> np.ndarray | None:
-    """Cavitated pressure from the coarser levels, interpolated to ``op``'s free dofs
-    (None when ``op`` is itself the coarsest level). ``state``: a JournalState; ``held``:
-    the dimensionless pressure of each groove of the mesh (held on its dofs at every
-    level)."""
+def descend(op: FilmOperator, film, tol: float = 1e-10,
+            held: tuple = ()) -> np.ndarray | None:
+    """Cavitated pressure of ``film`` on the coarser levels of ``op``, interpolated to
+    ``op``'s free dofs (None when ``op`` is itself the coarsest level). ``film(level)``
+    gives a level's load, its free block and a callable for its whole matrix (the
+    grooves' coupling, called only with ``held``); ``held``: the dimensionless pressure of
+    each groove of the mesh (held on its dofs at every level)."""
     level = coarse_level(op)
     if level is None:
         return None
@@ -140,13 +141,20 @@ def coarse_guess(op: FilmOperator, state, tol: float = 1e-10,
     P = np.zeros(coarse.mesh.ndofs)
     for dofs, p in zip(coarse.mesh.grooves, held):
         P[dofs] = p
-    b = coarse.load(state.eps, state.eps_dot, state.wedge_speed)
+    b, K, whole = film(coarse)
     if held:
-        b = b - coarse.stiffness(state.eps) @ P
-    P0 = coarse_guess(coarse, state, tol, held)
-    K = coarse.free_stiffness(state.eps)
+        b = b - whole() @ P
+    P0 = descend(coarse, film, tol, held)
     # the coarsest level is solved (it raises if it cannot), the others only iterated
     res = (active_set(K, b[free], tol=tol) if P0 is None else
            active_set_iterations(K, b[free], P0=P0, tol=tol, max_iter=COARSE_SOLVES))
     P[free] = res.pressure
     return prolong @ P
+
+
+def coarse_guess(op: FilmOperator, state, tol: float = 1e-10,
+                 held: tuple = ()) -> np.ndarray | None:
+    """:func:`descend` with the rigid film of ``state`` (a JournalState) on each level."""
+    return descend(op, lambda level: (
+        level.load(state.eps, state.eps_dot, state.wedge_speed),
+        level.free_stiffness(state.eps), lambda: level.stiffness(state.eps)), tol, held)

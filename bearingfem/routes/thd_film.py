@@ -10,9 +10,8 @@ import numpy as np
 
 from ..fe.general import film_moment, general_assembly
 from ..fe.kernel import fe_pressure, film_outputs, groove_pressures
-from ..fe.multilevel import COARSE_SOLVES, coarse_level
+from ..fe.multilevel import descend
 from ..solvers.blocksolve import inactive_solve
-from ..solvers.cavitation import active_set, active_set_iterations
 from ..fields import FilmFields
 from ..film import film_thickness, local_to_inertial, source_coefficients
 from ..scales import force_factor
@@ -36,26 +35,13 @@ def turned_guess(op, state, tol: float, held: tuple = ()) -> np.ndarray | None:
     ``op``'s free dofs; None when ``op`` is the coarsest level. Why: the operator's own
     rigid film is the journal at gamma = 0, whose cavity lies gamma away from this one's
     (a cold 96 x 16 film at gamma = -1 took 6 active-set solves from it, 2 from this)."""
-    level = coarse_level(op)
-    if level is None:
-        return None
-    coarse, prolong = level
-    free = coarse.mesh.free
-    P = np.zeros(coarse.mesh.ndofs)
-    for dofs, p in zip(coarse.mesh.grooves, held):
-        P[dofs] = p
-    values = general_assembly(coarse).stiffness_values(
-        film_thickness(coarse.qp_theta - state.gamma, state.eps) ** 3)
-    b = _turned_load(coarse, state)
-    if held:
-        b = b - coarse.matrix(values) @ P
-    P0 = turned_guess(coarse, state, tol, held)
-    K = coarse.free_stiffness(state.eps, values)
-    # the coarsest level is solved, the others only iterated (as coarse_guess does)
-    res = (active_set(K, b[free], tol=tol) if P0 is None else
-           active_set_iterations(K, b[free], P0=P0, tol=tol, max_iter=COARSE_SOLVES))
-    P[free] = res.pressure
-    return prolong @ P
+    def film(level):
+        values = general_assembly(level).stiffness_values(
+            film_thickness(level.qp_theta - state.gamma, state.eps) ** 3)
+        return (_turned_load(level, state), level.free_stiffness(state.eps, values),
+                lambda: level.matrix(values))
+
+    return descend(op, film, tol, held)
 
 
 class ReynoldsFieldFilm:
