@@ -92,15 +92,15 @@ def test_chord_steps_on_the_kept_factorisation_give_the_newton_film(monkeypatch)
     1e-8 (the solve's tolerance is 1e-10 of the residual's terms). The chord path must be
     the one taken. Fails with the chord's step sign flipped or its residual test loosened
     (a step short of convergence kept)."""
-    import bearingfem.ehd.states as states
+    import bearingfem.ehd.newton as newton     # the warm start's chord (newton.warm_solve)
     taken = []
 
     def chord(*args, **kw):
-        out = states_chord(*args, **kw)
+        out = newton_chord(*args, **kw)
         taken.append(out[0] is not None)
         return out
-    states_chord = states._chord
-    monkeypatch.setattr(states, "_chord", chord)
+    newton_chord = newton._chord
+    monkeypatch.setattr(newton, "_chord", chord)
     q = 1e-7 * np.linspace(1.0, -0.5, M)
     s1 = JournalState(eps=0.9, eps_dot=5.0, gamma=1.0, gamma_dot=1.0, omega=62.5)
     s2 = dataclasses.replace(s1, eps=0.9005, gamma=1.0005)

@@ -53,7 +53,7 @@ from ..scales import force_factor
 from .coupling import ehd_film, jacobian_tables
 from .film_compliance import BushJacobian
 from .grid import FrameShift, node_grid
-from .newton import EHDResult, _chord, _newton, continuation
+from .newton import EHDResult, _newton, continuation, warm_solve
 from .states import STEP_TOLERANCE, TOL, full_bush_setup
 
 __all__ = ["ImplicitStepEHD", "ImplicitSnapshot"]
@@ -328,14 +328,9 @@ class ImplicitStepEHD(StatelessRun):
         n = film.op.mesh.ndofs
         starts = [np.zeros(n)]
         if self._P is not None and self._P.shape == (n,):
-            start, chord_steps = self._P.copy(), 0
-            if self._factor:
-                out, chord_steps, start = _chord(film, start, 1.0, free, TOL, self._factor)
-                if out is not None:
-                    return EHDResult(out[0], chord_steps, out[1], True, out[2], 1, 0)
-            out, its = _newton(film, start, 1.0, free, "reynolds", TOL, self._factor)
-            if out is not None:
-                return EHDResult(out[0], chord_steps + its, out[1], True, out[2], 1, 0)
+            result, its = warm_solve(film, self._P, free, TOL, self._factor)
+            if result is not None:
+                return result
             starts.insert(0, self._P.copy())
         for P in starts:
             out, its = _newton(film, P, 0.0, free, "reynolds", TOL, self._factor)

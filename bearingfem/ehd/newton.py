@@ -345,6 +345,22 @@ def _chord(film, P, s, free, tol, keep, max_steps=6, rate=0.3):
     return None, max_steps, best
 
 
+def warm_solve(film, P, free, tol, keep) -> tuple:
+    """A Swift-Stieber film at s = 1 from the last solve's pressure ``P`` (of the film's
+    size): chord steps on the kept factorisation (``keep``, as :func:`_chord`; none when
+    it is empty), then Newton from where the chord got to. (EHDResult, None) when either
+    passes the residual test, else (None, its) with its Newton's iterations."""
+    start, chord_steps = P.copy(), 0
+    if keep:
+        out, chord_steps, start = _chord(film, start, 1.0, free, tol, keep)
+        if out is not None:
+            return EHDResult(out[0], chord_steps, out[1], True, out[2], 1, 0), None
+    out, its = _newton(film, start, 1.0, free, "reynolds", tol, keep)
+    if out is not None:
+        return EHDResult(out[0], chord_steps + its, out[1], True, out[2], 1, 0), None
+    return None, its
+
+
 def solve_ehd(film, P0, cavitation: str, tol: float = 1e-10,
               start: np.ndarray | None = None) -> EHDResult:
     """The EHD pressure from the rigid film's P0 (fixed dofs keep P0's values), with the

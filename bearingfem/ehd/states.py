@@ -55,7 +55,7 @@ from ..solution import FilmSolution
 from .coupling import FilmState, ehd_film, jacobian_tables
 from .film_compliance import BushJacobian, CirculantCompliance
 from .grid import FrameShift, node_grid
-from .newton import EHDResult, _chord, _Factor, _newton, continuation
+from .newton import EHDResult, _Factor, _newton, continuation, warm_solve
 from .transient import ehd_compliance
 
 __all__ = ["ModalStateEHD", "FullStateEHD", "StateTangent"]
@@ -221,20 +221,14 @@ class ModalStateEHD:
     def __init__(self, bearing: Bearing, lubricant=None, bush=None, n_theta: int = 48,
                  n_z: int = 8, modes: int = 16, relaxation: float = 1e-5, roughness=None,
                  profile=None):
-        if bush is None:
-            raise ValueError("bush is required for the modal-state EHD film")
-        if not int(modes) >= 1:
+        if bush is not None and not int(modes) >= 1:
             raise ValueError(f"modes must be >= 1 for the modal-state EHD film, got {modes!r}")
-        if not (np.isfinite(relaxation) and relaxation > 0.0):
-            raise ValueError(f"relaxation must be > 0 [s], got {relaxation!r}")
-        self.bearing, self.lubricant, self.roughness = bearing, lubricant, roughness
-        self.profile = None if profile is None else profile.check(bearing)
-        self.n_theta, self.n_z = int(n_theta), int(n_z)
+        hold_bush_inputs(self, "modal-state", bearing, lubricant, bush, n_theta, n_z,
+                         relaxation, roughness, profile)
         comp = ehd_compliance(bush, bearing.radius, bearing.length, self.n_theta, self.n_z,
                               int(modes))
         self.left = comp.left                                   # (grid, n) [1]
         self.modal = comp.singular[:, None] * comp.right.T      # (n, grid) [m/Pa]
-        self.tau = float(relaxation)
         self.state_size = comp.singular.size
         self.steps = 0
         self._P = None          # the last solve's pressure: a warm start only
@@ -293,15 +287,10 @@ class ModalStateEHD:
         free = coupled.op.mesh.free
         n = coupled.op.mesh.ndofs
         if self._P is not None and self._P.shape == (n,):
-            start, chord_steps = self._P.copy(), 0
-            if self._factor:     # chord steps on the last solve's factorisation
-                out, chord_steps, start = _chord(coupled, start, 1.0, free, TOL, self._factor)
-                if out is not None:
-                    return EHDResult(out[0], chord_steps, out[1], True, out[2], 1, 0)
-            # warm: Newton at s = 1, from where the chord got to
-            out, its = _newton(coupled, start, 1.0, free, "reynolds", TOL, self._factor)
-            if out is not None:
-                return EHDResult(out[0], chord_steps + its, out[1], True, out[2], 1, 0)
+            # warm: chord steps on the last solve's factorisation, then Newton at s = 1
+            result, _ = warm_solve(coupled, self._P, free, TOL, self._factor)
+            if result is not None:
+                return result
         # cold: the isoviscous film (s = 0) from no pressure, then the lubricant's fields
         out, its = _newton(coupled, np.zeros(n), 0.0, free, "reynolds", TOL, self._factor)
         if out is None:
@@ -430,12 +419,11 @@ class ModalStateEHD:
 PRECONDITIONER_MODES = 32
 
 
-def full_bush_setup(film, name: str, bearing: Bearing, lubricant, bush, n_theta: int,
-                    n_z: int, relaxation: float, roughness, profile) -> None:
-    """What a film of the bush's whole deflection holds (:class:`FullStateEHD` and
-    :class:`~.implicit.ImplicitStepEHD`): the inputs checked, the whole compliance on the
-    bush grid applied per theta harmonic (``film.compliance``), its leading modes (the
-    Newton step's preconditioner with the sparse film, ``film._low``) and ``film.tau`` [s]."""
+def hold_bush_inputs(film, name: str, bearing: Bearing, lubricant, bush, n_theta: int,
+                     n_z: int, relaxation: float, roughness, profile) -> None:
+    """The inputs every film with the bush's deflection as states holds (the modal, the
+    full and the implicit-step films), checked: a bush, tau = ``relaxation`` > 0 [s]
+    (``film.tau``), the edge profile checked against the bearing."""
     if bush is None:
         raise ValueError(f"bush is required for the {name} EHD film")
     if not (np.isfinite(relaxation) and relaxation > 0.0):
@@ -443,12 +431,22 @@ def full_bush_setup(film, name: str, bearing: Bearing, lubricant, bush, n_theta:
     film.bearing, film.lubricant, film.roughness = bearing, lubricant, roughness
     film.profile = None if profile is None else profile.check(bearing)
     film.n_theta, film.n_z = int(n_theta), int(n_z)
+    film.tau = float(relaxation)
+
+
+def full_bush_setup(film, name: str, bearing: Bearing, lubricant, bush, n_theta: int,
+                    n_z: int, relaxation: float, roughness, profile) -> None:
+    """What a film of the bush's whole deflection holds (:class:`FullStateEHD` and
+    :class:`~.implicit.ImplicitStepEHD`): the inputs (:func:`hold_bush_inputs`), the whole
+    compliance on the bush grid applied per theta harmonic (``film.compliance``) and its
+    leading modes (the Newton step's preconditioner with the sparse film, ``film._low``)."""
+    hold_bush_inputs(film, name, bearing, lubricant, bush, n_theta, n_z, relaxation,
+                     roughness, profile)
     comp = ehd_compliance(bush, bearing.radius, bearing.length, film.n_theta, film.n_z, 0)
     n = comp.shape[0] * comp.shape[1]
     film.compliance = CirculantCompliance(comp.blocks, comp.shape, np.arange(n),
                                           np.arange(n))
     film._low = comp.reduced(min(PRECONDITIONER_MODES, n))
-    film.tau = float(relaxation)
 #: GMRES's relative residual for the full-state film's Newton and chord steps: an inexact
 #: Newton, converged by the film's own residual test (TOL); 1e-3 took half the CPU of
 #: 1e-12 on the seed pin's first 2 % of a turn (48 x 4), the results equal to 2e-7
