@@ -37,9 +37,9 @@ from ..bearing import Bearing, JournalState
 from ..contract import FilmStep, StatelessRun
 from ..film import film_thickness
 from ..lubricant import Lubricant
-from ..routes.thd import (ReynoldsFieldFilm, check_thermal, groove_mixing, solve_thd,
-                          thermal_operator)
+from ..routes.thd import ReynoldsFieldFilm, check_thermal, solve_thd, thermal_operator
 from ..thermal.bush import bush_wall
+from ..thermal.mixing import groove_mixing
 from ..thermal.energy import energy_operator, solve_energy
 from ..thermal.spec import Thermal, ThermalRecord
 from ..transient import faded_force, since_film_step

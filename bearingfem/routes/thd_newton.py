@@ -6,7 +6,7 @@ temperature T_j. Equations: the film K(mu) P = b on those dofs (mu = mu(p, T) at
 film's quadrature points), the energy equation on its free rows
 (:func:`~bearingfem.thermal.jacobian.energy_linearisation`), T_i = M_k(P, T) on groove
 k's held rows (its inlet temperature, the mixing of the upstream exit:
-:func:`mixing_linearisation`, :func:`~bearingfem.routes.thd.groove_mixing`'s formula),
+:func:`mixing_linearisation`, :func:`~bearingfem.thermal.mixing.groove_mixing`'s formula),
 and the journal's zero net flux.
 
 The block Jacobian is exact (tested against central differences, :meth:`ThermalNewton.apply`):
@@ -53,7 +53,8 @@ from ..solvers.linsolve import principal_block
 from ..thermal.energy import EnergySolution
 from ..thermal.jacobian import energy_linearisation
 from ..thermal.spec import ThermalRecord
-from .thd import ThermalIteration, arc_theta_difference, check_thermal
+from ..thermal.mixing import arc_theta_difference
+from .thd import ThermalIteration, check_thermal
 from .thd_film import ReynoldsFieldFilm
 
 __all__ = ["ThermalNewton", "mixing_linearisation", "solve_thd_newton"]
@@ -61,7 +62,7 @@ __all__ = ["ThermalNewton", "mixing_linearisation", "solve_thd_newton"]
 
 def mixing_linearisation(bearing, state, mesh, edges, P, fraction, T, lubricant, thermal):
     """Each groove's inlet temperature T_in = M_k(P, T) of
-    :func:`~bearingfem.routes.thd.groove_mixing` (the same formula) and its gradients:
+    :func:`~bearingfem.thermal.mixing.groove_mixing` (the same formula) and its gradients:
     a list of (value [K], d/dP (N,), d/dT (N,)) over the grooves, P dimensionless.
     The least column flow and the carried flow's cap are taken on their current branch."""
     R, c, ps = bearing.radius, bearing.clearance, bearing.pressure_scale

@@ -140,7 +140,7 @@ class EnergySolution:
 class Mixing:
     """Each groove's inlet temperature as a linear function of the film's: per groove,
     T_in = fresh + sum(weights * T[dofs]) [K], the dofs on the upstream arc's exit
-    (:func:`bearingfem.routes.thd.groove_mixing`); solved with the energy equation in
+    (:func:`bearingfem.thermal.mixing.groove_mixing`); solved with the energy equation in
     one linear system, so the mixing needs no iteration of its own."""
 
     fresh: tuple
