@@ -3,6 +3,7 @@
     python -m studies.kc_fitted             # ~1.5 min CPU (run under the heavy-work lock)
     python -m studies.kc_fitted --quick     # two rows, three levels, P2
     python -m studies.kc_fitted --rows 0 9 --elements P2
+    python -m studies.kc_fitted --band      # the band-fitted film's cost, five rows, ~1 min
 
 With Reynolds' condition p = dp/dn = 0 on the rupture boundary theta_c(z), and the first
 variation of the film solves the linearised Reynolds equation on the full-film region
@@ -35,7 +36,9 @@ largest-entry errors, each relative to its matrix's largest entry) against (a) t
 benchmark's reference (P2 288 graded, plain) and (b) the fitted P2 288 graded as the
 meshes, with the observed orders between consecutive levels; the h/2h pairs' estimates
 (order 1 for plain, as the search; 2 for fitted) against the true error; the first pair a
-search at rtol 2e-3 would accept and what its two films cost (CPU). docs/accuracy.md, *A
+search at rtol 2e-3 would accept and what its two films cost (CPU). ``--band``: the same
+fit moving only a band of columns about each boundary, its operator updated in the band's
+cells alone (:class:`BandFit`), errors and CPU beside the full fit's. docs/accuracy.md, *A
 mesh fitted to the cavitation boundary*, has the numbers.
 """
 from __future__ import annotations
@@ -52,7 +55,9 @@ from bearingfem.design.records import DynamicCoefficients, frame_axes
 from bearingfem.design.tolerance import GRADED_FROM_EPS, GRADING_STRENGTH
 from bearingfem.fe.grooved import (GroovedOperator, _held, _system, groove_operator_for,
                                    grooved_pressure, rotated)
-from bearingfem.fe.grooved_build import build_grooved_tables
+from bearingfem.fe.assembly import FilmOperator
+from bearingfem.fe.general import element_tables
+from bearingfem.fe.grooved_build import _COS_POWERS, build_grooved_tables, harmonic_weights
 from bearingfem.fe.mesh import ELEMENTS, FilmMesh, quiet_skfem
 from bearingfem.film import local_to_inertial
 from bearingfem.scales import force_factor
@@ -207,6 +212,34 @@ class Fit:
         """The grooved operator with each fitted column moved, row by row, onto its
         boundary (the rows without one: the nearest row's), the other vertices mapped
         piecewise linearly between the pad's ends and the columns."""
+        x = self.moved(cols, located)
+        with quiet_skfem():
+            mesh = MeshTri1(np.vstack([x, self.p[1]]), self.t)
+            basis = Basis(mesh, ELEMENTS[self.element](),
+                          intorder=4 if self.element == "P1" else 6)
+        d = basis.doflocs
+        return GroovedOperator(*build_grooved_tables(self._film_mesh(basis, d)))
+
+    def _film_mesh(self, basis, doflocs) -> FilmMesh:
+        m = self.m
+        return FilmMesh(basis=basis, fixed=m.fixed, free=m.free, end=m.end,
+                        theta=np.array(doflocs[0]), zeta=np.array(doflocs[1]), half=m.half,
+                        periodic=m.periodic, n_theta=m.n_theta, n_z=m.n_z,
+                        length_ratio=m.length_ratio, theta0=m.theta0, grooves=m.grooves,
+                        arcs=m.arcs, grading=m.grading)
+
+    def anchors(self, k, keys, cols, located, j):
+        """(source, destination) angles of row ``j``'s piecewise-linear map in pad ``k``:
+        the pad's ends fixed, each fitted column onto its boundary."""
+        a, b = self.pads[k]
+        src, dst = [a], [a]
+        for s in keys:
+            src.append(self.columns[cols[(k, s)]])
+            dst.append(_filled(located[(k, s)])[j])
+        return src + [b], dst + [b]
+
+    def moved(self, cols, located) -> np.ndarray:
+        """The vertices' angles with the fitted columns moved (:meth:`operator`)."""
         x = self.p[0].copy()
         nrow = len(self.ze)
         for k, (a, b) in enumerate(self.pads):
@@ -215,13 +248,7 @@ class Fit:
                 continue
             ins = (x > a + 1e-9) & (x < b - 1e-9)
             for j in range(nrow):
-                src, dst = [a], [a]
-                for s in keys:
-                    tc = _filled(located[(k, s)])
-                    src.append(self.columns[cols[(k, s)]])
-                    dst.append(tc[j])
-                src.append(b)
-                dst.append(b)
+                src, dst = self.anchors(k, keys, cols, located, j)
                 dst = np.array(dst)
                 # keep the map monotone: each moved column inside its neighbours
                 gap = 0.2 * np.min(np.diff(self.columns))
@@ -229,18 +256,120 @@ class Fit:
                     dst[i] = min(max(dst[i], dst[i - 1] + gap), b - gap * (len(dst) - 1 - i))
                 sel = ins & (self.vrow == j)
                 x[sel] = np.interp(self.p[0][sel], src, dst)
-        with quiet_skfem():
-            mesh = MeshTri1(np.vstack([x, self.p[1]]), self.t)
-            basis = Basis(mesh, ELEMENTS[self.element](),
-                          intorder=4 if self.element == "P1" else 6)
-        d = basis.doflocs
-        m = self.m
-        fm = FilmMesh(basis=basis, fixed=m.fixed, free=m.free, end=m.end,
-                      theta=np.array(d[0]), zeta=np.array(d[1]), half=m.half,
-                      periodic=m.periodic, n_theta=m.n_theta, n_z=m.n_z,
-                      length_ratio=m.length_ratio, theta0=m.theta0, grooves=m.grooves,
-                      arcs=m.arcs, grading=m.grading)
-        return GroovedOperator(*build_grooved_tables(fm))
+        return x
+
+
+class BandFit(Fit):
+    """A :class:`Fit` that moves only a band of vertex columns about each boundary (the
+    columns two cells beyond the boundary's extent over the rows stay) and updates the
+    base operator's tables in the band's cells alone: the element matrices from the cells'
+    new Jacobians and the base's reference tables (geometry-free for straight P1/P2
+    cells), the interpolation to the quadrature points the base's. On the full pattern of
+    the cells' dofs (the base drops the couplings that vanish on right triangles)."""
+
+    def __init__(self, gop, element):
+        super().__init__(gop, element)
+        basis = self.m.basis
+        t = element_tables(basis)
+        self.ref = t
+        self.X = np.asarray(basis.X)
+        self.W = np.asarray(basis.W)
+        self.ref_dofs = np.asarray(basis.elem.doflocs).T        # (2, nb), reference
+        N = basis.N
+        dofs = t.dofs.astype(np.int64)
+        local = (dofs[:, :, None] * N + dofs[:, None, :]).reshape(len(dofs), -1)
+        self.keys, slot = np.unique(local, return_inverse=True)
+        self.slot = slot.reshape(local.shape)
+        geo = self._geometry(self.p[0], np.arange(self.t.shape[1]))
+        self.base_local = geo
+        self.base_tables = self._scatter(geo["stiff"], np.arange(self.t.shape[1]))
+        self.base_loads = geo["loads"]
+        self.base_doflocs = np.asarray(basis.doflocs)
+        op = gop.op
+        rows, cols = self.keys // N, self.keys % N
+        self.indptr = np.concatenate([[0], np.cumsum(np.bincount(rows, minlength=N))])
+        free = self.m.free
+        renumber = np.full(N, -1, dtype=np.int64)
+        renumber[free] = np.arange(len(free))
+        ff = np.flatnonzero((renumber[rows] >= 0) & (renumber[cols] >= 0))
+        self.ff = ff
+        self.ff_indptr = np.concatenate([[0], np.cumsum(np.bincount(renumber[rows[ff]],
+                                                                    minlength=len(free)))])
+        self.ff_indices = renumber[cols[ff]]
+        self.indices = cols
+        self.qp_interp = op.qp_interp
+
+    def _geometry(self, x, cells):
+        """Element matrices (7, cells, nb*nb), loads (2, cells, nb: sin, cos), quadrature
+        points' (theta, zeta), weights, and the dofs' coordinates of ``cells`` at vertex
+        angles ``x``."""
+        v = np.stack([x, self.p[1]])[:, self.t[:, cells]]           # (2, 3, cells)
+        J = np.stack([v[:, 1] - v[:, 0], v[:, 2] - v[:, 0]], axis=1)  # (2, 2, cells) [a, c]
+        det = J[0, 0] * J[1, 1] - J[0, 1] * J[1, 0]
+        invJ = np.stack([np.stack([J[1, 1], -J[0, 1]]), np.stack([-J[1, 0], J[0, 0]])]) / det
+        det = np.abs(det)
+        metric = np.einsum("cae,dae->cde", invJ, invJ) * det
+        qp = v[:, 0, :, None] + np.einsum("ace,cq->aeq", J, self.X)   # (2, cells, q)
+        weights = harmonic_weights(qp[0])                            # (7, cells, q)
+        n_w, n_e, n_q = weights.shape
+        folded = (weights[:, :, :, None] * metric.reshape(4, n_e).T[None, :, None, :]
+                  ).reshape(n_w * n_e, -1)
+        stiff = self.ref.stiff_tables.reshape(4, n_q, -1).transpose(1, 0, 2).reshape(4 * n_q, -1)
+        loads = np.stack([det[:, None] * (weights[i] @ self.ref.value_table) for i in (2, 1)])
+        dofloc = v[:, 0, :, None] + np.einsum("ace,cn->aen", J, self.ref_dofs)
+        return {"stiff": (folded @ stiff).reshape(n_w, n_e, -1), "loads": loads, "qp": qp,
+                "dx": det[:, None] * self.W[None, :], "doflocs": dofloc}
+
+    def _scatter(self, local, cells):
+        n_w = local.shape[0]
+        n = len(self.keys)
+        idx = (np.arange(n_w)[:, None] * n + self.slot[cells].ravel()[None, :]).ravel()
+        return np.bincount(idx, local.reshape(n_w, -1).ravel(), minlength=n_w * n).reshape(n_w, n)
+
+    def anchors(self, k, keys, cols, located, j):
+        """As :meth:`Fit.anchors`, and each boundary's band held at the columns two cells
+        beyond its extent over the rows."""
+        a, b = self.pads[k]
+        pairs = [(a, a), (b, b)]
+        for s in keys:
+            tc = _filled(located[(k, s)])
+            c = cols[(k, s)]
+            last = len(self.columns) - 1
+            lo = max(0, np.searchsorted(self.columns, min(tc.min(), self.columns[c])) - 2)
+            hi = min(last, np.searchsorted(self.columns, max(tc.max(), self.columns[c])) + 2)
+            for e in (lo, hi):
+                if a < self.columns[e] < b:
+                    pairs.append((self.columns[e], self.columns[e]))
+            pairs.append((self.columns[c], tc[j]))
+        pairs = sorted(set(pairs))
+        return [p[0] for p in pairs], [p[1] for p in pairs]
+
+    def operator(self, cols, located) -> GroovedOperator:
+        x = self.moved(cols, located)
+        cells = np.flatnonzero(np.any(x[self.t] != self.p[0][self.t], axis=0))
+        geo = self._geometry(x, cells)
+        tables = self.base_tables + self._scatter(geo["stiff"] - self.base_local["stiff"][:, cells],
+                                                  cells)
+        dofs = self.ref.dofs
+        N = self.m.basis.N
+        loads = self.base_loads.copy()
+        loads[:, cells] = geo["loads"]
+        b_sin, b_cos = (np.bincount(dofs.ravel(), loads[i].ravel(), minlength=N) for i in (0, 1))
+        qp = self.base_local["qp"].copy()
+        qp[:, cells] = geo["qp"]
+        dx = self.base_local["dx"].copy()
+        dx[cells] = geo["dx"]
+        doflocs = self.base_doflocs.copy()
+        doflocs[:, dofs[cells]] = geo["doflocs"]
+        # (the base basis rides along for its dof count; the geometry is the arrays')
+        fm = self._film_mesh(self.m.basis, doflocs)
+        op = FilmOperator(
+            mesh=fm, indptr=self.indptr.astype(np.int32), indices=self.indices.astype(np.int32),
+            terms=_COS_POWERS @ tables, ff_indptr=self.ff_indptr.astype(np.int32),
+            ff_indices=self.ff_indices.astype(np.int32), ff_select=self.ff, b_sin=b_sin,
+            b_cos=b_cos, qp_theta=qp[0], qp_zeta=qp[1], qp_weight=dx,
+            qp_interp=self.qp_interp)
+        return GroovedOperator(op, tables)
 
 
 def _vanish(t1, t2, p1, p2, t_next, reach=1.0):
@@ -310,7 +439,8 @@ def _coefficients(bearing, state, F, A, B, W, G):
     return np.array(force), np.asarray(kc.K), np.asarray(kc.C)
 
 
-def films(bearing, state, n_theta, n_z, element, grading=None, iterations=FIT_ITERATIONS):
+def films(bearing, state, n_theta, n_z, element, grading=None, iterations=FIT_ITERATIONS,
+          band=False):
     """({"plain": (F, K, C), "fitted": (F, K, C)}, the fit's last step [rad], the number of
     fitted boundaries, (CPU of the LCP and the plain tangent, of all) [s]): the film on the
     mesh (the LCP's held set) and on the mesh fitted to its boundary (``iterations``
@@ -321,7 +451,7 @@ def films(bearing, state, n_theta, n_z, element, grading=None, iterations=FIT_IT
     res = grooved_pressure(gop, bearing, state, GROOVES, "reynolds")
     plain, _ = held_film(gop, bearing, state, res.active)
     t1 = time.process_time()
-    fit = Fit(gop, element)
+    fit = (BandFit if band else Fit)(gop, element)
     m = gop.op.mesh
     located = fit.locate(res.pressure, m.theta, ~res.active & (res.pressure > 0.0))
     cols = fit.choose(located)
@@ -415,12 +545,48 @@ SAFETY = 1.5
 SEARCH_RTOL = 2e-3
 
 
+#: the rows of the band table (:func:`band_table`): a light one and the graded ones
+BAND_ROWS = ((0.5, 1.656), (0.5, 0.58), (0.5, 0.244), (1.0, 0.235), (1.0, 0.108))
+
+
+def band_table(levels=LEVELS):
+    """[(L/D, S, n_theta, (plain error, seconds), (fitted error, seconds), (band-fitted
+    error, seconds))]: K, C errors against the fitted P2 288 (graded as the meshes) and
+    CPU of one film (the second of two calls: the base operator built): the LCP and
+    its tangent; with the fit; with the fit moving only a band (:class:`BandFit`)."""
+    out = []
+    for ld, S in BAND_ROWS:
+        b = bearing(ld)
+        s = equilibrium(b, load_from_sommerfeld(b, S, OMEGA), OMEGA, "fem",
+                        direction=LOAD_DIRECTION, **mesh(ld, 144, "P2")).state
+        g = reference_grading(s)
+        ref = films(b, s, REFERENCE, _nz(ld, REFERENCE), "P2", g)[0]["fitted"]
+        for n in levels:
+            row = []
+            for band in (False, True):
+                films(b, s, n, _nz(ld, n), "P2", g, band=band)
+                f, _, _, dt = films(b, s, n, _nz(ld, n), "P2", g, band=band)
+                row.append((_errors(f["fitted"], ref)[1], dt[1]))
+            out.append((ld, S, n, (_errors(f["plain"], ref)[1], dt[0]), *row))
+    return out
+
+
 def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--quick", action="store_true")
+    p.add_argument("--band", action="store_true",
+                   help="the band-fitted film's errors and cost beside the fitted one's")
     p.add_argument("--rows", type=int, nargs="*", help="the rows (0-9) shown; all by default")
     p.add_argument("--elements", nargs="*", default=["P2", "P1"])
     a = p.parse_args(argv)
+    if a.band:
+        print("K, C error against the fitted P2 288 and CPU of one film: plain (LCP and "
+              "tangent), fitted, band-fitted")
+        for ld, S, n, plain, fitted, band in band_table():
+            print(f"L/D {ld:g} S {S:<6g} {n:4d}  plain {plain[0]:.1e} {plain[1]:.3f} s  "
+                  f"fitted {fitted[0]:.1e} {fitted[1]:.3f} s  band {band[0]:.1e} "
+                  f"{band[1]:.3f} s")
+        return
     levels = LEVELS[:3] if a.quick else LEVELS
     select = (4, 9) if a.quick else a.rows
     rows, refs = study(levels, ("P2",) if a.quick else tuple(a.elements), select)
