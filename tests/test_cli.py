@@ -21,6 +21,16 @@ def test_help_lists_commands():
         assert cmd in r.stdout
 
 
+def test_python_m_bearingfem_points_to_the_command_in_one_line():
+    # the library has no command of its own (and imports nothing of the app layer above it)
+    r = subprocess.run([sys.executable, "-m", "bearingfem", "solve"], cwd=ROOT,
+                       capture_output=True, text=True, timeout=60)
+    assert r.returncode == 2 and r.stdout == ""
+    lines = r.stderr.strip().splitlines()
+    assert len(lines) == 1 and "python -m bearingfem_app" in lines[0]
+    assert lines[0].startswith("bearingfem: error:")
+
+
 @pytest.mark.parametrize("args,needle", [
     (("solve", "--eps", "1.5"), "eps must lie in [0, 1)"),
     (("solve", "--cavitation", "swift"), "cavitation must be one of"),
