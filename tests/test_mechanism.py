@@ -213,3 +213,16 @@ def test_a_film_failing_inside_a_segment_is_reported_where_it_failed(monkeypatch
     assert r.partial and "planted film failure" in r.message
     t_stop = float(r.message.split("stopped at t = ")[1].split(" s")[0])
     assert 1e-3 < t_stop < 2e-3
+
+
+def test_summary_row_names_carry_units():
+    """The one-row summary (studies.paper's summary.csv, a mechanism sweep's results.csv):
+    every dimensional number names its unit; the crank speeds agree with the arrays."""
+    r = simulate(scene({"lubrication": {"model": "long"}}, turns=0.1, ld=2.0), progress=False)
+    row = r.summary_row(ideal_speed=r.crank_speed)
+    assert set(row) == {"scene", "status", "wall_time_s", "steps", "rhs_evals", "film_solves",
+                        "peak_eps", "min_film_um", "crank_speed_min_rad_s",
+                        "crank_speed_max_rad_s", "max_dspeed_vs_ideal_rad_s",
+                        "peak_slider_acc_m_s2"}
+    assert row["crank_speed_max_rad_s"] == pytest.approx(r.crank_speed.max(), abs=0.01)
+    assert row["max_dspeed_vs_ideal_rad_s"] == 0.0
