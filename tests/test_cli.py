@@ -201,7 +201,7 @@ def test_design_answers_the_designers_question_in_one_command(tmp_path):
             "--viscosity", "0.028", "--rpm", "3000", "--load", "2000", "--model", "short",
             "-o", str(tmp_path / "d.json"))
     assert r.returncode == 0, r.stderr
-    for words in ("minimum film", "attitude angle", "power loss", "side leakage", "K_11",
+    for words in ("minimum film", "attitude angle", "power loss", "side leakage (net)", "K_11",
                   "C_22", "axis 1 at -90 deg", "1 along the load", "critical mass",
                   "Lund stability of a rigid journal"):
         assert words in r.stdout
