@@ -168,7 +168,7 @@ def build_parser():
                    help="film model: fem (finite elements) or fvm (finite volumes); the "
                         "cavitation model is --cavitation")
     f.add_argument("--method", type=_film_discretisation, help=argparse.SUPPRESS)  # old name
-    f.add_argument("-o", "--output", help="write the film (.vtu, .xdmf)")
+    f.add_argument("-o", "--output", help="write the film (.vtu, .xdmf, .vtk)")
     add_bush_args(f)
     f.set_defaults(func=command_solve)
     c = add("convergence", help="mesh-convergence study: CSV table + log-log PNG",

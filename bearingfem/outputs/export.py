@@ -2,7 +2,8 @@
 
 Points lie on the 3-D journal surface (x = R cos alpha, y = R sin alpha, z) or, with
 ``surface="unwrapped"``, on the plane (R theta, z, 0). Point data, each named with its SI
-unit (:data:`FIELD_NAMES`, what ParaView shows): "pressure [Pa]", "film_thickness [m]",
+unit (:data:`FIELD_NAMES`, what ParaView shows; in a legacy .vtk file, which takes no
+spaces, "pressure_[Pa]" and so on): "pressure [Pa]", "film_thickness [m]",
 "theta [rad]" (from the maximum film) and "z [m]"; a JFO film's "fraction [1]", a thermal
 film's "temperature [K]", an elastic bush's "deformation [m]" (its radial deflection, > 0
 opens the gap; film_thickness is then the deformed gap). A half-domain solve is mirrored
@@ -99,4 +100,7 @@ def write_solution(sol: FilmSolution, path, surface: str = "journal", constants=
     m = to_meshio(sol, surface)
     for k, v in (constants or {}).items():
         m.point_data[k] = np.full(len(m.points), float(v))
+    if str(path).lower().endswith(".vtk"):
+        # the legacy VTK format takes no spaces in names: "pressure_[Pa]"
+        m.point_data = {k.replace(" ", "_"): v for k, v in m.point_data.items()}
     m.write(str(path))
