@@ -109,6 +109,13 @@ class SimulationResult:
     #: recorded turns): where a run spends its steps, e.g. per crank angle
     step_t: np.ndarray = field(default_factory=lambda: np.empty(0))
 
+    def __repr__(self) -> str:
+        # the arrays hold thousands of points: name the run, not every value
+        span = (f"{len(self.t)} points, t {self.t[0]:.6g}-{self.t[-1]:.6g} s"
+                if len(self.t) else "no points")
+        return (f"SimulationResult(scene={self.scene!r}, {span}, message={self.message!r}"
+                + (", partial" if self.partial else "") + ")")
+
     def summary(self) -> str:
         s = self.stats
         lines = [f"scene {self.scene}: {self.message}" + (" (PARTIAL)" if self.partial else "")]

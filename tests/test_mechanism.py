@@ -226,3 +226,11 @@ def test_summary_row_names_carry_units():
                         "peak_slider_acc_m_s2"}
     assert row["crank_speed_max_rad_s"] == pytest.approx(r.crank_speed.max(), abs=0.01)
     assert row["max_dspeed_vs_ideal_rad_s"] == 0.0
+
+
+def test_a_result_prints_as_one_line():
+    """print(res) names the run (it printed every array: ~90 kB for half a turn)."""
+    r = simulate(scene({"lubrication": {"model": "long"}}, turns=0.1, ld=2.0), progress=False)
+    text = repr(r)
+    assert "\n" not in text and len(text) < 200 and "'t'" in text
+    assert f"{len(r.t)} points" in text and "completed" in text
