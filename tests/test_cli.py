@@ -44,6 +44,13 @@ def test_python_m_bearingfem_points_to_the_command_in_one_line():
     (("coefficients", "--frame", "polar"), "invalid choice: 'polar'"),
     (("simulate", "paper-short-fem"), "required: -o/--output"),
     (("mesh",), "invalid choice: 'mesh'"),
+    # the speed named as typed (it was '--omega 314159 rad/s' and 'omega must be non-zero')
+    (("solve", "--rpm", "3e6"), "--rpm 3e+06 1/min gives a surface speed of 3142 m/s at "
+                                "radius 0.01 m, above any journal bearing's (300 m/s): "
+                                "|--rpm| must be at most 2.8648e+05 1/min"),
+    (("design", "--load", "100", "--rpm", "0"), "--rpm must be non-zero for design"),
+    (("equilibrium", "--load", "100", "--omega", "0"), "--omega must be non-zero for "
+                                                       "equilibrium"),
 ])
 def test_bad_input_is_one_line_and_exit_2(args, needle):
     r = run(*args)
