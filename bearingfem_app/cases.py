@@ -12,7 +12,8 @@ from dataclasses import replace
 import numpy as np
 
 from bearingfem.bearing import SEED_TABLE1
-from mechanism.scene import read_toml
+from mechanism.parameters import check_crank_speed
+from mechanism.scene import parse_scene, read_toml
 
 # parameter -> (default, kind of value); units: m, Pa s, rad/s, 1/s
 FILM_PARAMS = {
@@ -141,6 +142,13 @@ def _design_case(params: dict) -> dict:
 
 def _precheck(kind: str, params: dict) -> None:
     if kind == "mechanism":
+        if "crank_speed" in params:     # against the scene's crank (rpm typed as rad/s?)
+            data = _scene_data(params)
+            mech = parse_scene(data, data["name"]).mechanism
+            try:
+                check_crank_speed(mech, params["crank_speed"], "crank_speed")
+            except ValueError as err:
+                raise ValueError(f"sweep case {params}: {err}") from None
         return
     p = {k: params.get(k, d) for k, (d, _) in FILM_PARAMS.items()}
     try:

@@ -11,7 +11,7 @@ import os
 import re
 from pathlib import Path
 
-from bearingfem.bearing import check_surface_speed, plausibility_errors
+from bearingfem.bearing import PLAUSIBLE, check_surface_speed, plausibility_errors
 from bearingfem.validation import MIN_N_THETA, MIN_N_Z
 from mechanism.scene import oil_viscosity as scene_oil_viscosity
 
@@ -76,9 +76,18 @@ def check_numbers(args) -> None:
                           else f"{name} must lie {rule}, got {v!r}" if rule.startswith("in")
                           else f"{name} must be {rule}, got {v!r}")
     errors += choice_errors(args)
+    if getattr(args, "command", None) in ("equilibrium", "design") and \
+            getattr(args, "omega", None) == 0.0:
+        errors.append(f"{_speed_option(args)} must be non-zero for {args.command}: without "
+                      "rotation a film carries no steady load")
     if errors:
         raise ValueError("; ".join(errors))
     check_plausible(args)
+
+
+def _speed_option(args) -> str:
+    """The speed option as typed: --rpm when given (args.omega is then its value in rad/s)."""
+    return "--rpm" if getattr(args, "rpm", None) is not None else "--omega"
 
 
 def choice_errors(args) -> list:
@@ -115,6 +124,16 @@ def check_plausible(args) -> None:
     if errors:
         raise ValueError("; ".join(errors))
     if getattr(args, "omega", None) is not None:
+        if getattr(args, "rpm", None) is not None:
+            # named as typed: --rpm 3e6 is 3.1e5 rad/s, a mistake of its own
+            v = abs(args.omega) * args.diameter / 2
+            if v > PLAUSIBLE["surface_speed"]:
+                raise ValueError(
+                    f"--rpm {args.rpm:g} 1/min gives a surface speed of {v:.4g} m/s at "
+                    f"radius {args.diameter / 2:g} m, above any journal bearing's "
+                    f"({PLAUSIBLE['surface_speed']:g} m/s): |--rpm| must be at most "
+                    f"{PLAUSIBLE['surface_speed'] / (args.diameter / 2) * 30 / math.pi:.5g} "
+                    f"1/min for this diameter, or is the diameter in mm?")
         check_surface_speed(args.diameter / 2, args.omega, "--omega")
 
 

@@ -133,8 +133,18 @@ def _design_args(p):
     p.add_argument("-o", "--output", help="also write the numbers (.json or .csv)")
 
 
+class _Parser(argparse.ArgumentParser):
+    """argparse's parser whose refusals (an unknown option, a bad choice, a missing
+    argument) are one line on stderr with exit status 2, as every other refusal of the
+    command is, not the usage block followed by the error."""
+
+    def error(self, message):
+        self.exit(2, f"bearingfem: error: {message} ('{self.prog} --help' lists the "
+                     f"options)\n")
+
+
 def build_parser():
-    p = argparse.ArgumentParser(prog="bearingfem", description="Verified journal-bearing films "
+    p = _Parser(prog="bearingfem", description="Verified journal-bearing films "
                                 "and the slider-crank that carries them.", epilog=EXAMPLES,
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = p.add_subparsers(dest="command", required=True)
@@ -158,7 +168,7 @@ def build_parser():
                    help="film model: fem (finite elements) or fvm (finite volumes); the "
                         "cavitation model is --cavitation")
     f.add_argument("--method", type=_film_discretisation, help=argparse.SUPPRESS)  # old name
-    f.add_argument("-o", "--output", help="write the film (.vtu, .xdmf)")
+    f.add_argument("-o", "--output", help="write the film (.vtu, .xdmf, .vtk)")
     add_bush_args(f)
     f.set_defaults(func=command_solve)
     c = add("convergence", help="mesh-convergence study: CSV table + log-log PNG",

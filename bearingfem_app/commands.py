@@ -118,10 +118,11 @@ def command_convergence(args):
     out = make_dir(args.output, "-o/--output")
     st.write_csv(out / "convergence.csv")
     st.plot(out / "convergence.png", args.quantity)
-    print(f"{'method':6s} {'quantity':18s} {'finest':>14s} {'order':>7s} {'extrapolated':>14s} {'GCI':>9s}")
+    print(f"{'method':6s} {'quantity':18s} {'unit':6s} {'finest':>14s} {'order':>7s} "
+          f"{'extrapolated':>14s} {'GCI [rel]':>9s}")
     for r in st.summary:
-        print(f"{r['method']:6s} {r['quantity']:18s} {r['finest']:14.6g} {r['order']:7.3f} "
-              f"{r['extrapolated']:14.6g} {r['gci']:9.2e}")
+        print(f"{r['method']:6s} {r['quantity']:18s} {r['unit']:6s} {r['finest']:14.6g} "
+              f"{r['order']:7.3f} {r['extrapolated']:14.6g} {r['gci']:9.2e}")
     if any(math.isnan(r["order"]) for r in st.summary):
         print("order nan: the three finest values do not change monotonically (oscillating "
               "or already at round-off), so no order, extrapolation or GCI")

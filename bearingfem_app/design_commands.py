@@ -32,7 +32,7 @@ def _equilibrium_rows(eq, b):
             ("friction force", eq.friction_force, "N"),
             ("friction coefficient", eq.friction_coefficient, "-"),
             ("power loss", eq.power_loss, "W"),
-            ("side leakage", eq.side_leakage, "m^3/s"),
+            ("side leakage (net)", eq.side_leakage, "m^3/s"),   # out of both ends, less in
             ("inflow", eq.flow_in, "m^3/s")]
 
 

@@ -176,7 +176,8 @@ def write_history(frames, directory, surface="journal") -> Path:
     for k, f in enumerate(frames):
         name = f"film-{k:03d}.vtu"
         write_solution(f.solution, d / name, surface,
-                       constants={"time": f.t, "crank_angle": math.radians(f.crank_angle_deg)})
+                       constants={"time [s]": f.t,
+                                  "crank_angle [rad]": math.radians(f.crank_angle_deg)})
         ET.SubElement(coll, "DataSet", timestep=repr(f.t), part="0", file=name)
     ET.ElementTree(root).write(d / "film.pvd", xml_declaration=True)
     return d / "film.pvd"

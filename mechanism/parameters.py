@@ -1,13 +1,18 @@
 """Mechanism parameters (seed Table 1 defaults) as a frozen dataclass."""
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 from bearingfem.bearing import check_finite, check_positive
 
-__all__ = ["Mechanism", "GRAVITY"]
+__all__ = ["Mechanism", "GRAVITY", "PIN_SPEED_MAX", "check_crank_speed"]
 
 GRAVITY = 9.81  # [m/s^2]
+#: The fastest crank pin of any slider-crank [m/s]: a racing engine at 18000 rpm with a
+#: 40 mm stroke moves its crank pin at 38 m/s (mean piston speed 24 m/s). Above it a speed
+#: in rpm typed as rad/s is far likelier than such a machine.
+PIN_SPEED_MAX = 60.0
 
 
 @dataclass(frozen=True)
@@ -51,3 +56,27 @@ class Mechanism:
         if self.crank_length >= self.rod_length:
             raise ValueError(f"crank_length must be smaller than rod_length, got "
                              f"{self.crank_length} >= {self.rod_length}")
+
+
+def check_crank_speed(mechanism: Mechanism, crank_speed: float, name: str = "crank_speed",
+                      rpm: bool = False) -> float:
+    """``crank_speed`` [rad/s] as float, or ValueError naming ``name``: not finite and
+    positive, or driving the crank pin (at ``crank_length``) faster than
+    :data:`PIN_SPEED_MAX`, the likely mistake being a speed in rpm given as rad/s.
+    ``rpm``: the caller's value was given in 1/min (the message then speaks of it so)."""
+    w = check_positive(name, crank_speed)
+    r = mechanism.crank_length
+    w_max = PIN_SPEED_MAX / r
+    if w * r <= PIN_SPEED_MAX:
+        return w
+    if rpm:
+        raise ValueError(
+            f"{name} {w * 30 / math.pi:g} 1/min ({w:.4g} rad/s) drives the crank pin at "
+            f"{w * r:.4g} m/s (crank_length {r:g} m), faster than any slider-crank's "
+            f"(<= {PIN_SPEED_MAX:g} m/s): {name} must lie in (0, {w_max * 30 / math.pi:.5g}] "
+            f"1/min for this crank")
+    raise ValueError(
+        f"{name} {w:g} rad/s drives the crank pin at {w * r:.4g} m/s (crank_length {r:g} m), "
+        f"faster than any slider-crank's (<= {PIN_SPEED_MAX:g} m/s): {name} must lie in "
+        f"(0, {w_max:.4g}] rad/s for this crank; a speed in rpm given as rad/s? "
+        f"({w:g} rpm = {w * math.pi / 30:.4g} rad/s: give rpm = {w:g} instead)")

@@ -109,6 +109,13 @@ class SimulationResult:
     #: recorded turns): where a run spends its steps, e.g. per crank angle
     step_t: np.ndarray = field(default_factory=lambda: np.empty(0))
 
+    def __repr__(self) -> str:
+        # the arrays hold thousands of points: name the run, not every value
+        span = (f"{len(self.t)} points, t {self.t[0]:.6g}-{self.t[-1]:.6g} s"
+                if len(self.t) else "no points")
+        return (f"SimulationResult(scene={self.scene!r}, {span}, message={self.message!r}"
+                + (", partial" if self.partial else "") + ")")
+
     def summary(self) -> str:
         s = self.stats
         lines = [f"scene {self.scene}: {self.message}" + (" (PARTIAL)" if self.partial else "")]
@@ -131,7 +138,8 @@ class SimulationResult:
         return "\n".join(lines)
 
     def summary_row(self, ideal_speed=None) -> dict:
-        """The run in one table row (units in the names); ``ideal_speed`` (the ideal
+        """The run in one table row (units in the names: _s, _um, _rad_s, _m_s2; peak_eps
+        and the counts are pure numbers); ``ideal_speed`` (the ideal
         mechanism's crank speed at ``crank_angle``, rad/s) adds the largest departure."""
         if len(self.t) == 0:
             return {"scene": self.scene, "status": self.message}
@@ -142,11 +150,12 @@ class SimulationResult:
                 "rhs_evals": s["rhs_evals"], "film_solves": s["film_solves"],
                 "peak_eps": round(float(np.max(self.eps)), 5),
                 "min_film_um": round(float(np.min(self.film_min)) * 1e6, 4),
-                "crank_speed_min": round(float(np.min(self.crank_speed)), 2),
-                "crank_speed_max": round(float(np.max(self.crank_speed)), 2),
-                "max_dspeed_vs_ideal": "" if ideal_speed is None else round(float(np.max(
-                    np.abs(self.crank_speed - ideal_speed))), 3),
-                "peak_slider_acc": round(float(np.max(np.abs(self.slider_acceleration))), 1)}
+                "crank_speed_min_rad_s": round(float(np.min(self.crank_speed)), 2),
+                "crank_speed_max_rad_s": round(float(np.max(self.crank_speed)), 2),
+                "max_dspeed_vs_ideal_rad_s": "" if ideal_speed is None else round(float(
+                    np.max(np.abs(self.crank_speed - ideal_speed))), 3),
+                "peak_slider_acc_m_s2": round(float(np.max(np.abs(self.slider_acceleration))),
+                                              1)}
 
     def save(self, directory) -> Path:
         """Write ``result.npz`` (arrays), ``result.csv`` (the same histories, units in the

@@ -24,7 +24,7 @@ from bearingfem.lubricant import ISO_VG, Lubricant
 from bearingfem.models import film_model
 from bearingfem.thermal import Thermal
 
-from .parameters import Mechanism
+from .parameters import Mechanism, check_crank_speed
 
 __all__ = ["Scene", "load_scene", "parse_scene", "INTEGRATORS"]
 
@@ -89,6 +89,11 @@ class Scene:
     friction: Friction | None
     spring: Spring | None = None
     description: str = ""
+
+    def __post_init__(self):
+        # also a scene changed with dataclasses.replace (a sweep's crank_speed, say)
+        object.__setattr__(self, "crank_speed",
+                           check_crank_speed(self.mechanism, self.crank_speed))
 
 
 class _Table:
@@ -276,15 +281,18 @@ def _roughness(t: _Table) -> Roughness:
         raise ValueError(f"{t.where}: {err}") from None
 
 
-def _crank_speed(t: _Table) -> float:
-    """crank_speed [rad/s] or rpm [1/min] (one of them; default 250 rad/s)."""
+def _crank_speed(t: _Table, mech: Mechanism) -> float:
+    """crank_speed [rad/s] or rpm [1/min] (one of them; default 250 rad/s), refused when it
+    drives the crank pin faster than any slider-crank's (a speed in rpm typed as rad/s)."""
     speed = t.number("crank_speed", None, lo=0.0, lo_open=True)
     rpm = t.number("rpm", None, lo=0.0, lo_open=True)
     if speed is not None and rpm is not None:
         raise ValueError(f"{t.where} takes one of crank_speed [rad/s] or rpm [1/min], "
                          f"got both")
-    return 250.0 if speed is None and rpm is None else (
-        speed if rpm is None else rpm * math.pi / 30.0)
+    if rpm is not None:
+        return check_crank_speed(mech, rpm * math.pi / 30.0, f"{t.where}.rpm", rpm=True)
+    return check_crank_speed(mech, 250.0 if speed is None else speed,
+                             f"{t.where}.crank_speed")
 
 
 def parse_scene(data: dict, name: str = "scene") -> Scene:
@@ -297,7 +305,7 @@ def parse_scene(data: dict, name: str = "scene") -> Scene:
     bt = top.table("bearing")
     init = top.table("initial") or _Table({}, "scene.initial")
     crank_angle = init.number("crank_angle", 0.0)
-    crank_speed = _crank_speed(init)
+    crank_speed = _crank_speed(init, mech)
     init.done()
     rt = top.table("run") or _Table({}, "scene.run")
     run = Run(

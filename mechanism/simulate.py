@@ -62,6 +62,7 @@ class JointEquations:
         self.calls = 0              # rhs calls, the Jacobian's included
         self.jacobians = 0
         self.force = (0.0, 0.0)     # the joint force of the last rhs call [N]
+        self.t = 0.0                # the time of the last rhs call [s]: where a run stopped
 
     @property
     def has_jacobian(self) -> bool:
@@ -80,6 +81,7 @@ class JointEquations:
 
     def rhs(self, t: float, y) -> list:
         self.calls += 1
+        self.t = t
         coords = coordinates(self.scene.mechanism, y[:6])
         if self.n_film:
             self.film.z = y[6:]
@@ -268,7 +270,10 @@ def simulate(scene: Scene, progress: bool | None = None) -> SimulationResult:
     except KeyboardInterrupt:
         partial, message = True, f"interrupted at t = {t:.6g} s"
     except (ValueError, ArithmeticError, np.linalg.LinAlgError, STEP_FAILURE) as err:
-        partial, message = True, f"stopped at t = {t:.6g} s: {type(err).__name__}: {err}"
+        # where the failing right-hand side was asked, not the segment's start (the
+        # integrator raises from inside a segment of a quarter turn)
+        partial, message = True, (f"stopped at t = {max(t, eq.t):.6g} s: "
+                                  f"{type(err).__name__}: {err}")
     finally:
         restore()
     wall = time.perf_counter() - start

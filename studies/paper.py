@@ -22,8 +22,8 @@ from mechanism.scene import SCENES
 
 PAPER = [f"paper-{b}-{m}" for b in ("short", "long") for m in ("analytic", "fem", "fvm")]
 COLUMNS = ("scene", "status", "wall_time_s", "steps", "rhs_evals", "film_solves", "peak_eps",
-           "min_film_um", "crank_speed_min", "crank_speed_max", "max_dspeed_vs_ideal",
-           "peak_slider_acc")
+           "min_film_um", "crank_speed_min_rad_s", "crank_speed_max_rad_s",
+           "max_dspeed_vs_ideal_rad_s", "peak_slider_acc_m_s2")
 
 
 def ideal_crank_speed(scene, crank_angle):

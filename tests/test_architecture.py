@@ -20,7 +20,7 @@ LAYERS = [
     {"reynolds"},                                   # its public fronts
     {"models", "outputs"},                          # film models by name; outputs
     {"design"},                                     # the designer's numbers
-    {"bearingfem"},                                 # the package
+    {"bearingfem", "__main__"},                     # the package; python -m bearingfem
     {"mechanism"},
     {"bearingfem_app"},
 ]

@@ -22,7 +22,9 @@ from bearingfem.routes.thd import (
 from bearingfem.thermal import Thermal
 from bearingfem.thermal.bush import bush_heat, bush_wall, radial_conduction
 from bearingfem.thermal.energy import (
+    BushCoupling,
     EnergyFlow,
+    EnergyParts,
     Mixing,
     _film_coefficient,
     energy_operator,
@@ -308,3 +310,19 @@ def test_transfer_interpolates_the_bush_surface():
     d_theta = 2.0 * np.pi / wall.response.shape[0]
     for coordinate, exact in ((p[0], R * np.cos(theta)), (p[1], R * np.sin(theta))):
         assert np.max(np.abs(wall.transfer @ coordinate - exact)) <= R * d_theta ** 2 / 8.0
+
+
+def test_energy_solution_parts_are_named():
+    """What an energy solution's balance and bush are made of is a named record
+    (EnergyParts, BushCoupling): read by name, still unpacked in order."""
+    sol, t_star, _ = _uniform_film(1, "ring")
+    parts = sol.parts
+    assert isinstance(parts, EnergyParts) and parts.radius == BEARING.radius
+    assert parts.walls == (0.0, TA, 0.0, 330.0) and parts.half is False
+    assert parts.storage is None and parts.matrix.shape[0] == len(sol.temperature)
+    bush = parts.bush
+    assert isinstance(bush, BushCoupling) and bush.ambient == TA
+    np.testing.assert_array_equal(sol.bush_inner, bush.ambient + bush.rise)
+    assert bush.temperature.shape == bush.coefficient.shape
+    radius, *_, last = parts                      # positional order kept
+    assert radius == BEARING.radius and last is bush

@@ -27,6 +27,11 @@ def test_study_orders_and_files(tmp_path):
     s.write_csv(tmp_path / "c.csv")
     s.plot(tmp_path / "c.png")
     assert (tmp_path / "c_summary.csv").read_text().count("\n") == 1 + 2 * 7
+    # each summary row names its quantity's SI unit (the CLI prints them)
+    units = {r["quantity"]: r["unit"] for r in s.summary}
+    assert units == {"force": "N", "F_r": "N", "F_t": "N", "pressure_max": "Pa",
+                     "cavitated_fraction": "1", "friction_force": "N", "side_leakage": "m^3/s"}
+    assert (tmp_path / "c_summary.csv").read_text().startswith("method,quantity,unit,finest")
     assert (tmp_path / "c.png").stat().st_size > 5000
 
 

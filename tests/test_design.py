@@ -50,6 +50,10 @@ def test_equilibrium_balances_the_load_and_reports_the_film():
     assert eq.power_loss == pytest.approx(eq.friction_force * b.radius * 250.0)
     assert eq.film_min == pytest.approx(b.clearance * (1 - eq.eps))
     assert eq.flow_in == eq.side_leakage > 0.0
+    # plain floats, so that the record prints as numbers (np.float64(...) before)
+    assert {type(v) for v in (*eq.film_force, eq.friction_force, eq.friction_coefficient,
+                              eq.power_loss)} == {float}
+    assert "np.float64" not in repr(eq)
 
 
 @pytest.mark.parametrize("load", [1e-3, 1.0, 100.0, 2000.0, 8000.0])

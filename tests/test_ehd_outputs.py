@@ -24,7 +24,7 @@ def test_deflection_is_exported_and_mapped(ehd):
     render_film(field="deformation") holds it in um at the same places (its largest value
     the solution's). Fails if the deflection is not exported or scaled to um twice."""
     m = to_meshio(ehd)
-    assert np.array_equal(m.point_data["deformation"], ehd.deformation)
+    assert np.array_equal(m.point_data["deformation [m]"], ehd.deformation)
     _, vals = film_map(ehd, "deformation")
     assert np.isclose(vals.max(), 1e6 * ehd.deformation.max(), rtol=1e-12)
 

@@ -39,7 +39,7 @@ def test_series_exports_and_renders(long_run, tmp_path):
     ds = ET.parse(pvd).getroot().find("Collection").findall("DataSet")
     assert [float(d.get("timestep")) for d in ds] == [f.t for f in frames]
     m = meshio.read(tmp_path / ds[1].get("file"))
-    assert np.allclose(m.point_data["pressure"].max(), frames[1].solution.pressure_max)
+    assert np.allclose(m.point_data["pressure [Pa]"].max(), frames[1].solution.pressure_max)
     paths = render_history(frames, tmp_path, gif=True)
     assert [p.name for p in paths] == ["frame-000.png", "frame-001.png", "frame-002.png",
                                        "film.gif"]
@@ -81,10 +81,11 @@ def test_series_carry_coordinates_and_time(long_run, tmp_path):
     frames = film_history(r, sc, [60, 120], n_theta=24, n_z=4)
     write_history(frames, tmp_path, "unwrapped")
     m = meshio.read(tmp_path / "film-001.vtu")
-    assert {"pressure", "film_thickness", "theta", "z", "time", "crank_angle"} <= set(m.point_data)
-    assert np.allclose(m.point_data["time"], frames[1].t)
-    assert np.allclose(np.degrees(m.point_data["crank_angle"]), frames[1].crank_angle_deg)
-    assert np.ptp(m.point_data["theta"]) > 6.0 and np.ptp(m.point_data["z"]) > 0
+    assert {"pressure [Pa]", "film_thickness [m]", "theta [rad]", "z [m]", "time [s]",
+            "crank_angle [rad]"} <= set(m.point_data)
+    assert np.allclose(m.point_data["time [s]"], frames[1].t)
+    assert np.allclose(np.degrees(m.point_data["crank_angle [rad]"]), frames[1].crank_angle_deg)
+    assert np.ptp(m.point_data["theta [rad]"]) > 6.0 and np.ptp(m.point_data["z [m]"]) > 0
 
 
 def test_saved_run_carries_its_provenance_and_a_csv(long_run, tmp_path):

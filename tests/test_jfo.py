@@ -246,8 +246,8 @@ def test_fraction_is_exported_and_rendered(seed, tmp_path):
                          grooves=[Groove(np.pi, 0.1, fraction=0.5)])
     write_solution(sol, tmp_path / "f.vtu")
     m = meshio.read(tmp_path / "f.vtu")
-    assert np.isclose(m.point_data["fraction"].min(), sol.fraction.min())
-    assert len(m.point_data["fraction"]) == 2 * len(sol.fraction)      # mirrored half
+    assert np.isclose(m.point_data["fraction [1]"].min(), sol.fraction.min())
+    assert len(m.point_data["fraction [1]"]) == 2 * len(sol.fraction)      # mirrored half
     render_film(sol, tmp_path / "f.png", field="fraction", surface="unwrapped")
     assert (tmp_path / "f.png").stat().st_size > 1000
     plain = solve_reynolds(seed, s, 48, 8)

@@ -195,3 +195,42 @@ def test_ctrl_c_in_the_first_segment_keeps_the_steps_taken(monkeypatch):
     assert r.partial and r.message.startswith("interrupted at t = ")
     assert len(r.t) > 1 and r.t[0] == 0.0 and np.all(np.isfinite(r.eps))
     assert (r.crank_angle[-1] - r.crank_angle[0]) / (2 * np.pi) < 0.25
+
+
+def test_a_film_failing_inside_a_segment_is_reported_where_it_failed(monkeypatch):
+    """The integrator runs a quarter turn (6.3 ms at 250 rad/s) per segment; a film that
+    fails past t = 1 ms inside the first one is reported where it was asked (the first
+    right-hand side past 1 ms: 1.13 ms, within a step), not at the segment's start (t = 0 s,
+    as a quarter-turn run once said after minutes of work)."""
+    force = FilmEffect.force
+
+    def failing(self, kin):
+        if kin.t > 1e-3:
+            raise ValueError("planted film failure")
+        return force(self, kin)
+    monkeypatch.setattr(FilmEffect, "force", failing)
+    r = simulate(scene({"lubrication": {"model": "long"}}, turns=0.25, ld=2.0), progress=False)
+    assert r.partial and "planted film failure" in r.message
+    t_stop = float(r.message.split("stopped at t = ")[1].split(" s")[0])
+    assert 1e-3 < t_stop < 2e-3
+
+
+def test_summary_row_names_carry_units():
+    """The one-row summary (studies.paper's summary.csv, a mechanism sweep's results.csv):
+    every dimensional number names its unit; the crank speeds agree with the arrays."""
+    r = simulate(scene({"lubrication": {"model": "long"}}, turns=0.1, ld=2.0), progress=False)
+    row = r.summary_row(ideal_speed=r.crank_speed)
+    assert set(row) == {"scene", "status", "wall_time_s", "steps", "rhs_evals", "film_solves",
+                        "peak_eps", "min_film_um", "crank_speed_min_rad_s",
+                        "crank_speed_max_rad_s", "max_dspeed_vs_ideal_rad_s",
+                        "peak_slider_acc_m_s2"}
+    assert row["crank_speed_max_rad_s"] == pytest.approx(r.crank_speed.max(), abs=0.01)
+    assert row["max_dspeed_vs_ideal_rad_s"] == 0.0
+
+
+def test_a_result_prints_as_one_line():
+    """print(res) names the run (it printed every array: ~90 kB for half a turn)."""
+    r = simulate(scene({"lubrication": {"model": "long"}}, turns=0.1, ld=2.0), progress=False)
+    text = repr(r)
+    assert "\n" not in text and len(text) < 200 and "'t'" in text
+    assert f"{len(r.t)} points" in text and "completed" in text

@@ -136,3 +136,24 @@ def test_oil_by_grade_in_a_scene():
     d["bearing"].update(oil="VG 32", viscosity=0.03)
     with pytest.raises(ValueError, match="one of viscosity"):
         parse_scene(d)
+
+
+@pytest.mark.parametrize("initial, needle", [
+    ({"crank_speed": 3000.0}, r"scene.initial.crank_speed 3000 rad/s drives the crank pin at "
+                              r"152.4 m/s .*must lie in \(0, 1181\] rad/s .*rpm given as "
+                              r"rad/s\? \(3000 rpm = 314.2 rad/s"),
+    ({"rpm": 3e5}, r"scene.initial.rpm 300000 1/min .*must lie in \(0, 11279\] 1/min"),
+])
+def test_a_crank_speed_no_slider_crank_reaches_is_refused(initial, needle):
+    """3000 meant as rpm but read as rad/s drives the seed's 50.8 mm crank pin at 152 m/s,
+    2.5 times the limit PIN_SPEED_MAX = 60 m/s (a racing engine's pin: ~38 m/s); its limit
+    is 60 / 0.0508 = 1181 rad/s = 11279 rpm. Also for a scene changed after loading."""
+    from dataclasses import replace
+    d = copy.deepcopy(BASE)
+    d["initial"] = initial
+    with pytest.raises(ValueError, match=needle):
+        parse_scene(d)
+    ok = parse_scene(_with(("initial", "crank_speed"), 1181.0))       # at the limit: taken
+    assert ok.crank_speed == 1181.0
+    with pytest.raises(ValueError, match=r"^crank_speed 3000 rad/s drives the crank pin"):
+        replace(ok, crank_speed=3000.0)

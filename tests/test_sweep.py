@@ -251,3 +251,14 @@ def test_a_bearing_no_journal_bearing_has_stops_the_sweep_before_it_starts(tmp_p
                                          r"bearing.*typed in mm"):
         run_sweep(sw, tmp_path / "out", workers=1, progress=False)
     assert not (tmp_path / "out").exists()
+
+
+def test_a_crank_speed_in_rpm_stops_a_mechanism_sweep_before_it_starts(tmp_path):
+    """crank_speed 3000 (rpm meant, rad/s read) against the scene's crank, by name, before
+    any case runs."""
+    sw = parse_sweep({"name": "t", "kind": "mechanism", "base": {"turns": 0.1},
+                      "vary": {"crank_speed": [250.0, 3000.0]}})
+    with pytest.raises(ValueError, match=r"crank_speed 3000 rad/s drives the crank pin .*"
+                                         r"must lie in \(0, 1181\] rad/s"):
+        run_sweep(sw, tmp_path / "out", workers=1, progress=False)
+    assert not (tmp_path / "out").exists()

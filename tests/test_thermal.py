@@ -240,7 +240,7 @@ def test_temperature_renders_and_exports(tmp_path):
                     grooves=GROOVES)
     path = render_film(sol, tmp_path / "t.png", field="temperature", surface="unwrapped")
     assert path.stat().st_size > 1000
-    np.testing.assert_array_equal(to_meshio(sol, "journal").point_data["temperature"],
+    np.testing.assert_array_equal(to_meshio(sol, "journal").point_data["temperature [K]"],
                                   sol.temperature)
     with pytest.raises(ValueError, match="temperature"):
         render_film(solve_reynolds(BEARING, STATE, 48, 8, grooves=GROOVES),

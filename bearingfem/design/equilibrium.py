@@ -189,13 +189,14 @@ def _result(bearing, omega, load, state, force_local, sol, model, calls, tilt=(0
     """The :class:`Equilibrium` at ``state``, the film force there (local) and solution."""
     (wx, wy), W = load, math.hypot(*load)
     (f_r, f_t), eps, gamma = force_local, state.eps, state.gamma
-    film_force = local_to_inertial(f_r, f_t, gamma)
+    film_force = tuple(float(f) for f in local_to_inertial(f_r, f_t, gamma))
     # Petroff's closed Couette integral and the by-parts Poiseuille term hold for the
     # cylindrical gap only: a tilted film's friction is its own shear integral
     friction = sol.friction_force if any(tilt) else petroff_friction(bearing, eps, omega, f_t)
     contact = (0.0, 0.0) if sol is None else sol.asperity_force
     if sol is not None:
         friction += sol.asperity_friction_torque / bearing.radius
+    friction = float(friction)     # plain floats: the record prints as numbers, not np.float64
     film_min, film_min_angle = least_film(bearing, state, tilt)
     return Equilibrium(
         eps=eps, attitude=math.atan2(f_t, -f_r), state=state, load=(wx, wy),

@@ -30,15 +30,15 @@ class BushField:
     deflection: np.ndarray
 
     def write_vtu(self, path) -> None:
-        """The undeformed mesh with point data ``displacement`` [m] and ``pressure``
-        [Pa] (ParaView: Warp By Vector to see it deformed)."""
+        """The undeformed mesh with point data "displacement [m]" and "pressure [Pa]" (each
+        named with its unit; ParaView: Warp By Vector to see it deformed)."""
         self._meshio().write(str(path))
 
     def _meshio(self):
         # scikit-fem's converter: its hexahedra number their nodes unlike VTK's
         from skfem.io.meshio import to_meshio
-        return to_meshio(self.mesh, point_data={"displacement": self.displacement.T,
-                                                "pressure": self.pressure})
+        return to_meshio(self.mesh, point_data={"displacement [m]": self.displacement.T,
+                                                "pressure [Pa]": self.pressure})
 
     def render(self, path, magnify: float | None = None, window_size=(1000, 800)) -> str:
         """Off-screen picture (PyVista) of the bush deformed ``magnify`` times (default:

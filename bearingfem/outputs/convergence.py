@@ -19,10 +19,13 @@ from ..reynolds import fvm_reynolds, solve_reynolds
 from ..validation import check_int
 from .tables import write_csv
 
-__all__ = ["convergence_study", "richardson", "ConvergenceStudy", "QUANTITIES"]
+__all__ = ["convergence_study", "richardson", "ConvergenceStudy", "QUANTITIES", "UNITS"]
 
 QUANTITIES = ("force", "F_r", "F_t", "pressure_max", "cavitated_fraction", "friction_force",
               "side_leakage")
+#: each quantity's SI unit (the summary's "unit" column; the order and GCI are pure numbers)
+UNITS = {"force": "N", "F_r": "N", "F_t": "N", "pressure_max": "Pa", "cavitated_fraction": "1",
+         "friction_force": "N", "side_leakage": "m^3/s"}
 METHODS = ("P1", "P2", "fvm")
 
 
@@ -118,8 +121,8 @@ def convergence_study(bearing: Bearing, state: JournalState, *, levels: int = 4,
         for q in QUANTITIES:
             f3, f2, f1 = (rm[-3][q], rm[-2][q], rm[-1][q])
             p, ext, gci = richardson(f1, f2, f3)
-            summary.append({"method": m, "quantity": q, "finest": f1, "order": p,
-                            "extrapolated": ext, "gci": gci})
+            summary.append({"method": m, "quantity": q, "unit": UNITS[q], "finest": f1,
+                            "order": p, "extrapolated": ext, "gci": gci})
     case = (f"L/D {bearing.length_ratio:g}, eps {state.eps:g}, eps_dot {state.eps_dot:g} 1/s, "
             f"omega {state.omega:g} rad/s, {cavitation}")
     return ConvergenceStudy(rows, summary, case)

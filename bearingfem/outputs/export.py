@@ -1,10 +1,13 @@
 """Export a film solution to meshio (VTU, XDMF, ...) for ParaView.
 
 Points lie on the 3-D journal surface (x = R cos alpha, y = R sin alpha, z) or, with
-``surface="unwrapped"``, on the plane (R theta, z, 0). Point data: pressure [Pa],
-film_thickness [m], theta [rad] (from the maximum film) and z [m]; with an elastic bush
-deformation [m] (its radial deflection, > 0 opens the gap; film_thickness is then the
-deformed gap). A half-domain solve is mirrored to the whole length.
+``surface="unwrapped"``, on the plane (R theta, z, 0). Point data, each named with its SI
+unit (:data:`FIELD_NAMES`, what ParaView shows; in a legacy .vtk file, which takes no
+spaces, "pressure_[Pa]" and so on): "pressure [Pa]", "film_thickness [m]",
+"theta [rad]" (from the maximum film) and "z [m]"; a JFO film's "fraction [1]", a thermal
+film's "temperature [K]", an elastic bush's "deformation [m]" (its radial deflection, > 0
+opens the gap; film_thickness is then the deformed gap). A half-domain solve is mirrored
+to the whole length.
 """
 from __future__ import annotations
 
@@ -16,7 +19,16 @@ from ..fv.fvm import FVMGrid
 from ..film import inertial_from_theta
 from ..solution import FilmSolution
 
-__all__ = ["to_meshio", "write_solution"]
+__all__ = ["to_meshio", "write_solution", "FIELD_NAMES"]
+
+#: The film's quantities -> their point-data names in the exported files (quantity [unit]).
+FIELD_NAMES = {"pressure": "pressure [Pa]", "film_thickness": "film_thickness [m]",
+               "theta": "theta [rad]", "z": "z [m]", "fraction": "fraction [1]",
+               "temperature": "temperature [K]", "deformation": "deformation [m]"}
+
+
+def _named(data: dict) -> dict:
+    return {FIELD_NAMES[k]: v for k, v in data.items()}
 
 
 def _cells_fe(mesh: FilmMesh):
@@ -66,7 +78,7 @@ def to_meshio(sol: FilmSolution, surface: str = "journal") -> meshio.Mesh:
         alpha = inertial_from_theta(theta, sol.gamma)
         pts = np.column_stack([R * np.cos(alpha), R * np.sin(alpha), z])
         data = {"pressure": p, "film_thickness": h, "theta": theta, "z": z, **extra}
-        return meshio.Mesh(pts, [(ctype, cells)], point_data=data)
+        return meshio.Mesh(pts, [(ctype, cells)], point_data=_named(data))
     # Unwrapped: cells across the periodic seam would span the whole plane, so every cell
     # gets its own vertices and seam cells are unwrapped by 2 pi.
     th = theta[cells]
@@ -77,14 +89,18 @@ def to_meshio(sol: FilmSolution, surface: str = "journal") -> meshio.Mesh:
     own = np.arange(flat.size).reshape(cells.shape)
     data = {"pressure": p[flat], "film_thickness": h[flat], "theta": theta[flat],
             "z": z[flat], **{k: v[flat] for k, v in extra.items()}}
-    return meshio.Mesh(pts, [(ctype, own)], point_data=data)
+    return meshio.Mesh(pts, [(ctype, own)], point_data=_named(data))
 
 
 def write_solution(sol: FilmSolution, path, surface: str = "journal", constants=None):
     """Write the film to ``path``; the format follows the suffix (.vtu, .xdmf, ...).
-    ``constants``: name -> number written as a uniform point field (e.g. the run's time
-    [s]; meshio's VTU writer drops field data, ParaView reads point fields)."""
+    ``constants``: name -> number written as a uniform point field (e.g. ``"time [s]"``,
+    the run's time, named with its unit as the film's fields are; meshio's VTU writer
+    drops field data, ParaView reads point fields)."""
     m = to_meshio(sol, surface)
     for k, v in (constants or {}).items():
         m.point_data[k] = np.full(len(m.points), float(v))
+    if str(path).lower().endswith(".vtk"):
+        # the legacy VTK format takes no spaces in names: "pressure_[Pa]"
+        m.point_data = {k.replace(" ", "_"): v for k, v in m.point_data.items()}
     m.write(str(path))

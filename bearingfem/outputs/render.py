@@ -20,7 +20,7 @@ import numpy as np
 
 from ..film import inertial_from_theta
 from ..solution import FilmSolution
-from .export import to_meshio
+from .export import FIELD_NAMES, to_meshio
 
 __all__ = ["render_film", "unwrapped_figure", "film_map", "FIELDS", "SURFACES"]
 
@@ -64,10 +64,10 @@ def film_map(sol: FilmSolution, field: str):
     point per place, and the field's node values in display units."""
     import matplotlib.tri as mtri
     m = to_meshio(sol, "journal")         # mirrored to the whole length, node values
-    th = np.mod(np.asarray(m.point_data["theta"]), 2 * np.pi)
-    z = np.asarray(m.point_data["z"]) * 1e3
+    th = np.mod(np.asarray(m.point_data[FIELD_NAMES["theta"]]), 2 * np.pi)
+    z = np.asarray(m.point_data[FIELD_NAMES["z"]]) * 1e3
     key, scale, _ = FIELDS[field]
-    v = np.asarray(m.point_data[key]) * scale
+    v = np.asarray(m.point_data[FIELD_NAMES[key]]) * scale
     cells = m.cells[0].data[:, :3]        # corner nodes (P2 midside nodes add points only)
     # cells across the periodic seam would span the map: draw them shifted by 2 pi
     seam = np.ptp(th[cells], axis=1) > np.pi
@@ -239,7 +239,7 @@ def _render_journal(sol, path, field, window_size, title, clim, camera_angle):
     m.points = m.points * 1e3
     grid = pv.from_meshio(m)
     key, scale, label = FIELDS[field]
-    values = np.asarray(grid.point_data[key]) * scale
+    values = np.asarray(grid.point_data[FIELD_NAMES[key]]) * scale
     cavitated = np.zeros(len(values), bool)
     if field == "pressure" and sol.cavitation != "none":
         zs = np.abs(grid.points[:, 2])

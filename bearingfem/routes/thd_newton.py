@@ -50,7 +50,7 @@ from ..fe.general import general_assembly
 from ..film import film_thickness
 from ..solvers.cavitation import LCPResult
 from ..solvers.linsolve import principal_block
-from ..thermal.energy import EnergySolution
+from ..thermal.energy import EnergyParts, EnergySolution
 from ..thermal.jacobian import energy_linearisation
 from ..thermal.spec import ThermalRecord
 from ..thermal.mixing import arc_theta_difference
@@ -379,8 +379,9 @@ class ThermalNewton:
         sol = self.film().solution()
         energy = EnergySolution(
             temperature=self.T, journal_temperature=self.t_journal,
-            parts=(b.radius, eop, lin.flow, lin.flow.dissipation, self.thermal.walls, lin.A,
-                   lin.b, lin.c_all, False, None, None))
+            parts=EnergyParts(b.radius, eop, lin.flow, lin.flow.dissipation,
+                              self.thermal.walls, lin.A, lin.b, lin.c_all, half=False,
+                              storage=None, bush=None))
         T = self.T
         record = ThermalRecord(
             balance=energy.balance, journal_temperature=self.t_journal,

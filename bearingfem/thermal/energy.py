@@ -51,6 +51,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from functools import cached_property
+from typing import NamedTuple
 
 import numpy as np
 import scipy.sparse as sp
@@ -61,7 +62,8 @@ from ..errors import ConvergenceError
 from .operator import (EnergyFlow, EnergyOperator, FilmEdges, arc_basis,  # noqa: F401
                        energy_operator, energy_system, film_edges, film_flow)
 
-__all__ = ["EnergyFlow", "EnergySolution", "EnergyBalance", "solve_energy", "film_flow",
+__all__ = ["EnergyFlow", "EnergySolution", "EnergyParts", "BushCoupling", "EnergyBalance",
+           "solve_energy", "film_flow",
            "EnergyOperator", "energy_operator", "energy_system",
            "film_edges", "FilmEdges", "Mixing"]
 
@@ -85,6 +87,34 @@ class EnergyBalance:
     stored: float = 0.0
 
 
+class BushCoupling(NamedTuple):
+    """A conducting bush as solved with the film: what its temperatures and heat come
+    from."""
+
+    wall: object               # the bush's wall (:func:`bearingfem.thermal.bush.bush_wall`)
+    coefficient: np.ndarray    # film -> bush coefficient H at the quadrature points [W/(m^2 K)]
+    temperature: np.ndarray    # the bush's inner temperature T_w at the quadrature points [K]
+    rise: np.ndarray           # its inner nodal temperatures above the ambient [K]
+    loads: object              # the heat the film gives the bush (the wall's loads)
+    ambient: float             # T_a [K]
+
+
+class EnergyParts(NamedTuple):
+    """What an energy solution's balance is made of, kept to compute it when asked."""
+
+    radius: float              # journal radius R [m]
+    operator: EnergyOperator   # the mesh's element tables
+    flow: EnergyFlow           # the film's flux, diffusivity, dissipation
+    dissipation: np.ndarray    # Phi at the quadrature points [W/m^2] (linearised if asked)
+    walls: tuple               # (H_b [W/(m^2 K)], T_a [K], H_j [W/(m^2 K)], T_j [K] or None)
+    matrix: object             # the assembled system's matrix A
+    rhs: np.ndarray            # its right-hand side b (the bush's wall load included)
+    journal_column: np.ndarray  # the journal temperature's column (zero without H_j)
+    half: bool                 # the mesh is the half z >= 0: the balance is doubled
+    storage: tuple | None      # a time step's (rho cp h / dt [W/(m^2 K)], T_old [K]) or None
+    bush: BushCoupling | None  # the conducting bush, or None
+
+
 @dataclass(frozen=True, eq=False)
 class EnergySolution:
     """Nodal temperature [K] (held nodes included), the journal's temperature [K] and the
@@ -92,23 +122,22 @@ class EnergySolution:
 
     temperature: np.ndarray
     journal_temperature: float
-    parts: tuple = field(default=(), repr=False)        # what the balance is made of
+    parts: EnergyParts | None = field(default=None, repr=False)  # what the balance is made of
 
     @property
     def bush_inner(self):
         """The conducting bush's inner nodal temperatures [K] (None without one)."""
-        wall = self.parts[-1] if self.parts else None
-        return None if wall is None else wall[5] + wall[3]
+        coupled = None if self.parts is None else self.parts.bush
+        return None if coupled is None else coupled.ambient + coupled.rise
 
     @cached_property
     def bush(self):
         """The conducting bush's temperatures (:class:`~bearingfem.thermal.bush.BushHeat`:
         nodal [K], heat in and out [W], inner mean [K]), or None."""
-        wall = self.parts[-1] if self.parts else None
-        if wall is None:
+        coupled = None if self.parts is None else self.parts.bush
+        if coupled is None:
             return None
-        bush_wall, _, _, _, loads, ta = wall
-        return bush_wall.response.field(loads, ta)
+        return coupled.wall.response.field(coupled.loads, coupled.ambient)
 
     @cached_property
     def balance(self) -> EnergyBalance:
@@ -124,7 +153,7 @@ class EnergySolution:
         dissipation = float(np.sum(phi * dA))
         bush = float(np.sum(hb * (Tv - ta) * dA))
         if wall is not None:                    # the conducting bush: H (T - T_w)
-            bush += float(np.sum(wall[1] * (Tv - wall[2]) * dA))
+            bush += float(np.sum(wall.coefficient * (Tv - wall.temperature) * dA))
         journal = float(np.sum(hj * (Tv - t_journal) * dA))
         grooves = -float(np.sum(reactions[op.held]))
         stored = 0.0 if storage is None else \
@@ -273,8 +302,8 @@ def solve_energy(bearing, op: EnergyOperator, flow: EnergyFlow, mixing: Mixing, 
     phi = flow.dissipation if linearised is None else \
         flow.dissipation + linearised[0] * (op.at_points(T) - linearised[1])
     return EnergySolution(temperature=T, journal_temperature=t_journal,
-                          parts=(bearing.radius, op, flow, phi, walls, A, b, c_all, half,
-                                 storage, wall))
+                          parts=EnergyParts(bearing.radius, op, flow, phi, walls, A, b,
+                                            c_all, half, storage, wall))
 
 
 def _with_bush(op, solver, wall, H, test, T_p, ta, R, b, tol, start):
@@ -323,6 +352,7 @@ def _with_bush(op, solver, wall, H, test, T_p, ta, R, b, tol, start):
     T = T_p + Tu
     Tw = ta + (I @ u).reshape(op.dx.shape)                 # the wall's temperature [K]
     flux_dA = HdA * ((op.value @ T) - np.ravel(Tw))
-    return T, float(t_add), (wall, H, Tw, u, wall.loads(flux_dA), ta), b + C_all @ u
+    return (T, float(t_add), BushCoupling(wall, H, Tw, u, wall.loads(flux_dA), ta),
+            b + C_all @ u)
 
 
