@@ -388,6 +388,36 @@ def test_coupled_solve_is_the_plain_fixed_points_answer(thermal):
     assert sol.friction_torque == pytest.approx(ref.friction_torque, rel=1e-8)
 
 
+def test_supg_tau_is_the_written_formula_at_every_peclet_number():
+    """tau = h_e / (2 |beta|) (coth Pe - 1/Pe), Pe = |beta| h_e / (2 k h), written out with
+    mpmath-free numpy (coth as 1/tanh) at Peclet numbers from 1e-5 to 1e6 and at rest (tau
+    0): the operator's (series below 1e-3, 1 - 1/Pe above 20 without tanh) to 1e-9
+    relative: coth Pe - 1/Pe cancels to ~1e-16 / Pe^2 just above Pe = 1e-3, where the two
+    sides' Pe differ in the last bit (measured 3e-10 there, 4e-16 above Pe = 1; fails with
+    the no-tanh branch from Pe = 2)."""
+    op = energy_operator(film_mesh_of((24, 6)))
+    shape = op.theta.shape
+    pe_target = np.geomspace(1e-5, 1e6, op.theta.size).reshape(shape)
+    angle = np.linspace(0.0, 2.0 * np.pi, op.theta.size).reshape(shape)
+    bt, bz = 300.0 * np.cos(angle), 300.0 * np.sin(angle)
+    bt[0, 0] = bz[0, 0] = 0.0                       # a point at rest
+    R = BEARING.radius
+    speed = np.hypot(bt, bz)
+    he = R * (np.abs(bt) * op.cell[0] + np.abs(bz) * op.cell[1]) / np.where(speed > 0, speed, 1)
+    k_h = np.where(speed > 0, speed * he / (2.0 * pe_target), 1.0)
+    flow = EnergyFlow(beta_theta=bt, beta_zeta=bz, diffusivity=k_h,
+                      dissipation=np.zeros(shape))
+    pe = speed * he / (2.0 * k_h)
+    small = pe < 1e-3
+    coth_less = np.where(small, pe / 3.0, 1.0 / np.tanh(np.where(small, 1.0, pe))
+                         - 1.0 / np.where(small, 1.0, pe))
+    expected = np.where(speed > 0, he / (2.0 * np.where(speed > 0, speed, 1)) * coth_less, 0.0)
+    tau = _supg_tau(op, flow, R)
+    assert tau[0, 0] == 0.0
+    np.testing.assert_allclose(tau, expected, rtol=1e-9, atol=0.0)
+    np.testing.assert_allclose(tau[pe > 1.0], expected[pe > 1.0], rtol=1e-14, atol=0.0)
+
+
 def test_energy_operator_assembles_the_forms():
     """The operator's tables give the matrix and load the scikit-fem forms give (1e-12),
     on a flow with both components and a source that vary over the film."""

@@ -3,7 +3,9 @@
 Equilibrium: Broyden's method in the journal position q = e/c on the THD film's force,
 each evaluation the thermal iteration (:class:`bearingfem.routes.thd.ThermalIteration`)
 continued from the last position's temperatures and cavitated set to a temperature
-tolerance that follows the force residual (inexact steps): the thermal film's mesh is
+tolerance that follows the force residual (inexact steps; an inexact step ends on the
+film after an energy solve once the fixed point's measured contraction puts the next
+change below that tolerance, without solving it): the thermal film's mesh is
 fixed in the bearing, so one operator serves every position and the fields carry over
 node by node. It starts at the isothermal equilibrium of the supply temperature, its
 first Jacobian the thermal film's there with the viscosity field frozen (its exact
@@ -130,6 +132,24 @@ def _jacobian(film, q, omega, clearance, velocity=False):
     return J
 
 
+#: The margin on the fixed point's measured contraction when it predicts the next
+#: temperature change of an inexact step (the largest of the last RATE_MEMORY rates)
+RATE_SAFETY = 4.0
+RATE_MEMORY = 3
+
+
+def _predicted_change(change: float, rates: list) -> float:
+    """The next energy solve's change [K] after one of ``change`` [K], from the fixed
+    point's contraction measured so far (the largest of its last RATE_MEMORY rates, times
+    RATE_SAFETY; inf before two rates are known). Why: after a position step the first
+    energy solve moves the temperatures by the step's effect and the next by ~1e-2 of
+    that (the pressure's lag); an inexact step needs the film's temperatures within
+    ``tol_t`` only, which the contraction tells without the second solve."""
+    if len(rates) < 2:
+        return np.inf
+    return RATE_SAFETY * max(rates[-RATE_MEMORY:]) * change
+
+
 def thd_equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
                     direction=None, eps_max: float = EPS_MAX, rtol: float = 1e-9,
                     isothermal=None, **options) -> Equilibrium:
@@ -178,6 +198,7 @@ def thd_equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
                           **_solve_tol(mesh))
 
     last = {"q": None, "film": None, "on_t": False}
+    rates = []      # the fixed point's measured contractions (changes at one position)
 
     def balance(q, tol_t, p_rtol):
         """The film's force at q with the temperatures converged to ``tol_t`` [K] (the
@@ -187,8 +208,9 @@ def thd_equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
         :func:`~bearingfem.routes.thd.solve_thd`'s, its pressure changed by less than
         ``p_rtol``; at a looser one (an inexact step) the film before that energy solve,
         whose temperatures are as near (its pressure's change then follows theirs, ~1e-2
-        of the peak per K). At the position of the last call the fixed point continues
-        where it stopped."""
+        of the peak per K), or the film after it when the fixed point's contraction
+        (:func:`_predicted_change`) puts the next change below ``tol_t``. At the position
+        of the last call the fixed point continues where it stopped."""
         state = _state(q, np.zeros(2), omega, c)
         same = last["q"] is not None and np.array_equal(q, last["q"])
         if same and last["on_t"]:
@@ -202,11 +224,17 @@ def thd_equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
             if it.change < tol_t and it.pressure_change < p_rtol:
                 last.update(film=film, on_t=True)
                 return film
+            before = it.change
             it.energy(state, relaxation)
+            if np.isfinite(before) and before > 0.0:
+                rates.append(it.change / before)
             if tol_t > final_tol and it.change < tol_t:
                 last.update(film=film, on_t=False)
                 return film
             film = it.film(state)
+            if tol_t > final_tol and _predicted_change(it.change, rates) < tol_t:
+                last.update(film=film, on_t=True)
+                return film
         raise ConvergenceError("thermal film (temperature fixed point)", max_iterations,
                                it.change, f"eps = {state.eps:.6g}")
 
