@@ -195,6 +195,8 @@ def main(argv=None):
     ap.add_argument("--bush-mesh", default="8x8",
                     help="n_radialxn_axial of the conducting bush (default 8x8)")
     args = ap.parse_args(argv)
+    if args.repeat < 1:
+        ap.error(f"--repeat must be at least 1, got {args.repeat}")
     meshes = [tuple(int(v) for v in m.split("x")) for m in (args.mesh or ["96x16", "192x32"])]
     data = {name: fixture(name) for name in CASES}
     bearing, load, omega, grooves, oil, thermals = setup(
