@@ -13,7 +13,7 @@ import numpy as np
 
 from bearingfem.bearing import SEED_TABLE1
 from mechanism.parameters import check_crank_speed
-from mechanism.scene import parse_scene, read_toml
+from mechanism.scene import parse_scene, read_toml, scene_path
 
 # parameter -> (default, kind of value); units: m, Pa s, rad/s, 1/s
 FILM_PARAMS = {
@@ -50,17 +50,21 @@ def run_case(kind: str, params: dict, scene: dict | None = None) -> dict:
     return {**params, **out, "wall_s": time.perf_counter() - t0}
 
 
-def _scene_data(params: dict) -> dict:
-    """The scene of a mechanism case, read and validated on the client (before any work)."""
-    from mechanism.scene import parse_scene, scene_path
+def _read_scene(params: dict):
+    """(TOML data, parsed scene) of a mechanism case, read and validated on the client
+    (before any work)."""
     path = scene_path(params.get("scene", MECHANISM_PARAMS["scene"][0]))
     data = read_toml(path, "scene")
     data.setdefault("name", path.stem)
     try:
-        parse_scene(data, path.stem)
+        return data, parse_scene(data, path.stem)
     except ValueError as err:
         raise ValueError(f"sweep case {params}: {err}") from None
-    return data
+
+
+def _scene_data(params: dict) -> dict:
+    """The scene of a mechanism case as TOML data, validated on the client."""
+    return _read_scene(params)[0]
 
 
 MESH_KEYS = ("n_theta", "n_z", "element", "cavitation")
@@ -143,8 +147,7 @@ def _design_case(params: dict) -> dict:
 def _precheck(kind: str, params: dict) -> None:
     if kind == "mechanism":
         if "crank_speed" in params:     # against the scene's crank (rpm typed as rad/s?)
-            data = _scene_data(params)
-            mech = parse_scene(data, data["name"]).mechanism
+            mech = _read_scene(params)[1].mechanism
             try:
                 check_crank_speed(mech, params["crank_speed"], "crank_speed")
             except ValueError as err:
