@@ -13,7 +13,7 @@ from functools import lru_cache
 import numpy as np
 from skfem import Basis, ElementTriP2, MeshTri1
 
-from bearingfem.design import equilibrium
+from bearingfem.design import coefficients, equilibrium
 from bearingfem.design.groups import load_from_sommerfeld
 from bearingfem.fe.grooved import GroovedOperator, groove_operator_for, grooved_pressure
 from bearingfem.fe.grooved_build import build_grooved_tables
@@ -52,6 +52,20 @@ def test_a_fit_that_moves_no_vertex_is_the_plain_film_bit_for_bit():
         assert np.array_equal(x, y)
 
 
+def test_the_held_film_is_the_librarys_coefficients():
+    """The study's film on the LCP's held set (its references and "plain" rows) is the
+    library's K, C on the same mesh: within 1e-12 of the largest entries (measured 6e-15).
+    Fails (run) with the damping's squeeze column's sign flipped in kf._coefficients."""
+    b, s = _state()
+    grading = kf.reference_grading(s)
+    f, *_ = kf.films(b, s, 54, kf._nz(LD, 54), "P2", grading, iterations=0)
+    opts = mesh(LD, 54, "P2")
+    assert opts["n_z"] == kf._nz(LD, 54)
+    kc = coefficients(b, s, "fem", grading=grading, **opts)
+    F, K, C = f["plain"]
+    assert kf._errors((F, K, C), (F, np.asarray(kc.K), np.asarray(kc.C)))[1] < 1e-12
+
+
 def test_the_fitted_film_converges_at_order_above_two():
     """K, C of the fitted film against the fitted P2 144: falling at an observed order
     above 2.5 between 36, 54 and 72 cells, the boundary moved by the fit's last step less
@@ -67,7 +81,7 @@ def test_the_fitted_film_converges_at_order_above_two():
         assert ncols == 2 and math.degrees(move) < 0.1
         errors.append(kf._errors(f["fitted"], ref)[1])
     orders = kf._orders(errors, levels)
-    assert min(orders) > 2.5, (errors, orders)
+    assert all(order > 2.5 for order in orders), (errors, orders)   # a nan fails too
     assert errors[-1] < 5e-4
 
 
