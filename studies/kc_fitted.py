@@ -88,7 +88,8 @@ def _pads(m) -> list:
 
 
 def _rows(m):
-    """(vertex rows' zeta, for each row the dofs on it sorted by the base mesh's theta)."""
+    """(vertex rows' zeta, for each row the dofs on it; :class:`Fit` sorts them by the
+    base mesh's theta)."""
     _, ze = m.axes
     out = []
     for z in ze:
