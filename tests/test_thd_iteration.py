@@ -8,6 +8,7 @@ import math
 import numpy as np
 import pytest
 
+import bearingfem.design.thermal as design_thermal
 import bearingfem.routes.thd as thd_route
 from bearingfem import JournalState
 from bearingfem.design import coefficients, equilibrium
@@ -152,7 +153,6 @@ def test_predicted_inexact_steps_land_on_the_verified_equilibrium(monkeypatch):
     (measured 3e-13), the temperatures to 2e-6 K (measured 2e-10 K), with fewer energy
     solves (22 against 23 here; 14 against 19 on ROSS's adiabatic fixture). Fails with
     RATE_SAFETY at 0.01 (planted)."""
-    import bearingfem.design.thermal as design_thermal
     load, thermal = (0.0, -2000.0), THERMALS[0]
     opts = dict(n_theta=48, n_z=8, grooves=GROOVES, cavitation="reynolds")
     made, counts = [], {"energy": 0}
