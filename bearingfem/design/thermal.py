@@ -276,11 +276,11 @@ def thd_equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
     state = _state(q, np.zeros(2), omega, c)
     f_r, f_t = sol.force_local
     film_min, film_min_angle = least_film(bearing, state)
-    friction = sol.friction_force
+    friction = float(sol.friction_force)   # plain floats, as the isothermal record's
     mu_supply = float(lubricant.viscosity_at(temperature=thermal.supply_temperature))
     return Equilibrium(
         eps=state.eps, attitude=math.atan2(f_t, -f_r), state=state, load=(wx, wy),
-        film_force=local_to_inertial(f_r, f_t, state.gamma),
+        film_force=tuple(float(f) for f in local_to_inertial(f_r, f_t, state.gamma)),
         sommerfeld=sommerfeld_number(replace(bearing, viscosity=mu_supply), W, omega),
         film_min=film_min, film_min_angle=film_min_angle, friction_force=friction,
         friction_coefficient=friction / W, power_loss=abs(sol.friction_torque * omega),
