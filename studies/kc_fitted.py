@@ -580,6 +580,9 @@ def main(argv=None):
     p.add_argument("--rows", type=int, nargs="*", help="the rows (0-9) shown; all by default")
     p.add_argument("--elements", nargs="*", default=["P2", "P1"])
     a = p.parse_args(argv)
+    n_rows = sum(len(table) for table in TABLE.values())
+    if a.rows and not all(0 <= r < n_rows for r in a.rows):
+        p.error(f"--rows must lie in 0..{n_rows - 1}, got {a.rows}")
     if a.band:
         print("K, C error against the fitted P2 288 and CPU of one film: plain (LCP and "
               "tangent), fitted, band-fitted")
