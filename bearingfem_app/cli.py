@@ -125,10 +125,29 @@ def _rtol_arg(p):
                         "P2 unless --element) is chosen to reach it; --n-theta, --n-z unused")
 
 
+#: the designer's film models the command line can build (the thermal film needs an
+#: oil's heat properties, grooves and walls, which it does not take)
+DESIGN_MODELS = tuple(m for m in FILM_MODELS if m != "fem-thd")
+
+
+def _design_model(name: str) -> str:
+    """--model of equilibrium, coefficients and design: the thermal film is refused by
+    name, with where it is built, before any work."""
+    if name == "fem-thd":
+        raise argparse.ArgumentTypeError(
+            "'fem-thd' (the thermal film) needs the oil's density, specific heat and "
+            "conductivity, grooves and walls, which the command line does not take: "
+            "build it in Python, equilibrium(..., lubricant=Lubricant.iso_vg(...), "
+            "thermal=Thermal(...), grooves=...) (docs/thd.md); here choose one of "
+            + ", ".join(DESIGN_MODELS))
+    return name
+
+
 def _design_args(p):
     """Film model and mesh for the designer's commands (closed forms ignore the mesh)."""
     _bearing_args(p, film=False)
-    p.add_argument("--model", default="fem", help="film model: " + " | ".join(FILM_MODELS)
+    p.add_argument("--model", default="fem", type=_design_model,
+                   help="film model: " + " | ".join(DESIGN_MODELS)
                    + " (an option the model does not take is refused)")
     p.add_argument("-o", "--output", help="also write the numbers (.json or .csv)")
 
