@@ -225,6 +225,13 @@ def test_summary_row_names_carry_units():
                         "crank_speed_max_rad_s", "max_dspeed_vs_ideal_rad_s",
                         "peak_slider_acc_m_s2"}
     assert row["crank_speed_max_rad_s"] == pytest.approx(r.crank_speed.max(), abs=0.01)
+    # each column its own extreme (the speed falls from 250 to 229.5 rad/s in this tenth
+    # of a turn: a column read from the other end of the array is 20 rad/s off)
+    assert row["crank_speed_min_rad_s"] == pytest.approx(r.crank_speed.min(), abs=0.01)
+    assert r.crank_speed.max() - r.crank_speed.min() > 1.0
+    assert row["min_film_um"] == pytest.approx(1e6 * r.film_min.min(), abs=1e-4)
+    assert row["peak_slider_acc_m_s2"] == pytest.approx(
+        np.max(np.abs(r.slider_acceleration)), abs=0.1)
     assert row["max_dspeed_vs_ideal_rad_s"] == 0.0
 
 
