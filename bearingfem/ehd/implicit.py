@@ -186,6 +186,7 @@ class _StepFilm:
 
     def _build(self, P, s):
         run, op, c, state = self.run, self.op, self.c, self.state
+        run.evaluations += 1
         solved = self.rate(P, s)
         if solved is None:
             return None
@@ -289,6 +290,7 @@ class ImplicitStepEHD(StatelessRun):
         n = self.compliance.shape[0] * self.compliance.shape[1]
         self.size = n
         self.steps = 0
+        self.evaluations = 0             # film evaluations so far (a benchmark's record)
         self.t = 0.0
         self._w = np.zeros(n)            # w_n [m] on the bush grid
         self._P, self._factor, self._frame = None, [], None
