@@ -28,6 +28,10 @@ the next step's film at dt = 0); as dt grows with the journal held still, w tend
 steady EHD film's deflection; with tau -> 0, w = C (p + p_a) is the quasi-static bush,
 with its squeeze by the backward difference (w - w_n) / dt.
 
+Each solve starts from the last two commits' pressures extrapolated linearly in t
+(:meth:`ImplicitStepEHD.start_pressure`): where the integrator's step grows, the last
+pressure is a whole step behind and Newton from it stalls where the gap closes.
+
 The deflection's error is the backward Euler step's, O(dt) over the integrator's step,
 which the integrator's error control (on the journal alone) does not see: its convergence
 is measured in the integrator's tolerance (docs/ehd-states.md).
