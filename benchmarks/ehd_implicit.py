@@ -61,7 +61,9 @@ def window_work(r, radius, friction=ROUGH.friction):
 def last_turn_numbers(r, turns, radius):
     """(least film [um], peak pressure [MPa], summits' share, friction power [W]) over
     the run's last whole turn; NaN where a stopped run did not reach it."""
-    if not len(r.t) or r.crank_angle[-1] < 2 * np.pi * np.floor(turns) - 1e-9:
+    # a completed run's samples stop short of its end by up to one sample's spacing
+    reached = r.crank_angle[-1] >= 2 * np.pi * np.floor(turns) if len(r.t) else False
+    if turns < 1 or (r.partial and not reached) or not len(r.t):
         return (float("nan"),) * 4
     h, p = last_turn(r, turns)
     share, _, power = last_turn_work(r, turns, radius)

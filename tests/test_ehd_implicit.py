@@ -9,9 +9,11 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from bearingfem import JournalState, solve_reynolds
+from bearingfem import ElasticJournalState, JournalState, solve_reynolds
 from bearingfem.contact import FlowFactors
+from bearingfem.ehd.coupling import jacobian_tables
 from bearingfem.ehd.implicit import ImplicitStepEHD
+from bearingfem.ehd.newton import _newton
 from bearingfem.ehd.states import FullStateEHD
 from bearingfem.ehd.transient import ehd_compliance
 from bearingfem.models.ehd import ehd_run_film
@@ -96,6 +98,65 @@ def test_the_newton_matrix_is_the_residuals_derivative(rough):
         fd = (step.evaluate(P + h * d, s).residual - step.evaluate(P - h * d, s).residual) / (2 * h)
         an = J @ d + U.apply(d)
         assert np.max(np.abs(an - fd)[free]) < 1e-8 * np.max(np.abs(fd[free]))
+
+
+def _moving(s0, t):
+    """The state ``s0`` carried on its own rates to time ``t`` [s]."""
+    return ElasticJournalState(eps=s0.eps + s0.eps_dot * t, eps_dot=s0.eps_dot,
+                               gamma=s0.gamma + s0.gamma_dot * t, gamma_dot=s0.gamma_dot,
+                               omega=s0.omega)
+
+
+def _predicted_and_cold(t):
+    """The heavy film committed at 1e-5 and 2e-5 s (its state moving on its rates), the
+    two commits' pressures, and the film's solve at the trial time ``t`` [s] from the
+    start extrapolated from those commits and from the last commit's pressure alone (the
+    start before)."""
+    film, _, s0, _ = _heavy()
+    pressures = []
+    for t_k in (1e-5, 2e-5):
+        film.commit(_moving(s0, t_k), t_k)
+        pressures.append(film._P.copy())
+    start = film.start_pressure(t, pressures[0].size)
+    assert film.start_pressure(2e-5, start.size) is film._P   # the corrector at one time
+    snap = film.snapshot()
+    _, predicted = film.solve(_moving(s0, t), t)
+    film.restore(replace(snap, committed=snap.committed[-1:]))
+    _, cold = film.solve(_moving(s0, t), t)
+    return pressures, start, predicted, cold
+
+
+def test_the_predicted_start_lands_on_the_cold_starts_step():
+    """Commits at 1e-5 and 2e-5 s, a trial at 3e-5 s: the start is the two commits'
+    pressures extrapolated, max(P_2 + (P_2 - P_1), 0), to round-off (the times' ratio), and from it the solve
+    lands on the same pressure as from the last pressure alone, to 1e-8 of its largest
+    (both converged to the Newton test of 1e-10: measured 1.1e-10). Fails with the
+    extrapolation's sign flipped (planted)."""
+    (P1, P2), start, predicted, cold = _predicted_and_cold(3e-5)
+    assert np.allclose(start, np.maximum(P2 + (P2 - P1), 0.0), rtol=0, atol=1e-12 * P2.max())
+    assert np.max(np.abs(predicted.pressure - cold.pressure)) < 1e-8 * np.max(cold.pressure)
+
+
+def test_where_the_step_doubles_newton_converges_from_the_last_pressure():
+    """Commits at 1e-5 and 2e-5 s, then the trial at 4e-5 s (the step doubled, as the
+    integrator does) from the last commit's pressure: the semismooth Newton at s = 1
+    converges in at most 10 steps (measured 5), and its pressure solves the complementarity
+    problem with the film's own diagonal as the weight, min(d P, R) = 0, not only the
+    floored one: to the Newton test of 1e-10 of the residual's scale (measured 4.1e-11;
+    d spans 1.9e-7 of its largest there). Fails with no floor (NCP_FLOOR = 0 in
+    bearingfem.ehd.newton, planted: Newton stalls after 30 steps, and the continuation in
+    s took 407 before the floor)."""
+    film, _, s0, _ = _heavy()
+    for t in (1e-5, 2e-5):
+        film.commit(_moving(s0, t), t)
+    step = film.step_film(_moving(s0, 4e-5), 4e-5)
+    free = step.op.mesh.free
+    out, its = _newton(step, film._P.copy(), 1.0, free, "reynolds", 1e-10)
+    assert out is not None and its <= 10
+    ev = step.evaluate(out[0])
+    d = ev.values[jacobian_tables(step.op).stiffness_diagonal][free]
+    phi = np.minimum(d * out[0][free], ev.residual[free])
+    assert np.max(np.abs(phi)) <= 1e-10 * np.max(ev.size[free])
 
 
 def test_a_journal_held_still_relaxes_to_the_steady_full_ehd_film():

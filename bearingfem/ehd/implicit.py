@@ -28,6 +28,10 @@ the next step's film at dt = 0); as dt grows with the journal held still, w tend
 steady EHD film's deflection; with tau -> 0, w = C (p + p_a) is the quasi-static bush,
 with its squeeze by the backward difference (w - w_n) / dt.
 
+Each solve starts from the last two commits' pressures extrapolated linearly in t
+(:meth:`ImplicitStepEHD.start_pressure`): where the integrator's step grows, the last
+pressure is a whole step behind and Newton from it stalls where the gap closes.
+
 The deflection's error is the backward Euler step's, O(dt) over the integrator's step,
 which the integrator's error control (on the journal alone) does not see: its convergence
 is measured in the integrator's tolerance (docs/ehd-states.md).
@@ -77,6 +81,7 @@ class ImplicitSnapshot:
     deflection: np.ndarray
     steps: int
     pressure: np.ndarray | None
+    committed: tuple = ()
 
 
 class _Evaluated:
@@ -185,6 +190,7 @@ class _StepFilm:
 
     def _build(self, P, s):
         run, op, c, state = self.run, self.op, self.c, self.state
+        run.evaluations += 1
         solved = self.rate(P, s)
         if solved is None:
             return None
@@ -288,9 +294,12 @@ class ImplicitStepEHD(StatelessRun):
         n = self.compliance.shape[0] * self.compliance.shape[1]
         self.size = n
         self.steps = 0
+        self.evaluations = 0             # film evaluations so far (a benchmark's record)
         self.t = 0.0
         self._w = np.zeros(n)            # w_n [m] on the bush grid
         self._P, self._factor, self._frame = None, [], None
+        self._P_t = None                 # the time [s] of the last solve's pressure
+        self._committed = ()             # (t, P) of the last two commits, older first
         self._whirls = {}
 
     def _whirl(self, op) -> sp.csr_matrix:
@@ -328,7 +337,8 @@ class ImplicitStepEHD(StatelessRun):
         n = film.op.mesh.ndofs
         starts = [np.zeros(n)]
         if self._P is not None and self._P.shape == (n,):
-            result, its = warm_solve(film, self._P, free, TOL, self._factor)
+            result, its = warm_solve(film, self.start_pressure(film.dt + self.t, n), free,
+                                     TOL, self._factor)
             if result is not None:
                 return result
             starts.insert(0, self._P.copy())
@@ -342,6 +352,20 @@ class ImplicitStepEHD(StatelessRun):
                                                  self._factor),
                             out[0], 0.0, 1.0, 1.0, 1e-3, "implicit-step EHD film",
                             "coupling s", "reduce the load or refine the mesh")
+
+    def start_pressure(self, t: float, n: int) -> np.ndarray:
+        """The warm start at time ``t`` [s] (n nodes): the last solve's pressure where it
+        was at ``t`` (the integrator's corrector iterating at one time); else the pressure
+        of the last two commits extrapolated linearly in t to ``t``, floored at 0 (where a
+        step's dt jumps, the last pressure is a step behind: from it the chord and Newton
+        stalled past the gap's closure and the continuation in s took over); else the
+        last solve's."""
+        if self._P_t == t or len(self._committed) < 2:
+            return self._P
+        (t0, P0), (t1, P1) = self._committed
+        if P0.shape != (n,) or P1.shape != (n,) or not t1 > t0:
+            return self._P
+        return np.maximum(P1 + (t - t1) / (t1 - t0) * (P1 - P0), 0.0)
 
     def _force(self, film: _StepFilm, P: np.ndarray) -> tuple:
         """(F_r, F_t) [N]: the film's and the summits' pressure on the journal."""
@@ -357,14 +381,14 @@ class ImplicitStepEHD(StatelessRun):
         only the warm start."""
         film = self.step_film(state, t)
         res = self._solve(film)
-        self._P = res.pressure
+        self._P, self._P_t = res.pressure, film.dt + self.t
         return film, res
 
     # -- the RunFilm contract (rules 10-14) ----------------------------------------------
     def start(self, state: JournalState, t: float) -> None:
         """Begin with the bush undeformed at time ``t`` [s] (as the states films)."""
         self.t, self._w, self.steps = float(t), np.zeros(self.size), 0
-        self._P, self._factor = None, []
+        self._P, self._factor, self._P_t, self._committed = None, [], None, ()
 
     def force(self, state: JournalState, t: float) -> tuple:
         """(F_r, F_t) [N] at a trial ``state`` and time ``t``: w stepped from the last
@@ -407,17 +431,18 @@ class ImplicitStepEHD(StatelessRun):
             return None
         sol, w = self.solution(state, t)
         self._w, self.t = w, t
+        self._committed = self._committed[-1:] + ((t, self._P),)
         self.steps += 1
         f, a = sol.force_local, sol.asperity_force_local
         return FilmStep(t, state, (f[0] + a[0], f[1] + a[1]), sol)
 
     def snapshot(self) -> ImplicitSnapshot:
-        return ImplicitSnapshot(self.t, self._w, self.steps, self._P)
+        return ImplicitSnapshot(self.t, self._w, self.steps, self._P, self._committed)
 
     def restore(self, snapshot: ImplicitSnapshot) -> None:
         self.t, self._w, self.steps, self._P = (snapshot.t, snapshot.deflection,
                                                 snapshot.steps, snapshot.pressure)
-        self._factor = []
+        self._committed, self._factor, self._P_t = snapshot.committed, [], None
 
     def replay(self, start, steps):
         """The committed steps taken again from ``start`` = (t, JournalState) and the

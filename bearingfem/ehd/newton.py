@@ -46,6 +46,14 @@ LOG = logging.getLogger(__name__)
 
 MIN_INCREMENT = 1e-4
 MAX_NEWTON = 30
+#: The floor of the weight d in the semismooth residual Phi = min(d P, R), relative to the
+#: largest d (the film's stiffness diagonal, ~ h^3 / mu); any positive weight has the same
+#: solutions. Why: where the gap nearly closes under the summits d falls to ~1e-7 of its
+#: largest, so at a start 0.35 % from the solution R > d P held nodes of 7e4 (scaled)
+#: pressure at P = 0 in the step: Newton stalled and the continuation took 646
+#: evaluations at the seed pin's closure (eps 1.15), 3 Newton steps with the floor
+#: (tests/test_ehd_implicit: the doubled step).
+NCP_FLOOR = 1e-3
 #: A step is measured against the largest |Phi|_2 of this many last iterates (a
 #: nonmonotone line search, Grippo et al. 1986): a path that rises for a few steps where
 #: nodes leave or join the cavity is not cut short.
@@ -85,9 +93,10 @@ def _merit(film, P, s, free, cavitation):
     scale = float(np.max(size[free], initial=0.0)) or 1.0
     if cavitation != "reynolds":
         return R[free], scale, np.zeros(free.size, bool), ev
-    # the stiffness diagonal: the pattern's diagonal entries
-    d = values[jacobian_tables(film.op).stiffness_diagonal]
-    dP, Rf = d[free] * P[free], R[free]
+    # the stiffness diagonal: the pattern's diagonal entries, floored at NCP_FLOOR of
+    # their largest (any positive weight has the same solutions P >= 0, R >= 0, P R = 0)
+    d = values[jacobian_tables(film.op).stiffness_diagonal][free]
+    dP, Rf = np.maximum(d, NCP_FLOOR * np.max(d, initial=0.0)) * P[free], R[free]
     return np.minimum(dP, Rf), scale, dP < Rf, ev
 
 
