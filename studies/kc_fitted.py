@@ -54,6 +54,7 @@ from skfem import Basis, MeshTri1
 from bearingfem.design.records import DynamicCoefficients, frame_axes
 from bearingfem.design.tolerance import GRADED_FROM_EPS, GRADING_STRENGTH
 from bearingfem.fe.grooved import (GroovedOperator, _held, _system, groove_operator_for,
+                                   partials_load,
                                    grooved_pressure, rotated)
 from bearingfem.fe.assembly import FilmOperator
 from bearingfem.fe.general import element_tables
@@ -410,14 +411,8 @@ def held_film(gop, bearing, state, active):
     lu = splu(A[inner][:, inner].tocsc())
     P = G.copy()
     P[inner] = lu.solve((load - A @ G)[inner])
-    e, ed, w, g = state.eps, state.eps_dot, state.wedge_speed, state.gamma
-
-    def dK(wrt):
-        return op.matrix(gop.values(e, g, wrt))
-
-    rhs = np.column_stack([gop.load(1.0, 0.0, w, g) - dK("eps") @ P, gop.load(e, 1.0, 0.0, g),
-                           gop.load(e, 0.0, 1.0, g),
-                           gop.load(e, ed, w, g, wrt_gamma=True) - dK("gamma") @ P])
+    g = state.gamma
+    rhs = partials_load(gop, state, P)
     dP = np.zeros((m.ndofs, 4))
     dP[inner] = lu.solve(rhs[inner])
     k = force_factor(bearing, True)

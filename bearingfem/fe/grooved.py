@@ -355,6 +355,22 @@ def grooved_force(bearing: Bearing, state: JournalState, gop: GroovedOperator, g
     return _force(bearing, gop, res.pressure, state.gamma, cavitation), res
 
 
+def partials_load(gop: GroovedOperator, state: JournalState, P: np.ndarray) -> np.ndarray:
+    """The four right-hand sides [ndofs, 4] whose solutions on the film's matrix are
+    dP/d(eps, eps_dot, w, gamma) at the pressure ``P``: the load's partial less the
+    matrix's partial times P."""
+    op = gop.op
+    e, ed, w, g = state.eps, state.eps_dot, state.wedge_speed, state.gamma
+
+    def dK(wrt):
+        return op.matrix(gop.values(e, g, wrt))
+
+    # the source is linear in eps (wedge), eps_dot and w: unit values give its partials
+    return np.column_stack([gop.load(1.0, 0.0, w, g) - dK("eps") @ P,
+                            gop.load(e, 1.0, 0.0, g), gop.load(e, 0.0, 1.0, g),
+                            gop.load(e, ed, w, g, wrt_gamma=True) - dK("gamma") @ P])
+
+
 def grooved_derivatives(bearing: Bearing, state: JournalState, gop: GroovedOperator, grooves,
                         cavitation: str = "reynolds") -> ForceDerivatives:
     """(F_r, F_t) [N] and the exact partials in eps, eps_dot, w and gamma (module
@@ -371,15 +387,8 @@ def grooved_derivatives(bearing: Bearing, state: JournalState, gop: GroovedOpera
     res = grooved_pressure(gop, bearing, state, grooves, cavitation,
                            start=None if last is None else last.active, reuse=True)
     P = res.pressure
-    e, ed, w, g = state.eps, state.eps_dot, state.wedge_speed, state.gamma
-
-    def dK(wrt):
-        return op.matrix(gop.values(e, g, wrt))
-
-    # the source is linear in eps (wedge), eps_dot and w: unit values give its partials
-    rhs = np.column_stack([gop.load(1.0, 0.0, w, g) - dK("eps") @ P, gop.load(e, 1.0, 0.0, g),
-                           gop.load(e, 0.0, 1.0, g),
-                           gop.load(e, ed, w, g, wrt_gamma=True) - dK("gamma") @ P])
+    e, g = state.eps, state.gamma
+    rhs = partials_load(gop, state, P)
     free = op.mesh.free
     inactive = ~res.active[free] if cavitation == "reynolds" else np.ones(len(free), bool)
     dP = np.zeros((op.mesh.ndofs, 4))
