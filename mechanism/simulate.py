@@ -34,7 +34,7 @@ from .progress import Progress
 from .result import SimulationResult
 from .sampling import sample_run
 from .scene import Scene
-from .stepping import INTERRUPTED, STEP_FAILURE, integrate
+from .stepping import INTERRUPTED, STEP_FAILURE, STOPPED, integrate
 
 #: Relative step of the joint states' forward differences in the Jacobian (sqrt of the
 #: double precision's unit roundoff, as LSODA's own).
@@ -249,6 +249,9 @@ def simulate(scene: Scene, progress: bool | None = None) -> SimulationResult:
             t, y = float(sol.t[-1]), sol.y[:, -1]
             if sol.status == INTERRUPTED:     # Ctrl-C: the steps taken are kept above
                 raise KeyboardInterrupt
+            if sol.status == STOPPED:         # a step failed: the steps before it kept above
+                # where the failing right-hand side was asked, not the segment's start
+                raise RunStopped(f"stopped at t = {max(t, eq.t):.6g} s: {sol.message}")
             if sol.t_events[0].size:
                 break
             if sol.t_events[1].size:

@@ -22,6 +22,9 @@ is committed a run steps exactly as ``solve_ivp`` would, to the bit. Two things 
   reached) until it is the caller's again, or dropped once the solver's own step has
   fallen below half of it: a solve that failed at one instant does not hold the rest of
   the call to its step.
+* A step that fails past its cuts, or whose right-hand side raises a ValueError,
+  ArithmeticError or LinAlgError, ends the call with status :data:`STOPPED` and the error
+  as its message: the steps accepted before it are returned, not lost with the exception.
 """
 from __future__ import annotations
 
@@ -34,10 +37,15 @@ from scipy.integrate._ivp.ivp import (BDF, LSODA, MESSAGES, METHODS, find_active
 
 from bearingfem.errors import ConvergenceError
 
-__all__ = ["integrate", "Segment", "StepCut", "STEP_FAILURE", "INTERRUPTED"]
+__all__ = ["integrate", "Segment", "StepCut", "STEP_FAILURE", "INTERRUPTED", "STOPPED"]
 
 #: A segment's status when the caller's ``interrupted()`` stopped it between steps.
 INTERRUPTED = 2
+#: A segment's status when a step failed for good (module docstring): the steps before it.
+STOPPED = 3
+#: What else a step may raise that stops the call (a film asked outside its range, a
+#: singular system) with the steps before it kept.
+STEP_ERRORS = (ValueError, ArithmeticError, np.linalg.LinAlgError)
 
 #: What cuts a step instead of stopping the run: a solve that did not converge.
 STEP_FAILURE = ConvergenceError
@@ -62,8 +70,9 @@ class Segment:
     """One call of :func:`integrate`, as ``solve_ivp`` returns it: the accepted step ends
     ``t`` and states ``y`` (n x len(t)), the dense output ``sol``, the event roots per
     event, ``status`` (0 end reached, 1 terminal event, -1 solver failed, 2 interrupted by
-    the caller's ``interrupted()`` between steps: the steps taken so far), the solver's
-    message, and the steps cut."""
+    the caller's ``interrupted()`` between steps: the steps taken so far, 3 a step failed
+    for good: the steps before it, the error in ``message``), the solver's message, and
+    the steps cut."""
 
     t: np.ndarray
     y: np.ndarray
@@ -126,7 +135,8 @@ def integrate(fun, t_span, y0, method: str = "LSODA", events=(), accept=None,
             changed = accept is not None and bool(accept(t, y))
         except STEP_FAILURE as err:
             if in_row >= max_cuts:
-                raise
+                status, message = STOPPED, f"{type(err).__name__}: {err}"
+                break
             t_last, y_last = ts[-1], ys[-1]
             # the step that failed, or (a solver that failed its first step has none) the
             # first step it was started with: each cut halves what was last tried
@@ -139,6 +149,9 @@ def integrate(fun, t_span, y0, method: str = "LSODA", events=(), accept=None,
             # BDF) evaluates fun ahead, where it failed
             solver = restart(t_last, y_last, tried, limit)
             continue
+        except STEP_ERRORS as err:
+            status, message = STOPPED, f"{type(err).__name__}: {err}"
+            break
         # the step is accepted: keep it (solve_ivp's bookkeeping)
         if active_events.size > 0:
             event_count[active_events] += 1
@@ -171,7 +184,7 @@ def integrate(fun, t_span, y0, method: str = "LSODA", events=(), accept=None,
             # interrupt raised inside a compiled solver's callback can be lost), and give
             # back the steps taken so far (the caller keeps them)
             status, message = INTERRUPTED, "interrupted"
-    message = MESSAGES.get(status, message)
+    message = message if status == STOPPED else MESSAGES.get(status, message)
     ts = np.array(ts)
     dense = OdeSolution(ts, interpolants, alt_segment=solver_class in (BDF, LSODA)) \
         if interpolants else None

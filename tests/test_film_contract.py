@@ -12,7 +12,7 @@ from bearingfem.bearing import seed_bearing
 from bearingfem.contract import ConvergenceError, FilmContract, FilmStep, RunFilm, StatelessRun
 from bearingfem.models import FILM_MODELS, FilmModel, film_model, register, solve_film
 from mechanism import parse_scene, simulate
-from mechanism.stepping import integrate
+from mechanism.stepping import STOPPED, integrate
 
 
 class CountingSpring(StatelessRun):
@@ -223,8 +223,12 @@ def test_a_cut_step_grows_back():
         if t > 5.0:
             raise ConvergenceError("toy solve", 1, None, "always")
         return [-y[0] + math.sin(t)]
-    with pytest.raises(ConvergenceError):
-        integrate(stuck, (0.0, 20.0), [0.0], "LSODA", rtol=1e-6, atol=1e-9)
+    # a solve that fails for good stops the call with the steps before it (it raised,
+    # and the caller lost every step of the call), the error its message
+    got = integrate(stuck, (0.0, 20.0), [0.0], "LSODA", rtol=1e-6, atol=1e-9)
+    assert got.status == STOPPED and got.message.startswith("ConvergenceError")
+    assert 4.0 < got.t[-1] <= 5.0 and got.y[0, -1] == pytest.approx(exact(got.t[-1]), rel=1e-5)
+    assert got.sol(2.5)[0] == pytest.approx(exact(2.5), rel=1e-5)
 
 
 @pytest.mark.parametrize("method", ["LSODA", "BDF", "RK45"])
