@@ -83,10 +83,19 @@ def plausibility_errors(diameter, length_ratio, clearance, viscosity,
     return out
 
 
-def check_surface_speed(radius: float, omega: float, name: str = "omega") -> None:
+def check_surface_speed(radius: float, omega: float, name: str = "omega",
+                        rpm: bool = False) -> None:
     """ValueError when the journal's surface speed |omega| R passes any journal bearing's
-    (:data:`PLAUSIBLE`): a speed in rpm given as rad/s times a diameter in mm, say."""
+    (:data:`PLAUSIBLE`): a speed in rpm given as rad/s times a diameter in mm, say.
+    ``rpm``: the caller's value was given in 1/min (``omega`` [rad/s] is its conversion);
+    the message then names it and its limit so."""
     v, vmax = abs(omega) * radius, PLAUSIBLE["surface_speed"]
+    if v > vmax and rpm:
+        raise ValueError(
+            f"{name} {omega * 30 / math.pi:g} 1/min gives a surface speed of {v:.4g} m/s at "
+            f"radius {radius:g} m, above any journal bearing's ({vmax:g} m/s): |{name}| must "
+            f"be at most {vmax / radius * 30 / math.pi:.5g} 1/min for this diameter, or is "
+            f"the diameter in mm?")
     if v > vmax:
         raise ValueError(f"{name} {omega:g} rad/s gives a surface speed of {v:.4g} m/s at "
                          f"radius {radius:g} m, above any journal bearing's ({vmax:g} m/s): "

@@ -11,7 +11,7 @@ import os
 import re
 from pathlib import Path
 
-from bearingfem.bearing import PLAUSIBLE, check_surface_speed, plausibility_errors
+from bearingfem.bearing import check_surface_speed, plausibility_errors
 from bearingfem.validation import MIN_N_THETA, MIN_N_Z
 from mechanism.scene import oil_viscosity as scene_oil_viscosity
 
@@ -124,17 +124,9 @@ def check_plausible(args) -> None:
     if errors:
         raise ValueError("; ".join(errors))
     if getattr(args, "omega", None) is not None:
-        if getattr(args, "rpm", None) is not None:
-            # named as typed: --rpm 3e6 is 3.1e5 rad/s, a mistake of its own
-            v = abs(args.omega) * args.diameter / 2
-            if v > PLAUSIBLE["surface_speed"]:
-                raise ValueError(
-                    f"--rpm {args.rpm:g} 1/min gives a surface speed of {v:.4g} m/s at "
-                    f"radius {args.diameter / 2:g} m, above any journal bearing's "
-                    f"({PLAUSIBLE['surface_speed']:g} m/s): |--rpm| must be at most "
-                    f"{PLAUSIBLE['surface_speed'] / (args.diameter / 2) * 30 / math.pi:.5g} "
-                    f"1/min for this diameter, or is the diameter in mm?")
-        check_surface_speed(args.diameter / 2, args.omega, "--omega")
+        # named as typed: --rpm 3e6 is 3.1e5 rad/s, a mistake of its own
+        check_surface_speed(args.diameter / 2, args.omega, _speed_option(args),
+                            rpm=getattr(args, "rpm", None) is not None)
 
 
 def given_options(subparser, argv) -> set:
