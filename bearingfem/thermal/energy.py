@@ -200,7 +200,8 @@ class _FilmSolver:
     oil (rank one per groove) by Woodbury's identity and the zero-flux journal
     eliminated; linear in ``rhs`` (N,) or (N, k). Returns (T, journal temperature's
     share of rhs). ``first``: the rhs of the first solve, taken in one banded solve with
-    the Woodbury and journal columns (one call to LAPACK instead of two or three)."""
+    the Woodbury and journal columns (one call to LAPACK instead of two or three); its
+    answer is :meth:`first_solution`."""
 
     def __init__(self, op, A, U, V, cj, mj, first=None):
         self.band = op.band_factor(A.data)
@@ -216,7 +217,7 @@ class _FilmSolver:
             self.den = float(mj @ self.Tc + mj.sum())
             g += 1
         self._first = None if first is None else \
-            (first, X[:, g] if np.ndim(first) == 1 else X[:, g:])
+            (X[:, g] if np.ndim(first) == 1 else X[:, g:])
 
     def _woodbury(self, X):
         if not self.Z.shape[1]:
@@ -224,10 +225,15 @@ class _FilmSolver:
         return X - self.Z @ np.linalg.solve(self.small, self.V.T @ X)
 
     def __call__(self, rhs):
-        if self._first is not None and rhs is self._first[0]:
-            X = self._woodbury(self._first[1])
-        else:
-            X = self._woodbury(self.band(rhs))
+        return self._finish(self.band(rhs))
+
+    def first_solution(self):
+        """(T, journal share) of the ``first`` rhs given when built."""
+        return self._finish(self._first)
+
+    def _finish(self, X):
+        """The band's answer X to (T, journal share): Woodbury, then the journal."""
+        X = self._woodbury(X)
         if self.mj is None:
             return X, 0.0
         t = (self.mj @ X) / self.den
@@ -296,8 +302,8 @@ def solve_energy(bearing, op: EnergyOperator, flow: EnergyFlow, mixing: Mixing, 
     # the journal temperature as one more unknown: K T + cj t = rhs with the row
     # int H_j (T - t) dA = 0, eliminated: T = T0 - t T_c, t = m.T0 / (m.T_c + sum m)
     mj = op.vector(np.sum(op.phi * op.dx, axis=2) * R ** 2 * hj) if zero_flux else None
-    solver = _FilmSolver(op, A, U, V, cj, mj, rhs)
-    T, t_lin = solver(rhs)
+    solver = _FilmSolver(op, A, U, V, cj, mj, first=rhs)
+    T, t_lin = solver.first_solution()
     if zero_flux:
         t_journal = float(t_lin)
     wall = None
