@@ -12,7 +12,8 @@ from .solution import FilmSolution
 __all__ = ["solve_reynolds", "fvm_reynolds"]
 
 
-def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z: int = 20,
+def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int | None = None,
+                   n_z: int | None = None,
                    element: str | None = None, cavitation: str = "reynolds", *,
                    method: str = "active-set", supply_angle=None, half: bool = True,
                    tol: float = 1e-10, cavitated_shear: str = "full",
@@ -28,8 +29,8 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
     Parameters
     ----------
     bearing, state : :class:`Bearing`, :class:`JournalState`
-    n_theta : cells around the circumference (>= 8)
-    n_z : cells along the length (>= 2); with ``half=True`` only z >= 0 is meshed,
+    n_theta : cells around the circumference (>= 8; None: 120)
+    n_z : cells along the length (>= 2; None: 20); with ``half=True`` only z >= 0 is meshed,
         with ceil(n_z/2) cells, which the symmetry of an aligned journal allows (films on
         fields, tilted or elastic are meshed over the whole length)
     element : "P1" or "P2" triangles (None: P1; with ``rtol``, P2 where the film takes it)
@@ -83,8 +84,9 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
         temperature (:mod:`bearingfem.routes.thd`); ``temperature`` and
         ``temperature_max`` [K] are then given
     rtol : a requested relative accuracy of the film force, in [1e-6, 0.1]: the mesh (and,
-        unless given, the element) is chosen to reach it (n_theta and n_z are then
-        ignored) and ``force_error`` reports the estimate (:mod:`bearingfem.accuracy`)
+        unless given, the element) is chosen to reach it and ``force_error`` reports the
+        estimate (:mod:`bearingfem.accuracy`); n_theta and n_z are refused with it (the
+        mesh is the search's), an ``element`` given is kept
 
     Returns
     -------
@@ -99,8 +101,7 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
     if rtol is not None and start is not None:
         raise ValueError("start is not taken with rtol (the meshes of the search are not "
                          "known before it): give one of them")
-    # with rtol the mesh is the search's: the problem is checked on the default mesh
-    mesh = (n_theta, n_z) if rtol is None else (120, 20)
+    mesh = _mesh(n_theta, n_z, rtol)
     problem = film_problem(bearing, state, *mesh, cavitation,
                            element="P1" if element is None else element, **options)
     if rtol is None:
@@ -113,7 +114,22 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
         bearing, rtol, element, dict(options, cavitation=cavitation))
 
 
-def fvm_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z: int = 20,
+def _mesh(n_theta, n_z, rtol) -> tuple:
+    """The (n_theta, n_z) a problem is checked on: the one given (None: 120 x 20); with
+    ``rtol`` the search's own, so a mesh given beside it is refused by name rather than
+    dropped (the default mesh then only checks the other options before any work)."""
+    if rtol is not None:
+        given = [k for k, v in (("n_theta", n_theta), ("n_z", n_z)) if v is not None]
+        if given:
+            raise ValueError(f"{' and '.join(given)} {'is' if len(given) == 1 else 'are'} "
+                             f"not taken with rtol (the mesh is chosen to reach rtol): give "
+                             f"rtol or the mesh, not both")
+        return 120, 20
+    return (120 if n_theta is None else n_theta), (20 if n_z is None else n_z)
+
+
+def fvm_reynolds(bearing: Bearing, state: JournalState, n_theta: int | None = None,
+                 n_z: int | None = None,
                  cavitation: str = "reynolds", *, method: str = "active-set",
                  supply_angle=None, tol: float = 1e-10, grooves=(),
                  ambient_pressure: float = 0.0, tilt=(0.0, 0.0),
@@ -122,12 +138,13 @@ def fvm_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z:
     """Finite-volume Reynolds solution: the same inputs (those it takes) and result type
     as :func:`solve_reynolds` (:mod:`bearingfem.fv`; forces are the midpoint sums of seed
     Eq. 16, second order). ``rtol``: the grid chosen to reach a requested relative
-    accuracy of the force, ``force_error`` its estimate (second order, as P1).
+    accuracy of the force, ``force_error`` its estimate (second order, as P1); n_theta and
+    n_z (None: 120 x 20) are then refused.
     ``profile``: a bush edge profile (:class:`~bearingfem.fields.EdgeProfile`)."""
     options = dict(method=method, supply_angle=supply_angle, tol=tol, grooves=grooves,
                    ambient_pressure=ambient_pressure, tilt=tilt, tilt_rate=tilt_rate,
                    profile=profile)
-    mesh = (n_theta, n_z) if rtol is None else (120, 20)
+    mesh = _mesh(n_theta, n_z, rtol)
     problem = film_problem(bearing, state, *mesh, cavitation, discretisation="fv",
                            **options)
     if rtol is None:

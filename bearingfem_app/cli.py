@@ -122,7 +122,7 @@ def _load_args(p, required):
 def _rtol_arg(p):
     p.add_argument("--rtol", type=float, default=None,
                    help="a requested relative accuracy (e.g. 1e-3): the mesh (and element, "
-                        "P2 unless --element) is chosen to reach it; --n-theta, --n-z unused")
+                        "P2 unless --element) is chosen to reach it; not with --n-theta, --n-z")
 
 
 #: the designer's film models the command line can build (the thermal film needs an

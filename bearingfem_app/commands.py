@@ -11,7 +11,8 @@ from pathlib import Path
 
 from .bush import bush_from_args
 from .checks import check_writable, parse_angles
-from .options import ambient_pressure, check_output, film_state, make_dir, supply_angle
+from .options import (ambient_pressure, check_output, check_rtol_mesh, film_state, make_dir,
+                      supply_angle)
 
 #: exit status of a run stopped by Ctrl-C (128 + SIGINT), as shells report it
 INTERRUPTED = 130
@@ -69,6 +70,7 @@ def command_solve(args):
                          "element film)")
     if args.model == "fvm" and args.rtol is not None:
         raise ValueError("--rtol applies to --model fem only")
+    check_rtol_mesh(args)
     if args.rtol is not None:
         sol = solve_reynolds(b, s, element=element if args.element_given else None,
                              cavitation=args.cavitation, ambient_pressure=ambient_pressure(args),

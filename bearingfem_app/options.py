@@ -12,7 +12,8 @@ from .bush import bush_from_args
 from .checks import check_writable
 
 __all__ = ["bearing_from_args", "supply_angle", "ambient_pressure", "film_state",
-           "MODEL_OPTIONS", "model_options", "accuracy_options", "check_cache",
+           "MODEL_OPTIONS", "model_options", "accuracy_options", "check_rtol_mesh",
+           "check_cache",
            "check_output", "make_dir", "write_numbers", "print_rows"]
 
 
@@ -83,9 +84,23 @@ def model_options(args):
     return args.model, opts if bush is None else dict(opts, bush=bush)
 
 
+def check_rtol_mesh(args) -> None:
+    """--rtol asks the toolkit to choose the mesh: --n-theta or --n-z typed beside it is
+    refused by name (it would be dropped unseen); --element is kept."""
+    if getattr(args, "rtol", None) is None:
+        return
+    typed = [MODEL_OPTIONS[k] for k in ("n_theta", "n_z") if k in args.given]
+    if typed:
+        raise ValueError(f"{' and '.join(typed)} {'is' if len(typed) == 1 else 'are'} not "
+                         f"taken with --rtol (the mesh is chosen to reach it): give --rtol "
+                         f"or the mesh, not both")
+
+
 def accuracy_options(args, opts):
     """With --rtol the mesh options are the toolkit's to choose (the element too unless
-    given): (options without them, {"rtol": ...}); without, (options, {})."""
+    given): (options without them, {"rtol": ...}); without, (options, {}). A mesh typed
+    beside --rtol is refused (:func:`check_rtol_mesh`)."""
+    check_rtol_mesh(args)
     if args.rtol is None:
         return opts, {}
     drop = ("n_theta", "n_z") + (() if args.element_given else ("element",))

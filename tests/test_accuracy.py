@@ -270,3 +270,15 @@ def test_a_shifted_partner_sees_what_the_pair_agrees_on_by_luck():
     assert record.error >= abs(q - 1.0) / 1.0
     assert partner == shifted(24, 4, "P2")
     assert record.solves == len(record.meshes) + 1
+
+
+@pytest.mark.parametrize("mesh", [dict(n_theta=48), dict(n_z=8), dict(n_theta=48, n_z=8)])
+def test_designer_functions_refuse_a_mesh_beside_rtol(mesh):
+    """equilibrium and coefficients with rtol and a mesh: refused naming both (the mesh was
+    dropped unseen before), before any film is solved; the element is kept."""
+    s = JournalState(eps=0.6, omega=250.0)
+    names = " and ".join(mesh)
+    with pytest.raises(ValueError, match=f"{names} (is|are) not taken with rtol"):
+        equilibrium(B1, (0.0, -1000.0), 250.0, "fem", rtol=1e-2, **mesh)
+    with pytest.raises(ValueError, match=f"{names} (is|are) not taken with rtol"):
+        coefficients(B1, s, "fem", rtol=1e-2, **mesh)

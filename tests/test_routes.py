@@ -126,13 +126,22 @@ def test_the_thermal_film_refuses_what_it_does_not_use():
         coefficients(B, S, "short", grooves=G, lubricant=VG32, thermal=HOT)
 
 
-def test_rtol_takes_no_start_and_ignores_the_mesh_given():
-    """With rtol the mesh is the search's: a start solution cannot fit it (refused before
-    any work), and an n_theta too coarse to solve on is not checked."""
+def test_rtol_takes_no_start_and_no_mesh():
+    """With rtol the mesh is the search's: a start solution cannot fit it, and a mesh given
+    beside it would be replaced unseen; both are refused by name before any work (the
+    mesh was silently dropped before: n_theta=4, n_z=1 solved to rtol)."""
     with pytest.raises(ValueError, match="start"):
         solve_reynolds(B, S, lubricant=OIL, start=object(), rtol=1e-2)
-    sol = solve_reynolds(B, S, 4, 1, cavitation="gumbel", rtol=2e-2)
-    assert sol.force_error is not None and sol.force_error <= 2e-2
+    for call, mesh, named in [(solve_reynolds, (4, 1), "n_theta and n_z"),
+                              (solve_reynolds, (48,), "n_theta is"),
+                              (fvm_reynolds, (48, 8), "n_theta and n_z")]:
+        with pytest.raises(ValueError, match=f"{named}.*not taken with rtol"):
+            call(B, S, *mesh, cavitation="gumbel", rtol=2e-2)
+    with pytest.raises(ValueError, match="n_z is not taken with rtol"):
+        solve_reynolds(B, S, n_z=8, cavitation="gumbel", rtol=2e-2)
+    # the element is kept: the search stays on it
+    sol = solve_reynolds(B, S, element="P1", cavitation="gumbel", rtol=2e-2)
+    assert sol.accuracy.element == "P1" and sol.force_error <= 2e-2
 
 
 def test_the_finite_volume_search_does_not_start_from_the_fe_films_memo():

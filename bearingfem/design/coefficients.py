@@ -65,8 +65,8 @@ def coefficients(bearing: Bearing, state: JournalState, model: str = "fem",
     ``rtol`` (mesh models): a requested accuracy of K and C, each relative to its largest
     entry, in [1e-6, 0.1]; the mesh (and element, P2 unless given) is chosen to reach it and
     ``error``, ``K_error``, ``C_error`` report the estimate (:mod:`bearingfem.accuracy`; a
-    cavitated film on a graded mesh is also compared with its half mesh shifted).
-    ``estimate=True``: the same estimate for the mesh given (one more linearisation on the
+    cavitated film on a graded mesh is also compared with its half mesh shifted); n_theta
+    and n_z are then refused. ``estimate=True``: the same estimate for the mesh given (one more linearisation on the
     half mesh). ``eps_error``: the estimated error of the state's eps (an equilibrium's
     ``eps_error``); its effect on K and C (one more linearisation at eps + eps_error) is
     added to the entries' errors and to ``error``.

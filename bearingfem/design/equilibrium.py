@@ -60,8 +60,8 @@ def equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
         stay exact): the iteration's, not the film's
     rtol : a requested relative accuracy of the journal position q = e/c against the mesh
         limit, in [1e-6, 0.1] (mesh models): the mesh (and element, P2 unless given) is
-        chosen to reach it and ``eps_error`` reports the estimate; the mesh options are
-        then ignored. Successive calls with the same bearing and options start at the
+        chosen to reach it and ``eps_error`` reports the estimate; n_theta and n_z are
+        then refused (an ``element`` given is kept). Successive calls with the same bearing and options start at the
         mesh that sufficed last (:mod:`bearingfem.accuracy`)
     estimate : on the mesh given, also estimate ``eps_error`` (one more equilibrium on the
         half mesh)

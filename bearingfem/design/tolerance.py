@@ -37,7 +37,8 @@ def answer_to_tolerance(m: FilmModel, what: str, key, options: dict, evaluate: C
                         order: float | None = None, shifted: bool = False):
     """(answer, coarse answer, record): ``evaluate(options)`` with the model's mesh options
     (n_theta, n_z and, if the model has it, element) chosen to reach ``rtol`` (relative,
-    ``difference(fine, coarse)``), or, with ``rtol`` None, on the mesh of ``options`` with
+    ``difference(fine, coarse)``; n_theta or n_z in ``options`` is then refused, an element
+    kept), or, with ``rtol`` None, on the mesh of ``options`` with
     its error estimated. ``what`` names the quantity in messages; ``key`` (hashable or
     None) the memo entry, to which the model and its other options are added;
     ``length_ratio`` L/D shapes the start mesh (:func:`~bearingfem.accuracy.start_mesh`).
@@ -54,6 +55,12 @@ def answer_to_tolerance(m: FilmModel, what: str, key, options: dict, evaluate: C
                          f"n_theta, n_z); model {m.name!r} has none")
     if rtol is not None:
         rtol = check_rtol(rtol)
+        given = [k for k in ("n_theta", "n_z") if options.get(k) is not None]
+        if given:    # the search's mesh would replace it unseen
+            raise ValueError(f"{' and '.join(given)} {'is' if len(given) == 1 else 'are'} "
+                             f"not taken with rtol (the mesh is chosen to reach rtol): give "
+                             f"rtol or the mesh, not both (estimate=True estimates the "
+                             f"error of a mesh given)")
     has_element = "element" in m.defaults
     element = options.get("element") if has_element else None
     given = element is not None
