@@ -11,7 +11,7 @@ import os
 import re
 from pathlib import Path
 
-from bearingfem.bearing import check_surface_speed, plausibility_errors
+from bearingfem.bearing import check_squeeze_speed, check_surface_speed, plausibility_errors
 from bearingfem.validation import MIN_N_THETA, MIN_N_Z
 from mechanism.scene import oil_viscosity as scene_oil_viscosity
 
@@ -114,8 +114,9 @@ BEARING_OPTIONS = ("--diameter", "--length-ratio/--ld (L/D)", "--clearance", "--
 
 
 def check_plausible(args) -> None:
-    """The bearing the options describe lies in the range of any journal bearing
-    (:data:`bearingfem.bearing.PLAUSIBLE`); else ValueError naming the likely unit mistake."""
+    """The bearing and the journal's rates the options describe lie in the range of any
+    journal bearing (:data:`bearingfem.bearing.PLAUSIBLE`: the surface speed of --omega /
+    --rpm, the squeeze speed of --eps-dot); else ValueError naming the likely mistake."""
     values = [getattr(args, k, None) for k in ("diameter", "length_ratio", "clearance",
                                                 "viscosity")]
     if any(v is None for v in values):
@@ -127,6 +128,8 @@ def check_plausible(args) -> None:
         # named as typed: --rpm 3e6 is 3.1e5 rad/s, a mistake of its own
         check_surface_speed(args.diameter / 2, args.omega, _speed_option(args),
                             rpm=getattr(args, "rpm", None) is not None)
+    if getattr(args, "eps_dot", None) is not None:
+        check_squeeze_speed(args.clearance, args.eps_dot, "--eps-dot")
 
 
 def given_options(subparser, argv) -> set:

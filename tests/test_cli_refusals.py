@@ -282,3 +282,28 @@ def test_convergence_says_what_an_order_nan_means(capsys, here):
                  "--methods", "P2", "--n-theta", "48", "--n-z", "8", "-o", "conv"]) == 0
     out = capsys.readouterr().out
     assert " nan " in out and "order nan: the three finest values do not change" in out
+
+
+@pytest.mark.parametrize("command", ["solve", "render", "convergence"])
+def test_an_eps_dot_no_journal_reaches_is_refused_with_its_range(capsys, here, command):
+    """--eps-dot is checked like --omega / --rpm: the journal centre's speed c |eps_dot|
+    against any journal's in its bearing (10 m/s), named with its unit and the range for
+    this clearance. Old: --eps-dot 1e12 (and -6e5) solved and printed a Sommerfeld number
+    of 3e-12; only a non-finite rate was refused."""
+    out = {"solve": "film.vtu", "render": "film.png", "convergence": "conv"}[command]
+    for value in ("1e12", "-6e5"):
+        line = refused(capsys, command, "--eps-dot", value, "--n-theta", "24", "--n-z", "4",
+                       "-o", f"out/{out}")
+        for needle in ("--eps-dot", "1/s", "m/s", "[-5e+05, 5e+05] 1/s"):
+            assert needle in line, line
+    # the range is the clearance's: 4e5 1/s is 8 m/s at 20 um, 16 m/s at 40 um
+    line = refused(capsys, command, "--eps-dot", "4e5", "--clearance", "40e-6",
+                   "-o", f"out/{out}")
+    assert "[-2.5e+05, 2.5e+05] 1/s" in line
+    assert not (here / "out").exists()
+
+
+def test_an_eps_dot_inside_the_range_is_solved(capsys):
+    """The check refuses nothing a journal does: 4e5 1/s at c = 20 um (8 m/s) is solved."""
+    assert main(["solve", "--eps-dot", "4e5", "--n-theta", "24", "--n-z", "4"]) == 0
+    assert "Sommerfeld number" in capsys.readouterr().out
