@@ -17,7 +17,10 @@ def _options_words(opts) -> str:
 
 def _equilibrium_rows(eq, b):
     """What the designer reads of an equilibrium: (name, value, unit) rows (with its
-    estimated error and the mesh chosen when an accuracy was asked)."""
+    estimated error and the mesh chosen when an accuracy was asked). One flow: at a steady
+    equilibrium a mass-conserving film's feed is its side leakage, and a Reynolds-condition
+    film has no feed of its own (its cavity makes up oil), so the side leakage is what a
+    supply replaces in both (``Equilibrium.flow_in``)."""
     return [("eccentricity ratio", eq.eps, "-")] + (
         [] if eq.eps_error is None else [("  its estimated error", eq.eps_error, "-"),
                                          ("  mesh chosen", "{} x {} {}".format(
@@ -32,8 +35,7 @@ def _equilibrium_rows(eq, b):
             ("friction force", eq.friction_force, "N"),
             ("friction coefficient", eq.friction_coefficient, "-"),
             ("power loss", eq.power_loss, "W"),
-            ("side leakage (net)", eq.side_leakage, "m^3/s"),   # out of both ends, less in
-            ("inflow", eq.flow_in, "m^3/s")]
+            ("side leakage (net)", eq.side_leakage, "m^3/s")]  # out of both ends, less in
 
 
 #: the axes of K and C in each frame, in words

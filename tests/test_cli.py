@@ -304,3 +304,20 @@ def test_headers_name_the_films_options_in_words(capsys):
     assert first.startswith("coefficients, fem (n_theta 24, n_z 4, element P1, "
                             "cavitation reynolds)") and "{" not in first
     assert "--oil 'ISO VG 32' \\\n      --rpm 3000" in build_parser().format_help()
+
+
+def test_equilibrium_prints_one_flow_the_short_bearings_side_leakage(tmp_path):
+    """The equilibrium prints one flow line, the side leakage, and it is the short bearing's
+    closed form, U c eps L (the Couette flow into the pressurised half less the one out of
+    it: Raimondi & Boyd's side-flow variable 2 pi eps), at L/D 1/8. The film's gap to it
+    falls as (L/D)^2: 0.95, 0.26, 0.076 % at L/D 1/4, 1/8, 1/16 (120 x 20 P1), so 0.5 %.
+    Old: a second line "inflow" printed the same number (flow_in was the side leakage)."""
+    out = tmp_path / "eq.json"
+    r = run("equilibrium", "--ld", "0.125", "--load", "100", "-o", str(out))
+    assert r.returncode == 0, r.stderr
+    assert "side leakage (net)" in r.stdout and "inflow" not in r.stdout
+    rows = json.loads(out.read_text())
+    assert "inflow" not in rows
+    eps, leakage = rows["eccentricity ratio"]["value"], rows["side leakage (net)"]["value"]
+    radius, clearance, length, omega = 0.01, 20e-6, 0.125 * 0.02, 250.0
+    assert leakage == pytest.approx(omega * radius * clearance * eps * length, rel=5e-3)

@@ -207,9 +207,14 @@ def _result(bearing, omega, load, state, force_local, sol, model, calls, tilt=(0
         power_loss=abs(friction * bearing.radius * omega),
         pressure_max=None if sol is None else sol.pressure_max,
         side_leakage=None if sol is None else sol.side_leakage,
-        flow_in=None if sol is None else sol.side_leakage,
+        flow_in=None if sol is None else _plain(sol.flow_in),
         solution=sol, model=model, iterations=calls,
         asperity_load_share=-(contact[0] * wx + contact[1] * wy) / W ** 2)
+
+
+def _plain(v):
+    """A flow as a plain float (-0.0 as 0.0), None kept."""
+    return None if v is None else float(v) + 0.0
 
 
 def _start_position(start, eps_max):

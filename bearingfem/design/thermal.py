@@ -285,7 +285,7 @@ def thd_equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
         film_min=film_min, film_min_angle=film_min_angle, friction_force=friction,
         friction_coefficient=friction / W, power_loss=abs(sol.friction_torque * omega),
         pressure_max=sol.pressure_max, side_leakage=sol.side_leakage,
-        flow_in=sol.side_leakage, solution=sol, model="fem-thd", iterations=calls)
+        flow_in=sol.flow_in, solution=sol, model="fem-thd", iterations=calls)
 
 
 def thd_coefficients(bearing: Bearing, state: JournalState, frame: str = "inertial", *,
