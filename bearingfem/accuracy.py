@@ -37,6 +37,7 @@ a film's K and C).
 """
 from __future__ import annotations
 
+import logging
 import math
 import time
 from collections import OrderedDict
@@ -62,6 +63,9 @@ RTOL_RANGE = (1e-6, 0.1)
 SAFETY = 1.5
 #: Largest mesh the search goes to (cells around x along); past it the tolerance is refused
 MAX_CELLS = 1536 * 256
+#: Each mesh pair's estimate is logged at INFO (a search can take tens of seconds; the
+#: command line shows these lines on stderr, the library prints nothing)
+LOG = logging.getLogger(__name__)
 _MEMO: "OrderedDict[Hashable, tuple]" = kept(OrderedDict())
 _MEMO_SIZE = 64
 
@@ -319,6 +323,9 @@ def refine_to_tolerance(evaluate: Callable, difference: Callable, rtol: float, *
         if error_of is not None:
             err = max(err, error_of(q_fine))
         estimates.append((fine, err))
+        LOG.info("rtol %g: %d x %d %s, estimated error %.2g%s (%d solves, %.1f s)", rtol,
+                 fine[0], fine[1], element, err, "" if err <= rtol else ", refining",
+                 len(solved) + shifted_solves[0], time.perf_counter() - t0)
         if err <= rtol:
             break
         # the split: the partner refined around only (n_theta's, n_z halved) separates

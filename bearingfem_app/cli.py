@@ -2,8 +2,10 @@
 from __future__ import annotations
 
 import argparse
+import contextlib
 import difflib
 import functools
+import logging
 import math
 import os
 import re
@@ -75,6 +77,9 @@ def _bearing_args(p, film=True):
                    help="none | gumbel | reynolds | jfo (mass-conserving; needs a supply: "
                         "--ambient-pressure > 0 or --supply-angle)" if film else
                         "none | gumbel | reynolds (the mass-conserving film: --model fem-jfo)")
+    p.add_argument("-q", "--quiet", action="store_true",
+                   help="no progress lines on stderr (a mesh search's estimates, an elastic "
+                        "film's Newton steps)")
     p.add_argument("--n-theta", type=int, default=120, help="cells around the film")
     p.add_argument("--n-z", type=int, default=20, help="cells along the length")
     p.add_argument("--element", default="P1", help="P1 | P2 (finite elements only)")
@@ -347,6 +352,27 @@ def _oil(args) -> None:
     args.viscosity = oil_viscosity(args.oil, temperature)
 
 
+@contextlib.contextmanager
+def _progress(args):
+    """The library's progress (INFO on the ``bearingfem`` loggers: a mesh search's
+    estimates, an elastic film's continuation) as lines on stderr while a film or designer
+    command runs (not with --quiet; simulate and sweep have progress bars of their own)."""
+    if not hasattr(args, "n_theta") or getattr(args, "quiet", False):
+        yield
+        return
+    log = logging.getLogger("bearingfem")
+    level = log.level
+    shown = logging.StreamHandler(sys.stderr)     # this call's stderr
+    shown.setFormatter(logging.Formatter("bearingfem: %(message)s"))
+    log.addHandler(shown)
+    log.setLevel(logging.INFO)
+    try:
+        yield
+    finally:
+        log.removeHandler(shown)
+        log.setLevel(level)
+
+
 def main(argv=None):
     argv = sys.argv[1:] if argv is None else list(argv)
     parser = build_parser()
@@ -362,7 +388,8 @@ def main(argv=None):
         _speed(args)
         _oil(args)
         check_numbers(args)
-        return args.func(args)
+        with _progress(args):
+            return args.func(args)
     except ValueError as err:
         print(f"bearingfem: error: {err}", file=sys.stderr)
         return 2

@@ -282,3 +282,18 @@ def test_designer_functions_refuse_a_mesh_beside_rtol(mesh):
         equilibrium(B1, (0.0, -1000.0), 250.0, "fem", rtol=1e-2, **mesh)
     with pytest.raises(ValueError, match=f"{names} (is|are) not taken with rtol"):
         coefficients(B1, s, "fem", rtol=1e-2, **mesh)
+
+
+def test_the_search_logs_its_progress_and_prints_nothing(capfd, caplog):
+    """The library reports each mesh pair of a search at INFO on bearingfem.accuracy (what
+    the command line shows) and writes nothing to stdout or stderr itself."""
+    import logging
+    clear_memo()
+    with caplog.at_level(logging.INFO, logger="bearingfem.accuracy"):
+        sol = solve_reynolds(B02, JournalState(eps=0.6, omega=250.0), rtol=1e-3)
+    records = [r.getMessage() for r in caplog.records if r.name == "bearingfem.accuracy"]
+    assert len(records) == len(sol.accuracy.estimates) >= 2
+    assert records[-1].startswith(f"rtol 0.001: {sol.accuracy.mesh[0]} x "
+                                  f"{sol.accuracy.mesh[1]} P2")
+    out, err = capfd.readouterr()
+    assert out == "" and err == ""

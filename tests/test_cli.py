@@ -321,3 +321,18 @@ def test_equilibrium_prints_one_flow_the_short_bearings_side_leakage(tmp_path):
     eps, leakage = rows["eccentricity ratio"]["value"], rows["side leakage (net)"]["value"]
     radius, clearance, length, omega = 0.01, 20e-6, 0.125 * 0.02, 250.0
     assert leakage == pytest.approx(omega * radius * clearance * eps * length, rel=5e-3)
+
+
+def test_a_mesh_search_shows_its_progress_on_stderr():
+    """A film solved to --rtol reports each mesh pair's estimate on stderr as it goes (a
+    search can take tens of seconds), the answer on stdout; --quiet silences it. Old: the
+    search printed nothing until the answer."""
+    r = run("solve", "--ld", "0.2", "--eps", "0.6", "--rtol", "1e-3")
+    assert r.returncode == 0, r.stderr
+    lines = r.stderr.strip().splitlines()
+    assert len(lines) >= 2 and all(x.startswith("bearingfem: rtol 0.001: ") for x in lines)
+    assert "refining" in lines[0] and "estimated error" in lines[-1]
+    assert "bearingfem:" not in r.stdout
+    quiet = run("solve", "--ld", "0.2", "--eps", "0.6", "--rtol", "1e-3", "--quiet")
+    assert quiet.returncode == 0 and quiet.stderr == ""
+    assert quiet.stdout == r.stdout
