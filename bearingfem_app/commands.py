@@ -11,8 +11,8 @@ from pathlib import Path
 
 from .bush import bush_from_args
 from .checks import check_writable, parse_angles
-from .options import (ambient_pressure, check_output, check_rtol_mesh, film_state, make_dir,
-                      supply_angle)
+from .options import (ambient_pressure, check_film_options, check_output, check_rtol_mesh,
+                      film_state, make_dir, supply_angle)
 
 #: exit status of a run stopped by Ctrl-C (128 + SIGINT), as shells report it
 INTERRUPTED = 130
@@ -68,10 +68,13 @@ def command_solve(args):
     if bush is not None and args.model == "fvm":
         raise ValueError("--bush applies to --model fem (the elastic film is a finite-"
                          "element film)")
-    if args.model == "fvm" and args.rtol is not None:
-        raise ValueError("--rtol applies to --model fem only")
     check_rtol_mesh(args)
-    if args.rtol is not None:
+    check_film_options(args)
+    if args.rtol is not None and args.model == "fvm":    # the grid chosen, as for fem
+        sol = fvm_reynolds(b, s, cavitation=args.cavitation,
+                           ambient_pressure=ambient_pressure(args), supply_angle=supply,
+                           rtol=args.rtol)
+    elif args.rtol is not None:
         sol = solve_reynolds(b, s, element=element if args.element_given else None,
                              cavitation=args.cavitation, ambient_pressure=ambient_pressure(args),
                              supply_angle=supply, rtol=args.rtol, bush=bush)
@@ -133,16 +136,23 @@ def command_convergence(args):
     return 0
 
 
+#: the fields of the films ``render`` solves (rigid, isothermal: no deformation or
+#: temperature; those are drawn from Python, render_film)
+RENDER_FIELDS = ("pressure", "film_thickness", "fraction")
+
+
 def command_render(args):
     from bearingfem import solve_reynolds
     from bearingfem.outputs.render import FIELDS, SURFACES, render_film
     from bearingfem.validation import check_choice
-    check_choice("--field", args.field, tuple(FIELDS))
+    # the fields of the films render builds (no bush, no thermal film here)
+    check_choice("--field", args.field, tuple(f for f in FIELDS if f in RENDER_FIELDS))
     check_choice("--surface", args.surface, SURFACES)
     if args.field == "fraction" and args.cavitation != "jfo":
         raise ValueError("--field fraction is the JFO film's fraction: use it with "
                          f"--cavitation jfo, not {args.cavitation}")
     check_output(args.output, IMAGE_FORMATS)
+    check_film_options(args)
     b, s = film_state(args)
     sol = solve_reynolds(b, s, args.n_theta, args.n_z, _element(args), args.cavitation,
                          ambient_pressure=ambient_pressure(args),

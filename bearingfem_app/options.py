@@ -13,6 +13,7 @@ from .checks import check_writable
 
 __all__ = ["bearing_from_args", "supply_angle", "ambient_pressure", "film_state",
            "MODEL_OPTIONS", "model_options", "accuracy_options", "check_rtol_mesh",
+           "check_film_options",
            "check_cache",
            "check_output", "make_dir", "write_numbers", "print_rows"]
 
@@ -76,12 +77,46 @@ def model_options(args):
     opts = {k: v for k, v in given.items()
             if k in m.defaults and (v is not None and (k != "ambient_pressure"
                                                        or k in args.given))}
+    if "ambient_pressure" in m.defaults and "ambient_pressure" in args.given \
+            and not args.ambient_pressure > 0.0:
+        raise ValueError(f"--model {args.model} needs --ambient-pressure > 0 [Pa]: the oil at "
+                         f"the ends is its only supply here (default "
+                         f"{m.defaults['ambient_pressure']:g}), got {args.ambient_pressure:g}")
     bush = bush_from_args(args)
+    if bush is not None and opts.get("cavitation") == "gumbel":
+        raise ValueError("--bush needs --cavitation none or reynolds (the elastic film is "
+                         "solved with its cavitation, not clipped after), got --cavitation "
+                         "gumbel")
     if bush is not None and "bush" not in m.defaults:
         raise ValueError(f"--bush applies to a film model that takes a bush (--model fem: "
                          f"the steady elastic film; fem-ehd: beyond the clearance and along "
                          f"a run), not --model {args.model}")
     return args.model, opts if bush is None else dict(opts, bush=bush)
+
+
+def check_film_options(args) -> None:
+    """The film options of ``solve`` and ``render`` that need one another, refused before
+    any work in the options' own names (the library's message names its keywords):
+    --cavitation jfo needs a supply (--ambient-pressure > 0 or --supply-angle),
+    --ambient-pressure is the JFO film's, a --bush needs --element P1 and a cavitation
+    other than gumbel."""
+    cav = args.cavitation
+    supplied = (args.ambient_pressure or 0.0) > 0.0 or args.supply_angle is not None
+    if cav == "jfo" and not supplied:
+        raise ValueError("--cavitation jfo needs a supply of oil: --ambient-pressure > 0 [Pa] "
+                         "(oil at the ends) or --supply-angle (a supply line); without one "
+                         "nothing refills the film")
+    if args.ambient_pressure is not None and cav != "jfo":
+        raise ValueError(f"--ambient-pressure is the mass-conserving film's end pressure: "
+                         f"give --cavitation jfo with it, not --cavitation {cav}")
+    if getattr(args, "bush", None) is not None:
+        if args.element_given and args.element != "P1":
+            raise ValueError(f"--bush needs --element P1 (the bush acts on the film's vertex "
+                             f"grid), got --element {args.element}")
+        if cav == "gumbel":
+            raise ValueError("--bush needs --cavitation none, reynolds or jfo (the elastic "
+                             "film is solved with its cavitation, not clipped after), got "
+                             "--cavitation gumbel")
 
 
 def check_rtol_mesh(args) -> None:

@@ -38,7 +38,7 @@ def test_python_m_bearingfem_points_to_the_command_in_one_line():
     (("simulate", "no/such/scene.toml", "-o", "x"), "scene file not found"),
     (("sweep", "no/such/sweep.toml", "-o", "x"), "sweep file not found: no/such/sweep.toml"),
     (("solve", "--cavitation", "jfo"), "needs a supply of oil"),
-    (("solve", "--ambient-pressure", "1e5"), "JFO-film option"),
+    (("solve", "--ambient-pressure", "1e5"), "give --cavitation jfo with it"),
     (("solve", "--speed", "300"), "did you mean --omega [rad/s] or --rpm [1/min]?"),
     (("solve", "--model", "fdm"), "invalid choice 'fdm' (choose fem or fvm"),
     (("coefficients", "--frame", "polar"), "invalid choice: 'polar'"),
@@ -112,7 +112,7 @@ def test_convergence_and_render_commands(tmp_path):
     r = run("render", "--field", "vorticity", "-o", str(tmp_path / "x.png"))
     assert r.returncode == 2 and "field must be one of" in r.stderr
     r = run("render", "--field", "temperature", "-o", str(tmp_path / "x.png"))
-    assert r.returncode == 2 and "needs a thermal film" in r.stderr
+    assert r.returncode == 2 and "--field must be one of 'pressure'" in r.stderr
 
 
 @pytest.mark.slow   # 5 s; the sweep runner is tested on a real cluster in test_sweep.py

@@ -307,3 +307,32 @@ def test_an_eps_dot_inside_the_range_is_solved(capsys):
     """The check refuses nothing a journal does: 4e5 1/s at c = 20 um (8 m/s) is solved."""
     assert main(["solve", "--eps-dot", "4e5", "--n-theta", "24", "--n-z", "4"]) == 0
     assert "Sommerfeld number" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("argv, needles", [
+    (("solve", "--cavitation", "jfo"), ("--cavitation jfo", "--ambient-pressure > 0",
+                                         "--supply-angle")),
+    (("render", "--cavitation", "jfo", "-o", "out/f.png"), ("--cavitation jfo",
+                                                           "--ambient-pressure > 0")),
+    (("solve", "--ambient-pressure", "1e5"), ("--ambient-pressure", "--cavitation jfo",
+                                              "not --cavitation reynolds")),
+    (("solve", "--bush", "ring", "--element", "P2"), ("--bush needs --element P1",)),
+    (("solve", "--bush", "ring", "--cavitation", "gumbel"), ("--bush needs --cavitation",
+                                                            "gumbel")),
+    (("equilibrium", "--load", "100", "--model", "fem-ehd", "--bush", "ring",
+      "--cavitation", "gumbel"), ("--bush needs --cavitation",)),
+    (("equilibrium", "--load", "100", "--model", "fem-jfo", "--ambient-pressure", "0"),
+     ("--model fem-jfo needs --ambient-pressure > 0",)),
+    (("render", "--field", "temperature", "-o", "out/f.png"),
+     ("--field must be one of 'pressure', 'film_thickness', 'fraction'",)),
+])
+def test_film_options_that_need_each_other_are_named_as_typed(capsys, here, argv, needles):
+    """Options that need one another are refused in the command line's own names before
+    any work. Old: the library's keywords (cavitation='jfo' needs ... supply_angle or
+    ambient_pressure > 0; bush needs element='P1'; render's field 'temperature' needs
+    thermal=Thermal(...), which render does not take)."""
+    line = refused(capsys, *argv)
+    for n in needles:
+        assert n in line, line
+    assert not re.search(r"\w='", line) and "Thermal(" not in line, line
+    assert not (here / "out").exists()

@@ -22,6 +22,15 @@ def test_solve_prints_the_force_with_its_error():
     assert "fem-P2" in r.stdout and "(+- 0.0" in r.stdout
 
 
+def test_solve_fvm_takes_rtol_as_the_library_does():
+    """--model fvm --rtol chooses the grid (fvm_reynolds(rtol=), as equilibrium --model fvm
+    --rtol did); it was refused ("--rtol applies to --model fem only")."""
+    r = run("solve", "--ld", "0.5", "--eps", "0.6", "--model", "fvm", "--rtol", "1e-2", "-q")
+    assert r.returncode == 0, r.stderr
+    assert r.stdout.startswith("film fvm/") and "chosen for rtol 0.01" in r.stdout
+    assert "(+- 0." in r.stdout and " %)" in r.stdout
+
+
 def test_equilibrium_reports_eps_error_and_mesh(tmp_path):
     out = tmp_path / "eq.json"
     r = run("equilibrium", "--ld", "1", "--load", "1000", "--rtol", "2e-3", "-o", str(out))
@@ -38,7 +47,6 @@ def test_coefficients_print_their_error_and_the_verdicts_range():
 
 @pytest.mark.parametrize("args, needle", [
     (("solve", "--rtol", "0"), "rtol must lie in"),
-    (("solve", "--rtol", "1e-3", "--model", "fvm"), "--rtol applies to --model fem"),
     (("equilibrium", "--load", "100", "--model", "short", "--rtol", "1e-3"),
      "model 'short' has none"),
     # a mesh typed beside --rtol was dropped unseen (the search's mesh printed)
