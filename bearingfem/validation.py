@@ -46,7 +46,14 @@ def check_supply_angle(value):
 def check_grooves(grooves, supply_angle=None, mass_conserving: bool = False) -> tuple:
     """A tuple of :class:`Groove`; refuses what the Reynolds-condition films cannot do
     (a starved groove needs ``mass_conserving``, the JFO film)."""
-    grooves = tuple(grooves or ())
+    if isinstance(grooves, Groove):     # one groove, not a sequence of them
+        raise ValueError("grooves must be a sequence of Groove objects, got one Groove: give "
+                         "grooves=[Groove(...)]")
+    try:
+        grooves = tuple(grooves or ())
+    except TypeError:
+        raise ValueError(f"grooves must be a sequence of Groove objects, got "
+                         f"{type(grooves).__name__}") from None
     for g in grooves:
         if not isinstance(g, Groove):
             raise ValueError(f"grooves must be bearingfem.Groove objects, got {type(g).__name__}")

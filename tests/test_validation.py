@@ -112,3 +112,30 @@ def test_a_surface_speed_above_any_journal_bearings_is_refused_by_the_python_api
         call(b)
     # 11459 rpm at this radius is 30 m/s: a journal bearing's speed, accepted
     solve_reynolds(b, JournalState(eps=0.5, omega=1200.0), 24, 4)
+
+
+@pytest.mark.parametrize("call", [
+    lambda b, s, g: solve_reynolds(b, s, 24, 4, grooves=g),
+    lambda b, s, g: fvm_reynolds(b, s, 24, 4, grooves=g),
+    lambda b, s, g: equilibrium(b, (0.0, -100.0), 250.0, "fem", n_theta=24, n_z=4,
+                                grooves=g)])
+def test_one_groove_not_in_a_list_is_named(call):
+    """grooves=Groove(...) (one, not a sequence): a ValueError naming grooves and the fix.
+    Old: TypeError "'Groove' object is not iterable" from inside the solve."""
+    from bearingfem import Groove
+    b = Bearing(radius=0.01, length=0.004, clearance=20e-6, viscosity=0.0117)
+    s = JournalState(eps=0.6, omega=250.0)
+    with pytest.raises(ValueError, match=r"grooves must be a sequence .*grooves=\[Groove"):
+        call(b, s, Groove(0.0, 0.3))
+    with pytest.raises(ValueError, match="grooves must be a sequence of Groove objects, "
+                                         "got int"):
+        call(b, s, 5)
+
+
+@pytest.mark.parametrize("load", [(0.0, -100.0, 0.0), (100.0,), "100"])
+def test_a_load_not_of_two_components_is_named(load):
+    """Old: a 3-vector load raised "too many values to unpack (expected 2)", naming
+    nothing."""
+    b = Bearing(radius=0.01, length=0.004, clearance=20e-6, viscosity=0.0117)
+    with pytest.raises(ValueError, match=r"load must be a vector \(W_x, W_y\) \[N\]"):
+        equilibrium(b, load, 250.0, "short")

@@ -80,7 +80,10 @@ def load_vector(load, direction):
     if direction is None:
         try:
             wx, wy = (check_finite("load", v) for v in load)
-        except TypeError:
+        except (TypeError, ValueError) as err:
+            if isinstance(err, ValueError) and str(err).startswith("load"):
+                raise      # a component not a finite number: named already
+            # not iterable, or not two components (a 3-vector: "too many values to unpack")
             raise ValueError(f"load must be a vector (W_x, W_y) [N], or a magnitude with "
                              f"direction=angle [rad], got {load!r}") from None
     else:
