@@ -96,6 +96,11 @@ class Scene:
                            check_crank_speed(self.mechanism, self.crank_speed))
 
 
+#: how alike an unknown key and a known one must be to be named as its typo (difflib's
+#: ratio; 0.6 as the command line's: 'rnu' for 'run' is 0.67)
+_CLOSE = 0.6
+
+
 class _Table:
     """A TOML table being consumed: every key must be used exactly once."""
 
@@ -108,12 +113,16 @@ class _Table:
         self.used.add(key)
         if key not in self.data:
             if required:
-                typo = [k for k in self.data if k not in self.used
-                        and difflib.get_close_matches(k, [key], n=1, cutoff=0.7)]
-                hint = "".join(f" (unknown key {k}: did you mean {key}?)" for k in typo)
-                raise ValueError(f"{self.where}.{key} is required but missing{hint}")
+                raise ValueError(f"{self.where}.{key} is required but missing"
+                                 f"{self.typo_of(key)}")
             return default
         return self.data[key]
+
+    def typo_of(self, key) -> str:
+        """' (unknown key K: did you mean key?)' for the unused keys spelt like ``key``."""
+        typo = [k for k in self.data if k not in self.used
+                and difflib.get_close_matches(k, [key], n=1, cutoff=_CLOSE)]
+        return "".join(f" (unknown key {k}: did you mean {key}?)" for k in typo)
 
     def number(self, key, default=None, lo=None, hi=None, lo_open=False, hi_open=False,
                required=False):
@@ -147,7 +156,7 @@ class _Table:
         extra = sorted(set(self.data) - self.used)
         if extra:
             def named(k):
-                near = difflib.get_close_matches(k, sorted(self.used), n=1, cutoff=0.7)
+                near = difflib.get_close_matches(k, sorted(self.used), n=1, cutoff=_CLOSE)
                 return f"{k} (did you mean {near[0]}?)" if near else k
             raise ValueError(f"{self.where} has unknown key(s): {', '.join(map(named, extra))}")
 
@@ -360,7 +369,8 @@ def parse_scene(data: dict, name: str = "scene") -> Scene:
         bearing = None
     else:
         if bt is None:
-            raise ValueError("scene.bearing is required for joint = 'clearance'")
+            raise ValueError(f"scene.bearing is required for joint = 'clearance'"
+                             f"{top.typo_of('bearing')}")
         bearing = _bearing(bt)
     top.done()
     return Scene(name=name, mechanism=mech, bearing=bearing, joint=joint,

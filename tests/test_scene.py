@@ -97,6 +97,22 @@ def test_misspelt_keys_are_named_with_the_likely_intent():
         parse_scene(d)
 
 
+def test_a_misspelt_table_is_named_with_the_likely_intent():
+    """A table's name misspelt: [bearng] for [bearing] and [rnu] for [run]. Old: 'scene.bearing
+    is required for joint = 'clearance'' with no word of [bearng], and 'unknown key(s): rnu'
+    without the suggestion (difflib's ratio 0.67, below the cutoff 0.7 then)."""
+    d = copy.deepcopy(BASE)
+    d["bearng"] = d.pop("bearing")
+    with pytest.raises(ValueError, match=r"scene.bearing is required for joint = 'clearance' "
+                                         r"\(unknown key bearng: did you mean bearing\?\)"):
+        parse_scene(d)
+    d = copy.deepcopy(BASE)
+    d["rnu"] = {"turns": 1.0}
+    with pytest.raises(ValueError, match=r"scene has unknown key\(s\): rnu "
+                                         r"\(did you mean run\?\)"):
+        parse_scene(d)
+
+
 @pytest.mark.parametrize("bearing, needle", [
     ({"diameter": 20}, "scene.bearing.diameter 20 m is larger than any journal bearing"),
     ({"viscosity": 46.0}, "scene.bearing.viscosity 46 Pa s"),
