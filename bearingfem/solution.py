@@ -31,7 +31,11 @@ class FilmSolution:
     cavitated_fraction : share of the film area at ambient (zero gauge) pressure
     friction_force : shear force on the journal surface opposing positive omega [N]
     friction_torque : friction_force * R [N m]
-    side_leakage : volume flow out of both axial ends [m^3/s]
+    side_leakage : volume flow out of both axial ends [m^3/s], net (less what enters there)
+    side_outflow : what leaves through the ends alone [m^3/s] (FE and JFO films; None
+        where not given): a Reynolds-condition film's side leakage (no oil enters at its
+        ends), a film fed at its ends (JFO with ``ambient_pressure``) loses this much where
+        it is pressurised and draws as much in where it is cavitated (net: zero, steady)
     flow_in : flow fed by grooves or a supply line [m^3/s] (None where not defined)
     fraction : film fraction theta at the nodes (JFO films; 1 in the full film)
     mass_balance : JFO films: flow_in - side_leakage - rate of change of the film content
@@ -97,6 +101,7 @@ class FilmSolution:
     thermal: object = field(default=None, repr=False)  # thermal film: its ThermalRecord
     force_error: float | None = None   # estimated relative error of |F| (solves with rtol)
     accuracy: object = field(default=None, repr=False)   # AccuracyRecord (solves with rtol)
+    side_outflow: float | None = None  # out of the ends alone [m^3/s] (FE and JFO films)
 
     @property
     def asperity_load(self) -> float:
@@ -107,6 +112,14 @@ class FilmSolution:
     def total_force(self) -> tuple:
         """(F_x, F_y) [N]: film plus asperity contact, what carries the load."""
         return tuple(float(f + a) for f, a in zip(self.force, self.asperity_force))
+
+    def _outflow_words(self) -> str:
+        """', X m^3/s leave alone' where the ends also draw oil in (the outflow differs
+        from the net leakage), else nothing."""
+        out, net = self.side_outflow, self.side_leakage
+        if out is None or abs(out - net) <= 1e-9 * max(abs(out), abs(net)):
+            return ""
+        return f", {out:.6g} m^3/s leave where the film is above ambient"
 
     def summary(self) -> str:
         """The solve in a few named lines with units (what ``bearingfem solve`` prints)."""
@@ -126,7 +139,7 @@ class FilmSolution:
             f"minimum film {self.film_min * 1e6:.4g} um",
             f"  cavitated area {100 * self.cavitated_fraction:.1f} % of the film; friction "
             f"{self.friction_force:.6g} N; side leakage {self.side_leakage:.6g} m^3/s "
-            "(net, out of both ends)",
+            "(net, out of both ends)" + self._outflow_words(),
             f"  solver: {self.iterations} iterations, complementarity residual "
             f"{self.residual:.1e}" + ("" if self.converged else " (NOT converged)")]
             + ([] if self.fraction is None else [
@@ -137,7 +150,7 @@ class FilmSolution:
 def film_solution(bearing, state, P, theta, zeta, force_local, *, friction, leakage,
                   cavitated_fraction, record, method, cavitation, half, mesh,
                   flow_in=None, fraction=None, mass_balance=None, moment=(0.0, 0.0),
-                  gap=None) -> FilmSolution:
+                  gap=None, side_outflow=None) -> FilmSolution:
     """The one builder of :class:`FilmSolution` for every mesh solver: derives the
     inertial force, pressures [Pa], film, peak and its place from the dimensionless nodal
     pressure ``P`` (p = mu (R/c)^2 P, clipped as the cavitation model says) at (theta,
@@ -163,7 +176,8 @@ def film_solution(bearing, state, P, theta, zeta, force_local, *, friction, leak
         iterations=record.iterations, residual=record.residual, converged=record.converged,
         method=method, cavitation=cavitation, n_dofs=len(P), half=half, radius=R,
         gamma=state.gamma, mesh=mesh, flow_in=flow_in, fraction=fraction,
-        mass_balance=mass_balance, moment=tuple(float(m) for m in moment))
+        mass_balance=mass_balance, moment=tuple(float(m) for m in moment),
+        side_outflow=None if side_outflow is None else float(side_outflow) + 0.0)
 
 
 @dataclass(frozen=True)

@@ -17,10 +17,10 @@ def _options_words(opts) -> str:
 
 def _equilibrium_rows(eq, b):
     """What the designer reads of an equilibrium: (name, value, unit) rows (with its
-    estimated error and the mesh chosen when an accuracy was asked). One flow: at a steady
-    equilibrium a mass-conserving film's feed is its side leakage, and a Reynolds-condition
-    film has no feed of its own (its cavity makes up oil), so the side leakage is what a
-    supply replaces in both (``Equilibrium.flow_in``)."""
+    estimated error and the mesh chosen when an accuracy was asked). One flow, what leaves
+    through the ends: at a steady equilibrium a mass-conserving film's feed is its net side
+    leakage, and a Reynolds-condition film has no feed of its own (its cavity makes up oil;
+    ``Equilibrium.flow_in``); a film fed at its ends (JFO) draws in there what it loses."""
     return [("eccentricity ratio", eq.eps, "-")] + (
         [] if eq.eps_error is None else [("  its estimated error", eq.eps_error, "-"),
                                          ("  mesh chosen", "{} x {} {}".format(
@@ -35,7 +35,14 @@ def _equilibrium_rows(eq, b):
             ("friction force", eq.friction_force, "N"),
             ("friction coefficient", eq.friction_coefficient, "-"),
             ("power loss", eq.power_loss, "W"),
-            ("side leakage (net)", eq.side_leakage, "m^3/s")]  # out of both ends, less in
+            ("side leakage (outflow)", _side_leakage(eq), "m^3/s")]
+
+
+def _side_leakage(eq):
+    """What leaves through the ends [m^3/s]: the film's outflow where it has it (a film fed
+    at its ends, JFO, draws as much in elsewhere: its net is zero), else the net leakage."""
+    out = None if eq.solution is None else eq.solution.side_outflow
+    return eq.side_leakage if out is None else out
 
 
 #: the axes of K and C in each frame, in words

@@ -40,8 +40,9 @@ def test_squeeze_storage_against_the_full_reynolds_film(seed):
     assert full.force_local[0] < -300.0
 
 
-def _end_leakage(sol, bearing):
-    """Poiseuille flow out of both axial ends [m^3/s] from the pressure field alone."""
+def _end_leakage(sol, bearing, outflow_only=False):
+    """Poiseuille flow out of both axial ends [m^3/s] from the pressure field alone (net,
+    or with ``outflow_only`` what leaves alone)."""
     th, z, p = sol.theta, sol.z, sol.pressure
     h = np.asarray(sol.film_thickness)
     zs = np.unique(z)
@@ -53,7 +54,7 @@ def _end_leakage(sol, bearing):
     dz = zs[-1] - zs[-2]
     dpdz = (3.0 * rows[2][1] - 4.0 * rows[1][1] + rows[0][1]) / (2.0 * dz)
     q = rows[2][2] ** 3 / (12.0 * bearing.viscosity) * (-dpdz) * bearing.radius
-    return 2.0 * np.trapezoid(q, rows[2][0])
+    return 2.0 * np.trapezoid(np.maximum(q, 0.0) if outflow_only else q, rows[2][0])
 
 
 def test_flows_against_the_poiseuille_flow_through_the_ends(seed):
@@ -69,6 +70,20 @@ def test_flows_against_the_poiseuille_flow_through_the_ends(seed):
     assert q > 0.0
     assert sol.side_leakage == pytest.approx(q, rel=0.05)
     assert sol.flow_in == pytest.approx(q, rel=0.05)
+
+
+def test_a_film_fed_at_its_ends_loses_there_what_it_draws_in(seed):
+    """Ends at 1 bar, no groove, eps = 0.7: the film draws oil in at its ends where it is
+    cavitated and loses it where it is pressurised, so its net side leakage is zero to
+    round-off; side_outflow, what leaves alone, is the Poiseuille outflow through the ends
+    integrated from the pressure field (positive part) to 2 % on 96 x 16 (measured 2.6,
+    0.86, 0.23 % at 48, 96, 192 cells around). The command line printed the net leakage,
+    1e-20 m^3/s, as the film's side leakage."""
+    s = JournalState(eps=0.7, omega=300.0, gamma=0.3)
+    sol = solve_reynolds(seed, s, 96, 16, cavitation="jfo", ambient_pressure=1e5)
+    q = _end_leakage(sol, seed, outflow_only=True)
+    assert abs(sol.side_leakage) < 1e-9 * q
+    assert sol.side_outflow == pytest.approx(q, rel=0.02)
 
 
 def _mid_plane_cavities(sol, eps):

@@ -55,12 +55,15 @@ def transport(cv: ControlVolumes, eps: float, speed: float) -> sp.csr_matrix:
 @dataclass(frozen=True)
 class JFOFlows:
     """Volume flows of one solve [m^3/s]: fed by grooves / supply line, out of the axial
-    ends, and the rate of change of the film content; balance = feed - leakage - storage
-    (zero to round-off)."""
+    ends (net; and ``side_outflow``, what leaves alone), and the rate of change of the film
+    content; balance = feed - leakage - storage (zero to round-off)."""
 
     flow_in: float
     side_leakage: float
     storage: float
+    #: out of the ends where the film leaves them, not less what enters elsewhere (a film
+    #: fed at its ends draws oil in where it is cavitated and loses it where it is not)
+    side_outflow: float | None = None
 
     @property
     def balance(self) -> float:
@@ -77,7 +80,8 @@ class JFOFlows:
         k = flow_factor(bearing, mesh.half)
         return cls(flow_in=-k * float(np.sum(inflow[feed])),
                    side_leakage=k * float(np.sum(inflow[mesh.end])),
-                   storage=k * float(np.sum(content_rate)))
+                   storage=k * float(np.sum(content_rate)),
+                   side_outflow=k * float(np.sum(np.maximum(inflow[mesh.end], 0.0))))
 
 
 @dataclass(frozen=True)

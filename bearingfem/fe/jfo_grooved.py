@@ -106,7 +106,8 @@ def grooved_jfo_solution(bearing: Bearing, state: JournalState, op: FilmOperator
     return film_solution(
         bearing, state, P, op.mesh.theta - state.gamma, op.mesh.zeta,
         grooved_jfo_force_of(bearing, op, P, state.gamma), friction=friction,
-        leakage=b.flows.side_leakage, flow_in=b.flows.flow_in,
+        leakage=b.flows.side_leakage, side_outflow=b.flows.side_outflow,
+        flow_in=b.flows.flow_in,
         cavitated_fraction=cav_fraction, record=b.result, method=method, cavitation="jfo",
         half=True, mesh=op.mesh, fraction=phi, mass_balance=b.flows.balance)
 

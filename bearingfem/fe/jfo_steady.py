@@ -49,7 +49,7 @@ def jfo_film_solution(bearing, state, op: FilmOperator, P, phi, res: JFOResult,
                                        1.0 if fields is None else fields.viscosity)
     return film_solution(
         bearing, state, P, op.mesh.theta, op.mesh.zeta, (f_r, f_t), friction=friction,
-        leakage=flows.side_leakage, flow_in=flows.flow_in, cavitated_fraction=cav_fraction,
+        leakage=flows.side_leakage, side_outflow=flows.side_outflow, flow_in=flows.flow_in, cavitated_fraction=cav_fraction,
         record=res, method=method, cavitation="jfo", half=op.mesh.half, mesh=op.mesh,
         fraction=phi, mass_balance=flows.balance,
         moment=(0.0, 0.0) if op.mesh.half else film_moment(bearing, op, P, state.gamma),

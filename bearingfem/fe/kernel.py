@@ -172,6 +172,8 @@ def film_outputs(bearing, state, op, res, values, load, film, cavitation, cavita
     if clip:
         r_end = np.minimum(r_end, 0.0)
     leakage = -flow_factor(bearing, half) * float(np.sum(r_end))
+    # what leaves alone (the full film draws oil in at its ends where p < 0)
+    outflow = -flow_factor(bearing, half) * float(np.sum(np.minimum(r_end, 0.0)))
     # What the grooves feed: the same consistent flux at their dofs (into the film > 0;
     # groove dofs on the axial ends carry leakage, counted above). The Reynolds-condition
     # films do not conserve mass (their multipliers create and destroy oil), so a feed is
@@ -185,6 +187,7 @@ def film_outputs(bearing, state, op, res, values, load, film, cavitation, cavita
     return film_solution(
         bearing, state, Pn, op.mesh.theta if theta is None else theta, op.mesh.zeta,
         (f_r, f_t), friction=friction,
-        leakage=leakage, flow_in=flow_in, cavitated_fraction=cav_fraction, record=res,
+        leakage=leakage, side_outflow=outflow, flow_in=flow_in,
+        cavitated_fraction=cav_fraction, record=res,
         method=method, cavitation=cavitation, half=half, mesh=op.mesh, moment=moment,
         gap=gap)

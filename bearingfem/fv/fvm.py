@@ -346,13 +346,16 @@ def solve_fv(bearing: Bearing, state: JournalState, n_theta: int, n_z: int,
     friction = shear_friction(bearing, state.omega, dA, H, dP.ravel(), couette_share=shear,
                               poiseuille_share=full)
     # Side leakage through the end faces: flux H^3 (P_face=0 - P_c) / (dzeta/2) per face.
-    q = (np.sum(_end_conductance(g, state.eps) * (Pg[:, -1] + Pg[:, 0])) if gap is None
-         else np.sum(ends[0] * Pg[:, -1] + ends[1] * Pg[:, 0]))
-    leakage = flow_factor(bearing) * float(q)
+    faces = (_end_conductance(g, state.eps)[:, None] * np.column_stack([Pg[:, -1], Pg[:, 0]])
+             if gap is None else np.column_stack([ends[0] * Pg[:, -1], ends[1] * Pg[:, 0]]))
+    leakage = flow_factor(bearing) * float(np.sum(faces))
+    # what leaves alone (the full film draws oil in at its ends where P < 0)
+    outflow = flow_factor(bearing) * float(np.sum(np.maximum(faces, 0.0)))
     flow_in = mass_balance = None
     if flows is not None:
         k = flow_factor(bearing)
         flow_in, leakage = k * flows[0], k * flows[1]
+        outflow = None      # the JFO balance's net end flow only
         mass_balance = k * (flows[0] - flows[1] - flows[2])
         wet = phi >= 1.0 - 1e-12
     elif held is not None and cavitation == "none":
@@ -369,7 +372,7 @@ def solve_fv(bearing: Bearing, state: JournalState, n_theta: int, n_z: int,
         moment = (-k * float(np.sum(Pz * np.sin(a))), k * float(np.sum(Pz * np.cos(a))))
     return film_solution(
         bearing, state, P, th, ze, (f_r, f_t), friction=friction, leakage=leakage,
-        flow_in=flow_in, fraction=phi, mass_balance=mass_balance, moment=moment,
+        side_outflow=outflow, flow_in=flow_in, fraction=phi, mass_balance=mass_balance, moment=moment,
         gap=None if gap is None else gap(th, ze),
         cavitated_fraction=float(np.mean(~wet)), record=res,
         method="fvm" + (f"/{method}" if cavitation == "reynolds" else ""),
