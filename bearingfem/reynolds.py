@@ -75,9 +75,12 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
     start : the EHD and thermal films: a previous :class:`FilmSolution` of the same mesh to
         start from (the same answer to ``tol``); not with ``rtol`` (whose meshes it cannot
         know)
-    grading : grooved films: (angle [rad], strength in [0, 0.99]) of a bearing-fixed mesh
-        whose theta cells concentrate towards the inertial ``angle`` (where the film is
-        thin); None: uniform cells
+    grading : theta cells sized like 1 - strength cos(theta - focus)
+        (:func:`~bearingfem.fe.mesh.film_mesh`); None: uniform cells. Plain films, meshed
+        in the film frame: a strength in [0, 0.99], the focus the least film (the mesh
+        turns with the journal). Grooved films: (angle [rad], strength in [0, 0.99]) of a
+        bearing-fixed mesh whose cells concentrate towards the inertial ``angle`` (where
+        the film is thin)
     thermal : :class:`~bearingfem.thermal.Thermal`: the thermal (THD) film, the energy
         equation coupled to the film through the ``lubricant``'s viscosity against
         temperature (:mod:`bearingfem.routes.thd`); ``temperature`` and

@@ -27,6 +27,7 @@ KINDS = [
     ("reynolds", dict(grooves=G, half=False), "rigid"),
     ("reynolds", dict(grooves=G), "grooved"),
     ("none", dict(grooves=G, grading=(np.pi, 0.5)), "grooved"),
+    ("reynolds", dict(grading=0.5), "rigid"),
     ("reynolds", dict(tilt=(0.0, 1e-4)), "general"),
     ("none", dict(fields=FilmFields(viscosity=2.0)), "general"),
     ("reynolds", dict(lubricant=OIL), "ehd"),

@@ -19,7 +19,7 @@ from skfem.helpers import dot, grad
 from ..caches import cached
 from ..film import cubed_thickness_coefficients, source_coefficients, theta_from_inertial
 from ..solvers.pattern import Pattern
-from .mesh import FilmMesh, film_mesh
+from .mesh import LEAST_FILM, FilmMesh, film_mesh
 
 __all__ = ["FilmOperator", "film_operator", "fe_operator"]
 
@@ -183,9 +183,11 @@ def film_operator(n_theta: int, n_z: int, element: str, length_ratio: float,
 
 
 def fe_operator(bearing, state, n_theta=120, n_z=20, element="P1",
-                supply_angle=None, half=True, grooves=()) -> FilmOperator:
+                supply_angle=None, half=True, grooves=(), grading=None) -> FilmOperator:
     """The cached film operator for this bearing and mesh (supply line and grooves in the
-    film frame; the mesh starts at the first groove's edge)."""
+    film frame; the mesh starts at the first groove's edge). ``grading``: a strength in
+    [0, 0.99], the theta cells concentrated toward the least film (None: uniform); the
+    mesh is in the film frame, so one operator serves every journal state."""
     theta0, arcs = None, ()
     if supply_angle is not None:   # rounded: it is part of the operator cache key
         theta0 = float(np.round(theta_from_inertial(supply_angle, state.gamma), 12))
@@ -194,4 +196,5 @@ def fe_operator(bearing, state, n_theta=120, n_z=20, element="P1",
                      for lo, hi in (g.arc(state.gamma) for g in grooves))
         theta0 = arcs[0][0]
     return film_operator(int(n_theta), int(n_z), element, bearing.length_ratio, theta0,
-                         bool(half), arcs)
+                         bool(half), arcs,
+                         None if grading is None else (LEAST_FILM, float(grading)))
