@@ -3,7 +3,9 @@
 :mod:`bearingfem.routes`."""
 from __future__ import annotations
 
-from .accuracy import film_to_tolerance
+from dataclasses import replace
+
+from .accuracy import film_to_tolerance, search_grading
 from .bearing import Bearing, JournalState
 from .fields import FilmFields
 from .routes import film_problem, solve
@@ -87,7 +89,10 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
         ``temperature_max`` [K] are then given
     rtol : a requested relative accuracy of the film force, in [1e-6, 0.1]: the mesh (and,
         unless given, the element) is chosen to reach it (n_theta and n_z are then
-        ignored) and ``force_error`` reports the estimate (:mod:`bearingfem.accuracy`)
+        ignored) and ``force_error`` reports the estimate (:mod:`bearingfem.accuracy`);
+        without a ``grading`` of its own a plain film from eps 0.3 on is searched on
+        meshes graded toward its least film (:func:`~bearingfem.accuracy.search_grading`;
+        ``accuracy.grading`` names it)
 
     Returns
     -------
@@ -109,11 +114,16 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
     if rtol is None:
         return solve(problem)
     # accuracy on request: the problem is checked above, before any work; bearingfem.accuracy
-    # chooses the mesh (and element)
-    return film_to_tolerance(
+    # chooses the mesh (and element), graded toward the least film where it pays
+    graded = search_grading(problem, (state.gamma, state.eps))
+    if graded is not None:
+        options["grading"] = graded
+    sol = film_to_tolerance(
         lambda nt, nz, el: solve(film_problem(bearing, state, nt, nz, cavitation, element=el,
                                               **options)),
         bearing, rtol, element, dict(options, cavitation=cavitation))
+    return sol if graded is None else replace(sol, accuracy=replace(sol.accuracy,
+                                                                    grading=graded))
 
 
 def fvm_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_z: int = 20,

@@ -173,8 +173,9 @@ def _equilibrium_with_error(bearing, load, omega, model, rtol, how, options):
         return float(np.linalg.norm(qf - _position(coarse)) / np.linalg.norm(qf))
 
     toward = None
-    if rtol is not None and options.get("grooves"):
-        # a grooved film is graded toward where the closed form puts the journal
+    if rtol is not None:
+        # the mesh is graded toward where the closed form puts the journal (a grooved
+        # film's angle; whether eps calls for a grading at all)
         q = closed_form_start(bearing, omega, load_vector(load, how["direction"]))
         toward = (math.atan2(q[1], q[0]), math.hypot(*q))
     # the memo (a design loop's next load starts at the mesh that sufficed) is keyed on
