@@ -78,11 +78,11 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int = 120, n_
         start from (the same answer to ``tol``); not with ``rtol`` (whose meshes it cannot
         know)
     grading : theta cells sized like 1 - strength cos(theta - focus)
-        (:func:`~bearingfem.fe.mesh.film_mesh`); None: uniform cells. Plain films, meshed
-        in the film frame: a strength in [0, 0.99], the focus the least film (the mesh
-        turns with the journal). Grooved films: (angle [rad], strength in [0, 0.99]) of a
-        bearing-fixed mesh whose cells concentrate towards the inertial ``angle`` (where
-        the film is thin)
+        (:func:`~bearingfem.fe.mesh.film_mesh`); None: uniform cells. A strength in
+        [0, 0.99] alone: plain films, meshed in the film frame, the focus their least film
+        (one mesh for every state). (angle [rad], strength): the cells concentrate towards
+        the inertial ``angle`` (where the film is thin): a grooved film's bearing-fixed
+        mesh, or a plain film's at that angle's film angle
     thermal : :class:`~bearingfem.thermal.Thermal`: the thermal (THD) film, the energy
         equation coupled to the film through the ``lubricant``'s viscosity against
         temperature (:mod:`bearingfem.routes.thd`); ``temperature`` and

@@ -77,15 +77,12 @@ def test_bad_grading_raises_by_name(grading):
                      grading=grading)
 
 
-def test_an_angle_on_a_plain_film_and_a_lone_strength_on_a_grooved_one_raise():
-    """The plain film is meshed in the film frame (graded toward its least film: a
-    strength alone); the grooved mesh is fixed in the bearing (its angle is needed)."""
+def test_a_lone_strength_on_a_grooved_film_and_a_bad_grading_raise():
+    """The grooved mesh is fixed in the bearing: its grading needs the angle."""
     s = JournalState(0.5, omega=OMEGA)
-    with pytest.raises(ValueError, match="grading.*strength in \\[0, 0.99\\] toward"):
-        coefficients(B, s, "fem", grading=(0.0, 0.5))
     with pytest.raises(ValueError, match="grading on a grooved film"):
         coefficients(B, s, "fem", grooves=GROOVES, grading=0.5)
-    for bad in (1.0, -0.1, math.nan, True):
+    for bad in (1.0, -0.1, math.nan, True, (0.0, 1.0)):
         with pytest.raises(ValueError, match="grading"):
             solve_reynolds(B, s, 24, 4, "P2", grading=bad)
 
@@ -113,8 +110,9 @@ def test_a_zero_grading_is_the_uniform_film_bit_for_bit():
 
 def test_the_plain_film_is_graded_toward_its_least_film():
     """Film frame: the finest cells about theta = pi (h = c (1 + eps cos theta) least),
-    the mesh symmetric about it, one operator whatever the journal's angle. Fails with
-    the focus at theta = 0 (the thickest film)."""
+    the mesh symmetric about it, one operator whatever the journal's angle; a grading
+    (angle, strength) toward the inertial angle. Fails with the focus at theta = 0 (the
+    thickest film) or an angle's film angle taken with the wrong sign."""
     op = fe_operator(B, HEAVY, 48, 8, "P2", grading=0.6)
     th = op.mesh.axes[0]
     w, mid = np.diff(th), 0.5 * (th[1:] + th[:-1])
@@ -124,6 +122,12 @@ def test_the_plain_film_is_graded_toward_its_least_film():
     other = fe_operator(B, JournalState(0.2, omega=OMEGA, gamma=-2.0), 48, 8, "P2",
                         grading=0.6)
     assert other is op
+    # (angle, strength): toward the inertial angle; the state's gamma is its least film
+    assert fe_operator(B, HEAVY, 48, 8, "P2", grading=(HEAVY.gamma, 0.6)) is op
+    turned = fe_operator(B, HEAVY, 48, 8, "P2", grading=(HEAVY.gamma + 0.5, 0.6))
+    th = turned.mesh.axes[0]
+    w, mid = np.diff(th), 0.5 * (th[1:] + th[:-1])
+    assert abs(mid[np.argmin(w)] - (LEAST_FILM + 0.5)) < 2.0 * w.min()
 
 
 def test_grading_toward_the_least_film_cuts_a_heavy_films_force_error():

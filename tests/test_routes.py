@@ -60,7 +60,6 @@ UNUSED = [
     ("reynolds", dict(grooves=G), "start", None),
     ("gumbel", {}, "ambient_pressure", 1e5),         # refused by the shared JFO check
     ("reynolds", dict(tilt=(0.0, 1e-4)), "grading", (np.pi, 0.5)),
-    ("reynolds", {}, "grading", (np.pi, 0.5)),
     ("jfo", dict(ambient_pressure=1e5), "method", "psor"),
     ("jfo", dict(ambient_pressure=1e5), "cavitated_shear", "none"),
     ("jfo", dict(ambient_pressure=1e5), "tol", 1e-8),

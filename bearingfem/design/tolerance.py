@@ -45,7 +45,8 @@ def answer_to_tolerance(m: FilmModel, what: str, key, options: dict, evaluate: C
     ``order``: the quantity's nominal convergence order where it is not the film force's
     (:func:`~bearingfem.accuracy.nominal_order`). ``shifted``: a graded search also
     compares each answer with its half mesh graded :data:`PARTNER_SHIFT` further (the
-    ``shifted`` partner of :func:`~bearingfem.accuracy.refine_to_tolerance`)."""
+    ``shifted`` partner of :func:`~bearingfem.accuracy.refine_to_tolerance`; a plain
+    film's focus moved off its least film at ``toward``'s angle, the state's own)."""
     if not {"n_theta", "n_z"} <= set(m.defaults):
         raise ValueError(f"rtol and error estimates are for film models on a mesh (options "
                          f"n_theta, n_z); model {m.name!r} has none")
@@ -72,7 +73,11 @@ def answer_to_tolerance(m: FilmModel, what: str, key, options: dict, evaluate: C
         return evaluate(o)
 
     def run_shifted(n_theta, n_z, el):
-        return run(n_theta, n_z, el, (graded[0] + PARTNER_SHIFT, graded[1]))
+        # a grooved grading's angle moved; a plain film's focus moved off its least film
+        # (the pair form: toward the inertial angle, the state's gamma its least film)
+        if isinstance(graded, tuple):
+            return run(n_theta, n_z, el, (graded[0] + PARTNER_SHIFT, graded[1]))
+        return run(n_theta, n_z, el, (float(toward[0]) + PARTNER_SHIFT, graded))
 
     if rtol is None:
         o = m.options(options)
@@ -86,12 +91,10 @@ def answer_to_tolerance(m: FilmModel, what: str, key, options: dict, evaluate: C
     except TypeError:
         memo = None
     start = start_mesh(element, length_ratio)
-    # the shifted partner moves the grooved grading's angle; a plain film's grading has
-    # none (its focus is the least film)
     fine, coarse, record = refine_to_tolerance(
         run, difference, rtol, element=element, start_mesh=start, order=order, key=memo,
         n_theta_multiple=groove_multiple(options.get("grooves")),
-        shifted=run_shifted if shifted and isinstance(graded, tuple) else None)
+        shifted=run_shifted if shifted and graded is not None else None)
     return fine, coarse, replace(record, grading=graded)
 
 

@@ -45,15 +45,16 @@ GRADING_MAX = 0.99
 
 def check_grading(grading, angle: bool | None = None):
     """A grading as the film routes take it: None; a strength alone (a float in [0,
-    0.99]: the plain film's cells concentrated toward its least film); or (angle,
-    strength) as floats (the grooved film: the inertial angle [rad] where the cells
-    concentrate). ``angle`` True or False asks for the pair or the strength alone (None:
-    either). ValueError naming ``grading`` otherwise."""
+    0.99]: a film meshed in the film frame, its cells concentrated toward its least
+    film); or (angle, strength) as floats (the cells concentrated toward the inertial
+    angle [rad]: the grooved film's bearing-fixed mesh, or a film-frame mesh at that
+    angle's film angle). ``angle`` True asks for the pair (None: either). ValueError
+    naming ``grading`` otherwise."""
     if grading is None:
         return None
     pair = "(angle [rad], strength in [0, 0.99])"
     lone = "a strength in [0, 0.99]"
-    allowed = pair if angle else lone if angle is False else f"{lone} or {pair}"
+    allowed = pair if angle else f"{lone} or {pair}"
     message = f"grading must be None or {allowed}, got {grading!r}"
     if isinstance(grading, (int, float, np.integer, np.floating)) and \
             not isinstance(grading, bool):
@@ -70,9 +71,6 @@ def check_grading(grading, angle: bool | None = None):
         raise ValueError(message) from None
     if not (math.isfinite(a) and 0.0 <= strength <= GRADING_MAX):
         raise ValueError(message)
-    if angle is False:
-        raise ValueError(message + " (a plain film's mesh turns with the journal: its "
-                         "cells concentrate toward its least film)")
     return a, strength
 
 

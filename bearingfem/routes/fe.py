@@ -30,13 +30,6 @@ class RigidFilm(Route):
               "the film frame (graded toward the least film with grading)"
     uses = _SOLVER | {"supply_angle", "half", "grooves", "grading"}
 
-    def check_options(self, p: FilmProblem) -> None:
-        if isinstance(p.grading, tuple):
-            raise ValueError(f"grading on a film meshed in the film frame is a strength in "
-                             f"[0, 0.99] toward the least film (the mesh turns with the "
-                             f"journal), got {p.grading!r}; (angle, strength) is for grooved "
-                             f"films on the bearing-fixed mesh")
-
     @staticmethod
     def operator(p: FilmProblem):
         return fe_operator(p.bearing, p.state, p.n_theta, p.n_z, p.element, p.supply_angle,
