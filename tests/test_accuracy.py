@@ -349,3 +349,13 @@ def test_newton_goes_on_where_its_partials_are_not_the_films_tangent():
     exact = equilibrium(B1, (0.0, -2000.0), 250.0, "short")
     assert np.hypot(*np.add(eq.film_force, eq.load)) <= 1e-5 * 2000.0
     assert eq.eps == pytest.approx(exact.eps, rel=1e-5)
+
+
+def test_a_search_takes_element_none_as_not_given():
+    """element=None (as the command line passes it) with rtol: the search's P2, the film
+    graded (the route's kind is found without the element; fails with the element kept in
+    that check: ValueError naming element)."""
+    clear_memo()
+    eq = equilibrium(B1, (0.0, -1000.0), 250.0, "fem", rtol=1e-2, element=None,
+                     cavitation="reynolds")
+    assert eq.accuracy.element == "P2" and eq.accuracy.grading == 0.6

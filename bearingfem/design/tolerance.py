@@ -101,7 +101,8 @@ def answer_to_tolerance(m: FilmModel, what: str, key, options: dict, evaluate: C
 def _problem(m: FilmModel, options: dict) -> FilmProblem:
     """The film problem of a model whose options are a film solve's (the finite-element
     model), without bearing and state: what its route's kind needs."""
-    o = m.options({k: v for k, v in options.items() if k not in ("n_theta", "n_z")})
+    o = m.options({k: v for k, v in options.items()
+                   if k not in ("n_theta", "n_z", "element")})   # the search's, not the kind's
     return FilmProblem(None, None, **{k: v for k, v in o.items()
                                       if k in FilmProblem.__dataclass_fields__})
 
