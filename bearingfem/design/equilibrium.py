@@ -173,7 +173,7 @@ def _equilibrium_with_error(bearing, load, omega, model, rtol, how, options):
         return float(np.linalg.norm(qf - _position(coarse)) / np.linalg.norm(qf))
 
     toward = None
-    if rtol is not None:
+    if rtol is not None and "grading" in m.defaults and omega != 0.0:
         # the mesh is graded toward where the closed form puts the journal (a grooved
         # film's angle; whether eps calls for a grading at all)
         q = closed_form_start(bearing, omega, load_vector(load, how["direction"]))
