@@ -3,7 +3,9 @@
 :mod:`bearingfem.routes`."""
 from __future__ import annotations
 
-from .accuracy import film_to_tolerance
+from dataclasses import replace
+
+from .accuracy import film_to_tolerance, search_grading
 from .bearing import Bearing, JournalState
 from .fields import FilmFields
 from .routes import film_problem, solve
@@ -76,9 +78,12 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int | None = 
     start : the EHD and thermal films: a previous :class:`FilmSolution` of the same mesh to
         start from (the same answer to ``tol``); not with ``rtol`` (whose meshes it cannot
         know)
-    grading : grooved films: (angle [rad], strength in [0, 0.99]) of a bearing-fixed mesh
-        whose theta cells concentrate towards the inertial ``angle`` (where the film is
-        thin); None: uniform cells
+    grading : theta cells sized like 1 - strength cos(theta - focus)
+        (:func:`~bearingfem.fe.mesh.film_mesh`); None: uniform cells. A strength in
+        [0, 0.99] alone: plain films, meshed in the film frame, the focus their least film
+        (one mesh for every state). (angle [rad], strength): the cells concentrate towards
+        the inertial ``angle`` (where the film is thin): a grooved film's bearing-fixed
+        mesh, or a plain film's at that angle's film angle
     thermal : :class:`~bearingfem.thermal.Thermal`: the thermal (THD) film, the energy
         equation coupled to the film through the ``lubricant``'s viscosity against
         temperature (:mod:`bearingfem.routes.thd`); ``temperature`` and
@@ -86,7 +91,9 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int | None = 
     rtol : a requested relative accuracy of the film force, in [1e-6, 0.1]: the mesh (and,
         unless given, the element) is chosen to reach it and ``force_error`` reports the
         estimate (:mod:`bearingfem.accuracy`); n_theta and n_z are refused with it (the
-        mesh is the search's), an ``element`` given is kept
+        mesh is the search's), an ``element`` given is kept; without a ``grading`` of its
+        own a plain film from eps 0.3 on is searched on meshes graded toward its least
+        film (:func:`~bearingfem.accuracy.search_grading`; ``accuracy.grading`` names it)
 
     Returns
     -------
@@ -107,11 +114,16 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int | None = 
     if rtol is None:
         return solve(problem)
     # accuracy on request: the problem is checked above, before any work; bearingfem.accuracy
-    # chooses the mesh (and element)
-    return film_to_tolerance(
+    # chooses the mesh (and element), graded toward the least film where it pays
+    graded = search_grading(problem, (state.gamma, state.eps))
+    if graded is not None:
+        options["grading"] = graded
+    sol = film_to_tolerance(
         lambda nt, nz, el: solve(film_problem(bearing, state, nt, nz, cavitation, element=el,
                                               **options)),
         bearing, rtol, element, dict(options, cavitation=cavitation))
+    return sol if graded is None else replace(sol, accuracy=replace(sol.accuracy,
+                                                                    grading=graded))
 
 
 def _mesh(n_theta, n_z, rtol) -> tuple:

@@ -27,6 +27,7 @@ KINDS = [
     ("reynolds", dict(grooves=G, half=False), "rigid"),
     ("reynolds", dict(grooves=G), "grooved"),
     ("none", dict(grooves=G, grading=(np.pi, 0.5)), "grooved"),
+    ("reynolds", dict(grading=0.5), "rigid"),
     ("reynolds", dict(tilt=(0.0, 1e-4)), "general"),
     ("none", dict(fields=FilmFields(viscosity=2.0)), "general"),
     ("reynolds", dict(lubricant=OIL), "ehd"),
@@ -59,7 +60,6 @@ UNUSED = [
     ("reynolds", dict(grooves=G), "start", None),
     ("gumbel", {}, "ambient_pressure", 1e5),         # refused by the shared JFO check
     ("reynolds", dict(tilt=(0.0, 1e-4)), "grading", (np.pi, 0.5)),
-    ("reynolds", {}, "grading", (np.pi, 0.5)),
     ("jfo", dict(ambient_pressure=1e5), "method", "psor"),
     ("jfo", dict(ambient_pressure=1e5), "cavitated_shear", "none"),
     ("jfo", dict(ambient_pressure=1e5), "tol", 1e-8),

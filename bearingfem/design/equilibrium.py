@@ -173,8 +173,9 @@ def _equilibrium_with_error(bearing, load, omega, model, rtol, how, options):
         return float(np.linalg.norm(qf - _position(coarse)) / np.linalg.norm(qf))
 
     toward = None
-    if rtol is not None and options.get("grooves"):
-        # a grooved film is graded toward where the closed form puts the journal
+    if rtol is not None and "grading" in m.defaults and omega != 0.0:
+        # the mesh is graded toward where the closed form puts the journal (a grooved
+        # film's angle; whether eps calls for a grading at all)
         q = closed_form_start(bearing, omega, load_vector(load, how["direction"]))
         toward = (math.atan2(q[1], q[0]), math.hypot(*q))
     # the memo (a design loop's next load starts at the mesh that sufficed) is keyed on
@@ -230,6 +231,11 @@ def _start_position(start, eps_max):
 
 
 
+#: Newton's iteration goes on from where it stopped this many times when the force there
+#: is off the load by more than its limit (a cavitated set changing near the root)
+NEWTON_RESTARTS = 2
+
+
 def _newton_equilibrium(m, bearing, omega, load, opts, q0, eps_max, rtol, model, tilt):
     """Equilibrium by Newton's method on the model's exact partials (module docstring); a
     tilted FE film's from its exact 4x4 stiffness, with both journal ends inside eps_max."""
@@ -265,28 +271,34 @@ def _newton_equilibrium(m, bearing, omega, load, opts, q0, eps_max, rtol, model,
         o = {**opts, "grooves": ()} if opts.get("grooves") else opts
         return math.hypot(*m.film_force(bearing, JournalState(eps_max, omega=omega), **o))
 
-    eps, gamma = newton_position(film, load, q0, eps_max, rtol, capacity, model, d_end)
-    state = JournalState(eps, omega=omega, gamma=gamma)
-    if opts.get("grooves") and not any(tilt):
-        # the film there with its partials, warm from Newton's last cavitated set: the
-        # grooved operator keeps both, so the solution below and coefficients() at this
-        # state take them instead of a cold solve (bearingfem.fe.grooved)
-        partials(eps, gamma)
-    sol = (solve_reynolds(bearing, state, opts["n_theta"], opts["n_z"], opts["element"],
-                          opts["cavitation"], tilt=tilt) if any(tilt)
-           else solve_film(model, bearing, state, opts))
-    calls[0] += 1
-    # the model's force: the film's and, with roughness, the asperities' (mixed lubrication)
-    f_loc = m.film_force(bearing, state, **opts) if sol is None else tuple(
-        np.add(sol.force_local, sol.asperity_force_local))
-    residual = np.hypot(*(np.add(local_to_inertial(*f_loc, gamma), load))) / math.hypot(*load)
     # Newton stops on a step below sqrt(rtol) |q|: the force is then off by about rtol
     limit = max(1e-8, 10.0 * rtol)
-    if not residual <= limit:
-        raise ConvergenceError(f"Newton's equilibrium ({model} model)", calls[0], residual,
-                               f"eps = {eps:.6g} (film force off the load by more than "
-                               f"{limit:.0e} of it)")
-    return _result(bearing, omega, load, state, f_loc, sol, model, calls[0], tilt)
+    for restart in range(NEWTON_RESTARTS + 1):
+        eps, gamma = newton_position(film, load, q0, eps_max, rtol, capacity, model, d_end)
+        state = JournalState(eps, omega=omega, gamma=gamma)
+        if opts.get("grooves") and not any(tilt):
+            # the film there with its partials, warm from Newton's last cavitated set: the
+            # grooved operator keeps both, so the solution below and coefficients() at this
+            # state take them instead of a cold solve (bearingfem.fe.grooved)
+            partials(eps, gamma)
+        sol = (solve_reynolds(bearing, state, opts["n_theta"], opts["n_z"], opts["element"],
+                              opts["cavitation"], tilt=tilt) if any(tilt)
+               else solve_film(model, bearing, state, opts))
+        calls[0] += 1
+        # the model's force: the film's and, with roughness, the asperities' (mixed
+        # lubrication)
+        f_loc = m.film_force(bearing, state, **opts) if sol is None else tuple(
+            np.add(sol.force_local, sol.asperity_force_local))
+        residual = (np.hypot(*(np.add(local_to_inertial(*f_loc, gamma), load)))
+                    / math.hypot(*load))
+        if residual <= limit:
+            return _result(bearing, omega, load, state, f_loc, sol, model, calls[0], tilt)
+        # the partials hold the cavitated set: where it changes near the root the last
+        # step is not quadratically small, and Newton goes on from where it stopped
+        q0 = eps * np.array([math.cos(gamma), math.sin(gamma)])
+    raise ConvergenceError(f"Newton's equilibrium ({model} model)", calls[0], residual,
+                           f"eps = {eps:.6g} (film force off the load by more than "
+                           f"{limit:.0e} of it)")
 
 
 def _grooved_equilibrium(force, load, eps0, gamma0, eps_max, model):

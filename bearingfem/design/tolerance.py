@@ -9,21 +9,16 @@ from typing import Callable
 
 import numpy as np
 
-from ..accuracy import (check_rtol, estimate_at, groove_multiple, nominal_order,
-                        refine_to_tolerance, start_mesh)
+from ..accuracy import (GRADED_FROM_EPS, GRADING_STRENGTH, check_rtol, estimate_at,
+                        groove_multiple, nominal_order, refine_to_tolerance, search_grading,
+                        start_mesh)
 from ..bearing import JournalState
 from ..models import FilmModel, film_model
+from ..routes import FilmProblem
 
 __all__ = ["answer_to_tolerance", "mesh_for_run", "run_force_error", "RUN_PROBES",
            "GRADING_STRENGTH", "GRADED_FROM_EPS"]
 
-#: A grooved film searched to a tolerance has its theta cells concentrated toward the
-#: least film at this strength (the grooved mesh's ``grading``): on Lund & Thomsen's rows
-#: it cut the K, C searches' cost 3.4x against uniform meshes, 0.9 1.7x (docs/accuracy.md)
-GRADING_STRENGTH = 0.6
-#: ... from this eccentricity ratio on: below it the pressure peak is broad and a uniform
-#: mesh did as well or better (the light rows)
-GRADED_FROM_EPS = 0.3
 #: The second partner of a graded search asked for it (``shifted``): the half mesh with its
 #: grading focus moved by half the 15 deg grid, its nodes shifted against the cavitation
 #: boundary; on Lund & Thomsen's rows it turned 5 of 6 low K, C estimates of the graded
@@ -42,14 +37,17 @@ def answer_to_tolerance(m: FilmModel, what: str, key, options: dict, evaluate: C
     its error estimated. ``what`` names the quantity in messages; ``key`` (hashable or
     None) the memo entry, to which the model and its other options are added;
     ``length_ratio`` L/D shapes the start mesh (:func:`~bearingfem.accuracy.start_mesh`).
-    ``toward`` = (journal angle gamma [rad], eps), known or estimated: a grooved film
-    searched to ``rtol`` without a grading of its own is graded toward the least film
-    there (:data:`GRADING_STRENGTH`) when eps >= :data:`GRADED_FROM_EPS`; the memo keeps
-    that it was graded, not the angle (a design loop's next state has its own).
+    ``toward`` = (journal angle gamma [rad], eps), known or estimated: a film searched to
+    ``rtol`` without a grading of its own is graded toward the least film there
+    (:func:`~bearingfem.accuracy.search_grading`: grooved films from
+    :data:`GRADED_FROM_EPS`, plain films from
+    :data:`~bearingfem.accuracy.PLAIN_GRADED_FROM_EPS` on); the memo keeps that it was
+    graded, not the angle (a design loop's next state has its own).
     ``order``: the quantity's nominal convergence order where it is not the film force's
     (:func:`~bearingfem.accuracy.nominal_order`). ``shifted``: a graded search also
     compares each answer with its half mesh graded :data:`PARTNER_SHIFT` further (the
-    ``shifted`` partner of :func:`~bearingfem.accuracy.refine_to_tolerance`)."""
+    ``shifted`` partner of :func:`~bearingfem.accuracy.refine_to_tolerance`; a plain
+    film's focus moved off its least film at ``toward``'s angle, the state's own)."""
     if not {"n_theta", "n_z"} <= set(m.defaults):
         raise ValueError(f"rtol and error estimates are for film models on a mesh (options "
                          f"n_theta, n_z); model {m.name!r} has none")
@@ -70,13 +68,8 @@ def answer_to_tolerance(m: FilmModel, what: str, key, options: dict, evaluate: C
     smooth = cavitation == "none" and not options.get("grooves")
     order = nominal_order(element, smooth) if order is None else order
     graded = None
-    if (rtol is not None and toward is not None and options.get("grooves")
-            and "grading" in m.defaults and options.get("grading") is None
-            and toward[1] >= GRADED_FROM_EPS):
-        # the angle on a 15 deg grid: nearby states (a design loop's, an equilibrium's and
-        # its coefficients') share meshes, operators and factors; the grading is broad
-        step = math.pi / 12.0
-        graded = (step * round(float(toward[0]) / step), GRADING_STRENGTH)
+    if rtol is not None and toward is not None and "grading" in m.defaults:
+        graded = search_grading(_problem(m, options), toward)
 
     def run(n_theta, n_z, el, grading=graded):
         o = {**options, "n_theta": n_theta, "n_z": n_z}
@@ -87,7 +80,11 @@ def answer_to_tolerance(m: FilmModel, what: str, key, options: dict, evaluate: C
         return evaluate(o)
 
     def run_shifted(n_theta, n_z, el):
-        return run(n_theta, n_z, el, (graded[0] + PARTNER_SHIFT, graded[1]))
+        # a grooved grading's angle moved; a plain film's focus moved off its least film
+        # (the pair form: toward the inertial angle, the state's gamma its least film)
+        if isinstance(graded, tuple):
+            return run(n_theta, n_z, el, (graded[0] + PARTNER_SHIFT, graded[1]))
+        return run(n_theta, n_z, el, (float(toward[0]) + PARTNER_SHIFT, graded))
 
     if rtol is None:
         o = m.options(options)
@@ -106,6 +103,15 @@ def answer_to_tolerance(m: FilmModel, what: str, key, options: dict, evaluate: C
         n_theta_multiple=groove_multiple(options.get("grooves")),
         shifted=run_shifted if shifted and graded is not None else None)
     return fine, coarse, replace(record, grading=graded)
+
+
+def _problem(m: FilmModel, options: dict) -> FilmProblem:
+    """The film problem of a model whose options are a film solve's (the finite-element
+    model), without bearing and state: what its route's kind needs."""
+    o = m.options({k: v for k, v in options.items()
+                   if k not in ("n_theta", "n_z", "element")})   # the search's, not the kind's
+    return FilmProblem(None, None, **{k: v for k, v in o.items()
+                                      if k in FilmProblem.__dataclass_fields__})
 
 
 #: Steady states at which a run's mesh is chosen (eps, below the scene's eps_max): a

@@ -19,7 +19,7 @@ from skfem.helpers import dot, grad
 from ..caches import cached
 from ..film import cubed_thickness_coefficients, source_coefficients, theta_from_inertial
 from ..solvers.pattern import Pattern
-from .mesh import FilmMesh, film_mesh
+from .mesh import LEAST_FILM, FilmMesh, film_mesh
 
 __all__ = ["FilmOperator", "film_operator", "fe_operator"]
 
@@ -183,9 +183,12 @@ def film_operator(n_theta: int, n_z: int, element: str, length_ratio: float,
 
 
 def fe_operator(bearing, state, n_theta=120, n_z=20, element="P1",
-                supply_angle=None, half=True, grooves=()) -> FilmOperator:
+                supply_angle=None, half=True, grooves=(), grading=None) -> FilmOperator:
     """The cached film operator for this bearing and mesh (supply line and grooves in the
-    film frame; the mesh starts at the first groove's edge)."""
+    film frame; the mesh starts at the first groove's edge). ``grading``: a strength in
+    [0, 0.99], the theta cells concentrated toward the least film, one operator for every
+    journal state (the mesh is in the film frame); or (angle, strength), toward the
+    inertial ``angle`` [rad] (its film angle at this state's gamma); None: uniform."""
     theta0, arcs = None, ()
     if supply_angle is not None:   # rounded: it is part of the operator cache key
         theta0 = float(np.round(theta_from_inertial(supply_angle, state.gamma), 12))
@@ -193,5 +196,10 @@ def fe_operator(bearing, state, n_theta=120, n_z=20, element="P1",
         arcs = tuple((float(np.round(lo, 12)), float(np.round(hi, 12)))
                      for lo, hi in (g.arc(state.gamma) for g in grooves))
         theta0 = arcs[0][0]
+    if grading is not None:     # the focus's film angle, rounded: part of the cache key
+        focus = theta_from_inertial(grading[0], state.gamma) if isinstance(grading, tuple) \
+            else LEAST_FILM
+        grading = (float(np.round(focus, 12)),
+                   float(grading[1] if isinstance(grading, tuple) else grading))
     return film_operator(int(n_theta), int(n_z), element, bearing.length_ratio, theta0,
-                         bool(half), arcs)
+                         bool(half), arcs, grading)

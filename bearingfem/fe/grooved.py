@@ -50,7 +50,7 @@ from .assembly import FilmOperator
 from .general import general_assembly
 from .kernel import fe_pressure, film_outputs
 from .grooved_build import build_grooved_tables, harmonic_weights
-from .mesh import film_mesh
+from .mesh import check_grading, film_mesh
 from .multilevel import coarse_shape, prolongation
 
 __all__ = ["GroovedOperator", "grooved_operator", "bearing_fixed_operator", "groove_operator_for",
@@ -128,22 +128,6 @@ def bearing_fixed_operator(n_theta: int, n_z: int, element: str, length_ratio: f
     return GroovedOperator(*build_grooved_tables(mesh))
 
 
-def check_grading(grading) -> tuple | None:
-    """None, or (angle, strength) as floats: the inertial angle [rad] where the cells
-    concentrate and a strength in [0, 0.99]; ValueError naming ``grading`` otherwise."""
-    if grading is None:
-        return None
-    try:
-        angle, strength = (float(v) for v in grading)
-    except (TypeError, ValueError):
-        raise ValueError(f"grading must be None or (angle [rad], strength in [0, 0.99]), "
-                         f"got {grading!r}") from None
-    if not (math.isfinite(angle) and 0.0 <= strength <= 0.99):
-        raise ValueError(f"grading must be None or (angle [rad], strength in [0, 0.99]), "
-                         f"got {grading!r}")
-    return angle, strength
-
-
 @cached(maxsize=64)
 def _mesh_arcs(grooves: tuple) -> tuple:
     """The grooves' arcs in the mesh angle, rounded to 1e-12 rad (the operator cache's key;
@@ -159,7 +143,7 @@ def groove_operator_for(bearing: Bearing, n_theta: int, n_z: int, element: str,
     [rad] (e.g. where the heaviest load puts the minimum film), sized like
     1 - strength cos (:func:`~bearingfem.fe.mesh.film_mesh`); None: uniform per arc."""
     arcs = _mesh_arcs(tuple(grooves))
-    grading = check_grading(grading)
+    grading = check_grading(grading, angle=True)
     if grading is not None:     # the mesh angle is the film angle at gamma = 0
         grading = (float(np.round(np.mod(grading[0] - math.pi, 2.0 * math.pi), 12)),
                    grading[1])

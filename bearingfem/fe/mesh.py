@@ -15,10 +15,14 @@ A ``grading`` (focus, strength) sizes the theta cells like the gap of a journal 
 eccentricity ``strength`` whose minimum film is at the mesh angle ``focus``: cell width
 proportional to 1 - strength cos(theta - focus), both in the cells' share per arc and
 within each arc (a heavily loaded film's pressure peak is narrow where the film is thin).
+A zero strength is the uniform mesh, bit for bit. The grooved film's bearing-fixed mesh
+takes the focus it is given; the plain film, meshed in the film frame, is graded toward
+its least film (:data:`LEAST_FILM`), which stays put whatever the journal's state.
 """
 from __future__ import annotations
 
 import logging
+import math
 from contextlib import contextmanager
 from dataclasses import dataclass
 
@@ -28,9 +32,46 @@ from skfem import Basis, ElementTriP1, ElementTriP2, MeshTri1, MeshTri1DG
 from ..caches import cached
 from ..validation import MIN_N_THETA, MIN_N_Z
 
-__all__ = ["FilmMesh", "film_mesh", "ELEMENTS", "MIN_N_THETA", "MIN_N_Z"]
+__all__ = ["FilmMesh", "film_mesh", "ELEMENTS", "MIN_N_THETA", "MIN_N_Z", "LEAST_FILM",
+           "check_grading", "GRADING_MAX"]
 
 ELEMENTS = {"P1": ElementTriP1, "P2": ElementTriP2}
+#: The film angle of the least film, where h = c (1 + eps cos theta) is smallest [rad]
+LEAST_FILM = math.pi
+#: The largest grading strength taken (cells 1 - s cos: at 0.99 the finest is 1/199 of
+#: the coarsest)
+GRADING_MAX = 0.99
+
+
+def check_grading(grading, angle: bool | None = None):
+    """A grading as the film routes take it: None; a strength alone (a float in [0,
+    0.99]: a film meshed in the film frame, its cells concentrated toward its least
+    film); or (angle, strength) as floats (the cells concentrated toward the inertial
+    angle [rad]: the grooved film's bearing-fixed mesh, or a film-frame mesh at that
+    angle's film angle). ``angle`` True asks for the pair (None: either). ValueError
+    naming ``grading`` otherwise."""
+    if grading is None:
+        return None
+    pair = "(angle [rad], strength in [0, 0.99])"
+    lone = "a strength in [0, 0.99]"
+    allowed = pair if angle else f"{lone} or {pair}"
+    message = f"grading must be None or {allowed}, got {grading!r}"
+    if isinstance(grading, (int, float, np.integer, np.floating)) and \
+            not isinstance(grading, bool):
+        if angle:
+            raise ValueError(message + " (a grooved film's mesh is fixed in the bearing: "
+                             "give the angle of its least film too)")
+        strength = float(grading)
+        if not 0.0 <= strength <= GRADING_MAX:
+            raise ValueError(message)
+        return strength
+    try:
+        a, strength = (float(v) for v in grading)
+    except (TypeError, ValueError):
+        raise ValueError(message) from None
+    if not (math.isfinite(a) and 0.0 <= strength <= GRADING_MAX):
+        raise ValueError(message)
+    return a, strength
 
 
 @dataclass(frozen=True, eq=False)
@@ -147,7 +188,7 @@ def _graded_axis(n_theta: int, t_lo: float, arcs, grading) -> np.ndarray:
 def _theta_axis(n_theta: int, t_lo: float, arcs, grading=None) -> np.ndarray:
     """Grid lines over one turn from t_lo with a line on every groove edge."""
     turn = 2.0 * np.pi
-    if grading is not None:
+    if grading is not None and grading[1] > 0.0:   # a zero strength: the uniform axis
         return _graded_axis(n_theta, t_lo, arcs, grading)
     if not arcs:
         return _axis(n_theta, t_lo, t_lo + turn)

@@ -120,7 +120,8 @@ def coarse_level(op: FilmOperator) -> tuple[FilmOperator, sp.csr_matrix] | None:
     shape = coarse_shape(m)
     if shape is None:
         return None
-    coarse = film_operator(*shape, "P1", m.length_ratio, m.theta0, m.half, m.arcs)
+    coarse = film_operator(*shape, "P1", m.length_ratio, m.theta0, m.half, m.arcs,
+                           m.grading)
     if coarse.mesh.ndofs >= m.ndofs:   # already at the coarsest mesh
         return None
     return coarse, prolongation(coarse.mesh, m.theta[m.free], m.zeta[m.free])

@@ -41,19 +41,24 @@ FORCES = ("F_x", "F_y", "M_x", "M_y")
 
 def fe_force_derivatives(bearing: Bearing, state: JournalState, n_theta: int = 120,
                          n_z: int = 20, element: str = "P1", cavitation: str = "reynolds",
-                         grooves=()) -> ForceDerivatives:
+                         grooves=(), grading=None) -> ForceDerivatives:
     """(F_r, F_t) [N] of the FE film and its exact partials in (eps, eps_dot, w).
 
     Same film as :func:`~bearingfem.solve_reynolds` (half domain). With
     ``grooves`` (held pressures enter through P, which carries them on the fixed dofs) the
     film is solved on the bearing-fixed mesh of :mod:`bearingfem.fe.grooved`, which also
-    gives the partial in gamma (the grooves moving against the film) exactly.
+    gives the partial in gamma (the grooves moving against the film) exactly. ``grading``:
+    without grooves, the strength of the film-frame mesh's grading toward the least film
+    (:func:`~bearingfem.fe.assembly.fe_operator`).
     """
     if grooves:     # the bearing-fixed mesh: d/dgamma exact (bearingfem.fe.grooved)
+        if grading is not None:
+            raise ValueError("grading (a strength toward the least film) is for the film "
+                             "without grooves here: give one of them")
         return grooved_derivatives(bearing, state,
                                    groove_operator_for(bearing, n_theta, n_z, element, grooves),
                                    grooves, cavitation)
-    op = fe_operator(bearing, state, n_theta, n_z, element, None, True, grooves)
+    op = fe_operator(bearing, state, n_theta, n_z, element, None, True, grooves, grading)
     res = fe_pressure(op, state, cavitation, dirichlet=groove_pressures(bearing, op, grooves))
     P = res.pressure
     free = op.mesh.free

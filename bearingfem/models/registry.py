@@ -16,8 +16,7 @@ from typing import Callable, Mapping
 from ..bearing import Bearing, JournalState, check_finite, check_inside_clearance
 from ..contract import RunFilm, SteadyRun
 from ..differentiate import central_differences
-from ..fe.grooved import check_grading
-from ..fe.mesh import ELEMENTS
+from ..fe.mesh import ELEMENTS, check_grading
 from ..fe.mixed import check_roughness
 from ..solution import FilmSolution, ForceDerivatives
 from ..validation import (MIN_N_THETA, MIN_N_Z, REYNOLDS_FAMILY, check_choice, check_grooves,

@@ -27,13 +27,13 @@ def _film_frame_half(p: FilmProblem):
 class RigidFilm(Route):
     name = "rigid"
     summary = "the rigid cylinder, cavitation 'none', 'gumbel' or 'reynolds', meshed in " \
-              "the film frame"
-    uses = _SOLVER | {"supply_angle", "half", "grooves"}
+              "the film frame (graded toward the least film with grading)"
+    uses = _SOLVER | {"supply_angle", "half", "grooves", "grading"}
 
     @staticmethod
     def operator(p: FilmProblem):
         return fe_operator(p.bearing, p.state, p.n_theta, p.n_z, p.element, p.supply_angle,
-                           p.half, p.grooves)
+                           p.half, p.grooves, p.grading)
 
     contact_operator = operator
 
@@ -51,7 +51,7 @@ class RigidFilm(Route):
         if p.supply_angle is not None or not p.half:
             return None
         return fe_force_derivatives(p.bearing, p.state, p.n_theta, p.n_z, p.element,
-                                    p.cavitation, p.grooves)
+                                    p.cavitation, p.grooves, p.grading)
 
 
 class GroovedFilm(Route):
@@ -61,6 +61,9 @@ class GroovedFilm(Route):
     uses = _SOLVER | {"grooves", "half", "grading"}
 
     def check_options(self, p: FilmProblem) -> None:
+        if p.grading is not None and not isinstance(p.grading, tuple):
+            raise ValueError(f"grading on a grooved film is (angle [rad], strength in "
+                             f"[0, 0.99]) of its bearing-fixed mesh, got {p.grading!r}")
         if p.grading is not None and p.roughness is not None:
             raise ValueError("grading is for grooved films on the bearing-fixed mesh "
                              "without roughness: give grooves, and no roughness")

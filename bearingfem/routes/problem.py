@@ -10,8 +10,7 @@ from dataclasses import dataclass, fields as dataclass_fields
 
 from ..bearing import Bearing, JournalState, check_inside_clearance, check_surface_speed
 from ..contact import Roughness
-from ..fe.grooved import check_grading
-from ..fe.mesh import ELEMENTS
+from ..fe.mesh import ELEMENTS, check_grading
 from ..fe.mixed import check_roughness
 from ..fields import EdgeProfile, FilmFields, check_tilt
 from ..lubricant import Lubricant
