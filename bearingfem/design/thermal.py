@@ -160,8 +160,10 @@ def thd_equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
     and the thermal solve's (``temperature_tol``, ``relaxation``, ``max_iterations``).
     ``rtol``: the film force's residual relative to the load. ``eq.solution`` is the THD
     film; ``friction_force`` and ``power_loss`` its own shear integral. ``isothermal``:
-    the isothermal :func:`~bearingfem.design.equilibrium` that starts the search (passed
-    in by it: this module lies below it).
+    (bearing, load, omega, model, eps_max=, **mesh options) -> (eps, gamma) of the
+    isothermal equilibrium that starts the search
+    (:func:`~bearingfem.design.equilibrium.isothermal_position`, passed in by
+    :func:`~bearingfem.design.equilibrium`: this module lies below it).
     """
     if model != "fem":
         raise ValueError(f"a thermal film needs model 'fem', got {model!r}")
@@ -184,9 +186,8 @@ def thd_equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
     iso_opts = dict(n_theta=mesh["n_theta"], n_z=mesh["n_z"], grooves=mesh["grooves"])
     if iso_model == "fem":
         iso_opts.update(element=mesh["element"], cavitation=mesh["cavitation"])
-    start = isothermal(cold, (wx, wy), omega, iso_model, eps_max=eps_max, **iso_opts)
-    q = np.array([start.eps * math.cos(start.state.gamma),
-                  start.eps * math.sin(start.state.gamma)])
+    eps0, gamma0 = isothermal(cold, (wx, wy), omega, iso_model, eps_max=eps_max, **iso_opts)
+    q = eps0 * np.array([math.cos(gamma0), math.sin(gamma0)])
     c = bearing.clearance
     target = -np.array([wx, wy])
     relaxation = options.get("relaxation", 1.0)
