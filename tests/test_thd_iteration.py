@@ -12,6 +12,7 @@ import bearingfem.design.thermal as design_thermal
 import bearingfem.routes.thd as thd_route
 from bearingfem import JournalState
 from bearingfem.design import coefficients, equilibrium
+from bearingfem.design.equilibrium import isothermal_position
 from bearingfem.design.thermal import _jacobian, frozen_film
 from bearingfem.errors import ConvergenceError
 from bearingfem.fe.kernel import fe_pressure
@@ -194,3 +195,18 @@ def test_predicted_inexact_steps_land_on_the_verified_equilibrium(monkeypatch):
     assert abs(eq.eps - ref.eps) < 1e-9 and abs(eq.attitude - ref.attitude) < 1e-9
     assert np.max(np.abs(eq.solution.temperature - ref.solution.temperature)) < 2e-6
     assert n_predicted < counts["energy"]
+
+
+@pytest.mark.parametrize("model", ["fem", "fem-jfo"])
+def test_isothermal_position_is_the_equilibriums(model):
+    """The thermal equilibrium's start (design.equilibrium.isothermal_position: Newton's
+    position without the film's outputs) is the isothermal equilibrium's eps and gamma,
+    bit for bit, with grooves at 48x8 (the JFO film through the whole equilibrium). Fails
+    with Newton's tolerance 1e-6 for 1e-13 (planted)."""
+    opts = dict(n_theta=48, n_z=8, grooves=GROOVES)
+    load = (300.0, -2000.0)
+    eq = equilibrium(BEARING, load, OMEGA, model, **opts)
+    assert isothermal_position(BEARING, load, OMEGA, model, **opts) == (eq.eps,
+                                                                        eq.state.gamma)
+    with pytest.raises(ValueError, match="eps_max"):
+        isothermal_position(BEARING, load, OMEGA, model, eps_max=1.0, **opts)

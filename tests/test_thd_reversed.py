@@ -243,8 +243,8 @@ def test_reversed_thermal_equilibrium_is_the_mirror_image():
     load, flip = (0.0, -2000.0), np.diag([-1.0, 1.0])
     a = equilibrium(BEARING, load, OMEGA, "fem", **opts)
     b = equilibrium(BEARING, load, -OMEGA, "fem", **opts)
-    for eq in (a, b):
-        assert math.hypot(*np.add(eq.film_force, load)) < 1e-9 * 2000.0
+    for eq in (a, b):       # balanced to the thermal equilibrium's rtol, 1e-8 of the load
+        assert math.hypot(*np.add(eq.film_force, load)) < 1e-8 * 2000.0
     assert a.attitude > 0.0 > b.attitude
     assert b.eps == pytest.approx(a.eps, abs=6e-3)
     assert -b.attitude == pytest.approx(a.attitude, abs=8e-3)

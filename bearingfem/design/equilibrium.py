@@ -88,7 +88,7 @@ def equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
             raise ValueError(f"{', '.join(given)}: not taken with thermal= (the thermal "
                              "film's equilibrium is solved on the mesh given)")
         return thd_equilibrium(bearing, load, omega, model, direction=direction,
-                               eps_max=eps_max, isothermal=equilibrium, **options)
+                               eps_max=eps_max, isothermal=isothermal_position, **options)
     if rtol is not None or estimate:
         if rtol is not None and xtol == 1e-13:
             # the root to 1e-4 of the accuracy asked: its error then leaves the mesh
@@ -230,15 +230,34 @@ def _start_position(start, eps_max):
     return np.array([state.eps * math.cos(state.gamma), state.eps * math.sin(state.gamma)])
 
 
-
 #: Newton's iteration goes on from where it stopped this many times when the force there
 #: is off the load by more than its limit (a cavitated set changing near the root)
 NEWTON_RESTARTS = 2
 
 
-def _newton_equilibrium(m, bearing, omega, load, opts, q0, eps_max, rtol, model, tilt):
-    """Equilibrium by Newton's method on the model's exact partials (module docstring); a
-    tilted FE film's from its exact 4x4 stiffness, with both journal ends inside eps_max."""
+def isothermal_position(bearing: Bearing, load, omega: float, model: str, *,
+                        eps_max: float = EPS_MAX, **options) -> tuple:
+    """(eps, gamma) of :func:`equilibrium` (aligned journal, default tolerance) without
+    the film's outputs there: Newton's position alone for models with exact partials,
+    else the whole equilibrium's. Why: a search that only starts from it (the thermal
+    film's, :func:`~bearingfem.design.thermal.thd_equilibrium`) needs no solution record,
+    whose film and partials cost a quarter of the isothermal equilibrium at 48 x 8."""
+    m = film_model(model)
+    if not 0.0 < check_finite("eps_max", eps_max) < 1.0:
+        raise ValueError(f"eps_max must lie in (0, 1), got {eps_max!r}")
+    if not (m.exact_derivatives and not m.memory and omega != 0.0):
+        eq = equilibrium(bearing, load, omega, model, eps_max=eps_max, **options)
+        return eq.eps, eq.state.gamma
+    eps, gamma, _, _ = _newton_position(m, bearing, omega, tuple(load),
+                                        m.options(options), None, eps_max, 1e-13, model,
+                                        (0.0, 0.0))
+    return eps, gamma
+
+
+def _newton_position(m, bearing, omega, load, opts, q0, eps_max, rtol, model, tilt):
+    """(eps, gamma, partials, calls) by Newton's method on the model's exact partials
+    (module docstring); a tilted FE film's from its exact 4x4 stiffness, with both
+    journal ends inside eps_max."""
     calls = [0]
     c = bearing.clearance
     d_end = 0.5 * bearing.length / c * np.array([tilt[1], -tilt[0]])   # end centre - q
@@ -271,10 +290,19 @@ def _newton_equilibrium(m, bearing, omega, load, opts, q0, eps_max, rtol, model,
         o = {**opts, "grooves": ()} if opts.get("grooves") else opts
         return math.hypot(*m.film_force(bearing, JournalState(eps_max, omega=omega), **o))
 
+    eps, gamma = newton_position(film, load, q0, eps_max, rtol, capacity, model, d_end)
+    return eps, gamma, partials, calls
+
+
+def _newton_equilibrium(m, bearing, omega, load, opts, q0, eps_max, rtol, model, tilt):
+    """Equilibrium by Newton's method on the model's exact partials (module docstring); a
+    tilted FE film's from its exact 4x4 stiffness, with both journal ends inside eps_max."""
     # Newton stops on a step below sqrt(rtol) |q|: the force is then off by about rtol
     limit = max(1e-8, 10.0 * rtol)
+    solves = 0
     for restart in range(NEWTON_RESTARTS + 1):
-        eps, gamma = newton_position(film, load, q0, eps_max, rtol, capacity, model, d_end)
+        eps, gamma, partials, calls = _newton_position(m, bearing, omega, load, opts, q0,
+                                                       eps_max, rtol, model, tilt)
         state = JournalState(eps, omega=omega, gamma=gamma)
         if opts.get("grooves") and not any(tilt):
             # the film there with its partials, warm from Newton's last cavitated set: the
@@ -284,7 +312,7 @@ def _newton_equilibrium(m, bearing, omega, load, opts, q0, eps_max, rtol, model,
         sol = (solve_reynolds(bearing, state, opts["n_theta"], opts["n_z"], opts["element"],
                               opts["cavitation"], tilt=tilt) if any(tilt)
                else solve_film(model, bearing, state, opts))
-        calls[0] += 1
+        solves += calls[0] + 1
         # the model's force: the film's and, with roughness, the asperities' (mixed
         # lubrication)
         f_loc = m.film_force(bearing, state, **opts) if sol is None else tuple(
@@ -292,11 +320,11 @@ def _newton_equilibrium(m, bearing, omega, load, opts, q0, eps_max, rtol, model,
         residual = (np.hypot(*(np.add(local_to_inertial(*f_loc, gamma), load)))
                     / math.hypot(*load))
         if residual <= limit:
-            return _result(bearing, omega, load, state, f_loc, sol, model, calls[0], tilt)
+            return _result(bearing, omega, load, state, f_loc, sol, model, solves, tilt)
         # the partials hold the cavitated set: where it changes near the root the last
         # step is not quadratically small, and Newton goes on from where it stopped
         q0 = eps * np.array([math.cos(gamma), math.sin(gamma)])
-    raise ConvergenceError(f"Newton's equilibrium ({model} model)", calls[0], residual,
+    raise ConvergenceError(f"Newton's equilibrium ({model} model)", solves, residual,
                            f"eps = {eps:.6g} (film force off the load by more than "
                            f"{limit:.0e} of it)")
 

@@ -151,17 +151,22 @@ def _predicted_change(change: float, rates: list) -> float:
 
 
 def thd_equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
-                    direction=None, eps_max: float = EPS_MAX, rtol: float = 1e-9,
+                    direction=None, eps_max: float = EPS_MAX, rtol: float = 1e-8,
                     isothermal=None, **options) -> Equilibrium:
     """Where the journal sits under ``load`` with a thermal film (module docstring).
 
     Options: ``lubricant`` and ``thermal`` (required), the film's mesh options
     (``n_theta``, ``n_z``, ``element``, ``cavitation``, ``grooves``, ``supply_angle``)
     and the thermal solve's (``temperature_tol``, ``relaxation``, ``max_iterations``).
-    ``rtol``: the film force's residual relative to the load. ``eq.solution`` is the THD
+    ``rtol``: the film force's residual relative to the load (1e-8: the isothermal
+    Newton equilibrium's own acceptance, and below what the temperature tolerance fixes,
+    a 1e-6 K error moving the force by ~3e-8 of it; 1e-9 before took one more position on
+    ROSS's fixture and moved eps by at most 2.6e-9, K and C by 1.1e-8). ``eq.solution`` is the THD
     film; ``friction_force`` and ``power_loss`` its own shear integral. ``isothermal``:
-    the isothermal :func:`~bearingfem.design.equilibrium` that starts the search (passed
-    in by it: this module lies below it).
+    (bearing, load, omega, model, eps_max=, **mesh options) -> (eps, gamma) of the
+    isothermal equilibrium that starts the search
+    (:func:`~bearingfem.design.equilibrium.isothermal_position`, passed in by
+    :func:`~bearingfem.design.equilibrium`: this module lies below it).
     """
     if model != "fem":
         raise ValueError(f"a thermal film needs model 'fem', got {model!r}")
@@ -184,9 +189,8 @@ def thd_equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
     iso_opts = dict(n_theta=mesh["n_theta"], n_z=mesh["n_z"], grooves=mesh["grooves"])
     if iso_model == "fem":
         iso_opts.update(element=mesh["element"], cavitation=mesh["cavitation"])
-    start = isothermal(cold, (wx, wy), omega, iso_model, eps_max=eps_max, **iso_opts)
-    q = np.array([start.eps * math.cos(start.state.gamma),
-                  start.eps * math.sin(start.state.gamma)])
+    eps0, gamma0 = isothermal(cold, (wx, wy), omega, iso_model, eps_max=eps_max, **iso_opts)
+    q = eps0 * np.array([math.cos(gamma0), math.sin(gamma0)])
     c = bearing.clearance
     target = -np.array([wx, wy])
     relaxation = options.get("relaxation", 1.0)
