@@ -92,8 +92,9 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int | None = 
         unless given, the element) is chosen to reach it and ``force_error`` reports the
         estimate (:mod:`bearingfem.accuracy`); n_theta and n_z are refused with it (the
         mesh is the search's), an ``element`` given is kept; without a ``grading`` of its
-        own a plain film from eps 0.3 on is searched on meshes graded toward its least
-        film (:func:`~bearingfem.accuracy.search_grading`; ``accuracy.grading`` names it)
+        own a plain or grooved film from eps 0.3 on is searched on meshes graded toward its
+        least film (:func:`~bearingfem.accuracy.search_grading`; ``accuracy.grading``
+        names it)
 
     Returns
     -------
