@@ -81,6 +81,8 @@ class Equilibrium:
 def load_vector(load, direction):
     if direction is None:
         try:
+            if isinstance(load, (str, bytes)):    # "10" would unpack as (1, 0)
+                raise TypeError
             wx, wy = (check_finite("load", v) for v in load)
         except (TypeError, ValueError) as err:
             if isinstance(err, ValueError) and str(err).startswith("load"):
