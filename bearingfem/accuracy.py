@@ -55,7 +55,7 @@ from .caches import kept
 from .errors import ConvergenceError
 
 __all__ = ["AccuracyRecord", "solve_to_tolerance", "refine_to_tolerance", "check_rtol",
-           "nominal_order", "force_difference", "SAFETY", "RTOL_RANGE", "clear_memo",
+           "check_no_mesh", "nominal_order", "force_difference", "SAFETY", "RTOL_RANGE", "clear_memo",
            "film_to_tolerance", "estimate_error", "estimate_at", "grid_multiple",
            "groove_multiple", "start_mesh", "search_grading", "GRADING_STRENGTH",
            "GRADED_FROM_EPS", "PLAIN_GRADING_STRENGTH", "PLAIN_GRADED_FROM_EPS",
@@ -134,6 +134,16 @@ def check_rtol(rtol, name: str = "rtol") -> float:
         raise ValueError(f"{name} must lie in [{lo:g}, {hi:g}] (a relative accuracy), "
                          f"got {rtol!r}")
     return v
+
+
+def check_no_mesh(n_theta=None, n_z=None, hint: str = "") -> None:
+    """ValueError naming n_theta and/or n_z when given (not None) beside ``rtol``: the
+    search's mesh would replace them unseen. ``hint`` ends the message."""
+    given = [k for k, v in (("n_theta", n_theta), ("n_z", n_z)) if v is not None]
+    if given:
+        raise ValueError(f"{' and '.join(given)} {'is' if len(given) == 1 else 'are'} not "
+                         f"taken with rtol (the mesh is chosen to reach rtol): give rtol or "
+                         f"the mesh, not both{hint}")
 
 
 def nominal_order(element: str, smooth: bool) -> float:

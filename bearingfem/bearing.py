@@ -38,8 +38,9 @@ def check_positive(name: str, value) -> float:
 #: turbine bearings): outside it a number was almost surely typed in the wrong unit.
 #: diameter [m], clearance ratio c/R, L/D, viscosity [Pa s] (gases to cold heavy oil),
 #: surface speed omega R [m/s], squeeze speed c |eps_dot| [m/s] (the journal centre's
-#: speed along the line of centres: the seed's short-bearing runs reach 0.2 m/s,
-#: |eps_dot| 2.3e3 1/s at c = 20 um and 250 rad/s; 10 m/s is 50 times that).
+#: speed along the line of centres: the seed's short-bearing runs reach |eps_dot| ~2e3 1/s
+#: at c = 20 um and 250 rad/s, c |eps_dot| ~0.05 m/s (the centre's whole speed, with the
+#: attitude's rate, 0.2 m/s); 10 m/s is 50 times the whole speed).
 PLAUSIBLE = dict(diameter=(0.5e-3, 5.0), clearance_ratio=(1e-5, 0.05),
                  length_ratio=(0.01, 10.0), viscosity=(1e-6, 10.0), surface_speed=300.0,
                  squeeze_speed=10.0)

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from .accuracy import film_to_tolerance, search_grading
+from .accuracy import check_no_mesh, film_to_tolerance, search_grading
 from .bearing import Bearing, JournalState
 from .fields import FilmFields
 from .routes import film_problem, solve
@@ -92,8 +92,9 @@ def solve_reynolds(bearing: Bearing, state: JournalState, n_theta: int | None = 
         unless given, the element) is chosen to reach it and ``force_error`` reports the
         estimate (:mod:`bearingfem.accuracy`); n_theta and n_z are refused with it (the
         mesh is the search's), an ``element`` given is kept; without a ``grading`` of its
-        own a plain film from eps 0.3 on is searched on meshes graded toward its least
-        film (:func:`~bearingfem.accuracy.search_grading`; ``accuracy.grading`` names it)
+        own a plain or grooved film from eps 0.3 on is searched on meshes graded toward its
+        least film (:func:`~bearingfem.accuracy.search_grading`; ``accuracy.grading``
+        names it)
 
     Returns
     -------
@@ -131,11 +132,7 @@ def _mesh(n_theta, n_z, rtol) -> tuple:
     ``rtol`` the search's own, so a mesh given beside it is refused by name rather than
     dropped (the default mesh then only checks the other options before any work)."""
     if rtol is not None:
-        given = [k for k, v in (("n_theta", n_theta), ("n_z", n_z)) if v is not None]
-        if given:
-            raise ValueError(f"{' and '.join(given)} {'is' if len(given) == 1 else 'are'} "
-                             f"not taken with rtol (the mesh is chosen to reach rtol): give "
-                             f"rtol or the mesh, not both")
+        check_no_mesh(n_theta, n_z)
         return 120, 20
     return (120 if n_theta is None else n_theta), (20 if n_z is None else n_z)
 

@@ -32,8 +32,8 @@ class FilmSolution:
     friction_force : shear force on the journal surface opposing positive omega [N]
     friction_torque : friction_force * R [N m]
     side_leakage : volume flow out of both axial ends [m^3/s], net (less what enters there)
-    side_outflow : what leaves through the ends alone [m^3/s] (FE and JFO films; None
-        where not given): a Reynolds-condition film's side leakage (no oil enters at its
+    side_outflow : what leaves through the ends alone [m^3/s] (FE films, and FV films
+        other than the JFO film; None where not given): a Reynolds-condition film's side leakage (no oil enters at its
         ends), a film fed at its ends (JFO with ``ambient_pressure``) loses this much where
         it is pressurised and draws as much in where it is cavitated (net: zero, steady)
     flow_in : flow fed by grooves or a supply line [m^3/s] (None where not defined)
@@ -101,7 +101,7 @@ class FilmSolution:
     thermal: object = field(default=None, repr=False)  # thermal film: its ThermalRecord
     force_error: float | None = None   # estimated relative error of |F| (solves with rtol)
     accuracy: object = field(default=None, repr=False)   # AccuracyRecord (solves with rtol)
-    side_outflow: float | None = None  # out of the ends alone [m^3/s] (FE and JFO films)
+    side_outflow: float | None = None  # out of the ends alone [m^3/s] (None: FV JFO)
 
     @property
     def asperity_load(self) -> float:

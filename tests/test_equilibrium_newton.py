@@ -137,3 +137,40 @@ def test_a_looser_xtol_is_not_reported_as_a_failure():
     tight = equilibrium(b, (0.0, -1000.0), 250.0, "fem", n_theta=48, n_z=8)
     loose = equilibrium(b, (0.0, -1000.0), 250.0, "fem", n_theta=48, n_z=8, xtol=1e-6)
     assert loose.eps == pytest.approx(tight.eps, rel=1e-5)
+
+
+def test_newton_still_raises_when_its_restarts_end_off_the_load(monkeypatch):
+    """Partials three times the film's tangent: each Newton run stops on a small step
+    (xtol 1e-6: below 1e-3 |q|) with the force still off the load (4.9e-3 of it at the end), above the
+    limit 1e-5; after NEWTON_RESTARTS restarts the equilibrium raises ConvergenceError
+    naming Newton, never returns its last iterate (fails with the last run's state
+    returned)."""
+    import sys
+    from dataclasses import replace
+
+    from bearingfem.models import FILM_MODELS, FilmModel, register
+    module = sys.modules["bearingfem.design.equilibrium"]
+    runs = []
+
+    def counted(*args, **kwargs):
+        runs.append(1)
+        return newton_module.newton_position(*args, **kwargs)
+    monkeypatch.setattr(module, "newton_position", counted)
+    short = film_model("short")
+
+    def partials(b, s):
+        d = short.force_derivatives(b, s)
+        scale = lambda v: tuple(3.0 * x for x in v)       # noqa: E731
+        return replace(d, d_eps=scale(d.d_eps), d_eps_dot=scale(d.d_eps_dot),
+                       d_wedge=scale(d.d_wedge))
+    register(FilmModel("short-far-off-tangent", lambda b, s: short.film_force(b, s),
+                       force_derivatives=partials))
+    b = Bearing(radius=0.01, length=0.02, clearance=20e-6, viscosity=0.0117)
+    try:
+        with pytest.raises(ConvergenceError, match="Newton's equilibrium") as err:
+            equilibrium(b, (0.0, -2000.0), 250.0, "short-far-off-tangent", xtol=1e-6,
+                        start=JournalState(0.3, omega=250.0, gamma=0.5))
+    finally:
+        del FILM_MODELS["short-far-off-tangent"]
+    assert "film force off the load" in str(err.value)
+    assert len(runs) == module.NEWTON_RESTARTS + 1 >= 2

@@ -70,7 +70,8 @@ def test_chart_grading_points_at_the_heavy_loads_minimum_film():
     assert -1.25 < angle < -0.9 and strength == 0.9
 
 
-@pytest.mark.parametrize("grading", [(0.0, 1.0), (0.0, -0.1), (math.nan, 0.5), "ab", (1.0,)])
+@pytest.mark.parametrize("grading", [(0.0, 1.0), (0.0, -0.1), (math.nan, 0.5), "ab", (1.0,),
+                                     "05", "00"])
 def test_bad_grading_raises_by_name(grading):
     with pytest.raises(ValueError, match="grading"):
         coefficients(B, JournalState(0.5, omega=OMEGA), "fem", grooves=GROOVES,

@@ -132,10 +132,10 @@ def test_one_groove_not_in_a_list_is_named(call):
         call(b, s, 5)
 
 
-@pytest.mark.parametrize("load", [(0.0, -100.0, 0.0), (100.0,), "100"])
+@pytest.mark.parametrize("load", [(0.0, -100.0, 0.0), (100.0,), "100", "10", b"10"])
 def test_a_load_not_of_two_components_is_named(load):
     """Old: a 3-vector load raised "too many values to unpack (expected 2)", naming
-    nothing."""
+    nothing; a two-character string ("10") was taken as the vector (1, 0) N."""
     b = Bearing(radius=0.01, length=0.004, clearance=20e-6, viscosity=0.0117)
     with pytest.raises(ValueError, match=r"load must be a vector \(W_x, W_y\) \[N\]"):
         equilibrium(b, load, 250.0, "short")

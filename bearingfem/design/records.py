@@ -37,9 +37,11 @@ class Equilibrium:
     pressure_max [Pa], side_leakage [m^3/s] (net, out of both ends), flow_in [m^3/s]:
         the film solution's, for the mesh models; None for the closed forms and the table.
         ``flow_in`` is what grooves or a supply line feed (FilmSolution.flow_in): in a
-        mass-conserving film (the full film, JFO) it equals the side leakage at
-        equilibrium; a Reynolds-condition film defines none (None): it makes up its own oil
-        in the cavity, so the side leakage alone is what a supply must replace
+        mass-conserving film (the full film with grooves, JFO) it equals the side leakage
+        at equilibrium (both zero for a JFO film fed at its ends alone); a
+        Reynolds-condition film defines none (None), nor does a full film without grooves:
+        the former makes up its own oil in the cavity, so the side leakage alone is what a
+        supply must replace
     solution : the :class:`FilmSolution` at equilibrium (mesh models) or None
     model, iterations : the film model and the number of film evaluations (a force, or a
         force with its partials: one film solve, grooved FE films too, whose d/dgamma is
@@ -79,6 +81,8 @@ class Equilibrium:
 def load_vector(load, direction):
     if direction is None:
         try:
+            if isinstance(load, (str, bytes)):    # "10" would unpack as (1, 0)
+                raise TypeError
             wx, wy = (check_finite("load", v) for v in load)
         except (TypeError, ValueError) as err:
             if isinstance(err, ValueError) and str(err).startswith("load"):

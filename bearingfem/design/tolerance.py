@@ -9,9 +9,9 @@ from typing import Callable
 
 import numpy as np
 
-from ..accuracy import (GRADED_FROM_EPS, GRADING_STRENGTH, check_rtol, estimate_at,
-                        groove_multiple, nominal_order, refine_to_tolerance, search_grading,
-                        start_mesh)
+from ..accuracy import (GRADED_FROM_EPS, GRADING_STRENGTH, check_no_mesh, check_rtol,
+                        estimate_at, groove_multiple, nominal_order, refine_to_tolerance,
+                        search_grading, start_mesh)
 from ..bearing import JournalState
 from ..models import FilmModel, film_model
 from ..routes import FilmProblem
@@ -53,12 +53,8 @@ def answer_to_tolerance(m: FilmModel, what: str, key, options: dict, evaluate: C
                          f"n_theta, n_z); model {m.name!r} has none")
     if rtol is not None:
         rtol = check_rtol(rtol)
-        given = [k for k in ("n_theta", "n_z") if options.get(k) is not None]
-        if given:    # the search's mesh would replace it unseen
-            raise ValueError(f"{' and '.join(given)} {'is' if len(given) == 1 else 'are'} "
-                             f"not taken with rtol (the mesh is chosen to reach rtol): give "
-                             f"rtol or the mesh, not both (estimate=True estimates the "
-                             f"error of a mesh given)")
+        check_no_mesh(options.get("n_theta"), options.get("n_z"),
+                      " (estimate=True estimates the error of a mesh given)")
     has_element = "element" in m.defaults
     element = options.get("element") if has_element else None
     given = element is not None

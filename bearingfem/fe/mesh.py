@@ -66,6 +66,8 @@ def check_grading(grading, angle: bool | None = None):
             raise ValueError(message)
         return strength
     try:
+        if isinstance(grading, (str, bytes)):     # "00" would unpack as (0, 0)
+            raise TypeError
         a, strength = (float(v) for v in grading)
     except (TypeError, ValueError):
         raise ValueError(message) from None
