@@ -19,8 +19,10 @@ the bush's part of the Jacobian, dR/dv dv/dP, applied
 matrix-free (the compliance by FFT per theta harmonic, GMRES preconditioned by the film's
 sparse LU and the compliance's leading modes by Woodbury); no dense matrix. With the
 summits' pressure p_a (Greenwood & Tripp) v solves its own small equation inside each
-evaluation, (tau + dt) v + w_n - C (p + p_a(w_n + dt v)) = 0 (Newton, GMRES on
-(tau + dt) I + dt C T^T K T, K the summits' stiffness: compliance products only).
+evaluation, (tau + dt) v + w_n - C (p + p_a(w_n + dt v)) = 0 (Newton on
+S = (tau + dt) I + dt C T^T K T, K the summits' stiffness; S^-1 here and in the Newton
+matrix's products by Woodbury on the nodes where K counts, :class:`_RateInverse`: the
+compliance's columns at those nodes, no dense N x N).
 
 Limits (tests/test_ehd_implicit.py): at dt = 0 the film is the states film at q = w_n
 (the same residual); its force is continuous across a commit (the committed (P, v) solve
@@ -243,7 +245,7 @@ class _StepFilm:
                 return None
             if float(np.max(np.abs(r), initial=0.0)) <= RATE_TOL * max(size, 1e-300):
                 return v, w, pa, k
-            v = v - self.solve_rate(r, k, RATE_KRYLOV, s)
+            v = v - _RateInverse(self, k, RATE_KRYLOV, s).solve(r)
         return None
 
     # -- the film ---------------------------------------------------------------------
