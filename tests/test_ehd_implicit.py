@@ -180,6 +180,38 @@ def test_the_predicted_start_lands_on_the_cold_starts_step():
     assert np.max(np.abs(predicted.pressure - cold.pressure)) < 1e-8 * np.max(cold.pressure)
 
 
+def test_a_new_time_takes_one_fresh_newton_matrix(monkeypatch):
+    """Commits at 1e-5 and 2e-5 s, then trials at 3e-5 s (the journal's eps moved by 0,
+    1e-6, 2e-6: the predictor and corrector) and at 4e-5 s: the first solve at each new
+    time factorises the Newton matrix once, at its start, and the solves at that time
+    take their chord steps on it (no matrix built): 4 chord steps at 3e-5 s and 2 for the
+    corrector's (measured; the matrix kept from the commits' time took 6 and 3), each
+    pressure the cold solve's to 1e-8. Fails when the matrix is kept across times
+    (planted: no factorisation at 3e-5 s, 6 and 3 chord steps)."""
+    from bearingfem.ehd import newton
+    built = []
+    at = newton._Factor.at.__func__
+    monkeypatch.setattr(newton._Factor, "at",
+                        classmethod(lambda cls, *a: built.append(1) or at(cls, *a)))
+    film, _, s0, _ = _heavy()
+    for t in (1e-5, 2e-5):
+        film.commit(_moving(s0, t), t)
+    snap = film.snapshot()
+    other, _, _, _ = _heavy()              # the cold solves: from the last commit's P
+    for t, d, most in ((3e-5, 0.0, 4), (3e-5, 1e-6, 2), (3e-5, 2e-6, 2)):
+        state = replace(_moving(s0, t), eps=_moving(s0, t).eps + d)
+        before = len(built)
+        _, res = film.solve(state, t)
+        assert len(built) - before == (1 if d == 0.0 else 0)
+        assert res.iterations <= most and film._factor_t == t
+        other.restore(replace(snap, committed=snap.committed[-1:]))
+        _, cold = other.solve(state, t)
+        assert np.max(np.abs(res.pressure - cold.pressure)) < 1e-8 * np.max(cold.pressure)
+    before = len(built)
+    film.solve(_moving(s0, 4e-5), 4e-5)
+    assert len(built) > before and film._factor_t == 4e-5
+
+
 def test_where_the_step_doubles_newton_converges_from_the_last_pressure():
     """Commits at 1e-5 and 2e-5 s, then the trial at 4e-5 s (the step doubled, as the
     integrator does) from the last commit's pressure: the semismooth Newton at s = 1
