@@ -41,6 +41,7 @@ is measured in the integrator's tolerance (docs/ehd-states.md).
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
+from functools import cached_property
 
 import numpy as np
 import scipy.linalg as la
@@ -102,11 +103,19 @@ class ImplicitSnapshot:
 class _Evaluated:
     """The film at one pressure: the EHD film built on its gap and rate, its evaluation,
     the bush's rate v [m/s] and deflection w [m] on the grid, the summits' nodal pressure
-    [Pa] and their stiffness -dp_a/dh [Pa/m] (None without roughness)."""
+    [Pa] and their stiffness -dp_a/dh [Pa/m] (None without roughness; from the nodal gap
+    ``summits_gap`` [m] when first asked: only a Newton matrix needs it)."""
 
-    def __init__(self, film, ev, v, w, contact, stiffness, gap, moving):
+    def __init__(self, film, ev, v, w, contact, summits_gap, gap, moving, roughness):
         self.film, self.ev, self.v, self.w = film, ev, v, w
-        self.contact, self.stiffness, self.gap, self.moving = contact, stiffness, gap, moving
+        self.contact, self.gap, self.moving = contact, gap, moving
+        self._h, self._roughness = summits_gap, roughness
+
+    @cached_property
+    def stiffness(self):
+        if self.contact is None:
+            return None
+        return -self._roughness.pressure_derivative(self._h)
 
 
 class _RateInverse:
@@ -196,6 +205,7 @@ class _StepFilm:
         self.w_n = run._w
         m = op.mesh
         self.th = op.qp_theta
+        self.cos_th = np.cos(self.th)
         self.gap_q0 = film_thickness(self.th, state.eps)      # rigid gap at the points
         self.gap_n0 = film_thickness(m.theta, state.eps)      # and at the nodes
         if run.profile is not None:          # the bore's crown or chamfer: fixed, no rate
@@ -230,8 +240,9 @@ class _StepFilm:
         return self.gap_n0 + self.shift.to_nodes(w) / self.c
 
     def rate(self, P: np.ndarray, s: float = 1.0) -> tuple | None:
-        """(v, w, p_a, -dp_a/dh) at nodal P and coupling s (w = w_n + s dt v): the bush's
-        rate solved (with summits, by Newton), or None where that solve fails."""
+        """(v, w, p_a, h) at nodal P and coupling s (w = w_n + s dt v; h [m] the nodal
+        gap the summits see, None without them): the bush's rate solved (with summits, by
+        Newton), or None where that solve fails."""
         p = self.scale * P
         rough = self.run.roughness
         step = s * self.dt
@@ -249,11 +260,11 @@ class _StepFilm:
             load = self.comply(p + pa)
             r = self.tau * v + self.w_n - load
             size = float(np.max(np.abs(self.tau * v) + np.abs(self.w_n) + np.abs(load)))
-            k = -rough.pressure_derivative(h)
             if not np.all(np.isfinite(r)):
                 return None
             if float(np.max(np.abs(r), initial=0.0)) <= RATE_TOL * max(size, 1e-300):
-                return v, w, pa, k
+                return v, w, pa, h
+            k = -rough.pressure_derivative(h)
             v = v - _RateInverse(self, k, RATE_KRYLOV, s).solve(r)
         return None
 
@@ -272,7 +283,7 @@ class _StepFilm:
         solved = self.rate(P, s)
         if solved is None:
             return None
-        v, w, pa, k = solved
+        v, w, pa, h = solved
         wn = self.shift.to_nodes(w)
         vn = self.shift.to_nodes(v)
         t = self.tables
@@ -280,7 +291,7 @@ class _StepFilm:
         # dH/dt at the points: the journal's squeeze, the bush's rate, and the deflection
         # (fixed in the bush) passing under the whirling film frame, gamma_dot dw/dalpha
         dw = np.einsum("jeq,je->eq", t.dphi[:, 0], wn[dofs]) / t.dx
-        rate = (state.eps_dot * np.cos(self.th) + state.gamma_dot * dw / c
+        rate = (state.eps_dot * self.cos_th + state.gamma_dot * dw / c
                 + op.qp_interp.dot(vn).reshape(self.th.shape) / c)
         gap_q = self.gap_q0 + op.at_quadrature(wn) / c
         gap_n = self.gap_n0 + wn / c
@@ -297,7 +308,7 @@ class _StepFilm:
         ev = film.evaluate(P, s)
         if ev is None:
             return None
-        return _Evaluated(film, ev, v, w, pa, k, gap_n, moving)
+        return _Evaluated(film, ev, v, w, pa, h, gap_n, moving, run.roughness)
 
     def evaluate(self, P: np.ndarray, s: float = 1.0):
         out = self.at(P, s)
