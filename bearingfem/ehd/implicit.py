@@ -32,7 +32,10 @@ with its squeeze by the backward difference (w - w_n) / dt.
 
 Each solve starts from the last two commits' pressures extrapolated linearly in t
 (:meth:`ImplicitStepEHD.start_pressure`): where the integrator's step grows, the last
-pressure is a whole step behind and Newton from it stalls where the gap closes.
+pressure is a whole step behind and Newton from it stalls where the gap closes. The first
+solve at a new time factorises the Newton matrix at that start; every solve at that time
+(the integrator's predictor, corrector and the commit) takes its chord steps on it
+(:meth:`ImplicitStepEHD._refactor`).
 
 The deflection's error is the backward Euler step's, O(dt) over the integrator's step,
 which the integrator's error control (on the journal alone) does not see: its convergence
