@@ -8,6 +8,7 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
+import scipy.linalg as la
 
 from bearingfem import ElasticJournalState, JournalState, solve_reynolds
 from bearingfem.contact import FlowFactors
@@ -115,8 +116,9 @@ def test_the_rate_inverse_is_the_dense_solve(dt, monkeypatch):
     carry (dt |C| k / (tau + dt) up to 0.41 at dt 1e-6 s, 4.3 at 1e-4 s: S far from
     (tau + dt) I): the residual |S y - b| within the asked 1e-6 |b| (measured 1e-12 to
     4e-12 with 25 of the 65 nodes that have a stiffness), and with all 65 in the set
-    (rtol 1e-300) the dense solve to 1e-12 (measured 6e-16). With the set capped
-    at 5 nodes the solve falls back to GMRES from the Woodbury solve and still meets 1e-6.
+    (rtol 1e-300) the dense solve to 1e-12 (measured 6e-16). Past the cap (5 nodes) the
+    solve is GMRES on S, and a set of the 5 stiffest fails the left-out nodes' bound and
+    falls back to GMRES from its solve: both meet 1e-6.
     Fails with the Woodbury's small matrix missing its tau I, or the left-out nodes' bound
     not checked (the capped set returned as it is)."""
     from bearingfem.ehd import implicit
@@ -138,7 +140,22 @@ def test_the_rate_inverse_is_the_dense_solve(dt, monkeypatch):
     monkeypatch.setattr(implicit, "WOODBURY_NODES", 5)
     inverse = implicit._RateInverse(step, k, 1e-6, 0.5)
     y = inverse.solve(b)
-    assert inverse.active.size == 5 and film.rate_fallbacks == 2
+    assert inverse.capped and inverse.U is None
+    r = np.linalg.norm(S @ y - b, axis=0) / np.linalg.norm(b, axis=0)
+    assert np.all(r <= 1e-6), r
+    # the left-out nodes' bound: a set of the stiffest 5 (planted by hand) fails it and
+    # falls back to GMRES from its solve
+    monkeypatch.setattr(implicit, "WOODBURY_NODES", 128)
+    inverse = implicit._RateInverse(step, k, 1e-6, 0.5)
+    keep = np.argsort(k)[-5:]
+    inverse.active = keep
+    inverse.left_out = np.max(np.delete(k, keep)) * 0.5 * dt * film.compliance_norm / step.tau
+    unit = np.zeros((k.size, 5))
+    unit[keep, np.arange(5)] = 1.0
+    inverse.U = 0.5 * dt * film.compliance.on_grid(step.shift.to_grid(unit)) * k[keep]
+    inverse.lu = la.lu_factor(step.tau * np.eye(5) + step.shift.to_nodes(inverse.U)[keep])
+    y = inverse.solve(b)
+    assert film.rate_fallbacks == 2
     r = np.linalg.norm(S @ y - b, axis=0) / np.linalg.norm(b, axis=0)
     assert np.all(r <= 1e-6), r
 

@@ -19,10 +19,10 @@ the bush's part of the Jacobian, dR/dv dv/dP, applied
 matrix-free (the compliance by FFT per theta harmonic, GMRES preconditioned by the film's
 sparse LU and the compliance's leading modes by Woodbury); no dense matrix. With the
 summits' pressure p_a (Greenwood & Tripp) v solves its own small equation inside each
-evaluation, (tau + dt) v + w_n - C (p + p_a(w_n + dt v)) = 0 (Newton on
-S = (tau + dt) I + dt C T^T K T, K the summits' stiffness; S^-1 here and in the Newton
-matrix's products by Woodbury on the nodes where K counts, :class:`_RateInverse`: the
-compliance's columns at those nodes, no dense N x N).
+evaluation, (tau + dt) v + w_n - C (p + p_a(w_n + dt v)) = 0 (Newton, GMRES on
+S = (tau + dt) I + dt C T^T K T, K the summits' stiffness: compliance products only); in
+the Newton matrix's products S^-1 is by Woodbury on the nodes where K counts,
+:class:`_RateInverse`: the compliance's columns at those nodes, built once a matrix.
 
 Limits (tests/test_ehd_implicit.py): at dt = 0 the film is the states film at q = w_n
 (the same residual); its force is continuous across a commit (the committed (P, v) solve
@@ -86,9 +86,9 @@ PRODUCT_KRYLOV = 1e-6
 #: CPU -16 %; at 48 x 4 the same to the timing's scatter)
 CHORD_STEPS = 12
 CHORD_RATE = 0.9
-#: The most nodes :class:`_RateInverse` takes in its Woodbury set (an (m, m) LU per Newton
-#: matrix); past it the largest stiffnesses, and GMRES from that solve where the rest count
-WOODBURY_NODES = 1500
+#: The most nodes :class:`_RateInverse` takes in its Woodbury set (m compliance columns and
+#: an (m, m) LU per Newton matrix); past it, GMRES on S
+WOODBURY_NODES = 128
 
 
 @dataclass(frozen=True)
@@ -128,10 +128,16 @@ class _RateInverse:
     S_A^-1 = (I - U (tau' I + V^T U)^-1 V^T) / tau' with U = dt C T^T E_A K_A (the
     compliance's m columns, one batched product) and V^T = E_A^T T. The nodes left out
     leave the residual r = -dt C T^T K_r T y, |r| <= dt |C| max(k_r) |y|: where that bound
-    passes ``rtol`` |b| the solve is y = S_A^-1 b, else GMRES on S from it (as before).
+    passes ``rtol`` |b| the solve is y = S_A^-1 b, else GMRES on S from it. Past
+    :data:`WOODBURY_NODES` nodes in the set no Woodbury is built: GMRES on S from
+    b / (tau + dt), as before.
     Why: GMRES on S inside every Newton-matrix product (about 4 compliance products and
-    the Krylov method's overhead) took half the implicit film's run; the Woodbury solve is
-    a small LU's back substitution and an (N, m) product."""
+    the Krylov method's overhead) took half the implicit film's run at 48 x 4; the Woodbury
+    solve is a small LU's back substitution and an (N, m) product. It is capped because
+    its build (m compliance columns, an (m, m) LU) and its (N, m) product grow with m:
+    uncapped (up to 546 nodes), the seed pin's tenth of a turn at 192 x 16 took 2.2x the
+    CPU of GMRES on S; capped at 128 with GMRES preconditioned by the 128 stiffest, an S
+    solve took 0.86 ms against GMRES's 0.6 ms there."""
 
     def __init__(self, step: "_StepFilm", stiffness, rtol: float, s: float = 1.0):
         self.step, self.stiffness, self.rtol, self.s = step, stiffness, rtol, s
@@ -142,12 +148,11 @@ class _RateInverse:
         gain = dt * step.run.compliance_norm / self.tau
         k = np.asarray(stiffness, float)
         active = k * gain > 0.1 * rtol
-        if np.count_nonzero(active) > WOODBURY_NODES:   # too many: the largest only
-            active = k >= np.sort(k)[-WOODBURY_NODES]
         self.active = np.flatnonzero(active)
         self.left_out = gain * float(np.max(k[~active], initial=0.0))
         m = self.active.size
-        if m == 0:
+        self.capped = m > WOODBURY_NODES
+        if m == 0 or self.capped:
             self.U = None
             return
         unit = np.zeros((k.size, m))
@@ -175,6 +180,8 @@ class _RateInverse:
         return self._checked(b, y)
 
     def _checked(self, b, y):
+        if self.capped:
+            return self.step.solve_rate(b, self.stiffness, self.rtol, self.s)
         if self.left_out * self.tau * np.linalg.norm(y) <= self.rtol * np.linalg.norm(b):
             return y
         self.step.run.rate_fallbacks += 1
@@ -268,7 +275,7 @@ class _StepFilm:
             if float(np.max(np.abs(r), initial=0.0)) <= RATE_TOL * max(size, 1e-300):
                 return v, w, pa, h
             k = -rough.pressure_derivative(h)
-            v = v - _RateInverse(self, k, RATE_KRYLOV, s).solve(r)
+            v = v - self.solve_rate(r, k, RATE_KRYLOV, s)
         return None
 
     # -- the film ---------------------------------------------------------------------
