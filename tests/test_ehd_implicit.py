@@ -75,7 +75,7 @@ def test_the_force_is_continuous_across_a_commit():
 @pytest.mark.parametrize("rough", [False, True, "flow"])
 def test_the_newton_matrix_is_the_residuals_derivative(rough):
     """dR/dP = J (gap and rate held) + (dR/dv) (dv/dP), the bush's part matrix-free (its
-    rate through the compliance by FFT; with summits, S^-1 by GMRES), at dt = 1e-6 s and
+    rate through the compliance by FFT; with summits, S^-1 by Woodbury on their nodes), at dt = 1e-6 s and
     s = 1 and 0.5, along a random direction, against central differences of the residual
     (step 1e-6 max |P|): to 1e-8 of the largest entry (measured 1e-13 smooth and 1e-12
     rough; the held-gap J alone is 7e-4 off). Fails with the gap's step dt dropped from
