@@ -8,6 +8,7 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
+import scipy.linalg as la
 
 from bearingfem import ElasticJournalState, JournalState, solve_reynolds
 from bearingfem.contact import FlowFactors
@@ -74,7 +75,7 @@ def test_the_force_is_continuous_across_a_commit():
 @pytest.mark.parametrize("rough", [False, True, "flow"])
 def test_the_newton_matrix_is_the_residuals_derivative(rough):
     """dR/dP = J (gap and rate held) + (dR/dv) (dv/dP), the bush's part matrix-free (its
-    rate through the compliance by FFT; with summits, S^-1 by GMRES), at dt = 1e-6 s and
+    rate through the compliance by FFT; with summits, S^-1 by Woodbury on their nodes), at dt = 1e-6 s and
     s = 1 and 0.5, along a random direction, against central differences of the residual
     (step 1e-6 max |P|): to 1e-8 of the largest entry (measured 1e-13 smooth and 1e-12
     rough; the held-gap J alone is 7e-4 off). Fails with the gap's step dt dropped from
@@ -98,6 +99,65 @@ def test_the_newton_matrix_is_the_residuals_derivative(rough):
         fd = (step.evaluate(P + h * d, s).residual - step.evaluate(P - h * d, s).residual) / (2 * h)
         an = J @ d + U.apply(d)
         assert np.max(np.abs(an - fd)[free]) < 1e-8 * np.max(np.abs(fd[free]))
+
+
+def _dense_rate_matrix(step, stiffness, s=1.0):
+    """S = (tau + dt) I + s dt C T^T K T, dense (C from the compliance's columns)."""
+    n = step.run.size
+    C = step.run.compliance.on_grid(np.eye(n))
+    T = step.frame.left.toarray()
+    return step.tau * np.eye(n) + s * step.dt * C @ T.T @ (stiffness[:, None] * T)
+
+
+@pytest.mark.parametrize("dt", [1e-6, 1e-4])
+def test_the_rate_inverse_is_the_dense_solve(dt, monkeypatch):
+    """S^-1 of the Newton matrix's products (Woodbury on the nodes whose summits'
+    stiffness counts) against a dense solve of S, at the heavy state where the summits
+    carry (dt |C| k / (tau + dt) up to 0.41 at dt 1e-6 s, 4.3 at 1e-4 s: S far from
+    (tau + dt) I): the residual |S y - b| within the asked 1e-6 |b| (measured 1e-12 to
+    4e-12 with 25 of the 65 nodes that have a stiffness), and with all 65 in the set
+    (rtol 1e-300) the dense solve to 1e-12 (measured 6e-16). Past the cap (5 nodes) the
+    solve is GMRES on S, and a set of the 5 stiffest fails the left-out nodes' bound and
+    falls back to GMRES from its solve: both meet 1e-6.
+    Fails with the Woodbury's small matrix missing its tau I, or the left-out nodes' bound
+    not checked (the capped set returned as it is)."""
+    from bearingfem.ehd import implicit
+    film, _, state, _ = _heavy()
+    film.force(state, 1e-7)
+    step = film.step_film(state, dt)
+    k = step.at(film._P).stiffness
+    S = _dense_rate_matrix(step, k, 0.5)
+    b = np.random.default_rng(1).uniform(-1.0, 1.0, (film.size, 2)) * 1e-9
+    gain = np.max(k) * dt * film.compliance_norm / step.tau
+    assert gain > 0.05
+    for rtol in (1e-6, 1e-300):
+        inverse = implicit._RateInverse(step, k, rtol, 0.5)
+        y = inverse.solve(b)
+        assert inverse.active.size > 0 and film.rate_fallbacks == 0
+        r = np.linalg.norm(S @ y - b, axis=0) / np.linalg.norm(b, axis=0)
+        assert np.all(r <= max(rtol, 1e-12)), r
+    assert np.allclose(y, np.linalg.solve(S, b), rtol=0, atol=1e-12 * np.max(np.abs(y)))
+    monkeypatch.setattr(implicit, "WOODBURY_NODES", 5)
+    inverse = implicit._RateInverse(step, k, 1e-6, 0.5)
+    y = inverse.solve(b)
+    assert inverse.capped and inverse.U is None
+    r = np.linalg.norm(S @ y - b, axis=0) / np.linalg.norm(b, axis=0)
+    assert np.all(r <= 1e-6), r
+    # the left-out nodes' bound: a set of the stiffest 5 (planted by hand) fails it and
+    # falls back to GMRES from its solve
+    monkeypatch.setattr(implicit, "WOODBURY_NODES", 128)
+    inverse = implicit._RateInverse(step, k, 1e-6, 0.5)
+    keep = np.argsort(k)[-5:]
+    inverse.active = keep
+    inverse.left_out = np.max(np.delete(k, keep)) * 0.5 * dt * film.compliance_norm / step.tau
+    unit = np.zeros((k.size, 5))
+    unit[keep, np.arange(5)] = 1.0
+    inverse.U = 0.5 * dt * film.compliance.on_grid(step.shift.to_grid(unit)) * k[keep]
+    inverse.lu = la.lu_factor(step.tau * np.eye(5) + step.shift.to_nodes(inverse.U)[keep])
+    y = inverse.solve(b)
+    assert film.rate_fallbacks == 2
+    r = np.linalg.norm(S @ y - b, axis=0) / np.linalg.norm(b, axis=0)
+    assert np.all(r <= 1e-6), r
 
 
 def _moving(s0, t):
@@ -135,6 +195,38 @@ def test_the_predicted_start_lands_on_the_cold_starts_step():
     (P1, P2), start, predicted, cold = _predicted_and_cold(3e-5)
     assert np.allclose(start, np.maximum(P2 + (P2 - P1), 0.0), rtol=0, atol=1e-12 * P2.max())
     assert np.max(np.abs(predicted.pressure - cold.pressure)) < 1e-8 * np.max(cold.pressure)
+
+
+def test_a_new_time_takes_one_fresh_newton_matrix(monkeypatch):
+    """Commits at 1e-5 and 2e-5 s, then trials at 3e-5 s (the journal's eps moved by 0,
+    1e-6, 2e-6: the predictor and corrector) and at 4e-5 s: the first solve at each new
+    time factorises the Newton matrix once, at its start, and the solves at that time
+    take their chord steps on it (no matrix built): 4 chord steps at 3e-5 s and 2 for the
+    corrector's (measured; the matrix kept from the commits' time took 6 and 3), each
+    pressure the cold solve's to 1e-8. Fails when the matrix is kept across times
+    (planted: no factorisation at 3e-5 s, 6 and 3 chord steps)."""
+    from bearingfem.ehd import newton
+    built = []
+    at = newton._Factor.at.__func__
+    monkeypatch.setattr(newton._Factor, "at",
+                        classmethod(lambda cls, *a: built.append(1) or at(cls, *a)))
+    film, _, s0, _ = _heavy()
+    for t in (1e-5, 2e-5):
+        film.commit(_moving(s0, t), t)
+    snap = film.snapshot()
+    other, _, _, _ = _heavy()              # the cold solves: from the last commit's P
+    for t, d, most in ((3e-5, 0.0, 4), (3e-5, 1e-6, 2), (3e-5, 2e-6, 2)):
+        state = replace(_moving(s0, t), eps=_moving(s0, t).eps + d)
+        before = len(built)
+        _, res = film.solve(state, t)
+        assert len(built) - before == (1 if d == 0.0 else 0)
+        assert res.iterations <= most and film._factor_t == t
+        other.restore(replace(snap, committed=snap.committed[-1:]))
+        _, cold = other.solve(state, t)
+        assert np.max(np.abs(res.pressure - cold.pressure)) < 1e-8 * np.max(cold.pressure)
+    before = len(built)
+    film.solve(_moving(s0, 4e-5), 4e-5)
+    assert len(built) > before and film._factor_t == 4e-5
 
 
 def test_where_the_step_doubles_newton_converges_from_the_last_pressure():

@@ -20,7 +20,9 @@ matrix-free (the compliance by FFT per theta harmonic, GMRES preconditioned by t
 sparse LU and the compliance's leading modes by Woodbury); no dense matrix. With the
 summits' pressure p_a (Greenwood & Tripp) v solves its own small equation inside each
 evaluation, (tau + dt) v + w_n - C (p + p_a(w_n + dt v)) = 0 (Newton, GMRES on
-(tau + dt) I + dt C T^T K T, K the summits' stiffness: compliance products only).
+S = (tau + dt) I + dt C T^T K T, K the summits' stiffness: compliance products only); in
+the Newton matrix's products S^-1 is by Woodbury on the nodes where K counts,
+:class:`_RateInverse`: the compliance's columns at those nodes, built once a matrix.
 
 Limits (tests/test_ehd_implicit.py): at dt = 0 the film is the states film at q = w_n
 (the same residual); its force is continuous across a commit (the committed (P, v) solve
@@ -30,7 +32,10 @@ with its squeeze by the backward difference (w - w_n) / dt.
 
 Each solve starts from the last two commits' pressures extrapolated linearly in t
 (:meth:`ImplicitStepEHD.start_pressure`): where the integrator's step grows, the last
-pressure is a whole step behind and Newton from it stalls where the gap closes.
+pressure is a whole step behind and Newton from it stalls where the gap closes. The first
+solve at a new time factorises the Newton matrix at that start; every solve at that time
+(the integrator's predictor, corrector and the commit) takes its chord steps on it
+(:meth:`ImplicitStepEHD._refactor`).
 
 The deflection's error is the backward Euler step's, O(dt) over the integrator's step,
 which the integrator's error control (on the journal alone) does not see: its convergence
@@ -39,8 +44,10 @@ is measured in the integrator's tolerance (docs/ehd-states.md).
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
+from functools import cached_property
 
 import numpy as np
+import scipy.linalg as la
 import scipy.sparse as sp
 from scipy.sparse.linalg import LinearOperator, gmres
 
@@ -57,7 +64,7 @@ from ..scales import force_factor
 from .coupling import ehd_film, jacobian_tables
 from .film_compliance import BushJacobian
 from .grid import FrameShift, node_grid
-from .newton import EHDResult, _newton, continuation, warm_solve
+from .newton import EHDResult, _Factor, _merit, _newton, continuation, warm_solve
 from .states import STEP_TOLERANCE, TOL, full_bush_setup
 
 __all__ = ["ImplicitStepEHD", "ImplicitSnapshot"]
@@ -70,6 +77,18 @@ RATE_KRYLOV = 1e-10
 #: The GMRES tolerance of S^-1 inside the Newton matrix's products (those solved to
 #: STEP_TOLERANCE: an inexact Newton, converged by the film's residual test)
 PRODUCT_KRYLOV = 1e-6
+#: The chord steps of a solve (on the Newton matrix at its time's first start): at most
+#: CHORD_STEPS, each to cut max |Phi| by CHORD_RATE, before Newton takes over. Why not
+#: newton's 6 and 0.3: on finer meshes more nodes leave or join the cavity in a step and
+#: the first chord steps cut the residual only 0.4-0.9-fold while the held rows settle;
+#: Newton then built a Jacobian per step (the seed pin's first 1 % of a turn at 192 x 16:
+#: 311 Newton matrices with 0.3 and 6, 191 with 0.9 and 12, the same evaluations to 1 %,
+#: CPU -16 %; at 48 x 4 the same to the timing's scatter)
+CHORD_STEPS = 12
+CHORD_RATE = 0.9
+#: The most nodes :class:`_RateInverse` takes in its Woodbury set (m compliance columns and
+#: an (m, m) LU per Newton matrix); past it, GMRES on S
+WOODBURY_NODES = 128
 
 
 @dataclass(frozen=True)
@@ -87,11 +106,86 @@ class ImplicitSnapshot:
 class _Evaluated:
     """The film at one pressure: the EHD film built on its gap and rate, its evaluation,
     the bush's rate v [m/s] and deflection w [m] on the grid, the summits' nodal pressure
-    [Pa] and their stiffness -dp_a/dh [Pa/m] (None without roughness)."""
+    [Pa] and their stiffness -dp_a/dh [Pa/m] (None without roughness; from the nodal gap
+    ``summits_gap`` [m] when first asked: only a Newton matrix needs it)."""
 
-    def __init__(self, film, ev, v, w, contact, stiffness, gap, moving):
+    def __init__(self, film, ev, v, w, contact, summits_gap, gap, moving, roughness):
         self.film, self.ev, self.v, self.w = film, ev, v, w
-        self.contact, self.stiffness, self.gap, self.moving = contact, stiffness, gap, moving
+        self.contact, self.gap, self.moving = contact, gap, moving
+        self._h, self._roughness = summits_gap, roughness
+
+    @cached_property
+    def stiffness(self):
+        if self.contact is None:
+            return None
+        return -self._roughness.pressure_derivative(self._h)
+
+
+class _RateInverse:
+    """S^-1, S = (tau + dt) I + dt C T^T K T, by Woodbury on the nodes whose summits'
+    stiffness counts at ``rtol``: the set A = {i : dt |C| k_i / (tau + dt) > rtol / 10}
+    (|C| the compliance's 2-norm, T a blend of two shifts: |T| <= 1), so
+    S_A^-1 = (I - U (tau' I + V^T U)^-1 V^T) / tau' with U = dt C T^T E_A K_A (the
+    compliance's m columns, one batched product) and V^T = E_A^T T. The nodes left out
+    leave the residual r = -dt C T^T K_r T y, |r| <= dt |C| max(k_r) |y|: where that bound
+    passes ``rtol`` |b| the solve is y = S_A^-1 b, else GMRES on S from it. Past
+    :data:`WOODBURY_NODES` nodes in the set no Woodbury is built: GMRES on S from
+    b / (tau + dt), as before.
+    Why: GMRES on S inside every Newton-matrix product (about 4 compliance products and
+    the Krylov method's overhead) took half the implicit film's run at 48 x 4; the Woodbury
+    solve is a small LU's back substitution and an (N, m) product. It is capped because
+    its build (m compliance columns, an (m, m) LU) and its (N, m) product grow with m:
+    uncapped (up to 546 nodes), the seed pin's tenth of a turn at 192 x 16 took 2.2x the
+    CPU of GMRES on S; capped at 128 with GMRES preconditioned by the 128 stiffest, an S
+    solve took 0.86 ms against GMRES's 0.6 ms there."""
+
+    def __init__(self, step: "_StepFilm", stiffness, rtol: float, s: float = 1.0):
+        self.step, self.stiffness, self.rtol, self.s = step, stiffness, rtol, s
+        self.tau, dt = step.tau, s * step.dt
+        self.trivial = stiffness is None or dt == 0.0 or not np.any(stiffness)
+        if self.trivial:
+            return
+        gain = dt * step.run.compliance_norm / self.tau
+        k = np.asarray(stiffness, float)
+        active = k * gain > 0.1 * rtol
+        self.active = np.flatnonzero(active)
+        self.left_out = gain * float(np.max(k[~active], initial=0.0))
+        m = self.active.size
+        self.capped = m > WOODBURY_NODES
+        if m == 0 or self.capped:
+            self.U = None
+            return
+        unit = np.zeros((k.size, m))
+        unit[self.active, np.arange(m)] = 1.0
+        CTE = step.run.compliance.on_grid(step.shift.to_grid(unit))        # (grid, m)
+        self.U = (dt * CTE) * k[self.active][None, :]
+        small = self.tau * np.eye(m) + step.shift.to_nodes(self.U)[self.active]
+        self.lu = la.lu_factor(small, check_finite=False)
+
+    def woodbury(self, b: np.ndarray) -> np.ndarray:
+        """S_A^-1 b (the Woodbury set's inverse, unchecked: a preconditioner's)."""
+        if self.trivial or self.U is None:
+            return b / self.tau
+        z = la.lu_solve(self.lu, self.step.shift.to_nodes(b)[self.active],
+                        check_finite=False)
+        return (b - self.U @ z) / self.tau
+
+    def solve(self, b: np.ndarray) -> np.ndarray:
+        """y with S y = b to ``rtol`` (|S y - b| <= rtol |b|); b (grid,) or (grid, k)."""
+        if self.trivial:
+            return b / self.tau
+        y = self.woodbury(b)
+        if b.ndim == 2:
+            return np.column_stack([self._checked(b[:, j], y[:, j]) for j in range(b.shape[1])])
+        return self._checked(b, y)
+
+    def _checked(self, b, y):
+        if self.capped:
+            return self.step.solve_rate(b, self.stiffness, self.rtol, self.s)
+        if self.left_out * self.tau * np.linalg.norm(y) <= self.rtol * np.linalg.norm(b):
+            return y
+        self.step.run.rate_fallbacks += 1
+        return self.step.solve_rate(b, self.stiffness, self.rtol, self.s, x0=y)
 
 
 class _RateCompliance:
@@ -100,10 +194,11 @@ class _RateCompliance:
 
     def __init__(self, step: "_StepFilm", stiffness, s: float):
         self.step, self.stiffness, self.s = step, stiffness, s
+        self.inverse = _RateInverse(step, stiffness, PRODUCT_KRYLOV, s)
 
     def apply(self, x: np.ndarray) -> np.ndarray:
         f = self.step
-        return f.solve_rate(f.comply(f.scale * x), self.stiffness, PRODUCT_KRYLOV, self.s)
+        return self.inverse.solve(f.comply(f.scale * x))
 
 
 class _StepFilm:
@@ -120,6 +215,7 @@ class _StepFilm:
         self.w_n = run._w
         m = op.mesh
         self.th = op.qp_theta
+        self.cos_th = np.cos(self.th)
         self.gap_q0 = film_thickness(self.th, state.eps)      # rigid gap at the points
         self.gap_n0 = film_thickness(m.theta, state.eps)      # and at the nodes
         if run.profile is not None:          # the bore's crown or chamfer: fixed, no rate
@@ -133,9 +229,10 @@ class _StepFilm:
         """C T^T p: the grid's quasi-static deflection [m] under nodal pressure [Pa]."""
         return self.run.compliance.on_grid(self.shift.to_grid(p_nodes))
 
-    def solve_rate(self, b: np.ndarray, stiffness, rtol: float, s: float = 1.0) -> np.ndarray:
+    def solve_rate(self, b: np.ndarray, stiffness, rtol: float, s: float = 1.0,
+                   x0=None) -> np.ndarray:
         """y with S y = b, S = (tau + dt) I + s dt C T^T K T (K = diag(``stiffness``) at
-        the nodes; None: S = (tau + dt) I)."""
+        the nodes; None: S = (tau + dt) I), by GMRES from ``x0`` (None: b / (tau + dt))."""
         if stiffness is None or self.dt == 0.0 or s == 0.0 or not np.any(stiffness):
             return b / self.tau
         n = b.size
@@ -143,7 +240,8 @@ class _StepFilm:
 
         def S(y):
             return tau * y + dt * self.comply(stiffness * self.shift.to_nodes(y))
-        y, _ = gmres(LinearOperator((n, n), matvec=S, dtype=float), b, x0=b / tau,
+        y, _ = gmres(LinearOperator((n, n), matvec=S, dtype=float), b,
+                     x0=b / tau if x0 is None else x0,
                      rtol=rtol, atol=0.0, restart=60, maxiter=20)
         return y
 
@@ -152,8 +250,9 @@ class _StepFilm:
         return self.gap_n0 + self.shift.to_nodes(w) / self.c
 
     def rate(self, P: np.ndarray, s: float = 1.0) -> tuple | None:
-        """(v, w, p_a, -dp_a/dh) at nodal P and coupling s (w = w_n + s dt v): the bush's
-        rate solved (with summits, by Newton), or None where that solve fails."""
+        """(v, w, p_a, h) at nodal P and coupling s (w = w_n + s dt v; h [m] the nodal
+        gap the summits see, None without them): the bush's rate solved (with summits, by
+        Newton), or None where that solve fails."""
         p = self.scale * P
         rough = self.run.roughness
         step = s * self.dt
@@ -171,11 +270,11 @@ class _StepFilm:
             load = self.comply(p + pa)
             r = self.tau * v + self.w_n - load
             size = float(np.max(np.abs(self.tau * v) + np.abs(self.w_n) + np.abs(load)))
-            k = -rough.pressure_derivative(h)
             if not np.all(np.isfinite(r)):
                 return None
             if float(np.max(np.abs(r), initial=0.0)) <= RATE_TOL * max(size, 1e-300):
-                return v, w, pa, k
+                return v, w, pa, h
+            k = -rough.pressure_derivative(h)
             v = v - self.solve_rate(r, k, RATE_KRYLOV, s)
         return None
 
@@ -194,7 +293,7 @@ class _StepFilm:
         solved = self.rate(P, s)
         if solved is None:
             return None
-        v, w, pa, k = solved
+        v, w, pa, h = solved
         wn = self.shift.to_nodes(w)
         vn = self.shift.to_nodes(v)
         t = self.tables
@@ -202,7 +301,7 @@ class _StepFilm:
         # dH/dt at the points: the journal's squeeze, the bush's rate, and the deflection
         # (fixed in the bush) passing under the whirling film frame, gamma_dot dw/dalpha
         dw = np.einsum("jeq,je->eq", t.dphi[:, 0], wn[dofs]) / t.dx
-        rate = (state.eps_dot * np.cos(self.th) + state.gamma_dot * dw / c
+        rate = (state.eps_dot * self.cos_th + state.gamma_dot * dw / c
                 + op.qp_interp.dot(vn).reshape(self.th.shape) / c)
         gap_q = self.gap_q0 + op.at_quadrature(wn) / c
         gap_n = self.gap_n0 + wn / c
@@ -219,7 +318,7 @@ class _StepFilm:
         ev = film.evaluate(P, s)
         if ev is None:
             return None
-        return _Evaluated(film, ev, v, w, pa, k, gap_n, moving)
+        return _Evaluated(film, ev, v, w, pa, h, gap_n, moving, run.roughness)
 
     def evaluate(self, P: np.ndarray, s: float = 1.0):
         out = self.at(P, s)
@@ -252,8 +351,11 @@ class _StepFilm:
         coupling = sp.csr_matrix(coupling)
         low = self.run._low
         V = (self.scale / self.tau) * self.shift.to_nodes(low.right * low.singular)
-        bush = BushJacobian(coupling, _RateCompliance(self, out.stiffness, s),
-                            (np.asarray(coupling @ low.left), V), STEP_TOLERANCE)
+        rate = _RateCompliance(self, out.stiffness, s)
+        # the preconditioner's low-rank part with S^-1 (the summits' stiffness) on the
+        # leading modes: (tau + dt) S_A^-1 L, not L alone
+        left = self.tau * rate.inverse.woodbury(low.left)
+        bush = BushJacobian(coupling, rate, (np.asarray(coupling @ left), V), STEP_TOLERANCE)
         return J, bush, None
 
 
@@ -295,10 +397,15 @@ class ImplicitStepEHD(StatelessRun):
         self.size = n
         self.steps = 0
         self.evaluations = 0             # film evaluations so far (a benchmark's record)
+        self.rate_fallbacks = 0          # S^-1 solves that fell back to GMRES (a record)
+        # |C|_2 (the largest singular value of the harmonic blocks), a bound with margin
+        # for the banded blocks' relative error
+        self.compliance_norm = float(np.max(self._low.singular)) * (1.0 + 1e-6)
         self.t = 0.0
         self._w = np.zeros(n)            # w_n [m] on the bush grid
         self._P, self._factor, self._frame = None, [], None
         self._P_t = None                 # the time [s] of the last solve's pressure
+        self._factor_t = None            # the time [s] of the kept Newton matrix's film
         self._committed = ()             # (t, P) of the last two commits, older first
         self._whirls = {}
 
@@ -330,15 +437,19 @@ class ImplicitStepEHD(StatelessRun):
         return _StepFilm(self, state, dt, frame)
 
     def _solve(self, film: _StepFilm) -> EHDResult:
-        """Chord steps on the last factorisation, then Newton, from the last solve's
-        pressure; where those fail, the continuation in s (the deflection's step) from the
+        """Chord steps on the Newton matrix at this time's first start (:meth:`_refactor`),
+        then Newton, from the start of :meth:`start_pressure`; where those fail, the continuation in s (the deflection's step) from the
         s = 0 film (the states film at q = w_n) solved from that pressure, else from none."""
         free = film.op.mesh.free
         n = film.op.mesh.ndofs
         starts = [np.zeros(n)]
         if self._P is not None and self._P.shape == (n,):
-            result, its = warm_solve(film, self.start_pressure(film.dt + self.t, n), free,
-                                     TOL, self._factor)
+            t = film.dt + self.t
+            start = self.start_pressure(t, n)
+            if self._factor_t != t:
+                self._refactor(film, start, free, t)
+            result, its = warm_solve(film, start, free, TOL, self._factor, CHORD_STEPS,
+                                     CHORD_RATE)
             if result is not None:
                 return result
             starts.insert(0, self._P.copy())
@@ -352,6 +463,25 @@ class ImplicitStepEHD(StatelessRun):
                                                  self._factor),
                             out[0], 0.0, 1.0, 1.0, 1e-3, "implicit-step EHD film",
                             "coupling s", "reduce the load or refine the mesh")
+
+    def _refactor(self, film: _StepFilm, P: np.ndarray, free, t: float) -> None:
+        """The Newton matrix at the start ``P`` of the first solve at a new time ``t``,
+        kept for the chord steps of every solve at ``t`` (the integrator's predictor,
+        corrector and the commit share t, hence dt and tau + dt). Why: a matrix kept from
+        an earlier time, at another tau + dt (the bush's rate, the Newton matrix's largest
+        part, scales as 1 / (tau + dt)), cut the residual ~30-fold a chord step where a
+        fresh one cuts it by GMRES's 1e-3: 3.8 against 2.6 chord steps a trial solve and
+        1 in 6 chords stalled to Newton (the seed pin's first 2 % of a turn, 48 x 4).
+        Where the start's film fails or its matrix is singular the old one is kept."""
+        phi, _, held, ev = _merit(film, P, 1.0, free, "reynolds")
+        if phi is None:
+            return
+        try:
+            factor = _Factor.at(film, P, 1.0, free, held, ev)
+        except (RuntimeError, la.LinAlgError):
+            return
+        self._factor[:] = [factor]
+        self._factor_t = t
 
     def start_pressure(self, t: float, n: int) -> np.ndarray:
         """The warm start at time ``t`` [s] (n nodes): the last solve's pressure where it
@@ -389,6 +519,7 @@ class ImplicitStepEHD(StatelessRun):
         """Begin with the bush undeformed at time ``t`` [s] (as the states films)."""
         self.t, self._w, self.steps = float(t), np.zeros(self.size), 0
         self._P, self._factor, self._P_t, self._committed = None, [], None, ()
+        self._factor_t = None
 
     def force(self, state: JournalState, t: float) -> tuple:
         """(F_r, F_t) [N] at a trial ``state`` and time ``t``: w stepped from the last
@@ -443,6 +574,7 @@ class ImplicitStepEHD(StatelessRun):
         self.t, self._w, self.steps, self._P = (snapshot.t, snapshot.deflection,
                                                 snapshot.steps, snapshot.pressure)
         self._committed, self._factor, self._P_t = snapshot.committed, [], None
+        self._factor_t = None
 
     def replay(self, start, steps):
         """The committed steps taken again from ``start`` = (t, JournalState) and the

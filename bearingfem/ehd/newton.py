@@ -354,14 +354,15 @@ def _chord(film, P, s, free, tol, keep, max_steps=6, rate=0.3):
     return None, max_steps, best
 
 
-def warm_solve(film, P, free, tol, keep) -> tuple:
+def warm_solve(film, P, free, tol, keep, max_steps: int = 6, rate: float = 0.3) -> tuple:
     """A Swift-Stieber film at s = 1 from the last solve's pressure ``P`` (of the film's
-    size): chord steps on the kept factorisation (``keep``, as :func:`_chord`; none when
-    it is empty), then Newton from where the chord got to. (EHDResult, None) when either
-    passes the residual test, else (None, its) with its Newton's iterations."""
+    size): chord steps on the kept factorisation (``keep``, ``max_steps`` and ``rate`` as
+    :func:`_chord`; none when it is empty), then Newton from where the chord got to.
+    (EHDResult, None) when either passes the residual test, else (None, its) with its
+    Newton's iterations."""
     start, chord_steps = P.copy(), 0
     if keep:
-        out, chord_steps, start = _chord(film, start, 1.0, free, tol, keep)
+        out, chord_steps, start = _chord(film, start, 1.0, free, tol, keep, max_steps, rate)
         if out is not None:
             return EHDResult(out[0], chord_steps, out[1], True, out[2], 1, 0), None
     out, its = _newton(film, start, 1.0, free, "reynolds", tol, keep)
