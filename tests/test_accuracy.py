@@ -415,3 +415,19 @@ def test_a_search_keeps_the_grading_given():
     assert sol.accuracy.grading is None
     same = solve_reynolds(B1, s, *sol.accuracy.mesh, sol.accuracy.element, grading=0.3)
     assert same.force_local == sol.force_local
+
+
+def test_a_rough_grooved_search_is_left_uniform():
+    """A grooved film with asperity contact (its route takes no grading) searched to
+    rtol=1e-2 at eps 0.6: uniform meshes, the answer the film on the chosen mesh (fails
+    with the grading given to a rough grooved film: the route refuses it, ValueError)."""
+    from bearingfem import Groove, Roughness
+    grooves = (Groove(angle=math.pi / 2, width=0.35), Groove(angle=-math.pi / 2, width=0.35))
+    rough = Roughness(sigma=0.31e-6, contact_modulus=53.3e9, elastic_factor=1e-3)
+    clear_memo()
+    s = JournalState(eps=0.6, omega=250.0, gamma=-0.3)
+    sol = solve_reynolds(B1, s, rtol=1e-2, grooves=grooves, roughness=rough)
+    assert sol.accuracy.grading is None
+    same = solve_reynolds(B1, s, *sol.accuracy.mesh, sol.accuracy.element, grooves=grooves,
+                          roughness=rough)
+    assert same.force_local == pytest.approx(sol.force_local, rel=1e-12)
