@@ -403,3 +403,31 @@ def test_a_grooved_search_of_one_film_is_graded_toward_its_least_film():
     assert sol.accuracy.grading == (-math.pi / 12, 0.6)
     ref = solve_reynolds(B1, s, 288, 48, "P2", grooves=grooves, grading=(s.gamma, 0.6))
     assert force_difference(ref, sol) <= sol.force_error <= 1e-3
+
+
+def test_a_search_keeps_the_grading_given():
+    """solve_reynolds(rtol=, grading=0.3) on a plain film at eps 0.9: the search's meshes
+    take the grading given (its own, 0.6, only where none is given): the answer is the
+    film on the chosen mesh graded 0.3 (fails with the search's grading put over it)."""
+    clear_memo()
+    s = JournalState(eps=0.9, omega=250.0, gamma=0.4)
+    sol = solve_reynolds(B1, s, rtol=1e-2, grading=0.3)
+    assert sol.accuracy.grading is None
+    same = solve_reynolds(B1, s, *sol.accuracy.mesh, sol.accuracy.element, grading=0.3)
+    assert same.force_local == sol.force_local
+
+
+def test_a_rough_grooved_search_is_left_uniform():
+    """A grooved film with asperity contact (its route takes no grading) searched to
+    rtol=1e-2 at eps 0.6: uniform meshes, the answer the film on the chosen mesh (fails
+    with the grading given to a rough grooved film: the route refuses it, ValueError)."""
+    from bearingfem import Groove, Roughness
+    grooves = (Groove(angle=math.pi / 2, width=0.35), Groove(angle=-math.pi / 2, width=0.35))
+    rough = Roughness(sigma=0.31e-6, contact_modulus=53.3e9, elastic_factor=1e-3)
+    clear_memo()
+    s = JournalState(eps=0.6, omega=250.0, gamma=-0.3)
+    sol = solve_reynolds(B1, s, rtol=1e-2, grooves=grooves, roughness=rough)
+    assert sol.accuracy.grading is None
+    same = solve_reynolds(B1, s, *sol.accuracy.mesh, sol.accuracy.element, grooves=grooves,
+                          roughness=rough)
+    assert same.force_local == pytest.approx(sol.force_local, rel=1e-12)

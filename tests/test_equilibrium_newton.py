@@ -174,3 +174,41 @@ def test_newton_still_raises_when_its_restarts_end_off_the_load(monkeypatch):
         del FILM_MODELS["short-far-off-tangent"]
     assert "film force off the load" in str(err.value)
     assert len(runs) == module.NEWTON_RESTARTS + 1 >= 2
+
+
+def test_restarts_count_every_film_evaluation(monkeypatch):
+    """Partials 20 % off the film's tangent: Newton stops off the load and goes on from
+    there (a restart); ``iterations`` counts the film evaluations of every run: the force
+    and partials calls counted here (fails with only the last run counted)."""
+    import sys
+    from dataclasses import replace
+
+    from bearingfem.models import FILM_MODELS, FilmModel, register
+    short = film_model("short")
+    forces, derivatives = [], []
+
+    def force(b, s):
+        forces.append(1)
+        return short.film_force(b, s)
+
+    def partials(b, s):
+        derivatives.append(1)
+        d = short.force_derivatives(b, s)
+        scale = lambda v: tuple(1.2 * x for x in v)       # noqa: E731
+        return replace(d, d_eps=scale(d.d_eps), d_eps_dot=scale(d.d_eps_dot),
+                       d_wedge=scale(d.d_wedge))
+    register(FilmModel("short-counted", force, force_derivatives=partials))
+    b = Bearing(radius=0.01, length=0.02, clearance=20e-6, viscosity=0.0117)
+    runs = []
+
+    def counted(*args, **kwargs):
+        runs.append(1)
+        return newton_module.newton_position(*args, **kwargs)
+    monkeypatch.setattr(sys.modules["bearingfem.design.equilibrium"], "newton_position",
+                        counted)
+    try:
+        eq = equilibrium(b, (0.0, -2000.0), 250.0, "short-counted", xtol=1e-6)
+    finally:
+        del FILM_MODELS["short-counted"]
+    assert len(runs) >= 2                       # a restart happened
+    assert eq.iterations == len(forces) + len(derivatives)     # 3 + 9 measured

@@ -160,3 +160,11 @@ def test_the_graded_films_partials_are_its_own():
                                        grading=0.6).force_local)
     fd = (force(HEAVY.eps + h) - force(HEAVY.eps - h)) / (2.0 * h)
     assert np.linalg.norm(np.subtract(d.d_eps, fd)) < 1e-6 * np.linalg.norm(fd)
+
+
+def test_the_grooved_operator_refuses_a_lone_strength_by_name():
+    """The bearing-fixed grooved operator, called directly, needs the grading's angle: a
+    lone strength is refused naming grading (the routes refuse it before; without its own
+    check the operator failed indexing a float)."""
+    with pytest.raises(ValueError, match="grading must be None or \\(angle"):
+        groove_operator_for(B, 48, 8, "P1", GROOVES, 0.5)

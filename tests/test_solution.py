@@ -27,3 +27,19 @@ def test_summary_names_the_mesh_an_accuracy_chose():
     n_theta, n_z = sol.accuracy.mesh
     assert f"mesh {n_theta} x {n_z} chosen for rtol 0.01" in sol.summary().splitlines()[0]
     assert "chosen" not in solve_reynolds(b, s, 24, 4).summary()
+
+
+def test_summary_gives_the_outflow_where_the_ends_also_draw_oil_in():
+    """A full (Sommerfeld) film draws oil in at its ends where p < 0 and loses as much where
+    p > 0: its net side leakage is zero to round-off, so the summary also says what leaves
+    (side_outflow, > 0). A Reynolds-condition film draws nothing in at its ends (its
+    outflow is its leakage): the summary gives the leakage alone."""
+    b = Bearing(radius=0.01, length=0.02, clearance=20e-6, viscosity=0.0117)
+    s = JournalState(0.6, omega=250.0)
+    full = solve_reynolds(b, s, 48, 8, "P1", "none")
+    assert abs(full.side_leakage) < 1e-9 * full.side_outflow
+    assert f"{full.side_outflow:.6g} m^3/s leave where the film is above ambient" in \
+        full.summary()
+    cavitated = solve_reynolds(b, s, 48, 8, "P1", "reynolds")
+    assert cavitated.side_outflow == cavitated.side_leakage > 0.0
+    assert "leave where" not in cavitated.summary()

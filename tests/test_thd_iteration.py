@@ -127,6 +127,10 @@ def test_equilibrium_is_the_thermal_films_balance():
     again = solve_thd(BEARING, eq.state, 48, 8, thermal=thermal, **OPTS)
     assert math.hypot(*np.add(again.force, load)) < 1e-8 * 2000.0
     assert np.max(np.abs(again.temperature - eq.solution.temperature)) < 2e-6
+    # a Reynolds-condition film has no feed (its multipliers make and destroy oil): flow_in
+    # None, the side leakage its own (flow_in was the side leakage copied)
+    assert eq.flow_in is None and eq.side_leakage > 0.0
+    assert eq.side_leakage == pytest.approx(again.side_leakage, rel=1e-9)
     # plain floats, as the isothermal record's (it printed np.float64(...))
     assert {type(v) for v in (*eq.film_force, eq.friction_force, eq.friction_coefficient,
                               eq.power_loss)} == {float}
