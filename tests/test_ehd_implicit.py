@@ -370,3 +370,24 @@ def test_a_ctrl_c_keeps_the_steps_taken(monkeypatch):
     assert r.partial and r.message.startswith("interrupted at t = ")
     assert r.t[0] == 0.0 and np.all(np.isfinite(r.eps))
     assert len(r.film_record) == r.stats["steps"] > 10
+
+
+def test_the_crowned_scene_is_the_benchmarks_pin_with_the_scenes_oil():
+    """paper-short-ehd-crowned (the shipped scene whose five turns run: 487 s wall on the
+    2-core machine, peak eps 1.22) is benchmarks/ehd_implicit.py's crowned rough pin at
+    48 x 4 with paper-short-ehd's Roelands oil, and paper-short-ehd's slider-crank,
+    bearing, start and run: its film options equal the benchmark's, built from
+    paper-short-ehd, to the last value. Fails with any of the scene's film tables
+    (coupling, relaxation, profile, roughness) changed."""
+    from benchmarks.common import scene
+    from benchmarks.ehd_implicit import CROWN
+    from benchmarks.ehd_states import ROUGH
+    from mechanism import load_scene
+    base = load_scene("paper-short-ehd")
+    crowned = load_scene("paper-short-ehd-crowned")
+    bench = scene("paper-short-ehd", 250.0, 5, n_theta=48, n_z=4, modes=0, film_step=0.0,
+                  coupling="implicit", relaxation=1e-5, roughness=ROUGH, profile=CROWN)
+    assert crowned.lubrication.options == bench.lubrication.options
+    assert crowned.lubrication.model == base.lubrication.model == "fem-ehd"
+    assert (crowned.mechanism, crowned.bearing, crowned.crank_speed, crowned.run) == \
+        (base.mechanism, base.bearing, base.crank_speed, base.run)
