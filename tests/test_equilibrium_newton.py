@@ -7,7 +7,10 @@ Gumbel and Reynolds' condition, with and without two 20 deg axial grooves across
 Newton took 4-7 film evaluations from the closed-form start (including the final solve),
 and 4-5 from the equilibrium of a load 5 % away; hence the bound 8.
 """
+import contextlib
 import math
+import sys
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -19,7 +22,7 @@ from bearingfem.design import newton as newton_module
 from bearingfem.design.groups import load_from_sommerfeld
 from bearingfem.contract import ConvergenceError
 from bearingfem.film import local_to_inertial
-from bearingfem.models import film_model
+from bearingfem.models import FILM_MODELS, FilmModel, film_model, register
 
 OMEGA = 314.0
 GROOVES = (Groove(angle=0.0, width=math.radians(20.0)),
@@ -139,66 +142,34 @@ def test_a_looser_xtol_is_not_reported_as_a_failure():
     assert loose.eps == pytest.approx(tight.eps, rel=1e-5)
 
 
-def test_newton_still_raises_when_its_restarts_end_off_the_load(monkeypatch):
-    """Partials three times the film's tangent: each Newton run stops on a small step
-    (xtol 1e-6: below 1e-3 |q|) with the force still off the load (4.9e-3 of it at the end), above the
-    limit 1e-5; after NEWTON_RESTARTS restarts the equilibrium raises ConvergenceError
-    naming Newton, never returns its last iterate (fails with the last run's state
-    returned)."""
-    import sys
-    from dataclasses import replace
-
-    from bearingfem.models import FILM_MODELS, FilmModel, register
-    module = sys.modules["bearingfem.design.equilibrium"]
-    runs = []
-
-    def counted(*args, **kwargs):
-        runs.append(1)
-        return newton_module.newton_position(*args, **kwargs)
-    monkeypatch.setattr(module, "newton_position", counted)
+@contextlib.contextmanager
+def off_tangent_film(factor, calls=None):
+    """The short bearing registered as a film model whose partials are ``factor`` times
+    its tangent (as the held cavitated set's are where the set changes near the root),
+    each force and partials call appended to ``calls``; yields the model's name."""
     short = film_model("short")
-
-    def partials(b, s):
-        d = short.force_derivatives(b, s)
-        scale = lambda v: tuple(3.0 * x for x in v)       # noqa: E731
-        return replace(d, d_eps=scale(d.d_eps), d_eps_dot=scale(d.d_eps_dot),
-                       d_wedge=scale(d.d_wedge))
-    register(FilmModel("short-far-off-tangent", lambda b, s: short.film_force(b, s),
-                       force_derivatives=partials))
-    b = Bearing(radius=0.01, length=0.02, clearance=20e-6, viscosity=0.0117)
-    try:
-        with pytest.raises(ConvergenceError, match="Newton's equilibrium") as err:
-            equilibrium(b, (0.0, -2000.0), 250.0, "short-far-off-tangent", xtol=1e-6,
-                        start=JournalState(0.3, omega=250.0, gamma=0.5))
-    finally:
-        del FILM_MODELS["short-far-off-tangent"]
-    assert "film force off the load" in str(err.value)
-    assert len(runs) == module.NEWTON_RESTARTS + 1 >= 2
-
-
-def test_restarts_count_every_film_evaluation(monkeypatch):
-    """Partials 20 % off the film's tangent: Newton stops off the load and goes on from
-    there (a restart); ``iterations`` counts the film evaluations of every run: the force
-    and partials calls counted here (fails with only the last run counted)."""
-    import sys
-    from dataclasses import replace
-
-    from bearingfem.models import FILM_MODELS, FilmModel, register
-    short = film_model("short")
-    forces, derivatives = [], []
+    calls = [] if calls is None else calls
 
     def force(b, s):
-        forces.append(1)
+        calls.append("force")
         return short.film_force(b, s)
 
     def partials(b, s):
-        derivatives.append(1)
+        calls.append("partials")
         d = short.force_derivatives(b, s)
-        scale = lambda v: tuple(1.2 * x for x in v)       # noqa: E731
+        scale = lambda v: tuple(factor * x for x in v)       # noqa: E731
         return replace(d, d_eps=scale(d.d_eps), d_eps_dot=scale(d.d_eps_dot),
                        d_wedge=scale(d.d_wedge))
-    register(FilmModel("short-counted", force, force_derivatives=partials))
-    b = Bearing(radius=0.01, length=0.02, clearance=20e-6, viscosity=0.0117)
+    name = f"short-partials-x{factor:g}"
+    register(FilmModel(name, force, force_derivatives=partials))
+    try:
+        yield name
+    finally:
+        del FILM_MODELS[name]
+
+
+def counted_newton_runs(monkeypatch):
+    """A list that grows by one at each Newton run of the equilibrium."""
     runs = []
 
     def counted(*args, **kwargs):
@@ -206,9 +177,48 @@ def test_restarts_count_every_film_evaluation(monkeypatch):
         return newton_module.newton_position(*args, **kwargs)
     monkeypatch.setattr(sys.modules["bearingfem.design.equilibrium"], "newton_position",
                         counted)
-    try:
-        eq = equilibrium(b, (0.0, -2000.0), 250.0, "short-counted", xtol=1e-6)
-    finally:
-        del FILM_MODELS["short-counted"]
+    return runs
+
+
+def test_newton_goes_on_where_its_partials_are_not_the_films_tangent():
+    """A film whose partials are 20 % off its tangent (as the held cavitated set's are
+    where the set changes near the root: an equilibrium search at eps 0.9 raised with
+    the force 7.6e-6 off the load, its limit 2e-6): Newton converges linearly, stops
+    on a small step with the force above the limit, and goes on from there instead of
+    raising (fails with NEWTON_RESTARTS = 0)."""
+    b = Bearing(radius=0.01, length=0.02, clearance=20e-6, viscosity=0.0117)
+    with off_tangent_film(1.2) as name:
+        eq = equilibrium(b, (0.0, -2000.0), 250.0, name, xtol=1e-6)
+    exact = equilibrium(b, (0.0, -2000.0), 250.0, "short")
+    assert np.hypot(*np.add(eq.film_force, eq.load)) <= 1e-5 * 2000.0
+    assert eq.eps == pytest.approx(exact.eps, rel=1e-5)
+
+
+def test_newton_still_raises_when_its_restarts_end_off_the_load(monkeypatch):
+    """Partials three times the film's tangent: each Newton run stops on a small step
+    (xtol 1e-6: below 1e-3 |q|) with the force still off the load (4.9e-3 of it at the end), above the
+    limit 1e-5; after NEWTON_RESTARTS restarts the equilibrium raises ConvergenceError
+    naming Newton, never returns its last iterate (fails with the last run's state
+    returned)."""
+    runs = counted_newton_runs(monkeypatch)
+    b = Bearing(radius=0.01, length=0.02, clearance=20e-6, viscosity=0.0117)
+    with off_tangent_film(3.0) as name:
+        with pytest.raises(ConvergenceError, match="Newton's equilibrium") as err:
+            equilibrium(b, (0.0, -2000.0), 250.0, name, xtol=1e-6,
+                        start=JournalState(0.3, omega=250.0, gamma=0.5))
+    assert "film force off the load" in str(err.value)
+    module = sys.modules["bearingfem.design.equilibrium"]
+    assert len(runs) == module.NEWTON_RESTARTS + 1 >= 2
+
+
+def test_restarts_count_every_film_evaluation(monkeypatch):
+    """Partials 20 % off the film's tangent: Newton stops off the load and goes on from
+    there (a restart); ``iterations`` counts the film evaluations of every run: the force
+    and partials calls counted here (fails with only the last run counted)."""
+    runs = counted_newton_runs(monkeypatch)
+    calls = []
+    b = Bearing(radius=0.01, length=0.02, clearance=20e-6, viscosity=0.0117)
+    with off_tangent_film(1.2, calls) as name:
+        eq = equilibrium(b, (0.0, -2000.0), 250.0, name, xtol=1e-6)
     assert len(runs) >= 2                       # a restart happened
-    assert eq.iterations == len(forces) + len(derivatives)     # 3 + 9 measured
+    assert eq.iterations == len(calls)          # 3 forces + 9 partials measured
