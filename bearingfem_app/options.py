@@ -13,7 +13,7 @@ from .checks import check_writable
 
 __all__ = ["bearing_from_args", "supply_angle", "ambient_pressure", "film_state",
            "MODEL_OPTIONS", "model_options", "accuracy_options", "check_rtol_mesh",
-           "check_film_options",
+           "check_film_options", "refuse_bush_film",
            "check_cache",
            "check_output", "make_dir", "write_numbers", "print_rows"]
 
@@ -83,10 +83,9 @@ def model_options(args):
                          f"the ends is its only supply here (default "
                          f"{m.defaults['ambient_pressure']:g}), got {args.ambient_pressure:g}")
     bush = bush_from_args(args)
-    if bush is not None and opts.get("cavitation") == "gumbel":
-        raise ValueError("--bush needs --cavitation none or reynolds (the elastic film is "
-                         "solved with its cavitation, not clipped after), got --cavitation "
-                         "gumbel")
+    if bush is not None:
+        refuse_bush_film(opts.get("element") if "element" in args.given else None,
+                         opts.get("cavitation"), "none or reynolds")
     if bush is not None and "bush" not in m.defaults:
         raise ValueError(f"--bush applies to a film model that takes a bush (--model fem: "
                          f"the steady elastic film; fem-ehd: beyond the clearance and along "
@@ -110,13 +109,20 @@ def check_film_options(args) -> None:
         raise ValueError(f"--ambient-pressure is the mass-conserving film's end pressure: "
                          f"give --cavitation jfo with it, not --cavitation {cav}")
     if getattr(args, "bush", None) is not None:
-        if args.element_given and args.element != "P1":
-            raise ValueError(f"--bush needs --element P1 (the bush acts on the film's vertex "
-                             f"grid), got --element {args.element}")
-        if cav == "gumbel":
-            raise ValueError("--bush needs --cavitation none, reynolds or jfo (the elastic "
-                             "film is solved with its cavitation, not clipped after), got "
-                             "--cavitation gumbel")
+        refuse_bush_film(args.element if args.element_given else None, cav,
+                         "none, reynolds or jfo")
+
+
+def refuse_bush_film(element, cavitation, cavitations: str) -> None:
+    """A --bush's film needs --element P1 (``element`` as typed, None if not) and a
+    cavitation among ``cavitations`` (gumbel is never one): refused in the options' names."""
+    if element is not None and element != "P1":
+        raise ValueError(f"--bush needs --element P1 (the bush acts on the film's vertex "
+                         f"grid), got --element {element}")
+    if cavitation == "gumbel":
+        raise ValueError(f"--bush needs --cavitation {cavitations} (the elastic film is "
+                         f"solved with its cavitation, not clipped after), got --cavitation "
+                         f"gumbel")
 
 
 def check_rtol_mesh(args) -> None:
