@@ -48,6 +48,14 @@ def _kc_error(kc, ref) -> float:
                      np.abs(kc.C - ref.C).max() / np.abs(ref.C).max()))
 
 
+def _judged(estimate: float, true: float, rtol: float) -> str:
+    """The row's estimate, true error and effectivity, marked where the true error is
+    outside the estimate or the request."""
+    eff = estimate / true if true > 0 else math.inf
+    ok = "" if true <= estimate <= rtol else "  <-- outside"
+    return f"{estimate:9.2e} {true:9.2e} {eff:7.2f}{ok}"
+
+
 def _mesh(acc) -> str:
     g = "" if acc.grading is None else f" g{acc.grading:g}"
     return f"{acc.mesh[0]}x{acc.mesh[1]}{g}"
@@ -71,10 +79,9 @@ def force_rows(states, cavitations, tolerances):
                 eff = sol.force_error / true if true > 0 else math.inf
                 key = (name, rtol)
                 worst[key] = min(worst.get(key, math.inf), eff)
-                ok = "" if true <= sol.force_error <= rtol else "  <-- outside"
                 print(f"{ld:5.2f} {eps:4.1f} {cav:>8s} {rtol:6.0e} {name:>8s} "
                       f"{_mesh(sol.accuracy):>13s} {sol.accuracy.solves:6d} {t:7.3f} "
-                      f"{sol.force_error:9.2e} {true:9.2e} {eff:7.2f}{ok}")
+                      f"{_judged(sol.force_error, true, rtol)}")
     for (name, rtol), eff in sorted(worst.items()):
         print(f"least effectivity, {name}, rtol {rtol:g}: {eff:.2f}")
 
@@ -100,16 +107,12 @@ def design_rows(states, eq_rtol=2e-3, kc_rtol=1e-2):
             true = float(np.linalg.norm(q - q_ref) / np.linalg.norm(q_ref))
             est = eq.eps_error / eq.eps
             print(f"{ld:5.2f} {eps:4.1f} {'eq':>5s} {name:>8s} {_mesh(eq.accuracy):>13s} "
-                  f"{eq.accuracy.solves:6d} {t:7.3f} {est:9.2e} {true:9.2e} "
-                  f"{est / true if true else math.inf:7.2f}"
-                  f"{'' if true <= est <= eq_rtol else '  <-- outside'}")
+                  f"{eq.accuracy.solves:6d} {t:7.3f} {_judged(est, true, eq_rtol)}")
             t, kc = _cpu(lambda: coefficients(b, ref_eq.state, "fem", rtol=kc_rtol, **film,
                                               **o))
             true = _kc_error(kc, ref_kc)
             print(f"{ld:5.2f} {eps:4.1f} {'K, C':>5s} {name:>8s} {_mesh(kc.accuracy):>13s} "
-                  f"{kc.accuracy.solves:6d} {t:7.3f} {kc.error:9.2e} {true:9.2e} "
-                  f"{kc.error / true if true else math.inf:7.2f}"
-                  f"{'' if true <= kc.error <= kc_rtol else '  <-- outside'}")
+                  f"{kc.accuracy.solves:6d} {t:7.3f} {_judged(kc.error, true, kc_rtol)}")
 
 
 def main(argv=None):
