@@ -5,7 +5,7 @@ tolerance, and its cost against the rigid JFO run of the same mesh.
     python -m benchmarks.ehd_implicit [--turns 2] [--meshes 48 4 96 8 192 16]
         [--tau 1e-5 ...] [--rtol 1e-6 ...] [--states] [--save DIR]
 
-The seed pin at 250 rad/s from top dead centre, the bush of ``paper-short-ehd`` (the
+The seed pin at 250 rad/s from top dead centre, the bush of ``paper-short-ehd-sharp`` (the
 per-harmonic solid), a 2 um crown over the whole length, rough surfaces (sigma 0.2 um,
 E* 80.8 GPa, K 1e-3, boundary friction 0.1), the isoviscous oil with Dowson-Higginson
 density (benchmarks/ehd_states.py's); one run per row, each with the rigid JFO run of its
@@ -37,7 +37,7 @@ CROWN = EdgeProfile("crown", 2e-6)
 
 def implicit_run(turns, nt, nz, tau, rtol, coupling="implicit", progress=False):
     """(result, CPU [s]) of one run."""
-    sc = scene("paper-short-ehd", 250.0, turns, n_theta=nt, n_z=nz, modes=0, film_step=0.0,
+    sc = scene("paper-short-ehd-sharp", 250.0, turns, n_theta=nt, n_z=nz, modes=0, film_step=0.0,
                lubricant=OILS["iso"], coupling=coupling, relaxation=tau, roughness=ROUGH,
                profile=CROWN)
     sc = dataclasses.replace(sc, run=dataclasses.replace(sc.run, rtol=rtol))
@@ -81,7 +81,7 @@ def main(argv=None):
     ap.add_argument("--save", metavar="DIR", default=None)
     ap.add_argument("--progress", action="store_true", help="each run's progress on stderr")
     a = ap.parse_args(argv)
-    radius = load_scene("paper-short-ehd").bearing.radius
+    radius = load_scene("paper-short-ehd-sharp").bearing.radius
     print(f"crowned seed pin (2 um), 250 rad/s, {a.turns:g} turns; last turn's numbers",
           flush=True)
     print(f"{'mesh':>8} {'coupling':>8} {'tau[s]':>7} {'rtol':>6} {'steps':>6} {'rhs':>6} "

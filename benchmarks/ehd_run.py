@@ -3,7 +3,7 @@ and the EHD run's film-step, modes and mesh convergence.
 
     python -m benchmarks.ehd_run [--speed 250] [--turns 0.1] [--mesh 96 8]
 
-The seed's slider-crank with the ``paper-short-ehd`` film (solid bronze bush, Roelands oil)
+The seed's slider-crank with the ``paper-short-ehd-sharp`` film (solid bronze bush, Roelands oil)
 at crank speed ``--speed`` [rad/s] (the seed's 250: the pin centre passes the rigid
 clearance circle, docs/ehd.md "Beyond the rigid clearance"). Every run covers ``--turns``
 from top dead centre, on one machine in one process: "x JFO" is the wall time over the
@@ -55,7 +55,7 @@ def main(argv=None):
             opts = dict(base, **{key: v})
             k = tuple(sorted(opts.items()))
             if k not in cache:
-                sc = scene("paper-short-ehd", a.speed, a.turns, **opts)
+                sc = scene("paper-short-ehd-sharp", a.speed, a.turns, **opts)
                 cache[k] = best_of(lambda: simulate(sc, progress=False))
             runs.append((v, cache[k].out, cache[k].wall))
         ref = runs[-1][1]

@@ -54,7 +54,7 @@ def without_tangent():
 
 
 def states_run(turns, nt, nz, rtol, tau, modes, oil, progress=False, profile=None):
-    sc = scene("paper-short-ehd", 250.0, turns, n_theta=nt, n_z=nz, modes=modes,
+    sc = scene("paper-short-ehd-sharp", 250.0, turns, n_theta=nt, n_z=nz, modes=modes,
                film_step=0.0, lubricant=OILS[oil], coupling="states", relaxation=tau,
                roughness=ROUGH, profile=profile)
     sc = dataclasses.replace(sc, run=dataclasses.replace(sc.run, rtol=rtol))
@@ -124,7 +124,7 @@ def main(argv=None):
                          "and modal states, for a look at where the least film falls)")
     a = ap.parse_args(argv)
     nt, nz = a.mesh
-    radius = load_scene("paper-short-ehd").bearing.radius
+    radius = load_scene("paper-short-ehd-sharp").bearing.radius
     profile = None
     if a.crown:
         profile = EdgeProfile("crown", a.crown[0] * 1e-6,

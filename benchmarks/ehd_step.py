@@ -4,14 +4,14 @@ the coupling between film steps or the oil law.
     python -m benchmarks.ehd_step [--turns 0.1] [--mesh 48 4] [--modes 16]
         [--steps 2e-4 1e-4 5e-5] [--oils barus roelands iso]
 
-The ``paper-short-ehd`` scene from top dead centre with its oil replaced by the Barus oil
-(alpha 2e-8 1/Pa), a Roelands oil of the same pressure-viscosity coefficient at p = 0
-(Z = 2e-8 / ((ln mu0 + 9.67) 5.1e-9) = 0.751) or an isoviscous one (all with the
-Dowson-Higginson density), each at the film steps ``--steps``. Per run: peak eps, the least
-elastic film and peak pressure over the film steps, and "dF": the largest distance [N] of
-the joint force along the run from the next finer film step's (interpolated in time onto
-the finer run's samples), with "d_orbit" [um] likewise. A first-order scheme halves dF
-and d_orbit with the film step.
+The ``paper-short-ehd-sharp`` scene (sharp bore, modal film) from top dead centre with its
+oil replaced by the Barus oil (alpha 2e-8 1/Pa), a Roelands oil of the same
+pressure-viscosity coefficient at p = 0 (Z = 2e-8 / ((ln mu0 + 9.67) 5.1e-9) = 0.751) or an
+isoviscous one (all with the Dowson-Higginson density), each at the film steps ``--steps``.
+Per run: peak eps, the least elastic film and peak pressure over the film steps, and "dF":
+the largest distance [N] of the joint force along the run from the next finer film step's
+(interpolated in time onto the finer run's samples), with "d_orbit" [um] likewise. A
+first-order scheme halves dF and d_orbit with the film step.
 """
 from __future__ import annotations
 
@@ -36,7 +36,7 @@ register(dataclasses.replace(film_model("fem-ehd"), name="fem-ehd-tangent",
 
 
 def run(oil, film_step, turns, nt, nz, modes, coupling="kept", speed=250.0):
-    sc = scene("paper-short-ehd", speed, turns, n_theta=nt, n_z=nz, modes=modes,
+    sc = scene("paper-short-ehd-sharp", speed, turns, n_theta=nt, n_z=nz, modes=modes,
                film_step=film_step, lubricant=OILS[oil])
     sc = dataclasses.replace(sc, lubrication=dataclasses.replace(
         sc.lubrication, model=COUPLINGS[coupling]))

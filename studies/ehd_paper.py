@@ -4,7 +4,7 @@
         [--coupling kept|states] [--modes 64]
 
 Runs ``paper-short-fem`` under Reynolds' condition (rigid Reynolds), ``paper-short-jfo``
-(rigid, mass-conserving) and ``paper-short-ehd`` (elastic bronze bush, piezoviscous oil,
+(rigid, mass-conserving) and ``paper-short-ehd-sharp`` (elastic bronze bush, piezoviscous oil,
 Reynolds' condition; ``--coupling states`` integrates the bush's modes with the journal,
 on rough surfaces, the coupling that converges at 250 rad/s: docs/ehd-states.md),
 each over ``--turns`` (the last one recorded; shorter than the scenes' five when the machine
@@ -62,7 +62,7 @@ def scenes(turns: float, n_theta: int, n_z: int, speed: float = 250.0,
         raise ValueError(f"coupling must be 'kept' or 'states', got {coupling!r}")
     out = []
     for name, extra in (("paper-short-fem", dict(cavitation="reynolds")),
-                        ("paper-short-jfo", {}), ("paper-short-ehd", ehd)):
+                        ("paper-short-jfo", {}), ("paper-short-ehd-sharp", ehd)):
         sc = load_scene(name)
         lub = dataclasses.replace(sc.lubrication, options=dict(
             sc.lubrication.options, n_theta=n_theta, n_z=n_z, **extra))

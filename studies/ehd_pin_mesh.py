@@ -3,7 +3,7 @@ at the run's eccentricities near top dead centre (the pin's relative speed 62.5 
 eps 0.99 and 1.02; the runs of docs/ehd-states.md reach 1.29 under a 3500 N joint load,
 carried by the squeeze, which the steady film has not: beyond eps ~1.025 the steady solve
 stops, the bush not opening the gap further), the 3-D-equivalent per-harmonic solid bronze bush of
-``paper-short-ehd``, a 2 um crown over the whole length, the benchmarks' isoviscous oil
+``paper-short-ehd-sharp``, a 2 um crown over the whole length, the benchmarks' isoviscous oil
 with Dowson-Higginson density, Reynolds' condition, no summits; theta and z refined
 separately: load |F|, peak pressure, least film and where it sits (|z|/L, theta from the
 film's origin), wall time, one run.

@@ -5,7 +5,7 @@ where the least film sits, and the bush's deflection at the peak joint load.
         [--turns 5] [--figure results/seed_pin_deflection.png] [--save DIR | --load PATTERN]
 
 Each mesh: the rigid JFO run (``paper-short-jfo``) and the EHD run
-(``paper-short-ehd``, the bush's ``--modes`` integrated with the journal, tau 1e-5 s,
+(``paper-short-ehd-sharp``, the bush's ``--modes`` integrated with the journal, tau 1e-5 s,
 rough surfaces sigma 0.2 um, the isoviscous oil of benchmarks/ehd_states.py, a bush bore
 crowned by ``--crown`` um over its whole length, 0 the sharp-edged bore), timed in one
 process. Prints per mesh the last turn's least film, peak pressure, the summits' share
@@ -49,7 +49,7 @@ STATE = ("eps", "eps_dot", "gamma", "gamma_dot", "omega")
 def run_scene(turns, nt, nz, modes, profile):
     """The scene of the EHD run (:func:`benchmarks.ehd_states.states_run`'s)."""
     _, tau, _, oil = RUNS["base"]
-    return scene("paper-short-ehd", 250.0, turns, n_theta=nt, n_z=nz, modes=modes,
+    return scene("paper-short-ehd-sharp", 250.0, turns, n_theta=nt, n_z=nz, modes=modes,
                film_step=0.0, lubricant=OILS[oil], coupling="states", relaxation=tau,
                roughness=ROUGH, profile=profile)
 

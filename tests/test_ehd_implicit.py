@@ -329,7 +329,7 @@ def test_the_seed_pin_runs_as_with_the_states_film():
     rough = Roughness(sigma=0.2e-6, contact_modulus=80.8e9, elastic_factor=1e-3)
     runs = {}
     for coupling in ("states", "implicit"):
-        sc = scene("paper-short-ehd", 250.0, 0.01, n_theta=NT, n_z=NZ, modes=0,
+        sc = scene("paper-short-ehd-sharp", 250.0, 0.01, n_theta=NT, n_z=NZ, modes=0,
                    film_step=0.0, lubricant=None, coupling=coupling, relaxation=1e-5,
                    roughness=rough, profile=EdgeProfile("crown", 2e-6))
         runs[coupling] = simulate(sc, progress=False)
@@ -363,7 +363,7 @@ def test_a_ctrl_c_keeps_the_steps_taken(monkeypatch):
 
     monkeypatch.setattr(FilmEffect, "force", force)
     rough = Roughness(sigma=0.2e-6, contact_modulus=80.8e9, elastic_factor=1e-3)
-    sc = scene("paper-short-ehd", 250.0, 0.2, n_theta=NT, n_z=NZ, modes=0, film_step=0.0,
+    sc = scene("paper-short-ehd-sharp", 250.0, 0.2, n_theta=NT, n_z=NZ, modes=0, film_step=0.0,
                lubricant=None, coupling="implicit", relaxation=1e-5, roughness=rough,
                profile=EdgeProfile("crown", 2e-6))
     r = simulate(sc, progress=False)
@@ -372,22 +372,22 @@ def test_a_ctrl_c_keeps_the_steps_taken(monkeypatch):
     assert len(r.film_record) == r.stats["steps"] > 10
 
 
-def test_the_crowned_scene_is_the_benchmarks_pin_with_the_scenes_oil():
-    """paper-short-ehd-crowned (the shipped scene whose five turns run: 487 s wall on the
-    2-core machine, peak eps 1.22) is benchmarks/ehd_implicit.py's crowned rough pin at
-    48 x 4 with paper-short-ehd's Roelands oil, and paper-short-ehd's slider-crank,
-    bearing, start and run: its film options equal the benchmark's, built from
-    paper-short-ehd, to the last value. Fails with any of the scene's film tables
-    (coupling, relaxation, profile, roughness) changed."""
+def test_the_shipped_scene_is_the_benchmarks_pin_with_the_scenes_oil():
+    """paper-short-ehd (the shipped scene, whose five turns run: 487 s wall on the 2-core
+    machine, peak eps 1.22) is benchmarks/ehd_implicit.py's crowned rough pin at 48 x 4
+    with the scenes' Roelands oil, and paper-short-ehd-sharp's slider-crank, bearing,
+    start and run: its film options equal the benchmark's, built from
+    paper-short-ehd-sharp (the sharp bore's modal film), to the last value. Fails with any
+    of the scene's film tables (coupling, relaxation, profile, roughness) changed."""
     from benchmarks.common import scene
     from benchmarks.ehd_implicit import CROWN
     from benchmarks.ehd_states import ROUGH
     from mechanism import load_scene
-    base = load_scene("paper-short-ehd")
-    crowned = load_scene("paper-short-ehd-crowned")
-    bench = scene("paper-short-ehd", 250.0, 5, n_theta=48, n_z=4, modes=0, film_step=0.0,
+    base = load_scene("paper-short-ehd-sharp")
+    shipped = load_scene("paper-short-ehd")
+    bench = scene("paper-short-ehd-sharp", 250.0, 5, n_theta=48, n_z=4, modes=0, film_step=0.0,
                   coupling="implicit", relaxation=1e-5, roughness=ROUGH, profile=CROWN)
-    assert crowned.lubrication.options == bench.lubrication.options
-    assert crowned.lubrication.model == base.lubrication.model == "fem-ehd"
-    assert (crowned.mechanism, crowned.bearing, crowned.crank_speed, crowned.run) == \
+    assert shipped.lubrication.options == bench.lubrication.options
+    assert shipped.lubrication.model == base.lubrication.model == "fem-ehd"
+    assert (shipped.mechanism, shipped.bearing, shipped.crank_speed, shipped.run) == \
         (base.mechanism, base.bearing, base.crank_speed, base.run)

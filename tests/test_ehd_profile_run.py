@@ -84,7 +84,7 @@ def _short_run(profile, coupling):
     rough = Roughness(sigma=0.2e-6, contact_modulus=80.8e9, elastic_factor=1e-3)
     extra = dict(relaxation=1e-5, film_step=0.0) if coupling == "states" else dict(
         film_step=2e-5)
-    sc = scene("paper-short-ehd", 250.0, 0.004, n_theta=NT, n_z=NZ, modes=M,
+    sc = scene("paper-short-ehd-sharp", 250.0, 0.004, n_theta=NT, n_z=NZ, modes=M,
                lubricant=None, coupling=coupling, roughness=rough, profile=profile, **extra)
     return simulate(sc, progress=False)
 
@@ -106,7 +106,7 @@ def test_the_scene_takes_the_profile_and_names_what_it_refuses():
     """[effects.lubrication.profile] kind/depth/length is the model's EdgeProfile; bad
     values are named with their table; the transient EHD-JFO film refuses one by name, as
     does a profile longer than half the bush."""
-    data = tomllib.loads(Path("scenes/paper-short-ehd.toml").read_text())
+    data = tomllib.loads(Path("scenes/paper-short-ehd-sharp.toml").read_text())
     data["effects"]["lubrication"]["profile"] = dict(kind="chamfer", depth=1e-6,
                                                      length=5e-4)
     sc = parse_scene(data)

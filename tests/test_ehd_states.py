@@ -158,7 +158,7 @@ def test_the_seed_pin_runs_past_the_circle_with_its_bush_integrated():
     from benchmarks.ehd_run import scene
     from mechanism import simulate
     rough = Roughness(sigma=0.2e-6, contact_modulus=80.8e9, elastic_factor=1e-3)
-    sc = scene("paper-short-ehd", 250.0, 0.01, n_theta=NT, n_z=NZ, modes=M, film_step=0.0,
+    sc = scene("paper-short-ehd-sharp", 250.0, 0.01, n_theta=NT, n_z=NZ, modes=M, film_step=0.0,
                lubricant=None, coupling="states", relaxation=1e-5, roughness=rough)
     r = simulate(sc, progress=False)
     assert not r.partial, r.message
@@ -182,7 +182,7 @@ def test_the_run_keeps_the_modal_states_of_each_film_step(tmp_path):
     from mechanism.result import film_column, load_result
     from studies.ehd_paper import peak_film
     rough = Roughness(sigma=1e-6, contact_modulus=80.8e9, elastic_factor=1e-3)
-    sc = scene("paper-short-ehd", 250.0, 0.01, n_theta=NT, n_z=NZ, modes=M, film_step=0.0,
+    sc = scene("paper-short-ehd-sharp", 250.0, 0.01, n_theta=NT, n_z=NZ, modes=M, film_step=0.0,
                lubricant=None, coupling="states", relaxation=1e-5, roughness=rough)
     r = simulate(sc, progress=False)
     rec = r.film_record

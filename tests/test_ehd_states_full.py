@@ -111,7 +111,7 @@ def test_the_mechanism_runs_the_full_film_as_the_modal_film_with_every_mode():
     rough = Roughness(sigma=0.2e-6, contact_modulus=80.8e9, elastic_factor=1e-3)
     runs = []
     for modes in (0, NT * (NZ + 1)):
-        sc = scene("paper-short-ehd", 250.0, 0.01, n_theta=NT, n_z=NZ, modes=modes,
+        sc = scene("paper-short-ehd-sharp", 250.0, 0.01, n_theta=NT, n_z=NZ, modes=modes,
                    film_step=0.0, lubricant=None, coupling="states", relaxation=1e-5,
                    roughness=rough)
         runs.append(simulate(sc, progress=False))

@@ -64,7 +64,7 @@ def test_the_joints_jacobian_is_its_equations_derivative():
     from benchmarks.ehd_run import scene
     from mechanism.simulate import JointEquations, build_effects
     rough = Roughness(sigma=0.2e-6, contact_modulus=80.8e9, elastic_factor=1e-3)
-    sc = scene("paper-short-ehd", 250.0, 0.01, n_theta=NT, n_z=NZ, modes=M, film_step=0.0,
+    sc = scene("paper-short-ehd-sharp", 250.0, 0.01, n_theta=NT, n_z=NZ, modes=M, film_step=0.0,
                lubricant=None, coupling="states", relaxation=1e-5, roughness=rough)
     effects, film, _ = build_effects(sc)
     c = sc.bearing.clearance
@@ -98,7 +98,7 @@ def test_a_run_with_the_films_tangent_is_the_run_without(monkeypatch):
     from mechanism import simulate
     from mechanism.effects import FilmEffect
     rough = Roughness(sigma=0.2e-6, contact_modulus=80.8e9, elastic_factor=1e-3)
-    sc = scene("paper-short-ehd", 250.0, 0.05, n_theta=NT, n_z=NZ, modes=M, film_step=0.0,
+    sc = scene("paper-short-ehd-sharp", 250.0, 0.05, n_theta=NT, n_z=NZ, modes=M, film_step=0.0,
                lubricant=None, coupling="states", relaxation=1e-5, roughness=rough)
     a = simulate(sc, progress=False)
     monkeypatch.setattr(FilmEffect, "has_tangent", property(lambda self: False))
