@@ -163,6 +163,19 @@ def _catch_sigint(hits: list):
     return lambda: signal.signal(signal.SIGINT, previous)
 
 
+def _before_window(scene: Scene, last) -> str:
+    """What a run stopped before its recorded turns keeps, said after its message ("" when
+    it stopped inside them): its samples are then the whole run from t = 0
+    (:func:`mechanism.sampling.output_times`), whose extremes include the start from the
+    bearing centre, not a settled turn. ``last``: the run's last dense-output piece."""
+    done = (float(last(last.t_max)[0]) - scene.crank_angle) / (2 * math.pi)
+    first = scene.run.record_from_turn
+    if done >= first:
+        return ""
+    return (f" (after {done:.3g} of {scene.run.turns:g} turns, before the recorded turns "
+            f"from turn {first:g}: kept the whole run from t = 0)")
+
+
 def _initial_state(scene: Scene):
     """Pin centred in the bush and moving with the slider: e = 0, e' = 0."""
     return np.array([scene.crank_angle, 0.0, 0.0, scene.crank_speed, 0.0, 0.0])
@@ -279,6 +292,8 @@ def simulate(scene: Scene, progress: bool | None = None) -> SimulationResult:
                                   f"{type(err).__name__}: {err}")
     finally:
         restore()
+    if partial and pieces:
+        message += _before_window(scene, pieces[-1])
     wall = time.perf_counter() - start
     bar.close(message if partial else "done", complete=not partial)
     stats = {"wall_time": wall, "steps": steps, "rhs_evals": eq.calls,

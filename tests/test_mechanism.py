@@ -127,6 +127,7 @@ def test_interrupted_run_keeps_results(monkeypatch):
     r = simulate(scene({"lubrication": {"model": "long"}}, ld=2.0), progress=False)
     assert r.partial and r.message.startswith("interrupted at t = ")
     assert len(r.t) > 10 and np.all(np.isfinite(r.eps))
+    assert "recorded turns" not in r.message     # recorded from t = 0: nothing to add
 
 
 def test_run_stopped_before_its_recorded_window_keeps_what_it_computed(monkeypatch):
@@ -139,6 +140,12 @@ def test_run_stopped_before_its_recorded_window_keeps_what_it_computed(monkeypat
     turns_done = (r.crank_angle[-1] - r.crank_angle[0]) / (2 * np.pi)
     assert 0.05 < turns_done < 2.0
     assert len(r.t) >= int(0.9 * 720 * turns_done)
+    # the message says so: the samples are not the recorded turn
+    assert r.message.endswith(" of 3 turns, before the recorded turns from turn 2: kept the "
+                              "whole run from t = 0)")
+    said = float(r.message.split("(after ")[1].split(" of")[0])
+    # 3 digits (0.005 at 1-2 turns) and the samples 1/720 turn apart
+    assert said == pytest.approx(turns_done, abs=7e-3)
 
 
 def test_progress_bar_reports_on_a_stream():
