@@ -10,6 +10,7 @@ from bearingfem.ehd.implicit import ImplicitStepEHD
 from bearingfem.ehd.implicit_tangent import TangentStepEHD, inertial_force
 from bearingfem.ehd.tangent import state_from_coordinates
 from bearingfem.ehd.transient import state_coordinates
+from bearingfem.models import FILM_MODELS
 
 from test_ehd_implicit import _heavy, _moving
 from test_ehd_states import B, NT, NZ, SOLID
@@ -98,6 +99,18 @@ def test_the_guard_keeps_the_tangent_or_falls_back_to_the_full_solve(monkeypatch
     assert film.refreshes == 2 and not film.trusted and film.force_tangent is not kept
     assert np.allclose(film.force(probe, t2 + 5e-8),
                        ImplicitStepEHD.force(film, probe, t2 + 5e-8), rtol=1e-12, atol=0)
+
+
+def test_the_coupling_makes_the_tangent_film_a_run_film():
+    """fem-ehd with coupling "implicit-tangent" runs this film (a RunFilm, rules 10-14),
+    "implicit" the implicit film. Fails with the tangent kept in an attribute named
+    ``tangent`` (planted, as first written: it hides the contract's tangent() and the
+    registry refuses the film)."""
+    model = FILM_MODELS["fem-ehd"]
+    options = dict(bush=SOLID, n_theta=NT, n_z=NZ, modes=0)
+    film = model.along_run(B, dict(options, coupling="implicit-tangent"))
+    assert type(film) is TangentStepEHD and film.memory and film.state_size == 0
+    assert type(model.along_run(B, dict(options, coupling="implicit"))) is ImplicitStepEHD
 
 
 @pytest.mark.slow
