@@ -3,7 +3,7 @@
 tolerance, and its cost against the rigid JFO run of the same mesh.
 
     python -m benchmarks.ehd_implicit [--turns 2] [--meshes 48 4 96 8 192 16]
-        [--tau 1e-5 ...] [--rtol 1e-6 ...] [--tangent] [--states] [--save DIR]
+        [--tau 1e-5 ...] [--rtol 1e-6 ...] [--states] [--save DIR]
 
 The seed pin at 250 rad/s from top dead centre, the bush of ``paper-short-ehd-sharp`` (the
 per-harmonic solid), a 2 um crown over the whole length, rough surfaces (sigma 0.2 um,
@@ -14,12 +14,8 @@ the ratio to the rigid JFO run, and over the last whole turn the least film (the
 itself, negative where the summits carry), the peak film pressure, the summits' share
 (their load's time integral over the joint force's) and the mean friction power (film
 shear and the summits' Coulomb friction), NaN for a run under a turn; and over the whole
-run its peak eps, least film, peak film pressure, summits' share and friction power.
-``--tangent`` adds the same film with the trial states' force from the last commit's
-tangent (coupling 'implicit-tangent'; its tangents taken and the largest relative miss
-of its force at a commit, the guard's) on each mesh, and the relative differences of
-its numbers from the implicit film's; ``--states`` the run with the whole deflection
-integrated as states (FullStateEHD). A Ctrl-C stops the row's
+run its peak eps, least film, peak film pressure, summits' share and friction power. ``--states`` adds the run with the whole
+deflection integrated as states (FullStateEHD) on each mesh. A Ctrl-C stops the row's
 run and prints what it computed (marked partial).
 """
 from __future__ import annotations
@@ -29,7 +25,6 @@ import dataclasses
 
 import numpy as np
 
-from bearingfem.ehd.implicit_tangent import TangentStepEHD
 from bearingfem.fields import EdgeProfile
 from mechanism import load_scene, simulate
 from mechanism.result import film_column
@@ -48,26 +43,6 @@ def implicit_run(turns, nt, nz, tau, rtol, coupling="implicit", progress=False):
     sc = dataclasses.replace(sc, run=dataclasses.replace(sc.run, rtol=rtol))
     t = best_of(lambda: simulate(sc, progress=progress))
     return t.out, t.cpu
-
-
-class _LastFilm:
-    """The last TangentStepEHD started in the block (its record: tangents taken, worst
-    guard miss; None for the other films)."""
-
-    film = None
-
-    def __enter__(self):
-        self._start = start = TangentStepEHD.start
-
-        def recorded(film, *a):
-            _LastFilm.film = film
-            return start(film, *a)
-        TangentStepEHD.start = recorded
-        _LastFilm.film = None
-        return self
-
-    def __exit__(self, *exc):
-        TangentStepEHD.start = self._start
 
 
 def window_work(r, radius, friction=ROUGH.friction):
@@ -101,8 +76,6 @@ def main(argv=None):
     ap.add_argument("--meshes", type=int, nargs="+", default=[48, 4, 96, 8, 192, 16])
     ap.add_argument("--tau", type=float, nargs="+", default=[1e-5])
     ap.add_argument("--rtol", type=float, nargs="+", default=[1e-6])
-    ap.add_argument("--tangent", action="store_true",
-                    help="each mesh also with the trial states' force from the commit's tangent")
     ap.add_argument("--states", action="store_true",
                     help="each mesh also with the whole deflection integrated as states")
     ap.add_argument("--save", metavar="DIR", default=None)
@@ -111,51 +84,31 @@ def main(argv=None):
     radius = load_scene("paper-short-ehd-sharp").bearing.radius
     print(f"crowned seed pin (2 um), 250 rad/s, {a.turns:g} turns; last turn's numbers",
           flush=True)
-    print(f"{'mesh':>8} {'coupling':>14} {'tau[s]':>7} {'rtol':>6} {'steps':>6} {'rhs':>6} "
+    print(f"{'mesh':>8} {'coupling':>8} {'tau[s]':>7} {'rtol':>6} {'steps':>6} {'rhs':>6} "
           f"{'CPU[s]':>7} {'JFO[s]':>7} {'x JFO':>6} {'h_min[um]':>9} {'p_max[MPa]':>10} "
           f"{'share':>7} {'power[W]':>8} {'run: peak eps':>13} {'h_min[um]':>9} "
-          f"{'p_max[MPa]':>10} {'share':>7} {'power[W]':>8} {'tangents':>8} {'miss':>8}",
-          flush=True)
+          f"{'p_max[MPa]':>10} {'share':>7} {'power[W]':>8}", flush=True)
     for nt, nz in zip(a.meshes[::2], a.meshes[1::2]):
         rigid_jfo(0.002, nt, nz)                       # warm-up: the mesh's operators
         implicit_run(0.001, nt, nz, a.tau[0], a.rtol[0])
         base = rigid_jfo(a.turns, nt, nz)
         rows = [("implicit", tau, rtol) for tau in a.tau for rtol in a.rtol]
-        if a.tangent:
-            rows.append(("implicit-tangent", a.tau[0], a.rtol[0]))
-        numbers = {}
         if a.states:
             rows.append(("states", a.tau[0], a.rtol[0]))
         for coupling, tau, rtol in rows:
-            with _LastFilm():
-                r, cpu = implicit_run(a.turns, nt, nz, tau, rtol, coupling, a.progress)
-            film = _LastFilm.film
+            r, cpu = implicit_run(a.turns, nt, nz, tau, rtol, coupling, a.progress)
             h, p, share, power = last_turn_numbers(r, a.turns, radius)
             window_share, window_power = window_work(r, radius)
             if a.save:
                 r.save(f"{a.save}/{coupling}-{nt}x{nz}-tau{tau:g}-rtol{rtol:g}")
             note = "" if not r.partial else f"  (partial: {r.message[:50]})"
-            run = (r.eps.max(), 1e6 * r.film_min.min(),
-                   film_column(r.film_record, 'pressure_max').max() / 1e6, window_share,
-                   window_power)
-            numbers[coupling] = (h, p, share, power) + run
-            record = (f" {film.refreshes:8d} {film.worst:8.1e}" if film is not None
-                      else f" {'':>8} {'':>8}")
-            print(f"{nt:>4}x{nz:<3} {coupling:>14} {tau:7.0e} {rtol:6.0e} "
+            print(f"{nt:>4}x{nz:<3} {coupling:>8} {tau:7.0e} {rtol:6.0e} "
                   f"{r.stats['steps']:6d} {r.stats['rhs_evals']:6d} {cpu:7.1f} {base:7.1f} "
                   f"{cpu / base:6.1f} {h:9.4f} {p:10.1f} {share:7.4f} {power:8.3f} "
                   f"{r.eps.max():13.5f} {1e6 * r.film_min.min():9.4f} "
                   f"{film_column(r.film_record, 'pressure_max').max() / 1e6:10.1f} "
-                  f"{window_share:7.4f} {window_power:8.3f}" + record + note,
+                  f"{window_share:7.4f} {window_power:8.3f}" + note,
                   flush=True)
-        if "implicit-tangent" in numbers and "implicit" in numbers:
-            new, ref = np.array(numbers["implicit-tangent"]), np.array(numbers["implicit"])
-            with np.errstate(invalid="ignore", divide="ignore"):
-                rel = np.abs(new - ref) / np.abs(ref)
-            names = ("h_min", "p_max", "share", "power", "run: peak eps", "h_min", "p_max",
-                     "share", "power")
-            print(f"{nt:>4}x{nz:<3} tangent against implicit, relative: " + ", ".join(
-                f"{n} {v:.2e}" for n, v in zip(names, rel)), flush=True)
 
 
 if __name__ == "__main__":

@@ -557,10 +557,6 @@ class ImplicitStepEHD(StatelessRun):
     def commit(self, state: JournalState, t: float) -> FilmStep | None:
         """The film at the accepted step: w_n advanced to it (its record: force, least film,
         peak); a failed solve raises and keeps the film as it was."""
-        return self._advance(state, t)
-
-    def _advance(self, state: JournalState, t: float) -> FilmStep | None:
-        """:meth:`commit`'s full solve and w_n moved (what :meth:`replay` takes again)."""
         t = float(t)
         if t <= self.t:
             return None
@@ -586,6 +582,6 @@ class ImplicitStepEHD(StatelessRun):
         t0, s0 = start
         self.start(s0, t0)
         for t, state in steps:
-            step = self._advance(state, t)
+            step = self.commit(state, t)
             if step is not None:
                 yield step.t, step.solution

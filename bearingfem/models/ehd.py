@@ -6,7 +6,6 @@ from __future__ import annotations
 
 from ..bearing import ELASTIC_EPS_CAP
 from ..ehd.implicit import ImplicitStepEHD
-from ..ehd.implicit_tangent import TangentStepEHD
 from ..ehd.jfo_run import TransientEHDJFO
 from ..ehd.states import FullStateEHD, ModalStateEHD
 from ..ehd.tangent import TangentEHD
@@ -64,23 +63,20 @@ def ehd_run_film(bearing, lubricant=None, bush=None, roughness=None, n_theta: in
     the bush's grid, no truncation, :class:`~bearingfem.ehd.states.FullStateEHD`);
     ``coupling`` "implicit": the whole deflection advanced by the film's own backward-Euler
     step between accepted steps (:class:`~bearingfem.ehd.implicit.ImplicitStepEHD`, modes
-    0, no dense matrix); "implicit-tangent" the same commits with the trial states' force
-    from the last commit's tangent, guarded at each commit
-    (:class:`~bearingfem.ehd.implicit_tangent.TangentStepEHD`: fewer solves a step, but
-    about three times the integrator's steps: docs/ehd-states.md). ``profile``: a bush edge profile
+    0, no dense matrix). ``profile``: a bush edge profile
     (:class:`~bearingfem.fields.EdgeProfile`) in the gap of the Reynolds-condition films;
     the transient EHD-JFO film takes none."""
     if profile is not None:
         profile.check(bearing)
-    if coupling in ("implicit", "implicit-tangent"):
+    if coupling == "implicit":
         if cavitation != "reynolds":
-            raise ValueError(f"coupling {coupling!r} takes cavitation 'reynolds', got "
+            raise ValueError(f"coupling 'implicit' takes cavitation 'reynolds', got "
                              f"{cavitation!r}")
         if modes:
-            raise ValueError(f"coupling {coupling!r} takes the full compliance (modes 0), got "
+            raise ValueError(f"coupling 'implicit' takes the full compliance (modes 0), got "
                              f"modes {modes!r}")
-        film = TangentStepEHD if coupling == "implicit-tangent" else ImplicitStepEHD
-        return film(bearing, lubricant, bush, n_theta, n_z, relaxation, roughness, profile)
+        return ImplicitStepEHD(bearing, lubricant, bush, n_theta, n_z, relaxation, roughness,
+                               profile)
     if coupling == "states":
         if cavitation != "reynolds":
             raise ValueError(f"coupling 'states' takes cavitation 'reynolds', got {cavitation!r}")
@@ -116,8 +112,7 @@ class EHDModel(FilmModel):
     rules = {"lubricant": ("instance", (Lubricant,)), "bush": ("instance", (ElasticBush,)),
              "profile": ("instance", (EdgeProfile,)),
              "modes": ("int", (0, None)), "cavitation": ("choice", ("reynolds", "jfo")),
-             "coupling": ("choice", ("kept", "tangent", "states", "implicit",
-                                       "implicit-tangent")),
+             "coupling": ("choice", ("kept", "tangent", "states", "implicit")),
              "relaxation": ("number", RELAXATION)}
     numeric = True
     memory = True
