@@ -195,12 +195,26 @@ def film_flow(bearing, state, basis, P, fraction, viscosity, lubricant) -> Energ
                  np.asarray(basis.interpolate(fraction)), np.asarray(viscosity), lubricant)
 
 
+#: The degree the arcs' quadrature integrates exactly, per element order k (P1, P2): 2k.
+#: Why 2k: with the coefficients (beta, tau, k h, the reaction and the source) constant on
+#: an element, every term of the system is a polynomial of degree at most 2k (the
+#: reaction's v T, 2k; the convection's v beta.grad T, 2k - 1; SUPG's and the diffusion's
+#: grad v . grad T, 2k - 2), so the rule is exact on them and its error is the
+#: coefficients' variation over the element, O(h^2) relative; Strang's lemma then keeps
+#: the scheme's order, as a rule exact for degree 2k - 1 does for the L2 error of a
+#: P_k Galerkin scheme (Ciarlet & Raviart 1972). The film's own rule (degree 4, 6 points on
+#: P1) integrates h^3/mu more closely than the energy equation needs: half its points
+#: here halve the energy step's work at the points (flow, viscosity, tau, assembly).
+ARC_DEGREE = {3: 2, 6: 4}
+
+
 @cached(maxsize=16)
 def arc_basis(mesh, edges: FilmEdges):
-    """The film's basis restricted to the arcs' elements, with the film's dof numbering
-    (cached per mesh)."""
+    """The film's basis restricted to the arcs' elements, with the film's dof numbering,
+    and the quadrature rule of :data:`ARC_DEGREE` (3 points on a P1 triangle, 6 on P2;
+    cached per mesh)."""
     b = mesh.basis
-    return Basis(b.mesh, b.elem, intorder=4 if mesh.basis.Nbfun == 3 else 6,
+    return Basis(b.mesh, b.elem, intorder=ARC_DEGREE[b.Nbfun],
                  elements=edges.elements, dofs=b.dofs)
 
 
