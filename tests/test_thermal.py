@@ -472,6 +472,23 @@ def test_arc_rule_is_exact_on_element_constant_coefficients(element):
     assert np.max(np.abs(b - b_ref)) < 1e-12 * np.max(np.abs(b_ref))
 
 
+def test_operator_maps_take_several_fields_in_one_product():
+    """at_points of k nodal fields (N, k) is each field's values at the points, stacked
+    (k, elements, points), and gradient's one stacked product is d/dtheta and d/dzeta by
+    their own maps: bit for bit. Fails with the (N, k) product reshaped without moving
+    the fields' axis first (the fields' values interleaved)."""
+    op = energy_operator(film_mesh_of((24, 6)))
+    rng = np.random.default_rng(3)
+    a, b, c = rng.standard_normal((3, op.N))
+    both = op.at_points(np.column_stack([a, b, c]))
+    assert both.shape == (3, *op.dx.shape)
+    for k, f in enumerate((a, b, c)):
+        assert np.array_equal(both[k], op.at_points(f))
+    g = op.gradient(a)
+    assert np.array_equal(g[0], (op.d_theta @ a).reshape(op.dx.shape))
+    assert np.array_equal(g[1], (op.d_zeta @ a).reshape(op.dx.shape))
+
+
 def test_jfo_thermal_film_at_high_eccentricity():
     """The designer's bearing (ISO VG 32 at 40 C, two 20 deg grooves, 3000 rpm) at eps 0.97,
     adiabatic with carry-over 0.8, 48 x 8: the JFO thermal film solves (the viscosity at

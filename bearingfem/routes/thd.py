@@ -267,7 +267,7 @@ class ThermalIteration:
         b, oil, T = self.bearing, self.lubricant, self.T
         self.eop = eop = energy_operator(self.op.mesh, state.omega < 0.0)
         P = self.p / b.pressure_scale
-        p_arc, T_arc = eop.at_points(self.p), eop.at_points(T)
+        p_arc, T_arc = eop.at_points(np.column_stack([self.p, T]))   # one product
         # the viscosity and its temperature slope from one evaluation of the law
         mu_arc, _, dmu_dT = oil.viscosity_and_slopes(p_arc, T_arc)
         flow = eop.flow(b, state, P, self.fraction, mu_arc, oil)

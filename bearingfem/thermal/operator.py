@@ -236,6 +236,7 @@ class EnergyOperator:
     value: sp.csr_matrix       # nodal -> values at the points (flattened)
     d_theta: sp.csr_matrix     # nodal -> d/dtheta at the points
     d_zeta: sp.csr_matrix      # nodal -> d/dzeta at the points
+    d_both: sp.csr_matrix      # nodal -> (d/dtheta, d/dzeta) at the points, stacked
     indptr: np.ndarray         # the matrix pattern (all dofs)
     indices: np.ndarray
     positions: np.ndarray      # (nb * nb * elements,) place of each local entry
@@ -285,12 +286,15 @@ class EnergyOperator:
         return np.argsort(self.band_rank)
 
     def at_points(self, T: np.ndarray) -> np.ndarray:
-        return (self.value @ T).reshape(self.dx.shape)
+        """Values at the points (elements, points) of nodal ``T`` (N,), or (k, elements,
+        points) of k nodal fields (N, k) in one product."""
+        v = self.value @ T
+        return v.reshape(self.dx.shape) if v.ndim == 1 else \
+            np.moveaxis(v, 1, 0).reshape((v.shape[1], *self.dx.shape))
 
     def gradient(self, P: np.ndarray) -> np.ndarray:
-        """(2, elements, points) d/dtheta, d/dzeta of nodal ``P``."""
-        return np.stack([(self.d_theta @ P).reshape(self.dx.shape),
-                         (self.d_zeta @ P).reshape(self.dx.shape)])
+        """(2, elements, points) d/dtheta, d/dzeta of nodal ``P`` (one product)."""
+        return (self.d_both @ P).reshape((2, *self.dx.shape))
 
     def flow(self, bearing, state, P, fraction, viscosity, lubricant) -> EnergyFlow:
         """:func:`film_flow` on the arcs, by the operator's maps (the mesh fixed in the
@@ -364,7 +368,9 @@ def _energy_operator(mesh, edges: FilmEdges) -> EnergyOperator:
     return EnergyOperator(
         basis=basis, edges=edges, theta=np.asarray(basis.global_coordinates()[0]),
         dx=np.asarray(basis.dx), phi=phi, grad=grad, cell=cell, value=interp(phi),
-        d_theta=interp(grad[:, 0]), d_zeta=interp(grad[:, 1]), indptr=pattern.indptr,
+        d_theta=interp(grad[:, 0]), d_zeta=interp(grad[:, 1]),
+        d_both=sp.vstack([interp(grad[:, 0]), interp(grad[:, 1])], format="csr"),
+        indptr=pattern.indptr,
         indices=pattern.indices, positions=positions, free_rows=free_rows, held=held, N=N,
         band=band, band_rank=rank, band_index=band_index,
         affine_p1=bool(nb == 3 and np.allclose(grad, grad[..., :1], rtol=1e-12, atol=0.0)))
