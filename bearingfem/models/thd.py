@@ -41,6 +41,7 @@ from ..routes.thd import ReynoldsFieldFilm, check_thermal, solve_thd, thermal_op
 from ..thermal.bush import bush_wall
 from ..thermal.mixing import groove_mixing
 from ..thermal.energy import energy_operator, solve_energy
+from ..thermal.operator import arc_degree
 from ..thermal.spec import Thermal, ThermalRecord
 from ..transient import faded_force, since_film_step
 from .registry import FilmModel, register
@@ -184,7 +185,8 @@ class ThermalRun(StatelessRun):
         """(T, viscosity at the film's points, energy solution) one backward-Euler step
         of the energy equation on the film of ``state`` with the kept viscosity."""
         b, oil, op = self.bearing, self.lubricant, self._operator(state)
-        eop = energy_operator(op.mesh, state.omega < 0.0)
+        eop = energy_operator(op.mesh, state.omega < 0.0,
+                              arc_degree(op.mesh, bush=self.thermal.bush is not None))
         film = self._film(state, self.mu)
         pressure = film.last.pressure * b.pressure_scale
         P, ones = film.last.pressure, np.ones(op.mesh.ndofs)

@@ -43,6 +43,7 @@ from ..solution import FilmSolution
 from ..solvers.cavitation import LCPResult
 from ..thermal.bush import bush_wall
 from ..thermal.energy import EnergyFlow, Mixing, energy_operator, solve_energy
+from ..thermal.operator import arc_degree
 from ..thermal.mixing import groove_mixing
 from ..thermal.spec import Thermal, ThermalRecord
 from .base import Route
@@ -210,7 +211,8 @@ class ThermalIteration:
         self.grooves, self.element, self.tol = tuple(grooves), element, tol
         self.op = op = thermal_operator(bearing, state, n_theta, n_z, element, supply_angle,
                                         grooves)
-        self.eop = energy_operator(op.mesh, state.omega < 0.0)
+        self.degree = arc_degree(op.mesh, bush=thermal.bush is not None)
+        self.eop = energy_operator(op.mesh, state.omega < 0.0, self.degree)
         self.wall = None if thermal.bush is None else \
             bush_wall(thermal.bush, bearing.radius, bearing.length, op.mesh, self.eop)
         n = op.mesh.ndofs
@@ -265,7 +267,7 @@ class ThermalIteration:
         film's flow, the grooves' mixing and the dissipation linearised about the current
         temperatures."""
         b, oil, T = self.bearing, self.lubricant, self.T
-        self.eop = eop = energy_operator(self.op.mesh, state.omega < 0.0)
+        self.eop = eop = energy_operator(self.op.mesh, state.omega < 0.0, self.degree)
         P = self.p / b.pressure_scale
         p_arc, T_arc = eop.at_points(np.column_stack([self.p, T]))   # one product
         # the viscosity and its temperature slope from one evaluation of the law

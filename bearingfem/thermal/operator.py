@@ -33,7 +33,7 @@ from ..caches import cached
 from ..film import film_thickness
 
 __all__ = ["EnergyFlow", "film_flow", "EnergyOperator", "energy_operator", "energy_system",
-           "film_edges", "FilmEdges", "arc_basis"]
+           "film_edges", "FilmEdges", "arc_basis", "arc_degree"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -207,14 +207,28 @@ def film_flow(bearing, state, basis, P, fraction, viscosity, lubricant) -> Energ
 #: here halve the energy step's work at the points (flow, viscosity, tau, assembly).
 ARC_DEGREE = {3: 2, 6: 4}
 
+#: The film's own rule (degree 4 on P1, 6 on P2), which the arcs keep when a conducting
+#: bush is coupled. Why: the bush's inner nodes take the film's heat at the arcs' points
+#: (:func:`bearingfem.thermal.bush.wall_transfer`), and a bush up to twice as fine as the
+#: film (allowed) is sampled too thinly by 3 points a triangle: on ROSS's conducting
+#: fixture at 48 x 8 with the bush at 96 x 16 its hottest node moved by 0.28 K against
+#: 4e-3 K with 6 points (the film's T_max by 5e-3 K).
+BUSH_DEGREE = {3: 4, 6: 6}
+
+
+def arc_degree(mesh, bush: bool = False) -> int:
+    """The arcs' quadrature degree on ``mesh``: :data:`ARC_DEGREE`, or
+    :data:`BUSH_DEGREE` with a conducting ``bush``."""
+    return (BUSH_DEGREE if bush else ARC_DEGREE)[mesh.basis.Nbfun]
+
 
 @cached(maxsize=16)
-def arc_basis(mesh, edges: FilmEdges):
+def arc_basis(mesh, edges: FilmEdges, degree: int | None = None):
     """The film's basis restricted to the arcs' elements, with the film's dof numbering,
-    and the quadrature rule of :data:`ARC_DEGREE` (3 points on a P1 triangle, 6 on P2;
-    cached per mesh)."""
+    and a quadrature rule exact for ``degree`` (default :func:`arc_degree`: 3 points on a
+    P1 triangle, 6 on P2; cached per mesh)."""
     b = mesh.basis
-    return Basis(b.mesh, b.elem, intorder=ARC_DEGREE[b.Nbfun],
+    return Basis(b.mesh, b.elem, intorder=arc_degree(mesh) if degree is None else degree,
                  elements=edges.elements, dofs=b.dofs)
 
 
@@ -316,16 +330,18 @@ class EnergyOperator:
         return np.bincount(dofs.ravel(), local.ravel(), minlength=self.N)
 
 
-def energy_operator(mesh, reverse: bool = False) -> EnergyOperator:
+def energy_operator(mesh, reverse: bool = False, degree: int | None = None) -> EnergyOperator:
     """The :class:`EnergyOperator` of a film mesh (cached per mesh), for a journal turning
     towards increasing angle (omega > 0) or, ``reverse``, the other way: the held inlet
-    rows sit on the other edges (:func:`film_edges`)."""
-    return _energy_operator(mesh, film_edges(mesh, bool(reverse)))
+    rows sit on the other edges (:func:`film_edges`). ``degree``: its quadrature's
+    (default :func:`arc_degree`; ``arc_degree(mesh, bush=True)`` with a conducting bush)."""
+    return _energy_operator(mesh, film_edges(mesh, bool(reverse)),
+                            arc_degree(mesh) if degree is None else int(degree))
 
 
 @cached(maxsize=16)
-def _energy_operator(mesh, edges: FilmEdges) -> EnergyOperator:
-    basis = arc_basis(mesh, edges)
+def _energy_operator(mesh, edges: FilmEdges, degree: int) -> EnergyOperator:
+    basis = arc_basis(mesh, edges, degree)
     nb, N = basis.Nbfun, basis.N
     dofs = basis.element_dofs                                 # (nb, elements)
     phi = np.array([np.asarray(basis.basis[i][0]) for i in range(nb)])
