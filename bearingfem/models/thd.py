@@ -190,7 +190,7 @@ class ThermalRun(StatelessRun):
         film = self._film(state, self.mu)
         pressure = film.last.pressure * b.pressure_scale
         P, ones = film.last.pressure, np.ones(op.mesh.ndofs)
-        p_arc, T_arc = eop.at_points(pressure), eop.at_points(self.T)
+        p_arc, T_arc = eop.at_points(np.column_stack([pressure, self.T]))
         mu_arc = oil.viscosity_at(p_arc, temperature=T_arc)
         flow = eop.flow(b, state, P, ones, mu_arc, oil)
         mixing = groove_mixing(b, state, op.mesh, eop.edges, P, ones,
@@ -208,7 +208,8 @@ class ThermalRun(StatelessRun):
                               bush=wall, bush_start=self._bush)
         self._bush = energy.bush_inner
         T = energy.temperature
-        mu = oil.viscosity_at(op.at_quadrature(pressure), temperature=op.at_quadrature(T))
+        p_q, T_q = op.at_quadrature(np.stack([pressure, T]))
+        mu = oil.viscosity_at(p_q, temperature=T_q)
         return T, mu, energy
 
     def snapshot(self) -> ThermalSnapshot:

@@ -239,7 +239,8 @@ class ThermalIteration:
         """Solve the film at ``state`` on mu(p, T) of the kept pressure and temperatures;
         keeps its pressure and the change from the last one (relative to its peak)."""
         b, oil, op = self.bearing, self.lubricant, self.op
-        self.mu = oil.viscosity_at(op.at_quadrature(self.p), temperature=op.at_quadrature(self.T))
+        p_q, T_q = op.at_quadrature(np.stack([self.p, self.T]))      # one product
+        self.mu = oil.viscosity_at(p_q, temperature=T_q)
         ratio = self.mu / b.viscosity
         if self._jfo is not None:
             f = _JFOFilm(replace(self._jfo, state=state))

@@ -16,8 +16,11 @@ then zeta give the system a half-bandwidth of about n_z, which the banded LU of
 
 The equation itself, its walls, groove mixing and balance: :mod:`bearingfem.thermal.energy`.
 
-Reference: A.N. Brooks and T.J.R. Hughes, Comput. Methods Appl. Mech. Eng. 32 (1982)
-199-259.
+References: A.N. Brooks and T.J.R. Hughes, Comput. Methods Appl. Mech. Eng. 32 (1982)
+199-259 (SUPG); P.G. Ciarlet and P.-A. Raviart, The combined effect of curved boundaries
+and numerical integration in isoparametric finite element methods, in A.K. Aziz (ed.),
+The Mathematical Foundations of the Finite Element Method, Academic Press (1972) 409-474
+(the quadrature's degree, :data:`ARC_DEGREE`).
 """
 from __future__ import annotations
 
