@@ -1,6 +1,6 @@
 """What a thermal film costs beside the isothermal film of the same mesh.
 
-    python -m benchmarks.thd [--profile]
+    python -m benchmarks.thd [--profile | --parts]
 
 The 50 mm bearing of studies/thd_designer.py (ISO VG 32 at 40 C, two 20 deg grooves,
 3000 rpm) at eps 0.7: the isothermal grooved film (``solve_reynolds``, its default route)
@@ -10,7 +10,11 @@ the film at eps 0.69, as an equilibrium's steps are), one process, best of 5 CPU
 film, ratio to the isothermal solve; then the same film by the coupled Newton
 (``solve_thd_newton``, cold and warm; "steps": its film solve plus its Newton steps).
 ``--profile``: where one cold 96 x 16 thermal solve of each spends its time (cProfile,
-CPU clock, functions above 3 % of the total).
+CPU clock, functions above 3 % of the total). ``--parts``: one thermal step's parts at
+each mesh, best of 11 CPU times on the film after three steps of a cold solve: the film
+(factors kept), the energy step's inputs (flow, mixing, viscosity), the energy solve
+(``solve_energy``) and, within it, the SUPG system's assembly; with the points of the
+arcs' quadrature.
 """
 from __future__ import annotations
 
@@ -20,9 +24,10 @@ import pstats
 import time
 
 from bearingfem import JournalState, solve_reynolds
-from bearingfem.routes.thd import solve_thd
+from bearingfem.routes.thd import ThermalIteration, solve_thd
 from bearingfem.routes.thd_newton import solve_thd_newton
 from bearingfem.thermal import Thermal
+from bearingfem.thermal.energy import energy_system, solve_energy
 from studies.thd_designer import BEARING, GROOVES, OIL, OMEGA, SUPPLY
 
 from .common import best_of
@@ -56,10 +61,40 @@ def profile(n=(96, 16)):
                 print(f"  {1e3 * cum:8.1f} ms {100 * cum / total:5.1f} %  {name}")
 
 
+def parts():
+    """One thermal step's parts [ms] at each mesh (module docstring)."""
+    print(f"{'mesh':>7} {'points':>6} {'iso':>6} {'film':>6} {'step':>6} {'energy':>6} "
+          f"{'system':>6}")
+    for n in MESHES:
+        it = ThermalIteration(BEARING, STATE, *n, lubricant=OIL, thermal=THERMAL,
+                              grooves=GROOVES)
+        for _ in range(3):
+            it.film(STATE)
+            it.energy(STATE)
+        it.film(STATE)
+        step = it.energy_step(STATE)
+        s = step.linearised[0]
+        times = [cpu(f, 11)[0] for f in (
+            lambda: solve_reynolds(BEARING, STATE, *n, grooves=GROOVES),
+            lambda: it.film(STATE),
+            lambda: it.energy_step(STATE),
+            lambda: solve_energy(BEARING, it.eop, step.flow, step.mixing, THERMAL.walls,
+                                 linearised=step.linearised),
+            lambda: energy_system(it.eop, step.flow, -s, step.flow.dissipation,
+                                  BEARING.radius))]
+        print(f"{n[0]:>3}x{n[1]:<3} {it.eop.dx.size:6d} "
+              + " ".join(f"{1e3 * t:6.2f}" for t in times), flush=True)
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--profile", action="store_true")
+    ap.add_argument("--parts", action="store_true",
+                    help="one thermal step's parts at each mesh instead of the table")
     args = ap.parse_args(argv)
+    if args.parts:
+        parts()
+        return
     print(f"{'mesh':>7} {'iso ms':>8} {'THD cold ms':>11} {'films':>5} {'ratio':>6} "
           f"{'THD warm ms':>11} {'films':>5} {'ratio':>6} | {'Newton cold':>11} {'steps':>5} "
           f"{'ratio':>6} {'Newton warm':>11} {'steps':>5} {'ratio':>6}")

@@ -41,6 +41,7 @@ from ..routes.thd import ReynoldsFieldFilm, check_thermal, solve_thd, thermal_op
 from ..thermal.bush import bush_wall
 from ..thermal.mixing import groove_mixing
 from ..thermal.energy import energy_operator, solve_energy
+from ..thermal.operator import arc_degree
 from ..thermal.spec import Thermal, ThermalRecord
 from ..transient import faded_force, since_film_step
 from .registry import FilmModel, register
@@ -184,11 +185,12 @@ class ThermalRun(StatelessRun):
         """(T, viscosity at the film's points, energy solution) one backward-Euler step
         of the energy equation on the film of ``state`` with the kept viscosity."""
         b, oil, op = self.bearing, self.lubricant, self._operator(state)
-        eop = energy_operator(op.mesh, state.omega < 0.0)
+        eop = energy_operator(op.mesh, state.omega < 0.0,
+                              arc_degree(op.mesh, bush=self.thermal.bush is not None))
         film = self._film(state, self.mu)
         pressure = film.last.pressure * b.pressure_scale
         P, ones = film.last.pressure, np.ones(op.mesh.ndofs)
-        p_arc, T_arc = eop.at_points(pressure), eop.at_points(self.T)
+        p_arc, T_arc = eop.at_points(np.column_stack([pressure, self.T]))
         mu_arc = oil.viscosity_at(p_arc, temperature=T_arc)
         flow = eop.flow(b, state, P, ones, mu_arc, oil)
         mixing = groove_mixing(b, state, op.mesh, eop.edges, P, ones,
@@ -206,7 +208,8 @@ class ThermalRun(StatelessRun):
                               bush=wall, bush_start=self._bush)
         self._bush = energy.bush_inner
         T = energy.temperature
-        mu = oil.viscosity_at(op.at_quadrature(pressure), temperature=op.at_quadrature(T))
+        p_q, T_q = op.at_quadrature(np.stack([pressure, T]))
+        mu = oil.viscosity_at(p_q, temperature=T_q)
         return T, mu, energy
 
     def snapshot(self) -> ThermalSnapshot:

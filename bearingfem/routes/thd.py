@@ -43,6 +43,7 @@ from ..solution import FilmSolution
 from ..solvers.cavitation import LCPResult
 from ..thermal.bush import bush_wall
 from ..thermal.energy import EnergyFlow, Mixing, energy_operator, solve_energy
+from ..thermal.operator import arc_degree
 from ..thermal.mixing import groove_mixing
 from ..thermal.spec import Thermal, ThermalRecord
 from .base import Route
@@ -210,7 +211,8 @@ class ThermalIteration:
         self.grooves, self.element, self.tol = tuple(grooves), element, tol
         self.op = op = thermal_operator(bearing, state, n_theta, n_z, element, supply_angle,
                                         grooves)
-        self.eop = energy_operator(op.mesh, state.omega < 0.0)
+        self.degree = arc_degree(op.mesh, bush=thermal.bush is not None)
+        self.eop = energy_operator(op.mesh, state.omega < 0.0, self.degree)
         self.wall = None if thermal.bush is None else \
             bush_wall(thermal.bush, bearing.radius, bearing.length, op.mesh, self.eop)
         n = op.mesh.ndofs
@@ -237,7 +239,8 @@ class ThermalIteration:
         """Solve the film at ``state`` on mu(p, T) of the kept pressure and temperatures;
         keeps its pressure and the change from the last one (relative to its peak)."""
         b, oil, op = self.bearing, self.lubricant, self.op
-        self.mu = oil.viscosity_at(op.at_quadrature(self.p), temperature=op.at_quadrature(self.T))
+        p_q, T_q = op.at_quadrature(np.stack([self.p, self.T]))      # one product
+        self.mu = oil.viscosity_at(p_q, temperature=T_q)
         ratio = self.mu / b.viscosity
         if self._jfo is not None:
             f = _JFOFilm(replace(self._jfo, state=state))
@@ -265,9 +268,9 @@ class ThermalIteration:
         film's flow, the grooves' mixing and the dissipation linearised about the current
         temperatures."""
         b, oil, T = self.bearing, self.lubricant, self.T
-        self.eop = eop = energy_operator(self.op.mesh, state.omega < 0.0)
+        self.eop = eop = energy_operator(self.op.mesh, state.omega < 0.0, self.degree)
         P = self.p / b.pressure_scale
-        p_arc, T_arc = eop.at_points(self.p), eop.at_points(T)
+        p_arc, T_arc = eop.at_points(np.column_stack([self.p, T]))   # one product
         # the viscosity and its temperature slope from one evaluation of the law
         mu_arc, _, dmu_dT = oil.viscosity_and_slopes(p_arc, T_arc)
         flow = eop.flow(b, state, P, self.fraction, mu_arc, oil)

@@ -16,8 +16,11 @@ then zeta give the system a half-bandwidth of about n_z, which the banded LU of
 
 The equation itself, its walls, groove mixing and balance: :mod:`bearingfem.thermal.energy`.
 
-Reference: A.N. Brooks and T.J.R. Hughes, Comput. Methods Appl. Mech. Eng. 32 (1982)
-199-259.
+References: A.N. Brooks and T.J.R. Hughes, Comput. Methods Appl. Mech. Eng. 32 (1982)
+199-259 (SUPG); P.G. Ciarlet and P.-A. Raviart, The combined effect of curved boundaries
+and numerical integration in isoparametric finite element methods, in A.K. Aziz (ed.),
+The Mathematical Foundations of the Finite Element Method, Academic Press (1972) 409-474
+(the quadrature's degree, :data:`ARC_DEGREE`).
 """
 from __future__ import annotations
 
@@ -33,7 +36,7 @@ from ..caches import cached
 from ..film import film_thickness
 
 __all__ = ["EnergyFlow", "film_flow", "EnergyOperator", "energy_operator", "energy_system",
-           "film_edges", "FilmEdges", "arc_basis"]
+           "film_edges", "FilmEdges", "arc_basis", "arc_degree"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -195,12 +198,40 @@ def film_flow(bearing, state, basis, P, fraction, viscosity, lubricant) -> Energ
                  np.asarray(basis.interpolate(fraction)), np.asarray(viscosity), lubricant)
 
 
+#: The degree the arcs' quadrature integrates exactly, per element order k (P1, P2): 2k.
+#: Why 2k: with the coefficients (beta, tau, k h, the reaction and the source) constant on
+#: an element, every term of the system is a polynomial of degree at most 2k (the
+#: reaction's v T, 2k; the convection's v beta.grad T, 2k - 1; SUPG's and the diffusion's
+#: grad v . grad T, 2k - 2), so the rule is exact on them and its error is the
+#: coefficients' variation over the element, O(h^2) relative; Strang's lemma then keeps
+#: the scheme's order, as a rule exact for degree 2k - 1 does for the L2 error of a
+#: P_k Galerkin scheme (Ciarlet & Raviart 1972). The film's own rule (degree 4, 6 points on
+#: P1) integrates h^3/mu more closely than the energy equation needs: half its points
+#: here halve the energy step's work at the points (flow, viscosity, tau, assembly).
+ARC_DEGREE = {3: 2, 6: 4}
+
+#: The film's own rule (degree 4 on P1, 6 on P2), which the arcs keep when a conducting
+#: bush is coupled. Why: the bush's inner nodes take the film's heat at the arcs' points
+#: (:func:`bearingfem.thermal.bush.wall_transfer`), and a bush up to twice as fine as the
+#: film (allowed) is sampled too thinly by 3 points a triangle: on ROSS's conducting
+#: fixture at 48 x 8 with the bush at 96 x 16 its hottest node moved by 0.28 K against
+#: 4e-3 K with 6 points (the film's T_max by 5e-3 K).
+BUSH_DEGREE = {3: 4, 6: 6}
+
+
+def arc_degree(mesh, bush: bool = False) -> int:
+    """The arcs' quadrature degree on ``mesh``: :data:`ARC_DEGREE`, or
+    :data:`BUSH_DEGREE` with a conducting ``bush``."""
+    return (BUSH_DEGREE if bush else ARC_DEGREE)[mesh.basis.Nbfun]
+
+
 @cached(maxsize=16)
-def arc_basis(mesh, edges: FilmEdges):
-    """The film's basis restricted to the arcs' elements, with the film's dof numbering
-    (cached per mesh)."""
+def arc_basis(mesh, edges: FilmEdges, degree: int | None = None):
+    """The film's basis restricted to the arcs' elements, with the film's dof numbering,
+    and a quadrature rule exact for ``degree`` (default :func:`arc_degree`: 3 points on a
+    P1 triangle, 6 on P2; cached per mesh)."""
     b = mesh.basis
-    return Basis(b.mesh, b.elem, intorder=4 if mesh.basis.Nbfun == 3 else 6,
+    return Basis(b.mesh, b.elem, intorder=arc_degree(mesh) if degree is None else degree,
                  elements=edges.elements, dofs=b.dofs)
 
 
@@ -222,6 +253,7 @@ class EnergyOperator:
     value: sp.csr_matrix       # nodal -> values at the points (flattened)
     d_theta: sp.csr_matrix     # nodal -> d/dtheta at the points
     d_zeta: sp.csr_matrix      # nodal -> d/dzeta at the points
+    d_both: sp.csr_matrix      # nodal -> (d/dtheta, d/dzeta) at the points, stacked
     indptr: np.ndarray         # the matrix pattern (all dofs)
     indices: np.ndarray
     positions: np.ndarray      # (nb * nb * elements,) place of each local entry
@@ -271,12 +303,15 @@ class EnergyOperator:
         return np.argsort(self.band_rank)
 
     def at_points(self, T: np.ndarray) -> np.ndarray:
-        return (self.value @ T).reshape(self.dx.shape)
+        """Values at the points (elements, points) of nodal ``T`` (N,), or (k, elements,
+        points) of k nodal fields (N, k) in one product."""
+        v = self.value @ T
+        return v.reshape(self.dx.shape) if v.ndim == 1 else \
+            np.moveaxis(v, 1, 0).reshape((v.shape[1], *self.dx.shape))
 
     def gradient(self, P: np.ndarray) -> np.ndarray:
-        """(2, elements, points) d/dtheta, d/dzeta of nodal ``P``."""
-        return np.stack([(self.d_theta @ P).reshape(self.dx.shape),
-                         (self.d_zeta @ P).reshape(self.dx.shape)])
+        """(2, elements, points) d/dtheta, d/dzeta of nodal ``P`` (one product)."""
+        return (self.d_both @ P).reshape((2, *self.dx.shape))
 
     def flow(self, bearing, state, P, fraction, viscosity, lubricant) -> EnergyFlow:
         """:func:`film_flow` on the arcs, by the operator's maps (the mesh fixed in the
@@ -298,16 +333,18 @@ class EnergyOperator:
         return np.bincount(dofs.ravel(), local.ravel(), minlength=self.N)
 
 
-def energy_operator(mesh, reverse: bool = False) -> EnergyOperator:
+def energy_operator(mesh, reverse: bool = False, degree: int | None = None) -> EnergyOperator:
     """The :class:`EnergyOperator` of a film mesh (cached per mesh), for a journal turning
     towards increasing angle (omega > 0) or, ``reverse``, the other way: the held inlet
-    rows sit on the other edges (:func:`film_edges`)."""
-    return _energy_operator(mesh, film_edges(mesh, bool(reverse)))
+    rows sit on the other edges (:func:`film_edges`). ``degree``: its quadrature's
+    (default :func:`arc_degree`; ``arc_degree(mesh, bush=True)`` with a conducting bush)."""
+    return _energy_operator(mesh, film_edges(mesh, bool(reverse)),
+                            arc_degree(mesh) if degree is None else int(degree))
 
 
 @cached(maxsize=16)
-def _energy_operator(mesh, edges: FilmEdges) -> EnergyOperator:
-    basis = arc_basis(mesh, edges)
+def _energy_operator(mesh, edges: FilmEdges, degree: int) -> EnergyOperator:
+    basis = arc_basis(mesh, edges, degree)
     nb, N = basis.Nbfun, basis.N
     dofs = basis.element_dofs                                 # (nb, elements)
     phi = np.array([np.asarray(basis.basis[i][0]) for i in range(nb)])
@@ -350,7 +387,9 @@ def _energy_operator(mesh, edges: FilmEdges) -> EnergyOperator:
     return EnergyOperator(
         basis=basis, edges=edges, theta=np.asarray(basis.global_coordinates()[0]),
         dx=np.asarray(basis.dx), phi=phi, grad=grad, cell=cell, value=interp(phi),
-        d_theta=interp(grad[:, 0]), d_zeta=interp(grad[:, 1]), indptr=pattern.indptr,
+        d_theta=interp(grad[:, 0]), d_zeta=interp(grad[:, 1]),
+        d_both=sp.vstack([interp(grad[:, 0]), interp(grad[:, 1])], format="csr"),
+        indptr=pattern.indptr,
         indices=pattern.indices, positions=positions, free_rows=free_rows, held=held, N=N,
         band=band, band_rank=rank, band_index=band_index,
         affine_p1=bool(nb == 3 and np.allclose(grad, grad[..., :1], rtol=1e-12, atol=0.0)))
