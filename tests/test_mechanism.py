@@ -148,6 +148,17 @@ def test_run_stopped_before_its_recorded_window_keeps_what_it_computed(monkeypat
     assert said == pytest.approx(turns_done, abs=7e-3)
 
 
+def test_a_run_stopped_at_its_first_film_force_comes_back_empty_without_the_note(
+        monkeypatch):
+    """Ctrl-C at the first film force: no step was taken, nothing is kept, so the message
+    is the stop alone (no 'kept the whole run' note) and the result is empty, not an
+    error. Fails with the note asked of a run with no dense output (IndexError)."""
+    _interrupt_at(monkeypatch, 1)
+    sc = scene({"lubrication": {"model": "long"}}, turns=3.0, ld=2.0, record_from_turn=2.0)
+    r = simulate(sc, progress=False)
+    assert r.partial and r.message == "interrupted at t = 0 s"
+    assert len(r.t) == 0 and r.stats["steps"] == 0
+
 @pytest.mark.parametrize("n_calls, before", [(400, True), (1200, False)])
 def test_the_note_counts_turns_from_the_scenes_start_angle(monkeypatch, n_calls, before):
     """A scene started at crank angle 3 rad, recorded from half a turn on, stopped at about
