@@ -148,6 +148,46 @@ def test_run_stopped_before_its_recorded_window_keeps_what_it_computed(monkeypat
     assert said == pytest.approx(turns_done, abs=7e-3)
 
 
+def test_a_run_stopped_at_its_first_film_force_comes_back_empty_without_the_note(
+        monkeypatch):
+    """Ctrl-C at the first film force: no step was taken, nothing is kept, so the message
+    is the stop alone (no 'kept the whole run' note) and the result is empty, not an
+    error. Fails with the note asked of a run with no dense output (IndexError)."""
+    _interrupt_at(monkeypatch, 1)
+    sc = scene({"lubrication": {"model": "long"}}, turns=3.0, ld=2.0, record_from_turn=2.0)
+    r = simulate(sc, progress=False)
+    assert r.partial and r.message == "interrupted at t = 0 s"
+    assert len(r.t) == 0 and r.stats["steps"] == 0
+
+@pytest.mark.parametrize("n_calls, before", [(400, True), (1200, False)])
+def test_the_note_counts_turns_from_the_scenes_start_angle(monkeypatch, n_calls, before):
+    """A scene started at crank angle 3 rad, recorded from half a turn on, stopped at about
+    a quarter turn (before the window: the note, its turns counted from 3 rad, the samples
+    from t = 0) or at about three quarters (inside it: no note, the samples from the
+    window). Fails with the turns counted from crank angle 0 (1.5 turns more: no note
+    before the window) or the note added whatever the window."""
+    _interrupt_at(monkeypatch, n_calls)
+    sc = parse_scene({"name": "t", "bearing": {"diameter": 0.02, "length_ratio": 2.0,
+                                               "clearance": 20e-6, "viscosity": 0.0117},
+                      "initial": {"crank_angle": 3.0},
+                      "run": {"turns": 1.5, "record_from_turn": 0.5},
+                      "effects": {"lubrication": {"model": "long"}}})
+    r = simulate(sc, progress=False)
+    assert r.partial and r.crank_angle[0] == pytest.approx(3.0 if before else 3.0 + np.pi,
+                                                           abs=1e-6 if before else 2e-2)
+    # independent of the note: where the dense output ended, from the last sample
+    done = (r.crank_angle[-1] - 3.0) / (2 * np.pi)
+    assert (done < 0.5) == before
+    if before:
+        assert r.t[0] == 0.0 and r.message.endswith(
+            " of 1.5 turns, before the recorded turns from turn 0.5: kept the whole run "
+            "from t = 0)")
+        said = float(r.message.split("(after ")[1].split(" of")[0])
+        assert said == pytest.approx(done, abs=2 / 720)
+    else:
+        assert r.t[0] > 0.0 and "recorded turns" not in r.message
+
+
 def test_progress_bar_reports_on_a_stream():
     import io
     from mechanism.progress import Progress
