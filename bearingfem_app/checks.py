@@ -11,6 +11,7 @@ import os
 import re
 from pathlib import Path
 
+from bearingfem.accuracy import RTOL_RANGE
 from bearingfem.bearing import check_squeeze_speed, check_surface_speed, plausibility_errors
 from bearingfem.validation import MIN_N_THETA, MIN_N_Z
 from mechanism.scene import oil_viscosity as scene_oil_viscosity
@@ -38,6 +39,8 @@ RULES = {
     "frames": ("--frames", 1, True, None, False),
     "workers": ("--workers", 1, True, None, False),
     "turns": ("--turns", 0.0, False, 1000.0, True),
+    # named as typed with the others (the library's message said "rtol", after the setup)
+    "rtol": ("--rtol (a relative accuracy)", RTOL_RANGE[0], True, RTOL_RANGE[1], True),
 }
 
 #: dest -> (option as typed, allowed words): named with the bad numbers, before any work
