@@ -31,9 +31,10 @@ METHODS = ("P1", "P2", "fvm")
 
 def richardson(f1, f2, f3, r=2.0):
     """(observed order p, extrapolated value, GCI of the fine value) from fine..coarse values.
-    Non-monotone or stalled sequences give p = nan and no extrapolation."""
+    Non-monotone, stalled or growing sequences give p = nan and no extrapolation (a
+    difference that does not shrink gives p <= 0: a negative GCI, no convergence)."""
     e21, e32 = f1 - f2, f2 - f3
-    if e21 == 0.0 or e32 == 0.0 or np.sign(e21) != np.sign(e32):
+    if e21 == 0.0 or e32 == 0.0 or np.sign(e21) != np.sign(e32) or abs(e21) >= abs(e32):
         return float("nan"), float("nan"), float("nan")
     p = float(np.log(abs(e32 / e21)) / np.log(r))
     ext = f1 + e21 / (r ** p - 1.0)
