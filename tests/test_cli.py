@@ -350,3 +350,30 @@ def test_equilibrium_of_a_film_fed_at_its_ends_prints_what_leaves_there(tmp_path
     assert r.returncode == 0, r.stderr
     leakage = json.loads(out.read_text())["side leakage (outflow)"]["value"]
     assert 1e-7 < leakage < 1e-6       # 3.8e-7 m^3/s; the net is ~1e-20
+
+
+def test_help_states_each_checked_range():
+    """Every option the command line checks against a bound says the bound in its help
+    (old: --n-theta, --n-z, --rtol, --workers, --frames, --turns and coefficients' --eps
+    were refused by a range their help did not name), and --quantity lists its choices."""
+    import argparse
+    from bearingfem_app.checks import RULES, _range
+    from bearingfem_app.cli import build_parser
+    sub = next(a for a in build_parser()._actions
+               if isinstance(a, argparse._SubParsersAction)).choices
+    missing = []
+    for cmd, parser in sub.items():
+        for action in parser._actions:
+            rule = RULES.get(action.dest)
+            if rule is None or not action.option_strings:
+                continue
+            text = _range(*rule[1:])
+            if text in ("finite", "positive"):
+                continue
+            said = text.removeprefix("in ")
+            if said not in " ".join((action.help or "").split()):
+                missing.append(f"{cmd} {action.option_strings[-1]}: {said}")
+    assert not missing, missing
+    from bearingfem.outputs.convergence import QUANTITIES
+    quantity = next(a for a in sub["convergence"]._actions if a.dest == "quantity")
+    assert all(q in quantity.help for q in QUANTITIES)
