@@ -111,15 +111,13 @@ def command_convergence(args):
         # refused here, not after the P1 meshes have been solved
         raise ValueError("--cavitation jfo is solved by P1 and fvm only (the JFO content is "
                          "balanced on P1 control volumes): give --methods P1,fvm")
-    if args.ambient_pressure is not None:
-        raise ValueError("--ambient-pressure does not apply to convergence (Reynolds-family "
-                         "films: none, gumbel, reynolds)")
+    check_film_options(args)     # a JFO film's supply, named as solve and render name it
     b, s = film_state(args)
     supply = supply_angle(args, s.gamma)
     check_writable(args.output, "-o/--output")
     st = convergence_study(b, s, levels=args.levels, n_theta=args.n_theta, n_z=args.n_z,
                            cavitation=args.cavitation, methods=methods, progress=print,
-                           supply_angle=supply)
+                           supply_angle=supply, ambient_pressure=ambient_pressure(args))
     out = make_dir(args.output, "-o/--output")
     st.write_csv(out / "convergence.csv")
     st.plot(out / "convergence.png", args.quantity)
@@ -130,7 +128,8 @@ def command_convergence(args):
               f"{r['order']:7.3f} {r['extrapolated']:14.6g} {r['gci']:9.2e}")
     if any(math.isnan(r["order"]) for r in st.summary):
         print("order nan: the three finest values do not change monotonically (oscillating "
-              "or already at round-off), so no order, extrapolation or GCI")
+              "or already at round-off) or their differences do not shrink, so no order, "
+              "extrapolation or GCI")
     print(f"wrote {out / 'convergence.csv'}, {out / 'convergence_summary.csv'}, "
           f"{out / 'convergence.png'}")
     return 0

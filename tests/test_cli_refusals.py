@@ -275,6 +275,22 @@ def test_jfo_convergence_refuses_p2_before_any_solve(capsys, here):
     assert out == "" and "--methods P1,fvm" in err and not (here / "conv").exists()
 
 
+def test_jfo_convergence_takes_the_ambient_pressure_its_help_offers(capsys, here):
+    """--cavitation jfo's help names --ambient-pressure > 0 as a supply; convergence refused
+    it ('does not apply to convergence (Reynolds-family films ...)') and, without a supply,
+    answered in the library's keywords (supply_angle, ambient_pressure)."""
+    assert main(["convergence", "--cavitation", "jfo", "--ambient-pressure", "1e5",
+                 "--methods", "P1,fvm", "--levels", "3", "--n-theta", "16", "--n-z", "2",
+                 "-o", "conv"]) == 0
+    assert "P1 64x8" in capsys.readouterr().out and (here / "conv" / "convergence.csv").exists()
+    line = refused(capsys, "convergence", "--cavitation", "jfo", "--methods", "P1",
+                   "-o", "conv2")
+    assert "--ambient-pressure > 0" in line and "--supply-angle" in line
+    assert "--cavitation jfo" in refused(capsys, "convergence", "--ambient-pressure", "1e5",
+                                         "-o", "conv3")
+    assert not (here / "conv2").exists() and not (here / "conv3").exists()
+
+
 def test_convergence_says_what_an_order_nan_means(capsys, here):
     """A P2 force that oscillates at the finest meshes has no observed order; the table
     says why instead of leaving a bare nan. Old: the nan alone."""

@@ -70,8 +70,8 @@ class ConvergenceStudy:
                 ref, label = s[0]["extrapolated"], (
                     f"{m}: observed order {s[0]['order']:.2f} (in h), "
                     f"GCI {100 * s[0]['gci']:.2g} %")
-            else:   # an oscillating sequence has no order: measure against the finest mesh
-                ref, label = rows[-1][quantity], f"{m}: no order (oscillating); vs its finest"
+            else:   # no order (oscillating, stalled or growing): against the finest mesh
+                ref, label = rows[-1][quantity], f"{m}: no order; vs its finest"
                 n, rows = n[:-1], rows[:-1]
             err = np.array([abs(r[quantity] / ref - 1.0) for r in rows]) if ref else n * 0
             ax.loglog(n, np.maximum(err, 1e-16), "o-", label=label)
@@ -89,8 +89,11 @@ class ConvergenceStudy:
 
 def convergence_study(bearing: Bearing, state: JournalState, *, levels: int = 4,
                       n_theta: int = 24, n_z: int = 4, cavitation: str = "reynolds",
-                      methods=METHODS, supply_angle=None, progress=None) -> ConvergenceStudy:
-    """Solve on ``levels`` meshes (n_theta x n_z, doubled each level) with each method."""
+                      methods=METHODS, supply_angle=None, ambient_pressure=0.0,
+                      progress=None) -> ConvergenceStudy:
+    """Solve on ``levels`` meshes (n_theta x n_z, doubled each level) with each method;
+    ``supply_angle`` and ``ambient_pressure`` [Pa] as :func:`bearingfem.solve_reynolds`
+    takes them (a JFO film's supply)."""
     levels = check_int("levels", levels, 3)
     for m in methods:
         if m not in METHODS:
@@ -101,10 +104,12 @@ def convergence_study(bearing: Bearing, state: JournalState, *, levels: int = 4,
             nt, nz = n_theta * 2 ** k, n_z * 2 ** k
             t0 = time.perf_counter()
             if m == "fvm":
-                sol = fvm_reynolds(bearing, state, nt, nz, cavitation, supply_angle=supply_angle)
+                sol = fvm_reynolds(bearing, state, nt, nz, cavitation, supply_angle=supply_angle,
+                                   ambient_pressure=ambient_pressure)
             else:
                 sol = solve_reynolds(bearing, state, nt, nz, m, cavitation,
-                                     supply_angle=supply_angle)
+                                     supply_angle=supply_angle,
+                                     ambient_pressure=ambient_pressure)
             dt = time.perf_counter() - t0
             fr, ft = sol.force_local
             rows.append({"method": m, "n_theta": nt, "n_z": nz, "dofs": sol.n_dofs,
