@@ -356,3 +356,16 @@ def test_film_options_that_need_each_other_are_named_as_typed(capsys, here, argv
         assert n in line, line
     assert not re.search(r"\w='", line) and "Thermal(" not in line, line
     assert not (here / "out").exists()
+
+
+@pytest.mark.parametrize("argv", [
+    ("solve", "--n-theta", "100000", "--n-z", "10000"),
+    ("render", "--n-theta", "4000", "--n-z", "1000", "-o", "out/f.png"),
+    ("convergence", "--n-theta", "480", "--n-z", "160", "--levels", "4", "-o", "out/c")])
+def test_a_mesh_beyond_memory_is_named_as_typed(capsys, here, argv):
+    """Old: solve built a 1e9-node mesh until the process was killed for memory; the
+    library now refuses it in its own names, the command line in the options'. A
+    convergence study's finest level (480 x 160 doubled three times, P2) is what counts."""
+    line = refused(capsys, *argv)
+    assert "--n-theta x --n-z" in line and "unknowns" in line
+    assert not (here / "out").exists()
