@@ -12,6 +12,7 @@ from pathlib import Path
 from .bush import bush_from_args
 from .checks import check_writable, parse_angles
 from .options import (ambient_pressure, check_film_options, check_output, check_rtol_mesh,
+                      note_coarse_film,
                       film_state, make_dir, supply_angle)
 
 #: exit status of a run stopped by Ctrl-C (128 + SIGINT), as shells report it
@@ -85,6 +86,9 @@ def command_solve(args):
         sol = solve_reynolds(b, s, args.n_theta, args.n_z, element, args.cavitation,
                              ambient_pressure=ambient_pressure(args), supply_angle=supply, bush=bush)
     print(sol.summary())
+    if args.rtol is None and bush is None:
+        note_coarse_film(s.eps, {"n_theta": args.n_theta,
+                                 "element": "FV" if args.model == "fvm" else element})
     from bearingfem.design import sommerfeld_number
     load = math.hypot(*sol.force_local)
     print("  Sommerfeld number "
@@ -159,6 +163,7 @@ def command_render(args):
     make_dir(Path(args.output).parent, "-o/--output")
     render_film(sol, args.output, field=args.field, surface=args.surface)
     print(sol.summary())
+    note_coarse_film(s.eps, {"n_theta": args.n_theta, "element": _element(args)})
     print(f"wrote {args.output}")
     return 0
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 
 from .options import (accuracy_options, bearing_from_args, check_output, model_options,
-                      print_rows, write_numbers)
+                      note_coarse_film, print_rows, write_numbers)
 
 __all__ = ["command_equilibrium", "command_coefficients", "command_design"]
 
@@ -76,6 +76,7 @@ def command_equilibrium(args):
     print(f"equilibrium, {model}{_options_words(opts)}: load {args.load:g} N toward "
           f"{args.direction:g} deg (inertial), {args.omega:g} rad/s, L/D {args.length_ratio:g}")
     print_rows(rows)
+    note_coarse_film(eq.eps, opts)
     write_numbers(out, rows)
     return 0
 
@@ -109,6 +110,7 @@ def command_coefficients(args):
     print(f"  {axes}")
     print_rows(rows)
     print(f"  {st}")
+    note_coarse_film(state.eps, opts)
     rows.append(("stability", st.verdict.value, "-"))
     write_numbers(out, rows)
     return 0
@@ -145,6 +147,7 @@ def command_design(args):
     print(f"  K, C ({kc.method}); {axes}")
     print_rows(k_rows)
     print(f"  {st}")
+    note_coarse_film(eq.eps, opts)
     rows = eq_rows + k_rows + [("stability", st.verdict.value, "-")]
     write_numbers(out, rows)
     return 0
