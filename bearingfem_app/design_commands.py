@@ -74,7 +74,8 @@ def command_equilibrium(args):
                      **opts, **acc)
     rows = _equilibrium_rows(eq, b)
     print(f"equilibrium, {model}{_options_words(opts)}: load {args.load:g} N toward "
-          f"{args.direction:g} deg (inertial), {args.omega:g} rad/s, L/D {args.length_ratio:g}")
+          f"{args.direction:g} deg (inertial), {args.omega:g} rad/s, L/D {args.length_ratio:g}, "
+          f"viscosity {b.viscosity:.4g} Pa s{_oil_words(args)}")
     print_rows(rows)
     note_coarse_film(eq.eps, opts)
     write_numbers(out, rows)
@@ -106,7 +107,9 @@ def command_coefficients(args):
               ("whirl frequency ratio", st.whirl_ratio, "-")]
              + ([] if kc.error is None else [("K, C estimated error", kc.error,
                                               "of the largest entry")]))
-    print(f"coefficients, {model}{_options_words(opts)}, {args.frame} frame ({kc.method}):")
+    print(f"coefficients, {model}{_options_words(opts)}, {args.frame} frame ({kc.method}); "
+          f"{args.omega:g} rad/s, L/D {args.length_ratio:g}, viscosity {b.viscosity:.4g} "
+          f"Pa s{_oil_words(args)}:")
     print(f"  {axes}")
     print_rows(rows)
     print(f"  {st}")

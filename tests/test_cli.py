@@ -377,3 +377,15 @@ def test_help_states_each_checked_range():
     from bearingfem.outputs.convergence import QUANTITIES
     quantity = next(a for a in sub["convergence"]._actions if a.dest == "quantity")
     assert all(q in quantity.help for q in QUANTITIES)
+
+
+@pytest.mark.parametrize("command", [("equilibrium", "--load", "500"),
+                                     ("coefficients", "--eps", "0.5")])
+def test_designer_headers_name_the_oils_viscosity(capsys, command):
+    """--oil 'ISO VG 46' --oil-temperature 80: equilibrium and coefficients named neither
+    the oil nor the viscosity it gave (design did); now their first line does."""
+    from bearingfem_app.cli import main
+    assert main([*command, "--oil", "ISO VG 46", "--oil-temperature", "80", "--n-theta",
+                 "24", "--n-z", "4"]) == 0
+    first = capsys.readouterr().out.splitlines()[0]
+    assert "viscosity 0.009614 Pa s (ISO VG 46 at 80 degC)" in first, first   # ~11 cSt
