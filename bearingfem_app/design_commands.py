@@ -100,11 +100,13 @@ def command_coefficients(args):
     else:
         state = JournalState(args.eps, omega=args.omega, gamma=math.radians(args.gamma))
     kc = coefficients(b, state, model, frame=args.frame, eps_error=eps_error, **opts, **acc)
-    st = lund_stability(kc)
+    # a film without rotation (--omega 0: a squeeze-film damper) has C but no K, and no
+    # stability verdict: K and C are still the answer
+    st = lund_stability(kc) if kc.K.any() else None
     rows, axes = _coefficient_rows(kc, args.frame)
-    rows += ([("eccentricity ratio", state.eps, "-"), ("load carried", kc.load, "N"),
-              ("critical mass", st.critical_mass, "kg"),
-              ("whirl frequency ratio", st.whirl_ratio, "-")]
+    rows += ([("eccentricity ratio", state.eps, "-"), ("load carried", kc.load, "N")]
+             + ([] if st is None else [("critical mass", st.critical_mass, "kg"),
+                                       ("whirl frequency ratio", st.whirl_ratio, "-")])
              + ([] if kc.error is None else [("K, C estimated error", kc.error,
                                               "of the largest entry")]))
     print(f"coefficients, {model}{_options_words(opts)}, {args.frame} frame ({kc.method}); "
@@ -112,9 +114,10 @@ def command_coefficients(args):
           f"Pa s{_oil_words(args)}:")
     print(f"  {axes}")
     print_rows(rows)
-    print(f"  {st}")
+    print(f"  {st}" if st is not None else "  no stability verdict: the film has no "
+          "stiffness (K = 0; without rotation it only damps)")
     note_coarse_film(state.eps, opts)
-    rows.append(("stability", st.verdict.value, "-"))
+    rows.append(("stability", "none (K = 0)" if st is None else st.verdict.value, "-"))
     write_numbers(out, rows)
     return 0
 

@@ -389,3 +389,18 @@ def test_designer_headers_name_the_oils_viscosity(capsys, command):
                  "24", "--n-z", "4"]) == 0
     first = capsys.readouterr().out.splitlines()[0]
     assert "viscosity 0.009614 Pa s (ISO VG 46 at 80 degC)" in first, first   # ~11 cSt
+
+
+def test_coefficients_without_rotation_print_the_damping(capsys, tmp_path):
+    """--omega 0 (a squeeze-film damper): K = 0 and C > 0, printed and written, with no
+    stability verdict. Old: 'bearingfem: error: the film has no stiffness (K = 0): no
+    stability verdict', exit 2, after the work, and K and C lost."""
+    from bearingfem_app.cli import main
+    out = tmp_path / "kc.csv"
+    assert main(["coefficients", "--omega", "0", "--eps", "0.5", "--n-theta", "24",
+                 "--n-z", "4", "-o", str(out)]) == 0
+    text = capsys.readouterr().out
+    assert "no stability verdict" in text and "C_xx" in text and "critical mass" not in text
+    rows = {r.split(",")[0]: r.split(",")[1] for r in out.read_text().splitlines()[1:]}
+    assert float(rows["K_xx"]) == 0.0 and float(rows["C_xx"]) > 0.0
+    assert rows["stability"] == "none (K = 0)"
