@@ -272,7 +272,11 @@ class Lubricant:
         pressure laws and properties, no temperature law (what an isothermal film
         takes)."""
         t = _positive("temperature", temperature, allowed="> 0 [K]")
-        mu = float(self.viscosity_at(0.0, temperature=t))
+        with np.errstate(over="ignore", invalid="ignore"):
+            mu = float(self.viscosity_at(0.0, temperature=t))
+        if not (math.isfinite(mu) and mu > 0.0):     # the law's range, named by its input
+            raise ValueError(f"temperature {t:g} K is outside the oil's viscosity law "
+                             f"(mu(T) = {mu:g} Pa s there)")
         return replace(self, viscosity=mu, temperature=t, walther=None,
                        temperature_exponent=None)
 

@@ -127,6 +127,10 @@ class FilmSolution:
         load = float(np.hypot(fr, ft))
         attitude = float(np.degrees(np.arctan2(ft, -fr))) if load else 0.0
         err = "" if self.force_error is None else f" (+- {100 * self.force_error:.2g} %)"
+        # a film without pressure (a centred, still journal) has no peak to place
+        peak = (f"peak pressure {self.pressure_max:.6g} Pa at theta "
+                f"{np.degrees(self.pressure_max_theta):.1f} deg from the maximum film"
+                if self.pressure_max > 0.0 else "no pressure in the film (peak 0 Pa)")
         return "\n".join([
             f"film {self.method}, cavitation {self.cavitation}, {self.n_dofs} unknowns"
             + ("" if self.accuracy is None else "; mesh {} x {} chosen for rtol {:g}".format(
@@ -134,11 +138,9 @@ class FilmSolution:
             f"  force on the journal |F| {load:.6g} N{err}, attitude angle {attitude:.4g} deg; "
             f"local (F_r, F_t) ({fr:.6g}, {ft:.6g}) N; inertial (F_x, F_y) "
             f"({self.force[0]:.6g}, {self.force[1]:.6g}) N",
-            f"  peak pressure {self.pressure_max:.6g} Pa at theta "
-            f"{np.degrees(self.pressure_max_theta):.1f} deg from the maximum film; "
-            f"minimum film {self.film_min * 1e6:.4g} um",
+            f"  {peak}; minimum film {self.film_min * 1e6:.4g} um",
             f"  cavitated area {100 * self.cavitated_fraction:.1f} % of the film; friction "
-            f"{self.friction_force:.6g} N; side leakage {self.side_leakage:.6g} m^3/s "
+            f"{self.friction_force:.6g} N; side leakage {self.side_leakage + 0.0:.6g} m^3/s "
             "(net, out of both ends)" + self._outflow_words(),
             f"  solver: {self.iterations} iterations, complementarity residual "
             f"{self.residual:.1e}" + ("" if self.converged else " (NOT converged)")]

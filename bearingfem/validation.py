@@ -13,6 +13,16 @@ CAVITATION = REYNOLDS_FAMILY + ("jfo",)
 MIN_N_THETA = 8
 MIN_N_Z = 2
 METHODS = ("active-set", "psor")
+#: Finest film accepted: unknowns (nodes; P2 has about four per cell). A cavitated solve
+#: takes ~5 kB per unknown (benchmarks/film_solve.py --memory: 1.05 GB at 2e5), so 4e6 is
+#: ~20 GB; the toolkit's finest meshes (1920 x 320 P1, P2 1536 x 256) stay well below.
+MAX_UNKNOWNS = 4_000_000
+
+
+def estimated_unknowns(n_theta: int, n_z: int, element: str = "P1") -> int:
+    """Nodes of a whole-length film mesh (periodic in theta): what a solve's size follows."""
+    k = 2 if element == "P2" else 1
+    return k * n_theta * (k * n_z + 1)
 
 
 def check_choice(name: str, value, allowed) -> str:
@@ -86,6 +96,14 @@ def check_film_solve(bearing, state, n_theta, n_z, cavitation, method, supply_an
             errors.append(str(err))
     if not (isinstance(tol, (int, float)) and tol > 0.0 and math.isfinite(tol)):
         errors.append(f"tol must be a positive finite number, got {tol!r}")
+    if "n_theta" in out and "n_z" in out:
+        # refused before the mesh is built: a mistyped size ran the machine out of memory
+        element = out.get("element", "P1")
+        unknowns = estimated_unknowns(out["n_theta"], out["n_z"], element)
+        if unknowns > MAX_UNKNOWNS:
+            errors.append(f"n_theta x n_z = {out['n_theta']} x {out['n_z']} ({element}) is "
+                          f"~{unknowns:.2g} unknowns, above the {MAX_UNKNOWNS:.0e} a film "
+                          f"solve takes (~5 kB each): a coarser mesh, or rtol")
     if errors:
         raise ValueError("; ".join(errors))
     return out["n_theta"], out["n_z"], out["supply_angle"]

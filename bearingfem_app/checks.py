@@ -11,8 +11,9 @@ import os
 import re
 from pathlib import Path
 
+from bearingfem.accuracy import RTOL_RANGE
 from bearingfem.bearing import check_squeeze_speed, check_surface_speed, plausibility_errors
-from bearingfem.validation import MIN_N_THETA, MIN_N_Z
+from bearingfem.validation import MAX_UNKNOWNS, MIN_N_THETA, MIN_N_Z, estimated_unknowns
 from mechanism.scene import oil_viscosity as scene_oil_viscosity
 
 __all__ = ["check_numbers", "given_options", "check_writable", "parse_angles",
@@ -38,6 +39,8 @@ RULES = {
     "frames": ("--frames", 1, True, None, False),
     "workers": ("--workers", 1, True, None, False),
     "turns": ("--turns", 0.0, False, 1000.0, True),
+    # named as typed with the others (the library's message said "rtol", after the setup)
+    "rtol": ("--rtol (a relative accuracy)", RTOL_RANGE[0], True, RTOL_RANGE[1], True),
 }
 
 #: dest -> (option as typed, allowed words): named with the bad numbers, before any work
@@ -76,6 +79,7 @@ def check_numbers(args) -> None:
                           else f"{name} must lie {rule}, got {v!r}" if rule.startswith("in")
                           else f"{name} must be {rule}, got {v!r}")
     errors += choice_errors(args)
+    errors += mesh_size_errors(args)
     if getattr(args, "command", None) in ("equilibrium", "design") and \
             getattr(args, "omega", None) == 0.0:
         errors.append(f"{_speed_option(args)} must be non-zero for {args.command}: without "
@@ -83,6 +87,24 @@ def check_numbers(args) -> None:
     if errors:
         raise ValueError("; ".join(errors))
     check_plausible(args)
+
+
+def mesh_size_errors(args) -> list:
+    """--n-theta x --n-z beyond what a film solve takes (the library's MAX_UNKNOWNS), named
+    as typed; convergence's finest level (doubled --levels - 1 times) is the one solved."""
+    nt, nz = getattr(args, "n_theta", None), getattr(args, "n_z", None)
+    if not (isinstance(nt, int) and isinstance(nz, int) and nt > 0 and nz > 0):
+        return []
+    levels = getattr(args, "levels", None)
+    scale = 2 ** (levels - 1) if isinstance(levels, int) and 0 < levels < 30 else 1
+    methods = str(getattr(args, "methods", "") or getattr(args, "element", "P1") or "P1")
+    element = "P2" if "P2" in methods else "P1"
+    unknowns = estimated_unknowns(nt * scale, nz * scale, element)
+    if unknowns <= MAX_UNKNOWNS:
+        return []
+    where = "" if scale == 1 else f" at the finest of --levels {levels}"
+    return [f"--n-theta x --n-z = {nt} x {nz} ({element}{where}) is ~{unknowns:.2g} "
+            f"unknowns, above the {MAX_UNKNOWNS:.0e} a film solve takes: a coarser mesh"]
 
 
 def _speed_option(args) -> str:

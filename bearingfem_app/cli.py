@@ -13,6 +13,7 @@ import sys
 
 from bearingfem.bearing import SEED_TABLE1
 from bearingfem.models import FILM_MODELS
+from bearingfem.outputs.convergence import QUANTITIES, UNITS
 from mechanism.scene import shipped_scenes
 
 from .bush import add_bush_args
@@ -80,12 +81,12 @@ def _bearing_args(p, film=True):
     p.add_argument("-q", "--quiet", action="store_true",
                    help="no progress lines on stderr (a mesh search's estimates, an elastic "
                         "film's Newton steps)")
-    p.add_argument("--n-theta", type=int, default=120, help="cells around the film")
-    p.add_argument("--n-z", type=int, default=20, help="cells along the length")
+    p.add_argument("--n-theta", type=int, default=120, help="cells around the film (>= 8)")
+    p.add_argument("--n-z", type=int, default=20, help="cells along the length (>= 2)")
     p.add_argument("--element", default="P1", help="P1 | P2 (finite elements only)")
     p.add_argument("--ambient-pressure", type=float, default=None,
                    help="the JFO film's oil pressure at the ends above the cavitation "
-                        "pressure [Pa]; " + ("with --cavitation jfo (default 0)" if film
+                        "pressure [Pa], >= 0; " + ("with --cavitation jfo (default 0)" if film
                                              else "with --model fem-jfo (default 1e5)"))
 
 
@@ -126,8 +127,9 @@ def _load_args(p, required):
 
 def _rtol_arg(p):
     p.add_argument("--rtol", type=float, default=None,
-                   help="a requested relative accuracy (e.g. 1e-3): the mesh (and element, "
-                        "P2 unless --element) is chosen to reach it; not with --n-theta, --n-z")
+                   help="a requested relative accuracy in [1e-06, 0.1] (e.g. 1e-3): the mesh "
+                        "(and element, P2 unless --element) is chosen to reach it; not with "
+                        "--n-theta, --n-z")
 
 
 #: the designer's film models the command line can build (the thermal film needs an
@@ -181,8 +183,8 @@ def build_parser():
     s.add_argument("-o", "--output", required=True, help="output directory")
     s.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
     s.add_argument("--turns", type=float, default=None,
-                   help="run this many crank turns, all recorded (a quick look; default: "
-                        "the scene's turns and record_from_turn)")
+                   help="run this many crank turns, in (0, 1000], all recorded (a quick look; "
+                        "default: the scene's turns and record_from_turn)")
     s.set_defaults(func=command_simulate)
     f = add("solve", help="one film solve; print forces, optionally export VTU",
             epilog="example: bearingfem solve --ld 0.5 --eps 0.8 -o film.vtu")
@@ -201,7 +203,9 @@ def build_parser():
     c.set_defaults(n_theta=24, n_z=4)
     c.add_argument("--levels", type=int, default=4, help="meshes, each twice as fine (>= 3)")
     c.add_argument("--methods", default="P1,P2,fvm", help="comma list of P1, P2, fvm")
-    c.add_argument("--quantity", default="force", help="quantity for the figure")
+    c.add_argument("--quantity", default="force",
+                   help="quantity for the figure: " + " | ".join(
+                       f"{q} [{UNITS[q]}]" for q in QUANTITIES))
     c.add_argument("-o", "--output", required=True, help="output directory")
     c.set_defaults(func=command_convergence)
     r = add("render", help="off-screen PNG of the film pressure or thickness",
@@ -221,7 +225,7 @@ def build_parser():
     w.add_argument("--scheduler", help="address [tcp://]host:port of a running Dask "
                    "scheduler (refused if it does not answer within 5 s); default: a local "
                    "cluster")
-    w.add_argument("--workers", type=int, default=2, help="local cluster processes")
+    w.add_argument("--workers", type=int, default=2, help="local cluster processes (>= 1)")
     w.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
     w.set_defaults(func=command_sweep)
     fr = add("frames", help="the film along a saved run: VTU series (.pvd), PNG frames, GIF",
@@ -233,7 +237,7 @@ def build_parser():
     fr.add_argument("-o", "--output", required=True, help="output directory")
     fr.add_argument("--angles", help="crank angles [deg] in [0, 360), comma-separated; "
                     "taken in increasing order (default: evenly spaced --frames)")
-    fr.add_argument("--frames", type=int, default=12, help="number of evenly spaced frames")
+    fr.add_argument("--frames", type=int, default=12, help="number of evenly spaced frames (>= 1)")
     fr.add_argument("--field", default="pressure",
                     help="pressure | film_thickness | fraction (a fem-jfo run)")
     fr.add_argument("--surface", default="journal", help="journal | unwrapped")
@@ -258,7 +262,8 @@ def build_parser():
                    "--frame load")
     _design_args(k)
     _rtol_arg(k)
-    k.add_argument("--eps", type=float, help="steady state at this eccentricity ratio")
+    k.add_argument("--eps", type=float,
+                   help="steady state at this eccentricity ratio, in [0, 1)")
     k.add_argument("--gamma", type=float, default=0.0, help="its attitude [deg] (with --eps)")
     _load_args(k, required=False)
     k.add_argument("--frame", default="inertial", choices=["inertial", "local", "load"],

@@ -12,6 +12,7 @@ from pathlib import Path
 from .bush import bush_from_args
 from .checks import check_writable, parse_angles
 from .options import (ambient_pressure, check_film_options, check_output, check_rtol_mesh,
+                      note_coarse_film,
                       film_state, make_dir, supply_angle)
 
 #: exit status of a run stopped by Ctrl-C (128 + SIGINT), as shells report it
@@ -85,6 +86,9 @@ def command_solve(args):
         sol = solve_reynolds(b, s, args.n_theta, args.n_z, element, args.cavitation,
                              ambient_pressure=ambient_pressure(args), supply_angle=supply, bush=bush)
     print(sol.summary())
+    if args.rtol is None and bush is None:
+        note_coarse_film(s.eps, {"n_theta": args.n_theta,
+                                 "element": "FV" if args.model == "fvm" else element})
     from bearingfem.design import sommerfeld_number
     load = math.hypot(*sol.force_local)
     print("  Sommerfeld number "
@@ -111,15 +115,13 @@ def command_convergence(args):
         # refused here, not after the P1 meshes have been solved
         raise ValueError("--cavitation jfo is solved by P1 and fvm only (the JFO content is "
                          "balanced on P1 control volumes): give --methods P1,fvm")
-    if args.ambient_pressure is not None:
-        raise ValueError("--ambient-pressure does not apply to convergence (Reynolds-family "
-                         "films: none, gumbel, reynolds)")
+    check_film_options(args)     # a JFO film's supply, named as solve and render name it
     b, s = film_state(args)
     supply = supply_angle(args, s.gamma)
     check_writable(args.output, "-o/--output")
     st = convergence_study(b, s, levels=args.levels, n_theta=args.n_theta, n_z=args.n_z,
                            cavitation=args.cavitation, methods=methods, progress=print,
-                           supply_angle=supply)
+                           supply_angle=supply, ambient_pressure=ambient_pressure(args))
     out = make_dir(args.output, "-o/--output")
     st.write_csv(out / "convergence.csv")
     st.plot(out / "convergence.png", args.quantity)
@@ -130,7 +132,8 @@ def command_convergence(args):
               f"{r['order']:7.3f} {r['extrapolated']:14.6g} {r['gci']:9.2e}")
     if any(math.isnan(r["order"]) for r in st.summary):
         print("order nan: the three finest values do not change monotonically (oscillating "
-              "or already at round-off), so no order, extrapolation or GCI")
+              "or already at round-off) or their differences do not shrink, so no order, "
+              "extrapolation or GCI")
     print(f"wrote {out / 'convergence.csv'}, {out / 'convergence_summary.csv'}, "
           f"{out / 'convergence.png'}")
     return 0
@@ -160,6 +163,7 @@ def command_render(args):
     make_dir(Path(args.output).parent, "-o/--output")
     render_film(sol, args.output, field=args.field, surface=args.surface)
     print(sol.summary())
+    note_coarse_film(s.eps, {"n_theta": args.n_theta, "element": _element(args)})
     print(f"wrote {args.output}")
     return 0
 

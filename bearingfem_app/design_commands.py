@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 
 from .options import (accuracy_options, bearing_from_args, check_output, model_options,
-                      print_rows, write_numbers)
+                      note_coarse_film, print_rows, write_numbers)
 
 __all__ = ["command_equilibrium", "command_coefficients", "command_design"]
 
@@ -74,8 +74,10 @@ def command_equilibrium(args):
                      **opts, **acc)
     rows = _equilibrium_rows(eq, b)
     print(f"equilibrium, {model}{_options_words(opts)}: load {args.load:g} N toward "
-          f"{args.direction:g} deg (inertial), {args.omega:g} rad/s, L/D {args.length_ratio:g}")
+          f"{args.direction:g} deg (inertial), {args.omega:g} rad/s, L/D {args.length_ratio:g}, "
+          f"viscosity {b.viscosity:.4g} Pa s{_oil_words(args)}")
     print_rows(rows)
+    note_coarse_film(eq.eps, opts)
     write_numbers(out, rows)
     return 0
 
@@ -98,18 +100,24 @@ def command_coefficients(args):
     else:
         state = JournalState(args.eps, omega=args.omega, gamma=math.radians(args.gamma))
     kc = coefficients(b, state, model, frame=args.frame, eps_error=eps_error, **opts, **acc)
-    st = lund_stability(kc)
+    # a film without rotation (--omega 0: a squeeze-film damper) has C but no K, and no
+    # stability verdict: K and C are still the answer
+    st = lund_stability(kc) if kc.K.any() else None
     rows, axes = _coefficient_rows(kc, args.frame)
-    rows += ([("eccentricity ratio", state.eps, "-"), ("load carried", kc.load, "N"),
-              ("critical mass", st.critical_mass, "kg"),
-              ("whirl frequency ratio", st.whirl_ratio, "-")]
+    rows += ([("eccentricity ratio", state.eps, "-"), ("load carried", kc.load, "N")]
+             + ([] if st is None else [("critical mass", st.critical_mass, "kg"),
+                                       ("whirl frequency ratio", st.whirl_ratio, "-")])
              + ([] if kc.error is None else [("K, C estimated error", kc.error,
                                               "of the largest entry")]))
-    print(f"coefficients, {model}{_options_words(opts)}, {args.frame} frame ({kc.method}):")
+    print(f"coefficients, {model}{_options_words(opts)}, {args.frame} frame ({kc.method}); "
+          f"{args.omega:g} rad/s, L/D {args.length_ratio:g}, viscosity {b.viscosity:.4g} "
+          f"Pa s{_oil_words(args)}:")
     print(f"  {axes}")
     print_rows(rows)
-    print(f"  {st}")
-    rows.append(("stability", st.verdict.value, "-"))
+    print(f"  {st}" if st is not None else "  no stability verdict: the film has no "
+          "stiffness (K = 0; without rotation it only damps)")
+    note_coarse_film(state.eps, opts)
+    rows.append(("stability", "none (K = 0)" if st is None else st.verdict.value, "-"))
     write_numbers(out, rows)
     return 0
 
@@ -145,6 +153,7 @@ def command_design(args):
     print(f"  K, C ({kc.method}); {axes}")
     print_rows(k_rows)
     print(f"  {st}")
+    note_coarse_film(eq.eps, opts)
     rows = eq_rows + k_rows + [("stability", st.verdict.value, "-")]
     write_numbers(out, rows)
     return 0

@@ -6,6 +6,7 @@ naming the option, before any work."""
 from __future__ import annotations
 
 import math
+import sys
 from pathlib import Path
 
 from .bush import bush_from_args
@@ -14,7 +15,7 @@ from .checks import check_writable
 __all__ = ["bearing_from_args", "supply_angle", "ambient_pressure", "film_state",
            "MODEL_OPTIONS", "model_options", "accuracy_options", "check_rtol_mesh",
            "check_film_options", "refuse_bush_film",
-           "check_cache",
+           "check_cache", "coarse_film_note", "note_coarse_film", "RESOLVED_SPACINGS",
            "check_output", "make_dir", "write_numbers", "print_rows"]
 
 
@@ -213,3 +214,36 @@ def print_rows(rows):
             scale, readable, _ = READABLE[unit]
             gloss = f"  ({value * scale:.4g} {readable})"
         print(f"  {name:24s} {v:>14s} {unit}{gloss}")
+
+
+#: Fewer node spacings around than this across the arc where a rigid film is under twice
+#: its least: force errors of 6-86 % (P1), 3-41 % (P2), 0.7-29 % (FV) were measured there,
+#: 5.1 % and less (P1) from 5.4 on (L/D 1 and 0.2, eps 0.95-0.999, against rtol 1e-4;
+#: docs/cli.md). A given mesh's error is not estimated: this says where it is surely large.
+RESOLVED_SPACINGS = 4.0
+
+
+def coarse_film_note(eps: float, n_theta: int, element: str = "P1") -> str | None:
+    """A note when ``n_theta`` puts fewer than :data:`RESOLVED_SPACINGS` node spacings
+    (P2: half cells) across the arc where h = c (1 + eps cos theta) < 2 c (1 - eps); else
+    None."""
+    if not (1.0 / 3.0 < eps < 1.0):      # below 1/3 the whole film is under twice its least
+        return None
+    arc = 2.0 * (math.pi - math.acos((1.0 - 2.0 * eps) / eps))
+    spacings = arc * n_theta / (2.0 * math.pi) * (2 if element == "P2" else 1)
+    if spacings >= RESOLVED_SPACINGS:
+        return None
+    return (f"note: the film under twice its least (eps {eps:.4g}) spans {spacings:.2g} node "
+            f"spacings of --n-theta {n_theta} ({element}); force errors up to 86 % were "
+            f"measured below {RESOLVED_SPACINGS:g} (docs/cli.md): a finer --n-theta, or "
+            f"--rtol for an estimated error")
+
+
+def note_coarse_film(eps: float, opts: dict) -> None:
+    """Print :func:`coarse_film_note` on stderr for a rigid film on a given mesh (``opts``
+    the film model's options: nothing without n_theta, with a bush or a chosen mesh)."""
+    if "n_theta" not in opts or "bush" in opts:
+        return
+    note = coarse_film_note(eps, opts["n_theta"], opts.get("element", "P1"))
+    if note:
+        print(f"bearingfem: {note}", file=sys.stderr)

@@ -349,6 +349,8 @@ def plot_summary(rows, sweep: Sweep, path) -> None:
             j = styles.index(tuple(named.get(s) for s in styled))
             ax.plot(xs, [r[y_key] for r in rs], color=cmap(0.85 * i / max(n - 1, 1)),
                     marker=markers[j % len(markers)], ls=lines[j % len(lines)], label=label)
+        # a log axis needs a positive value (a still journal's load is 0): else linear
+        log = log and any(r[y_key] > 0 for rs in groups.values() for r in rs)
         ax.set(xlabel=xlabel, ylabel=ylabel, yscale="log" if log else "linear")
         ax.grid(True, alpha=0.3)
         if log and groups:      # one way of writing every tick (not 6x10^0 beside 10^1)

@@ -350,3 +350,57 @@ def test_equilibrium_of_a_film_fed_at_its_ends_prints_what_leaves_there(tmp_path
     assert r.returncode == 0, r.stderr
     leakage = json.loads(out.read_text())["side leakage (outflow)"]["value"]
     assert 1e-7 < leakage < 1e-6       # 3.8e-7 m^3/s; the net is ~1e-20
+
+
+def test_help_states_each_checked_range():
+    """Every option the command line checks against a bound says the bound in its help
+    (old: --n-theta, --n-z, --rtol, --workers, --frames, --turns and coefficients' --eps
+    were refused by a range their help did not name), and --quantity lists its choices."""
+    import argparse
+    from bearingfem_app.checks import RULES, _range
+    from bearingfem_app.cli import build_parser
+    sub = next(a for a in build_parser()._actions
+               if isinstance(a, argparse._SubParsersAction)).choices
+    missing = []
+    for cmd, parser in sub.items():
+        for action in parser._actions:
+            rule = RULES.get(action.dest)
+            if rule is None or not action.option_strings:
+                continue
+            text = _range(*rule[1:])
+            if text in ("finite", "positive"):
+                continue
+            said = text.removeprefix("in ")
+            if said not in " ".join((action.help or "").split()):
+                missing.append(f"{cmd} {action.option_strings[-1]}: {said}")
+    assert not missing, missing
+    from bearingfem.outputs.convergence import QUANTITIES
+    quantity = next(a for a in sub["convergence"]._actions if a.dest == "quantity")
+    assert all(q in quantity.help for q in QUANTITIES)
+
+
+@pytest.mark.parametrize("command", [("equilibrium", "--load", "500"),
+                                     ("coefficients", "--eps", "0.5")])
+def test_designer_headers_name_the_oils_viscosity(capsys, command):
+    """--oil 'ISO VG 46' --oil-temperature 80: equilibrium and coefficients named neither
+    the oil nor the viscosity it gave (design did); now their first line does."""
+    from bearingfem_app.cli import main
+    assert main([*command, "--oil", "ISO VG 46", "--oil-temperature", "80", "--n-theta",
+                 "24", "--n-z", "4"]) == 0
+    first = capsys.readouterr().out.splitlines()[0]
+    assert "viscosity 0.009614 Pa s (ISO VG 46 at 80 degC)" in first, first   # ~11 cSt
+
+
+def test_coefficients_without_rotation_print_the_damping(capsys, tmp_path):
+    """--omega 0 (a squeeze-film damper): K = 0 and C > 0, printed and written, with no
+    stability verdict. Old: 'bearingfem: error: the film has no stiffness (K = 0): no
+    stability verdict', exit 2, after the work, and K and C lost."""
+    from bearingfem_app.cli import main
+    out = tmp_path / "kc.csv"
+    assert main(["coefficients", "--omega", "0", "--eps", "0.5", "--n-theta", "24",
+                 "--n-z", "4", "-o", str(out)]) == 0
+    text = capsys.readouterr().out
+    assert "no stability verdict" in text and "C_xx" in text and "critical mass" not in text
+    rows = {r.split(",")[0]: r.split(",")[1] for r in out.read_text().splitlines()[1:]}
+    assert float(rows["K_xx"]) == 0.0 and float(rows["C_xx"]) > 0.0
+    assert rows["stability"] == "none (K = 0)"

@@ -46,7 +46,11 @@ def test_coefficients_print_their_error_and_the_verdicts_range():
 
 
 @pytest.mark.parametrize("args, needle", [
-    (("solve", "--rtol", "0"), "rtol must lie in"),
+    (("solve", "--rtol", "0"), "--rtol (a relative accuracy) must lie in [1e-06, 0.1]"),
+    # named as typed, with the other bad numbers in one line (was the library's "rtol")
+    (("equilibrium", "--load", "100", "--rtol", "1e-9"), "--rtol (a relative accuracy)"),
+    (("coefficients", "--eps", "0.5", "--rtol", "0.5", "--clearance", "-1e-6"),
+     "--clearance must be positive (> 0), got -1e-06; --rtol"),
     (("equilibrium", "--load", "100", "--model", "short", "--rtol", "1e-3"),
      "model 'short' has none"),
     # a mesh typed beside --rtol was dropped unseen (the search's mesh printed)

@@ -43,3 +43,32 @@ def test_a_walk_that_cannot_move_raises_naming_the_parameter(rule, start):
         rule.walk(_solve_within(-1.0, tried), start, start, 1.0, "walk", "coupling",
                   "reduce the load")
     assert len(tried) == (7 if isinstance(rule, Increments) else 1)   # 1, 1/4, ... 1/4^6
+
+
+def test_a_failed_attempt_counts_its_iterations_and_says_what_follows(caplog):
+    """attempt() gave (None, 0) for a solve that raised after 7 iterations (Walk's count
+    'failed ones included' missed them), and the progress line read 'stalled in 0
+    iterations' where a shorter step was tried next."""
+    import logging
+    from types import SimpleNamespace
+
+    from bearingfem.solvers.continuation import attempt
+
+    def solve(x):
+        if x > 0.5:
+            raise ConvergenceError("test solve", 7)
+        return SimpleNamespace(x=x, iterations=3)
+    assert attempt(solve, 1.0) == (None, 7)
+
+    def walked(x, state):
+        return attempt(solve, x)
+    log = logging.getLogger("bearingfem.test_continuation")
+    with caplog.at_level(logging.INFO, logger="bearingfem"):
+        walk = Increments(1.0, 1e-4).walk(walked, 0.0, 0.0, 0.5, "walk", "s", "", log)
+    said = [r.getMessage() for r in caplog.records]
+    assert said[0] == "walk: s = 0.5 converged in 3 iterations" and walk.iterations == 3
+    with caplog.at_level(logging.INFO, logger="bearingfem"):
+        with pytest.raises(ConvergenceError):
+            Increments(1.0, 0.6).walk(walked, 0.0, 0.0, 1.0, "walk", "s", "", log)
+    assert "walk: s = 1 not converged (a shorter step next) in 7 iterations" in \
+        [r.getMessage() for r in caplog.records]

@@ -16,6 +16,13 @@ def test_richardson_recovers_a_known_sequence():
     assert np.isnan(richardson(1.0, 2.0, 1.5)[0])   # oscillating: no order claimed
 
 
+def test_richardson_claims_no_order_for_a_growing_difference():
+    """Monotone but not converging (differences 0.1 then 0.3, as P2's cavitated share of
+    L/D 1, eps 0.6 over 24 x 4 .. 96 x 16): the order was -1.65 and the GCI -5.3 %."""
+    for f in ((1.75, 1.25, 1.0), (1.5, 1.25, 1.0)):      # fine .. coarse: growing, equal
+        assert all(np.isnan(v) for v in richardson(*f))
+
+
 def test_study_orders_and_files(tmp_path):
     s = convergence_study(table1_bearing(1.0), JournalState(0.6, omega=250.0), levels=4,
                           n_theta=24, n_z=4, cavitation="gumbel", methods=("P1", "fvm"))

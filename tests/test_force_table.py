@@ -118,6 +118,29 @@ def test_disk_cache_reuses_and_rebuilds_when_stale(monkeypatch, tmp_path):
     ft.force_table.cache_clear()
 
 
+def test_a_table_build_says_so(monkeypatch, tmp_path, caplog):
+    """A table's first build takes tens of seconds at the defaults (25 s CPU at L/D 0.7):
+    'bearingfem equilibrium --model fem-table' said nothing meanwhile. Now INFO lines on
+    the bearingfem logger (which the command line shows); none when the table is on disk."""
+    import logging
+
+    import bearingfem.fe.force_table as ft
+    monkeypatch.setenv("BEARINGFEM_CACHE", str(tmp_path))
+    args = (0.41, 16, 2, "P1", "gumbel", 6, 16, 0.9)
+    ft.force_table.cache_clear()
+    with caplog.at_level(logging.INFO, logger="bearingfem"):
+        force_table(*args)
+    said = [r.getMessage() for r in caplog.records if r.name == "bearingfem.fe.force_table"]
+    assert len(said) == 2 and "building the force table of L/D 0.41" in said[0]
+    assert said[1].startswith("fem-table: built in")
+    caplog.clear()
+    ft.force_table.cache_clear()
+    with caplog.at_level(logging.INFO, logger="bearingfem"):
+        force_table(*args)
+    assert not [r for r in caplog.records if r.name == "bearingfem.fe.force_table"]
+    ft.force_table.cache_clear()
+
+
 @pytest.mark.parametrize("kw, match", [(dict(n_eps=3), "n_eps must be an integer >= 6"),
                                        (dict(cavitation="elrod"), "cavitation must be one of"),
                                        (dict(eps_max=0.999999), r"eps_max of the table")])

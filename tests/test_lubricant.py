@@ -259,6 +259,9 @@ def test_oil_without_temperature_law_ignores_temperature():
     (lambda: Lubricant(0.01, temperature=323.0, walther=(9.5, 3.7), mass_density=870.0),
      "walther"),
     (lambda: Lubricant.iso_vg(32).at_temperature(-5.0), "temperature"),
+    # Walther's law overflows at 1 K: was 'viscosity must be finite ..., got inf' and
+    # numpy's overflow warnings, naming the viscosity nobody gave
+    (lambda: Lubricant.iso_vg(32).at_temperature(1.0), "temperature 1 K is outside"),
 ])
 def test_bad_thermal_input_names_the_parameter(call, name):
     with pytest.raises(ValueError, match=name):

@@ -37,6 +37,17 @@ def test_render_matches_baseline(tmp_path, surface):
     assert pv.compare_images(str(other), str(base)) > THRESHOLD
 
 
+@pytest.mark.parametrize("surface", ["journal", "unwrapped"])
+def test_a_film_without_pressure_renders(tmp_path, surface):
+    """A centred journal (eps 0) carries no pressure: no cavity boundary to draw. It
+    stopped in pyvista ('negative dimensions are not allowed') drawing an empty line."""
+    sol = solve_reynolds(table1_bearing(1.0), JournalState(0.0, omega=250.0), 24, 4)
+    assert sol.pressure_max == 0.0 and _boundary_lines(sol) == []
+    path = render_film(sol, tmp_path / f"{surface}.png", surface=surface,
+                       window_size=(200, 150))
+    assert Path(path).stat().st_size > 0
+
+
 def test_render_rejects_unknown_field(tmp_path):
     sol = solve_reynolds(table1_bearing(1.0), JournalState(0.6, omega=250.0), 24, 4)
     with pytest.raises(ValueError, match="field"):

@@ -61,6 +61,20 @@ def test_fem_options_validated():
         parse_scene(d)
 
 
+def test_cavitation_jfo_points_to_the_jfo_model():
+    """cavitation = "jfo" under model "fem" was refused with the allowed words alone; the
+    mass-conserving film is its own model, and the message (scene and Python alike) says
+    so."""
+    from bearingfem import Bearing, equilibrium
+    d = _with(("effects", "lubrication"), {"model": "fem", "cavitation": "jfo"})
+    with pytest.raises(ValueError, match=r"lubrication.cavitation must be one of .*"
+                                         r"the model 'fem-jfo'"):
+        parse_scene(d)
+    b = Bearing(radius=0.01, length=0.02, clearance=20e-6, viscosity=0.0117)
+    with pytest.raises(ValueError, match="the model 'fem-jfo'"):
+        equilibrium(b, (0.0, -100.0), 250.0, "fem", cavitation="jfo")
+
+
 def test_fem_table_options_parse_with_their_defaults_and_ranges():
     sc = parse_scene(_with(("effects", "lubrication"), {"model": "fem-table", "n_phi": 48}))
     assert sc.lubrication.options == dict(n_theta=64, n_z=16, cavitation="gumbel", n_eps=60,

@@ -43,3 +43,15 @@ def test_summary_gives_the_outflow_where_the_ends_also_draw_oil_in():
     cavitated = solve_reynolds(b, s, 48, 8, "P1", "reynolds")
     assert cavitated.side_outflow == cavitated.side_leakage > 0.0
     assert "leave where" not in cavitated.summary()
+
+
+def test_summary_of_a_film_without_pressure_places_no_peak():
+    """A centred journal (eps 0) carries no pressure: the summary said 'peak pressure 0 Pa
+    at theta 3.0 deg from the maximum film' (the first node's angle) and 'side leakage
+    -0 m^3/s'."""
+    b = Bearing(radius=0.01, length=0.02, clearance=20e-6, viscosity=0.0117)
+    text = solve_reynolds(b, JournalState(0.0, omega=250.0), 24, 4).summary()
+    assert "no pressure in the film (peak 0 Pa)" in text and "at theta" not in text
+    assert "-0 " not in text and "side leakage 0 m^3/s" in text
+    loaded = solve_reynolds(b, JournalState(0.6, omega=250.0), 24, 4).summary()
+    assert "Pa at theta" in loaded and "no pressure" not in loaded

@@ -210,6 +210,25 @@ def test_summary_plots_what_the_sweep_promises_with_units(tmp_path, monkeypatch)
     assert legend == ["viscosity 0.0117 Pa s", "viscosity 0.03 Pa s"]
 
 
+def test_summary_of_a_sweep_without_load_plots_it_linear(tmp_path, monkeypatch):
+    """A film sweep at omega 0 carries no load: its log panel warned 'Data has no positive
+    values, and therefore cannot be log-scaled' on stderr; now that panel is linear."""
+    import warnings
+
+    import matplotlib.figure
+    from bearingfem_app.sweep import plot_summary
+    saved = []
+    monkeypatch.setattr(matplotlib.figure.Figure, "savefig",
+                        lambda self, *a, **k: saved.append(self))
+    sw = parse_sweep({"name": "z", "kind": "film", "base": {"omega": 0.0},
+                      "vary": {"eps": [0.0, 0.5]}})
+    rows = [{"eps": e, "load": 0.0} for e in (0.0, 0.5)]
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        plot_summary(rows, sw, tmp_path / "s.png")
+    assert saved[0].axes[0].get_yscale() == "linear"
+
+
 def test_design_summary_shows_every_promised_output_and_plain_log_ticks(tmp_path, monkeypatch):
     """The design chart's summary plots what its sweep file promises: S, attitude,
     friction and flow variables, and the four K and four C (old: only S against eps);

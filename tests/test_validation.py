@@ -139,3 +139,18 @@ def test_a_load_not_of_two_components_is_named(load):
     b = Bearing(radius=0.01, length=0.004, clearance=20e-6, viscosity=0.0117)
     with pytest.raises(ValueError, match=r"load must be a vector \(W_x, W_y\) \[N\]"):
         equilibrium(b, load, 250.0, "short")
+
+
+@pytest.mark.parametrize("solver, element", [(solve_reynolds, "P1"), (solve_reynolds, "P2"),
+                                             (fvm_reynolds, None)])
+def test_a_mesh_beyond_memory_is_refused_before_it_is_built(solver, element):
+    """100000 x 10000 (a mistyped size) was built until the process was killed for memory
+    (24 GB resident); now refused at once, naming n_theta and n_z. The toolkit's finest
+    meshes pass the check (1920 x 320 P1, 1536 x 256 P2)."""
+    from bearingfem.validation import MAX_UNKNOWNS, estimated_unknowns
+    b = Bearing(radius=0.01, length=0.02, clearance=20e-6, viscosity=0.0117)
+    kw = {} if element is None else {"element": element}
+    with pytest.raises(ValueError, match=r"n_theta x n_z = 100000 x 10000"):
+        solver(b, JournalState(0.5, omega=250.0), 100000, 10000, **kw)
+    assert estimated_unknowns(1920, 320) < estimated_unknowns(1536, 256, "P2") < MAX_UNKNOWNS
+    assert estimated_unknowns(1000, 2000, "P2") > MAX_UNKNOWNS

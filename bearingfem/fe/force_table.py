@@ -23,7 +23,9 @@ from __future__ import annotations
 
 import hashlib
 import json
+import logging
 import os
+import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -53,6 +55,10 @@ SCALE_EXPONENT = 2.0   # k in g = (1 - eps)^k F / |v'|
 TABLE_DEFAULTS = dict(n_theta=64, n_z=16, element="P2", cavitation="gumbel", n_eps=60,
                       n_phi=96)
 _D = TABLE_DEFAULTS
+
+
+#: progress of a table's build (tens of seconds at the defaults): INFO, shown by the CLI
+LOG = logging.getLogger(__name__)
 
 
 def cache_dir() -> Path:
@@ -217,8 +223,13 @@ def force_table(length_ratio: float, n_theta=_D["n_theta"], n_z=_D["n_z"],
     path = cache_dir() / f"force-table-{name}.npz"
     table = _load(path, key)
     if table is None:
+        LOG.info("fem-table: building the force table of L/D %g once (%d x %d states on %s "
+                 "%d x %d, kept in %s)", length_ratio, n_eps, n_phi, element, n_theta, n_z,
+                 path.parent)
+        t0 = time.perf_counter()
         table = build_force_table(length_ratio, n_theta, n_z, element, cavitation,
                                   n_eps, n_phi, eps_max)
+        LOG.info("fem-table: built in %.1f s", time.perf_counter() - t0)
         try:
             _save(path, table)
         except OSError:

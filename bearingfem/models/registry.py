@@ -55,6 +55,10 @@ def _check_option(name: str, value, where: str, mass_conserving: bool = False,
             raise ValueError(f"{label} must be a {' or '.join(c.__name__ for c in allowed)} "
                              f"or None, got {type(value).__name__}")
         return value
+    if kind == "choice" and name == "cavitation" and value == "jfo" and value not in allowed:
+        # the mass-conserving film is a model of its own: say which
+        raise ValueError(f"{label} must be one of {', '.join(map(repr, allowed))}, got "
+                         f"'jfo': the mass-conserving film is the model 'fem-jfo'")
     if kind == "choice":
         return check_choice(label, value, allowed)
     lo, hi = allowed

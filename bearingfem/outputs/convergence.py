@@ -31,9 +31,10 @@ METHODS = ("P1", "P2", "fvm")
 
 def richardson(f1, f2, f3, r=2.0):
     """(observed order p, extrapolated value, GCI of the fine value) from fine..coarse values.
-    Non-monotone or stalled sequences give p = nan and no extrapolation."""
+    Non-monotone, stalled or growing sequences give p = nan and no extrapolation (a
+    difference that does not shrink gives p <= 0: a negative GCI, no convergence)."""
     e21, e32 = f1 - f2, f2 - f3
-    if e21 == 0.0 or e32 == 0.0 or np.sign(e21) != np.sign(e32):
+    if e21 == 0.0 or e32 == 0.0 or np.sign(e21) != np.sign(e32) or abs(e21) >= abs(e32):
         return float("nan"), float("nan"), float("nan")
     p = float(np.log(abs(e32 / e21)) / np.log(r))
     ext = f1 + e21 / (r ** p - 1.0)
@@ -69,8 +70,8 @@ class ConvergenceStudy:
                 ref, label = s[0]["extrapolated"], (
                     f"{m}: observed order {s[0]['order']:.2f} (in h), "
                     f"GCI {100 * s[0]['gci']:.2g} %")
-            else:   # an oscillating sequence has no order: measure against the finest mesh
-                ref, label = rows[-1][quantity], f"{m}: no order (oscillating); vs its finest"
+            else:   # no order (oscillating, stalled or growing): against the finest mesh
+                ref, label = rows[-1][quantity], f"{m}: no order; vs its finest"
                 n, rows = n[:-1], rows[:-1]
             err = np.array([abs(r[quantity] / ref - 1.0) for r in rows]) if ref else n * 0
             ax.loglog(n, np.maximum(err, 1e-16), "o-", label=label)
@@ -88,8 +89,11 @@ class ConvergenceStudy:
 
 def convergence_study(bearing: Bearing, state: JournalState, *, levels: int = 4,
                       n_theta: int = 24, n_z: int = 4, cavitation: str = "reynolds",
-                      methods=METHODS, supply_angle=None, progress=None) -> ConvergenceStudy:
-    """Solve on ``levels`` meshes (n_theta x n_z, doubled each level) with each method."""
+                      methods=METHODS, supply_angle=None, ambient_pressure=0.0,
+                      progress=None) -> ConvergenceStudy:
+    """Solve on ``levels`` meshes (n_theta x n_z, doubled each level) with each method;
+    ``supply_angle`` and ``ambient_pressure`` [Pa] as :func:`bearingfem.solve_reynolds`
+    takes them (a JFO film's supply)."""
     levels = check_int("levels", levels, 3)
     for m in methods:
         if m not in METHODS:
@@ -100,10 +104,12 @@ def convergence_study(bearing: Bearing, state: JournalState, *, levels: int = 4,
             nt, nz = n_theta * 2 ** k, n_z * 2 ** k
             t0 = time.perf_counter()
             if m == "fvm":
-                sol = fvm_reynolds(bearing, state, nt, nz, cavitation, supply_angle=supply_angle)
+                sol = fvm_reynolds(bearing, state, nt, nz, cavitation, supply_angle=supply_angle,
+                                   ambient_pressure=ambient_pressure)
             else:
                 sol = solve_reynolds(bearing, state, nt, nz, m, cavitation,
-                                     supply_angle=supply_angle)
+                                     supply_angle=supply_angle,
+                                     ambient_pressure=ambient_pressure)
             dt = time.perf_counter() - t0
             fr, ft = sol.force_local
             rows.append({"method": m, "n_theta": nt, "n_z": nz, "dofs": sol.n_dofs,

@@ -96,7 +96,9 @@ def _cavity(sol: FilmSolution, tri, vals):
     them, so that the boundary runs on to the ends and the cavity is shaded over the end
     rows too (left out, they showed as dark bands across the cavity)."""
     import matplotlib.tri as mtri
-    if sol.cavitation == "none" or not np.any(vals <= CAVITY_LEVEL * np.max(vals)):
+    # a film without pressure (a centred, still journal) has no boundary to draw
+    if sol.cavitation == "none" or not np.max(vals) > 0.0 or \
+            not np.any(vals <= CAVITY_LEVEL * np.max(vals)):
         return None
     vals = _ends_from_inside(tri, vals)
     fine, fine_vals = mtri.UniformTriRefiner(tri).refine_field(
@@ -241,7 +243,7 @@ def _render_journal(sol, path, field, window_size, title, clim, camera_angle):
     key, scale, label = FIELDS[field]
     values = np.asarray(grid.point_data[FIELD_NAMES[key]]) * scale
     cavitated = np.zeros(len(values), bool)
-    if field == "pressure" and sol.cavitation != "none":
+    if field == "pressure" and sol.cavitation != "none" and values.max() > 0.0:
         zs = np.abs(grid.points[:, 2])
         cavitated = ((values <= CAVITY_LEVEL * max(values.max(), np.finfo(float).tiny))
                      & (zs < zs.max() * (1 - 1e-9)))     # the ambient ends are not a cavity

@@ -24,12 +24,13 @@ __all__ = ["Continuation", "Increments", "Ratios", "Walk", "attempt"]
 
 def attempt(solve: Callable, *args, **kwargs) -> tuple:
     """One step of a walk: (the record ``solve(*args, **kwargs)`` returns, its
-    ``iterations``), or (None, 0) when it raises ConvergenceError (the walk then retries
-    shorter)."""
+    ``iterations``), or (None, the iterations the error names) when it raises
+    ConvergenceError (the walk then retries shorter; :class:`Walk` counts failed
+    attempts' iterations too)."""
     try:
         record = solve(*args, **kwargs)
-    except ConvergenceError:
-        return None, 0
+    except ConvergenceError as err:
+        return None, err.iterations
     return record, record.iterations
 
 
@@ -76,7 +77,8 @@ class Continuation:
             iterations += its
             if log is not None:
                 log.info("%s: %s = %.4g %s in %d iterations", what, parameter, x,
-                         "stalled" if out is None else "converged", its)
+                         "not converged (a shorter step next)" if out is None
+                         else "converged", its)
             if out is None:
                 rejected += 1
                 step = self.shorter(step)
