@@ -292,3 +292,26 @@ def test_a_result_prints_as_one_line():
     text = repr(r)
     assert "\n" not in text and len(text) < 200 and "'t'" in text
     assert f"{len(r.t)} points" in text and "completed" in text
+
+
+def test_window_note_counts_turns_from_the_scenes_starting_crank_angle(monkeypatch):
+    """A scene started at 270 deg (three quarters of a turn past top dead centre), recorded
+    from its second turn and stopped in its first: the note says the run is before its
+    recorded turns, and its turns are those the samples show (crank angle from the scene's
+    start, not from zero: counted from zero the run would seem 0.75 turn further on,
+    inside its recorded turns, and the note would be left out). Fails with the turns
+    counted from a crank angle of zero (run once)."""
+    _interrupt_at(monkeypatch, 700)
+    data = {"name": "t", "bearing": {"diameter": 0.02, "length_ratio": 2.0,
+                                     "clearance": 20e-6, "viscosity": 0.0117},
+            "initial": {"crank_angle": 1.5 * np.pi},
+            "run": {"turns": 3.0, "record_from_turn": 1.0},
+            "effects": {"lubrication": {"model": "long"}}}
+    r = simulate(parse_scene(data), progress=False)
+    assert r.partial and r.t[0] == 0.0 and r.crank_angle[0] == pytest.approx(1.5 * np.pi)
+    turns_done = (r.crank_angle[-1] - r.crank_angle[0]) / (2 * np.pi)
+    assert 0.25 < turns_done < 1.0      # counted from zero: past turn 1
+    assert r.message.endswith(" of 3 turns, before the recorded turns from turn 1: kept the "
+                              "whole run from t = 0)")
+    said = float(r.message.split("(after ")[1].split(" of")[0])
+    assert said == pytest.approx(turns_done, abs=7e-3)
