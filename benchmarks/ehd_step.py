@@ -16,30 +16,20 @@ first-order scheme halves dF and d_orbit with the film step.
 from __future__ import annotations
 
 import argparse
-import dataclasses
 
 import numpy as np
 
-from bearingfem.ehd.tangent import TangentEHD
-from bearingfem.models import film_model, register
 from mechanism import simulate
 from mechanism.result import film_column
 
 from .common import OILS, best_of, scene
 
 
-#: The "fem-ehd" film with the kept film moved along its tangent (registered here only:
-#: the scene's model name selects the coupling).
-COUPLINGS = {"kept": "fem-ehd", "tangent": "fem-ehd-tangent"}
-register(dataclasses.replace(film_model("fem-ehd"), name="fem-ehd-tangent",
-                             transient=TangentEHD))
 
 
 def run(oil, film_step, turns, nt, nz, modes, coupling="kept", speed=250.0):
     sc = scene("paper-short-ehd-sharp", speed, turns, n_theta=nt, n_z=nz, modes=modes,
-               film_step=film_step, lubricant=OILS[oil])
-    sc = dataclasses.replace(sc, lubrication=dataclasses.replace(
-        sc.lubrication, model=COUPLINGS[coupling]))
+               film_step=film_step, lubricant=OILS[oil], coupling=coupling)
     return best_of(lambda: simulate(sc, progress=False))
 
 
@@ -58,7 +48,7 @@ def main(argv=None):
     ap.add_argument("--modes", type=int, default=16)
     ap.add_argument("--steps", type=float, nargs="+", default=(2e-4, 1e-4, 5e-5))
     ap.add_argument("--oils", nargs="+", default=tuple(OILS))
-    ap.add_argument("--coupling", choices=tuple(COUPLINGS), default="kept")
+    ap.add_argument("--coupling", choices=("kept", "tangent"), default="kept")
     a = ap.parse_args(argv)
     nt, nz = a.mesh
     print(f"seed pin, 250 rad/s, {a.turns:g} turn from TDC, {nt} x {nz}, {a.modes} modes, "

@@ -1,5 +1,9 @@
 """Smoke runs of the benchmark scripts: they run and their rows are self-consistent.
 (Timings are printed by the scripts, never asserted: this machine is shared and noisy.)"""
+import importlib
+
+import pytest
+
 from benchmarks import film_solve
 
 
@@ -55,3 +59,18 @@ def test_coupled_cost_benchmark_counts_and_leaves_the_film_as_it_was(tmp_path, c
     assert jfo["refills"] <= jfo["early"] <= jfo["film_steps"]
     assert 0.0 <= jfo["commit_cpu_s"] < jfo["cpu_s"] and 0.0 <= jfo["stiff_fraction"] <= 1.0
     assert "/ Reynolds LSODA" in capsys.readouterr().out
+
+
+def _scripts():
+    from pathlib import Path
+    root = Path(__file__).resolve().parents[1]
+    return sorted(f"{d}.{p.stem}" for d in ("benchmarks", "studies")
+                  for p in (root / d).glob("*.py") if not p.stem.startswith("_"))
+
+
+@pytest.mark.parametrize("name", _scripts())
+def test_every_benchmark_and_study_imports(name):
+    """Each script under benchmarks/ and studies/ imports (a script that no longer imports
+    breaks only when someone reruns its table: benchmarks/ehd_step.py did)."""
+    module = importlib.import_module(name)
+    assert module.__doc__, f"{name} has no docstring saying what it measures"
