@@ -159,3 +159,50 @@ def test_friction_slides_at_the_pins_radius():
         t_hat = (-math.sin(a), math.cos(a))
         assert fx * t_hat[0] + fy * t_hat[1] == pytest.approx(-0.1 * fn * math.tanh(0.5),
                                                               rel=1e-12)
+
+
+def test_contact_stiffness_is_hertzs_ball_in_its_socket():
+    """The pin-in-bush stiffness K [N/m^1.5] against Hertz's sphere as the EHL module writes
+    it (Johnson 1985, Eqs. 4.22-4.23: a = (3 P R / (2 E'))^(1/3), approach a^2 / R), with
+    the conforming radius 1/R = 1/R_pin - 1/R_bush and E' = E / (1 - nu^2) for two equal
+    solids, set by hand: P = K approach^1.5 to round-off. The stiffness was pinned only by
+    one run's peak penetration: a one-solid modulus (K 2x) and the radii's sum for their
+    difference were each caught there alone (effects.py)."""
+    from bearingfem.ehl.pointcontact import hertz_point
+    from mechanism.effects import hertz_stiffness
+    for radius, clearance, E, nu in ((0.01, 20e-6, 207e9, 0.3), (0.03, 50e-6, 110e9, 0.34)):
+        K = hertz_stiffness(radius, clearance, E, nu)
+        R = 1.0 / (1.0 / radius - 1.0 / (radius + clearance))
+        for P in (10.0, 1e3, 1e5):
+            approach = hertz_point(R, E / (1.0 - nu ** 2), P).approach
+            assert K * approach ** 1.5 == pytest.approx(P, rel=1e-12)
+
+
+def test_lankarani_nikravesh_rebound_tends_to_the_restitution():
+    """A mass meeting the bush at v0 leaves at e_eff v0. Lankarani and Nikravesh (1990)
+    chose the hysteresis factor 3 (1 - c_e^2) / 4 so that the energy lost is
+    (1 - c_e^2) m v0^2 / 2 to first order in 1 - c_e: (1 - e_eff) / (1 - c_e) -> 1 as
+    c_e -> 1 (measured 0.985 at c_e 0.99, 0.992 at 0.995; 0.93 at 0.95, so the limit is
+    O(1 - c_e)), and e_eff is the same at every impact speed (the damping scales with
+    d'/v0). Integrated here to 1e-11. The damping was pinned only by one run's peak
+    penetration: 1 - c_e for 1 - c_e^2 (ratio 0.5) and the approach speed's sign (energy
+    gained) were each caught there alone (effects.py)."""
+    from scipy.integrate import solve_ivp
+    from mechanism.effects import hertz_stiffness
+
+    def rebound(ce, v0):
+        hc = HertzContact(C, hertz_stiffness(R, C, 207e9, 0.3), restitution=ce, v_impact=v0)
+
+        def f(t, y):
+            return [y[1], -hc.normal_force(JointKinematics(C + y[0], 0.0, y[1], 0.0, 0.0)) / 0.91]
+        out = lambda t, y: y[0] + 1e-30          # noqa: E731
+        out.terminal, out.direction = True, -1
+        s = solve_ivp(f, (0.0, 1.0), [1e-30, v0], events=out, rtol=1e-11, atol=1e-18,
+                      method="DOP853", max_step=1e-6)
+        assert s.status == 1
+        return -s.y[1, -1] / v0
+
+    for ce in (0.99, 0.995):
+        e = [rebound(ce, v0) for v0 in (0.01, 1.0)]
+        assert e[0] == pytest.approx(e[1], rel=1e-8)
+        assert (1.0 - e[0]) / (1.0 - ce) == pytest.approx(1.0, abs=0.03)
