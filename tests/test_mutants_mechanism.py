@@ -167,7 +167,8 @@ def test_contact_stiffness_is_hertzs_ball_in_its_socket():
     the conforming radius 1/R = 1/R_pin - 1/R_bush and E' = E / (1 - nu^2) for two equal
     solids, set by hand: P = K approach^1.5 to round-off. The stiffness was pinned only by
     one run's peak penetration: a one-solid modulus (K 2x) and the radii's sum for their
-    difference were each caught there alone (effects.py)."""
+    difference were each caught there alone (effects.py), and a scene's contact built on
+    the pin's diameter for its radius (simulate.py)."""
     from bearingfem.ehl.pointcontact import hertz_point
     from mechanism.effects import hertz_stiffness
     for radius, clearance, E, nu in ((0.01, 20e-6, 207e9, 0.3), (0.03, 50e-6, 110e9, 0.34)):
@@ -176,6 +177,16 @@ def test_contact_stiffness_is_hertzs_ball_in_its_socket():
         for P in (10.0, 1e3, 1e5):
             approach = hertz_point(R, E / (1.0 - nu ** 2), P).approach
             assert K * approach ** 1.5 == pytest.approx(P, rel=1e-12)
+    # a scene's contact: its pin of diameter 0.02 m, 20 um clearance, steel by default
+    from mechanism import parse_scene
+    from mechanism.simulate import build_effects
+    s = parse_scene({"name": "t", "bearing": {"diameter": 0.02, "length_ratio": 0.5,
+                                              "clearance": 20e-6, "viscosity": 0.01},
+                     "effects": {"contact": {}}})
+    contact = build_effects(s)[2]
+    R = 1.0 / (1.0 / 0.01 - 1.0 / (0.01 + 20e-6))
+    approach = hertz_point(R, 207e9 / (1.0 - 0.3 ** 2), 1e3).approach
+    assert contact.stiffness * approach ** 1.5 == pytest.approx(1e3, rel=1e-12)
 
 
 def test_lankarani_nikravesh_rebound_tends_to_the_restitution():
