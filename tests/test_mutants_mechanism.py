@@ -101,6 +101,24 @@ def test_recorded_slider_and_rod_close_the_loop():
                                                 abs=1e-12 * 2 * R)
 
 
+def test_recorded_film_and_slider_are_the_geometry_and_the_sliders_free_body():
+    """A rigid aligned journal's least film is c - |e| (from the run's own e_x, e_y); the
+    slider, pushed by the pin's reaction -F_x and pulled down by gravity, accelerates at
+    -(F_x + M_PT g) / M_PT (the scene has gravity and no slider force). Round-off. Both
+    survived: the least film halved and the slider's recorded acceleration without gravity
+    (sampling.py; the ideal joint's has its own test)."""
+    from dataclasses import replace
+
+    from mechanism import load_scene, simulate
+    scene = load_scene("paper-long-analytic")
+    assert scene.gravity and scene.slider_force == 0.0
+    scene = replace(scene, run=replace(scene.run, turns=0.05, record_from_turn=0.0))
+    res = simulate(scene, progress=False)
+    c, M = scene.bearing.clearance, scene.mechanism.slider_mass
+    assert res.film_min == pytest.approx(c - np.hypot(res.e_x, res.e_y), abs=1e-12 * c)
+    assert res.slider_acceleration == pytest.approx(-(res.force_x + M * 9.81) / M, rel=1e-12)
+
+
 def test_ideal_joints_reaction_across_the_slider_keeps_the_linkages_angular_momentum():
     """The ideal joint's reaction on the pin against Newton-Euler, not Lagrange: about the
     crank pivot O the linkage's angular momentum H = I_MO q' + I_B theta' + M_B (G x v_G)
@@ -108,7 +126,8 @@ def test_ideal_joints_reaction_across_the_slider_keeps_the_linkages_angular_mome
     along the line through O and has none) changes by the moments of gravity and of the
     guide's force on the slider, N = F_y at (X, 0): dH/dt = X F_y + g M_B G_y. Positions by
     hand from the geometry, dH/dt by differences along the run (measured 2e-7 of the largest
-    term at 20000 samples a turn; the bound 1e-5). The joint's F_y was read by no test: it survived the rod's m22 written
+    term at 20000 samples a turn; the bound 1e-5). The joint's F_y was read by no test: it
+    survived the rod's m22 written
     I_B, the term F_x L sin A with its sign flipped and the rod's weight left out
     (ideal.py)."""
     from mechanism import parse_scene, simulate
