@@ -122,14 +122,13 @@ def test_recorded_film_and_slider_are_the_geometry_and_the_sliders_free_body():
 def test_ideal_joints_reaction_across_the_slider_keeps_the_linkages_angular_momentum():
     """The ideal joint's reaction on the pin against Newton-Euler, not Lagrange: about the
     crank pivot O the linkage's angular momentum H = I_MO q' + I_B theta' + M_B (G x v_G)
-    (theta = -A the rod's counter-clockwise angle, G its centre of mass; the slider moves
-    along the line through O and has none) changes by the moments of gravity and of the
+    (theta = -A the rod's counter-clockwise angle, G its centre of mass; the crank's sits on
+    the pivot in this scene; the slider moves along the line through O and has none) changes by the moments of gravity and of the
     guide's force on the slider, N = F_y at (X, 0): dH/dt = X F_y + g M_B G_y. Positions by
     hand from the geometry, dH/dt by differences along the run (measured 2e-7 of the largest
     term at 20000 samples a turn; the bound 1e-5). The joint's F_y was read by no test: it
-    survived the rod's m22 written
-    I_B, the term F_x L sin A with its sign flipped and the rod's weight left out
-    (ideal.py)."""
+    survived the rod's m22 written I_B, the term F_x L sin A with its sign flipped and the
+    rod's weight left out (ideal.py)."""
     from mechanism import parse_scene, simulate
     s = parse_scene({"name": "ideal", "joint": "ideal",
                      "run": {"turns": 1.0, "samples_per_turn": 20000, "rtol": 1e-10}})
