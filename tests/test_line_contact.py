@@ -267,3 +267,21 @@ def test_extremes_converge_or_raise_never_nan():
     assert light.film_central == pytest.approx(rigid, rel=0.05)
     with pytest.raises(ConvergenceError, match="load continuation"):
         line_contact(**STEEL, lubricant=OIL, mean_speed=0.05, load_per_length=2e6, nodes=600)
+
+
+@pytest.mark.parametrize("mu0, alpha, u, w", [(0.0117, 2e-8, 1.0, 1e5), (0.04, 1.5e-8, 5.0, 1e6)])
+def test_moes_parameters_are_the_hertz_scaled_films_groups(mu0, alpha, u, w):
+    """Moes' M and L fix the film problem in Hertz units: from Hertz's half-width
+    b = sqrt(8 w R / (pi E')) and p_h = 2 w / (pi b) (Johnson 1985, Eq. 4.45, by hand), the
+    Reynolds coefficient lambda = 12 mu0 u_m R^2 / (b^3 p_h) is 3 pi^2 / (8 M^2) and the
+    pressure-viscosity alpha p_h is L sqrt(M / (2 pi)) (both follow from M = W (2U)^-1/2,
+    L = G (2U)^1/4). Round-off. No test read the groups: they survived M = W U^-1/2 and
+    L = G (2U)^1/2 (fits.py)."""
+    from bearingfem.ehl.fits import moes_parameters
+    R, E = STEEL["radius"], STEEL["reduced_modulus"]
+    M, L = moes_parameters(R, E, mu0, u, w, alpha)
+    b = math.sqrt(8 * w * R / (math.pi * E))
+    ph = 2 * w / (math.pi * b)
+    assert 12 * mu0 * u * R**2 / (b**3 * ph) == pytest.approx(3 * math.pi**2 / (8 * M**2),
+                                                               rel=1e-12)
+    assert alpha * ph == pytest.approx(L * math.sqrt(M / (2 * math.pi)), rel=1e-12)

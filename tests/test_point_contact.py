@@ -244,3 +244,21 @@ def test_fine_grid_films_against_hamrock_dowson(U, W):
     r = point_contact(**BALL, mean_speed=u, load=w, nodes=81)
     assert r.film_central / fit.central == pytest.approx(1.0, abs=0.10)
     assert r.film_min / fit.minimum == pytest.approx(1.0, abs=0.10)
+
+
+def test_point_moes_parameters_are_the_hertz_scaled_films_groups():
+    """The point contact's Moes M = W (2U)^-3/4 and L = G (2U)^1/4 against the film problem
+    in Hertz units, from Hertz's a = (3 w R / (4 E*))^(1/3), p_h = 3 w / (2 pi a^2)
+    (Johnson 1985, Eqs. 4.22-4.23, E* = E'/2, by hand): lambda = 12 mu0 u_m R^2 / (a^3 p_h)
+    is (128 pi^3 / 3)^(1/3) M^(-4/3) and alpha p_h is (L / pi)(3 M / 2)^(1/3). Round-off.
+    No test read the reported groups: M = W (2U)^-1/2 and L = G U^1/4 survived
+    (pointcontact.py)."""
+    R, E, mu0 = BALL["radius"], BALL["reduced_modulus"], OIL.viscosity
+    r = point_contact(**BALL, **CASE, nodes=17)
+    u, w, alpha = CASE["mean_speed"], CASE["load"], OIL.pressure_viscosity
+    a = (3 * w * R / (4 * 0.5 * E)) ** (1 / 3)
+    ph = 3 * w / (2 * math.pi * a**2)
+    M, L = r.moes_M, r.moes_L
+    assert 12 * mu0 * u * R**2 / (a**3 * ph) == pytest.approx(
+        (128 * math.pi**3 / 3) ** (1 / 3) * M ** (-4 / 3), rel=1e-12)
+    assert alpha * ph == pytest.approx(L / math.pi * (1.5 * M) ** (1 / 3), rel=1e-12)
