@@ -31,6 +31,16 @@ def test_python_m_bearingfem_points_to_the_command_in_one_line():
     assert lines[0].startswith("bearingfem: error:")
 
 
+@pytest.mark.parametrize("flag", ["--help", "-h"])
+def test_python_m_bearingfem_help_prints_the_usage_and_exits_0(flag):
+    # asked for help it answers as any command's help does (it refused with status 2)
+    r = subprocess.run([sys.executable, "-m", "bearingfem", flag], cwd=ROOT,
+                       capture_output=True, text=True, timeout=60)
+    assert r.returncode == 0 and r.stderr == ""
+    assert r.stdout.startswith("usage: bearingfem COMMAND")
+    assert "python -m bearingfem_app COMMAND" in r.stdout
+
+
 @pytest.mark.parametrize("args,needle", [
     (("solve", "--eps", "1.5"), "eps must lie in [0, 1)"),
     (("solve", "--cavitation", "swift"), "cavitation must be one of"),
