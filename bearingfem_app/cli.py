@@ -208,13 +208,21 @@ def build_parser():
                        f"{q} [{UNITS[q]}]" for q in QUANTITIES))
     c.add_argument("-o", "--output", required=True, help="output directory")
     c.set_defaults(func=command_convergence)
-    r = add("render", help="off-screen PNG of the film pressure or thickness",
+    r = add("render", help="off-screen PNG of the film pressure, thickness, fraction or "
+                           "bush deflection",
             epilog="example: bearingfem render --ld 1.0 --eps 0.6 -o film.png")
     _film_args(r)
+    _rtol_arg(r)
+    r.add_argument("--model", default="fem", type=_film_discretisation,
+                   help="film model: fem (finite elements) or fvm (finite volumes); the "
+                        "cavitation model is --cavitation")
     r.add_argument("--field", default="pressure",
-                   help="pressure | film_thickness | fraction (--cavitation jfo)")
+                   help="pressure | film_thickness (the gap, with a --bush's deflection) | "
+                        "fraction (--cavitation jfo) | deformation (the bush's deflection, "
+                        "--bush)")
     r.add_argument("--surface", default="journal", help="journal | unwrapped")
     r.add_argument("-o", "--output", required=True, help="PNG file")
+    add_bush_args(r)
     r.set_defaults(func=command_render)
     w = add("sweep", help="parameter sweep on Dask: one file per case, resumable",
             epilog="example: bearingfem sweep sweeps/capacity.toml -o out "

@@ -122,7 +122,7 @@ def test_convergence_and_render_commands(tmp_path):
     r = run("render", "--field", "vorticity", "-o", str(tmp_path / "x.png"))
     assert r.returncode == 2 and "field must be one of" in r.stderr
     r = run("render", "--field", "temperature", "-o", str(tmp_path / "x.png"))
-    assert r.returncode == 2 and "--field must be one of 'pressure'" in r.stderr
+    assert r.returncode == 2 and "--field temperature is a thermal film's" in r.stderr
 
 
 @pytest.mark.slow   # 5 s; the sweep runner is tested on a real cluster in test_sweep.py
