@@ -414,3 +414,21 @@ def test_coefficients_without_rotation_print_the_damping(capsys, tmp_path):
     rows = {r.split(",")[0]: r.split(",")[1] for r in out.read_text().splitlines()[1:]}
     assert float(rows["K_xx"]) == 0.0 and float(rows["C_xx"]) > 0.0
     assert rows["stability"] == "none (K = 0)"
+
+
+def test_ambient_pressure_help_says_each_default_and_why_they_differ():
+    """solve's --ambient-pressure defaults to solve_reynolds's 0, equilibrium's to the
+    fem-jfo model's 1e5 Pa: each help text gives its own default, the other's and the
+    reason (the model takes no supply line), from the library's values (the helps said
+    '(default 0)' and '(default 1e5)' with no word on why)."""
+    import inspect
+
+    from bearingfem import solve_reynolds
+    from bearingfem.models import film_model
+    film = inspect.signature(solve_reynolds).parameters["ambient_pressure"].default
+    model = film_model("fem-jfo").defaults["ambient_pressure"]
+    assert (film, model) == (0.0, 1e5)
+    for command, own, other in (("solve", film, model), ("equilibrium", model, film)):
+        text = " ".join(run(command, "--help").stdout.split())
+        assert f"(default {own:g}" in text and f"defaults to {other:g}" in text, command
+        assert "takes no supply line" in text or "takes --supply-angle" in text, command
