@@ -63,12 +63,12 @@ class _HelpFormatter(argparse.ArgumentDefaultsHelpFormatter):
 #: absolute (docs/cli.md)
 AMBIENT_FILM = (f"with --cavitation jfo (default {OPTION_DEFAULTS['ambient_pressure']:g}, "
                 f"solve_reynolds's: the ends at the cavitation pressure, the oil fed by "
-                f"--supply-angle; equilibrium's --model fem-jfo, which takes no supply "
+                f"--supply-angle; equilibrium's fem-jfo model, which takes no supply "
                 f"line, defaults to {JFO_AMBIENT:g} Pa)")
 AMBIENT_MODEL = (f"with --model fem-jfo (default {JFO_AMBIENT:g} Pa: atmospheric oil at the "
                  f"ends, its only supply here, above a cavity near zero absolute; solve's "
-                 f"--cavitation jfo defaults to {OPTION_DEFAULTS['ambient_pressure']:g} and "
-                 f"takes --supply-angle)")
+                 f"jfo film defaults to {OPTION_DEFAULTS['ambient_pressure']:g} and takes a "
+                 f"supply line)")
 
 
 def _bearing_args(p, film=True):

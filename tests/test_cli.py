@@ -440,4 +440,4 @@ def test_ambient_pressure_help_says_each_default_and_why_they_differ():
     for command, own, other in (("solve", film, model), ("equilibrium", model, film)):
         text = " ".join(run(command, "--help").stdout.split())
         assert f"(default {own:g}" in text and f"defaults to {other:g}" in text, command
-        assert "takes no supply line" in text or "takes --supply-angle" in text, command
+        assert "takes no supply line" in text or "takes a supply line" in text, command
