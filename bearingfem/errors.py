@@ -1,7 +1,7 @@
 """Errors the toolkit raises besides ``ValueError`` (bad input)."""
 from __future__ import annotations
 
-__all__ = ["ConvergenceError"]
+__all__ = ["ConvergenceError", "OilRangeWarning"]
 
 
 class ConvergenceError(RuntimeError):
@@ -30,3 +30,9 @@ class ConvergenceError(RuntimeError):
 
     def __reduce__(self):      # picklable (dask workers send errors back)
         return ConvergenceError, (self.solve, self.iterations, self.residual, self.where)
+
+
+class OilRangeWarning(UserWarning):
+    """A solved thermal film whose temperature left the oil law's range
+    (:data:`bearingfem.lubricant.OIL_TEMPERATURE_RANGE`): its viscosity, and so its
+    numbers, are the law's extrapolation there. The message gives the temperature."""

@@ -55,7 +55,8 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-__all__ = ["Lubricant", "ISO_VG"]
+__all__ = ["Lubricant", "ISO_VG", "OIL_TEMPERATURE_RANGE", "check_oil_temperature",
+           "temperature_range_note"]
 
 ROELANDS_P0 = 1.0 / 5.1e-9        # [Pa] Roelands' reference pressure, 196 MPa
 ROELANDS_LN_MU_INF = -9.67         # ln(mu_inf / (1 Pa s)), mu_inf = 6.31e-5 Pa s
@@ -66,6 +67,12 @@ LN10 = math.log(10.0)
 WALTHER_LEAST = 2.0                # [mm^2/s] D341's simple form holds from here up
 CELSIUS = 273.15                   # [K]
 TEMPERATURE_LAWS = ("walther", "exponential")
+#: [K] the oil temperatures taken, -50 to 200 C: a mineral oil film's, where the D341 chart
+#: and its two-point lines are drawn (Walther's law overflows towards 0 K and is an
+#: extrapolation far above 200 C). The one range of the command line's --oil-temperature, a
+#: scene's oil_temperature, a Thermal's temperatures and a temperature law's points; a
+#: solved film leaving it says so (:func:`temperature_range_note`).
+OIL_TEMPERATURE_RANGE = (CELSIUS - 50.0, CELSIUS + 200.0)
 
 # ISO 3448 grades: the 40 C kinematic viscosity midpoint [mm^2/s] (the grade's number, but
 # for VG 7) and the 100 C viscosity [mm^2/s] of an oil of viscosity index 100 with that
@@ -100,6 +107,37 @@ def _finite(name: str, value) -> float:
     if not math.isfinite(float(value)):
         raise ValueError(f"{name} must be a finite number, got {value!r}")
     return float(value)
+
+
+def check_oil_temperature(name: str, value, *, unit: str = "K") -> float:
+    """``value`` [K, or degC with ``unit="degC"``] in :data:`OIL_TEMPERATURE_RANGE`;
+    ValueError naming ``name`` and the range otherwise."""
+    lo, hi = OIL_TEMPERATURE_RANGE
+    shift = CELSIUS if unit == "degC" else 0.0
+    span = (f"[{lo - shift:g}, {hi - shift:g}] degC (an oil film's)" if unit == "degC" else
+            f"[{lo:g}, {hi:g}] K ({lo - CELSIUS:g} to {hi - CELSIUS:g} C, an oil film's)")
+    if isinstance(value, bool) or not isinstance(value, (int, float, np.floating, np.integer)):
+        raise ValueError(f"{name} must be a number in {span}, got {value!r}")
+    v = float(value)
+    if not (math.isfinite(v) and lo <= v + shift <= hi):
+        raise ValueError(f"{name} must lie in {span}, got {value!r}")
+    return v
+
+
+def temperature_range_note(temperature) -> str | None:
+    """None when every film temperature [K] lies in :data:`OIL_TEMPERATURE_RANGE`; else
+    one sentence with the film's extreme and the range (the oil law is extrapolated
+    there, and the film's numbers with it)."""
+    t = np.asarray(temperature, dtype=float)
+    lo, hi = OIL_TEMPERATURE_RANGE
+    t_min, t_max = float(np.min(t)), float(np.max(t))
+    if lo <= t_min and t_max <= hi:
+        return None
+    worst = t_max if t_max > hi else t_min
+    return (f"the film's temperature reaches {worst:.6g} K ({worst - CELSIUS:.4g} C), "
+            f"outside the oil law's range [{lo:g}, {hi:g}] K ({lo - CELSIUS:g} to "
+            f"{hi - CELSIUS:g} C): its viscosity there is extrapolated, and the film's "
+            f"numbers with it")
 
 
 def walther_constants(t1: float, nu1: float, t2: float, nu2: float) -> tuple:
@@ -193,6 +231,8 @@ class Lubricant:
         if self.is_thermal and self.temperature is None:
             raise ValueError("a temperature law needs temperature, the reference "
                              "temperature T0 [K] of viscosity")
+        if self.is_thermal:
+            check_oil_temperature("temperature", self.temperature)
         if self.walther is not None:
             mu0 = float(self._viscosity_ambient(self.temperature)[0])
             if not math.isclose(mu0, self.viscosity, rel_tol=1e-9):
@@ -221,7 +261,7 @@ class Lubricant:
             except (TypeError, ValueError):
                 raise ValueError(f"point{k} must be a pair (temperature [K], viscosity "
                                  f"[Pa s]), got {point!r}") from None
-            points.append((_positive(f"point{k} temperature", t, allowed="> 0 [K]"),
+            points.append((check_oil_temperature(f"point{k} temperature", t),
                            _positive(f"point{k} viscosity", mu, allowed="> 0 [Pa s]")))
         (t1, mu1), (t2, mu2) = points
         rho = _positive("density", density, allowed="> 0 [kg/m^3]")
@@ -272,6 +312,11 @@ class Lubricant:
         pressure laws and properties, no temperature law (what an isothermal film
         takes)."""
         t = _positive("temperature", temperature, allowed="> 0 [K]")
+        if self.is_thermal and not (OIL_TEMPERATURE_RANGE[0] <= t <= OIL_TEMPERATURE_RANGE[1]):
+            lo, hi = OIL_TEMPERATURE_RANGE
+            raise ValueError(f"temperature {t:g} K is outside the oil's viscosity law, "
+                             f"which holds in [{lo:g}, {hi:g}] K ({lo - CELSIUS:g} to "
+                             f"{hi - CELSIUS:g} C)")
         with np.errstate(over="ignore", invalid="ignore"):
             mu = float(self.viscosity_at(0.0, temperature=t))
         if not (math.isfinite(mu) and mu > 0.0):     # the law's range, named by its input

@@ -7,7 +7,7 @@ import numpy as np
 
 from .film import film_thickness, inertial_from_theta, local_to_inertial
 
-__all__ = ["FilmSolution", "ForceDerivatives", "film_solution"]
+__all__ = ["FilmSolution", "ForceDerivatives", "film_solution", "undriven"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -28,7 +28,8 @@ class FilmSolution:
     pressure_max_angle : its inertial angle [rad]
     film_min : minimum film thickness [m]: c (1 - eps) on the rigid cylinder, the least
         nodal gap on a general gap field
-    cavitated_fraction : share of the film area at ambient (zero gauge) pressure
+    cavitated_fraction : share of the film area at ambient (zero gauge) pressure; 0 for
+        a film that nothing drives (:func:`undriven`: no pressure anywhere, no cavity)
     friction_force : shear force on the journal surface opposing positive omega [N]
     friction_torque : friction_force * R [N m]
     side_leakage : volume flow out of both axial ends [m^3/s], net (less what enters there)
@@ -147,6 +148,16 @@ class FilmSolution:
             + ([] if self.fraction is None else [
                 f"  JFO film fraction {float(np.min(self.fraction)):.4g} .. 1; fed "
                 f"{self.flow_in or 0.0:.6g} m^3/s; mass balance {self.mass_balance:.1e} m^3/s"]))
+
+
+def undriven(state, gap=None) -> bool:
+    """True when nothing drives a pressure in the rigid film (``gap`` None): no squeeze
+    (eps_dot 0) and no wedge (a centred journal, eps 0, or no wedge speed
+    omega - 2 gamma_dot). Such a film is at ambient because nothing raises it, not because
+    it ruptured: it has no cavity (a separating film, eps_dot < 0, at ambient everywhere
+    is cavitated)."""
+    return gap is None and state.eps_dot == 0.0 and (state.eps == 0.0
+                                                      or state.wedge_speed == 0.0)
 
 
 def film_solution(bearing, state, P, theta, zeta, force_local, *, friction, leakage,

@@ -35,6 +35,26 @@ MECHANISM_PARAMS = {
 DESIGN_PARAMS = {k: v for k, v in FILM_PARAMS.items() if k != "eps_dot"}
 KINDS = {"film": FILM_PARAMS, "mechanism": MECHANISM_PARAMS, "design": DESIGN_PARAMS}
 
+#: the unit of every column a case writes (results.csv's companion results_units.csv);
+#: "1" dimensionless, "" not a number; the K, C entries of a design case are c/W and
+#: c omega/W, dimensionless, in the load frame
+UNITS = {"diameter": "m", "length_ratio": "1", "clearance": "m", "viscosity": "Pa s",
+         "omega": "rad/s", "eps": "1", "eps_dot": "1/s", "model": "", "n_theta": "1",
+         "n_z": "1", "element": "", "cavitation": "", "scene": "", "turns": "1",
+         "crank_speed": "rad/s", "pressure_max": "Pa", "friction_force": "N",
+         "side_leakage": "m^3/s", "cavitated_fraction": "1", "F_r": "N", "F_t": "N",
+         "force": "N", "attitude_deg": "deg", "sommerfeld": "1", "friction_variable": "1",
+         "flow_variable": "1", "coefficient_method": "", "wall_s": "s",
+         **{f"{m}{i}{j}{e}": "1" for m in "KC" for i in (1, 2) for j in (1, 2)
+            for e in ("", "_error")},
+         "crank_speed_max_rad_s": "rad/s", "crank_speed_min_rad_s": "rad/s",
+         "max_dspeed_vs_ideal_rad_s": "rad/s", "min_film_um": "um", "peak_eps": "1",
+         "peak_slider_acc_m_s2": "m/s^2", "film_solves": "1", "rhs_evals": "1",
+         "steps": "1", "status": "", "wall_time_s": "s"}
+#: old column -> its name now (the contract's); results.csv keeps the old columns too,
+#: for one version (docs/cli.md), and a case file written under the old names is read
+RENAMED = {"force_r": "F_r", "force_t": "F_t", "load": "force"}
+
 
 def run_case(kind: str, params: dict, scene: dict | None = None) -> dict:
     """Compute one case (runs on a worker); returns its parameters and outputs.
@@ -103,7 +123,8 @@ def _film_case(params: dict) -> dict:
     else:
         f_r, f_t = model.film_force(b, s, **o)
     load = math.hypot(f_r, f_t)
-    out.update(force_r=f_r, force_t=f_t, load=load,
+    # the contract's names (F_r, F_t as sol.force_local; force = |F|, the convergence CSV's)
+    out.update(F_r=f_r, F_t=f_t, force=load,
                attitude_deg=math.degrees(math.atan2(f_t, -f_r)) if load else 0.0,
                sommerfeld=(sommerfeld_number(b, load, p["omega"]) if load and p["omega"]
                            else math.inf))
@@ -125,7 +146,7 @@ def _design_case(params: dict) -> dict:
     k, c = kc.dimensionless()
     f_r, f_t = model.film_force(b, s, **opts)
     load = math.hypot(f_r, f_t)
-    out = dict(load=load, sommerfeld=sommerfeld_number(b, load, p["omega"]),
+    out = dict(force=load, sommerfeld=sommerfeld_number(b, load, p["omega"]),
                attitude_deg=math.degrees(math.atan2(f_t, -f_r)),
                friction_variable=friction_variable(
                    b, petroff_friction(b, p["eps"], p["omega"], f_t), load),

@@ -12,8 +12,10 @@ import re
 import sys
 
 from bearingfem.bearing import SEED_TABLE1
+from bearingfem.fe.jfo_balance import JFO_AMBIENT
 from bearingfem.models import FILM_MODELS
 from bearingfem.outputs.convergence import QUANTITIES, UNITS
+from bearingfem.routes.problem import OPTION_DEFAULTS
 from mechanism.scene import shipped_scenes
 
 from .bush import add_bush_args
@@ -54,6 +56,21 @@ class _HelpFormatter(argparse.ArgumentDefaultsHelpFormatter):
         return super()._get_help_string(action)
 
 
+#: --ambient-pressure's defaults differ, each the library's: solve (and render,
+#: convergence) solve the film of solve_reynolds, whose ends sit at the cavitation pressure
+#: (0) and whose oil comes from --supply-angle; the designer's fem-jfo model takes no supply
+#: line, so the ends are its only supply, at atmospheric pressure above a cavity near zero
+#: absolute (docs/cli.md)
+AMBIENT_FILM = (f"with --cavitation jfo (default {OPTION_DEFAULTS['ambient_pressure']:g}, "
+                f"solve_reynolds's: the ends at the cavitation pressure, the oil fed by "
+                f"--supply-angle; equilibrium's fem-jfo model, which takes no supply "
+                f"line, defaults to {JFO_AMBIENT:g} Pa)")
+AMBIENT_MODEL = (f"with --model fem-jfo (default {JFO_AMBIENT:g} Pa: atmospheric oil at the "
+                 f"ends, its only supply here, above a cavity near zero absolute; solve's "
+                 f"jfo film defaults to {OPTION_DEFAULTS['ambient_pressure']:g} and takes a "
+                 f"supply line)")
+
+
 def _bearing_args(p, film=True):
     p.add_argument("--length-ratio", "--ld", dest="length_ratio", type=float, default=1.0,
                    help="L/D, the bearing's length over its diameter")
@@ -86,8 +103,7 @@ def _bearing_args(p, film=True):
     p.add_argument("--element", default="P1", help="P1 | P2 (finite elements only)")
     p.add_argument("--ambient-pressure", type=float, default=None,
                    help="the JFO film's oil pressure at the ends above the cavitation "
-                        "pressure [Pa], >= 0; " + ("with --cavitation jfo (default 0)" if film
-                                             else "with --model fem-jfo (default 1e5)"))
+                        "pressure [Pa], >= 0; " + (AMBIENT_FILM if film else AMBIENT_MODEL))
 
 
 def _film_discretisation(name: str) -> str:
@@ -208,13 +224,21 @@ def build_parser():
                        f"{q} [{UNITS[q]}]" for q in QUANTITIES))
     c.add_argument("-o", "--output", required=True, help="output directory")
     c.set_defaults(func=command_convergence)
-    r = add("render", help="off-screen PNG of the film pressure or thickness",
+    r = add("render", help="off-screen PNG of the film pressure, thickness, fraction or "
+                           "bush deflection",
             epilog="example: bearingfem render --ld 1.0 --eps 0.6 -o film.png")
     _film_args(r)
+    _rtol_arg(r)
+    r.add_argument("--model", default="fem", type=_film_discretisation,
+                   help="film model: fem (finite elements) or fvm (finite volumes); the "
+                        "cavitation model is --cavitation")
     r.add_argument("--field", default="pressure",
-                   help="pressure | film_thickness | fraction (--cavitation jfo)")
+                   help="pressure | film_thickness (the gap, with a --bush's deflection) | "
+                        "fraction (--cavitation jfo) | deformation (the bush's deflection, "
+                        "--bush)")
     r.add_argument("--surface", default="journal", help="journal | unwrapped")
     r.add_argument("-o", "--output", required=True, help="PNG file")
+    add_bush_args(r)
     r.set_defaults(func=command_render)
     w = add("sweep", help="parameter sweep on Dask: one file per case, resumable",
             epilog="example: bearingfem sweep sweeps/capacity.toml -o out "

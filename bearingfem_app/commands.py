@@ -12,8 +12,7 @@ from pathlib import Path
 from .bush import bush_from_args
 from .checks import check_writable, parse_angles
 from .options import (ambient_pressure, check_film_options, check_output, check_rtol_mesh,
-                      note_coarse_film,
-                      film_state, make_dir, supply_angle)
+                      film_state, make_dir, note_coarse_film, supply_angle)
 
 #: exit status of a run stopped by Ctrl-C (128 + SIGINT), as shells report it
 INTERRUPTED = 130
@@ -59,10 +58,13 @@ def _element(args, method="fem"):
     return args.element
 
 
-def command_solve(args):
+def _film(args):
+    """The film ``solve`` and ``render`` describe, solved: --model fem|fvm, the mesh or
+    --rtol, the cavitation and its supply, a --bush; every option checked in its own name
+    before any work. (bearing, journal state, the element used, the bush or None,
+    FilmSolution)."""
     from bearingfem import fvm_reynolds, solve_reynolds
     element = _element(args, args.model)
-    check_output(args.output, FILM_FORMATS)
     b, s = film_state(args)
     supply = supply_angle(args, s.gamma)
     bush = bush_from_args(args)
@@ -85,10 +87,21 @@ def command_solve(args):
     else:
         sol = solve_reynolds(b, s, args.n_theta, args.n_z, element, args.cavitation,
                              ambient_pressure=ambient_pressure(args), supply_angle=supply, bush=bush)
-    print(sol.summary())
+    return b, s, element, bush, sol
+
+
+def _note_coarse(args, s, element, bush) -> None:
+    """The coarse-film note of a rigid film on a given mesh (not with --rtol or --bush)."""
     if args.rtol is None and bush is None:
         note_coarse_film(s.eps, {"n_theta": args.n_theta,
                                  "element": "FV" if args.model == "fvm" else element})
+
+
+def command_solve(args):
+    check_output(args.output, FILM_FORMATS)
+    b, s, element, bush, sol = _film(args)
+    print(sol.summary())
+    _note_coarse(args, s, element, bush)
     from bearingfem.design import sommerfeld_number
     load = math.hypot(*sol.force_local)
     print("  Sommerfeld number "
@@ -139,31 +152,33 @@ def command_convergence(args):
     return 0
 
 
-#: the fields of the films ``render`` solves (rigid, isothermal: no deformation or
-#: temperature; those are drawn from Python, render_film)
-RENDER_FIELDS = ("pressure", "film_thickness", "fraction")
+#: the fields of the films ``render`` solves: the bush's deflection with --bush (the
+#: thermal film's temperature is drawn from Python, render_film: the command line builds no
+#: thermal film)
+RENDER_FIELDS = ("pressure", "film_thickness", "fraction", "deformation")
 
 
 def command_render(args):
-    from bearingfem import solve_reynolds
     from bearingfem.outputs.render import FIELDS, SURFACES, render_film
     from bearingfem.validation import check_choice
-    # the fields of the films render builds (no bush, no thermal film here)
+    if args.field == "temperature":
+        raise ValueError("--field temperature is a thermal film's: the command line builds "
+                         "no thermal film (render it from Python, docs/thd.md); choose one "
+                         "of " + ", ".join(map(repr, RENDER_FIELDS)))
     check_choice("--field", args.field, tuple(f for f in FIELDS if f in RENDER_FIELDS))
     check_choice("--surface", args.surface, SURFACES)
     if args.field == "fraction" and args.cavitation != "jfo":
         raise ValueError("--field fraction is the JFO film's fraction: use it with "
                          f"--cavitation jfo, not {args.cavitation}")
+    if args.field == "deformation" and args.bush is None:
+        raise ValueError("--field deformation is the elastic bush's deflection: give --bush "
+                         "ring|solid|liner")
     check_output(args.output, IMAGE_FORMATS)
-    check_film_options(args)
-    b, s = film_state(args)
-    sol = solve_reynolds(b, s, args.n_theta, args.n_z, _element(args), args.cavitation,
-                         ambient_pressure=ambient_pressure(args),
-                         supply_angle=supply_angle(args, s.gamma))
+    _, s, element, bush, sol = _film(args)
     make_dir(Path(args.output).parent, "-o/--output")
     render_film(sol, args.output, field=args.field, surface=args.surface)
     print(sol.summary())
-    note_coarse_film(s.eps, {"n_theta": args.n_theta, "element": _element(args)})
+    _note_coarse(args, s, element, bush)
     print(f"wrote {args.output}")
     return 0
 

@@ -187,17 +187,41 @@ def make_dir(path, option):
     return Path(path)
 
 
+#: printed name -> machine key of the designer's numbers: the API's attribute names
+#: (Equilibrium, coefficients' result, LundStability; e_x, e_y the mechanism's), with the
+#: unit in the key where the value is not the API's SI one (degrees)
+KEYS = {"eccentricity ratio": "eps", "its estimated error": "eps_error",
+        "mesh chosen": "mesh", "attitude angle": "attitude_deg",
+        "Sommerfeld number": "sommerfeld", "minimum film": "film_min",
+        "minimum film angle": "film_min_angle_deg", "journal x": "e_x", "journal y": "e_y",
+        "peak pressure": "pressure_max", "friction force": "friction_force",
+        "friction coefficient": "friction_coefficient", "power loss": "power_loss",
+        "side leakage (outflow)": "side_outflow", "load carried": "load",
+        "critical mass": "critical_mass", "whirl frequency ratio": "whirl_ratio",
+        "K, C estimated error": "error", "stability": "stability"}
+
+
+def machine_key(name: str) -> str:
+    """The key a printed row's name has in -o's JSON and CSV (K_xy, C_xy as printed)."""
+    return KEYS.get(name.strip(), name.strip())
+
+
 def write_numbers(out, rows):
-    """rows: (name, value, unit) -> JSON object or a CSV table."""
+    """rows: (name, value, unit) -> JSON object or a CSV table keyed by :data:`KEYS` (the
+    API's names), each with its unit. The printed names (``quantity``) are kept beside them
+    for one version (docs/cli.md): in the CSV a column, in the JSON the old keys."""
     if out is None:
         return
     make_dir(out.parent, "-o/--output")
     if out.suffix.lower() == ".json":
         import json
-        out.write_text(json.dumps({n: {"value": v, "unit": u} for n, v, u in rows}, indent=1))
+        new = {machine_key(n): {"value": v, "unit": u} for n, v, u in rows}
+        old = {n: {"value": v, "unit": u} for n, v, u in rows if n not in new}
+        out.write_text(json.dumps({**new, **old}, indent=1))
     else:
         from bearingfem.outputs.tables import write_csv
-        write_csv([dict(quantity=n, value=v, unit=u) for n, v, u in rows], out)
+        write_csv([dict(key=machine_key(n), value=v, unit=u, quantity=n)
+                   for n, v, u in rows], out)
     print(f"wrote {out}")
 
 

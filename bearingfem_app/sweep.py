@@ -33,7 +33,7 @@ from bearingfem.outputs.tables import write_csv
 from bearingfem.models import FILM_MODELS
 from mechanism.scene import read_toml, shipped_file
 
-from .cases import KINDS, MECHANISM_PARAMS, _precheck, _scene_data, run_case
+from .cases import KINDS, MECHANISM_PARAMS, RENAMED, UNITS, _precheck, _scene_data, run_case
 
 __all__ = ["Sweep", "load_sweep", "parse_sweep", "sweep_cases", "case_id", "run_case",
            "run_sweep", "gather", "shipped_sweeps", "sweep_path", "CONNECT_TIMEOUT"]
@@ -245,7 +245,8 @@ def _sort_key(value):
 def gather(out, sweep: Sweep | None = None) -> list[dict]:
     """Collect every finished case of ``out`` into ``results.csv`` (+ ``summary.png``)."""
     out = Path(out)
-    rows = [json.loads(p.read_text()) for p in sorted((out / "cases").glob("case-*.json"))
+    rows = [_renamed(json.loads(p.read_text()))
+            for p in sorted((out / "cases").glob("case-*.json"))
             if not p.name.endswith(".error.json")]
     if rows:
         # sorted by the varied parameters; columns no case filled left out
@@ -253,10 +254,22 @@ def gather(out, sweep: Sweep | None = None) -> list[dict]:
         rows = sorted(rows, key=lambda r: tuple(_sort_key(r.get(k)) for k in order))
         keys = [k for k in dict.fromkeys(k for r in rows for k in r)
                 if any(r.get(k, "") != "" for r in rows)]
-        write_csv([{k: r.get(k, "") for k in keys} for r in rows], out / "results.csv", keys)
+        # the old names of renamed columns, kept beside the new for one version
+        old = [o for o, new in RENAMED.items() if new in keys]
+        write_csv([{**{k: r.get(k, "") for k in keys},
+                    **{o: r.get(RENAMED[o], "") for o in old}} for r in rows],
+                  out / "results.csv", keys + old)
+        write_csv([{"column": k, "unit": UNITS.get(RENAMED.get(k, k), "")}
+                   for k in keys + old], out / "results_units.csv", ["column", "unit"])
         if sweep is not None:
             plot_summary(rows, sweep, out / "summary.png")
     return rows
+
+
+def _renamed(row: dict) -> dict:
+    """A case's outputs under today's column names (a case file written before a rename,
+    resumed, keeps its numbers)."""
+    return {RENAMED.get(k, k): v for k, v in row.items()}
 
 
 #: How each sweep parameter is shown: (display scale, label with units).
@@ -266,7 +279,7 @@ DISPLAY = {"diameter": (1e3, "diameter [mm]"), "length_ratio": (1.0, "L/D [-]"),
            "eps_dot": (1.0, "eps_dot [1/s]"), "crank_speed": (1.0, "crank speed [rad/s]"),
            "turns": (1.0, "turns [-]"), "n_theta": (1.0, "n_theta [-]"), "n_z": (1.0, "n_z [-]")}
 #: What each kind of sweep plots: (result column, label with units, log scale).
-OUTPUTS = {"film": [("load", "load capacity |F| [N]", True)],
+OUTPUTS = {"film": [("force", "load capacity |F| [N]", True)],
            "design": [("sommerfeld", "Sommerfeld number S [-]", True),
                       ("attitude_deg", "attitude angle [deg]", False),
                       ("friction_variable", "friction variable (R/c) f [-]", True),

@@ -20,7 +20,7 @@ from bearingfem import Bearing, ElasticBush, Groove, Roughness
 from bearingfem.accuracy import check_rtol
 from bearingfem.bearing import plausibility_errors
 from bearingfem.fields import EdgeProfile
-from bearingfem.lubricant import ISO_VG, Lubricant
+from bearingfem.lubricant import ISO_VG, Lubricant, check_oil_temperature
 from bearingfem.models import film_model
 from bearingfem.thermal import Thermal
 
@@ -214,9 +214,7 @@ def oil_viscosity(grade, temperature_c: float, names=("oil", "oil_temperature"))
     dynamic viscosity [Pa s] (:meth:`bearingfem.lubricant.Lubricant.iso_vg`, a VI 100
     mineral oil); ``names``: how the caller spells the two inputs."""
     g = _grade(grade, names[0])
-    if not (math.isfinite(temperature_c) and -50.0 <= temperature_c <= 200.0):
-        raise ValueError(f"{names[1]} must lie in [-50, 200] degC (an oil film's), "
-                         f"got {temperature_c!r}")
+    check_oil_temperature(names[1], temperature_c, unit="degC")
     oil = Lubricant.iso_vg(g)
     return float(oil.viscosity_at(0.0, temperature=temperature_c + 273.15))
 

@@ -88,3 +88,25 @@ def test_prolongation_is_exact_for_bilinear_data(periodic):
     # rows are partitions of unity, at most 4 entries: bilinear weights
     np.testing.assert_allclose(interp.sum(axis=1).A.ravel(), 1.0, atol=1e-14)
     assert np.diff(interp.indptr).max() <= 4 and interp.data.min() >= 0.0
+
+
+@pytest.mark.parametrize("solve, element", [(solve_reynolds, "P1"), (solve_reynolds, "P2"),
+                                            (fvm_reynolds, None)])
+@pytest.mark.parametrize("cavitation", ["reynolds", "gumbel"])
+@pytest.mark.parametrize("state", [JournalState(0.0, 0.0, 0.0, 0.0, 250.0),
+                                   JournalState(0.0, 0.0, 0.0, 0.0, 0.0),
+                                   JournalState(0.5, 0.0, 0.0, 125.0, 250.0)],
+                         ids=["centred", "still", "no-wedge"])
+def test_a_film_nothing_drives_has_no_cavity(solve, element, cavitation, state):
+    """A centred spinning journal (eps 0), a still one, or a whirl at half speed (no wedge)
+    has no pressure anywhere and no cavity: it was reported 100 % cavitated. The summary
+    (what the command line prints) says the same; a loaded film keeps its cavity."""
+    b = table1_bearing(1.0)
+    args = (b, state, 48, 8) + ((element,) if element else ())
+    sol = solve(*args, cavitation=cavitation)
+    assert sol.pressure_max == 0.0 and sol.cavitated_fraction == 0.0
+    assert "no pressure in the film" in sol.summary()
+    assert "cavitated area 0.0 % of the film" in sol.summary()
+    loaded = solve(b, JournalState(0.6, 0.0, 0.0, 0.0, 250.0), 48, 8,
+                   *((element,) if element else ()), cavitation=cavitation)
+    assert 0.3 < loaded.cavitated_fraction < 0.7

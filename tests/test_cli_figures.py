@@ -99,7 +99,7 @@ def test_sweep_summary_one_colormap_and_the_cavitation():
     from bearingfem_app.sweep import load_sweep, plot_summary, sweep_cases
     sw = load_sweep("capacity")
     factor = {"fem": 1, "short": 2, "long": 3}
-    rows = [{**p, "load": p["length_ratio"] * p["eps"] * factor[p["model"]]}
+    rows = [{**p, "force": p["length_ratio"] * p["eps"] * factor[p["model"]]}
             for p in sweep_cases(sw)]
     fig = plot_summary(rows, sw, None)
     lines = fig.axes[0].get_lines()

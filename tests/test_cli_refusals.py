@@ -344,7 +344,7 @@ def test_an_eps_dot_inside_the_range_is_solved(capsys):
     (("equilibrium", "--load", "100", "--model", "fem-jfo", "--ambient-pressure", "0"),
      ("--model fem-jfo needs --ambient-pressure > 0",)),
     (("render", "--field", "temperature", "-o", "out/f.png"),
-     ("--field must be one of 'pressure', 'film_thickness', 'fraction'",)),
+     ("--field temperature is a thermal film's", "'pressure', 'film_thickness', 'fraction'")),
 ])
 def test_film_options_that_need_each_other_are_named_as_typed(capsys, here, argv, needles):
     """Options that need one another are refused in the command line's own names before

@@ -262,6 +262,14 @@ def test_oil_without_temperature_law_ignores_temperature():
     # Walther's law overflows at 1 K: was 'viscosity must be finite ..., got inf' and
     # numpy's overflow warnings, naming the viscosity nobody gave
     (lambda: Lubricant.iso_vg(32).at_temperature(1.0), "temperature 1 K is outside"),
+    # the oil range of --oil-temperature and scenes (-50 to 200 C): these were taken
+    (lambda: Lubricant.iso_vg(32).at_temperature(573.15), r"temperature 573.15 K is "
+     r"outside the oil's viscosity law, which holds in \[223.15, 473.15\] K"),
+    (lambda: Lubricant.two_point((573.15, 0.019), (623.15, 0.008), density=855.0,
+                                 specific_heat=1950.0, conductivity=0.15),
+     r"point1 temperature must lie in \[223.15, 473.15\] K"),
+    (lambda: Lubricant(0.01, temperature=100.0, temperature_exponent=0.03),
+     r"temperature must lie in \[223.15, 473.15\] K"),
 ])
 def test_bad_thermal_input_names_the_parameter(call, name):
     with pytest.raises(ValueError, match=name):

@@ -46,10 +46,14 @@ def test_film_case_matches_a_direct_solve():
                             "model": "fem", "cavitation": "reynolds"})
     b = Bearing(radius=0.01, length=0.01, clearance=20e-6, viscosity=0.0117)
     sol = solve_reynolds(b, JournalState(0.6, 0.0, 0.0, 0.0, 250.0), 24, 4, "P1", "reynolds")
-    assert row["load"] == pytest.approx(np.hypot(*sol.force_local), rel=1e-12)
+    # the contract's names: F_r, F_t of sol.force_local, force = |F| (were force_r, force_t,
+    # load)
+    assert (row["F_r"], row["F_t"]) == pytest.approx(sol.force_local, rel=1e-12)
+    assert row["force"] == pytest.approx(np.hypot(*sol.force_local), rel=1e-12)
+    assert not {"force_r", "force_t", "load"} & set(row)
     # Sommerfeld number S = mu N L D / W (R/c)^2 with N in rev/s
     assert row["sommerfeld"] == pytest.approx(
-        0.0117 * 250 / (2 * np.pi) * 0.01 * 0.02 / row["load"] * 500 ** 2, rel=1e-12)
+        0.0117 * 250 / (2 * np.pi) * 0.01 * 0.02 / row["force"] * 500 ** 2, rel=1e-12)
 
 
 def test_two_worker_sweep_writes_each_case_and_resumes(tmp_path):
@@ -64,13 +68,28 @@ def test_two_worker_sweep_writes_each_case_and_resumes(tmp_path):
     lost.unlink()
     second = run_sweep(sw, tmp_path, workers=2, progress=False)
     assert (second.computed, second.skipped) == (1, 5)
-    assert json.loads(lost.read_text())["load"] == pytest.approx(kept["load"], rel=1e-12)
+    assert json.loads(lost.read_text())["force"] == pytest.approx(kept["force"], rel=1e-12)
+    # a case file written under the old names (force_r, force_t, load) is read under the new
+    old = files[0]
+    written = json.loads(old.read_text())
+    old.write_text(json.dumps({{"F_r": "force_r", "F_t": "force_t", "force": "load"}.get(k, k):
+                               v for k, v in written.items()}))
+    run_sweep(sw, tmp_path, workers=1, progress=False)
     with open(tmp_path / "results.csv") as fh:
         rows = list(csv.DictReader(fh))
     assert len(rows) == 6 and (tmp_path / "summary.png").stat().st_size > 10_000
     # the FE film carries less load than the short-bearing formula overestimates at L/D 1
-    by = {(float(r["eps"]), r["model"]): float(r["load"]) for r in rows}
+    by = {(float(r["eps"]), r["model"]): float(r["force"]) for r in rows}
     assert all(by[(e, "fem")] < by[(e, "short")] for e in (0.3, 0.6, 0.9))
+    # the old columns kept beside the new for one version, the same numbers
+    assert all(r["load"] == r["force"] and r["force_r"] == r["F_r"] and r["F_r"] != ""
+               for r in rows)
+    # every column's unit in the companion file
+    with open(tmp_path / "results_units.csv") as fh:
+        units = {r["column"]: r["unit"] for r in csv.DictReader(fh)}
+    assert set(units) == set(rows[0])
+    assert (units["F_r"], units["F_t"], units["force"], units["load"]) == ("N",) * 4
+    assert (units["eps"], units["omega"], units["pressure_max"]) == ("1", "rad/s", "Pa")
 
 
 def test_out_of_range_parameters_stop_the_sweep_before_it_starts(tmp_path):
@@ -222,7 +241,7 @@ def test_summary_of_a_sweep_without_load_plots_it_linear(tmp_path, monkeypatch):
                         lambda self, *a, **k: saved.append(self))
     sw = parse_sweep({"name": "z", "kind": "film", "base": {"omega": 0.0},
                       "vary": {"eps": [0.0, 0.5]}})
-    rows = [{"eps": e, "load": 0.0} for e in (0.0, 0.5)]
+    rows = [{"eps": e, "force": 0.0} for e in (0.0, 0.5)]
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         plot_summary(rows, sw, tmp_path / "s.png")

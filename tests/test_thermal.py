@@ -2,6 +2,7 @@
 adiabatic Couette film's closed-form temperature rise, the isothermal limit, the
 dissipation against the film's power loss, groove mixing and bad input."""
 import math
+import warnings
 from dataclasses import replace
 
 import numpy as np
@@ -11,6 +12,7 @@ import scipy.sparse.linalg as spla
 from skfem import Basis, BilinearForm, LinearForm
 
 from bearingfem import Bearing, Groove, JournalState, Lubricant, solve_reynolds
+from bearingfem.errors import OilRangeWarning
 from bearingfem.fe.mesh import film_mesh
 from bearingfem.fields import FilmFields
 from bearingfem.routes.thd import solve_thd, thermal_operator
@@ -25,6 +27,7 @@ from bearingfem.thermal.energy import (
     solve_energy,
 )
 from bearingfem.thermal.operator import _supg_tau
+from mechanism.scene import oil_viscosity
 
 BEARING = Bearing(radius=0.025, length=0.025, clearance=50e-6, viscosity=0.02)
 GROOVES = [Groove(angle=0.5 * math.pi, width=0.2), Groove(angle=-0.5 * math.pi, width=0.2)]
@@ -230,6 +233,45 @@ def test_bad_input_names_the_parameter(kwargs, name):
 def test_bad_thermal_spec_names_the_parameter(kwargs, name):
     with pytest.raises(ValueError, match=name):
         Thermal(**kwargs)
+
+
+@pytest.mark.parametrize("name", ["supply_temperature", "ambient_temperature",
+                                  "journal_temperature"])
+def test_thermal_temperatures_take_the_oil_range_of_the_command_line(name):
+    """A Thermal's temperatures take the range of --oil-temperature and a scene's
+    oil_temperature (one table, OIL_TEMPERATURE_RANGE: -50 to 200 C), refused before any
+    solve naming the parameter and the range: 200 C is taken, 300 C (573.15 K) is
+    refused, as --oil-temperature 300 is (it solved, > 0 K being the only rule)."""
+    base = dict(supply_temperature=SUPPLY, model="conducting")
+    Thermal(**dict(base, **{name: 473.15}))
+    with pytest.raises(ValueError, match=rf"{name} must lie in \[223.15, 473.15\] K "
+                                         rf"\(-50 to 200 C"):
+        Thermal(**dict(base, **{name: 573.15}))
+    with pytest.raises(ValueError, match=r"oil_temperature must lie in \[-50, 200\] degC"):
+        oil_viscosity("ISO VG 32", 300.0)
+
+
+def test_a_film_beyond_the_oil_range_says_so_with_its_numbers():
+    """The designer's bearing at eps 0.999 on 48 x 8 reaches ~2150 C (the Walther law
+    extrapolated far beyond any oil): the solve warns with the temperature it reached and
+    the range (it printed the peak silently); at eps 0.7 (67 C) it says nothing. The
+    thermal numbers are unchanged: the warning only reads them."""
+    b = Bearing(radius=0.025, length=0.025, clearance=50e-6,
+                viscosity=float(VG32.viscosity_at(temperature=SUPPLY)))
+    grooves = [Groove(angle=0.0, width=math.radians(20)),
+               Groove(angle=math.pi, width=math.radians(20))]
+    th = Thermal(SUPPLY, carry_over=0.8)
+    state = JournalState(eps=0.999, omega=3000 * 2 * math.pi / 60, gamma=-1.0)
+    with pytest.warns(OilRangeWarning, match="outside the oil law's range "
+                                             r"\[223.15, 473.15\] K") as seen:
+        hot = solve_reynolds(b, state, 48, 8, grooves=grooves, lubricant=VG32, thermal=th)
+    assert hot.temperature_max > 1500.0 + 273.15
+    assert f"{hot.temperature_max:.6g} K" in str(seen[0].message)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        cool = solve_reynolds(b, replace(state, eps=0.7), 48, 8, grooves=grooves,
+                              lubricant=VG32, thermal=th)
+    assert cool.temperature_max < 473.15
 
 
 def test_temperature_renders_and_exports(tmp_path):

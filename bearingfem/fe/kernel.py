@@ -10,7 +10,7 @@ import scipy.sparse as sp
 
 from ..bearing import Bearing, JournalState
 from ..film import film_thickness
-from ..solution import FilmSolution, film_solution
+from ..solution import FilmSolution, film_solution, undriven
 from ..solvers.cavitation import LCPResult, active_set, psor
 from ..solvers.linsolve import solve_spd
 from ..scales import flow_factor, force_factor, shear_friction
@@ -155,7 +155,9 @@ def film_outputs(bearing, state, op, res, values, load, film, cavitation, cavita
     wq, th = op.qp_weight, op.qp_theta
     Hq = film_thickness(th, state.eps) if film is None else film.gap
     pmax = float(np.max(np.abs(Pn), initial=0.0))
-    wet = Pq > 1e-12 * pmax if clip else np.ones_like(Pq, bool)
+    # a film nothing drives is at ambient, not ruptured: all of it wet, no cavity
+    wet = Pq > 1e-12 * pmax if clip and not (pmax == 0.0 and undriven(state, film)) \
+        else np.ones_like(Pq, bool)
     area = float(np.sum(wq))
     cav_fraction = float(np.sum(wq[~wet]) / area) if clip else 0.0
     shear_cav = 1.0 if cavitated_shear == "full" else 0.0

@@ -25,7 +25,7 @@ from ..caches import cached
 from ..film import film_thickness, reynolds_source_integral, theta_from_inertial
 from ..fields import tilted_gap
 from ..scales import flow_factor, force_factor, moment_factor, shear_friction
-from ..solution import FilmSolution, film_solution
+from ..solution import FilmSolution, film_solution, undriven
 from ..solvers.cavitation import LCPResult, active_set, psor
 from ..solvers.jfo import solve_balance, upwind_transport
 
@@ -332,7 +332,9 @@ def solve_fv(bearing: Bearing, state: JournalState, n_theta: int, n_z: int,
     dA = g.dtheta * g.dzeta
     f_r, f_t = _force(bearing, g, P)
     H = film_thickness(th, state.eps) if gap is None else gap(th, ze)
-    wet = P > 0 if cavitation != "none" else np.ones(g.n, bool)
+    # a film nothing drives is at ambient, not ruptured: all of it wet, no cavity
+    wet = P > 0 if cavitation != "none" and not (
+        np.all(P == 0.0) and undriven(state, gap)) else np.ones(g.n, bool)
     # JFO: Couette shear on the oil present, Poiseuille shear in the full film
     shear, full = (1.0, 1.0) if phi is None else (phi, phi >= 1.0 - 1e-12)
     # Friction: Couette everywhere (full oil in cavitated cells, no pressure) plus the

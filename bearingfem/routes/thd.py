@@ -45,7 +45,7 @@ from ..thermal.bush import bush_wall
 from ..thermal.energy import EnergyFlow, Mixing, energy_operator, solve_energy
 from ..thermal.operator import arc_degree
 from ..thermal.mixing import groove_mixing
-from ..thermal.spec import Thermal, ThermalRecord
+from ..thermal.spec import Thermal, ThermalRecord, warn_out_of_range
 from .base import Route
 from .thd_film import ReynoldsFieldFilm
 from .jfo import JFOFilm
@@ -300,6 +300,7 @@ class ThermalIteration:
             viscosity_quadrature=self.mu, iterations=self.iterations,
             temperature_change=self.change, pressure_change=self.pressure_change,
             bush=energy.bush)
+        warn_out_of_range(T)
         return replace(sol, temperature=T, temperature_max=float(np.max(T)), thermal=record,
                        method=sol.method + "/thd")
 

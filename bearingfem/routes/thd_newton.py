@@ -52,7 +52,7 @@ from ..solvers.cavitation import LCPResult
 from ..solvers.linsolve import principal_block
 from ..thermal.energy import EnergyParts, EnergySolution
 from ..thermal.jacobian import energy_linearisation
-from ..thermal.spec import ThermalRecord
+from ..thermal.spec import ThermalRecord, warn_out_of_range
 from ..thermal.mixing import arc_theta_difference
 from .thd import ThermalIteration, check_thermal
 from .thd_film import ReynoldsFieldFilm
@@ -390,6 +390,7 @@ class ThermalNewton:
             viscosity_quadrature=self.parts["ratio"] * b.viscosity,
             iterations=self.it.iterations + self.steps, temperature_change=self.change,
             pressure_change=self.pressure_change)
+        warn_out_of_range(T)
         return replace(sol, temperature=T.copy(), temperature_max=float(np.max(T)),
                        thermal=record, method=sol.method + "/thd")
 

@@ -2,13 +2,16 @@
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
 
 from ..elastic.bush import ElasticBush
+from ..errors import OilRangeWarning
+from ..lubricant import check_oil_temperature, temperature_range_note
 
-__all__ = ["Thermal", "ThermalRecord", "BushConduction", "THERMAL_MODELS",
+__all__ = ["Thermal", "ThermalRecord", "BushConduction", "THERMAL_MODELS", "warn_out_of_range",
            "MAX_FILM_COEFFICIENT", "DEFAULT_WALL_COEFFICIENT"]
 
 THERMAL_MODELS = ("adiabatic", "conducting")
@@ -29,6 +32,15 @@ def _number(name, value, *, lo=None, hi=None, allowed=""):
             (hi is not None and value > hi):
         raise ValueError(f"{name} must be finite and {allowed}, got {value!r}")
     return value
+
+
+def warn_out_of_range(temperature) -> None:
+    """An :class:`~bearingfem.errors.OilRangeWarning` with the numbers when a solved film's
+    nodal temperatures [K] leave the oil law's range (a film at eps 0.999 can report
+    2000 C: the law extrapolated, not an oil)."""
+    note = temperature_range_note(temperature)
+    if note is not None:
+        warnings.warn(note, OilRangeWarning, stacklevel=3)
 
 
 def _count(name, value, lo):
@@ -101,7 +113,8 @@ class Thermal:
     Parameters
     ----------
     supply_temperature : temperature of the fresh oil fed at the grooves (or the supply
-        line) [K], > 0
+        line) [K], in :data:`~bearingfem.lubricant.OIL_TEMPERATURE_RANGE` (223.15 to
+        473.15 K, -50 to 200 C), as ``ambient_temperature`` and ``journal_temperature``
     model : "adiabatic" (no heat to the walls: all the film's heat leaves with its oil) or
         "conducting" (heat to the bush and to the journal by heat-transfer coefficients)
     carry_over : share, in [0, 1], of an arc's exit flow that passes the groove into the
@@ -130,7 +143,8 @@ class Thermal:
     bush: BushConduction | None = None
 
     def __post_init__(self):
-        _number("supply_temperature", self.supply_temperature, lo=1e-300, allowed="> 0 [K]")
+        # the oil law's range, as the command line's --oil-temperature and a scene's
+        check_oil_temperature("supply_temperature", self.supply_temperature)
         if self.model not in THERMAL_MODELS:
             raise ValueError(f"model must be one of {THERMAL_MODELS}, got {self.model!r}")
         _number("carry_over", self.carry_over, lo=0.0, hi=1.0, allowed="in [0, 1]")
@@ -143,8 +157,8 @@ class Thermal:
                                      f"film exchanges no heat with its walls")
         for name in ("ambient_temperature", "journal_temperature"):
             value = getattr(self, name)
-            if value is not None:
-                _number(name, value, lo=1e-300, allowed="> 0 [K]")
+            if value is not None:     # the film tends to them: the same range
+                check_oil_temperature(name, value)
         if self.bush is not None:
             if not isinstance(self.bush, BushConduction):
                 raise ValueError(f"bush must be a BushConduction, got "
