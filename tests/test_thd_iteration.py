@@ -4,6 +4,7 @@ factors preconditioning CG while h^3/mu moved little, the frozen-viscosity film'
 force derivatives (K, C and the equilibrium's first Jacobian) against central
 differences, and an iteration stopped short still raises."""
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -14,6 +15,7 @@ from bearingfem import Bearing, Groove, JournalState, Lubricant
 from bearingfem.design import coefficients, equilibrium
 from bearingfem.design.equilibrium import isothermal_position
 from bearingfem.design.thermal import _jacobian, frozen_film
+from bearingfem.models import film_model
 from bearingfem.errors import ConvergenceError
 from bearingfem.fe.kernel import fe_pressure
 from bearingfem.routes.thd import ReynoldsFieldFilm, ThermalIteration, solve_thd, \
@@ -214,6 +216,49 @@ def test_isothermal_position_is_the_equilibriums(model):
                                                                         eq.state.gamma)
     with pytest.raises(ValueError, match="eps_max"):
         isothermal_position(BEARING, load, OMEGA, model, eps_max=1.0, **opts)
+    with pytest.raises(ValueError, match="rtol"):
+        isothermal_position(BEARING, load, OMEGA, model, rtol=0.0, **opts)
+
+
+def test_the_start_to_a_looser_tolerance_keeps_the_answer(monkeypatch):
+    """The thermal equilibrium starts from the supply temperature's isothermal position
+    to Newton's rtol 1e-4 (design.thermal.START_RTOL: its last step below 1e-2 |q|) instead
+    of the equilibrium's 1e-13: on the designer's bearing (48x8, 2 kN, adiabatic,
+    carry-over 0.8) the start takes 2 isothermal films and partials instead of 4 and lies
+    within 1e-3 of the exact one in eps and gamma (measured 1e-4 and 1e-4 rad), and the
+    thermal equilibrium is the same, its films the same 21: eps and attitude to 1e-9
+    (measured 1.3e-11 and 1.4e-11 rad), the temperatures to 2e-6 K (measured 1.6e-9 K).
+    Fails with the start's tolerance not passed on (4 partials; planted)."""
+    opts = dict(n_theta=48, n_z=8, grooves=GROOVES, cavitation="reynolds")
+    load, thermal = (0.0, -2000.0), THERMALS[0]
+    model = type(film_model("fem"))
+    calls = {"n": 0}
+    partials = model.force_derivatives
+
+    def spy(self, *args, **kwargs):
+        calls["n"] += 1
+        return partials(self, *args, **kwargs)
+
+    monkeypatch.setattr(model, "force_derivatives", spy)
+    cold = replace(BEARING, viscosity=float(VG32.viscosity_at(temperature=SUPPLY)))
+    exact = isothermal_position(cold, load, OMEGA, "fem", **opts)
+    loose = isothermal_position(cold, load, OMEGA, "fem", rtol=design_thermal.START_RTOL,
+                                **opts)
+    assert abs(loose[0] - exact[0]) < 1e-3 and abs(loose[1] - exact[1]) < 1e-3
+
+    def solved():
+        calls["n"] = 0
+        eq = equilibrium(BEARING, load, OMEGA, "fem", lubricant=VG32, thermal=thermal,
+                         **opts)
+        return eq, calls["n"]
+
+    eq, n_start = solved()
+    monkeypatch.setattr(design_thermal, "START_RTOL", 1e-13)
+    ref, n_ref = solved()
+    assert (n_start, n_ref) == (2, 4)
+    assert eq.iterations == ref.iterations
+    assert abs(eq.eps - ref.eps) < 1e-9 and abs(eq.attitude - ref.attitude) < 1e-9
+    assert np.max(np.abs(eq.solution.temperature - ref.solution.temperature)) < 2e-6
 
 
 def test_looser_first_and_inexact_tolerances_keep_the_answer(monkeypatch):
@@ -226,9 +271,9 @@ def test_looser_first_and_inexact_tolerances_keep_the_answer(monkeypatch):
     and the same equilibrium as with every inexact step verified by its second solve and
     the first position to 1e-2 K (19 films, 18 energy solves): eps and attitude to 1e-9
     (measured 3e-11 and 5e-11 rad), the temperatures to 2e-6 K (measured 3e-9 K), K and
-    C to 1e-8 of their largest entries (measured 2e-10 and 4e-10). Fails with the first position's rates kept (13
-    energy solves) and with the inexact tolerance capped at 1e-2 K again (19 films, 12
-    energy solves) (planted, each once)."""
+    C to 1e-8 of their largest entries (measured 2e-10 and 4e-10). Fails with the first
+    position's rates kept (13 energy solves) and with the inexact tolerance capped at
+    1e-2 K again (19 films, 12 energy solves) (planted, each once)."""
     oil = Lubricant.two_point((322.983, 0.0190157), (352.983, 0.00771523), density=855.0,
                               specific_heat=1951.5, conductivity=0.15, law="exponential")
     bearing = Bearing(radius=0.2, length=0.263144, clearance=1.94564e-4,
