@@ -304,9 +304,15 @@ def test_reversed_thermal_equilibrium_with_carry_over_is_the_mirror_image(mirror
     down) and its frozen-viscosity K and C at -omega are those at +omega mirrored in the
     load line, on meshes mirrored in that line (the angle pi/2: it swaps the grooves and
     maps the mesh's seam onto the other groove's trailing edge): the two discrete
-    problems are one, so equal to the solvers' round-off (measured at 48 x 8: eps 3e-12,
-    attitude 4e-12 rad, T_max 6e-10 K, K 2e-11 and C 8e-12 of their largest entries;
-    asserted 1e-9, 1e-9 rad, 1e-8 K, 1e-8). Fails with the mixing's flows taken across the
+    problems are one, so equal within the equilibrium's own tolerance: the two searches
+    round off differently, and each stops anywhere inside the force balance's 1e-8 of the
+    load, which leaves eps within ~2e-9 and T_max within ~2e-7 K (T_max moves by ~120 K
+    per unit of eps here). Measured at 48 x 8: eps 9e-11, attitude 1e-10 rad, T_max
+    1.1e-8 K (the same with the fixed point's tolerance 1e-8 K: the balance, not the
+    temperatures, sets it), the inlets 5e-10 K, K 9e-10 and C 7e-10 of their largest
+    entries (3e-12, 4e-12 rad, 6e-10 K when first measured; 5e-11, 4e-11 rad, 5e-9 K on
+    the code before the looser inexact steps); asserted 1e-9, 1e-9 rad, 1e-7 K (the
+    inlets 1e-8 K), 1e-8. Fails with the mixing's flows taken across the
     grooves' edges, the seam's inlet one-sided and its image's averaged: eps 3.5e-3 and
     T_max 0.73 K apart at 48 x 8 on these meshes. On the toolkit's own mesh the two are two
     discretisations: eps 2.3e-3, 5.6e-4, 1.5e-4 apart at 48 x 8, 96 x 16, 192 x 32, as
@@ -319,7 +325,7 @@ def test_reversed_thermal_equilibrium_with_carry_over_is_the_mirror_image(mirror
     b = equilibrium(BEARING, load, -OMEGA, "fem", **opts)
     assert b.eps == pytest.approx(a.eps, abs=1e-9)
     assert -b.attitude == pytest.approx(a.attitude, abs=1e-9)
-    assert b.solution.temperature_max == pytest.approx(a.solution.temperature_max, abs=1e-8)
+    assert b.solution.temperature_max == pytest.approx(a.solution.temperature_max, abs=1e-7)
     assert np.allclose(a.solution.thermal.inlet_temperatures,
                        b.solution.thermal.inlet_temperatures[::-1], rtol=0.0, atol=1e-8)
     ka = coefficients(BEARING, a.state, "fem", solution=a.solution, **opts)

@@ -236,20 +236,26 @@ NEWTON_RESTARTS = 2
 
 
 def isothermal_position(bearing: Bearing, load, omega: float, model: str, *,
-                        eps_max: float = EPS_MAX, **options) -> tuple:
+                        eps_max: float = EPS_MAX, rtol: float = 1e-13,
+                        **options) -> tuple:
     """(eps, gamma) of :func:`equilibrium` (aligned journal, default tolerance) without
     the film's outputs there: Newton's position alone for models with exact partials,
     else the whole equilibrium's. Why: a search that only starts from it (the thermal
     film's, :func:`~bearingfem.design.thermal.thd_equilibrium`) needs no solution record,
-    whose film and partials cost a quarter of the isothermal equilibrium at 48 x 8."""
+    whose film and partials cost a quarter of the isothermal equilibrium at 48 x 8.
+    ``rtol`` (Newton's models only): Newton stops on a step below sqrt(rtol) |q| and takes
+    it, the force then off by ~rtol of the load; the default is the equilibrium's, a
+    start may take a looser one."""
     m = film_model(model)
     if not 0.0 < check_finite("eps_max", eps_max) < 1.0:
         raise ValueError(f"eps_max must lie in (0, 1), got {eps_max!r}")
+    if not 0.0 < check_finite("rtol", rtol) < 1.0:
+        raise ValueError(f"rtol must lie in (0, 1), got {rtol!r}")
     if not (m.exact_derivatives and not m.memory and omega != 0.0):
         eq = equilibrium(bearing, load, omega, model, eps_max=eps_max, **options)
         return eq.eps, eq.state.gamma
     eps, gamma, _, _ = _newton_position(m, bearing, omega, tuple(load),
-                                        m.options(options), None, eps_max, 1e-13, model,
+                                        m.options(options), None, eps_max, rtol, model,
                                         (0.0, 0.0))
     return eps, gamma
 

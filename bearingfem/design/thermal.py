@@ -136,16 +136,25 @@ def _jacobian(film, q, omega, clearance, velocity=False):
 #: temperature change of an inexact step (the largest of the last RATE_MEMORY rates)
 RATE_SAFETY = 4.0
 RATE_MEMORY = 3
+#: The first position's temperature tolerance [K], and the largest of an inexact step's:
+#: a 1 K error moves the force by ~3 %, below the first position's residual (the oil's
+#: heating: 26 % of the load on ROSS's adiabatic fixture) and of the next steps' (5 %, 1 %)
+FIRST_TOL = 1.0
+#: The start's (the supply temperature's isothermal equilibrium) Newton tolerance: its
+#: last step below 1e-2 |q| (the force then off by ~1e-4 of the load), where the first
+#: thermal step moves eps by ~0.07 (ROSS's fixture); the equilibrium's 1e-13 took one or
+#: two more isothermal films and partials for the same thermal search
+START_RTOL = 1e-4
 
 
 def _predicted_change(change: float, rates: list) -> float:
     """The next energy solve's change [K] after one of ``change`` [K], from the fixed
     point's contraction measured so far (the largest of its last RATE_MEMORY rates, times
-    RATE_SAFETY; inf before two rates are known). Why: after a position step the first
+    RATE_SAFETY; inf before a rate is known). Why: after a position step the first
     energy solve moves the temperatures by the step's effect and the next by ~1e-2 of
     that (the pressure's lag); an inexact step needs the film's temperatures within
     ``tol_t`` only, which the contraction tells without the second solve."""
-    if len(rates) < 2:
+    if not rates:
         return np.inf
     return RATE_SAFETY * max(rates[-RATE_MEMORY:]) * change
 
@@ -163,8 +172,8 @@ def thd_equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
     a 1e-6 K error moving the force by ~3e-8 of it; 1e-9 before took one more position on
     ROSS's fixture and moved eps by at most 2.6e-9, K and C by 1.1e-8). ``eq.solution`` is the THD
     film; ``friction_force`` and ``power_loss`` its own shear integral. ``isothermal``:
-    (bearing, load, omega, model, eps_max=, **mesh options) -> (eps, gamma) of the
-    isothermal equilibrium that starts the search
+    (bearing, load, omega, model, eps_max=, rtol=, **mesh options) -> (eps, gamma) of
+    the isothermal equilibrium that starts the search (to START_RTOL)
     (:func:`~bearingfem.design.equilibrium.isothermal_position`, passed in by
     :func:`~bearingfem.design.equilibrium`: this module lies below it).
     """
@@ -189,7 +198,8 @@ def thd_equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
     iso_opts = dict(n_theta=mesh["n_theta"], n_z=mesh["n_z"], grooves=mesh["grooves"])
     if iso_model == "fem":
         iso_opts.update(element=mesh["element"], cavitation=mesh["cavitation"])
-    eps0, gamma0 = isothermal(cold, (wx, wy), omega, iso_model, eps_max=eps_max, **iso_opts)
+    eps0, gamma0 = isothermal(cold, (wx, wy), omega, iso_model, eps_max=eps_max,
+                              rtol=START_RTOL, **iso_opts)
     q = eps0 * np.array([math.cos(gamma0), math.sin(gamma0)])
     c = bearing.clearance
     target = -np.array([wx, wy])
@@ -242,13 +252,16 @@ def thd_equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
         raise ConvergenceError("thermal film (temperature fixed point)", max_iterations,
                                it.change, f"eps = {state.eps:.6g}")
 
-    film = balance(q, 1e-2, 1e-4)
+    film = balance(q, FIRST_TOL, 1e-2 * FIRST_TOL)
+    # the later steps predict from their own contractions (~1e-2 after a position step),
+    # not from those of the heating from the supply temperature (0.08 on ROSS's fixture)
+    rates.clear()
     # the first Jacobian: the film just solved at q, its viscosity held (the JFO film's
     # by central differences)
     J = _jacobian(frozen_film(bearing, it.mu, mesh), q, omega, c) \
         if mesh["cavitation"] == "jfo" else film.force_partials()[0]
     r = film.force() - target
-    tol_used = 1e-2
+    tol_used = FIRST_TOL
     for _ in range(MAX_STEPS):
         if np.hypot(*r) <= rtol * W:
             if tol_used <= final_tol:
@@ -266,7 +279,7 @@ def thd_equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
         # inexact steps: far from the root the temperatures need not be exact (a 1 K
         # error moves the force by ~3 %, so |r|/W [K] leaves it ~30 times below the
         # residual), down to the final one
-        tol_t = min(max(final_tol, float(np.hypot(*r)) / W), 1e-2)
+        tol_t = min(max(final_tol, float(np.hypot(*r)) / W), FIRST_TOL)
         tol_used = tol_t
         film = balance(q, tol_t, max(PRESSURE_RTOL, 1e-2 * tol_t))
         r_new = film.force() - target
