@@ -353,15 +353,17 @@ class _StepFilm:
         J, _, _ = out.film.jacobian(P, s, out.ev)
         T = self.frame.left                                      # (nodes, grid) sparse
         Wq = self.squeeze_load(out.ev)                           # (nodes, points)
-        # dR/dv (nodes, grid): the squeeze of v, and through w = w_n + dt v the gap and
-        # the whirl's gamma_dot dw/dalpha
-        coupling = (Wq @ (op.qp_interp @ T)) / c
+        # dR/dv (nodes, grid) = [Wq (I + dt gamma_dot D) + dt T_H] T / c: the squeeze of
+        # v, and through w = w_n + dt v the whirl's gamma_dot dw/dalpha and the gap; summed
+        # on the nodes first, one product with T (six sparse products took half the
+        # Jacobian's time at 96 x 16)
+        points = op.qp_interp
+        if dt and self.state.gamma_dot:
+            points = points + (dt * self.state.gamma_dot) * self.run._whirl(op)
+        nodes = Wq @ points
         if dt:
-            TH = out.film.gap_slope(P, s, out.ev, out.moving)
-            coupling = coupling + (dt / c) * (TH @ T)
-            if self.state.gamma_dot:
-                coupling = coupling + (dt * self.state.gamma_dot / c) * (Wq @ (self.run._whirl(op) @ T))
-        coupling = sp.csr_matrix(coupling)
+            nodes = nodes + dt * out.film.gap_slope(P, s, out.ev, out.moving)
+        coupling = sp.csr_matrix(nodes @ T) / c
         low = self.run._low
         V = (self.scale / self.tau) * self.shift.to_nodes(low.right * low.singular)
         rate = _RateCompliance(self, out.stiffness, s)
