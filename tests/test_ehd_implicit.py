@@ -160,6 +160,39 @@ def test_the_rate_inverse_is_the_dense_solve(dt, monkeypatch):
     assert np.all(r <= 1e-6), r
 
 
+@pytest.mark.parametrize("dt", [0.0, 1e-4])
+def test_the_bush_rate_solves_its_equation_from_the_held_summits_start(dt, monkeypatch):
+    """The bush rate with the summits (_StepFilm.rate) starts from the summits' pressure
+    held at the last evaluation's and returns that start, without a compliance product,
+    where the bound |C| |p_a(w) - p_held| passes its test. At the heavy state (summits
+    carrying) the returned v solves (tau + dt) v + w_n = C (p + p_a(w_n + dt v)) to the
+    rate's test RATE_TOL, from a fresh film (held at w_n) and from a memo at another
+    pressure; at dt = 0 (w = w_n: the summits cannot move) one compliance product each,
+    at dt = 1e-4 s (dt |C| k / (tau + dt) up to 4.3) the Newton after the start.
+    Fails with the start returned unchecked (the bound's test dropped: the film's solve
+    at the heavy state no longer converges, ConvergenceError; planted, run once)."""
+    from bearingfem.ehd import implicit
+    film, _, state, _ = _heavy()
+    film.force(state, 1e-7)
+    P0 = film._P
+    step = film.step_film(state, dt)
+    calls = []
+    comply = step.comply
+    monkeypatch.setattr(step, "comply", lambda p: calls.append(1) or comply(p))
+    for P in (P0, 1.01 * P0):
+        calls.clear()
+        v, w, pa, h = step.rate(P)
+        products = len(calls)
+        step._last = implicit._Memo(P.copy(), 1.0, step._build(P, 1.0))
+        assert np.array_equal(pa, film.roughness.pressure(h))
+        assert np.array_equal(h, film.bearing.clearance * step._nodal_gap(w))
+        load = comply(step.scale * P + pa)
+        r = step.tau * v + step.w_n - load
+        size = np.max(np.abs(step.tau * v) + np.abs(step.w_n) + np.abs(load))
+        assert np.max(np.abs(r)) <= implicit.RATE_TOL * size, np.max(np.abs(r)) / size
+        assert (products == 1) if step.dt == 0.0 else (products > 1)
+
+
 def _moving(s0, t):
     """The state ``s0`` carried on its own rates to time ``t`` [s]."""
     return ElasticJournalState(eps=s0.eps + s0.eps_dot * t, eps_dot=s0.eps_dot,
