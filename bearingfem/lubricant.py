@@ -130,9 +130,9 @@ def check_oil_temperature(name: str, value, *, unit: str = "K") -> float:
 
 
 def temperature_range_note(temperature, what: str = "the film's temperature") -> str | None:
-    """None when every film temperature [K] lies in :data:`OIL_TEMPERATURE_RANGE`; else
-    one sentence with the film's extreme and the range (the oil law is extrapolated
-    there, and the film's numbers with it)."""
+    """None when every temperature [K] lies in :data:`OIL_TEMPERATURE_RANGE`; else one
+    sentence with the extreme (``what`` reaches it) and the range (the oil law is
+    extrapolated there, and the numbers with it)."""
     t = np.asarray(temperature, dtype=float)
     lo, hi = OIL_TEMPERATURE_RANGE
     t_min, t_max = float(np.min(t)), float(np.max(t))
@@ -141,8 +141,8 @@ def temperature_range_note(temperature, what: str = "the film's temperature") ->
     worst = t_max if t_max > hi else t_min
     return (f"{what} reaches {worst:.6g} K ({worst - CELSIUS:.4g} C), "
             f"outside the oil law's range [{lo:g}, {hi:g}] K ({lo - CELSIUS:g} to "
-            f"{hi - CELSIUS:g} C): its viscosity there is extrapolated, and the film's "
-            f"numbers with it")
+            f"{hi - CELSIUS:g} C, an ISO VG mineral oil's chart): the viscosity there is "
+            f"the law's extrapolation, and every number taken from it")
 
 
 def walther_constants(t1: float, nu1: float, t2: float, nu2: float) -> tuple:
