@@ -51,9 +51,12 @@ conductivity).
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass, replace
 
 import numpy as np
+
+from .errors import OilRangeWarning
 
 __all__ = ["Lubricant", "ISO_VG", "OIL_TEMPERATURE_RANGE", "check_oil_temperature",
            "temperature_range_note"]
@@ -69,9 +72,11 @@ CELSIUS = 273.15                   # [K]
 TEMPERATURE_LAWS = ("walther", "exponential")
 #: [K] the oil temperatures taken, -50 to 200 C: a mineral oil film's, where the D341 chart
 #: and its two-point lines are drawn (Walther's law overflows towards 0 K and is an
-#: extrapolation far above 200 C). The one range of the command line's --oil-temperature, a
-#: scene's oil_temperature, a Thermal's temperatures and a temperature law's points; a
-#: solved film leaving it says so (:func:`temperature_range_note`).
+#: extrapolation far above 200 C). It refuses the command line's --oil-temperature and a
+#: scene's oil_temperature (an ISO VG oil); a solved thermal film or an oil held by
+#: at_temperature outside it warns (:func:`temperature_range_note`): other fluids, hot
+#: synthetic oils and cryogens, have their own laws, so a Thermal or a law's points are
+#: refused only at or below 0 K.
 OIL_TEMPERATURE_RANGE = (CELSIUS - 50.0, CELSIUS + 200.0)
 
 # ISO 3448 grades: the 40 C kinematic viscosity midpoint [mm^2/s] (the grade's number, but
@@ -124,20 +129,20 @@ def check_oil_temperature(name: str, value, *, unit: str = "K") -> float:
     return v
 
 
-def temperature_range_note(temperature) -> str | None:
-    """None when every film temperature [K] lies in :data:`OIL_TEMPERATURE_RANGE`; else
-    one sentence with the film's extreme and the range (the oil law is extrapolated
-    there, and the film's numbers with it)."""
+def temperature_range_note(temperature, what: str = "the film's temperature") -> str | None:
+    """None when every temperature [K] lies in :data:`OIL_TEMPERATURE_RANGE`; else one
+    sentence with the extreme (``what`` reaches it) and the range (the oil law is
+    extrapolated there, and the numbers with it)."""
     t = np.asarray(temperature, dtype=float)
     lo, hi = OIL_TEMPERATURE_RANGE
     t_min, t_max = float(np.min(t)), float(np.max(t))
     if lo <= t_min and t_max <= hi:
         return None
     worst = t_max if t_max > hi else t_min
-    return (f"the film's temperature reaches {worst:.6g} K ({worst - CELSIUS:.4g} C), "
+    return (f"{what} reaches {worst:.6g} K ({worst - CELSIUS:.4g} C), "
             f"outside the oil law's range [{lo:g}, {hi:g}] K ({lo - CELSIUS:g} to "
-            f"{hi - CELSIUS:g} C): its viscosity there is extrapolated, and the film's "
-            f"numbers with it")
+            f"{hi - CELSIUS:g} C, an ISO VG mineral oil's chart): the viscosity there is "
+            f"the law's extrapolation, and every number taken from it")
 
 
 def walther_constants(t1: float, nu1: float, t2: float, nu2: float) -> tuple:
@@ -231,8 +236,6 @@ class Lubricant:
         if self.is_thermal and self.temperature is None:
             raise ValueError("a temperature law needs temperature, the reference "
                              "temperature T0 [K] of viscosity")
-        if self.is_thermal:
-            check_oil_temperature("temperature", self.temperature)
         if self.walther is not None:
             mu0 = float(self._viscosity_ambient(self.temperature)[0])
             if not math.isclose(mu0, self.viscosity, rel_tol=1e-9):
@@ -261,7 +264,8 @@ class Lubricant:
             except (TypeError, ValueError):
                 raise ValueError(f"point{k} must be a pair (temperature [K], viscosity "
                                  f"[Pa s]), got {point!r}") from None
-            points.append((check_oil_temperature(f"point{k} temperature", t),
+            # any fluid's points (a synthetic oil at 250 C, a cryogen at 80 K): > 0 K only
+            points.append((_positive(f"point{k} temperature", t, allowed="> 0 [K]"),
                            _positive(f"point{k} viscosity", mu, allowed="> 0 [Pa s]")))
         (t1, mu1), (t2, mu2) = points
         rho = _positive("density", density, allowed="> 0 [kg/m^3]")
@@ -312,16 +316,15 @@ class Lubricant:
         pressure laws and properties, no temperature law (what an isothermal film
         takes)."""
         t = _positive("temperature", temperature, allowed="> 0 [K]")
-        if self.is_thermal and not (OIL_TEMPERATURE_RANGE[0] <= t <= OIL_TEMPERATURE_RANGE[1]):
-            lo, hi = OIL_TEMPERATURE_RANGE
-            raise ValueError(f"temperature {t:g} K is outside the oil's viscosity law, "
-                             f"which holds in [{lo:g}, {hi:g}] K ({lo - CELSIUS:g} to "
-                             f"{hi - CELSIUS:g} C)")
         with np.errstate(over="ignore", invalid="ignore"):
             mu = float(self.viscosity_at(0.0, temperature=t))
         if not (math.isfinite(mu) and mu > 0.0):     # the law's range, named by its input
             raise ValueError(f"temperature {t:g} K is outside the oil's viscosity law "
                              f"(mu(T) = {mu:g} Pa s there)")
+        if self.is_thermal:       # the law extrapolated: said, not refused (a hot transient)
+            note = temperature_range_note(t, "the oil held at a temperature")
+            if note is not None:
+                warnings.warn(note, OilRangeWarning, stacklevel=2)
         return replace(self, viscosity=mu, temperature=t, walther=None,
                        temperature_exponent=None)
 

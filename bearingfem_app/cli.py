@@ -19,7 +19,7 @@ from bearingfem.routes.problem import OPTION_DEFAULTS
 from mechanism.scene import shipped_scenes
 
 from .bush import add_bush_args
-from .checks import check_numbers, given_options, oil_viscosity
+from .checks import RULES, _range, check_numbers, given_options, oil_viscosity
 
 from .commands import (command_convergence, command_frames, command_render,
                        command_simulate, command_solve, command_sweep)
@@ -71,6 +71,12 @@ AMBIENT_MODEL = (f"with --model fem-jfo (default {JFO_AMBIENT:g} Pa: atmospheric
                  f"supply line)")
 
 
+def _said(dest: str) -> str:
+    """The range check_numbers holds option ``dest`` to, as its help says it (RULES: one
+    table for the check and the help)."""
+    return _range(*RULES[dest][1:])
+
+
 def _bearing_args(p, film=True):
     p.add_argument("--length-ratio", "--ld", dest="length_ratio", type=float, default=1.0,
                    help="L/D, the bearing's length over its diameter")
@@ -98,8 +104,8 @@ def _bearing_args(p, film=True):
     p.add_argument("-q", "--quiet", action="store_true",
                    help="no progress lines on stderr (a mesh search's estimates, an elastic "
                         "film's Newton steps)")
-    p.add_argument("--n-theta", type=int, default=120, help="cells around the film (>= 8)")
-    p.add_argument("--n-z", type=int, default=20, help="cells along the length (>= 2)")
+    p.add_argument("--n-theta", type=int, default=120, help=f"cells around the film ({_said('n_theta')})")
+    p.add_argument("--n-z", type=int, default=20, help=f"cells along the length ({_said('n_z')})")
     p.add_argument("--element", default="P1", help="P1 | P2 (finite elements only)")
     p.add_argument("--ambient-pressure", type=float, default=None,
                    help="the JFO film's oil pressure at the ends above the cavitation "
@@ -124,7 +130,7 @@ def _film_discretisation(name: str) -> str:
 
 def _film_args(p):
     _bearing_args(p)
-    p.add_argument("--eps", type=float, default=0.6, help="eccentricity ratio in [0, 1)")
+    p.add_argument("--eps", type=float, default=0.6, help=f"eccentricity ratio {_said('eps')}")
     p.add_argument("--eps-dot", type=float, default=0.0, help="d(eps)/dt [1/s]")
     p.add_argument("--supply-angle", default=None,
                    help="an axial supply line at ambient pressure: its angle [deg] from "
@@ -143,7 +149,7 @@ def _load_args(p, required):
 
 def _rtol_arg(p):
     p.add_argument("--rtol", type=float, default=None,
-                   help="a requested relative accuracy in [1e-06, 0.1] (e.g. 1e-3): the mesh "
+                   help=f"a requested relative accuracy {_said('rtol')} (e.g. 1e-3): the mesh "
                         "(and element, P2 unless --element) is chosen to reach it; not with "
                         "--n-theta, --n-z")
 
@@ -199,7 +205,7 @@ def build_parser():
     s.add_argument("-o", "--output", required=True, help="output directory")
     s.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
     s.add_argument("--turns", type=float, default=None,
-                   help="run this many crank turns, in (0, 1000], all recorded (a quick look; "
+                   help=f"run this many crank turns, {_said('turns')}, all recorded (a quick look; "
                         "default: the scene's turns and record_from_turn)")
     s.set_defaults(func=command_simulate)
     f = add("solve", help="one film solve; print forces, optionally export VTU",
@@ -217,7 +223,7 @@ def build_parser():
             epilog="example: bearingfem convergence --ld 1.0 --eps 0.6 -o conv")
     _film_args(c)
     c.set_defaults(n_theta=24, n_z=4)
-    c.add_argument("--levels", type=int, default=4, help="meshes, each twice as fine (>= 3)")
+    c.add_argument("--levels", type=int, default=4, help=f"meshes, each twice as fine ({_said('levels')})")
     c.add_argument("--methods", default="P1,P2,fvm", help="comma list of P1, P2, fvm")
     c.add_argument("--quantity", default="force",
                    help="quantity for the figure: " + " | ".join(
@@ -249,7 +255,7 @@ def build_parser():
     w.add_argument("--scheduler", help="address [tcp://]host:port of a running Dask "
                    "scheduler (refused if it does not answer within 5 s); default: a local "
                    "cluster")
-    w.add_argument("--workers", type=int, default=2, help="local cluster processes (>= 1)")
+    w.add_argument("--workers", type=int, default=2, help=f"local cluster processes ({_said('workers')})")
     w.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
     w.set_defaults(func=command_sweep)
     fr = add("frames", help="the film along a saved run: VTU series (.pvd), PNG frames, GIF",
@@ -261,7 +267,7 @@ def build_parser():
     fr.add_argument("-o", "--output", required=True, help="output directory")
     fr.add_argument("--angles", help="crank angles [deg] in [0, 360), comma-separated; "
                     "taken in increasing order (default: evenly spaced --frames)")
-    fr.add_argument("--frames", type=int, default=12, help="number of evenly spaced frames (>= 1)")
+    fr.add_argument("--frames", type=int, default=12, help=f"number of evenly spaced frames ({_said('frames')})")
     fr.add_argument("--field", default="pressure",
                     help="pressure | film_thickness | fraction (a fem-jfo run)")
     fr.add_argument("--surface", default="journal", help="journal | unwrapped")
@@ -287,7 +293,7 @@ def build_parser():
     _design_args(k)
     _rtol_arg(k)
     k.add_argument("--eps", type=float,
-                   help="steady state at this eccentricity ratio, in [0, 1)")
+                   help=f"steady state at this eccentricity ratio, {_said('eps')}")
     k.add_argument("--gamma", type=float, default=0.0, help="its attitude [deg] (with --eps)")
     _load_args(k, required=False)
     k.add_argument("--frame", default="inertial", choices=["inertial", "local", "load"],

@@ -441,3 +441,19 @@ def test_ambient_pressure_help_says_each_default_and_why_they_differ():
         text = " ".join(run(command, "--help").stdout.split())
         assert f"(default {own:g}" in text and f"defaults to {other:g}" in text, command
         assert "takes no supply line" in text or "takes a supply line" in text, command
+
+
+def test_help_ranges_are_the_checks_own_table(monkeypatch):
+    """The helps' ranges are read from RULES, the table check_numbers refuses by, not
+    retyped: a range changed in RULES changes the help (retyped, '[1e-06, 0.1]' and
+    '(0, 1000]' stayed behind)."""
+    import argparse
+    from bearingfem_app import checks
+    from bearingfem_app.cli import build_parser
+    monkeypatch.setitem(checks.RULES, "rtol", ("--rtol", 1e-5, True, 0.05, True))
+    monkeypatch.setitem(checks.RULES, "turns", ("--turns", 0.0, False, 50.0, True))
+    sub = next(a for a in build_parser()._actions
+               if isinstance(a, argparse._SubParsersAction)).choices
+    helps = {a.dest: " ".join(a.help.split()) for cmd in ("solve", "simulate")
+             for a in sub[cmd]._actions if a.dest in ("rtol", "turns")}
+    assert "in [1e-05, 0.05]" in helps["rtol"] and "in (0, 50]" in helps["turns"]

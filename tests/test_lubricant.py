@@ -5,6 +5,7 @@ import numpy as np
 import pytest
 
 from bearingfem import Lubricant
+from bearingfem.errors import OilRangeWarning
 
 P = np.linspace(0.0, 1.5e9, 31)            # gauge pressures up to 1.5 GPa [Pa]
 OILS = [Lubricant(0.0117),
@@ -262,15 +263,24 @@ def test_oil_without_temperature_law_ignores_temperature():
     # Walther's law overflows at 1 K: was 'viscosity must be finite ..., got inf' and
     # numpy's overflow warnings, naming the viscosity nobody gave
     (lambda: Lubricant.iso_vg(32).at_temperature(1.0), "temperature 1 K is outside"),
-    # the oil range of --oil-temperature and scenes (-50 to 200 C): these were taken
-    (lambda: Lubricant.iso_vg(32).at_temperature(573.15), r"temperature 573.15 K is "
-     r"outside the oil's viscosity law, which holds in \[223.15, 473.15\] K"),
-    (lambda: Lubricant.two_point((573.15, 0.019), (623.15, 0.008), density=855.0,
-                                 specific_heat=1950.0, conductivity=0.15),
-     r"point1 temperature must lie in \[223.15, 473.15\] K"),
-    (lambda: Lubricant(0.01, temperature=100.0, temperature_exponent=0.03),
-     r"temperature must lie in \[223.15, 473.15\] K"),
 ])
 def test_bad_thermal_input_names_the_parameter(call, name):
     with pytest.raises(ValueError, match=name):
         call()
+
+
+def test_oils_outside_the_iso_vg_range_are_taken_and_warned_where_extrapolated():
+    """The ISO VG chart's -50 to 200 C is not every fluid's: a synthetic oil's points at
+    300 and 350 C and a cryogen's exponential law at 77 and 90 K (liquid nitrogen's
+    viscosity) are taken as given (both refused when the ISO VG range applied to any law);
+    an ISO VG oil held at 250 C returns its finite viscosity with an OilRangeWarning (it
+    was refused)."""
+    common = dict(density=855.0, specific_heat=1950.0, conductivity=0.15)
+    hot = Lubricant.two_point((573.15, 0.019), (623.15, 0.008), **common)
+    assert hot.temperature == 573.15
+    cold = Lubricant.two_point((77.0, 1.6e-4), (90.0, 1.2e-4), law="exponential",
+                               density=808.0, specific_heat=2040.0, conductivity=0.14)
+    assert cold.viscosity_at(0.0, temperature=80.0) > 1.2e-4
+    with pytest.warns(OilRangeWarning, match=r"523.15 K .*outside the oil law's range"):
+        held = Lubricant.iso_vg(32).at_temperature(523.15)
+    assert math.isfinite(held.viscosity) and 0.0 < held.viscosity

@@ -237,18 +237,33 @@ def test_bad_thermal_spec_names_the_parameter(kwargs, name):
 
 @pytest.mark.parametrize("name", ["supply_temperature", "ambient_temperature",
                                   "journal_temperature"])
-def test_thermal_temperatures_take_the_oil_range_of_the_command_line(name):
-    """A Thermal's temperatures take the range of --oil-temperature and a scene's
-    oil_temperature (one table, OIL_TEMPERATURE_RANGE: -50 to 200 C), refused before any
-    solve naming the parameter and the range: 200 C is taken, 300 C (573.15 K) is
-    refused, as --oil-temperature 300 is (it solved, > 0 K being the only rule)."""
+def test_thermal_temperatures_take_any_oil_and_refuse_only_nonphysical(name):
+    """A Thermal's temperatures are any oil's, not the command line's ISO VG range: a
+    300 C (573.15 K) supply and an aircraft's ambient at altitude (ISA -56.5 C, 216.65 K)
+    are taken (both refused when the ISO VG range applied here); 0 K and below are refused
+    naming the parameter. The ISO VG oil of --oil-temperature keeps its -50 to 200 C."""
     base = dict(supply_temperature=SUPPLY, model="conducting")
-    Thermal(**dict(base, **{name: 473.15}))
-    with pytest.raises(ValueError, match=rf"{name} must lie in \[223.15, 473.15\] K "
-                                         rf"\(-50 to 200 C"):
-        Thermal(**dict(base, **{name: 573.15}))
+    for value in (573.15, 216.65):
+        assert getattr(Thermal(**dict(base, **{name: value})), name) == value
+    with pytest.raises(ValueError, match=rf"{name} must be finite and > 0 \[K\]"):
+        Thermal(**dict(base, **{name: 0.0}))
     with pytest.raises(ValueError, match=r"oil_temperature must lie in \[-50, 200\] degC"):
         oil_viscosity("ISO VG 32", 300.0)
+
+
+def test_a_supply_above_the_oil_range_solves_and_warns():
+    """A 220 C supply (an oil heated past the ISO VG chart) is solved, not refused: the
+    film returns with an OilRangeWarning naming the temperature it reached, its numbers
+    finite."""
+    b = Bearing(radius=0.025, length=0.025, clearance=50e-6,
+                viscosity=float(VG32.viscosity_at(temperature=493.15)))
+    grooves = [Groove(angle=0.0, width=math.radians(20)),
+               Groove(angle=math.pi, width=math.radians(20))]
+    state = JournalState(eps=0.5, omega=3000 * 2 * math.pi / 60, gamma=-1.0)
+    with pytest.warns(OilRangeWarning, match="outside the oil law's range"):
+        hot = solve_reynolds(b, state, 24, 4, grooves=grooves, lubricant=VG32,
+                             thermal=Thermal(493.15, carry_over=0.8))
+    assert hot.temperature_max > 493.15 and np.all(np.isfinite(hot.pressure))
 
 
 def test_a_film_beyond_the_oil_range_says_so_with_its_numbers():

@@ -9,7 +9,7 @@ import numpy as np
 
 from ..elastic.bush import ElasticBush
 from ..errors import OilRangeWarning
-from ..lubricant import check_oil_temperature, temperature_range_note
+from ..lubricant import temperature_range_note
 
 __all__ = ["Thermal", "ThermalRecord", "BushConduction", "THERMAL_MODELS", "warn_out_of_range",
            "MAX_FILM_COEFFICIENT", "DEFAULT_WALL_COEFFICIENT"]
@@ -113,8 +113,9 @@ class Thermal:
     Parameters
     ----------
     supply_temperature : temperature of the fresh oil fed at the grooves (or the supply
-        line) [K], in :data:`~bearingfem.lubricant.OIL_TEMPERATURE_RANGE` (223.15 to
-        473.15 K, -50 to 200 C), as ``ambient_temperature`` and ``journal_temperature``
+        line) [K], > 0, as ``ambient_temperature`` and ``journal_temperature``; a film
+        whose temperature leaves :data:`~bearingfem.lubricant.OIL_TEMPERATURE_RANGE`
+        warns once solved (:class:`~bearingfem.errors.OilRangeWarning`)
     model : "adiabatic" (no heat to the walls: all the film's heat leaves with its oil) or
         "conducting" (heat to the bush and to the journal by heat-transfer coefficients)
     carry_over : share, in [0, 1], of an arc's exit flow that passes the groove into the
@@ -143,8 +144,9 @@ class Thermal:
     bush: BushConduction | None = None
 
     def __post_init__(self):
-        # the oil law's range, as the command line's --oil-temperature and a scene's
-        check_oil_temperature("supply_temperature", self.supply_temperature)
+        # any oil's, hot or cryogenic: a film that leaves the oil law's range warns once
+        # solved (warn_out_of_range); the range refuses only the command line's ISO VG oil
+        _number("supply_temperature", self.supply_temperature, lo=1e-300, allowed="> 0 [K]")
         if self.model not in THERMAL_MODELS:
             raise ValueError(f"model must be one of {THERMAL_MODELS}, got {self.model!r}")
         _number("carry_over", self.carry_over, lo=0.0, hi=1.0, allowed="in [0, 1]")
@@ -157,8 +159,8 @@ class Thermal:
                                      f"film exchanges no heat with its walls")
         for name in ("ambient_temperature", "journal_temperature"):
             value = getattr(self, name)
-            if value is not None:     # the film tends to them: the same range
-                check_oil_temperature(name, value)
+            if value is not None:     # an aircraft's ambient at altitude is -56.5 C
+                _number(name, value, lo=1e-300, allowed="> 0 [K]")
         if self.bush is not None:
             if not isinstance(self.bush, BushConduction):
                 raise ValueError(f"bush must be a BushConduction, got "
