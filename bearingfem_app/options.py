@@ -220,7 +220,8 @@ def write_numbers(out, rows):
         out.write_text(json.dumps({**new, **old}, indent=1))
     else:
         from bearingfem.outputs.tables import write_csv
-        write_csv([dict(key=machine_key(n), value=v, unit=u, quantity=n)
+        # the 0.1.0 columns first, in their order, so positional readers keep working
+        write_csv([dict(quantity=n, value=v, unit=u, key=machine_key(n))
                    for n, v, u in rows], out)
     print(f"wrote {out}")
 

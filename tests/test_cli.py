@@ -177,7 +177,11 @@ def test_equilibrium_and_coefficients_print_and_write(tmp_path):
     assert r.returncode == 0, r.stderr
     import csv
     with open(tmp_path / "kc.csv") as fh:
+        header = fh.readline().strip().split(",")
+        fh.seek(0)
         rows = {row["key"]: row for row in csv.DictReader(fh)}
+    # 0.1.0's columns first, in their order (a positional reader unpacks three), the key after
+    assert header == ["quantity", "value", "unit", "key"]
     assert rows["K_11"]["unit"] == "N/m" and rows["C_12"]["unit"] == "N s/m"
     assert rows["critical_mass"]["unit"] == "kg" and float(rows["eps"]["value"]) == 0.5
     assert rows["critical_mass"]["quantity"] == "critical mass"
