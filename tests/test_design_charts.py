@@ -13,7 +13,7 @@ def test_design_case_matches_the_film_and_raimondi_boyd():
                                   n_theta=72, n_z=12, cavitation="reynolds", omega=250.0))
     b = Bearing(radius=0.01, length=0.02, clearance=20e-6, viscosity=0.0117)
     sol = solve_reynolds(b, JournalState(0.6, omega=250.0), 72, 12, "P2", "reynolds")
-    assert row["load"] == pytest.approx(math.hypot(*sol.force_local), rel=1e-9)
+    assert row["force"] == pytest.approx(math.hypot(*sol.force_local), rel=1e-9)
     # Raimondi & Boyd (L/D 1, eps 0.6): S 0.121, phi 50.58 deg, (R/c) f 3.22; their film
     # starts at the maximum film, ours is periodic: within 2 %, 1.5 deg, 3 %
     assert row["sommerfeld"] == pytest.approx(0.121, rel=0.02)

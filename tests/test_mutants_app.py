@@ -26,7 +26,7 @@ def test_sweep_case_attitude_and_sommerfeld_by_hand(kind, eps):
          * math.sqrt(16 * eps ** 2 + math.pi ** 2 * (1 - eps ** 2)))
     S = (R / c) ** 2 * mu * (w / (2 * math.pi)) / (W / (L * 2 * R))
     assert row["attitude_deg"] == pytest.approx(phi, rel=1e-9)
-    assert row["load"] == pytest.approx(W, rel=1e-9)
+    assert row["force"] == pytest.approx(W, rel=1e-9)
     assert row["sommerfeld"] == pytest.approx(S, rel=1e-9)
 
 
