@@ -372,34 +372,23 @@ def test_the_seed_pin_runs_as_with_the_states_film():
     assert abs(implicit.film_min.min() - states.film_min.min()) < 5e-4 * 20e-6
 
 
-def test_a_ctrl_c_keeps_the_steps_taken(monkeypatch):
+def test_a_ctrl_c_keeps_the_steps_taken(ctrl_c_at_film_force):
     """A real Ctrl-C (SIGINT to this process) at the 80th film force of the seed pin's run
     with the implicit film (24 x 4, rough, crowned; 0.2 turn asked): the run comes back
     partial, marked interrupted, with every accepted step's film record (the film's
     commits) from t = 0. Fails when the film's commit does not return its step (the
     record is then empty)."""
-    import os
-    import signal
     from bearingfem.contact import Roughness
     from bearingfem.fields import EdgeProfile
     from benchmarks.ehd_run import scene
     from mechanism import simulate
-    from mechanism.effects import FilmEffect
-    calls = {"n": 0}
-    original = FilmEffect.force
-
-    def force(self, k):
-        calls["n"] += 1
-        if calls["n"] == 80:
-            os.kill(os.getpid(), signal.SIGINT)
-        return original(self, k)
-
-    monkeypatch.setattr(FilmEffect, "force", force)
+    forces = ctrl_c_at_film_force(80)
     rough = Roughness(sigma=0.2e-6, contact_modulus=80.8e9, elastic_factor=1e-3)
     sc = scene("paper-short-ehd-sharp", 250.0, 0.2, n_theta=NT, n_z=NZ, modes=0, film_step=0.0,
                lubricant=None, coupling="implicit", relaxation=1e-5, roughness=rough,
                profile=EdgeProfile("crown", 2e-6))
     r = simulate(sc, progress=False)
+    assert forces["n"] >= 80
     assert r.partial and r.message.startswith("interrupted at t = ")
     assert r.t[0] == 0.0 and np.all(np.isfinite(r.eps))
     assert len(r.film_record) == r.stats["steps"] > 10

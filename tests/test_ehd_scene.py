@@ -1,15 +1,11 @@
 """The shipped EHD scene ``paper-short-ehd`` from the command line: ``--turns`` gives a
 quick look, and a Ctrl-C in its settling turns (the recorded turn is its fifth) keeps what
 was computed and says where it stopped."""
-import os
-import signal
-
 import numpy as np
 import pytest
 
 from bearingfem_app.cli import main
 from mechanism import load_scene
-from mechanism.effects import FilmEffect
 from mechanism.result import load_result
 
 
@@ -29,24 +25,16 @@ def test_turns_gives_a_quick_look_at_the_shipped_scene(tmp_path):
 
 
 def test_ctrl_c_in_the_settling_turns_keeps_the_run_and_says_where_it_stopped(
-        tmp_path, capsys, monkeypatch):
+        tmp_path, capsys, ctrl_c_at_film_force):
     """A real Ctrl-C (SIGINT to this process) at the 60th film force of the shipped scene's
     five turns, long before its recorded turn (from turn 4): exit 130, the run saved and
     printed as PARTIAL, its samples the whole run from t = 0 with every accepted step's
     film record, and the message says how far it got and what was kept instead of the
     recorded turn. Fails without that note (the message then said only the time)."""
-    calls = {"n": 0}
-    original = FilmEffect.force
-
-    def force(self, k):
-        calls["n"] += 1
-        if calls["n"] == 60:
-            os.kill(os.getpid(), signal.SIGINT)
-        return original(self, k)
-
-    monkeypatch.setattr(FilmEffect, "force", force)
+    forces = ctrl_c_at_film_force(60)
     out = tmp_path / "run"
     assert main(["simulate", "paper-short-ehd", "-o", str(out), "-q"]) == 130
+    assert forces["n"] >= 60
     printed = capsys.readouterr().out
     r = load_result(out)
     assert r.partial and r.message.startswith("interrupted at t = ")

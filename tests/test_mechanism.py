@@ -220,25 +220,15 @@ def test_progress_prints_lines_when_not_a_terminal():
     assert Progress(1.0, stream=io.StringIO(), enabled=False).mode == "off"
 
 
-def test_ctrl_c_in_the_first_segment_keeps_the_steps_taken(monkeypatch):
+def test_ctrl_c_in_the_first_segment_keeps_the_steps_taken(ctrl_c_at_film_force):
     """A real Ctrl-C (SIGINT to this process, caught by the run's handler) during the first
     quarter turn, of a run recording from its third turn: the steps taken so far come back,
     from t = 0, marked interrupted. Old: the integration segment in progress was dropped, so
     a slow film (the EHD scene) interrupted in its first quarter turn kept nothing."""
-    import os
-    import signal
-    calls = {"n": 0}
-    original = FilmEffect.force
-
-    def force(self, k):
-        calls["n"] += 1
-        if calls["n"] == 200:
-            os.kill(os.getpid(), signal.SIGINT)
-        return original(self, k)
-
-    monkeypatch.setattr(FilmEffect, "force", force)
+    forces = ctrl_c_at_film_force(200)
     sc = scene({"lubrication": {"model": "long"}}, turns=3.0, ld=2.0, record_from_turn=2.0)
     r = simulate(sc, progress=False)
+    assert forces["n"] >= 200
     assert r.partial and r.message.startswith("interrupted at t = ")
     assert len(r.t) > 1 and r.t[0] == 0.0 and np.all(np.isfinite(r.eps))
     assert (r.crank_angle[-1] - r.crank_angle[0]) / (2 * np.pi) < 0.25
