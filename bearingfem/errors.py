@@ -34,5 +34,5 @@ class ConvergenceError(RuntimeError):
 
 class OilRangeWarning(UserWarning):
     """A solved thermal film whose temperature left the oil law's range
-    (:data:`bearingfem.lubricant.OIL_TEMPERATURE_RANGE`): its viscosity, and so its
+    (:data:`bearingfem.oil_range.OIL_TEMPERATURE_RANGE`): its viscosity, and so its
     numbers, are the law's extrapolation there. The message gives the temperature."""

@@ -57,7 +57,10 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from .errors import OilRangeWarning
+from .oil_range import (CELSIUS, OIL_TEMPERATURE_RANGE, check_oil_temperature,
+                        temperature_range_note)
 
+# the oil temperature range's names (oil_range's) stay importable from here
 __all__ = ["Lubricant", "ISO_VG", "OIL_TEMPERATURE_RANGE", "check_oil_temperature",
            "temperature_range_note"]
 
@@ -68,16 +71,7 @@ DENSITY_MODELS = (None, "dowson-higginson")
 WALTHER_SHIFT = 0.7                # [mm^2/s] ASTM D341's Z = nu + 0.7
 LN10 = math.log(10.0)
 WALTHER_LEAST = 2.0                # [mm^2/s] D341's simple form holds from here up
-CELSIUS = 273.15                   # [K]
 TEMPERATURE_LAWS = ("walther", "exponential")
-#: [K] the oil temperatures taken, -50 to 200 C: a mineral oil film's, where the D341 chart
-#: and its two-point lines are drawn (Walther's law overflows towards 0 K and is an
-#: extrapolation far above 200 C). It refuses the command line's --oil-temperature and a
-#: scene's oil_temperature (an ISO VG oil); a solved thermal film or an oil held by
-#: at_temperature outside it warns (:func:`temperature_range_note`): other fluids, hot
-#: synthetic oils and cryogens, have their own laws, so a Thermal or a law's points are
-#: refused only at or below 0 K.
-OIL_TEMPERATURE_RANGE = (CELSIUS - 50.0, CELSIUS + 200.0)
 
 # ISO 3448 grades: the 40 C kinematic viscosity midpoint [mm^2/s] (the grade's number, but
 # for VG 7) and the 100 C viscosity [mm^2/s] of an oil of viscosity index 100 with that
@@ -112,37 +106,6 @@ def _finite(name: str, value) -> float:
     if not math.isfinite(float(value)):
         raise ValueError(f"{name} must be a finite number, got {value!r}")
     return float(value)
-
-
-def check_oil_temperature(name: str, value, *, unit: str = "K") -> float:
-    """``value`` [K, or degC with ``unit="degC"``] in :data:`OIL_TEMPERATURE_RANGE`;
-    ValueError naming ``name`` and the range otherwise."""
-    lo, hi = OIL_TEMPERATURE_RANGE
-    shift = CELSIUS if unit == "degC" else 0.0
-    span = (f"[{lo - shift:g}, {hi - shift:g}] degC (an oil film's)" if unit == "degC" else
-            f"[{lo:g}, {hi:g}] K ({lo - CELSIUS:g} to {hi - CELSIUS:g} C, an oil film's)")
-    if isinstance(value, bool) or not isinstance(value, (int, float, np.floating, np.integer)):
-        raise ValueError(f"{name} must be a number in {span}, got {value!r}")
-    v = float(value)
-    if not (math.isfinite(v) and lo <= v + shift <= hi):
-        raise ValueError(f"{name} must lie in {span}, got {value!r}")
-    return v
-
-
-def temperature_range_note(temperature, what: str = "the film's temperature") -> str | None:
-    """None when every temperature [K] lies in :data:`OIL_TEMPERATURE_RANGE`; else one
-    sentence with the extreme (``what`` reaches it) and the range (the oil law is
-    extrapolated there, and the numbers with it)."""
-    t = np.asarray(temperature, dtype=float)
-    lo, hi = OIL_TEMPERATURE_RANGE
-    t_min, t_max = float(np.min(t)), float(np.max(t))
-    if lo <= t_min and t_max <= hi:
-        return None
-    worst = t_max if t_max > hi else t_min
-    return (f"{what} reaches {worst:.6g} K ({worst - CELSIUS:.4g} C), "
-            f"outside the oil law's range [{lo:g}, {hi:g}] K ({lo - CELSIUS:g} to "
-            f"{hi - CELSIUS:g} C, an ISO VG mineral oil's chart): the viscosity there is "
-            f"the law's extrapolation, and every number taken from it")
 
 
 def walther_constants(t1: float, nu1: float, t2: float, nu2: float) -> tuple:

@@ -11,7 +11,7 @@ LAYERS = [
     # the film: geometry, state, scales, records, checks, the model contract
     {"errors", "version", "caches", "accuracy", "film", "bearing", "validation", "fields",
      "solution",
-     "differentiate", "lubricant", "contact", "planar", "scales", "contract"},
+     "differentiate", "lubricant", "oil_range", "contact", "planar", "scales", "contract"},
     {"solvers", "closed", "elastic", "ehl"},        # solvers, closed forms, the bush
     {"fe", "fv"},                                   # discretisations
     {"transient", "transient_compressible"},        # the JFO film along a run

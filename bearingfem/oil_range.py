@@ -1,0 +1,60 @@
+"""The oil temperatures taken: the range of an ISO VG mineral oil's viscosity law, the
+check that refuses a temperature outside it (an option naming an oil's temperature) and the
+note that says when a solved film's temperature left it (the warning's text,
+:class:`~bearingfem.errors.OilRangeWarning`).
+
+Temperatures are in kelvin; the refusing check also takes degrees Celsius for the options
+given in them. ASTM D341-20, Standard practice for viscosity-temperature equations and
+charts for liquid petroleum or hydrocarbon products.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .errors import OilRangeWarning
+
+__all__ = ["CELSIUS", "OIL_TEMPERATURE_RANGE", "OilRangeWarning", "check_oil_temperature",
+           "temperature_range_note"]
+
+CELSIUS = 273.15                   # [K]
+#: [K] the oil temperatures taken, -50 to 200 C: a mineral oil film's, where the D341 chart
+#: and its two-point lines are drawn (Walther's law overflows towards 0 K and is an
+#: extrapolation far above 200 C). It refuses the command line's --oil-temperature and a
+#: scene's oil_temperature (an ISO VG oil); a solved thermal film or an oil held by
+#: at_temperature outside it warns (:func:`temperature_range_note`): other fluids, hot
+#: synthetic oils and cryogens, have their own laws, so a Thermal or a law's points are
+#: refused only at or below 0 K.
+OIL_TEMPERATURE_RANGE = (CELSIUS - 50.0, CELSIUS + 200.0)
+
+
+def check_oil_temperature(name: str, value, *, unit: str = "K") -> float:
+    """``value`` [K, or degC with ``unit="degC"``] in :data:`OIL_TEMPERATURE_RANGE`;
+    ValueError naming ``name`` and the range otherwise."""
+    lo, hi = OIL_TEMPERATURE_RANGE
+    shift = CELSIUS if unit == "degC" else 0.0
+    span = (f"[{lo - shift:g}, {hi - shift:g}] degC (an oil film's)" if unit == "degC" else
+            f"[{lo:g}, {hi:g}] K ({lo - CELSIUS:g} to {hi - CELSIUS:g} C, an oil film's)")
+    if isinstance(value, bool) or not isinstance(value, (int, float, np.floating, np.integer)):
+        raise ValueError(f"{name} must be a number in {span}, got {value!r}")
+    v = float(value)
+    if not (math.isfinite(v) and lo <= v + shift <= hi):
+        raise ValueError(f"{name} must lie in {span}, got {value!r}")
+    return v
+
+
+def temperature_range_note(temperature, what: str = "the film's temperature") -> str | None:
+    """None when every temperature [K] lies in :data:`OIL_TEMPERATURE_RANGE`; else one
+    sentence with the extreme (``what`` reaches it) and the range (the oil law is
+    extrapolated there, and the numbers with it)."""
+    t = np.asarray(temperature, dtype=float)
+    lo, hi = OIL_TEMPERATURE_RANGE
+    t_min, t_max = float(np.min(t)), float(np.max(t))
+    if lo <= t_min and t_max <= hi:
+        return None
+    worst = t_max if t_max > hi else t_min
+    return (f"{what} reaches {worst:.6g} K ({worst - CELSIUS:.4g} C), "
+            f"outside the oil law's range [{lo:g}, {hi:g}] K ({lo - CELSIUS:g} to "
+            f"{hi - CELSIUS:g} C, an ISO VG mineral oil's chart): the viscosity there is "
+            f"the law's extrapolation, and every number taken from it")
