@@ -2,7 +2,7 @@
 import numpy as np
 import pytest
 
-from bearingfem import JournalState
+from bearingfem import JournalState, solve_reynolds
 from bearingfem.outputs.convergence import convergence_study, richardson
 from conftest import table1_bearing
 
@@ -21,6 +21,28 @@ def test_richardson_claims_no_order_for_a_growing_difference():
     L/D 1, eps 0.6 over 24 x 4 .. 96 x 16): the order was -1.65 and the GCI -5.3 %."""
     for f in ((1.75, 1.25, 1.0), (1.5, 1.25, 1.0)):      # fine .. coarse: growing, equal
         assert all(np.isnan(v) for v in richardson(*f))
+
+
+def test_richardson_claims_no_order_for_an_oscillating_sequence():
+    """Differences of alternating sign (fine .. coarse 1.0, 1.1, 0.6: -0.1 then +0.5) are
+    not in the asymptotic range, however fast they shrink: no order, no extrapolation, no
+    GCI (Roache, Verification and Validation in Computational Science and Engineering,
+    1998, sec. 5.9). Fails with the sign check dropped (order 2.32 and a GCI claimed)."""
+    assert all(np.isnan(v) for v in richardson(1.0, 1.1, 0.6))
+
+
+def test_study_rows_are_the_films_own_forces():
+    """Each row's |F| is the film's force magnitude, here taken from the inertial
+    (F_x, F_y) of a solve of its own on the row's mesh (a second route: the study reads
+    the local (F_r, F_t)), and its F_r, F_t the local pair. Fails with |F| summed
+    componentwise (|F_r| + |F_t|: 1.38 |F| here)."""
+    b, s = table1_bearing(1.0), JournalState(0.6, omega=250.0, gamma=0.7)
+    study = convergence_study(b, s, levels=3, n_theta=24, n_z=4, cavitation="gumbel",
+                              methods=("P1",))
+    for row in study.rows:
+        sol = solve_reynolds(b, s, row["n_theta"], row["n_z"], "P1", "gumbel")
+        assert row["force"] == pytest.approx(np.hypot(*sol.force), rel=1e-12)
+        assert (row["F_r"], row["F_t"]) == pytest.approx(sol.force_local, rel=1e-12)
 
 
 def test_study_orders_and_files(tmp_path):

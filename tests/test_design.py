@@ -5,7 +5,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from bearingfem import Bearing, Groove, JournalState, solve_reynolds
+from bearingfem import Bearing, Groove, JournalState, Lubricant, solve_reynolds
 from bearingfem.design import (coefficients, equilibrium, journal_orbit, lund_stability,
                                sommerfeld_number, threshold_speed)
 from bearingfem.differentiate import central_differences
@@ -130,6 +130,32 @@ def test_fe_exact_sensitivity_against_central_differences(state, element, cavita
     cd = central_differences(lambda s: fe_force(b, s, 40, 8, element, cavitation)[0], state)
     assert exact.method == "exact-sensitivity"
     assert _rel_gap(exact, cd) < 1e-6
+
+
+def test_differenced_coefficients_see_grooves_fixed_in_space():
+    """A film whose partials are central differences (a piezoviscous oil, Barus 2e-8 1/Pa,
+    with a supply groove fixed in the inertial frame): K from coefficients against K
+    differenced directly in the inertial x and y of the journal centre (steps 1e-6 c; a
+    second route: no local frame, no d/dgamma). Measured 1.1e-9 of the largest entry,
+    bound 1e-6. Fails with the film's d/dgamma (the groove turning against the line of
+    centres) taken at half its size (1e-2 off)."""
+    b = Bearing(radius=0.01, length=0.02, clearance=20e-6, viscosity=0.0117)
+    oil = Lubricant(viscosity=b.viscosity, barus=2e-8)
+    film = dict(grooves=[Groove(angle=math.pi / 2, width=0.3, pressure=5e4)], lubricant=oil,
+                cavitation="reynolds")
+    s = JournalState(0.6, omega=250.0, gamma=-1.2)
+    K = coefficients(b, s, "fem", n_theta=48, n_z=8, **film).K
+    c, h = b.clearance, 1e-6 * b.clearance
+    e = c * s.eps * np.array([math.cos(s.gamma), math.sin(s.gamma)])
+
+    def force(dx, dy):
+        ex, ey = e[0] + dx, e[1] + dy
+        at = JournalState(math.hypot(ex, ey) / c, omega=250.0, gamma=math.atan2(ey, ex))
+        return np.array(solve_reynolds(b, at, 48, 8, **film).force)
+
+    direct = -np.column_stack([(force(h, 0) - force(-h, 0)) / (2 * h),
+                               (force(0, h) - force(0, -h)) / (2 * h)])
+    assert np.abs(K - direct).max() < 1e-6 * np.abs(direct).max()
 
 
 def _inertial_force(model, b, omega, **opts):

@@ -1,5 +1,6 @@
-"""The planar JFO film (bearingfem.fe.planar): a mutant of the mesh-to-mesh interpolation its
-coarse starts use survived the planar JFO tests (docs/mutation.md)."""
+"""The planar JFO film (bearingfem.fe.planar) and its inputs (bearingfem.planar): mutants of
+the mesh-to-mesh interpolation its coarse starts use and of the inputs' checks survived the
+planar JFO tests (docs/mutation.md)."""
 import numpy as np
 import pytest
 
@@ -41,3 +42,18 @@ def test_volume_content_is_the_exact_integral_of_a_quadratic_gap():
         return h0 * (x + x ** 2 / L + x ** 3 / L ** 2)
     exact = cv.area / (cv.x_hi - cv.x_lo) * (primitive(cv.x_hi) - primitive(cv.x_lo))
     assert _Discretisation(film, m, 0.0).content == pytest.approx(exact, rel=1e-12)
+
+
+@pytest.mark.parametrize("bad, name", [
+    (dict(inlet_fraction=1.5), "inlet_fraction"), (dict(inlet_fraction=-0.1), "inlet_fraction"),
+    (dict(outlet_pressure=-1.0), "outlet_pressure"), (dict(sides="open"), "sides"),
+    (dict(gap=1e-5), "gap"), (dict(width=0.0), "width")])
+def test_planar_film_refuses_bad_input_naming_it(bad, name):
+    """A planar film's inputs outside their range raise ValueError naming the parameter
+    before any work: a supplied film fraction above 1 (more oil than the gap holds) is
+    one. Fails with the fraction's range widened to [0, 2] (1.5 was taken)."""
+    from bearingfem.planar import PlanarFilm
+    args = dict(length=L, width=W, viscosity=0.01, gap=lambda x, y, t: 1e-5 + 0 * x,
+                speed=1.0)
+    with pytest.raises(ValueError, match=name):
+        PlanarFilm(**{**args, **bad})

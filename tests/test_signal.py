@@ -52,6 +52,22 @@ def test_recovers_known_noise_and_smooth_peak(sigma):
     assert sigma > 10 or wide.rms > 2 * sigma
 
 
+def test_the_smooth_peak_is_the_smooth_curves_not_the_fit_at_the_raw_maximum():
+    """One wild sample (+4000 N at 100 deg, a glitch of a film solve) far from the load
+    peak (3447 N at 194 deg): the raw maximum is the glitch, but the smooth peak is the
+    largest value of the smooth curve, within 0.5 % of the clean curve's maximum (1e-4
+    measured) and at its angle (within a sample), the glitch lifting its neighbourhood
+    by at most the fit's centre weight, 0.073 of it. Fails when the smooth peak or its
+    angle is read at the raw maximum's sample (2171 N at 100 deg)."""
+    clean = force_like(Q)
+    y = clean.copy()
+    y[200] += 4000.0                  # Q[200] = 100 deg
+    j = jitter(Q, y, Smoothing(15.0, 2), period=360.0)
+    assert j.at_raw == 100.0 and j.peak_raw == y[200]
+    assert j.peak_smooth == pytest.approx(clean.max(), rel=0.005)
+    assert j.at_smooth == pytest.approx(Q[np.argmax(clean)], abs=0.5)
+
+
 def test_measured_mask():
     """Samples left out of the jitter (a narrow feature of the physics) are left out of its
     RMS and maximum, not of the fit or the peaks. Fails if the mask is ignored."""
