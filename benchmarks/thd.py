@@ -10,9 +10,9 @@ the film at eps 0.69, as an equilibrium's steps are), one process, best of 5 CPU
 film, ratio to the isothermal solve; then the same film by the coupled Newton
 (``solve_thd_newton``, cold and warm; "steps": its film solve plus its Newton steps).
 ``--calls``: each film, energy solve and the outputs of one cold and one warm fixed-point
-solve at each mesh, timed inside the solve (CPU ms; the solve of the least total of 5),
-with the isothermal solve's time: the count times the cost of each part, the ratio's
-make-up. ``--profile``: where one cold 96 x 16 thermal solve of each spends its time (cProfile,
+solve at each mesh, timed inside the solve (CPU ms; the solve of the least total of 9),
+with the isothermal solve's (best of 30): the count times the cost of each part, the
+ratio's make-up. ``--profile``: where one cold 96 x 16 thermal solve of each spends its time (cProfile,
 CPU clock, functions above 3 % of the total). ``--parts``: one thermal step's parts at
 each mesh, best of 11 CPU times on the film after three steps of a cold solve: the film
 (factors kept), the energy step's inputs (flow, mixing, viscosity), the energy solve
@@ -108,11 +108,11 @@ def calls():
         for name, method in kept.items():
             setattr(ThermalIteration, name, timed(method))
         for n in MESHES:
-            t_iso, _ = cpu(lambda: solve_reynolds(BEARING, STATE, *n, grooves=GROOVES), 10)
+            t_iso, _ = cpu(lambda: solve_reynolds(BEARING, STATE, *n, grooves=GROOVES), 30)
             start = solve_thd(BEARING, NEAR, *n, **thd)
             for label, kw in (("cold", {}), ("warm", dict(start=start))):
                 best = None
-                for _ in range(5):
+                for _ in range(9):
                     spent.clear()
                     t = time.process_time()
                     solve_thd(BEARING, STATE, *n, **thd, **kw)
