@@ -1,6 +1,6 @@
 """What a thermal film costs beside the isothermal film of the same mesh.
 
-    python -m benchmarks.thd [--profile | --parts]
+    python -m benchmarks.thd [--profile | --parts | --calls]
 
 The 50 mm bearing of studies/thd_designer.py (ISO VG 32 at 40 C, two 20 deg grooves,
 3000 rpm) at eps 0.7: the isothermal grooved film (``solve_reynolds``, its default route)
@@ -9,7 +9,10 @@ the film at eps 0.69, as an equilibrium's steps are), one process, best of 5 CPU
 (caches built first; OMP_NUM_THREADS=1). Columns: time [ms], film solves of the thermal
 film, ratio to the isothermal solve; then the same film by the coupled Newton
 (``solve_thd_newton``, cold and warm; "steps": its film solve plus its Newton steps).
-``--profile``: where one cold 96 x 16 thermal solve of each spends its time (cProfile,
+``--calls``: each film, energy solve and the outputs of one cold and one warm fixed-point
+solve at each mesh, timed inside the solve (CPU ms; the solve of the least total of 9),
+with the isothermal solve's (best of 30): the count times the cost of each part, the
+ratio's make-up. ``--profile``: where one cold 96 x 16 thermal solve of each spends its time (cProfile,
 CPU clock, functions above 3 % of the total). ``--parts``: one thermal step's parts at
 each mesh, best of 11 CPU times on the film after three steps of a cold solve: the film
 (factors kept), the energy step's inputs (flow, mixing, viscosity), the energy solve
@@ -86,14 +89,61 @@ def parts():
               + " ".join(f"{1e3 * t:6.2f}" for t in times), flush=True)
 
 
+def calls():
+    """Each part of a cold and a warm fixed-point solve [ms] at each mesh (module
+    docstring): the iteration's methods timed as solve_thd calls them."""
+    spent = []
+
+    def timed(method):
+        def call(self, *args, **kwargs):
+            t = time.process_time()
+            out = method(self, *args, **kwargs)
+            spent.append((method.__name__, time.process_time() - t))
+            return out
+        return call
+
+    kept = {name: getattr(ThermalIteration, name) for name in ("film", "energy", "solution")}
+    thd = dict(lubricant=OIL, thermal=THERMAL, grooves=GROOVES)
+    try:
+        for name, method in kept.items():
+            setattr(ThermalIteration, name, timed(method))
+        for n in MESHES:
+            t_iso, _ = cpu(lambda: solve_reynolds(BEARING, STATE, *n, grooves=GROOVES), 30)
+            start = solve_thd(BEARING, NEAR, *n, **thd)
+            for label, kw in (("cold", {}), ("warm", dict(start=start))):
+                best = None
+                for _ in range(9):
+                    spent.clear()
+                    t = time.process_time()
+                    solve_thd(BEARING, STATE, *n, **thd, **kw)
+                    t = time.process_time() - t
+                    if best is None or t < best[0]:
+                        best = (t, list(spent))
+                t, parts = best
+                row = {k: [1e3 * s for m, s in parts if m == k] for k in kept}
+                print(f"{n[0]:>3}x{n[1]:<3} {label}: iso {1e3 * t_iso:.2f} ms, solve "
+                      f"{1e3 * t:.2f} ms ({t / t_iso:.1f}x); films "
+                      + " ".join(f"{x:.2f}" for x in row["film"]) + "; energy "
+                      + " ".join(f"{x:.2f}" for x in row["energy"])
+                      + f"; outputs {sum(row['solution']):.2f}", flush=True)
+    finally:
+        for name, method in kept.items():
+            setattr(ThermalIteration, name, method)
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--profile", action="store_true")
     ap.add_argument("--parts", action="store_true",
                     help="one thermal step's parts at each mesh instead of the table")
+    ap.add_argument("--calls", action="store_true",
+                    help="each part of a cold and a warm solve instead of the table")
     args = ap.parse_args(argv)
     if args.parts:
         parts()
+        return
+    if args.calls:
+        calls()
         return
     print(f"{'mesh':>7} {'iso ms':>8} {'THD cold ms':>11} {'films':>5} {'ratio':>6} "
           f"{'THD warm ms':>11} {'films':>5} {'ratio':>6} | {'Newton cold':>11} {'steps':>5} "

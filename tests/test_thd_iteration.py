@@ -87,6 +87,58 @@ def test_unconverged_iteration_still_raises():
         solve_thd(BEARING, STATE, 96, 16, thermal=THERMALS[0], max_iterations=3, **OPTS)
 
 
+@pytest.mark.parametrize("thermal", THERMALS)
+def test_error_estimate_bounds_the_distance_to_the_fixed_point(thermal):
+    """The stopping test's estimate (error_factor: rho / (1 - rho) times the last change,
+    rho the largest measured contraction) against the fixed point converged far past it
+    (1e-10 K, 1e-13 of the peak, the film to 1e-12): at every film of a cold and a warm
+    96x16 solve up to where it stops, the estimate of the temperatures' error
+    (the last energy solve's change) and of the pressure's (the film's change) is at least
+    the true distance (measured: 1.2x to 430x above it). solve_thd stops a cold solve one
+    film and one energy solve before the change alone (6 films against 7: the change
+    overstates the error by ~1e2) with its temperatures within temperature_tol and its
+    pressure within pressure_rtol of the converged ones (measured 1e-8 K and 2e-10).
+    Fails with rho the smallest measured contraction (a cold solve stops at 5 films,
+    the pressure 1.1e-8 of its peak away; planted)."""
+    n, tol_t, tol_p = (96, 16), 1e-6, 1e-8
+    exact = solve_thd(BEARING, STATE, *n, thermal=thermal, temperature_tol=1e-10,
+                      pressure_rtol=1e-13, tol=1e-12, **OPTS)
+    peak = float(np.max(exact.pressure))
+    start = solve_thd(BEARING, NEAR, *n, thermal=thermal, **OPTS)
+    checked = 0
+    for warm, films in ((None, 6), (start, 5)):     # to where solve_thd stops
+        it = ThermalIteration(BEARING, STATE, *n, thermal=thermal, start=warm, **OPTS)
+        rates = []
+        for _ in range(films):
+            it.film(STATE)
+            if rates:
+                bound = thd_route.error_factor(rates)
+                assert bound * it.change >= np.max(np.abs(it.T - exact.temperature))
+                assert bound * it.pressure_change >= \
+                    np.max(np.abs(it.p - exact.pressure)) / peak
+                checked += bound < 1.0
+            before = it.change
+            it.energy(STATE)
+            if np.isfinite(before):
+                rates.append(it.change / before)
+    assert checked == 5
+    cold = solve_thd(BEARING, STATE, *n, thermal=thermal, **OPTS)
+    plain = thd_route.error_factor([])
+    assert plain == 1.0
+    assert cold.thermal.iterations == 6
+    assert cold.thermal.pressure_change >= tol_p      # the change alone: not yet
+    assert np.max(np.abs(cold.temperature - exact.temperature)) < tol_t
+    assert np.max(np.abs(cold.pressure - exact.pressure)) < tol_p * peak
+
+
+def test_error_factor():
+    """rho / (1 - rho) of the largest rate; 1 before two rates or at rho >= 1/2."""
+    assert thd_route.error_factor([0.01, 0.2, 0.1]) == pytest.approx(0.25, rel=1e-15)
+    assert thd_route.error_factor([]) == thd_route.error_factor([0.01]) == 1.0
+    assert thd_route.error_factor([0.01, 0.5]) == 1.0
+    assert thd_route.error_factor([3.0]) == 1.0
+
+
 @pytest.mark.parametrize("state", [STATE, JournalState(eps=0.4, omega=-OMEGA, gamma=2.0)])
 def test_force_partials_are_central_differences(state):
     """The frozen-viscosity film's exact derivatives (ReynoldsFieldFilm.force_partials)

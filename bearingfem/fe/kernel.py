@@ -136,10 +136,12 @@ def solve_film(bearing: Bearing, state: JournalState, op: FilmOperator, element:
 
 
 def film_outputs(bearing, state, op, res, values, load, film, cavitation, cavitated_shear,
-                 grooves, method, gap=None, force=None, theta=None) -> FilmSolution:
+                 grooves, method, gap=None, force=None, theta=None,
+                 moment=None) -> FilmSolution:
     """Forces, moment, friction, leakage and feed of a solved film (rigid or on fields).
-    ``force`` (F_r, F_t) [N] and the nodes' film angles ``theta`` of a mesh not in the film
-    frame (grooved films, :mod:`bearingfem.fe.grooved`); None: integrated here, op's."""
+    ``force`` (F_r, F_t) [N], ``moment`` (M_x, M_y) [N m] and the nodes' film angles
+    ``theta`` of a mesh not in the film frame (grooved films, :mod:`bearingfem.fe.grooved`;
+    the thermal film's bearing-fixed mesh); None: integrated here, op's."""
     P = res.pressure
     half = op.mesh.half
     clip = cavitation != "none"
@@ -184,8 +186,9 @@ def film_outputs(bearing, state, op, res, values, load, film, cavitation, cavita
     if grooves and not clip:
         r_in = r[np.setdiff1d(np.concatenate(op.mesh.grooves), op.mesh.end)]
         flow_in = flow_factor(bearing, half) * float(np.sum(r_in))
-    moment = (0.0, 0.0) if half else film_moment(bearing, op, P, state.gamma,
-                                                 cavitation == "gumbel")
+    if moment is None:
+        moment = (0.0, 0.0) if half else film_moment(bearing, op, P, state.gamma,
+                                                     cavitation == "gumbel")
     return film_solution(
         bearing, state, Pn, op.mesh.theta if theta is None else theta, op.mesh.zeta,
         (f_r, f_t), friction=friction,

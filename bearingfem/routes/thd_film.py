@@ -147,11 +147,12 @@ class ReynoldsFieldFilm:
         """The last solve's :class:`FilmSolution` (the general film's outputs), nodes
         reported at their film angles."""
         mesh = self.op.mesh
-        sol = film_outputs(self.bearing, self.state, self.op, self.last, self.values,
-                           self.load, FilmFields(gap=self.fields.gap, viscosity=self.ratio),
-                           "reynolds", "full", self.grooves,
-                           f"fem-{self.element}/active-set",
-                           film_thickness(mesh.theta - self.state.gamma, self.state.eps),
-                           force=self.force_local(), theta=mesh.theta - self.state.gamma)
         # the mesh's angle is already inertial: the moment's lever turns by 0, not gamma
-        return replace(sol, moment=film_moment(self.bearing, self.op, self.last.pressure, 0.0))
+        return film_outputs(self.bearing, self.state, self.op, self.last, self.values,
+                            self.load, FilmFields(gap=self.fields.gap, viscosity=self.ratio),
+                            "reynolds", "full", self.grooves,
+                            f"fem-{self.element}/active-set",
+                            film_thickness(mesh.theta - self.state.gamma, self.state.eps),
+                            force=self.force_local(), theta=mesh.theta - self.state.gamma,
+                            moment=film_moment(self.bearing, self.op, self.last.pressure,
+                                               0.0))
