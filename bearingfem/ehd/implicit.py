@@ -88,7 +88,7 @@ CHORD_STEPS = 12
 CHORD_RATE = 0.9
 #: The most nodes :class:`_RateInverse` takes in its Woodbury set (m compliance columns and
 #: an (m, m) LU per Newton matrix); past it, GMRES on S
-WOODBURY_NODES = 128
+WOODBURY_NODES = 1024
 
 
 @dataclass(frozen=True)
@@ -125,19 +125,19 @@ class _RateInverse:
     """S^-1, S = (tau + dt) I + dt C T^T K T, by Woodbury on the nodes whose summits'
     stiffness counts at ``rtol``: the set A = {i : dt |C| k_i / (tau + dt) > rtol / 10}
     (|C| the compliance's 2-norm, T a blend of two shifts: |T| <= 1), so
-    S_A^-1 = (I - U (tau' I + V^T U)^-1 V^T) / tau' with U = dt C T^T E_A K_A (the
-    compliance's m columns, one batched product) and V^T = E_A^T T. The nodes left out
-    leave the residual r = -dt C T^T K_r T y, |r| <= dt |C| max(k_r) |y|: where that bound
-    passes ``rtol`` |b| the solve is y = S_A^-1 b, else GMRES on S from it. Past
-    :data:`WOODBURY_NODES` nodes in the set no Woodbury is built: GMRES on S from
-    b / (tau + dt), as before.
+    S_A^-1 = (I - U (tau' I + V^T U)^-1 V^T) / tau' with U = dt C T^T E_A K_A and
+    V^T = E_A^T T. The (m, m) matrix V^T U = dt (T C T^T)[A, A] K_A is gathered from the
+    node-to-node compliance, circulant in theta (:meth:`_StepFilm.node_compliance`: no
+    compliance product), and U is applied as one compliance product (U z = dt C T^T of
+    K_A z on A). The nodes left out leave the residual r = -dt C T^T K_r T y,
+    |r| <= dt |C| max(k_r) |y|: where that bound passes ``rtol`` |b| the solve is
+    y = S_A^-1 b, else GMRES on S from it. Past :data:`WOODBURY_NODES` nodes in the set
+    no Woodbury is built: GMRES on S from b / (tau + dt).
     Why: GMRES on S inside every Newton-matrix product (about 4 compliance products and
     the Krylov method's overhead) took half the implicit film's run at 48 x 4; the Woodbury
-    solve is a small LU's back substitution and an (N, m) product. It is capped because
-    its build (m compliance columns, an (m, m) LU) and its (N, m) product grow with m:
-    uncapped (up to 546 nodes), the seed pin's tenth of a turn at 192 x 16 took 2.2x the
-    CPU of GMRES on S; capped at 128 with GMRES preconditioned by the 128 stiffest, an S
-    solve took 0.86 ms against GMRES's 0.6 ms there."""
+    solve is a small LU's back substitution and one compliance product. Its build was m
+    compliance columns, one batched product (37 ms at 546 nodes on 192 x 16, hence a cap of
+    128 and GMRES on S past it); the gather costs 3 ms there and the LU 8 ms."""
 
     def __init__(self, step: "_StepFilm", stiffness, rtol: float, s: float = 1.0):
         self.step, self.stiffness, self.rtol, self.s = step, stiffness, rtol, s
@@ -152,23 +152,23 @@ class _RateInverse:
         self.left_out = gain * float(np.max(k[~active], initial=0.0))
         m = self.active.size
         self.capped = m > WOODBURY_NODES
+        self.lu = None
         if m == 0 or self.capped:
-            self.U = None
             return
-        unit = np.zeros((k.size, m))
-        unit[self.active, np.arange(m)] = 1.0
-        CTE = step.run.compliance.on_grid(step.shift.to_grid(unit))        # (grid, m)
-        self.U = (dt * CTE) * k[self.active][None, :]
-        small = self.tau * np.eye(m) + step.shift.to_nodes(self.U)[self.active]
+        self.dk = dt * k[self.active]                       # dt K_A
+        small = (self.tau * np.eye(m)
+                 + step.node_compliance(self.active) * self.dk[None, :])
         self.lu = la.lu_factor(small, check_finite=False)
 
     def woodbury(self, b: np.ndarray) -> np.ndarray:
         """S_A^-1 b (the Woodbury set's inverse, unchecked: a preconditioner's)."""
-        if self.trivial or self.U is None:
+        if self.trivial or self.lu is None:
             return b / self.tau
         z = la.lu_solve(self.lu, self.step.shift.to_nodes(b)[self.active],
                         check_finite=False)
-        return (b - self.U @ z) / self.tau
+        nodes = np.zeros((self.stiffness.size,) + z.shape[1:])
+        nodes[self.active] = self.dk.reshape((-1,) + (1,) * (z.ndim - 1)) * z
+        return (b - self.step.comply(nodes)) / self.tau
 
     def solve(self, b: np.ndarray) -> np.ndarray:
         """y with S y = b to ``rtol`` (|S y - b| <= rtol |b|); b (grid,) or (grid, k)."""
@@ -228,6 +228,20 @@ class _StepFilm:
     def comply(self, p_nodes: np.ndarray) -> np.ndarray:
         """C T^T p: the grid's quasi-static deflection [m] under nodal pressure [Pa]."""
         return self.run.compliance.on_grid(self.shift.to_grid(p_nodes))
+
+    def node_compliance(self, nodes: np.ndarray) -> np.ndarray:
+        """(T C T^T)[nodes, nodes] [m/Pa]: the film nodes' deflection under their
+        pressure, gathered without a compliance product. C is circulant in theta and T a
+        blend of two shifts ((1 - a) by whole cells, a by one more), so T C T^T is
+        circulant: its entry between film nodes (j, k) and (j', k') is
+        ((1 - a)^2 + a^2) c(d) + a (1 - a) (c(d - 1) + c(d + 1)), d = j - j', c(d) the
+        grid's response at (d, k) to a unit load at (0, k') (:meth:`ImplicitStepEHD.
+        grid_columns`)."""
+        table = self.frame.blended(self.run.grid_columns, self.shift.frac)
+        j, k = self.frame.j[nodes], self.frame.k[nodes]
+        n, m = self.run.grid_columns.shape[:2]
+        d = (j[:, None] - j[None, :]) % n
+        return np.take(table, (d * m + k[:, None]) * m + k[None, :])
 
     def solve_rate(self, b: np.ndarray, stiffness, rtol: float, s: float = 1.0,
                    x0=None) -> np.ndarray:
@@ -386,8 +400,23 @@ class _Frame:
 
     def __init__(self, op, gamma: float):
         self.op, self.gamma = op, gamma
-        self.shift = FrameShift(node_grid(op.mesh), gamma)
+        node = node_grid(op.mesh)
+        self.shift = FrameShift(node, gamma)
         self.left = self.shift.matrix()
+        # each film node's angle and axial index on the grid
+        self.j, self.k = np.empty(node.size, int), np.empty(node.size, int)
+        self.j[node.ravel()] = np.repeat(np.arange(node.shape[0]), node.shape[1])
+        self.k[node.ravel()] = np.tile(np.arange(node.shape[1]), node.shape[0])
+        self._table = None
+
+    def blended(self, columns: np.ndarray, a: float) -> np.ndarray:
+        """((1 - a)^2 + a^2) c(d) + a (1 - a) (c(d - 1) + c(d + 1)) of the grid's columns
+        c (n_theta, n_z + 1, n_z + 1), raveled (:meth:`_StepFilm.node_compliance`)."""
+        if self._table is None:
+            self._table = (((1 - a) ** 2 + a * a) * columns
+                           + a * (1 - a) * (np.roll(columns, 1, axis=0)
+                                            + np.roll(columns, -1, axis=0))).ravel()
+        return self._table
 
 
 class ImplicitStepEHD(StatelessRun):
@@ -422,6 +451,17 @@ class ImplicitStepEHD(StatelessRun):
         self._factor_t = None            # the time [s] of the kept Newton matrix's film
         self._committed = ()             # (t, P) of the last two commits, older first
         self._whirls = {}
+
+    @cached_property
+    def grid_columns(self) -> np.ndarray:
+        """c (n_theta, n_z + 1, n_z + 1) [m/Pa]: c[d, k, k'] the deflection at grid node
+        (d, k) under a unit pressure at grid node (0, k'); the compliance is circulant in
+        theta, so these n_z + 1 columns (one batched product, once a run) give every
+        entry, C[(j, k), (j', k')] = c[j - j', k, k']."""
+        n, m = self.compliance.shape
+        unit = np.zeros((n * m, m))
+        unit[np.arange(m), np.arange(m)] = 1.0
+        return self.compliance.on_grid(unit).reshape(n, m, m)
 
     def _whirl(self, op) -> sp.csr_matrix:
         """d/dalpha at the points of nodal values (points x nodes), per film operator."""
