@@ -86,8 +86,9 @@ PRODUCT_KRYLOV = 1e-6
 #: CPU -16 %; at 48 x 4 the same to the timing's scatter)
 CHORD_STEPS = 12
 CHORD_RATE = 0.9
-#: The most nodes :class:`_RateInverse` takes in its Woodbury set (m compliance columns and
-#: an (m, m) LU per Newton matrix); past it, GMRES on S
+#: The most nodes :class:`_RateInverse` takes in its Woodbury set (a gathered (m, m)
+#: matrix and its LU per Newton matrix: 8 ms at 546 nodes, 42 ms at 1024); past it, GMRES
+#: on S. The seed pin's sets reach 546 nodes at 192 x 16
 WOODBURY_NODES = 1024
 
 
@@ -238,7 +239,7 @@ class _StepFilm:
         grid's response at (d, k) to a unit load at (0, k') (:meth:`ImplicitStepEHD.
         grid_columns`)."""
         table = self.frame.blended(self.run.grid_columns, self.shift.frac)
-        j, k = self.frame.j[nodes], self.frame.k[nodes]
+        j, k = (x[nodes] for x in self.frame.indices)
         n, m = self.run.grid_columns.shape[:2]
         d = (j[:, None] - j[None, :]) % n
         return np.take(table, (d * m + k[:, None]) * m + k[None, :])
@@ -398,18 +399,29 @@ class _Memo:
 
 
 class _Frame:
-    """The frame shift at one journal angle (kept while gamma holds)."""
+    """The frame shift at one journal angle (kept while gamma holds); its sparse matrix
+    and the nodes' grid indices built when first asked (a Newton matrix, the summits'
+    Woodbury): gamma moves at every trial state, and built with each frame they took 6 %
+    of a run (96 x 8)."""
 
     def __init__(self, op, gamma: float):
         self.op, self.gamma = op, gamma
-        node = node_grid(op.mesh)
-        self.shift = FrameShift(node, gamma)
-        self.left = self.shift.matrix()
-        # each film node's angle and axial index on the grid
-        self.j, self.k = np.empty(node.size, int), np.empty(node.size, int)
-        self.j[node.ravel()] = np.repeat(np.arange(node.shape[0]), node.shape[1])
-        self.k[node.ravel()] = np.tile(np.arange(node.shape[1]), node.shape[0])
+        self.shift = FrameShift(node_grid(op.mesh), gamma)
         self._table = None
+
+    @cached_property
+    def left(self) -> sp.csr_matrix:
+        """T, the frame shift to the nodes (nodes x grid)."""
+        return self.shift.matrix()
+
+    @cached_property
+    def indices(self) -> tuple:
+        """(j, k): each film node's angle and axial index on the grid."""
+        node = node_grid(self.op.mesh)
+        j, k = np.empty(node.size, int), np.empty(node.size, int)
+        j[node.ravel()] = np.repeat(np.arange(node.shape[0]), node.shape[1])
+        k[node.ravel()] = np.tile(np.arange(node.shape[1]), node.shape[0])
+        return j, k
 
     def blended(self, columns: np.ndarray, a: float) -> np.ndarray:
         """((1 - a)^2 + a^2) c(d) + a (1 - a) (c(d - 1) + c(d + 1)) of the grid's columns
