@@ -285,3 +285,33 @@ def test_the_newton_steps_gmres_is_the_dense_solve(restart):
     y, reported = newton._gmres(lambda v: A @ v, b, 1e-12, 2, 1)
     assert reported > 1e-12
     assert abs(np.linalg.norm(b - A @ y) / np.linalg.norm(b) - reported) <= 1e-10
+
+
+def test_the_chord_allows_its_slack_of_steps_that_miss_the_rate(monkeypatch):
+    """newton._chord with ``slack``: a step that cuts max |Phi| by less than ``rate`` ends
+    the chord (Newton takes over from the iterate of least residual) only past the first
+    ``slack`` such steps. On a scripted residual sequence (the iterate's index picks it):
+    1, 2 (a miss), then 1e-3, 1e-7, 1e-12 converges with slack 1 or 2 in 4 steps and
+    stops at the miss with slack 0, returning the start; a sequence that keeps growing
+    stops after slack + 1 misses, returning the start (least residual). Fails with the
+    slack not spent on a miss (planted, run once: the growing sequence runs to max_steps)."""
+    sequences = {"recovers": [1.0, 2.0, 1e-3, 1e-7, 1e-12],
+                 "grows": [1.0, 2.0, 4.0, 8.0, 16.0, 32.0, 64.0, 128.0]}
+
+    class Factor:
+        held = np.zeros(1, bool)
+
+        def step(self, P, phi):
+            return np.ones(1)
+
+    for name, seq in sequences.items():
+        monkeypatch.setattr(newton, "_merit", lambda film, P, s, free, cav, seq=seq: (
+            np.array([seq[int(P[0])]]), 1.0, np.zeros(1, bool), None))
+        for slack in (0, 1, 2):
+            out, steps, best = newton._chord(None, np.zeros(1), 1.0, np.arange(1), 1e-10,
+                                             [Factor()], 7, 0.9, slack)
+            if name == "recovers" and slack > 0:
+                assert out is not None and steps == 4 and out[0][0] == 4
+            else:
+                assert out is None and best[0] == 0
+                assert steps == slack + 1

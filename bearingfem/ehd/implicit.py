@@ -86,6 +86,13 @@ PRODUCT_KRYLOV = 1e-6
 #: CPU -16 %; at 48 x 4 the same to the timing's scatter)
 CHORD_STEPS = 12
 CHORD_RATE = 0.9
+#: Chord steps of a solve allowed to miss CHORD_RATE before Newton takes over (a
+#: nonmonotone chord, as the Newton's line search). Why: on 192 x 16 one solve in eleven
+#: had its first chord step raise the residual while held rows settled, and Newton from
+#: there took 4.6 fresh Jacobians (the seed pin's first 3 % of a turn: 81 Newton solves,
+#: 375 Jacobians; with 2 allowed, 2 and 0, the CPU 56 -> 45 s, the same steps); at
+#: 48 x 4 and 96 x 8 the same evaluations to 0.3 %
+CHORD_SLACK = 2
 #: The most nodes :class:`_RateInverse` takes in its Woodbury set (a gathered (m, m)
 #: matrix and its LU per Newton matrix: 8 ms at 546 nodes, 42 ms at 1024); past it, GMRES
 #: on S. The seed pin's sets reach 546 nodes at 192 x 16
@@ -525,7 +532,7 @@ class ImplicitStepEHD(StatelessRun):
             if self._factor_t != t:
                 self._refactor(film, start, free, t)
             result, its = warm_solve(film, start, free, TOL, self._factor, CHORD_STEPS,
-                                     CHORD_RATE)
+                                     CHORD_RATE, CHORD_SLACK)
             if result is not None:
                 return result
             starts.insert(0, self._P.copy())

@@ -374,46 +374,53 @@ def _held_nodes(n, free, held):
     return active
 
 
-def _chord(film, P, s, free, tol, keep, max_steps=6, rate=0.3):
+def _chord(film, P, s, free, tol, keep, max_steps=6, rate=0.3, slack=0):
     """Chord steps at coupling s from P with a kept factorisation (``keep``, a list holding
     it: the last right-hand side's in a run): ((P, residual, active), steps, P) when the
     residual test of :func:`_newton` passes; (None, steps, the iterate of least residual)
-    as soon as a step fails to cut max |Phi| by ``rate`` or ``max_steps`` pass (then
-    Newton takes over from that iterate). Where the held rows differ from the factor's,
-    the same Jacobian is factorised again with them (kept in ``keep``). Swift-Stieber
-    films ("reynolds") only."""
+    as soon as a step fails to cut max |Phi| by ``rate`` (past the first ``slack`` such
+    steps) or ``max_steps`` pass (then Newton takes over from that iterate). Where the
+    held rows differ from the factor's, the same Jacobian is factorised again with them
+    (kept in ``keep``). Swift-Stieber films ("reynolds") only."""
     factor = keep[0]
     phi, scale, held, _ = _merit(film, P, s, free, "reynolds")
-    best, last = P, np.inf
+    best, least, last = P, np.inf, np.inf
     for it in range(max_steps + 1):
         if phi is None:
             return None, it, best
         res = float(np.max(np.abs(phi), initial=0.0)) / scale
         if res <= tol:
             return (P, res, _held_nodes(P.size, free, held)), it, P
-        if it == max_steps or res > rate * last:
-            return None, it, P if res < last else best
+        if res < least:
+            best, least = P, res
+        if it == max_steps or (res > rate * last and slack == 0):
+            return None, it, best
+        if res > rate * last:
+            slack -= 1
         if not np.array_equal(held, factor.held):
             try:
                 factor = factor.with_held(held)
             except (RuntimeError, la.LinAlgError):  # singular: Newton takes over
                 return None, it, P
             keep[:] = [factor]
-        best, last = P, res
+        last = res
         P = P + factor.step(P, phi)
         phi, scale, held, _ = _merit(film, P, s, free, "reynolds")
     return None, max_steps, best
 
 
-def warm_solve(film, P, free, tol, keep, max_steps: int = 6, rate: float = 0.3) -> tuple:
+def warm_solve(film, P, free, tol, keep, max_steps: int = 6, rate: float = 0.3,
+               slack: int = 0) -> tuple:
     """A Swift-Stieber film at s = 1 from the last solve's pressure ``P`` (of the film's
-    size): chord steps on the kept factorisation (``keep``, ``max_steps`` and ``rate`` as
-    :func:`_chord`; none when it is empty), then Newton from where the chord got to.
+    size): chord steps on the kept factorisation (``keep``, ``max_steps``, ``rate`` and
+    ``slack`` as :func:`_chord`; none when it is empty), then Newton from where the chord
+    got to.
     (EHDResult, None) when either passes the residual test, else (None, its) with its
     Newton's iterations."""
     start, chord_steps = P.copy(), 0
     if keep:
-        out, chord_steps, start = _chord(film, start, 1.0, free, tol, keep, max_steps, rate)
+        out, chord_steps, start = _chord(film, start, 1.0, free, tol, keep, max_steps, rate,
+                                         slack)
         if out is not None:
             return EHDResult(out[0], chord_steps, out[1], True, out[2], 1, 0), None
     out, its = _newton(film, start, 1.0, free, "reynolds", tol, keep)
