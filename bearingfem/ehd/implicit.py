@@ -90,7 +90,7 @@ CHORD_RATE = 0.9
 #: nonmonotone chord, as the Newton's line search). Why: on 192 x 16 one solve in eleven
 #: had its first chord step raise the residual while held rows settled, and Newton from
 #: there took 4.6 fresh Jacobians (the seed pin's first 3 % of a turn: 81 Newton solves,
-#: 375 Jacobians; with 2 allowed, 2 and 0, the CPU 56 -> 45 s, the same steps); at
+#: 375 Jacobians; with 2 allowed, 2 and 0, the CPU 55 -> 43 s, the same steps); at
 #: 48 x 4 and 96 x 8 the same evaluations to 0.3 %
 CHORD_SLACK = 2
 #: The most nodes :class:`_RateInverse` takes in its Woodbury set (a gathered (m, m)
