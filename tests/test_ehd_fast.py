@@ -251,3 +251,67 @@ def test_folded_local_compliance_is_the_dense_bush_part(supply_angle):
     got = f.J.toarray() + (0.0 if f.U is None else f.U.toarray())
     expect = J.toarray() + bush.toarray()
     assert np.max(np.abs(got - expect)) <= 1e-14 * np.max(np.abs(expect))
+
+
+@pytest.mark.parametrize("restart", [60, 4])
+def test_the_newton_steps_gmres_is_the_dense_solve(restart):
+    """The Newton step's GMRES (newton._gmres: classical Gram-Schmidt twice, Givens
+    rotations, restarted) on a nonsymmetric 120 x 120 system (I + 0.3 G / sqrt(n), G
+    normal: eigenvalues in a disc of radius 0.3 about 1): at tol 1e-3 and 1e-12 the true
+    residual within tol (measured 7.0e-4 / 2.8e-13 in 6 / 23 products unrestarted, 7.0e-4 /
+    6.7e-13 in 7 / 28 restarted every 4), the residual it reports equal
+    to the true one to 1e-10 |b| (it takes no product to check it: the products are the
+    Arnoldi steps' alone, one per iteration, plus one a restart), and at 1e-12 the dense
+    solve to 1e-10; with 2 products allowed it reports the residual it stopped at
+    (> tol: the Newton step then raises). Fails with the earlier rotations not applied to
+    a new Hessenberg column (planted, run once)."""
+    rng = np.random.default_rng(0)
+    n = 120
+    A = np.eye(n) + 0.3 * rng.standard_normal((n, n)) / np.sqrt(n)
+    b = rng.standard_normal(n)
+    for tol in (1e-3, 1e-12):
+        count = [0]
+
+        def apply(v):
+            count[0] += 1
+            return A @ v
+        y, reported = newton._gmres(apply, b, tol, restart, 40)
+        true = np.linalg.norm(b - A @ y) / np.linalg.norm(b)
+        assert true <= tol and reported <= tol
+        assert abs(true - reported) <= 1e-10
+        if restart == 60:
+            assert count[0] < restart      # no product beyond the Arnoldi steps'
+    assert np.allclose(y, np.linalg.solve(A, b), rtol=0, atol=1e-10 * np.max(np.abs(y)))
+    y, reported = newton._gmres(lambda v: A @ v, b, 1e-12, 2, 1)
+    assert reported > 1e-12
+    assert abs(np.linalg.norm(b - A @ y) / np.linalg.norm(b) - reported) <= 1e-10
+
+
+def test_the_chord_allows_its_slack_of_steps_that_miss_the_rate(monkeypatch):
+    """newton._chord with ``slack``: a step that cuts max |Phi| by less than ``rate`` ends
+    the chord (Newton takes over from the iterate of least residual) only past the first
+    ``slack`` such steps. On a scripted residual sequence (the iterate's index picks it):
+    1, 2 (a miss), then 1e-3, 1e-7, 1e-12 converges with slack 1 or 2 in 4 steps and
+    stops at the miss with slack 0, returning the start; a sequence that keeps growing
+    stops after slack + 1 misses, returning the start (least residual). Fails with the
+    slack not spent on a miss (planted, run once: the growing sequence runs to max_steps)."""
+    sequences = {"recovers": [1.0, 2.0, 1e-3, 1e-7, 1e-12],
+                 "grows": [1.0, 2.0, 4.0, 8.0, 16.0, 32.0, 64.0, 128.0]}
+
+    class Factor:
+        held = np.zeros(1, bool)
+
+        def step(self, P, phi):
+            return np.ones(1)
+
+    for name, seq in sequences.items():
+        monkeypatch.setattr(newton, "_merit", lambda film, P, s, free, cav, seq=seq: (
+            np.array([seq[int(P[0])]]), 1.0, np.zeros(1, bool), None))
+        for slack in (0, 1, 2):
+            out, steps, best = newton._chord(None, np.zeros(1), 1.0, np.arange(1), 1e-10,
+                                             [Factor()], 7, 0.9, slack)
+            if name == "recovers" and slack > 0:
+                assert out is not None and steps == 4 and out[0][0] == 4
+            else:
+                assert out is None and best[0] == 0
+                assert steps == slack + 1

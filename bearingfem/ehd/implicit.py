@@ -86,9 +86,17 @@ PRODUCT_KRYLOV = 1e-6
 #: CPU -16 %; at 48 x 4 the same to the timing's scatter)
 CHORD_STEPS = 12
 CHORD_RATE = 0.9
-#: The most nodes :class:`_RateInverse` takes in its Woodbury set (m compliance columns and
-#: an (m, m) LU per Newton matrix); past it, GMRES on S
-WOODBURY_NODES = 128
+#: Chord steps of a solve allowed to miss CHORD_RATE before Newton takes over (a
+#: nonmonotone chord, as the Newton's line search). Why: on 192 x 16 one solve in eleven
+#: had its first chord step raise the residual while held rows settled, and Newton from
+#: there took 4.6 fresh Jacobians (the seed pin's first 3 % of a turn: 81 Newton solves,
+#: 375 Jacobians; with 2 allowed, 2 and 0, the CPU 55 -> 43 s, the same steps); at
+#: 48 x 4 and 96 x 8 the same evaluations to 0.3 %
+CHORD_SLACK = 2
+#: The most nodes :class:`_RateInverse` takes in its Woodbury set (a gathered (m, m)
+#: matrix and its LU per Newton matrix: 8 ms at 546 nodes, 42 ms at 1024); past it, GMRES
+#: on S. The seed pin's sets reach 546 nodes at 192 x 16
+WOODBURY_NODES = 1024
 
 
 @dataclass(frozen=True)
@@ -125,19 +133,19 @@ class _RateInverse:
     """S^-1, S = (tau + dt) I + dt C T^T K T, by Woodbury on the nodes whose summits'
     stiffness counts at ``rtol``: the set A = {i : dt |C| k_i / (tau + dt) > rtol / 10}
     (|C| the compliance's 2-norm, T a blend of two shifts: |T| <= 1), so
-    S_A^-1 = (I - U (tau' I + V^T U)^-1 V^T) / tau' with U = dt C T^T E_A K_A (the
-    compliance's m columns, one batched product) and V^T = E_A^T T. The nodes left out
-    leave the residual r = -dt C T^T K_r T y, |r| <= dt |C| max(k_r) |y|: where that bound
-    passes ``rtol`` |b| the solve is y = S_A^-1 b, else GMRES on S from it. Past
-    :data:`WOODBURY_NODES` nodes in the set no Woodbury is built: GMRES on S from
-    b / (tau + dt), as before.
+    S_A^-1 = (I - U (tau' I + V^T U)^-1 V^T) / tau' with U = dt C T^T E_A K_A and
+    V^T = E_A^T T. The (m, m) matrix V^T U = dt (T C T^T)[A, A] K_A is gathered from the
+    node-to-node compliance, circulant in theta (:meth:`_StepFilm.node_compliance`: no
+    compliance product), and U is applied as one compliance product (U z = dt C T^T of
+    K_A z on A). The nodes left out leave the residual r = -dt C T^T K_r T y,
+    |r| <= dt |C| max(k_r) |y|: where that bound passes ``rtol`` |b| the solve is
+    y = S_A^-1 b, else GMRES on S from it. Past :data:`WOODBURY_NODES` nodes in the set
+    no Woodbury is built: GMRES on S from b / (tau + dt).
     Why: GMRES on S inside every Newton-matrix product (about 4 compliance products and
     the Krylov method's overhead) took half the implicit film's run at 48 x 4; the Woodbury
-    solve is a small LU's back substitution and an (N, m) product. It is capped because
-    its build (m compliance columns, an (m, m) LU) and its (N, m) product grow with m:
-    uncapped (up to 546 nodes), the seed pin's tenth of a turn at 192 x 16 took 2.2x the
-    CPU of GMRES on S; capped at 128 with GMRES preconditioned by the 128 stiffest, an S
-    solve took 0.86 ms against GMRES's 0.6 ms there."""
+    solve is a small LU's back substitution and one compliance product. Its build was m
+    compliance columns, one batched product (37 ms at 546 nodes on 192 x 16, hence a cap of
+    128 and GMRES on S past it); the gather costs 3 ms there and the LU 8 ms."""
 
     def __init__(self, step: "_StepFilm", stiffness, rtol: float, s: float = 1.0):
         self.step, self.stiffness, self.rtol, self.s = step, stiffness, rtol, s
@@ -152,23 +160,23 @@ class _RateInverse:
         self.left_out = gain * float(np.max(k[~active], initial=0.0))
         m = self.active.size
         self.capped = m > WOODBURY_NODES
+        self.lu = None
         if m == 0 or self.capped:
-            self.U = None
             return
-        unit = np.zeros((k.size, m))
-        unit[self.active, np.arange(m)] = 1.0
-        CTE = step.run.compliance.on_grid(step.shift.to_grid(unit))        # (grid, m)
-        self.U = (dt * CTE) * k[self.active][None, :]
-        small = self.tau * np.eye(m) + step.shift.to_nodes(self.U)[self.active]
+        self.dk = dt * k[self.active]                       # dt K_A
+        small = (self.tau * np.eye(m)
+                 + step.node_compliance(self.active) * self.dk[None, :])
         self.lu = la.lu_factor(small, check_finite=False)
 
     def woodbury(self, b: np.ndarray) -> np.ndarray:
         """S_A^-1 b (the Woodbury set's inverse, unchecked: a preconditioner's)."""
-        if self.trivial or self.U is None:
+        if self.trivial or self.lu is None:
             return b / self.tau
         z = la.lu_solve(self.lu, self.step.shift.to_nodes(b)[self.active],
                         check_finite=False)
-        return (b - self.U @ z) / self.tau
+        nodes = np.zeros((self.stiffness.size,) + z.shape[1:])
+        nodes[self.active] = self.dk.reshape((-1,) + (1,) * (z.ndim - 1)) * z
+        return (b - self.step.comply(nodes)) / self.tau
 
     def solve(self, b: np.ndarray) -> np.ndarray:
         """y with S y = b to ``rtol`` (|S y - b| <= rtol |b|); b (grid,) or (grid, k)."""
@@ -228,6 +236,20 @@ class _StepFilm:
     def comply(self, p_nodes: np.ndarray) -> np.ndarray:
         """C T^T p: the grid's quasi-static deflection [m] under nodal pressure [Pa]."""
         return self.run.compliance.on_grid(self.shift.to_grid(p_nodes))
+
+    def node_compliance(self, nodes: np.ndarray) -> np.ndarray:
+        """(T C T^T)[nodes, nodes] [m/Pa]: the film nodes' deflection under their
+        pressure, gathered without a compliance product. C is circulant in theta and T a
+        blend of two shifts ((1 - a) by whole cells, a by one more), so T C T^T is
+        circulant: its entry between film nodes (j, k) and (j', k') is
+        ((1 - a)^2 + a^2) c(d) + a (1 - a) (c(d - 1) + c(d + 1)), d = j - j', c(d) the
+        grid's response at (d, k) to a unit load at (0, k') (:meth:`ImplicitStepEHD.
+        grid_columns`)."""
+        table = self.frame.blended(self.run.grid_columns, self.shift.frac)
+        j, k = (x[nodes] for x in self.frame.indices)
+        n, m = self.run.grid_columns.shape[:2]
+        d = (j[:, None] - j[None, :]) % n
+        return np.take(table, (d * m + k[:, None]) * m + k[None, :])
 
     def solve_rate(self, b: np.ndarray, stiffness, rtol: float, s: float = 1.0,
                    x0=None) -> np.ndarray:
@@ -309,11 +331,9 @@ class _StepFilm:
         v, w, pa, h = solved
         wn = self.shift.to_nodes(w)
         vn = self.shift.to_nodes(v)
-        t = self.tables
-        dofs = op.mesh.basis.element_dofs
         # dH/dt at the points: the journal's squeeze, the bush's rate, and the deflection
         # (fixed in the bush) passing under the whirling film frame, gamma_dot dw/dalpha
-        dw = np.einsum("jeq,je->eq", t.dphi[:, 0], wn[dofs]) / t.dx
+        dw = (run._whirl(op) @ wn).reshape(self.th.shape)
         rate = (state.eps_dot * self.cos_th + state.gamma_dot * dw / c
                 + op.qp_interp.dot(vn).reshape(self.th.shape) / c)
         gap_q = self.gap_q0 + op.at_quadrature(wn) / c
@@ -343,7 +363,11 @@ class _StepFilm:
         rho = np.broadcast_to(ev.fields.density, self.op.qp_weight.shape)
         if ev.flow is not None:
             rho = rho * ev.flow.gap_slope
-        return self.op.qp_interp.T @ sp.diags((12.0 * rho * self.op.qp_weight).ravel())
+        # the interpolation's transpose kept a run, its columns scaled in place (the
+        # product with a diagonal matrix took a quarter of a Newton matrix's build)
+        Wq = self.run._spread(self.op).copy()
+        Wq.data *= (12.0 * rho * self.op.qp_weight).ravel()[Wq.indices]
+        return Wq
 
     def jacobian(self, P, s, ev):
         """(J_sparse, BushJacobian, None): dR/dP with the gap and its rate held, and the
@@ -382,12 +406,38 @@ class _Memo:
 
 
 class _Frame:
-    """The frame shift at one journal angle (kept while gamma holds)."""
+    """The frame shift at one journal angle (kept while gamma holds); its sparse matrix
+    and the nodes' grid indices built when first asked (a Newton matrix, the summits'
+    Woodbury): gamma moves at every trial state, and built with each frame they took 6 %
+    of a run (96 x 8)."""
 
     def __init__(self, op, gamma: float):
         self.op, self.gamma = op, gamma
         self.shift = FrameShift(node_grid(op.mesh), gamma)
-        self.left = self.shift.matrix()
+        self._table = None
+
+    @cached_property
+    def left(self) -> sp.csr_matrix:
+        """T, the frame shift to the nodes (nodes x grid)."""
+        return self.shift.matrix()
+
+    @cached_property
+    def indices(self) -> tuple:
+        """(j, k): each film node's angle and axial index on the grid."""
+        node = node_grid(self.op.mesh)
+        j, k = np.empty(node.size, int), np.empty(node.size, int)
+        j[node.ravel()] = np.repeat(np.arange(node.shape[0]), node.shape[1])
+        k[node.ravel()] = np.tile(np.arange(node.shape[1]), node.shape[0])
+        return j, k
+
+    def blended(self, columns: np.ndarray, a: float) -> np.ndarray:
+        """((1 - a)^2 + a^2) c(d) + a (1 - a) (c(d - 1) + c(d + 1)) of the grid's columns
+        c (n_theta, n_z + 1, n_z + 1), raveled (:meth:`_StepFilm.node_compliance`)."""
+        if self._table is None:
+            self._table = (((1 - a) ** 2 + a * a) * columns
+                           + a * (1 - a) * (np.roll(columns, 1, axis=0)
+                                            + np.roll(columns, -1, axis=0))).ravel()
+        return self._table
 
 
 class ImplicitStepEHD(StatelessRun):
@@ -421,7 +471,26 @@ class ImplicitStepEHD(StatelessRun):
         self._P_t = None                 # the time [s] of the last solve's pressure
         self._factor_t = None            # the time [s] of the kept Newton matrix's film
         self._committed = ()             # (t, P) of the last two commits, older first
-        self._whirls = {}
+        self._whirls, self._spreads = {}, {}
+
+    @cached_property
+    def grid_columns(self) -> np.ndarray:
+        """c (n_theta, n_z + 1, n_z + 1) [m/Pa]: c[d, k, k'] the deflection at grid node
+        (d, k) under a unit pressure at grid node (0, k'); the compliance is circulant in
+        theta, so these n_z + 1 columns (one batched product, once a run) give every
+        entry, C[(j, k), (j', k')] = c[j - j', k, k']."""
+        n, m = self.compliance.shape
+        unit = np.zeros((n * m, m))
+        unit[np.arange(m), np.arange(m)] = 1.0
+        return self.compliance.on_grid(unit).reshape(n, m, m)
+
+    def _spread(self, op) -> sp.csr_matrix:
+        """The interpolation's transpose (nodes x points, CSR), per film operator."""
+        kept = self._spreads.get(id(op))
+        if kept is None or kept[0] is not op:
+            kept = self._spreads = {id(op): (op, op.qp_interp.T.tocsr())}
+            kept = kept[id(op)]
+        return kept[1]
 
     def _whirl(self, op) -> sp.csr_matrix:
         """d/dalpha at the points of nodal values (points x nodes), per film operator."""
@@ -463,7 +532,7 @@ class ImplicitStepEHD(StatelessRun):
             if self._factor_t != t:
                 self._refactor(film, start, free, t)
             result, its = warm_solve(film, start, free, TOL, self._factor, CHORD_STEPS,
-                                     CHORD_RATE)
+                                     CHORD_RATE, CHORD_SLACK)
             if result is not None:
                 return result
             starts.insert(0, self._P.copy())
