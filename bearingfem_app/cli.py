@@ -333,18 +333,28 @@ SYNONYMS = {"--speed": "--omega [rad/s] or --rpm [1/min]", "--mu": "--viscosity"
             "--method": "--model", "--length": "--ld (L/D)", "--oil-temp": "--oil-temperature"}
 
 
-def _unrecognized(sub, unknown) -> str:
-    """argparse's message for options a command does not take, with the nearest of its
-    own options for each (difflib), so that a typo names its fix."""
-    known = [o for a in sub._actions for o in a.option_strings if o.startswith("--")
-             and a.help != argparse.SUPPRESS]
+def _options(sub) -> list:
+    """A command's visible long options."""
+    return [o for a in sub._actions for o in a.option_strings if o.startswith("--")
+            and a.help != argparse.SUPPRESS]
+
+
+def _unrecognized(sub, unknown, commands=None) -> str:
+    """argparse's message for options a command does not take: an option of other
+    commands (``commands``: name -> subparser) is named as theirs, since a look-alike of
+    this command's would mislead (``convergence --rtol`` was 'did you mean --oil?');
+    otherwise the nearest of its own options (difflib), so that a typo names its fix."""
+    known = _options(sub)
     parts = []
     for u in unknown:
         name = u.split("=", 1)[0]
+        owners = [c for c, p in (commands or {}).items()
+                  if p is not sub and name in _options(p)] if u.startswith("--") else []
         near = ([SYNONYMS[name]] if name in SYNONYMS else
                 difflib.get_close_matches(name, known, n=1, cutoff=0.6)) \
             if u.startswith("-") else []
-        parts.append(f"{u} (did you mean {near[0]}?)" if near else u)
+        parts.append(f"{u} (an option of {', '.join(owners)}, not of {sub.prog.split()[-1]})"
+                     if owners else f"{u} (did you mean {near[0]}?)" if near else u)
     return "unrecognized arguments: " + " ".join(parts)
 
 
@@ -413,9 +423,10 @@ def main(argv=None):
     parser = build_parser()
     args, unknown = parser.parse_known_args(_negative_values(argv))
     # options whose meaning depends on others: was it typed, or is it the default?
-    sub = parser._subparsers._group_actions[0].choices[args.command]
+    commands = parser._subparsers._group_actions[0].choices
+    sub = commands[args.command]
     if unknown:
-        sub.error(_unrecognized(sub, unknown))
+        sub.error(_unrecognized(sub, unknown, commands))
     args.given = given_options(sub, argv)
     try:
         _old_spellings(args)

@@ -461,3 +461,18 @@ def test_help_ranges_are_the_checks_own_table(monkeypatch):
     helps = {a.dest: " ".join(a.help.split()) for cmd in ("solve", "simulate")
              for a in sub[cmd]._actions if a.dest in ("rtol", "turns")}
     assert "in [1e-05, 0.05]" in helps["rtol"] and "in (0, 50]" in helps["turns"]
+
+
+def test_an_option_of_other_commands_is_named_as_theirs():
+    """`convergence --rtol` (convergence refines --levels meshes; --rtol is the film
+    commands') says whose option it is, not 'did you mean --oil?', a look-alike of this
+    command's; a typo still gets its nearest option."""
+    r = run("convergence", "--rtol", "1e-3", "-o", "x")
+    assert r.returncode == 2
+    assert r.stderr.strip().splitlines() == [
+        "bearingfem: error: unrecognized arguments: --rtol (an option of solve, render, "
+        "equilibrium, coefficients, not of convergence) 1e-3 ('bearingfem convergence --help' "
+        "lists the options)"]
+    bush = run("design", "--load", "100", "--bush", "ring")
+    assert bush.returncode == 2 and "--bush (an option of solve, render, equilibrium, " \
+        "coefficients, not of design)" in bush.stderr
