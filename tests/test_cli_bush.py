@@ -63,3 +63,18 @@ def test_unknown_bush_model_is_refused(capsys):
         main(["solve", "--bush", "rubber"])
     assert e.value.code == 2
     assert "--bush: invalid choice" in capsys.readouterr().err
+
+
+def test_the_default_outer_radius_scales_with_the_diameter(capsys):
+    """--bush without --bush-outer-radius on a 50 mm journal is a bush held at 1.6 R (the
+    seed pin's 16 mm at R 10 mm): the API's film with ElasticBush(outer_radius=0.04). A fixed
+    16 mm default was refused ('must exceed the film radius R = 0.025 m') from D = 32 mm on."""
+    assert main(["solve", "--diameter", "0.05", "--ld", "0.5", "--clearance", "50e-6",
+                 "--eps", "0.7", *MESH, "--bush", "ring", "--bush-modulus", "5e9"]) == 0
+    out = capsys.readouterr().out
+    b = Bearing(radius=0.025, length=0.025, clearance=50e-6,
+                viscosity=SEED_TABLE1["viscosity"])
+    sol = solve_reynolds(b, JournalState(eps=0.7, omega=250.0), 48, 4, "P1", "reynolds",
+                         bush=ElasticBush(outer_radius=0.04, modulus=5e9, model="ring"))
+    printed = float(re.search(r"\|F\| ([\d.e+-]+) N", out).group(1))
+    assert printed == pytest.approx(float(f"{abs(complex(*sol.force_local)):.6g}"), rel=1e-12)
