@@ -46,7 +46,8 @@ def bush_from_args(args) -> ElasticBush | None:
     radius = args.diameter / 2
     fields = {f: getattr(args, dest) for dest, (_, f) in BUSH_OPTIONS.items()
               if getattr(args, dest) is not None}
-    fields.setdefault("outer_radius", OUTER_RATIO * radius)
+    # rounded: the header prints 0.04, not 0.04000000000000001
+    fields.setdefault("outer_radius", float(f"{OUTER_RATIO * radius:.12g}"))
     try:
         bush = ElasticBush(model=args.bush, **fields)
     except ValueError as err:
