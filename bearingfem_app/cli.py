@@ -407,15 +407,42 @@ def _progress(args):
         return
     log = logging.getLogger("bearingfem")
     level = log.level
-    shown = logging.StreamHandler(sys.stderr)     # this call's stderr
+    shown = _Repeats(sys.stderr)                  # this call's stderr
     shown.setFormatter(logging.Formatter("bearingfem: %(message)s"))
     log.addHandler(shown)
     log.setLevel(logging.INFO)
     try:
         yield
     finally:
+        shown.flush_repeats()
         log.removeHandler(shown)
         log.setLevel(level)
+
+
+class _Repeats(logging.StreamHandler):
+    """Progress lines, a run of identical ones shown once and then counted: an equilibrium
+    on an elastic bush solves the film some forty times, each logging the same
+    continuation line, which filled the terminal with copies of one line."""
+
+    def __init__(self, stream):
+        super().__init__(stream)
+        self.last, self.repeats = None, 0
+
+    def emit(self, record):
+        message = record.getMessage()
+        if message == self.last:
+            self.repeats += 1
+            return
+        self.flush_repeats()
+        self.last = message
+        super().emit(record)
+
+    def flush_repeats(self):
+        if self.repeats:
+            self.stream.write(f"bearingfem: (the line above {self.repeats} more "
+                              f"time{'s' if self.repeats > 1 else ''})\n")
+            self.flush()
+        self.repeats = 0
 
 
 def main(argv=None):

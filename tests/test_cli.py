@@ -1,5 +1,6 @@
 """The command line: help, one-line errors with exit status 2, and the simulate output."""
 import json
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -476,3 +477,16 @@ def test_an_option_of_other_commands_is_named_as_theirs():
     bush = run("design", "--load", "100", "--bush", "ring")
     assert bush.returncode == 2 and "--bush (an option of solve, render, equilibrium, " \
         "coefficients, not of design)" in bush.stderr
+
+
+def test_repeated_progress_lines_are_counted_not_copied():
+    """An equilibrium on an elastic bush solves the film tens of times, each logging the
+    same continuation line: stderr shows it once and then '(the line above N more times)'
+    (it showed 37 copies of one line on a 50 mm bearing)."""
+    r = run("equilibrium", "--diameter", "0.05", "--ld", "0.5", "--clearance", "50e-6",
+            "--load", "2000", "--rpm", "3000", "--bush", "ring", "--n-theta", "24",
+            "--n-z", "4")
+    assert r.returncode == 0
+    lines = r.stderr.strip().splitlines()
+    assert len(lines) == len(set(lines)), lines
+    assert re.fullmatch(r"bearingfem: \(the line above \d+ more times\)", lines[-1]), lines
