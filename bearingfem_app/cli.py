@@ -12,6 +12,7 @@ import re
 import sys
 
 from bearingfem.bearing import SEED_TABLE1
+from bearingfem.errors import ConvergenceError
 from bearingfem.fe.jfo_balance import JFO_AMBIENT
 from bearingfem.models import FILM_MODELS
 from bearingfem.outputs.convergence import QUANTITIES, UNITS
@@ -466,6 +467,11 @@ def main(argv=None):
     except ValueError as err:
         print(f"bearingfem: error: {err}", file=sys.stderr)
         return 2
+    except ConvergenceError as err:
+        # the work ran and did not succeed: one line naming what did not converge (it was
+        # a traceback), status 1 as for a simulation that stopped early
+        print(f"bearingfem: error: {err}", file=sys.stderr)
+        return 1
     except KeyboardInterrupt:
         print("bearingfem: interrupted", file=sys.stderr)
         return 130

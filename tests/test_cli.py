@@ -490,3 +490,20 @@ def test_repeated_progress_lines_are_counted_not_copied():
     lines = r.stderr.strip().splitlines()
     assert len(lines) == len(set(lines)), lines
     assert re.fullmatch(r"bearingfem: \(the line above \d+ more times\)", lines[-1]), lines
+
+
+def test_a_solve_that_does_not_converge_is_one_line_and_exit_1(monkeypatch, capsys):
+    """A ConvergenceError from the library is one line on stderr naming what did not
+    converge, exit status 1 (the work ran and did not succeed); it was a traceback."""
+    import bearingfem
+    from bearingfem.errors import ConvergenceError
+    from bearingfem_app.cli import main
+
+    def unconverged(*args, **kwargs):
+        raise ConvergenceError("EHD Newton (load continuation)", 0, None,
+                               "coupling s = 0, step below 0.0001")
+    monkeypatch.setattr(bearingfem, "solve_reynolds", unconverged)
+    assert main(["solve", "--n-theta", "24", "--n-z", "4", "-q"]) == 1
+    err = capsys.readouterr().err
+    assert err.splitlines() == ["bearingfem: error: EHD Newton (load continuation) did not "
+                                "converge at coupling s = 0, step below 0.0001: 0 iterations"]
