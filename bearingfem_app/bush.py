@@ -12,6 +12,11 @@ __all__ = ["add_bush_args", "bush_from_args", "BUSH_OPTIONS"]
 #: journal gets a bush (a fixed 16 mm was refused from D = 32 mm on)
 OUTER_RATIO = 1.6
 
+#: Young's modulus [Pa] of any bush material, soft rubber (~1e6) to diamond (~1.1e12):
+#: outside it the number was typed in another unit (110 for 110 GPa), and the EHD Newton
+#: solve then fails without saying why
+MODULUS_RANGE = (1e5, 1.2e12)
+
 #: dest -> (option as typed, ElasticBush field)
 BUSH_OPTIONS = {"bush_outer_radius": ("--bush-outer-radius", "outer_radius"),
                 "bush_modulus": ("--bush-modulus", "modulus"),
@@ -57,6 +62,14 @@ def bush_from_args(args) -> ElasticBush | None:
             if text.startswith(field):
                 text = option + text[len(field):]
         raise ValueError(text) from None
+    lo, hi = MODULUS_RANGE
+    if bush.modulus < lo:
+        raise ValueError(f"--bush-modulus {bush.modulus:g} Pa is below any bush material's "
+                         f"(>= {lo:.0e} Pa; rubber ~1e6 Pa): typed in GPa? ({bush.modulus:g} GPa"
+                         f" = {bush.modulus * 1e9:g} Pa) or MPa? ({bush.modulus * 1e6:g} Pa)")
+    if bush.modulus > hi:
+        raise ValueError(f"--bush-modulus {bush.modulus:g} Pa is above any solid's "
+                         f"(<= {hi:.1e} Pa, diamond's): give it in Pa")
     if not bush.outer_radius > radius:                   # before any work
         raise ValueError(f"--bush-outer-radius must exceed the film radius R = --diameter / 2"
                          f" = {radius:g} m, got {bush.outer_radius:g}")

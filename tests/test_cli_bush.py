@@ -51,6 +51,12 @@ def test_equilibrium_takes_the_bush(capsys):
     (("equilibrium", "--load", "100", "--bush", "solid", "--model", "short"),
      "--bush applies to a film model that takes a bush"),
     (("coefficients", "--eps", "0.5", "--bush-poisson", "0.3"), "needs --bush"),
+    # a modulus typed in GPa was a ConvergenceError traceback from the EHD Newton solve
+    (("solve", "--bush", "ring", "--bush-modulus", "110", *MESH),
+     "--bush-modulus 110 Pa is below any bush material's (>= 1e+05 Pa; rubber ~1e6 Pa): "
+     "typed in GPa? (110 GPa = 1.1e+11 Pa)"),
+    (("solve", "--bush", "ring", "--bush-modulus", "1e15", *MESH),
+     "--bush-modulus 1e+15 Pa is above any solid's"),
 ])
 def test_bad_bush_input_is_one_line(args, needle, capsys):
     assert main(list(args)) == 2
