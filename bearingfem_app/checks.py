@@ -75,9 +75,11 @@ def check_numbers(args) -> None:
             ok = v <= hi if hi_in else v < hi
         if not ok:
             rule = _range(lo, lo_in, hi, hi_in)
-            errors.append(f"{name} must be positive (> 0), got {v!r}" if rule == "positive"
-                          else f"{name} must lie {rule}, got {v!r}" if rule.startswith("in")
-                          else f"{name} must be {rule}, got {v!r}")
+            rule = "positive (> 0)" if rule == "positive" else rule
+            if rule != "finite" and not math.isfinite(v):
+                rule = f"finite and {rule}"         # 'inf must be positive' said nothing
+            verb = "lie" if rule.startswith("in") else "be"
+            errors.append(f"{name} must {verb} {rule}, got {v!r}")
     errors += choice_errors(args)
     errors += mesh_size_errors(args)
     if getattr(args, "command", None) in ("equilibrium", "design") and \

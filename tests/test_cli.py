@@ -46,6 +46,10 @@ def test_python_m_bearingfem_help_prints_the_usage_and_exits_0(flag):
     (("solve", "--eps", "1.5"), "eps must lie in [0, 1)"),
     (("solve", "--cavitation", "swift"), "cavitation must be one of"),
     (("solve", "--ld", "-1"), "--length-ratio/--ld (L/D) must be positive"),
+    # inf and nan are named as not finite (it said 'must be positive (> 0), got inf')
+    (("solve", "--ld", "inf"), "--length-ratio/--ld (L/D) must be finite and positive (> 0), "
+                               "got inf"),
+    (("solve", "--eps", "nan"), "--eps: eps must be finite and in [0, 1), got nan"),
     (("simulate", "no/such/scene.toml", "-o", "x"), "scene file not found"),
     (("sweep", "no/such/sweep.toml", "-o", "x"), "sweep file not found: no/such/sweep.toml"),
     (("solve", "--cavitation", "jfo"), "needs a supply of oil"),
