@@ -190,13 +190,13 @@ def render_history(frames, directory, field="pressure", surface="journal", gif=T
     Every frame shares one colour scale (0 to the series' peak), so frames compare. The
     journal view looks at each frame's loaded side, or from one place with ``fixed_camera``
     (that of the frame with the series' peak)."""
-    from bearingfem.outputs.render import FIELDS, render_film
+    from bearingfem.outputs.render import FIELDS, color_range, render_film
     d = Path(directory)
     d.mkdir(parents=True, exist_ok=True)
     _, scale, _ = FIELDS[field]
     values = [np.asarray(getattr(f.solution, field)) * scale for f in frames]
-    clim = ((0.0 if field == "pressure" else min(float(v.min()) for v in values)),
-            max(float(v.max()) for v in values)) if frames else None
+    # one scale for the series, as render_film scales one film (below 0 where a film is)
+    clim = color_range(field, np.concatenate([v.ravel() for v in values])) if frames else None
     peak = max(frames, key=lambda f: f.solution.pressure_max) if frames else None
     camera = peak.solution.pressure_max_angle if fixed_camera and peak else None
     paths = []
