@@ -511,3 +511,22 @@ def test_a_solve_that_does_not_converge_is_one_line_and_exit_1(monkeypatch, caps
     err = capsys.readouterr().err
     assert err.splitlines() == ["bearingfem: error: EHD Newton (load continuation) did not "
                                 "converge at coupling s = 0, step below 0.0001: 0 iterations"]
+
+
+def test_a_capacity_refusal_on_a_coarse_mesh_says_the_mesh_is_coarse(capsys):
+    """'load exceeds what the film carries' on 8 x 2 cells names the mesh as surely too
+    coarse at eps_max (its 1991 N is the mesh's: 120 x 20 carries 2.5e5 N); on a mesh that
+    resolves the film the refusal is the bearing's and says nothing more."""
+    from bearingfem_app.cli import main
+    bearing = ["--diameter", "0.05", "--ld", "0.5", "--clearance", "50e-6", "--oil",
+               "ISO VG 32", "--rpm", "3000"]
+    for command in ("equilibrium", "design"):
+        assert main([command, *bearing, "--load", "2000", "--n-theta", "8", "--n-z",
+                     "2"]) == 2
+        err = capsys.readouterr().err.strip().splitlines()
+        assert len(err) == 1 and "exceeds what the film carries" in err[0], err
+        assert "spans 0.36 node spacings of --n-theta 8 (P1)" in err[0], err
+    assert main(["equilibrium", *bearing, "--load", "1e6", "--n-theta", "240",
+                 "--n-z", "4"]) == 2
+    err = capsys.readouterr().err
+    assert "exceeds what the film carries" in err and "node spacings" not in err
