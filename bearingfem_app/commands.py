@@ -9,6 +9,8 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
+from bearingfem.outputs.tables import write_csv
+
 from .bush import bush_from_args
 from .checks import check_writable, parse_angles
 from .options import (ambient_pressure, check_film_options, check_output, check_rtol_mesh,
@@ -132,9 +134,20 @@ def command_convergence(args):
     b, s = film_state(args)
     supply = supply_angle(args, s.gamma)
     check_writable(args.output, "-o/--output")
-    st = convergence_study(b, s, levels=args.levels, n_theta=args.n_theta, n_z=args.n_z,
-                           cavitation=args.cavitation, methods=methods, progress=print,
-                           supply_angle=supply, ambient_pressure=ambient_pressure(args))
+    done = []
+    try:
+        st = convergence_study(b, s, levels=args.levels, n_theta=args.n_theta, n_z=args.n_z,
+                               cavitation=args.cavitation, methods=methods, progress=print,
+                               supply_angle=supply, ambient_pressure=ambient_pressure(args),
+                               on_row=done.append)
+    except KeyboardInterrupt:
+        # Ctrl-C keeps the meshes solved (a long study's fine levels took minutes each)
+        if done:
+            path = make_dir(args.output, "-o/--output") / "convergence.csv"
+            write_csv(done, path)
+            print(f"interrupted: wrote the {len(done)} meshes solved to {path} (PARTIAL: no "
+                  "summary or figure)")
+        raise
     out = make_dir(args.output, "-o/--output")
     st.write_csv(out / "convergence.csv")
     st.plot(out / "convergence.png", args.quantity)
