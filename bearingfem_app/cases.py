@@ -42,7 +42,8 @@ KINDS = {"film": FILM_PARAMS, "mechanism": MECHANISM_PARAMS, "design": DESIGN_PA
 #: "1" dimensionless, "" not a number; the K, C entries of a design case are c/W and
 #: c omega/W, dimensionless, in the load frame
 UNITS = {"diameter": "m", "length_ratio": "1", "clearance": "m", "viscosity": "Pa s",
-         "omega": "rad/s", "rpm": "1/min", "oil": "", "oil_temperature": "degC", "eps": "1", "eps_dot": "1/s", "model": "", "n_theta": "1",
+         "omega": "rad/s", "rpm": "1/min", "oil": "", "oil_temperature": "degC",
+         "eps": "1", "eps_dot": "1/s", "model": "", "n_theta": "1",
          "n_z": "1", "element": "", "cavitation": "", "scene": "", "turns": "1",
          "crank_speed": "rad/s", "pressure_max": "Pa", "friction_force": "N",
          "side_leakage": "m^3/s", "cavitated_fraction": "1", "F_r": "N", "F_t": "N",

@@ -12,7 +12,8 @@
   rupture line (fraction < 1) red.
 
 The title gives the force in the inertial frame, |F| and the attitude angle; the colour bar
-starts at 0 (or below, at the least value, where the field is negative) with units. ``clim`` fixes the colour range (one scale for a series of frames).
+starts at 0 (or below, at the least value, where the field is negative) with units.
+``clim`` fixes the colour range (one scale for a series of frames).
 """
 from __future__ import annotations
 
