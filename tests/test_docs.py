@@ -224,3 +224,13 @@ def test_relative_links_resolve():
             elif frag and dest.suffix == ".md" and frag not in _anchors(dest):
                 bad.append(f"{page.relative_to(ROOT)}: {target} (no heading #{frag})")
     assert not bad, "broken links:\n" + "\n".join(bad)
+
+
+def test_every_film_model_is_named_where_the_models_are_listed():
+    """docs/usage.md's 'Lubrication models' names every registered film model (it listed
+    eight of the eleven: no fem-ehd, fem-jfo-compressible, fem-thd)."""
+    from bearingfem.models import FILM_MODELS
+    text = (ROOT / "docs" / "usage.md").read_text()
+    section = text.split("## Lubrication models", 1)[1].split("\n## ", 1)[0]
+    missing = [m for m in FILM_MODELS if f"`{m}`" not in section]
+    assert not missing, f"docs/usage.md's Lubrication models does not name {missing}"
