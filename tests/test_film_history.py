@@ -120,3 +120,13 @@ def test_frames_refuses_a_scene_whose_physics_differ(long_run, tmp_path):
                           str(tmp_path / "fr"), "--no-render"], capture_output=True, text=True,
                          timeout=300)
     assert out.returncode == 2 and "scene.bearing.clearance" in out.stderr
+
+
+def test_frames_spread_over_a_run_shorter_than_a_turn(long_run):
+    """n_frames evenly spaced over what a half-turn run covers (0 to 180 deg, ends
+    included), each its own sample; a turn's 0, 90, 180, 270 put two on the run's end."""
+    sc, r = long_run
+    frames = film_history(r, sc, n_frames=4, n_theta=24, n_z=4)
+    angles = [f.crank_angle_deg for f in frames]
+    assert len({f.t for f in frames}) == 4
+    assert angles == pytest.approx([0.0, 60.0, 120.0, 180.0], abs=0.5)
