@@ -221,6 +221,17 @@ def _differences(a, b, where="scene"):
     return [] if a == b else [where]
 
 
+#: why a film field is not among a run's frames, named for the field asked (a thermal run's
+#: '--field temperature' was told that 'the film fraction needs a mass-conserving film')
+FRAME_FIELD_HINTS = {
+    "fraction": "the film fraction needs a mass-conserving film (model fem-jfo)",
+    "temperature": "the frames keep no film temperature: draw one thermal film's from Python "
+                   "(render_film(sol, path, field='temperature'), docs/thd.md)",
+    "deformation": "the frames keep no bush deflection: draw one elastic film's with "
+                   "'bearingfem render --bush ... --field deformation'",
+}
+
+
 def command_frames(args):
     from mechanism import load_scene
     from mechanism.film_history import film_history, render_history, write_history
@@ -253,9 +264,9 @@ def command_frames(args):
     fields = history_fields(scene)
     if args.field not in fields:
         model = scene.lubrication.model if scene.lubrication is not None else "none"
+        hint = FRAME_FIELD_HINTS.get(args.field)
         raise ValueError(f"--field {args.field}: the frames of this run (film {model}) "
-                         f"carry {', '.join(fields)}; the film fraction needs a "
-                         f"mass-conserving film (model fem-jfo)")
+                         f"carry {', '.join(fields)}" + (f"; {hint}" if hint else ""))
     check_writable(args.output, "-o/--output")
     frames = film_history(result, scene, angles, args.frames,
                           progress=lambda k, n: print(f"  film {k}/{n}", flush=True))
