@@ -98,7 +98,9 @@ def mesh_size_errors(args) -> list:
     if not (isinstance(nt, int) and isinstance(nz, int) and nt > 0 and nz > 0):
         return []
     levels = getattr(args, "levels", None)
-    scale = 2 ** (levels - 1) if isinstance(levels, int) and 0 < levels < 30 else 1
+    # every level counts (--levels 40 passed as one level and ran until the library refused
+    # its 12th); past 64 doublings the count is beyond any machine all the same
+    scale = 2 ** (min(levels, 64) - 1) if isinstance(levels, int) and levels > 0 else 1
     methods = str(getattr(args, "methods", "") or getattr(args, "element", "P1") or "P1")
     element = "P2" if "P2" in methods else "P1"
     unknowns = estimated_unknowns(nt * scale, nz * scale, element)
@@ -106,7 +108,8 @@ def mesh_size_errors(args) -> list:
         return []
     where = "" if scale == 1 else f" at the finest of --levels {levels}"
     return [f"--n-theta x --n-z = {nt} x {nz} ({element}{where}) is ~{unknowns:.2g} "
-            f"unknowns, above the {MAX_UNKNOWNS:.0e} a film solve takes: a coarser mesh"]
+            f"unknowns, above the {MAX_UNKNOWNS:.0e} a film solve takes: "
+            + ("a coarser mesh" if scale == 1 else "fewer --levels or a coarser mesh")]
 
 
 def _speed_option(args) -> str:

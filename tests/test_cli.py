@@ -50,6 +50,10 @@ def test_python_m_bearingfem_help_prints_the_usage_and_exits_0(flag):
     (("solve", "--ld", "inf"), "--length-ratio/--ld (L/D) must be finite and positive (> 0), "
                                "got inf"),
     (("solve", "--eps", "nan"), "--eps: eps must be finite and in [0, 1), got nan"),
+    # every level counts (--levels 40 ran eleven levels, minutes, before the 12th's refusal)
+    (("convergence", "--levels", "40", "-o", "x"), "(P2 at the finest of --levels 40) is "
+                                                    "~1.2e+26 unknowns, above the 4e+06 a "
+                                                    "film solve takes: fewer --levels"),
     (("simulate", "no/such/scene.toml", "-o", "x"), "scene file not found"),
     (("sweep", "no/such/sweep.toml", "-o", "x"), "sweep file not found: no/such/sweep.toml"),
     (("solve", "--cavitation", "jfo"), "needs a supply of oil"),
