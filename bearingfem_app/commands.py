@@ -7,6 +7,7 @@ output kinds and folders - and raises ValueError with one line naming the option
 from __future__ import annotations
 
 import math
+import os
 from pathlib import Path
 
 from bearingfem.outputs.tables import write_csv
@@ -196,9 +197,30 @@ def command_render(args):
     return 0
 
 
+#: local worker processes per core at most: more only share the cores (and --workers 200,
+#: a typo, started 200 Python processes on a 2-core machine)
+WORKERS_PER_CORE = 4
+
+
+def check_workers(args) -> None:
+    """--workers: local processes, at most WORKERS_PER_CORE per core; not with --scheduler,
+    whose cluster's own workers run the cases (it was ignored there)."""
+    if args.scheduler is not None:
+        if "workers" in getattr(args, "given", ()):
+            raise ValueError("--workers starts a local cluster; with --scheduler the "
+                             "cluster's own workers run the cases: give one of them")
+        return
+    cores = os.cpu_count() or 1
+    if args.workers > WORKERS_PER_CORE * cores:
+        raise ValueError(f"--workers {args.workers} local processes on {cores} cores: at "
+                         f"most {WORKERS_PER_CORE * cores} (more only share the cores; "
+                         "--scheduler runs on a larger cluster)")
+
+
 def command_sweep(args):
     from bearingfem_app.sweep import load_sweep, run_sweep
     sweep = load_sweep(args.sweep)
+    check_workers(args)
     check_writable(args.output, "-o/--output")      # the runner makes it once all is checked
     res = run_sweep(sweep, args.output, scheduler=args.scheduler, workers=args.workers,
                     progress=None if not args.quiet else False)
