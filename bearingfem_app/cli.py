@@ -11,6 +11,7 @@ import os
 import re
 import sys
 
+from bearingfem import __version__
 from bearingfem.bearing import SEED_TABLE1
 from bearingfem.errors import ConvergenceError
 from bearingfem.fe.jfo_balance import JFO_AMBIENT
@@ -196,6 +197,8 @@ def build_parser():
     p = _Parser(prog="bearingfem", description="Verified journal-bearing films "
                                 "and the slider-crank that carries them.", epilog=EXAMPLES,
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    # the version a result is cited with ('bearingfem --version' said a command was missing)
+    p.add_argument("--version", action="version", version=f"bearingfem {__version__}")
     sub = p.add_subparsers(dest="command", required=True)
     add = functools.partial(sub.add_parser,   # every option shows its default in --help
                             formatter_class=_HelpFormatter)

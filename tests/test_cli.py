@@ -534,3 +534,11 @@ def test_a_capacity_refusal_on_a_coarse_mesh_says_the_mesh_is_coarse(capsys):
                  "--n-z", "4"]) == 2
     err = capsys.readouterr().err
     assert "exceeds what the film carries" in err and "node spacings" not in err
+
+
+def test_version_is_printed_for_citing():
+    """`bearingfem --version` prints the package version, exit 0 (it said 'the following
+    arguments are required: command')."""
+    from bearingfem import __version__
+    r = run("--version")
+    assert r.returncode == 0 and r.stdout.strip() == f"bearingfem {__version__}"
