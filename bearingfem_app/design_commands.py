@@ -66,6 +66,18 @@ def _coefficient_rows(kc, frame):
                   f"{angles[1]:.4g} deg (inertial, counter-clockwise from x)")
 
 
+def _check_linearisable(model: str, command: str) -> None:
+    """K and C need a film without memory: refused before the equilibrium is solved (it
+    was solved, then refused by the coefficients)."""
+    from bearingfem.models import film_model
+    if film_model(model).memory:
+        raise ValueError(f"{command} gives K and C, and --model {model} has memory (its film "
+                         "at a state depends on the states before it): K and C at a state "
+                         "alone are not defined; 'bearingfem equilibrium --model "
+                         f"{model}' finds its equilibrium, 'bearingfem coefficients --model "
+                         "fem' (with --bush for an elastic bush) K and C")
+
+
 def _equilibrium(b, args, model, opts, acc=None):
     """The equilibrium under --load and --direction. A refusal of the load as beyond the
     film's capacity, on a mesh surely too coarse for the film at eps_max, says so: the
@@ -105,6 +117,7 @@ def command_coefficients(args):
     from bearingfem.design import coefficients, lund_stability
     out = check_output(args.output, (".json", ".csv"))
     model, opts = model_options(args)
+    _check_linearisable(model, "coefficients")
     opts, acc = accuracy_options(args, opts)
     b = bearing_from_args(args)
     if (args.eps is None) == (args.load is None):
@@ -153,6 +166,7 @@ def command_design(args):
     from bearingfem.design import coefficients, lund_stability
     out = check_output(args.output, (".json", ".csv"))
     model, opts = model_options(args)
+    _check_linearisable(model, "design")
     b = bearing_from_args(args)
     eq = _equilibrium(b, args, model, opts)
     kc = coefficients(b, eq.state, model, frame="load", **opts)

@@ -542,3 +542,22 @@ def test_version_is_printed_for_citing():
     from bearingfem import __version__
     r = run("--version")
     assert r.returncode == 0 and r.stdout.strip() == f"bearingfem {__version__}"
+
+
+def test_k_and_c_of_a_film_with_memory_are_refused_before_the_equilibrium(monkeypatch,
+                                                                          capsys):
+    """design and coefficients --load with a film that has memory (fem-jfo, fem-ehd) are
+    refused before the equilibrium is solved, naming what gives each answer; they solved
+    the equilibrium, then refused with 'its film fraction is carried by the flow', also
+    for fem-ehd, whose memory is the bush's deflection."""
+    import bearingfem.design as design
+    from bearingfem_app.cli import main
+
+    def solved(*args, **kwargs):
+        raise AssertionError("the equilibrium was solved")
+    monkeypatch.setattr(design, "equilibrium", solved)
+    for command, model in (("design", "fem-jfo"), ("coefficients", "fem-ehd")):
+        assert main([command, "--load", "100", "--model", model]) == 2
+        err = capsys.readouterr().err.strip().splitlines()
+        assert len(err) == 1 and f"--model {model} has memory" in err[0], err
+        assert "film fraction" not in err[0]
