@@ -31,8 +31,9 @@ RULES = {
     "eps_dot": ("--eps-dot", None, False, None, False),
     "ambient_pressure": ("--ambient-pressure", 0.0, True, None, False),
     "load": ("--load (a magnitude; --direction turns it)", 0.0, False, None, False),
-    "direction": ("--direction", None, False, None, False),
-    "gamma": ("--gamma", None, False, None, False),
+    # degrees, within a turn either way (the library takes radians and refuses more)
+    "direction": ("--direction [deg]", -360.0, True, 360.0, True),
+    "gamma": ("--gamma [deg]", -360.0, True, 360.0, True),
     "n_theta": ("--n-theta", MIN_N_THETA, True, None, False),
     "n_z": ("--n-z", MIN_N_Z, True, None, False),
     "levels": ("--levels", 3, True, None, False),

@@ -50,6 +50,9 @@ def test_python_m_bearingfem_help_prints_the_usage_and_exits_0(flag):
     (("solve", "--ld", "inf"), "--length-ratio/--ld (L/D) must be finite and positive (> 0), "
                                "got inf"),
     (("solve", "--eps", "nan"), "--eps: eps must be finite and in [0, 1), got nan"),
+    # degrees within a turn (1e30 ran, a load at 1.7e28 rad; the library takes radians)
+    (("design", "--load", "100", "--direction", "1e30"), "--direction [deg] must lie in "
+                                                          "[-360, 360], got 1e+30"),
     # every level counts (--levels 40 ran eleven levels, minutes, before the 12th's refusal)
     (("convergence", "--levels", "40", "-o", "x"), "(P2 at the finest of --levels 40) is "
                                                     "~1.2e+26 unknowns, above the 4e+06 a "
