@@ -145,8 +145,8 @@ def _load_args(p, required):
                    help="load magnitude [N], > 0" + ("" if required else
                                                 ": K, C at the equilibrium under it"))
     p.add_argument("--direction", type=float, default=-90.0,
-                   help="load direction [deg], inertial, counter-clockwise from x "
-                        "(-90: downward)")
+                   help=f"load direction [deg] {_said('direction')}, inertial, "
+                        "counter-clockwise from x (-90: downward)")
 
 
 def _rtol_arg(p):
@@ -298,7 +298,7 @@ def build_parser():
     _rtol_arg(k)
     k.add_argument("--eps", type=float,
                    help=f"steady state at this eccentricity ratio, {_said('eps')}")
-    k.add_argument("--gamma", type=float, default=0.0, help="its attitude [deg] (with --eps)")
+    k.add_argument("--gamma", type=float, default=0.0, help=f"its attitude [deg] {_said('gamma')} (with --eps)")
     _load_args(k, required=False)
     k.add_argument("--frame", default="inertial", choices=["inertial", "local", "load"],
                    help="axes of K and C")
