@@ -403,3 +403,13 @@ def test_sweep_workers_are_checked_against_the_cores(monkeypatch, tmp_path, caps
                  "--scheduler", "tcp://127.0.0.1:1"]) == 2
     assert "--workers starts a local cluster" in capsys.readouterr().err
     assert not (tmp_path / "s").exists()
+
+
+def test_an_output_of_another_commands_kind_names_that_command(capsys):
+    """solve -o film.png names render, which draws the film (it listed solve's suffixes
+    alone); render -o film.vtu names solve; a kind no command writes only the suffixes."""
+    assert refused(capsys, "solve", "-o", "film.png").endswith(
+        "got 'film.png' (a picture of the film: bearingfem render ... -o FILE)")
+    assert "(the film's fields: bearingfem solve ... -o FILE)" in refused(
+        capsys, "render", "-o", "film.vtu")
+    assert refused(capsys, "design", "--load", "10", "-o", "d.txt").endswith("got 'd.txt'")
