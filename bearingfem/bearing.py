@@ -303,7 +303,12 @@ class Groove:
     fraction: float = 1.0
 
     def __post_init__(self):
-        object.__setattr__(self, "angle", check_finite("groove angle", self.angle))
+        a = check_finite("groove angle", self.angle)
+        if abs(a) > 2.0 * math.pi:
+            # radians, as every angle of the API: 90 was a groove at 90 rad, unseen
+            raise ValueError(f"groove angle {a:g} rad is more than a turn: typed in degrees? "
+                             f"({a:g} deg = {math.radians(a):.4g} rad)")
+        object.__setattr__(self, "angle", a)
         w = check_finite("groove width", self.width)
         if not 0.0 < w < math.pi:
             raise ValueError(f"groove width must lie in (0, pi) [rad], got {self.width!r}")

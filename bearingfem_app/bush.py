@@ -7,6 +7,16 @@ from bearingfem.elastic.bush import MODELS, ElasticBush
 
 __all__ = ["add_bush_args", "bush_from_args", "BUSH_OPTIONS"]
 
+#: the bush's outer radius over the film radius R when --bush-outer-radius is not given: the
+#: seed pin's bronze bush (R 10 mm, held at 16 mm), scaled with --diameter so that any
+#: journal gets a bush (a fixed 16 mm was refused from D = 32 mm on)
+OUTER_RATIO = 1.6
+
+#: Young's modulus [Pa] of any bush material, soft rubber (~1e6) to diamond (~1.1e12):
+#: outside it the number was typed in another unit (110 for 110 GPa), and the EHD Newton
+#: solve then fails without saying why
+MODULUS_RANGE = (1e5, 1.2e12)
+
 #: dest -> (option as typed, ElasticBush field)
 BUSH_OPTIONS = {"bush_outer_radius": ("--bush-outer-radius", "outer_radius"),
                 "bush_modulus": ("--bush-modulus", "modulus"),
@@ -19,7 +29,8 @@ def add_bush_args(p):
                    help="an elastic bush (EHD film): a 3-D solid, plane-strain rings per "
                         "slice, or a thin liner; outer surface held")
     p.add_argument("--bush-outer-radius", type=float, default=None,
-                   help=f"the bush's held outer radius [m] (> R; default {d.outer_radius:g})")
+                   help=f"the bush's held outer radius [m] (> R; default {OUTER_RATIO:g} R, "
+                        f"{d.outer_radius:g} at the default --diameter)")
     p.add_argument("--bush-modulus", type=float, default=None,
                    help=f"the bush's Young's modulus [Pa] (default {d.modulus:g})")
     p.add_argument("--bush-poisson", type=float, default=None,
@@ -37,8 +48,11 @@ def bush_from_args(args) -> ElasticBush | None:
             raise ValueError(f"{', '.join(given)} {'needs' if len(given) == 1 else 'need'} "
                              "--bush ring|solid|liner")
         return None
+    radius = args.diameter / 2
     fields = {f: getattr(args, dest) for dest, (_, f) in BUSH_OPTIONS.items()
               if getattr(args, dest) is not None}
+    # rounded: the header prints 0.04, not 0.04000000000000001
+    fields.setdefault("outer_radius", float(f"{OUTER_RATIO * radius:.12g}"))
     try:
         bush = ElasticBush(model=args.bush, **fields)
     except ValueError as err:
@@ -48,7 +62,14 @@ def bush_from_args(args) -> ElasticBush | None:
             if text.startswith(field):
                 text = option + text[len(field):]
         raise ValueError(text) from None
-    radius = args.diameter / 2
+    lo, hi = MODULUS_RANGE
+    if bush.modulus < lo:
+        raise ValueError(f"--bush-modulus {bush.modulus:g} Pa is below any bush material's "
+                         f"(>= {lo:.0e} Pa; rubber ~1e6 Pa): typed in GPa? ({bush.modulus:g} GPa"
+                         f" = {bush.modulus * 1e9:g} Pa) or MPa? ({bush.modulus * 1e6:g} Pa)")
+    if bush.modulus > hi:
+        raise ValueError(f"--bush-modulus {bush.modulus:g} Pa is above any solid's "
+                         f"(<= {hi:.1e} Pa, diamond's): give it in Pa")
     if not bush.outer_radius > radius:                   # before any work
         raise ValueError(f"--bush-outer-radius must exceed the film radius R = --diameter / 2"
                          f" = {radius:g} m, got {bush.outer_radius:g}")

@@ -13,7 +13,7 @@ import numpy as np
 
 from bearingfem.bearing import SEED_TABLE1
 from mechanism.parameters import check_crank_speed
-from mechanism.scene import parse_scene, read_toml, scene_path
+from mechanism.scene import oil_viscosity, parse_scene, read_toml, scene_path
 
 # parameter -> (default, kind of value); units: m, Pa s, rad/s, 1/s
 FILM_PARAMS = {
@@ -21,6 +21,9 @@ FILM_PARAMS = {
     "clearance": (SEED_TABLE1["clearance"], float),
     "viscosity": (SEED_TABLE1["viscosity"], float), "omega": (250.0, float), "eps": (0.6, float),
     "eps_dot": (0.0, float), "model": ("fem", str),
+    # the command line's --rpm [1/min] and --oil at --oil-temperature [degC], instead of
+    # omega and viscosity (the case computes those from them)
+    "rpm": (None, float), "oil": (None, str), "oil_temperature": (None, float),
     # None: the film model's own default (bearingfem.models)
     "n_theta": (None, int), "n_z": (None, int), "element": (None, str), "cavitation": (None, str),
 }
@@ -39,7 +42,8 @@ KINDS = {"film": FILM_PARAMS, "mechanism": MECHANISM_PARAMS, "design": DESIGN_PA
 #: "1" dimensionless, "" not a number; the K, C entries of a design case are c/W and
 #: c omega/W, dimensionless, in the load frame
 UNITS = {"diameter": "m", "length_ratio": "1", "clearance": "m", "viscosity": "Pa s",
-         "omega": "rad/s", "eps": "1", "eps_dot": "1/s", "model": "", "n_theta": "1",
+         "omega": "rad/s", "rpm": "1/min", "oil": "", "oil_temperature": "degC",
+         "eps": "1", "eps_dot": "1/s", "model": "", "n_theta": "1",
          "n_z": "1", "element": "", "cavitation": "", "scene": "", "turns": "1",
          "crank_speed": "rad/s", "pressure_max": "Pa", "friction_force": "N",
          "side_leakage": "m^3/s", "cavitated_fraction": "1", "F_r": "N", "F_t": "N",
@@ -67,6 +71,10 @@ def run_case(kind: str, params: dict, scene: dict | None = None) -> dict:
         out = _mechanism_case(params, scene)
     else:
         out = {"film": _film_case, "design": _design_case}[kind](params)
+        # the speed and viscosity that rpm and oil gave, beside them in the row
+        p = _film_params(params)
+        out.update({k: p[k] for k, given in (("omega", "rpm"), ("viscosity", "oil"))
+                    if given in params})
     return {**params, **out, "wall_s": time.perf_counter() - t0}
 
 
@@ -98,6 +106,26 @@ def _film_options(p: dict) -> dict:
     return m.options({k: p[k] for k in MESH_KEYS if p.get(k) is not None and k in m.defaults})
 
 
+def _film_params(params: dict) -> dict:
+    """A film or design case's parameters with their defaults; ``rpm`` gives omega and
+    ``oil`` at ``oil_temperature`` (default 40 degC) the viscosity, as on the command line
+    (a sweep refused them: 'sweep.base.rpm is not a design sweep parameter')."""
+    p = {k: params.get(k, d) for k, (d, _) in FILM_PARAMS.items()}
+    if p["rpm"] is not None:
+        if "omega" in params:
+            raise ValueError("rpm and omega are one speed: give one of them")
+        p["omega"] = p["rpm"] * math.pi / 30.0
+    if p["oil"] is not None:
+        if "viscosity" in params:
+            raise ValueError("oil and viscosity are one viscosity: give one of them")
+        p["viscosity"] = oil_viscosity(p["oil"], 40.0 if p["oil_temperature"] is None
+                                       else p["oil_temperature"])
+    elif p["oil_temperature"] is not None:
+        raise ValueError("oil_temperature is the oil's temperature: give oil (e.g. "
+                         "'ISO VG 32'), or the viscosity at that temperature")
+    return p
+
+
 def _film_inputs(p: dict):
     """The case's bearing and steady-or-squeezing journal state."""
     from bearingfem import Bearing, JournalState
@@ -110,7 +138,7 @@ def _film_inputs(p: dict):
 def _film_case(params: dict) -> dict:
     from bearingfem.design import sommerfeld_number
     from bearingfem.models import film_model
-    p = {k: params.get(k, d) for k, (d, _) in FILM_PARAMS.items()}
+    p = _film_params(params)
     o = _film_options(p)
     b, s = _film_inputs(p)
     out = {}
@@ -135,7 +163,7 @@ def _design_case(params: dict) -> dict:
     from bearingfem.design import (coefficients, flow_variable, friction_variable,
                                    petroff_friction, sommerfeld_number)
     from bearingfem.models import film_model
-    p = {k: params.get(k, d) for k, (d, _) in DESIGN_PARAMS.items()}
+    p = _film_params(params)
     b, s = _film_inputs(p)
     model = film_model(p["model"])
     opts = _film_options(p)
@@ -174,8 +202,8 @@ def _precheck(kind: str, params: dict) -> None:
             except ValueError as err:
                 raise ValueError(f"sweep case {params}: {err}") from None
         return
-    p = {k: params.get(k, d) for k, (d, _) in FILM_PARAMS.items()}
     try:
+        p = _film_params(params)
         _film_inputs(p)
         _film_options(p)
     except ValueError as err:

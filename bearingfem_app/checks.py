@@ -31,8 +31,9 @@ RULES = {
     "eps_dot": ("--eps-dot", None, False, None, False),
     "ambient_pressure": ("--ambient-pressure", 0.0, True, None, False),
     "load": ("--load (a magnitude; --direction turns it)", 0.0, False, None, False),
-    "direction": ("--direction", None, False, None, False),
-    "gamma": ("--gamma", None, False, None, False),
+    # degrees, within a turn either way (the library takes radians and refuses more)
+    "direction": ("--direction [deg]", -360.0, True, 360.0, True),
+    "gamma": ("--gamma [deg]", -360.0, True, 360.0, True),
     "n_theta": ("--n-theta", MIN_N_THETA, True, None, False),
     "n_z": ("--n-z", MIN_N_Z, True, None, False),
     "levels": ("--levels", 3, True, None, False),
@@ -75,9 +76,11 @@ def check_numbers(args) -> None:
             ok = v <= hi if hi_in else v < hi
         if not ok:
             rule = _range(lo, lo_in, hi, hi_in)
-            errors.append(f"{name} must be positive (> 0), got {v!r}" if rule == "positive"
-                          else f"{name} must lie {rule}, got {v!r}" if rule.startswith("in")
-                          else f"{name} must be {rule}, got {v!r}")
+            rule = "positive (> 0)" if rule == "positive" else rule
+            if rule != "finite" and not math.isfinite(v):
+                rule = f"finite and {rule}"         # 'inf must be positive' said nothing
+            verb = "lie" if rule.startswith("in") else "be"
+            errors.append(f"{name} must {verb} {rule}, got {v!r}")
     errors += choice_errors(args)
     errors += mesh_size_errors(args)
     if getattr(args, "command", None) in ("equilibrium", "design") and \
@@ -96,7 +99,9 @@ def mesh_size_errors(args) -> list:
     if not (isinstance(nt, int) and isinstance(nz, int) and nt > 0 and nz > 0):
         return []
     levels = getattr(args, "levels", None)
-    scale = 2 ** (levels - 1) if isinstance(levels, int) and 0 < levels < 30 else 1
+    # every level counts (--levels 40 passed as one level and ran until the library refused
+    # its 12th); past 64 doublings the count is beyond any machine all the same
+    scale = 2 ** (min(levels, 64) - 1) if isinstance(levels, int) and levels > 0 else 1
     methods = str(getattr(args, "methods", "") or getattr(args, "element", "P1") or "P1")
     element = "P2" if "P2" in methods else "P1"
     unknowns = estimated_unknowns(nt * scale, nz * scale, element)
@@ -104,7 +109,8 @@ def mesh_size_errors(args) -> list:
         return []
     where = "" if scale == 1 else f" at the finest of --levels {levels}"
     return [f"--n-theta x --n-z = {nt} x {nz} ({element}{where}) is ~{unknowns:.2g} "
-            f"unknowns, above the {MAX_UNKNOWNS:.0e} a film solve takes: a coarser mesh"]
+            f"unknowns, above the {MAX_UNKNOWNS:.0e} a film solve takes: "
+            + ("a coarser mesh" if scale == 1 else "fewer --levels or a coarser mesh")]
 
 
 def _speed_option(args) -> str:

@@ -11,7 +11,9 @@ import os
 import re
 import sys
 
+from bearingfem import __version__
 from bearingfem.bearing import SEED_TABLE1
+from bearingfem.errors import ConvergenceError
 from bearingfem.fe.jfo_balance import JFO_AMBIENT
 from bearingfem.models import FILM_MODELS
 from bearingfem.outputs.convergence import QUANTITIES, UNITS
@@ -143,8 +145,8 @@ def _load_args(p, required):
                    help="load magnitude [N], > 0" + ("" if required else
                                                 ": K, C at the equilibrium under it"))
     p.add_argument("--direction", type=float, default=-90.0,
-                   help="load direction [deg], inertial, counter-clockwise from x "
-                        "(-90: downward)")
+                   help=f"load direction [deg] {_said('direction')}, inertial, "
+                        "counter-clockwise from x (-90: downward)")
 
 
 def _rtol_arg(p):
@@ -195,6 +197,8 @@ def build_parser():
     p = _Parser(prog="bearingfem", description="Verified journal-bearing films "
                                 "and the slider-crank that carries them.", epilog=EXAMPLES,
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    # the version a result is cited with ('bearingfem --version' said a command was missing)
+    p.add_argument("--version", action="version", version=f"bearingfem {__version__}")
     sub = p.add_subparsers(dest="command", required=True)
     add = functools.partial(sub.add_parser,   # every option shows its default in --help
                             formatter_class=_HelpFormatter)
@@ -294,7 +298,7 @@ def build_parser():
     _rtol_arg(k)
     k.add_argument("--eps", type=float,
                    help=f"steady state at this eccentricity ratio, {_said('eps')}")
-    k.add_argument("--gamma", type=float, default=0.0, help="its attitude [deg] (with --eps)")
+    k.add_argument("--gamma", type=float, default=0.0, help=f"its attitude [deg] {_said('gamma')} (with --eps)")
     _load_args(k, required=False)
     k.add_argument("--frame", default="inertial", choices=["inertial", "local", "load"],
                    help="axes of K and C")
@@ -333,18 +337,28 @@ SYNONYMS = {"--speed": "--omega [rad/s] or --rpm [1/min]", "--mu": "--viscosity"
             "--method": "--model", "--length": "--ld (L/D)", "--oil-temp": "--oil-temperature"}
 
 
-def _unrecognized(sub, unknown) -> str:
-    """argparse's message for options a command does not take, with the nearest of its
-    own options for each (difflib), so that a typo names its fix."""
-    known = [o for a in sub._actions for o in a.option_strings if o.startswith("--")
-             and a.help != argparse.SUPPRESS]
+def _options(sub) -> list:
+    """A command's visible long options."""
+    return [o for a in sub._actions for o in a.option_strings if o.startswith("--")
+            and a.help != argparse.SUPPRESS]
+
+
+def _unrecognized(sub, unknown, commands=None) -> str:
+    """argparse's message for options a command does not take: an option of other
+    commands (``commands``: name -> subparser) is named as theirs, since a look-alike of
+    this command's would mislead (``convergence --rtol`` was 'did you mean --oil?');
+    otherwise the nearest of its own options (difflib), so that a typo names its fix."""
+    known = _options(sub)
     parts = []
     for u in unknown:
         name = u.split("=", 1)[0]
+        owners = [c for c, p in (commands or {}).items()
+                  if p is not sub and name in _options(p)] if u.startswith("--") else []
         near = ([SYNONYMS[name]] if name in SYNONYMS else
                 difflib.get_close_matches(name, known, n=1, cutoff=0.6)) \
             if u.startswith("-") else []
-        parts.append(f"{u} (did you mean {near[0]}?)" if near else u)
+        parts.append(f"{u} (an option of {', '.join(owners)}, not of {sub.prog.split()[-1]})"
+                     if owners else f"{u} (did you mean {near[0]}?)" if near else u)
     return "unrecognized arguments: " + " ".join(parts)
 
 
@@ -397,15 +411,42 @@ def _progress(args):
         return
     log = logging.getLogger("bearingfem")
     level = log.level
-    shown = logging.StreamHandler(sys.stderr)     # this call's stderr
+    shown = _Repeats(sys.stderr)                  # this call's stderr
     shown.setFormatter(logging.Formatter("bearingfem: %(message)s"))
     log.addHandler(shown)
     log.setLevel(logging.INFO)
     try:
         yield
     finally:
+        shown.flush_repeats()
         log.removeHandler(shown)
         log.setLevel(level)
+
+
+class _Repeats(logging.StreamHandler):
+    """Progress lines, a run of identical ones shown once and then counted: an equilibrium
+    on an elastic bush solves the film some forty times, each logging the same
+    continuation line, which filled the terminal with copies of one line."""
+
+    def __init__(self, stream):
+        super().__init__(stream)
+        self.last, self.repeats = None, 0
+
+    def emit(self, record):
+        message = record.getMessage()
+        if message == self.last:
+            self.repeats += 1
+            return
+        self.flush_repeats()
+        self.last = message
+        super().emit(record)
+
+    def flush_repeats(self):
+        if self.repeats:
+            self.stream.write(f"bearingfem: (the line above {self.repeats} more "
+                              f"time{'s' if self.repeats > 1 else ''})\n")
+            self.flush()
+        self.repeats = 0
 
 
 def main(argv=None):
@@ -413,9 +454,10 @@ def main(argv=None):
     parser = build_parser()
     args, unknown = parser.parse_known_args(_negative_values(argv))
     # options whose meaning depends on others: was it typed, or is it the default?
-    sub = parser._subparsers._group_actions[0].choices[args.command]
+    commands = parser._subparsers._group_actions[0].choices
+    sub = commands[args.command]
     if unknown:
-        sub.error(_unrecognized(sub, unknown))
+        sub.error(_unrecognized(sub, unknown, commands))
     args.given = given_options(sub, argv)
     try:
         _old_spellings(args)
@@ -428,6 +470,11 @@ def main(argv=None):
     except ValueError as err:
         print(f"bearingfem: error: {err}", file=sys.stderr)
         return 2
+    except ConvergenceError as err:
+        # the work ran and did not succeed: one line naming what did not converge (it was
+        # a traceback), status 1 as for a simulation that stopped early
+        print(f"bearingfem: error: {err}", file=sys.stderr)
+        return 1
     except KeyboardInterrupt:
         print("bearingfem: interrupted", file=sys.stderr)
         return 130

@@ -7,7 +7,10 @@ output kinds and folders - and raises ValueError with one line naming the option
 from __future__ import annotations
 
 import math
+import os
 from pathlib import Path
+
+from bearingfem.outputs.tables import write_csv
 
 from .bush import bush_from_args
 from .checks import check_writable, parse_angles
@@ -132,9 +135,20 @@ def command_convergence(args):
     b, s = film_state(args)
     supply = supply_angle(args, s.gamma)
     check_writable(args.output, "-o/--output")
-    st = convergence_study(b, s, levels=args.levels, n_theta=args.n_theta, n_z=args.n_z,
-                           cavitation=args.cavitation, methods=methods, progress=print,
-                           supply_angle=supply, ambient_pressure=ambient_pressure(args))
+    done = []
+    try:
+        st = convergence_study(b, s, levels=args.levels, n_theta=args.n_theta, n_z=args.n_z,
+                               cavitation=args.cavitation, methods=methods, progress=print,
+                               supply_angle=supply, ambient_pressure=ambient_pressure(args),
+                               on_row=done.append)
+    except KeyboardInterrupt:
+        # Ctrl-C keeps the meshes solved (a long study's fine levels took minutes each)
+        if done:
+            path = make_dir(args.output, "-o/--output") / "convergence.csv"
+            write_csv(done, path)
+            print(f"interrupted: wrote the {len(done)} meshes solved to {path} (PARTIAL: no "
+                  "summary or figure)")
+        raise
     out = make_dir(args.output, "-o/--output")
     st.write_csv(out / "convergence.csv")
     st.plot(out / "convergence.png", args.quantity)
@@ -183,9 +197,30 @@ def command_render(args):
     return 0
 
 
+#: local worker processes per core at most: more only share the cores (and --workers 200,
+#: a typo, started 200 Python processes on a 2-core machine)
+WORKERS_PER_CORE = 4
+
+
+def check_workers(args) -> None:
+    """--workers: local processes, at most WORKERS_PER_CORE per core; not with --scheduler,
+    whose cluster's own workers run the cases (it was ignored there)."""
+    if args.scheduler is not None:
+        if "workers" in getattr(args, "given", ()):
+            raise ValueError("--workers starts a local cluster; with --scheduler the "
+                             "cluster's own workers run the cases: give one of them")
+        return
+    cores = os.cpu_count() or 1
+    if args.workers > WORKERS_PER_CORE * cores:
+        raise ValueError(f"--workers {args.workers} local processes on {cores} cores: at "
+                         f"most {WORKERS_PER_CORE * cores} (more only share the cores; "
+                         "--scheduler runs on a larger cluster)")
+
+
 def command_sweep(args):
     from bearingfem_app.sweep import load_sweep, run_sweep
     sweep = load_sweep(args.sweep)
+    check_workers(args)
     check_writable(args.output, "-o/--output")      # the runner makes it once all is checked
     res = run_sweep(sweep, args.output, scheduler=args.scheduler, workers=args.workers,
                     progress=None if not args.quiet else False)
@@ -206,6 +241,17 @@ def _differences(a, b, where="scene"):
         return [d for k in sorted(set(a) | set(b))
                 for d in _differences(a.get(k), b.get(k), f"{where}.{k}")]
     return [] if a == b else [where]
+
+
+#: why a film field is not among a run's frames, named for the field asked (a thermal run's
+#: '--field temperature' was told that 'the film fraction needs a mass-conserving film')
+FRAME_FIELD_HINTS = {
+    "fraction": "the film fraction needs a mass-conserving film (model fem-jfo)",
+    "temperature": "the frames keep no film temperature: draw one thermal film's from Python "
+                   "(render_film(sol, path, field='temperature'), docs/thd.md)",
+    "deformation": "the frames keep no bush deflection: draw one elastic film's with "
+                   "'bearingfem render --bush ... --field deformation'",
+}
 
 
 def command_frames(args):
@@ -240,9 +286,9 @@ def command_frames(args):
     fields = history_fields(scene)
     if args.field not in fields:
         model = scene.lubrication.model if scene.lubrication is not None else "none"
+        hint = FRAME_FIELD_HINTS.get(args.field)
         raise ValueError(f"--field {args.field}: the frames of this run (film {model}) "
-                         f"carry {', '.join(fields)}; the film fraction needs a "
-                         f"mass-conserving film (model fem-jfo)")
+                         f"carry {', '.join(fields)}" + (f"; {hint}" if hint else ""))
     check_writable(args.output, "-o/--output")
     frames = film_history(result, scene, angles, args.frames,
                           progress=lambda k, n: print(f"  film {k}/{n}", flush=True))

@@ -4,8 +4,10 @@ from __future__ import annotations
 
 import math
 
-from .options import (accuracy_options, bearing_from_args, check_output, model_options,
-                      note_coarse_film, print_rows, write_numbers)
+from bearingfem.design.records import EPS_MAX
+
+from .options import (accuracy_options, bearing_from_args, check_output, coarse_film_note,
+                      model_options, note_coarse_film, print_rows, write_numbers)
 
 __all__ = ["command_equilibrium", "command_coefficients", "command_design"]
 
@@ -64,14 +66,42 @@ def _coefficient_rows(kc, frame):
                   f"{angles[1]:.4g} deg (inertial, counter-clockwise from x)")
 
 
-def command_equilibrium(args):
+def _check_linearisable(model: str, command: str) -> None:
+    """K and C need a film without memory: refused before the equilibrium is solved (it
+    was solved, then refused by the coefficients)."""
+    from bearingfem.models import film_model
+    if film_model(model).memory:
+        raise ValueError(f"{command} gives K and C, and --model {model} has memory (its film "
+                         "at a state depends on the states before it): K and C at a state "
+                         "alone are not defined; 'bearingfem equilibrium --model "
+                         f"{model}' finds its equilibrium, 'bearingfem coefficients --model "
+                         "fem' (with --bush for an elastic bush) K and C")
+
+
+def _equilibrium(b, args, model, opts, acc=None):
+    """The equilibrium under --load and --direction. A refusal of the load as beyond the
+    film's capacity, on a mesh surely too coarse for the film at eps_max, says so: the
+    capacity it names is the mesh's (8 x 2 cells gave 1991 N for a bearing that carries
+    ~1e5 N), not the bearing's."""
     from bearingfem.design import equilibrium
+    try:
+        return equilibrium(b, args.load, args.omega, model,
+                           direction=math.radians(args.direction), **opts, **(acc or {}))
+    except ValueError as err:
+        note = (coarse_film_note(EPS_MAX, opts["n_theta"], opts.get("element", "P1"))
+                if "exceeds what the film carries" in str(err) and "n_theta" in opts
+                and "bush" not in opts else None)
+        if note is None:
+            raise
+        raise ValueError(f"{err}; {note.removeprefix('note: ')}") from None
+
+
+def command_equilibrium(args):
     out = check_output(args.output, (".json", ".csv"))
     model, opts = model_options(args)
     opts, acc = accuracy_options(args, opts)
     b = bearing_from_args(args)
-    eq = equilibrium(b, args.load, args.omega, model, direction=math.radians(args.direction),
-                     **opts, **acc)
+    eq = _equilibrium(b, args, model, opts, acc)
     rows = _equilibrium_rows(eq, b)
     print(f"equilibrium, {model}{_options_words(opts)}: load {args.load:g} N toward "
           f"{args.direction:g} deg (inertial), {args.omega:g} rad/s, L/D {args.length_ratio:g}, "
@@ -84,9 +114,10 @@ def command_equilibrium(args):
 
 def command_coefficients(args):
     from bearingfem import JournalState
-    from bearingfem.design import coefficients, equilibrium, lund_stability
+    from bearingfem.design import coefficients, lund_stability
     out = check_output(args.output, (".json", ".csv"))
     model, opts = model_options(args)
+    _check_linearisable(model, "coefficients")
     opts, acc = accuracy_options(args, opts)
     b = bearing_from_args(args)
     if (args.eps is None) == (args.load is None):
@@ -94,8 +125,7 @@ def command_coefficients(args):
                          "(the equilibrium under that load)")
     eps_error = None
     if args.load is not None:
-        eq = equilibrium(b, args.load, args.omega, model,
-                         direction=math.radians(args.direction), **opts, **acc)
+        eq = _equilibrium(b, args, model, opts, acc)
         state, eps_error = eq.state, eq.eps_error
     else:
         state = JournalState(args.eps, omega=args.omega, gamma=math.radians(args.gamma))
@@ -133,12 +163,12 @@ def command_design(args):
     """The designer's question in one command: where the journal sits under the load
     (least film, attitude, friction power, flow) and the film's K, C there in the load
     frame, with Lund's stability of a rigid journal."""
-    from bearingfem.design import coefficients, equilibrium, lund_stability
+    from bearingfem.design import coefficients, lund_stability
     out = check_output(args.output, (".json", ".csv"))
     model, opts = model_options(args)
+    _check_linearisable(model, "design")
     b = bearing_from_args(args)
-    eq = equilibrium(b, args.load, args.omega, model, direction=math.radians(args.direction),
-                     **opts)
+    eq = _equilibrium(b, args, model, opts)
     kc = coefficients(b, eq.state, model, frame="load", **opts)
     st = lund_stability(kc)
     eq_rows = _equilibrium_rows(eq, b)

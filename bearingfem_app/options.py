@@ -165,6 +165,16 @@ def check_cache():
             from None
 
 
+#: the command that writes a file of this kind, named when another command is given it
+#: ('solve -o film.png' said only which suffixes solve takes)
+WRITTEN_BY = {**{s: "a picture of the film: bearingfem render ... -o FILE"
+                 for s in (".png", ".jpg", ".jpeg", ".bmp", ".tif", ".tiff")},
+              **{s: "the film's fields: bearingfem solve ... -o FILE"
+                 for s in (".vtu", ".xdmf", ".vtk")},
+              **{s: "the numbers: bearingfem equilibrium|coefficients|design ... -o FILE"
+                 for s in (".json", ".csv")}}
+
+
 def check_output(path, suffixes):
     """Refuse an output file of an unknown kind, or in a folder that cannot be made, before
     any work (the folder is made when the file is written)."""
@@ -172,7 +182,9 @@ def check_output(path, suffixes):
         return None
     out = Path(path)
     if out.suffix.lower() not in suffixes:
-        raise ValueError(f"-o/--output must end in {' or '.join(suffixes)}, got {path!r}")
+        other = WRITTEN_BY.get(out.suffix.lower())
+        raise ValueError(f"-o/--output must end in {' or '.join(suffixes)}, got {path!r}"
+                         + (f" ({other})" if other else ""))
     check_writable(out.parent, "-o/--output")
     return out
 

@@ -58,7 +58,8 @@ def history_fields(scene) -> tuple:
 
 def film_history(result, scene, crank_angles_deg=None, n_frames=12, n_theta=None, n_z=None,
                  element=None, cavitation=None, progress=None):
-    """FE film solutions at the crank angles of a run (default: ``n_frames`` evenly spaced).
+    """FE film solutions at the crank angles of a run (default: ``n_frames`` evenly spaced
+    over a turn, or over the run's crank angles, ends included, when it covers less).
 
     The mesh and cavitation default to the scene's FE/FV/table lubrication options, else
     96 x 16 P1 with Gumbel cavitation. Returns a list of :class:`FilmFrame`.
@@ -71,6 +72,12 @@ def film_history(result, scene, crank_angles_deg=None, n_frames=12, n_theta=None
         if not (isinstance(n_frames, int) and n_frames >= 1):
             raise ValueError(f"n_frames must be an integer >= 1, got {n_frames!r}")
         crank_angles_deg = np.arange(n_frames) * 360.0 / n_frames
+        span = float(np.degrees(result.crank_angle[-1] - result.crank_angle[0]))
+        if abs(span) < 360.0:
+            # a run shorter than a turn (simulate --turns 0.25): a turn's angles would fall
+            # beyond its ends onto the same few samples (4 frames asked, 2 given)
+            crank_angles_deg = (float(np.degrees(result.crank_angle[0]))
+                                + span * np.arange(n_frames) / max(n_frames - 1, 1))
     model = (film_model(scene.lubrication.model, "lubrication.model")
              if scene.lubrication is not None else None)
     if model is not None and model.memory:
@@ -190,13 +197,13 @@ def render_history(frames, directory, field="pressure", surface="journal", gif=T
     Every frame shares one colour scale (0 to the series' peak), so frames compare. The
     journal view looks at each frame's loaded side, or from one place with ``fixed_camera``
     (that of the frame with the series' peak)."""
-    from bearingfem.outputs.render import FIELDS, render_film
+    from bearingfem.outputs.render import FIELDS, color_range, render_film
     d = Path(directory)
     d.mkdir(parents=True, exist_ok=True)
     _, scale, _ = FIELDS[field]
     values = [np.asarray(getattr(f.solution, field)) * scale for f in frames]
-    clim = ((0.0 if field == "pressure" else min(float(v.min()) for v in values)),
-            max(float(v.max()) for v in values)) if frames else None
+    # one scale for the series, as render_film scales one film (below 0 where a film is)
+    clim = color_range(field, np.concatenate([v.ravel() for v in values])) if frames else None
     peak = max(frames, key=lambda f: f.solution.pressure_max) if frames else None
     camera = peak.solution.pressure_max_angle if fixed_camera and peak else None
     paths = []

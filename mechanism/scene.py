@@ -206,12 +206,12 @@ def _bearing(t: _Table) -> Bearing:
                    clearance=c, viscosity=mu)
 
 
-_GRADE = re.compile(r"^\s*(?:ISO)?\s*(?:VG)?\s*(\d+)\s*$", re.IGNORECASE)
+_GRADE = re.compile(r"^\s*(?:ISO)?[\s_-]*(?:VG)?[\s_-]*(\d+)\s*$", re.IGNORECASE)
 
 
 def oil_viscosity(grade, temperature_c: float, names=("oil", "oil_temperature")) -> float:
-    """An ISO VG grade ('ISO VG 32', 'VG32', '32' or 32) at ``temperature_c`` [degC] -> its
-    dynamic viscosity [Pa s] (:meth:`bearingfem.lubricant.Lubricant.iso_vg`, a VI 100
+    """An ISO VG grade ('ISO VG 32', 'ISO-VG-32', 'VG32', '32' or 32) at ``temperature_c``
+    [degC] -> its dynamic viscosity [Pa s] (:meth:`bearingfem.lubricant.Lubricant.iso_vg`, a VI 100
     mineral oil); ``names``: how the caller spells the two inputs."""
     g = _grade(grade, names[0])
     check_oil_temperature(names[1], temperature_c, unit="degC")

@@ -1,5 +1,6 @@
 """The command line: help, one-line errors with exit status 2, and the simulate output."""
 import json
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -45,6 +46,17 @@ def test_python_m_bearingfem_help_prints_the_usage_and_exits_0(flag):
     (("solve", "--eps", "1.5"), "eps must lie in [0, 1)"),
     (("solve", "--cavitation", "swift"), "cavitation must be one of"),
     (("solve", "--ld", "-1"), "--length-ratio/--ld (L/D) must be positive"),
+    # inf and nan are named as not finite (it said 'must be positive (> 0), got inf')
+    (("solve", "--ld", "inf"), "--length-ratio/--ld (L/D) must be finite and positive (> 0), "
+                               "got inf"),
+    (("solve", "--eps", "nan"), "--eps: eps must be finite and in [0, 1), got nan"),
+    # degrees within a turn (1e30 ran, a load at 1.7e28 rad; the library takes radians)
+    (("design", "--load", "100", "--direction", "1e30"), "--direction [deg] must lie in "
+                                                          "[-360, 360], got 1e+30"),
+    # every level counts (--levels 40 ran eleven levels, minutes, before the 12th's refusal)
+    (("convergence", "--levels", "40", "-o", "x"), "(P2 at the finest of --levels 40) is "
+                                                    "~1.2e+26 unknowns, above the 4e+06 a "
+                                                    "film solve takes: fewer --levels"),
     (("simulate", "no/such/scene.toml", "-o", "x"), "scene file not found"),
     (("sweep", "no/such/sweep.toml", "-o", "x"), "sweep file not found: no/such/sweep.toml"),
     (("solve", "--cavitation", "jfo"), "needs a supply of oil"),
@@ -461,3 +473,94 @@ def test_help_ranges_are_the_checks_own_table(monkeypatch):
     helps = {a.dest: " ".join(a.help.split()) for cmd in ("solve", "simulate")
              for a in sub[cmd]._actions if a.dest in ("rtol", "turns")}
     assert "in [1e-05, 0.05]" in helps["rtol"] and "in (0, 50]" in helps["turns"]
+
+
+def test_an_option_of_other_commands_is_named_as_theirs():
+    """`convergence --rtol` (convergence refines --levels meshes; --rtol is the film
+    commands') says whose option it is, not 'did you mean --oil?', a look-alike of this
+    command's; a typo still gets its nearest option."""
+    r = run("convergence", "--rtol", "1e-3", "-o", "x")
+    assert r.returncode == 2
+    assert r.stderr.strip().splitlines() == [
+        "bearingfem: error: unrecognized arguments: --rtol (an option of solve, render, "
+        "equilibrium, coefficients, not of convergence) 1e-3 ('bearingfem convergence --help' "
+        "lists the options)"]
+    bush = run("design", "--load", "100", "--bush", "ring")
+    assert bush.returncode == 2 and "--bush (an option of solve, render, equilibrium, " \
+        "coefficients, not of design)" in bush.stderr
+
+
+def test_repeated_progress_lines_are_counted_not_copied():
+    """An equilibrium on an elastic bush solves the film tens of times, each logging the
+    same continuation line: stderr shows it once and then '(the line above N more times)'
+    (it showed 37 copies of one line on a 50 mm bearing)."""
+    r = run("equilibrium", "--diameter", "0.05", "--ld", "0.5", "--clearance", "50e-6",
+            "--load", "2000", "--rpm", "3000", "--bush", "ring", "--n-theta", "24",
+            "--n-z", "4")
+    assert r.returncode == 0
+    lines = r.stderr.strip().splitlines()
+    assert len(lines) == len(set(lines)), lines
+    assert re.fullmatch(r"bearingfem: \(the line above \d+ more times\)", lines[-1]), lines
+
+
+def test_a_solve_that_does_not_converge_is_one_line_and_exit_1(monkeypatch, capsys):
+    """A ConvergenceError from the library is one line on stderr naming what did not
+    converge, exit status 1 (the work ran and did not succeed); it was a traceback."""
+    import bearingfem
+    from bearingfem.errors import ConvergenceError
+    from bearingfem_app.cli import main
+
+    def unconverged(*args, **kwargs):
+        raise ConvergenceError("EHD Newton (load continuation)", 0, None,
+                               "coupling s = 0, step below 0.0001")
+    monkeypatch.setattr(bearingfem, "solve_reynolds", unconverged)
+    assert main(["solve", "--n-theta", "24", "--n-z", "4", "-q"]) == 1
+    err = capsys.readouterr().err
+    assert err.splitlines() == ["bearingfem: error: EHD Newton (load continuation) did not "
+                                "converge at coupling s = 0, step below 0.0001: 0 iterations"]
+
+
+def test_a_capacity_refusal_on_a_coarse_mesh_says_the_mesh_is_coarse(capsys):
+    """'load exceeds what the film carries' on 8 x 2 cells names the mesh as surely too
+    coarse at eps_max (its 1991 N is the mesh's: 120 x 20 carries 2.5e5 N); on a mesh that
+    resolves the film the refusal is the bearing's and says nothing more."""
+    from bearingfem_app.cli import main
+    bearing = ["--diameter", "0.05", "--ld", "0.5", "--clearance", "50e-6", "--oil",
+               "ISO VG 32", "--rpm", "3000"]
+    for command in ("equilibrium", "design"):
+        assert main([command, *bearing, "--load", "2000", "--n-theta", "8", "--n-z",
+                     "2"]) == 2
+        err = capsys.readouterr().err.strip().splitlines()
+        assert len(err) == 1 and "exceeds what the film carries" in err[0], err
+        assert "spans 0.36 node spacings of --n-theta 8 (P1)" in err[0], err
+    assert main(["equilibrium", *bearing, "--load", "1e6", "--n-theta", "240",
+                 "--n-z", "4"]) == 2
+    err = capsys.readouterr().err
+    assert "exceeds what the film carries" in err and "node spacings" not in err
+
+
+def test_version_is_printed_for_citing():
+    """`bearingfem --version` prints the package version, exit 0 (it said 'the following
+    arguments are required: command')."""
+    from bearingfem import __version__
+    r = run("--version")
+    assert r.returncode == 0 and r.stdout.strip() == f"bearingfem {__version__}"
+
+
+def test_k_and_c_of_a_film_with_memory_are_refused_before_the_equilibrium(monkeypatch,
+                                                                          capsys):
+    """design and coefficients --load with a film that has memory (fem-jfo, fem-ehd) are
+    refused before the equilibrium is solved, naming what gives each answer; they solved
+    the equilibrium, then refused with 'its film fraction is carried by the flow', also
+    for fem-ehd, whose memory is the bush's deflection."""
+    import bearingfem.design as design
+    from bearingfem_app.cli import main
+
+    def solved(*args, **kwargs):
+        raise AssertionError("the equilibrium was solved")
+    monkeypatch.setattr(design, "equilibrium", solved)
+    for command, model in (("design", "fem-jfo"), ("coefficients", "fem-ehd")):
+        assert main([command, "--load", "100", "--model", model]) == 2
+        err = capsys.readouterr().err.strip().splitlines()
+        assert len(err) == 1 and f"--model {model} has memory" in err[0], err
+        assert "film fraction" not in err[0]

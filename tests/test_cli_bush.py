@@ -51,6 +51,12 @@ def test_equilibrium_takes_the_bush(capsys):
     (("equilibrium", "--load", "100", "--bush", "solid", "--model", "short"),
      "--bush applies to a film model that takes a bush"),
     (("coefficients", "--eps", "0.5", "--bush-poisson", "0.3"), "needs --bush"),
+    # a modulus typed in GPa was a ConvergenceError traceback from the EHD Newton solve
+    (("solve", "--bush", "ring", "--bush-modulus", "110", *MESH),
+     "--bush-modulus 110 Pa is below any bush material's (>= 1e+05 Pa; rubber ~1e6 Pa): "
+     "typed in GPa? (110 GPa = 1.1e+11 Pa)"),
+    (("solve", "--bush", "ring", "--bush-modulus", "1e15", *MESH),
+     "--bush-modulus 1e+15 Pa is above any solid's"),
 ])
 def test_bad_bush_input_is_one_line(args, needle, capsys):
     assert main(list(args)) == 2
@@ -63,3 +69,18 @@ def test_unknown_bush_model_is_refused(capsys):
         main(["solve", "--bush", "rubber"])
     assert e.value.code == 2
     assert "--bush: invalid choice" in capsys.readouterr().err
+
+
+def test_the_default_outer_radius_scales_with_the_diameter(capsys):
+    """--bush without --bush-outer-radius on a 50 mm journal is a bush held at 1.6 R (the
+    seed pin's 16 mm at R 10 mm): the API's film with ElasticBush(outer_radius=0.04). A fixed
+    16 mm default was refused ('must exceed the film radius R = 0.025 m') from D = 32 mm on."""
+    assert main(["solve", "--diameter", "0.05", "--ld", "0.5", "--clearance", "50e-6",
+                 "--eps", "0.7", *MESH, "--bush", "ring", "--bush-modulus", "5e9"]) == 0
+    out = capsys.readouterr().out
+    b = Bearing(radius=0.025, length=0.025, clearance=50e-6,
+                viscosity=SEED_TABLE1["viscosity"])
+    sol = solve_reynolds(b, JournalState(eps=0.7, omega=250.0), 48, 4, "P1", "reynolds",
+                         bush=ElasticBush(outer_radius=0.04, modulus=5e9, model="ring"))
+    printed = float(re.search(r"\|F\| ([\d.e+-]+) N", out).group(1))
+    assert printed == pytest.approx(float(f"{abs(complex(*sol.force_local)):.6g}"), rel=1e-12)

@@ -388,3 +388,28 @@ def test_a_film_too_coarse_for_its_least_film_is_noted(capsys, argv, noted):
     assert main(list(argv)) == 0
     err = capsys.readouterr().err
     assert ("note: the film under twice its least" in err) == noted, err
+
+
+def test_sweep_workers_are_checked_against_the_cores(monkeypatch, tmp_path, capsys):
+    """--workers above 4 per core is refused before any process starts (--workers 200
+    started 200 on a 2-core machine), and --workers beside --scheduler is refused by name
+    (it was ignored: the cluster's own workers run the cases)."""
+    monkeypatch.setattr(os, "cpu_count", lambda: 2)
+    assert main(["sweep", "capacity", "-o", str(tmp_path / "s"), "--workers", "9"]) == 2
+    assert capsys.readouterr().err.strip() == (
+        "bearingfem: error: --workers 9 local processes on 2 cores: at most 8 (more only "
+        "share the cores; --scheduler runs on a larger cluster)")
+    assert main(["sweep", "capacity", "-o", str(tmp_path / "s"), "--workers", "2",
+                 "--scheduler", "tcp://127.0.0.1:1"]) == 2
+    assert "--workers starts a local cluster" in capsys.readouterr().err
+    assert not (tmp_path / "s").exists()
+
+
+def test_an_output_of_another_commands_kind_names_that_command(capsys):
+    """solve -o film.png names render, which draws the film (it listed solve's suffixes
+    alone); render -o film.vtu names solve; a kind no command writes only the suffixes."""
+    assert refused(capsys, "solve", "-o", "film.png").endswith(
+        "got 'film.png' (a picture of the film: bearingfem render ... -o FILE)")
+    assert "(the film's fields: bearingfem solve ... -o FILE)" in refused(
+        capsys, "render", "-o", "film.vtu")
+    assert refused(capsys, "design", "--load", "10", "-o", "d.txt").endswith("got 'd.txt'")

@@ -87,3 +87,25 @@ def test_plot_shows_every_method_with_units_and_the_case(tmp_path, monkeypatch):
     names = [t.get_text() for t in ax.get_legend().get_texts()]
     assert names[0].startswith("P1: observed order 2.00") and names[1].startswith("P2: no order")
     assert "L/D 1, eps 0.6" in ax.get_title() and ax.get_xlabel().endswith("[-]")
+
+
+def test_ctrl_c_keeps_the_meshes_solved(tmp_path, monkeypatch, capsys):
+    """Ctrl-C during `bearingfem convergence` writes the meshes solved so far to
+    convergence.csv (marked PARTIAL on stdout) and exits 130; it wrote nothing, losing a
+    long study's fine levels."""
+    import bearingfem.outputs.convergence as conv
+    from bearingfem_app.cli import main
+    real, calls = conv.solve_reynolds, []
+
+    def interrupted_on_the_third(*args, **kwargs):
+        calls.append(1)
+        if len(calls) == 3:
+            raise KeyboardInterrupt
+        return real(*args, **kwargs)
+    monkeypatch.setattr(conv, "solve_reynolds", interrupted_on_the_third)
+    out = tmp_path / "conv"
+    assert main(["convergence", "--methods", "P1", "--levels", "4", "-o", str(out)]) == 130
+    lines = (out / "convergence.csv").read_text().splitlines()
+    assert len(lines) == 3 and lines[1].startswith("P1,24,4,") and lines[2].startswith("P1,48,8,")
+    assert "wrote the 2 meshes solved" in capsys.readouterr().out
+    assert not (out / "convergence_summary.csv").exists()

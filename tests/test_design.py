@@ -403,3 +403,15 @@ def test_grooved_equilibrium_balances_and_turns_with_load_and_grooves():
     assert abs(eq3.eps - eq.eps) > 0.05
     with pytest.raises(ValueError, match="grooves is not an option of film model 'fvm'"):
         equilibrium(b, 500.0, 250.0, "fvm", grooves=GROOVED["grooves"])
+
+
+def test_a_load_direction_in_degrees_is_named():
+    """direction= is in radians, the command line's --direction in degrees: a direction of
+    more than a turn is refused as degrees typed (direction=-90 was a load at -90 rad,
+    solved without a word); a turn's radians are taken."""
+    b = Bearing(radius=0.01, length=0.02, clearance=20e-6, viscosity=0.0117)
+    with pytest.raises(ValueError, match=r"direction -90 rad is more than a turn: typed in "
+                                         r"degrees\? \(-90 deg = -1.571 rad\)"):
+        equilibrium(b, 1000.0, 250.0, "short", direction=-90.0)
+    eq = equilibrium(b, 1000.0, 250.0, "short", direction=-0.5 * math.pi)
+    assert eq.load == pytest.approx((0.0, -1000.0), abs=1e-9)

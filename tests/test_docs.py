@@ -96,10 +96,34 @@ def _run_blocks(blocks, namespace):
     for line, code, reason in blocks:
         if reason is not None:
             continue
+        out = io.StringIO()
         try:
-            exec(compile(code, f"<docs block at line {line}>", "exec"), namespace)
+            with contextlib.redirect_stdout(out):
+                exec(compile(code, f"<docs block at line {line}>", "exec"), namespace)
         except Exception as exc:
             raise AssertionError(f"the block at line {line} fails: {exc!r}") from exc
+        _check_claims(line, code, out.getvalue())
+
+
+#: a print line whose comment starts with the numbers it prints: ``print(x, y)  # 0.918, 0.624``
+CLAIMED = re.compile(r"^\s*print\(.*#\s*((?:[-+]?\d[\d.]*(?:e[-+]?\d+)?[ \t,;/]*)+)", re.M)
+NUMBER = re.compile(r"[-+]?\d+(?:\.\d*)?(?:e[-+]?\d+)?")
+
+
+def _check_claims(line, code, printed):
+    """Each number a print line's comment says it prints is printed by the block, to the
+    digits the comment gives (a claimed 4.320 is any printed value within 5e-4 of it), so a
+    walk-through's quoted output cannot drift from what the code now prints."""
+    values = [float(v) for v in NUMBER.findall(printed)]
+    for m in CLAIMED.finditer(code):
+        for claim in NUMBER.findall(m.group(1)):
+            mantissa = claim.lower().split("e")[0]
+            decimals = len(mantissa.split(".")[1]) if "." in mantissa else 0
+            scale = 10.0 ** int(claim.lower().split("e")[1]) if "e" in claim.lower() else 1.0
+            half = 0.5 * 10.0 ** -decimals * scale
+            assert any(abs(v - float(claim)) <= half * (1 + 1e-9) for v in values), (
+                f"the block at line {line} says it prints {claim}; it printed: "
+                f"{printed.strip()[:300]}")
 
 
 def _subcommands():
@@ -200,3 +224,13 @@ def test_relative_links_resolve():
             elif frag and dest.suffix == ".md" and frag not in _anchors(dest):
                 bad.append(f"{page.relative_to(ROOT)}: {target} (no heading #{frag})")
     assert not bad, "broken links:\n" + "\n".join(bad)
+
+
+def test_every_film_model_is_named_where_the_models_are_listed():
+    """docs/usage.md's 'Lubrication models' names every registered film model (it listed
+    eight of the eleven: no fem-ehd, fem-jfo-compressible, fem-thd)."""
+    from bearingfem.models import FILM_MODELS
+    text = (ROOT / "docs" / "usage.md").read_text()
+    section = text.split("## Lubrication models", 1)[1].split("\n## ", 1)[0]
+    missing = [m for m in FILM_MODELS if f"`{m}`" not in section]
+    assert not missing, f"docs/usage.md's Lubrication models does not name {missing}"

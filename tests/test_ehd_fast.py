@@ -315,3 +315,17 @@ def test_the_chord_allows_its_slack_of_steps_that_miss_the_rate(monkeypatch):
             else:
                 assert out is None and best[0] == 0
                 assert steps == slack + 1
+
+
+def test_the_bush_compliance_build_is_told_once(caplog):
+    """Building the bush's compliance (tens of seconds for the 3-D solid, silent before)
+    is logged at INFO before and after; a second solve on the same bush reuses it and says
+    nothing of it."""
+    import logging
+    bush = ElasticBush(model="ring", outer_radius=0.0161, modulus=109e9, poisson=0.33)
+    with caplog.at_level(logging.INFO, logger="bearingfem.ehd"):
+        for _ in range(2):
+            solve_reynolds(SEED, HEAVY, 24, 4, bush=bush)
+    told = [r.getMessage() for r in caplog.records if "compliance" in r.getMessage()]
+    assert len(told) == 2 and told[0] == "bush ring: building its compliance on 24 x 5 " \
+        "film nodes" and told[1].startswith("bush ring: compliance built in "), told

@@ -120,3 +120,30 @@ def test_frames_refuses_a_scene_whose_physics_differ(long_run, tmp_path):
                           str(tmp_path / "fr"), "--no-render"], capture_output=True, text=True,
                          timeout=300)
     assert out.returncode == 2 and "scene.bearing.clearance" in out.stderr
+
+
+def test_frames_spread_over_a_run_shorter_than_a_turn(long_run):
+    """n_frames evenly spaced over what a half-turn run covers (0 to 180 deg, ends
+    included), each its own sample; a turn's 0, 90, 180, 270 put two on the run's end."""
+    sc, r = long_run
+    frames = film_history(r, sc, n_frames=4, n_theta=24, n_z=4)
+    angles = [f.crank_angle_deg for f in frames]
+    assert len({f.t for f in frames}) == 4
+    assert angles == pytest.approx([0.0, 60.0, 120.0, 180.0], abs=0.5)
+
+
+def test_a_field_the_frames_lack_is_named_for_what_was_asked(long_run, tmp_path, capsys):
+    """--field temperature (or deformation) on a run whose frames carry pressure and film
+    thickness says why for that field; it said 'the film fraction needs a mass-conserving
+    film' whatever was asked."""
+    from bearingfem_app.cli import main
+    sc, r = long_run
+    r.save(tmp_path / "run")
+    for field, why in (("temperature", "the frames keep no film temperature"),
+                       ("deformation", "the frames keep no bush deflection"),
+                       ("fraction", "the film fraction needs a mass-conserving film")):
+        assert main(["frames", "paper-long-fem", str(tmp_path / "run"), "-o",
+                     str(tmp_path / "fr"), "--field", field]) == 2
+        err = capsys.readouterr().err.strip().splitlines()
+        assert len(err) == 1 and why in err[0] and "carry pressure, film_thickness" in err[0]
+        assert field == "fraction" or "fraction" not in err[0], err

@@ -95,3 +95,14 @@ def test_grooved_film_starts_from_its_coarser_meshes(monkeypatch):
     assert cold.iterations > 10
     np.testing.assert_allclose(nested.pressure, cold.pressure, rtol=0,
                                atol=1e-9 * cold.pressure.max())
+
+
+def test_a_groove_angle_in_degrees_is_named():
+    """An angle of more than a turn is the degrees a reader typed, refused with its value
+    in radians (Groove(angle=90, ...) was a groove at 90 rad); a turn's angles, negative
+    ones too, are kept."""
+    with pytest.raises(ValueError, match=r"groove angle 90 rad is more than a turn: typed in "
+                                         r"degrees\? \(90 deg = 1.571 rad\)"):
+        Groove(angle=90.0, width=0.3)
+    assert Groove(angle=-np.pi, width=0.3).angle == -np.pi
+    assert Groove(angle=2 * np.pi, width=0.3).angle == 2 * np.pi

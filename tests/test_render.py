@@ -127,3 +127,23 @@ def test_cavity_is_shaded_over_the_end_rows():
     assert np.all(fine_vals[deep & end_rows] <= edge)
     full = np.abs(fine.x - 150.0) < 10.0            # the full film: no boundary on the ends
     assert np.all(fine_vals[full & end_rows] > edge)
+
+
+def test_negative_pressure_is_on_the_colour_scale(tmp_path):
+    """The full Sommerfeld film (cavitation "none") has a suction half: the colour bar goes
+    down to its least pressure (both surfaces) instead of drawing it as 0, as it did."""
+    from bearingfem.outputs.render import color_range
+    sol = solve_reynolds(table1_bearing(1.0), JournalState(0.6, omega=250.0), 24, 4,
+                         cavitation="none")
+    least = float(np.min(sol.pressure)) * 1e-6
+    assert least < -1.0                                   # MPa: a real suction half
+    fig = unwrapped_figure(sol)
+    bar = fig.axes[1]                                     # the colour bar's axes
+    assert bar.get_ylim()[0] == pytest.approx(least, rel=1e-9)
+    assert color_range("pressure", sol.pressure * 1e-6) == pytest.approx(
+        (least, sol.pressure_max * 1e-6))
+    # a cavitating film and a series' fixed scale keep theirs
+    cav = solve_reynolds(table1_bearing(1.0), JournalState(0.6, omega=250.0), 24, 4)
+    assert color_range("pressure", cav.pressure * 1e-6)[0] == 0.0
+    assert color_range("pressure", cav.pressure, clim=(0.0, 5.0)) == (0.0, 5.0)
+    render_film(sol, tmp_path / "none.png", window_size=(400, 300))

@@ -187,3 +187,16 @@ def test_a_crank_speed_no_slider_crank_reaches_is_refused(initial, needle):
     assert ok.crank_speed == 1181.0
     with pytest.raises(ValueError, match=r"^crank_speed 3000 rad/s drives the crank pin"):
         replace(ok, crank_speed=3000.0)
+
+
+def test_an_oil_grade_is_read_as_typed_on_a_shell():
+    """'ISO-VG-32' and 'iso_vg_32' (typed so as to need no quotes on a shell) are ISO VG
+    32, as 'ISO VG 32', 'VG32' and '32' are; they were refused ('--oil must be an ISO VG
+    grade ... got 'ISO-VG-32''). A grade that does not exist still is."""
+    from mechanism.scene import oil_viscosity
+    mu = oil_viscosity("ISO VG 32", 40.0)
+    for typed in ("ISO-VG-32", "iso_vg_32", "VG-32", "VG32", "32", 32):
+        assert oil_viscosity(typed, 40.0) == mu
+    for bad in ("ISO-VG-33", "ISO VG", "VG 32 cSt"):
+        with pytest.raises(ValueError, match="must be an ISO VG grade"):
+            oil_viscosity(bad, 40.0)

@@ -300,3 +300,30 @@ def test_a_crank_speed_in_rpm_stops_a_mechanism_sweep_before_it_starts(tmp_path)
                                          r"must lie in \(0, 1181\] rad/s"):
         run_sweep(sw, tmp_path / "out", workers=1, progress=False)
     assert not (tmp_path / "out").exists()
+
+
+def test_rpm_and_oil_are_the_command_lines_names():
+    """A film or design case takes the command line's rpm [1/min] and oil at
+    oil_temperature [degC] (they were 'not a design sweep parameter'): the same row as
+    omega = rpm pi / 30 and the grade's viscosity at that temperature, which the row gives
+    beside them; one quantity given twice, or oil_temperature without oil, is refused."""
+    from bearingfem_app.cases import _precheck
+    from mechanism.scene import oil_viscosity
+    sw = parse_sweep({"kind": "design", "base": {"n_theta": 24, "n_z": 4, "rpm": 3000.0,
+                                                 "oil": "ISO VG 32", "oil_temperature": 60.0},
+                      "vary": {"eps": [0.6]}})
+    (case,) = sweep_cases(sw)
+    row = run_case("design", case)
+    mu = oil_viscosity("ISO VG 32", 60.0)
+    same = run_case("design", {"n_theta": 24, "n_z": 4, "omega": 100 * np.pi,
+                               "viscosity": mu, "eps": 0.6})
+    assert row["omega"] == pytest.approx(100 * np.pi, rel=1e-15)
+    assert row["viscosity"] == mu
+    for key in ("force", "sommerfeld", "K12", "C11"):
+        assert row[key] == pytest.approx(same[key], rel=1e-12)
+    for bad, match in (({"rpm": 3000.0, "omega": 314.0}, "rpm and omega are one speed"),
+                       ({"oil": "ISO VG 32", "viscosity": 0.03}, "oil and viscosity"),
+                       ({"oil_temperature": 60.0}, "give oil"),
+                       ({"oil": "ISO VG 33"}, "oil must be an ISO VG grade")):
+        with pytest.raises(ValueError, match=match):
+            _precheck("design", {"eps": 0.6, **bad})

@@ -10,6 +10,8 @@ dofs. :func:`dof_compliance` gives the one a bush takes on a film mesh
 """
 from __future__ import annotations
 
+import logging
+import time
 from dataclasses import dataclass
 from functools import cached_property
 
@@ -20,6 +22,10 @@ from scipy.fft import irfft, rfft
 from ..caches import cached
 from ..elastic import BushCompliance, ElasticBush, ReducedCompliance, bush_compliance
 from ..elastic.harmonic import HarmonicBlocks
+
+#: the bush's compliance build, told at INFO (the command line shows it): a 3-D solid's
+#: takes tens of seconds, which passed in silence before the first Newton step's line
+LOG = logging.getLogger(__name__)
 
 __all__ = ["dof_compliance", "DofCompliance", "CirculantCompliance", "BushJacobian"]
 
@@ -137,7 +143,12 @@ class BushJacobian:
 @cached(maxsize=8)
 def _cached_compliance(bush: ElasticBush, radius: float, length: float, n_theta: int,
                        n_z: int) -> BushCompliance:
-    return bush_compliance(bush, radius, length, n_theta, n_z)
+    LOG.info("bush %s: building its compliance on %d x %d film nodes", bush.model, n_theta,
+             n_z)
+    t0 = time.perf_counter()
+    compliance = bush_compliance(bush, radius, length, n_theta, n_z)
+    LOG.info("bush %s: compliance built in %.1f s", bush.model, time.perf_counter() - t0)
+    return compliance
 
 
 def dof_compliance(bush, bearing, op) -> CirculantCompliance | DofCompliance:

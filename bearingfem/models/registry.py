@@ -213,10 +213,12 @@ class FilmModel:
         self.check_state(state)
         if self.memory:
             raise ValueError(
-                f"film model {self.name!r} has memory (its film fraction is carried by the "
-                "flow from earlier states): force derivatives at a state alone are not "
+                f"film model {self.name!r} has memory (its film at a state depends on the "
+                "states before it: a film fraction carried by the flow, a bush's deflection "
+                "or a film temperature): force derivatives at a state alone are not "
                 "defined. Linearise about an orbit with the transient film, or use the "
-                "Reynolds-condition model 'fem' (identical where the film does not reform)")
+                "steady model 'fem' (its bush=, lubricant= and thermal= films are steady; "
+                "Reynolds' condition is identical to the JFO film where it does not reform)")
         if self._force_derivatives is not None:
             return self._force_derivatives(bearing, state, **opts)
         return central_differences(lambda s: self._film_force(bearing, s, **opts), state)

@@ -90,10 +90,11 @@ class ConvergenceStudy:
 def convergence_study(bearing: Bearing, state: JournalState, *, levels: int = 4,
                       n_theta: int = 24, n_z: int = 4, cavitation: str = "reynolds",
                       methods=METHODS, supply_angle=None, ambient_pressure=0.0,
-                      progress=None) -> ConvergenceStudy:
+                      progress=None, on_row=None) -> ConvergenceStudy:
     """Solve on ``levels`` meshes (n_theta x n_z, doubled each level) with each method;
     ``supply_angle`` and ``ambient_pressure`` [Pa] as :func:`bearingfem.solve_reynolds`
-    takes them (a JFO film's supply)."""
+    takes them (a JFO film's supply). ``on_row(row)``: called with each mesh's row as it
+    is solved (a caller keeps what an interrupted study had done)."""
     levels = check_int("levels", levels, 3)
     for m in methods:
         if m not in METHODS:
@@ -119,6 +120,8 @@ def convergence_study(bearing: Bearing, state: JournalState, *, levels: int = 4,
                          "friction_force": sol.friction_force, "side_leakage": sol.side_leakage,
                          "film_min": sol.film_min, "iterations": sol.iterations,
                          "seconds": dt})
+            if on_row:
+                on_row(rows[-1])
             if progress:
                 progress(f"{m} {nt}x{nz}: |F| = {rows[-1]['force']:.6g} N ({dt:.2f} s)")
     summary = []

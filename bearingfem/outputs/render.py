@@ -12,7 +12,8 @@
   rupture line (fraction < 1) red.
 
 The title gives the force in the inertial frame, |F| and the attitude angle; the colour bar
-starts at 0 with units. ``clim`` fixes the colour range (one scale for a series of frames).
+starts at 0 (or below, at the least value, where the field is negative) with units.
+``clim`` fixes the colour range (one scale for a series of frames).
 """
 from __future__ import annotations
 
@@ -22,7 +23,7 @@ from ..film import inertial_from_theta
 from ..solution import FilmSolution
 from .export import FIELD_NAMES, to_meshio
 
-__all__ = ["render_film", "unwrapped_figure", "film_map", "FIELDS", "SURFACES"]
+__all__ = ["render_film", "unwrapped_figure", "film_map", "color_range", "FIELDS", "SURFACES"]
 
 SURFACES = ("journal", "unwrapped")
 FIELDS = {"pressure": ("pressure", 1e-6, "pressure [MPa]"),
@@ -139,6 +140,18 @@ def _boundary_lines(sol: FilmSolution):
     return lines
 
 
+def color_range(field: str, values, clim=None) -> tuple[float, float]:
+    """The colour scale (lo, hi) of ``field``'s displayed ``values`` (NaN: not drawn):
+    ``clim`` when given; else from 0, or from the least value where it is below 0 (the
+    full Sommerfeld film's suction half, a bush drawn into the film), to the largest; a
+    temperature from its coolest node (0 K would flatten the map). A scale from 0 alone
+    drew the negative pressures of cavitation "none" as 0."""
+    if clim is not None:
+        return float(clim[0]), float(clim[1])
+    least, top = float(np.nanmin(values)), float(np.nanmax(values))
+    return (least if field == "temperature" else min(0.0, least)), top
+
+
 def unwrapped_figure(sol: FilmSolution, field: str = "pressure", clim=None, title=None,
                      size=(9.0, 5.0)):
     """The unwrapped film as a matplotlib figure (see the module docstring)."""
@@ -149,10 +162,7 @@ def unwrapped_figure(sol: FilmSolution, field: str = "pressure", clim=None, titl
     tri, vals = film_map(sol, field)
     label = FIELDS[field][2]
     fig, ax = plt.subplots(figsize=size, constrained_layout=True)
-    top = float(np.max(vals)) if clim is None else float(clim[1])
-    # a temperature's scale starts at its coolest node (0 K would flatten the map)
-    lo = float(clim[0]) if clim is not None else (
-        float(np.min(vals)) if field == "temperature" else 0.0)
+    lo, top = color_range(field, vals, clim)
     levels = np.linspace(lo, top if top > lo else lo + 1.0, 41)
     if field == "fraction":
         # interpolated shading: the full film (fraction 1) takes the top colour (filled
@@ -249,8 +259,7 @@ def _render_journal(sol, path, field, window_size, title, clim, camera_angle):
                      & (zs < zs.max() * (1 - 1e-9)))     # the ambient ends are not a cavity
     shown = np.where(cavitated, np.nan, values)      # NaN: drawn grey, off the colour scale
     grid.point_data[label] = shown
-    lo, hi = (0.0 if field == "pressure" else float(np.nanmin(shown)),
-              float(np.nanmax(shown))) if clim is None else clim
+    lo, hi = color_range(field, shown, clim)
     p = pv.Plotter(off_screen=True, window_size=list(window_size))
     p.set_background("white")
     bar = dict(title=label, color="black", vertical=True, fmt="%.3g", position_x=0.86,
