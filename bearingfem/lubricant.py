@@ -51,6 +51,7 @@ conductivity).
 from __future__ import annotations
 
 import math
+import re
 import warnings
 from dataclasses import dataclass, replace
 
@@ -61,7 +62,7 @@ from .oil_range import (CELSIUS, OIL_TEMPERATURE_RANGE, check_oil_temperature,
                         temperature_range_note)
 
 # the oil temperature range's names (oil_range's) stay importable from here
-__all__ = ["Lubricant", "ISO_VG", "OIL_TEMPERATURE_RANGE", "check_oil_temperature",
+__all__ = ["Lubricant", "ISO_VG", "iso_vg_grade", "OIL_TEMPERATURE_RANGE", "check_oil_temperature",
            "temperature_range_note"]
 
 ROELANDS_P0 = 1.0 / 5.1e-9        # [Pa] Roelands' reference pressure, 196 MPa
@@ -106,6 +107,21 @@ def _finite(name: str, value) -> float:
     if not math.isfinite(float(value)):
         raise ValueError(f"{name} must be a finite number, got {value!r}")
     return float(value)
+
+
+#: a grade as the command line, scenes and sweeps take it: 'ISO VG 32', 'ISO-VG-32', 'VG32', '32'
+_GRADE = re.compile(r"^\s*(?:ISO)?[\s_-]*(?:VG)?[\s_-]*(\d+)\s*$", re.IGNORECASE)
+
+
+def iso_vg_grade(grade, name: str = "grade") -> int:
+    """An ISO VG grade (32, 'ISO VG 32', 'ISO-VG-32', 'VG32' or '32') as its number;
+    ValueError naming ``name`` and the grades otherwise."""
+    ok = isinstance(grade, (str, int, np.integer)) and not isinstance(grade, bool)
+    m = _GRADE.match(str(grade)) if ok else None
+    if not m or int(m.group(1)) not in ISO_VG:
+        raise ValueError(f"{name} must be an ISO VG grade (a VI 100 mineral oil), one of "
+                         f"{', '.join(f'ISO VG {g}' for g in sorted(ISO_VG))}, got {grade!r}")
+    return int(m.group(1))
 
 
 def walther_constants(t1: float, nu1: float, t2: float, nu2: float) -> tuple:
@@ -249,19 +265,18 @@ class Lubricant:
         return cls(mu1, walther=walther_constants(t1, nu1, t2, nu2), **common)
 
     @classmethod
-    def iso_vg(cls, grade: int, *, density: float = ISO_VG_DENSITY,
+    def iso_vg(cls, grade: int | str, *, density: float = ISO_VG_DENSITY,
                specific_heat: float = ISO_VG_SPECIFIC_HEAT,
                conductivity: float = ISO_VG_CONDUCTIVITY, **pressure_laws) -> "Lubricant":
-        """An ISO 3448 grade (VG 7 .. 1500) as a mineral oil of viscosity index 100.
+        """An ISO 3448 grade (VG 7 .. 1500: 32, 'ISO VG 32', 'VG32', 'ISO-VG-32') as a
+        mineral oil of viscosity index 100.
 
         Its kinematic viscosity is the grade's midpoint at 40 C and, at 100 C, the value
         that gives VI 100 by ASTM D2270 (:data:`ISO_VG`); Walther's equation (D341)
         through the two. Density 870 kg/m^3, cp 1950 J/(kg K), k 0.13 W/(m K) unless
         given (the same at every temperature). The reference temperature is 40 C.
         """
-        if isinstance(grade, bool) or grade not in ISO_VG:
-            raise ValueError(f"grade must be an ISO VG grade with a VI 100 oil, one of "
-                             f"{sorted(ISO_VG)}, got {grade!r}")
+        grade = iso_vg_grade(grade)
         rho = _positive("density", density, allowed="> 0 [kg/m^3]")
         nu40, nu100 = ISO_VG[grade]
         return cls.two_point((40.0 + CELSIUS, 1e-6 * nu40 * rho),

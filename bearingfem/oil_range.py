@@ -40,7 +40,13 @@ def check_oil_temperature(name: str, value, *, unit: str = "K") -> float:
         raise ValueError(f"{name} must be a number in {span}, got {value!r}")
     v = float(value)
     if not (math.isfinite(v) and lo <= v + shift <= hi):
-        raise ValueError(f"{name} must lie in {span}, got {value!r}")
+        # the other unit's number in range is the likely slip (313 for 40 C, 40 for 313 K)
+        other = v - CELSIUS if unit == "degC" else v + CELSIUS
+        hint = ""
+        if math.isfinite(v) and lo <= other + shift <= hi:
+            typed = "K" if unit == "degC" else "degC"
+            hint = f" (typed in {typed}? {value!r} {typed} is {other:g} {unit})"
+        raise ValueError(f"{name} must lie in {span}, got {value!r}{hint}")
     return v
 
 

@@ -7,7 +7,6 @@ from __future__ import annotations
 
 import difflib
 import math
-import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -20,7 +19,7 @@ from bearingfem import Bearing, ElasticBush, Groove, Roughness
 from bearingfem.accuracy import check_rtol
 from bearingfem.bearing import plausibility_errors
 from bearingfem.fields import EdgeProfile
-from bearingfem.lubricant import ISO_VG, Lubricant, check_oil_temperature
+from bearingfem.lubricant import Lubricant, check_oil_temperature, iso_vg_grade
 from bearingfem.models import film_model
 from bearingfem.thermal import Thermal
 
@@ -206,27 +205,14 @@ def _bearing(t: _Table) -> Bearing:
                    clearance=c, viscosity=mu)
 
 
-_GRADE = re.compile(r"^\s*(?:ISO)?[\s_-]*(?:VG)?[\s_-]*(\d+)\s*$", re.IGNORECASE)
-
-
 def oil_viscosity(grade, temperature_c: float, names=("oil", "oil_temperature")) -> float:
     """An ISO VG grade ('ISO VG 32', 'ISO-VG-32', 'VG32', '32' or 32) at ``temperature_c``
     [degC] -> its dynamic viscosity [Pa s] (:meth:`bearingfem.lubricant.Lubricant.iso_vg`, a VI 100
     mineral oil); ``names``: how the caller spells the two inputs."""
-    g = _grade(grade, names[0])
+    g = iso_vg_grade(grade, names[0])
     check_oil_temperature(names[1], temperature_c, unit="degC")
     oil = Lubricant.iso_vg(g)
     return float(oil.viscosity_at(0.0, temperature=temperature_c + 273.15))
-
-
-def _grade(grade, name: str) -> int:
-    """An ISO VG grade ('ISO VG 32', 'VG32', '32' or 32) as its number; ValueError naming
-    ``name`` otherwise."""
-    m = _GRADE.match(str(grade)) if isinstance(grade, (str, int)) else None
-    if not m or int(m.group(1)) not in ISO_VG:
-        raise ValueError(f"{name} must be an ISO VG grade, one of "
-                         f"{', '.join(f'ISO VG {g}' for g in sorted(ISO_VG))}, got {grade!r}")
-    return int(m.group(1))
 
 
 def _lubrication(t: _Table) -> Lubrication:
@@ -257,7 +243,7 @@ def _lubrication(t: _Table) -> Lubrication:
     if "oil" in given and "lubricant" in m.defaults:    # the thermal film's oil by grade
         if "lubricant" in given:
             raise ValueError(f"{t.where} takes one of oil (an ISO VG grade) or lubricant")
-        given["lubricant"] = Lubricant.iso_vg(_grade(given.pop("oil"), f"{t.where}.oil"))
+        given["lubricant"] = Lubricant.iso_vg(iso_vg_grade(given.pop("oil"), f"{t.where}.oil"))
     for key, cls in (("lubricant", Lubricant), ("bush", ElasticBush),     # the EHD film
                      ("profile", EdgeProfile), ("thermal", Thermal)):     # and the THD film
         if isinstance(given.get(key), dict) and key in m.defaults:

@@ -6,6 +6,7 @@ import pytest
 
 from bearingfem import Lubricant
 from bearingfem.errors import OilRangeWarning
+from bearingfem.oil_range import check_oil_temperature
 
 P = np.linspace(0.0, 1.5e9, 31)            # gauge pressures up to 1.5 GPa [Pa]
 OILS = [Lubricant(0.0117),
@@ -284,3 +285,27 @@ def test_oils_outside_the_iso_vg_range_are_taken_and_warned_where_extrapolated()
     with pytest.warns(OilRangeWarning, match=r"523.15 K .*outside the oil law's range"):
         held = Lubricant.iso_vg(32).at_temperature(523.15)
     assert math.isfinite(held.viscosity) and 0.0 < held.viscosity
+
+
+def test_iso_vg_takes_a_grade_as_the_command_line_spells_it():
+    """Lubricant.iso_vg('ISO VG 32') is the oil of iso_vg(32), as the command line's,
+    scenes' and sweeps' '--oil' spellings are (it took only the number: 'ISO VG 32' was
+    refused); a grade that is none, a bool or a float is refused naming the grades."""
+    want = Lubricant.iso_vg(32).viscosity_at(0.0, temperature=350.0)
+    for grade in ("ISO VG 32", "iso-vg-32", "VG32", "32", np.int64(32)):
+        assert Lubricant.iso_vg(grade).viscosity_at(0.0, temperature=350.0) == want
+    for bad in ("ISO VG 33", True, 32.0, "VG 32 oil"):
+        with pytest.raises(ValueError, match=r"grade must be an ISO VG grade .* ISO VG 1500"):
+            Lubricant.iso_vg(bad)
+
+
+def test_an_oil_temperature_in_the_other_unit_is_named_as_the_slip():
+    """A temperature refused in degC that is in range read as kelvin (313 for 40 C), or in
+    K that is in range read as degC (40 for 313.15 K), gets the conversion as a hint; a
+    temperature in neither unit's range gets none."""
+    with pytest.raises(ValueError, match=r"got 313 \(typed in K\? 313 K is 39\.85 degC\)"):
+        check_oil_temperature("--oil-temperature", 313, unit="degC")
+    with pytest.raises(ValueError, match=r"got 40 \(typed in degC\? 40 degC is 313\.15 K\)"):
+        check_oil_temperature("oil_temperature", 40)
+    with pytest.raises(ValueError, match=r"got 1000$"):
+        check_oil_temperature("--oil-temperature", 1000, unit="degC")
