@@ -20,7 +20,8 @@ from bearingfem import Bearing, ElasticBush, Groove, Roughness
 from bearingfem.accuracy import check_rtol
 from bearingfem.bearing import plausibility_errors
 from bearingfem.fields import EdgeProfile
-from bearingfem.lubricant import ISO_VG, Lubricant, check_oil_temperature
+from bearingfem.lubricant import ISO_VG, Lubricant
+from bearingfem.oil_range import check_oil_temperature
 from bearingfem.models import film_model
 from bearingfem.thermal import Thermal
 

@@ -9,7 +9,7 @@ import numpy as np
 
 from ..elastic.bush import ElasticBush
 from ..errors import OilRangeWarning
-from ..lubricant import temperature_range_note
+from ..oil_range import temperature_range_note
 
 __all__ = ["Thermal", "ThermalRecord", "BushConduction", "THERMAL_MODELS", "warn_out_of_range",
            "MAX_FILM_COEFFICIENT", "DEFAULT_WALL_COEFFICIENT"]
@@ -114,7 +114,7 @@ class Thermal:
     ----------
     supply_temperature : temperature of the fresh oil fed at the grooves (or the supply
         line) [K], > 0, as ``ambient_temperature`` and ``journal_temperature``; a film
-        whose temperature leaves :data:`~bearingfem.lubricant.OIL_TEMPERATURE_RANGE`
+        whose temperature leaves :data:`~bearingfem.oil_range.OIL_TEMPERATURE_RANGE`
         warns once solved (:class:`~bearingfem.errors.OilRangeWarning`)
     model : "adiabatic" (no heat to the walls: all the film's heat leaves with its oil) or
         "conducting" (heat to the bush and to the journal by heat-transfer coefficients)
