@@ -195,9 +195,10 @@ class ThermalRecord:
     temperature [K], each groove's (or the supply line's) inlet temperature [K], the
     viscosity [Pa s] at the nodes and at the film's quadrature points (the field the film
     was solved with), the film solves of the thermal iteration (an equilibrium's: over its
-    whole search), the last changes (temperature [K], pressure relative to its peak) and,
-    with a conducting bush, its temperature field (:class:`~bearingfem.thermal.bush.
-    BushHeat`)."""
+    whole search), the last changes (temperature [K], pressure relative to its peak: they
+    may exceed the tolerances, the fixed point stopping on its error estimate,
+    :func:`~bearingfem.routes.thd.solve_thd`) and, with a conducting bush, its temperature
+    field (:class:`~bearingfem.thermal.bush.BushHeat`)."""
 
     balance: object            # the energy equation's EnergyBalance [W]
     journal_temperature: float
