@@ -13,9 +13,7 @@ import math
 
 import numpy as np
 
-from .errors import OilRangeWarning
-
-__all__ = ["CELSIUS", "OIL_TEMPERATURE_RANGE", "OilRangeWarning", "check_oil_temperature",
+__all__ = ["CELSIUS", "OIL_TEMPERATURE_RANGE", "check_oil_temperature",
            "temperature_range_note"]
 
 CELSIUS = 273.15                   # [K]

@@ -19,7 +19,8 @@ from bearingfem import Bearing, ElasticBush, Groove, Roughness
 from bearingfem.accuracy import check_rtol
 from bearingfem.bearing import plausibility_errors
 from bearingfem.fields import EdgeProfile
-from bearingfem.lubricant import Lubricant, check_oil_temperature, iso_vg_grade
+from bearingfem.lubricant import Lubricant, iso_vg_grade
+from bearingfem.oil_range import check_oil_temperature
 from bearingfem.models import film_model
 from bearingfem.thermal import Thermal
 

@@ -218,10 +218,11 @@ def thd_equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
         """The film's force at q with the temperatures converged to ``tol_t`` [K] (the
         fixed point's steps from the last position's temperatures and cavitated set).
         At the final tolerance (``tol_t`` <= the thermal solve's) the film returned is
-        on the temperatures the last energy solve moved by less than ``tol_t``, as
-        :func:`~bearingfem.routes.thd.solve_thd`'s, its pressure changed by less than
-        ``p_rtol``; at a looser one (an inexact step) the film before that energy solve,
-        whose temperatures are as near (its pressure's change then follows theirs, ~1e-2
+        on the temperatures the last energy solve moved by less than ``tol_t``, its
+        pressure changed by less than ``p_rtol`` (the changes themselves:
+        :func:`~bearingfem.routes.thd.solve_thd` tests its estimate of the error); at
+        a looser one (an inexact step) the film before that energy solve, whose
+        temperatures are as near (its pressure's change then follows theirs, ~1e-2
         of the peak per K), or the film after it when the fixed point's contraction
         (:func:`_predicted_change`) puts the next change below ``tol_t``. At the position
         of the last call the fixed point continues where it stopped."""

@@ -27,8 +27,9 @@ the contraction's estimate: a fixed point of contraction rho is within rho / (1 
 of its last change of the answer (the last energy solve's largest nodal change; the
 pressure's, whose error follows the temperatures' it was solved on), rho the largest
 ratio of successive temperature changes measured in this solve (the first, the heating
-from a cold start, included), once two are measured. Before, or for rho >= 1/2, the
-change itself is the test. The film returned is the one on the returned temperatures;
+from a cold start, included), once two are measured; for rho > 1/2 the factor exceeds
+1 (a relaxed iteration's). Before, or for rho >= 1 (no contraction measured), the change
+itself is the test. The film returned is the one on the returned temperatures;
 otherwise :class:`~bearingfem.errors.ConvergenceError`. Why the estimate: the
 pressure's lag contracts by ~1e-2 a step, so the change overstates the error by ~100
 and the plain test took one more film and energy solve (docs/thd.md).
@@ -137,10 +138,11 @@ class _JFOFilm:
 def error_factor(rates) -> float:
     """rho / (1 - rho): a fixed point's error over its last change, rho the largest of
     the measured contraction ``rates`` (ratios of successive changes) once MIN_RATES are
-    measured; 1 (the change as its own test) before, or for rho >= 1/2, where the ratio
-    gives no bound below the change."""
+    measured, above 1 for rho > 1/2 (a slow contraction's error exceeds its change: a
+    relaxed iteration's); 1 (the change as its own test) before, or for rho >= 1, where
+    no contraction was measured."""
     rho = max(rates) if len(rates) >= MIN_RATES else 1.0
-    return rho / (1.0 - rho) if rho < 0.5 else 1.0
+    return rho / (1.0 - rho) if rho < 1.0 else 1.0
 
 
 class EnergyStep(NamedTuple):

@@ -9,7 +9,7 @@ import numpy as np
 
 from ..elastic.bush import ElasticBush
 from ..errors import OilRangeWarning
-from ..lubricant import temperature_range_note
+from ..oil_range import temperature_range_note
 
 __all__ = ["Thermal", "ThermalRecord", "BushConduction", "THERMAL_MODELS", "warn_out_of_range",
            "MAX_FILM_COEFFICIENT", "DEFAULT_WALL_COEFFICIENT"]
@@ -114,7 +114,7 @@ class Thermal:
     ----------
     supply_temperature : temperature of the fresh oil fed at the grooves (or the supply
         line) [K], > 0, as ``ambient_temperature`` and ``journal_temperature``; a film
-        whose temperature leaves :data:`~bearingfem.lubricant.OIL_TEMPERATURE_RANGE`
+        whose temperature leaves :data:`~bearingfem.oil_range.OIL_TEMPERATURE_RANGE`
         warns once solved (:class:`~bearingfem.errors.OilRangeWarning`)
     model : "adiabatic" (no heat to the walls: all the film's heat leaves with its oil) or
         "conducting" (heat to the bush and to the journal by heat-transfer coefficients)
@@ -195,9 +195,10 @@ class ThermalRecord:
     temperature [K], each groove's (or the supply line's) inlet temperature [K], the
     viscosity [Pa s] at the nodes and at the film's quadrature points (the field the film
     was solved with), the film solves of the thermal iteration (an equilibrium's: over its
-    whole search), the last changes (temperature [K], pressure relative to its peak) and,
-    with a conducting bush, its temperature field (:class:`~bearingfem.thermal.bush.
-    BushHeat`)."""
+    whole search), the last changes (temperature [K], pressure relative to its peak: they
+    may exceed the tolerances, the fixed point stopping on its error estimate,
+    :func:`~bearingfem.routes.thd.solve_thd`) and, with a conducting bush, its temperature
+    field (:class:`~bearingfem.thermal.bush.BushHeat`)."""
 
     balance: object            # the energy equation's EnergyBalance [W]
     journal_temperature: float
