@@ -315,3 +315,31 @@ def test_the_chord_allows_its_slack_of_steps_that_miss_the_rate(monkeypatch):
             else:
                 assert out is None and best[0] == 0
                 assert steps == slack + 1
+
+
+def test_the_newton_steps_gmres_reports_what_it_cannot_solve():
+    """newton._gmres where its rotations' residual would lie: a residual it reports within
+    tol is the true one. A singular system whose right-hand side leaves the range (the
+    Krylov space turns invariant: 2 x 2, diag(1, 0) and b = (1, 1), and 200 x 200 with a
+    5 x 5 block and b partly outside it, restart 60 < n) reports its true residual (the
+    rotations gave 6e-16 and < 1e-12 against the true 0.7 and 0.5: one product taken at
+    the breakdown); a product that is not finite reports inf with a finite y (the
+    rotations gave 0 and y NaN); a happy breakdown (A = I) the exact solve; b = 0 gives
+    y = 0 and residual 0. Fails with the code before the breakdown's product and the
+    finite check (run once: the first three)."""
+    rng = np.random.default_rng(1)
+    small = rng.standard_normal((5, 5)) + 3 * np.eye(5)
+    big = np.zeros((200, 200))
+    big[:5, :5] = small
+    b = np.concatenate([rng.standard_normal(5), rng.standard_normal(195) * 0.1])
+    for A, rhs in ((np.diag([1.0, 0.0]), np.ones(2)), (big, b)):
+        y, reported = newton._gmres(lambda v: A @ v, rhs, 1e-12, 60, 10)
+        true = np.linalg.norm(rhs - A @ y) / np.linalg.norm(rhs)
+        assert reported > 1e-12 and abs(reported - true) <= 1e-10 * max(true, 1.0)
+    y, reported = newton._gmres(lambda v: np.full_like(v, np.nan), np.ones(6), 1e-12, 60, 10)
+    assert reported == np.inf and np.all(np.isfinite(y))
+    b = rng.standard_normal(6)
+    y, reported = newton._gmres(lambda v: v, b, 1e-12, 60, 10)
+    assert reported <= 1e-12 and np.allclose(y, b, rtol=1e-15, atol=0)
+    y, reported = newton._gmres(lambda v: v, np.zeros(6), 1e-12, 60, 10)
+    assert reported == 0.0 and not np.any(y)
