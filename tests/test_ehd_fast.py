@@ -4,6 +4,7 @@ dense route it replaced: the same compliance, the same Newton iterates, the same
 round-off; an unconverged Krylov solve never returns a film."""
 import numpy as np
 import pytest
+import scipy.linalg as la
 
 import bearingfem.ehd.coupling as coupling
 import bearingfem.ehd.film as film
@@ -363,3 +364,37 @@ def test_the_newton_steps_gmres_reported_residual_holds_near_a_breakdown():
         y, reported = newton._gmres(lambda v: A @ v, b, 1e-12, 60, 2)
         if reported <= 1e-12:
             assert np.linalg.norm(b - A @ y) <= 1e-11 * np.linalg.norm(b)
+
+
+def test_the_chord_hands_newton_its_least_residual_iterate_where_a_step_fails(monkeypatch):
+    """newton._chord where its factorisation fails (GMRES unconverged or a singular LU:
+    LinAlgError or splu's RuntimeError) hands Newton the iterate of least residual (None:
+    no result) and raises nothing: on the scripted residuals 1, 2 (a miss, within the
+    slack) a step failing at the second iterate, or its refactorisation with other held
+    rows, returns the start, not the iterate of residual 2. Fails with the step's error
+    let through, or the refactorisation returning the last iterate (planted, run once)."""
+    seq = [1.0, 2.0, 1e-3, 1e-12]
+    monkeypatch.setattr(newton, "_merit", lambda film, P, s, free, cav: (
+        np.array([seq[int(P[0])]]), 1.0, np.full(1, P[0] >= 1), None))
+
+    class Factor:
+        held = np.zeros(1, bool)
+
+        def __init__(self, error, where):
+            self.error, self.where = error, where
+
+        def step(self, P, phi):
+            if self.where == "step" and P[0] >= 1:
+                raise self.error("GMRES of the EHD Newton step stopped")
+            return np.ones(1)
+
+        def with_held(self, held):
+            if self.where == "held":
+                raise self.error("singular")
+            return self
+
+    for where in ("step", "held"):
+        for error in (la.LinAlgError, RuntimeError):
+            out, steps, best = newton._chord(None, np.zeros(1), 1.0, np.arange(1), 1e-10,
+                                             [Factor(error, where)], 7, 0.9, 2)
+            assert out is None and steps == 1 and best[0] == 0

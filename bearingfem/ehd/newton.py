@@ -398,7 +398,8 @@ def _chord(film, P, s, free, tol, keep, max_steps=6, rate=0.3, slack=0):
     as soon as a step fails to cut max |Phi| by ``rate`` (past the first ``slack`` such
     steps) or ``max_steps`` pass (then Newton takes over from that iterate). Where the
     held rows differ from the factor's, the same Jacobian is factorised again with them
-    (kept in ``keep``). Swift-Stieber films ("reynolds") only."""
+    (kept in ``keep``); where that factorisation or a step's solve fails Newton takes over
+    from the iterate of least residual. Swift-Stieber films ("reynolds") only."""
     factor = keep[0]
     phi, scale, held, _ = _merit(film, P, s, free, "reynolds")
     best, least, last = P, np.inf, np.inf
@@ -414,14 +415,15 @@ def _chord(film, P, s, free, tol, keep, max_steps=6, rate=0.3, slack=0):
             return None, it, best
         if res > rate * last:
             slack -= 1
-        if not np.array_equal(held, factor.held):
-            try:
+        try:
+            if not np.array_equal(held, factor.held):
                 factor = factor.with_held(held)
-            except (RuntimeError, la.LinAlgError):  # singular: Newton takes over
-                return None, it, P
-            keep[:] = [factor]
+                keep[:] = [factor]
+            step = factor.step(P, phi)
+        except (RuntimeError, la.LinAlgError):  # singular or GMRES unconverged: Newton
+            return None, it, best
         last = res
-        P = P + factor.step(P, phi)
+        P = P + step
         phi, scale, held, _ = _merit(film, P, s, free, "reynolds")
     return None, max_steps, best
 
