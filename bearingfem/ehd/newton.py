@@ -201,6 +201,7 @@ KRYLOV_TOL = 1e-12
 KRYLOV_ACCEPT = 1e-8
 KRYLOV_RESTART = 60
 KRYLOV_MAXITER = 10
+_EPS = float(np.finfo(float).eps)
 
 
 class _KrylovLU:
@@ -255,14 +256,22 @@ def _gmres(apply, b: np.ndarray, tol: float, restart: int, maxiter: int) -> tupl
     ``maxiter`` cycles, stopped where |b - A y| <= ``tol`` |b|; the Arnoldi basis by
     classical Gram-Schmidt done twice (BLAS products), the least squares by Givens
     rotations. (y, |b - A y| / |b|) with the residual's norm as the rotations give it
-    (exact in exact arithmetic: no product is taken to check it).
+    (exact in exact arithmetic: no product is taken to check it), except where the Krylov
+    space turns invariant (the new basis vector's norm within round-off of its product's):
+    there the rotations' residual is that of a basis no longer orthogonal, or of a
+    singular A on the space, so the solve ends with the true residual (one product), as
+    does a cycle whose basis came within 1e-8 of it; a product not finite ends the solve
+    at the last cycle's y with residual inf.
     Why not scipy's gmres: its Python loop cost 0.6 ms a solve beside 0.45 ms a product,
     and it takes one product more a cycle for the residual (the implicit-step film's chord
     steps, 96 x 8: 6 products a solve)."""
     norm_b = float(np.linalg.norm(b))
+    if norm_b == 0.0:
+        return np.zeros_like(b), 0.0
     y, r, beta = np.zeros_like(b), b, norm_b
     residual = beta
     for cycle in range(maxiter):
+        suspect = False                               # a basis vector near the span
         V = np.empty((restart + 1, b.size))
         R = np.zeros((restart, restart))              # the rotated Hessenberg matrix
         g = np.zeros(restart + 1)
@@ -270,6 +279,7 @@ def _gmres(apply, b: np.ndarray, tol: float, restart: int, maxiter: int) -> tupl
         V[0], g[0] = r / beta, beta
         for j in range(restart):
             w = apply(V[j])
+            size = float(np.linalg.norm(w))
             basis = V[:j + 1]
             h = basis @ w
             w = w - h @ basis
@@ -277,6 +287,12 @@ def _gmres(apply, b: np.ndarray, tol: float, restart: int, maxiter: int) -> tupl
             w -= again @ basis
             h += again
             below = float(np.linalg.norm(w))
+            if not np.isfinite(below + size):
+                return y, np.inf
+            invariant = below <= 16.0 * _EPS * size
+            suspect = suspect or below <= 1e-8 * size
+            if invariant:
+                below = 0.0
             for i in range(j):                        # the earlier rotations
                 h[i], h[i + 1] = cs[i] * h[i] + sn[i] * h[i + 1], cs[i] * h[i + 1] - sn[i] * h[i]
             rho = float(np.hypot(h[j], below))
@@ -285,17 +301,18 @@ def _gmres(apply, b: np.ndarray, tol: float, restart: int, maxiter: int) -> tupl
             R[:j + 1, j] = h
             g[j + 1], g[j] = -sn[j] * g[j], cs[j] * g[j]
             residual = abs(g[j + 1])
-            if below > 0.0:
-                V[j + 1] = w / below
-            if residual <= tol * norm_b or below == 0.0:
+            if invariant:
                 break
-        k = j + 1
+            V[j + 1] = w / below
+            if residual <= tol * norm_b:
+                break
+        k = j + 1 if R[j, j] != 0.0 else j           # a zero pivot: A singular on the space
         y = y + la.solve_triangular(R[:k, :k], g[:k], check_finite=False) @ V[:k]
-        if residual <= tol * norm_b or cycle == maxiter - 1:
+        if not suspect and (residual <= tol * norm_b or cycle == maxiter - 1):
             break
         r = b - apply(y)
         beta = float(np.linalg.norm(r))
-        if beta <= tol * norm_b:
+        if invariant or beta <= tol * norm_b or cycle == maxiter - 1:
             return y, beta / norm_b
     return y, residual / norm_b
 
@@ -381,7 +398,8 @@ def _chord(film, P, s, free, tol, keep, max_steps=6, rate=0.3, slack=0):
     as soon as a step fails to cut max |Phi| by ``rate`` (past the first ``slack`` such
     steps) or ``max_steps`` pass (then Newton takes over from that iterate). Where the
     held rows differ from the factor's, the same Jacobian is factorised again with them
-    (kept in ``keep``). Swift-Stieber films ("reynolds") only."""
+    (kept in ``keep``); where that factorisation or a step's solve fails Newton takes over
+    from the iterate of least residual. Swift-Stieber films ("reynolds") only."""
     factor = keep[0]
     phi, scale, held, _ = _merit(film, P, s, free, "reynolds")
     best, least, last = P, np.inf, np.inf
@@ -397,14 +415,15 @@ def _chord(film, P, s, free, tol, keep, max_steps=6, rate=0.3, slack=0):
             return None, it, best
         if res > rate * last:
             slack -= 1
-        if not np.array_equal(held, factor.held):
-            try:
+        try:
+            if not np.array_equal(held, factor.held):
                 factor = factor.with_held(held)
-            except (RuntimeError, la.LinAlgError):  # singular: Newton takes over
-                return None, it, P
-            keep[:] = [factor]
+                keep[:] = [factor]
+            step = factor.step(P, phi)
+        except (RuntimeError, la.LinAlgError):  # singular or GMRES unconverged: Newton
+            return None, it, best
         last = res
-        P = P + factor.step(P, phi)
+        P = P + step
         phi, scale, held, _ = _merit(film, P, s, free, "reynolds")
     return None, max_steps, best
 
