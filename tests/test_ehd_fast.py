@@ -12,6 +12,7 @@ import bearingfem.ehd.newton as newton
 from bearingfem import ElasticBush, JournalState, solve_reynolds
 from bearingfem.bearing import seed_bearing
 from bearingfem.ehd.film_compliance import CirculantCompliance, DofCompliance, dof_compliance
+from bearingfem.ehd.implicit import _Frame
 from bearingfem.elastic import bush_compliance
 from bearingfem.errors import ConvergenceError
 from bearingfem.fe.kernel import fe_operator
@@ -412,3 +413,16 @@ def test_the_chord_hands_newton_its_least_residual_iterate_where_a_step_fails(mo
             out, steps, best = newton._chord(None, np.zeros(1), 1.0, np.arange(1), 1e-10,
                                              [Factor(error, where)], 7, 0.9, 2)
             assert out is None and steps == 1 and best[0] == 0
+
+
+def test_a_frames_blended_compliance_follows_its_fraction():
+    """_Frame.blended keeps its table per blend fraction a: asked again with another a it
+    gives that a's blend ((1 - a)^2 + a^2) c(d) + a (1 - a) (c(d - 1) + c(d + 1)), not the
+    first one's (it kept the first table whatever a it was asked for)."""
+    op = fe_operator(SEED, HEAVY, 16, 4, "P1", None, False, ())
+    cols = np.random.default_rng(3).normal(size=(16, 5, 5))
+    frame = _Frame(op, 0.3)
+    for a in (0.25, 0.7, 0.25):
+        want = ((1 - a) ** 2 + a * a) * cols + a * (1 - a) * (np.roll(cols, 1, axis=0)
+                                                               + np.roll(cols, -1, axis=0))
+        np.testing.assert_array_equal(frame.blended(cols, a), want.ravel())

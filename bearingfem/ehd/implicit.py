@@ -179,7 +179,9 @@ class _RateInverse:
         return (b - self.step.comply(nodes)) / self.tau
 
     def solve(self, b: np.ndarray) -> np.ndarray:
-        """y with S y = b to ``rtol`` (|S y - b| <= rtol |b|); b (grid,) or (grid, k)."""
+        """y with S y = b to ``rtol`` (|S y - b| <= rtol |b| where the Woodbury set holds
+        or GMRES converges in its restarts; else its last iterate: a preconditioner's, the
+        film's own residual test judges the solve); b (grid,) or (grid, k)."""
         if self.trivial:
             return b / self.tau
         y = self.woodbury(b)
@@ -433,11 +435,11 @@ class _Frame:
     def blended(self, columns: np.ndarray, a: float) -> np.ndarray:
         """((1 - a)^2 + a^2) c(d) + a (1 - a) (c(d - 1) + c(d + 1)) of the grid's columns
         c (n_theta, n_z + 1, n_z + 1), raveled (:meth:`_StepFilm.node_compliance`)."""
-        if self._table is None:
-            self._table = (((1 - a) ** 2 + a * a) * columns
-                           + a * (1 - a) * (np.roll(columns, 1, axis=0)
-                                            + np.roll(columns, -1, axis=0))).ravel()
-        return self._table
+        if self._table is None or self._table[0] != a:   # kept per fraction a
+            self._table = (a, (((1 - a) ** 2 + a * a) * columns
+                               + a * (1 - a) * (np.roll(columns, 1, axis=0)
+                                                + np.roll(columns, -1, axis=0))).ravel())
+        return self._table[1]
 
 
 class ImplicitStepEHD(StatelessRun):
