@@ -13,7 +13,7 @@ its estimate and is measured too, twice: as the search runs it (``graded``: the 
 graded toward its least film from eps 0.3 on) and on uniform meshes (``uniform``:
 ``grading=0.0``, the search before plain films were graded, the same meshes bit for bit);
 the cheapest uniform mesh whose true error is at most the rtol solve's is the baseline. Times: best of ``--repeat`` runs,
-one process, CPU time (the machine is shared: wall time measures the neighbours), warm
+one process, CPU time (the machine is shared: wall time measures the other jobs), warm
 operator caches for both (meshes built once, as in any loop). "cold":
 the mesh search from the start pair (memo cleared); "loop": a design loop's next call,
 the memo holding the mesh that sufficed at a state 2 % away in eps.
@@ -54,7 +54,7 @@ SEARCHES = (("graded", {}), ("uniform", dict(grading=0.0)))
 
 def best(fn, repeat):
     """(best CPU time [s], result) of ``repeat`` calls (the benchmarks' one timer; CPU time:
-    on a shared machine wall time measures the neighbours)."""
+    on a shared machine wall time measures the other jobs)."""
     t = best_of(fn, repeat)
     return t.cpu, t.out
 

@@ -1,7 +1,7 @@
 """What the benchmarks share: one way to time, and the cases more than one of them runs.
 
 Timing (:func:`best_of`): the best of ``repeat`` calls, wall time (``time.perf_counter``)
-and CPU time (``time.process_time``: on a shared machine wall time carries the others'
+and CPU time (``time.process_time``: on a shared machine wall time carries other jobs'
 load; the film is single-threaded with OMP_NUM_THREADS=1). "Cold" means the same in every
 benchmark: :func:`bearingfem.clear_caches` before each call, so every mesh, operator and
 table the call needs is built inside its time; "warm" keeps them as the last call left

@@ -2,7 +2,7 @@
 over meshes, states, elements and cavitation models, the true error against a converged
 film (P2 on 384 x 64 cells, within ~3e-6 of the 768 x 128 film at eps <= 0.9).
 
-    python -m studies.effectivity                 # ~2 min (run under the heavy-work lock)
+    python -m studies.effectivity                 # ~2 min (run it with no other heavy job on the machine)
     python -m studies.effectivity --coefficients  # K and C on Lund & Thomsen's rows, ~2 min
 
 Prints one row per (state, element, mesh) and the least and largest effectivity per

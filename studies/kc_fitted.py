@@ -1,6 +1,6 @@
 """A mesh fitted to the cavitation boundary: do the force, K and C then converge regularly?
 
-    python -m studies.kc_fitted             # ~1.5 min CPU (run under the heavy-work lock)
+    python -m studies.kc_fitted             # ~1.5 min CPU (run it with no other heavy job on the machine)
     python -m studies.kc_fitted --quick     # two rows, three levels, P2
     python -m studies.kc_fitted --rows 0 9 --elements P2
     python -m studies.kc_fitted --band      # the band-fitted film's cost, five rows, ~1 min

@@ -1,6 +1,6 @@
 """Why K and C of a cavitated film converge irregularly: the discrete cavitation boundary.
 
-    python -m studies.kc_phase          # ~1 min (run under the heavy-work lock)
+    python -m studies.kc_phase          # ~1 min (run it with no other heavy job on the machine)
 
 The FE film's partials are the exact tangent of the discrete film with its cavitated set
 held (:func:`bearingfem.fe.grooved.grooved_derivatives`). Two tables on Lund & Thomsen's

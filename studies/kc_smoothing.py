@@ -1,6 +1,6 @@
 """Two ways to make K and C of a cavitated film regular in the mesh, measured (neither kept).
 
-    python -m studies.kc_smoothing            # ~3 min (run under the heavy-work lock)
+    python -m studies.kc_smoothing            # ~3 min (run it with no other heavy job on the machine)
     python -m studies.kc_smoothing --window   # the eps-window table alone, ~1 min
 
 The FE film's K and C are the exact tangent of the discrete film with its cavitated set

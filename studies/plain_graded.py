@@ -2,7 +2,7 @@
 against uniform meshes: the true error within the request and the estimate, effectivity,
 meshes, solves and CPU time.
 
-    python -m studies.plain_graded            # ~4 min (run under the heavy-work lock)
+    python -m studies.plain_graded            # ~4 min (run it with no other heavy job on the machine)
     python -m studies.plain_graded --quick    # two states (smoke)
 
 For each state (L/D 0.25, 0.5, 1; eps 0.3, 0.6, 0.9; Reynolds' condition and Gumbel's
