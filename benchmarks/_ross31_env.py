@@ -22,7 +22,8 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 VENV = ROOT / ".venv-ross31"
-MIRROR = Path(os.environ.get("ROSS_MIRROR", "/work/.mirror/petrobras+ross/repo"))
+# a bare mirror: git clone --mirror https://github.com/petrobras/ross .ross-mirror
+MIRROR = Path(os.environ.get("ROSS_MIRROR", ROOT / ".ross-mirror"))
 ROSS_COMMIT = "631a249adbae414d5f5f986479b58f1a4c47935e"
 # the package and its build files only (the repository's notebooks are not needed)
 SOURCE_PATHS = ("ross", "pyproject.toml", "requirements.txt", "setup.cfg", "MANIFEST.in",
@@ -43,7 +44,9 @@ def install(mirror: Path = MIRROR, commit: str = ROSS_COMMIT) -> dict:
     if (VENV / "ross31.json").exists():
         return record()
     if not (mirror / "HEAD").exists():
-        raise FileNotFoundError(f"no git mirror of petrobras/ross at {mirror} (set ROSS_MIRROR)")
+        raise FileNotFoundError(f"no git mirror of petrobras/ross at {mirror}: make one with "
+                                f"'git clone --mirror https://github.com/petrobras/ross "
+                                f"{mirror}', or give --mirror / $ROSS_MIRROR")
     print(f"installing ROSS main @ {commit[:10]} into {VENV.name} (once) ...", flush=True)
     src = VENV / "src"
     src.mkdir(parents=True, exist_ok=True)

@@ -1,5 +1,5 @@
 """The EHD-JFO film with rough surfaces (``solve_reynolds(..., cavitation="jfo", bush=,
-roughness=)``, CONTRACT.md): the bush carries the film's and the summits' pressure,
+roughness=)``, the public contract): the bush carries the film's and the summits' pressure,
 w = C (p + p_a(h)), in the mass-conserving balance. Verified as the Reynolds-condition
 mixed EHD film is (tests/test_ehd_mixed.py): the balance's exact Jacobian against central
 differences, the infinitely stiff bush (today's rigid mixed JFO film) and the returned

@@ -247,7 +247,7 @@ def test_benchmark_smoke(capsys):
 
 
 def test_the_fem_model_takes_a_bush_within_the_clearance():
-    """equilibrium(model="fem", bush=, roughness=) (CONTRACT.md's call): the steady EHD film
+    """equilibrium(model="fem", bush=, roughness=) (the public contract's call): the steady EHD film
     with its summits, by the fem model. At the equilibrium it returns, an independent
     solve_reynolds of the same film and summits balances the load to 1e-9; its K by the
     model's central differences equals the test's own differences of solve_reynolds's film
