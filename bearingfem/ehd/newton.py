@@ -465,7 +465,8 @@ def solve_ehd(film, P0, cavitation: str, tol: float = 1e-10,
     P0 = P0() if callable(P0) else P0
     res = continuation(lambda s, P: _newton(film, P, s, free, cavitation, tol), P0.copy(),
                        0.0, 1.0, 1.0, MIN_INCREMENT, "EHD Newton (load continuation)",
-                       "coupling s", "refine the mesh or reduce the load")
+                       "coupling s", "refine the mesh, reduce the load or stiffen the bush "
+                       "(its deflection under the load may pass the clearance)")
     return replace(res, iterations=res.iterations + iterations)
 
 
