@@ -73,7 +73,10 @@ def film_history(result, scene, crank_angles_deg=None, n_frames=12, n_theta=None
             raise ValueError(f"n_frames must be an integer >= 1, got {n_frames!r}")
         crank_angles_deg = np.arange(n_frames) * 360.0 / n_frames
         span = float(np.degrees(result.crank_angle[-1] - result.crank_angle[0]))
-        if abs(span) < 360.0:
+        step = abs(span) / (len(result.t) - 1)
+        # a recorded turn ends a sample short of 360 deg (359.5 for the paper's scenes):
+        # that is a turn, whose frames stay 360 / n_frames apart
+        if abs(span) + 2.0 * step < 360.0:
             # a run shorter than a turn (simulate --turns 0.25): a turn's angles would fall
             # beyond its ends onto the same few samples (4 frames asked, 2 given)
             crank_angles_deg = (float(np.degrees(result.crank_angle[0]))
