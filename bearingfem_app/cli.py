@@ -23,7 +23,7 @@ from mechanism.scene import shipped_scenes
 from .bush import add_bush_args
 from .checks import RULES, _range, check_numbers, given_options, oil_viscosity
 
-from .commands import (command_convergence, command_frames, command_render,
+from .commands import (WORKERS_PER_CORE, command_convergence, command_frames, command_render,
                        command_simulate, command_solve, command_sweep)
 from .design_commands import command_coefficients, command_design, command_equilibrium
 
@@ -259,7 +259,9 @@ def build_parser():
     w.add_argument("--scheduler", help="address [tcp://]host:port of a running Dask "
                    "scheduler (refused if it does not answer within 5 s); default: a local "
                    "cluster")
-    w.add_argument("--workers", type=int, default=2, help=f"local cluster processes ({_said('workers')})")
+    w.add_argument("--workers", type=int, default=2,
+                   help=f"local cluster processes ({_said('workers')}, at most "
+                        f"{WORKERS_PER_CORE} per core; not with --scheduler)")
     w.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
     w.set_defaults(func=command_sweep)
     fr = add("frames", help="the film along a saved run: VTU series (.pvd), PNG frames, GIF",
