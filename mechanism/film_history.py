@@ -197,7 +197,8 @@ def render_history(frames, directory, field="pressure", surface="journal", gif=T
                    frame_seconds=0.4, fixed_camera: bool = False):
     """PNG per frame (off screen) and, with ``gif``, an animated GIF of them (Pillow).
 
-    Every frame shares one colour scale (0 to the series' peak), so frames compare. The
+    Every frame shares one colour scale (0, or the series' least where below 0, to its
+    peak: :func:`bearingfem.outputs.render.color_range`), so frames compare. The
     journal view looks at each frame's loaded side, or from one place with ``fixed_camera``
     (that of the frame with the series' peak)."""
     from bearingfem.outputs.render import FIELDS, color_range, render_film
