@@ -98,3 +98,17 @@ def test_the_modulus_help_says_its_range(capsys):
     help_text = " ".join(capsys.readouterr().out.split())
     assert (f"Young's modulus [Pa] in [{MODULUS_RANGE[0]:g}, {MODULUS_RANGE[1]:g}]"
             in help_text)
+
+
+@pytest.mark.parametrize("diameter, outer", [(0.05, 0.04), (0.02, 0.016), (0.03, 0.024)])
+def test_the_default_outer_radius_is_printed_as_typed(diameter, outer):
+    """1.6 R is rounded to 12 digits, so that a header prints outer_radius=0.04 for a 50 mm
+    journal (1.6 * 0.025 is 0.04000000000000001), and the seed's 16 mm is the library's
+    own default at the default --diameter."""
+    import argparse
+    from bearingfem_app.bush import BUSH_OPTIONS, bush_from_args
+    args = argparse.Namespace(bush="ring", diameter=diameter,
+                              **{dest: None for dest in BUSH_OPTIONS})
+    bush = bush_from_args(args)
+    assert bush.outer_radius == outer and f"outer_radius={outer!r}," in repr(bush)
+    assert diameter != SEED_TABLE1["diameter"] or outer == ElasticBush().outer_radius
