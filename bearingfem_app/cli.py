@@ -16,6 +16,7 @@ from bearingfem.bearing import SEED_TABLE1
 from bearingfem.errors import ConvergenceError
 from bearingfem.fe.jfo_balance import JFO_AMBIENT
 from bearingfem.models import FILM_MODELS
+from bearingfem.oil_range import CELSIUS, OIL_TEMPERATURE_RANGE
 from bearingfem.outputs.convergence import QUANTITIES, UNITS
 from bearingfem.routes.problem import OPTION_DEFAULTS
 from mechanism.scene import shipped_scenes
@@ -98,7 +99,8 @@ def _bearing_args(p, film=True):
     oil.add_argument("--oil", help="the oil by grade, e.g. 'ISO VG 32' (a VI 100 mineral "
                      "oil, ISO 3448), instead of --viscosity")
     p.add_argument("--oil-temperature", type=float, default=None,
-                   help="the --oil's temperature [degC] (default 40)")
+                   help="the --oil's temperature [degC] in [{:g}, {:g}] (default 40)".format(
+                       *(t - CELSIUS for t in OIL_TEMPERATURE_RANGE)))
     p.add_argument("--cavitation", default="reynolds",
                    help="none | gumbel | reynolds | jfo (mass-conserving; needs a supply: "
                         "--ambient-pressure > 0 or --supply-angle)" if film else
