@@ -307,7 +307,8 @@ class Groove:
         if abs(a) > 2.0 * math.pi:
             # radians, as every angle of the API: 90 was a groove at 90 rad, unseen
             raise ValueError(f"groove angle {a:g} rad is more than a turn: typed in degrees? "
-                             f"({a:g} deg = {math.radians(a):.4g} rad)")
+                             f"({a:g} deg = {math.radians(a):.4g} rad); it lies in "
+                             "[-2 pi, 2 pi] rad (a computed one: wrap it, angle % (2 pi))")
         object.__setattr__(self, "angle", a)
         w = check_finite("groove width", self.width)
         if not 0.0 < w < math.pi:

@@ -110,7 +110,8 @@ def _finite(name: str, value) -> float:
 
 
 #: a grade as the command line, scenes and sweeps take it: 'ISO VG 32', 'ISO-VG-32', 'VG32', '32'
-_GRADE = re.compile(r"^\s*(?:ISO)?[\s_-]*(?:VG)?[\s_-]*(\d+)\s*$", re.IGNORECASE)
+#: (a separator only after ISO or VG: -32 and '-32' are a negative number, not ISO VG 32)
+_GRADE = re.compile(r"^\s*(?:ISO[\s_-]*)?(?:VG[\s_-]*)?(\d+)\s*$", re.IGNORECASE)
 
 
 def iso_vg_grade(grade, name: str = "grade") -> int:

@@ -32,7 +32,8 @@ def add_bush_args(p):
                    help=f"the bush's held outer radius [m] (> R; default {OUTER_RATIO:g} R, "
                         f"{d.outer_radius:g} at the default --diameter)")
     p.add_argument("--bush-modulus", type=float, default=None,
-                   help=f"the bush's Young's modulus [Pa] (default {d.modulus:g})")
+                   help=f"the bush's Young's modulus [Pa] in [{MODULUS_RANGE[0]:g}, "
+                        f"{MODULUS_RANGE[1]:g}], rubber to diamond (default {d.modulus:g})")
     p.add_argument("--bush-poisson", type=float, default=None,
                    help=f"the bush's Poisson's ratio, in (-1, 0.5) (default {d.poisson:g})")
 
@@ -64,9 +65,14 @@ def bush_from_args(args) -> ElasticBush | None:
         raise ValueError(text) from None
     lo, hi = MODULUS_RANGE
     if bush.modulus < lo:
+        # the units that bring the number into the range: 110 is GPa (or MPa), 5e4 MPa alone
+        units = [f"{u}? ({bush.modulus:g} {u} = {bush.modulus * f:g} Pa)"
+                 for u, f in (("GPa", 1e9), ("MPa", 1e6)) if lo <= bush.modulus * f <= hi]
         raise ValueError(f"--bush-modulus {bush.modulus:g} Pa is below any bush material's "
-                         f"(>= {lo:.0e} Pa; rubber ~1e6 Pa): typed in GPa? ({bush.modulus:g} GPa"
-                         f" = {bush.modulus * 1e9:g} Pa) or MPa? ({bush.modulus * 1e6:g} Pa)")
+                         f"(>= {lo:.0e} Pa; rubber ~1e6 Pa)"
+                         + (f": typed in {' or '.join(units)}" if units else "")
+                         + "; a softer solid: the library's ElasticBush takes any positive "
+                         "modulus")
     if bush.modulus > hi:
         raise ValueError(f"--bush-modulus {bush.modulus:g} Pa is above any solid's "
                          f"(<= {hi:.1e} Pa, diamond's): give it in Pa")

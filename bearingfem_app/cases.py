@@ -11,7 +11,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from bearingfem.bearing import SEED_TABLE1
+from bearingfem.bearing import SEED_TABLE1, check_finite
 from mechanism.parameters import check_crank_speed
 from mechanism.scene import oil_viscosity, parse_scene, read_toml, scene_path
 
@@ -114,7 +114,8 @@ def _film_params(params: dict) -> dict:
     if p["rpm"] is not None:
         if "omega" in params:
             raise ValueError("rpm and omega are one speed: give one of them")
-        p["omega"] = p["rpm"] * math.pi / 30.0
+        # named as given: a NaN rpm was refused as 'omega must be finite'
+        p["omega"] = check_finite("rpm", p["rpm"]) * math.pi / 30.0
     if p["oil"] is not None:
         if "viscosity" in params:
             raise ValueError("oil and viscosity are one viscosity: give one of them")

@@ -16,6 +16,7 @@ from bearingfem.bearing import SEED_TABLE1
 from bearingfem.errors import ConvergenceError
 from bearingfem.fe.jfo_balance import JFO_AMBIENT
 from bearingfem.models import FILM_MODELS
+from bearingfem.oil_range import CELSIUS, OIL_TEMPERATURE_RANGE
 from bearingfem.outputs.convergence import QUANTITIES, UNITS
 from bearingfem.routes.problem import OPTION_DEFAULTS
 from mechanism.scene import shipped_scenes
@@ -23,7 +24,7 @@ from mechanism.scene import shipped_scenes
 from .bush import add_bush_args
 from .checks import RULES, _range, check_numbers, given_options, oil_viscosity
 
-from .commands import (command_convergence, command_frames, command_render,
+from .commands import (WORKERS_PER_CORE, command_convergence, command_frames, command_render,
                        command_simulate, command_solve, command_sweep)
 from .design_commands import command_coefficients, command_design, command_equilibrium
 
@@ -98,7 +99,8 @@ def _bearing_args(p, film=True):
     oil.add_argument("--oil", help="the oil by grade, e.g. 'ISO VG 32' (a VI 100 mineral "
                      "oil, ISO 3448), instead of --viscosity")
     p.add_argument("--oil-temperature", type=float, default=None,
-                   help="the --oil's temperature [degC] (default 40)")
+                   help="the --oil's temperature [degC] in [{:g}, {:g}] (default 40)".format(
+                       *(t - CELSIUS for t in OIL_TEMPERATURE_RANGE)))
     p.add_argument("--cavitation", default="reynolds",
                    help="none | gumbel | reynolds | jfo (mass-conserving; needs a supply: "
                         "--ambient-pressure > 0 or --supply-angle)" if film else
@@ -259,7 +261,9 @@ def build_parser():
     w.add_argument("--scheduler", help="address [tcp://]host:port of a running Dask "
                    "scheduler (refused if it does not answer within 5 s); default: a local "
                    "cluster")
-    w.add_argument("--workers", type=int, default=2, help=f"local cluster processes ({_said('workers')})")
+    w.add_argument("--workers", type=int, default=2,
+                   help=f"local cluster processes ({_said('workers')}, at most "
+                        f"{WORKERS_PER_CORE} per core; not with --scheduler)")
     w.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
     w.set_defaults(func=command_sweep)
     fr = add("frames", help="the film along a saved run: VTU series (.pvd), PNG frames, GIF",

@@ -142,9 +142,11 @@ def command_convergence(args):
                                supply_angle=supply, ambient_pressure=ambient_pressure(args),
                                on_row=done.append)
     except KeyboardInterrupt:
-        # Ctrl-C keeps the meshes solved (a long study's fine levels took minutes each)
+        # Ctrl-C keeps the meshes solved (a long study's fine levels took minutes each), in
+        # a file of its own name: a complete study's convergence.csv in the folder is kept
+        # beside its summary and figure, and the file says it is partial once stdout is gone
         if done:
-            path = make_dir(args.output, "-o/--output") / "convergence.csv"
+            path = make_dir(args.output, "-o/--output") / "convergence_partial.csv"
             write_csv(done, path)
             print(f"interrupted: wrote the {len(done)} meshes solved to {path} (PARTIAL: no "
                   "summary or figure)")
@@ -152,6 +154,7 @@ def command_convergence(args):
     out = make_dir(args.output, "-o/--output")
     st.write_csv(out / "convergence.csv")
     st.plot(out / "convergence.png", args.quantity)
+    (out / "convergence_partial.csv").unlink(missing_ok=True)   # an interrupted one's, done
     print(f"{'method':6s} {'quantity':18s} {'unit':6s} {'finest':>14s} {'order':>7s} "
           f"{'extrapolated':>14s} {'GCI [rel]':>9s}")
     for r in st.summary:

@@ -73,7 +73,10 @@ def film_history(result, scene, crank_angles_deg=None, n_frames=12, n_theta=None
             raise ValueError(f"n_frames must be an integer >= 1, got {n_frames!r}")
         crank_angles_deg = np.arange(n_frames) * 360.0 / n_frames
         span = float(np.degrees(result.crank_angle[-1] - result.crank_angle[0]))
-        if abs(span) < 360.0:
+        step = abs(span) / (len(result.t) - 1)
+        # a recorded turn ends a sample short of 360 deg (359.5 for the paper's scenes):
+        # that is a turn, whose frames stay 360 / n_frames apart
+        if abs(span) + 2.0 * step < 360.0:
             # a run shorter than a turn (simulate --turns 0.25): a turn's angles would fall
             # beyond its ends onto the same few samples (4 frames asked, 2 given)
             crank_angles_deg = (float(np.degrees(result.crank_angle[0]))
@@ -194,7 +197,8 @@ def render_history(frames, directory, field="pressure", surface="journal", gif=T
                    frame_seconds=0.4, fixed_camera: bool = False):
     """PNG per frame (off screen) and, with ``gif``, an animated GIF of them (Pillow).
 
-    Every frame shares one colour scale (0 to the series' peak), so frames compare. The
+    Every frame shares one colour scale (0, or the series' least where below 0, to its
+    peak: :func:`bearingfem.outputs.render.color_range`), so frames compare. The
     journal view looks at each frame's loaded side, or from one place with ``fixed_camera``
     (that of the frame with the series' peak)."""
     from bearingfem.outputs.render import FIELDS, color_range, render_film

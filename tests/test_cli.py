@@ -475,6 +475,18 @@ def test_help_ranges_are_the_checks_own_table(monkeypatch):
     assert "in [1e-05, 0.05]" in helps["rtol"] and "in (0, 50]" in helps["turns"]
 
 
+def test_the_oil_temperature_help_says_its_range():
+    """--oil-temperature is refused outside [-50, 200] degC (an oil film's): its help says
+    so (it gave the default alone)."""
+    import argparse
+    from bearingfem_app.cli import build_parser
+    sub = next(a for a in build_parser()._actions
+               if isinstance(a, argparse._SubParsersAction)).choices
+    for cmd in ("solve", "equilibrium", "design"):
+        (action,) = [a for a in sub[cmd]._actions if a.dest == "oil_temperature"]
+        assert "[degC] in [-50, 200] (default 40)" in action.help
+
+
 def test_an_option_of_other_commands_is_named_as_theirs():
     """`convergence --rtol` (convergence refines --levels meshes; --rtol is the film
     commands') says whose option it is, not 'did you mean --oil?', a look-alike of this

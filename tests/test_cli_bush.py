@@ -57,6 +57,10 @@ def test_equilibrium_takes_the_bush(capsys):
      "typed in GPa? (110 GPa = 1.1e+11 Pa)"),
     (("solve", "--bush", "ring", "--bush-modulus", "1e15", *MESH),
      "--bush-modulus 1e+15 Pa is above any solid's"),
+    # a metal in MPa: only the unit that brings it into range is named ('50000 GPa' was)
+    (("solve", "--bush", "ring", "--bush-modulus", "5e4", *MESH),
+     "(>= 1e+05 Pa; rubber ~1e6 Pa): typed in MPa? (50000 MPa = 5e+10 Pa); a softer solid: "
+     "the library's ElasticBush takes any positive modulus"),
 ])
 def test_bad_bush_input_is_one_line(args, needle, capsys):
     assert main(list(args)) == 2
@@ -84,3 +88,27 @@ def test_the_default_outer_radius_scales_with_the_diameter(capsys):
                          bush=ElasticBush(outer_radius=0.04, modulus=5e9, model="ring"))
     printed = float(re.search(r"\|F\| ([\d.e+-]+) N", out).group(1))
     assert printed == pytest.approx(float(f"{abs(complex(*sol.force_local)):.6g}"), rel=1e-12)
+
+
+def test_the_modulus_help_says_its_range(capsys):
+    """--bush-modulus is refused outside [1e5, 1.2e12] Pa: its help says so."""
+    from bearingfem_app.bush import MODULUS_RANGE
+    with pytest.raises(SystemExit):
+        main(["solve", "--help"])
+    help_text = " ".join(capsys.readouterr().out.split())
+    assert (f"Young's modulus [Pa] in [{MODULUS_RANGE[0]:g}, {MODULUS_RANGE[1]:g}]"
+            in help_text)
+
+
+@pytest.mark.parametrize("diameter, outer", [(0.05, 0.04), (0.02, 0.016), (0.03, 0.024)])
+def test_the_default_outer_radius_is_printed_as_typed(diameter, outer):
+    """1.6 R is rounded to 12 digits, so that a header prints outer_radius=0.04 for a 50 mm
+    journal (1.6 * 0.025 is 0.04000000000000001), and the seed's 16 mm is the library's
+    own default at the default --diameter."""
+    import argparse
+    from bearingfem_app.bush import BUSH_OPTIONS, bush_from_args
+    args = argparse.Namespace(bush="ring", diameter=diameter,
+                              **{dest: None for dest in BUSH_OPTIONS})
+    bush = bush_from_args(args)
+    assert bush.outer_radius == outer and f"outer_radius={outer!r}," in repr(bush)
+    assert diameter != SEED_TABLE1["diameter"] or outer == ElasticBush().outer_radius

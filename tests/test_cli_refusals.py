@@ -403,6 +403,10 @@ def test_sweep_workers_are_checked_against_the_cores(monkeypatch, tmp_path, caps
                  "--scheduler", "tcp://127.0.0.1:1"]) == 2
     assert "--workers starts a local cluster" in capsys.readouterr().err
     assert not (tmp_path / "s").exists()
+    with pytest.raises(SystemExit):                       # the help says the cap
+        main(["sweep", "--help"])
+    assert "(>= 1, at most 4 per core; not with --scheduler)" in " ".join(
+        capsys.readouterr().out.split())
 
 
 def test_an_output_of_another_commands_kind_names_that_command(capsys):

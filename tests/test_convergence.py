@@ -91,7 +91,7 @@ def test_plot_shows_every_method_with_units_and_the_case(tmp_path, monkeypatch):
 
 def test_ctrl_c_keeps_the_meshes_solved(tmp_path, monkeypatch, capsys):
     """Ctrl-C during `bearingfem convergence` writes the meshes solved so far to
-    convergence.csv (marked PARTIAL on stdout) and exits 130; it wrote nothing, losing a
+    convergence_partial.csv (PARTIAL on stdout too) and exits 130; it wrote nothing, losing a
     long study's fine levels."""
     import bearingfem.outputs.convergence as conv
     from bearingfem_app.cli import main
@@ -104,8 +104,16 @@ def test_ctrl_c_keeps_the_meshes_solved(tmp_path, monkeypatch, capsys):
         return real(*args, **kwargs)
     monkeypatch.setattr(conv, "solve_reynolds", interrupted_on_the_third)
     out = tmp_path / "conv"
+    out.mkdir()
+    (out / "convergence.csv").write_text("an earlier, complete study\n")
     assert main(["convergence", "--methods", "P1", "--levels", "4", "-o", str(out)]) == 130
-    lines = (out / "convergence.csv").read_text().splitlines()
+    lines = (out / "convergence_partial.csv").read_text().splitlines()
     assert len(lines) == 3 and lines[1].startswith("P1,24,4,") and lines[2].startswith("P1,48,8,")
     assert "wrote the 2 meshes solved" in capsys.readouterr().out
     assert not (out / "convergence_summary.csv").exists()
+    # a complete study's table in the folder is kept (it was overwritten by the partial one)
+    assert (out / "convergence.csv").read_text() == "an earlier, complete study\n"
+    # the study run again to its end leaves no partial table beside its own
+    assert main(["convergence", "--methods", "P1", "--levels", "3", "-o", str(out)]) == 0
+    assert not (out / "convergence_partial.csv").exists()
+    assert len((out / "convergence.csv").read_text().splitlines()) == 4

@@ -415,3 +415,9 @@ def test_a_load_direction_in_degrees_is_named():
         equilibrium(b, 1000.0, 250.0, "short", direction=-90.0)
     eq = equilibrium(b, 1000.0, 250.0, "short", direction=-0.5 * math.pi)
     assert eq.load == pytest.approx((0.0, -1000.0), abs=1e-9)
+    # a full turn either way is a direction (the command line's --direction 360 is 2 pi)
+    for turn in (math.radians(360.0), -2.0 * math.pi):
+        assert equilibrium(b, 1000.0, 250.0, "short", direction=turn).load == pytest.approx(
+            (1000.0, 0.0), abs=1e-9)
+    with pytest.raises(ValueError, match=r"it lies in \[-2 pi, 2 pi\] rad"):
+        equilibrium(b, 1000.0, 250.0, "short", direction=2.0 * math.pi + 1e-9)

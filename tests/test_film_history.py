@@ -147,3 +147,15 @@ def test_a_field_the_frames_lack_is_named_for_what_was_asked(long_run, tmp_path,
         err = capsys.readouterr().err.strip().splitlines()
         assert len(err) == 1 and why in err[0] and "carry pressure, film_thickness" in err[0]
         assert field == "fraction" or "fraction" not in err[0], err
+
+
+def test_frames_of_a_recorded_turn_stay_a_turn_apart():
+    """A scene's recorded turn ends a sample short of 360 deg (359.5): its frames are a
+    turn's, 360 / n_frames apart, not spread over 0 .. 359.5 with the first and last at
+    one crank angle."""
+    sc = load_scene("paper-short-analytic")
+    r = simulate(sc, progress=False)
+    assert 359.0 < np.degrees(r.crank_angle[-1] - r.crank_angle[0]) < 360.0
+    frames = film_history(r, sc, n_frames=4, n_theta=24, n_z=4)
+    assert [f.crank_angle_deg for f in frames] == pytest.approx([0.0, 90.0, 180.0, 270.0],
+                                                                 abs=0.5)

@@ -106,3 +106,7 @@ def test_a_groove_angle_in_degrees_is_named():
         Groove(angle=90.0, width=0.3)
     assert Groove(angle=-np.pi, width=0.3).angle == -np.pi
     assert Groove(angle=2 * np.pi, width=0.3).angle == 2 * np.pi
+    # the refusal names the range, and the way for a computed angle (a pad's pivot + 90 deg)
+    with pytest.raises(ValueError, match=r"lies in \[-2 pi, 2 pi\] rad \(a computed one: "
+                                         r"wrap it, angle % \(2 pi\)\)"):
+        Groove(angle=np.radians(420.0), width=0.3)

@@ -147,3 +147,20 @@ def test_negative_pressure_is_on_the_colour_scale(tmp_path):
     assert color_range("pressure", cav.pressure * 1e-6)[0] == 0.0
     assert color_range("pressure", cav.pressure, clim=(0.0, 5.0)) == (0.0, 5.0)
     render_film(sol, tmp_path / "none.png", window_size=(400, 300))
+
+
+def test_the_journal_view_scales_from_the_suction_pressure(tmp_path, monkeypatch):
+    """The journal surface's colour scale starts at the full Sommerfeld film's least
+    pressure, as the unwrapped map's does (it started at 0 there too)."""
+    sol = solve_reynolds(table1_bearing(1.0), JournalState(0.6, omega=250.0), 24, 4,
+                         cavitation="none")
+    real, clims = pv.Plotter.add_mesh, []
+
+    def recorded(self, mesh, *args, **kwargs):
+        if "clim" in kwargs:
+            clims.append(kwargs["clim"])
+        return real(self, mesh, *args, **kwargs)
+    monkeypatch.setattr(pv.Plotter, "add_mesh", recorded)
+    render_film(sol, tmp_path / "journal.png", window_size=(300, 200))
+    assert clims == [pytest.approx((np.min(sol.pressure) * 1e-6, sol.pressure_max * 1e-6),
+                                   rel=1e-9)]

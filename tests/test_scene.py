@@ -197,6 +197,6 @@ def test_an_oil_grade_is_read_as_typed_on_a_shell():
     mu = oil_viscosity("ISO VG 32", 40.0)
     for typed in ("ISO-VG-32", "iso_vg_32", "VG-32", "VG32", "32", 32):
         assert oil_viscosity(typed, 40.0) == mu
-    for bad in ("ISO-VG-33", "ISO VG", "VG 32 cSt"):
+    for bad in ("ISO-VG-33", "ISO VG", "VG 32 cSt", "-32", -32, "_32"):   # -32: a number
         with pytest.raises(ValueError, match="must be an ISO VG grade"):
             oil_viscosity(bad, 40.0)

@@ -324,6 +324,7 @@ def test_rpm_and_oil_are_the_command_lines_names():
     for bad, match in (({"rpm": 3000.0, "omega": 314.0}, "rpm and omega are one speed"),
                        ({"oil": "ISO VG 32", "viscosity": 0.03}, "oil and viscosity"),
                        ({"oil_temperature": 60.0}, "give oil"),
-                       ({"oil": "ISO VG 33"}, "oil must be an ISO VG grade")):
+                       ({"oil": "ISO VG 33"}, "oil must be an ISO VG grade"),
+                       ({"rpm": float("nan")}, "rpm must be finite")):
         with pytest.raises(ValueError, match=match):
             _precheck("design", {"eps": 0.6, **bad})

@@ -96,7 +96,8 @@ def load_vector(load, direction):
         if abs(a) > 2.0 * math.pi:
             # radians, as every angle of the API (the command line's --direction is degrees)
             raise ValueError(f"direction {a:g} rad is more than a turn: typed in degrees? "
-                             f"({a:g} deg = {math.radians(a):.4g} rad)")
+                             f"({a:g} deg = {math.radians(a):.4g} rad); it lies in "
+                             "[-2 pi, 2 pi] rad (a computed one: wrap it, angle % (2 pi))")
         wx, wy = W * math.cos(a), W * math.sin(a)
     if wx == 0.0 and wy == 0.0:
         raise ValueError("load must be non-zero: an unloaded journal sits at the centre")
