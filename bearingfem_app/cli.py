@@ -108,7 +108,8 @@ def _bearing_args(p, film=True):
     p.add_argument("-q", "--quiet", action="store_true",
                    help="no progress lines on stderr (a mesh search's estimates, an elastic "
                         "film's Newton steps)")
-    p.add_argument("--n-theta", type=int, default=120, help=f"cells around the film ({_said('n_theta')})")
+    p.add_argument("--n-theta", type=int, default=120,
+                   help=f"cells around the film ({_said('n_theta')})")
     p.add_argument("--n-z", type=int, default=20, help=f"cells along the length ({_said('n_z')})")
     p.add_argument("--element", default="P1", help="P1 | P2 (finite elements only)")
     p.add_argument("--ambient-pressure", type=float, default=None,
@@ -211,8 +212,8 @@ def build_parser():
     s.add_argument("-o", "--output", required=True, help="output directory")
     s.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
     s.add_argument("--turns", type=float, default=None,
-                   help=f"run this many crank turns, {_said('turns')}, all recorded (a quick look; "
-                        "default: the scene's turns and record_from_turn)")
+                   help=f"run this many crank turns, {_said('turns')}, all recorded "
+                        "(a quick look; default: the scene's turns and record_from_turn)")
     s.set_defaults(func=command_simulate)
     f = add("solve", help="one film solve; print forces, optionally export VTU",
             epilog="example: bearingfem solve --ld 0.5 --eps 0.8 -o film.vtu")
@@ -229,7 +230,8 @@ def build_parser():
             epilog="example: bearingfem convergence --ld 1.0 --eps 0.6 -o conv")
     _film_args(c)
     c.set_defaults(n_theta=24, n_z=4)
-    c.add_argument("--levels", type=int, default=4, help=f"meshes, each twice as fine ({_said('levels')})")
+    c.add_argument("--levels", type=int, default=4,
+                   help=f"meshes, each twice as fine ({_said('levels')})")
     c.add_argument("--methods", default="P1,P2,fvm", help="comma list of P1, P2, fvm")
     c.add_argument("--quantity", default="force",
                    help="quantity for the figure: " + " | ".join(
@@ -275,7 +277,8 @@ def build_parser():
     fr.add_argument("-o", "--output", required=True, help="output directory")
     fr.add_argument("--angles", help="crank angles [deg] in [0, 360), comma-separated; "
                     "taken in increasing order (default: evenly spaced --frames)")
-    fr.add_argument("--frames", type=int, default=12, help=f"number of evenly spaced frames ({_said('frames')})")
+    fr.add_argument("--frames", type=int, default=12,
+                    help=f"number of evenly spaced frames ({_said('frames')})")
     fr.add_argument("--field", default="pressure",
                     help="pressure | film_thickness | fraction (a fem-jfo run)")
     fr.add_argument("--surface", default="journal", help="journal | unwrapped")
@@ -302,7 +305,8 @@ def build_parser():
     _rtol_arg(k)
     k.add_argument("--eps", type=float,
                    help=f"steady state at this eccentricity ratio, {_said('eps')}")
-    k.add_argument("--gamma", type=float, default=0.0, help=f"its attitude [deg] {_said('gamma')} (with --eps)")
+    k.add_argument("--gamma", type=float, default=0.0,
+                   help=f"its attitude [deg] {_said('gamma')} (with --eps)")
     _load_args(k, required=False)
     k.add_argument("--frame", default="inertial", choices=["inertial", "local", "load"],
                    help="axes of K and C")
@@ -327,7 +331,8 @@ def _negative_values(argv):
     out, i = [], 0
     while i < len(argv):
         a = argv[i]
-        if a.startswith("--") and "=" not in a and i + 1 < len(argv) and _NEGATIVE.match(argv[i + 1]):
+        if (a.startswith("--") and "=" not in a and i + 1 < len(argv)
+                and _NEGATIVE.match(argv[i + 1])):
             out.append(f"{a}={argv[i + 1]}")
             i += 2
         else:

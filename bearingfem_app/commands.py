@@ -89,7 +89,8 @@ def _film(args):
                            ambient_pressure=ambient_pressure(args), supply_angle=supply)
     else:
         sol = solve_reynolds(b, s, args.n_theta, args.n_z, element, args.cavitation,
-                             ambient_pressure=ambient_pressure(args), supply_angle=supply, bush=bush)
+                             ambient_pressure=ambient_pressure(args), supply_angle=supply,
+                             bush=bush)
     return b, s, element, bush, sol
 
 

@@ -177,7 +177,8 @@ def command_design(args):
                ("whirl frequency ratio", st.whirl_ratio, "-")]
     print(f"design point, {model}{_options_words(opts)}: D {b.diameter * 1e3:g} mm, L/D "
           f"{b.length_ratio:g}, radial clearance {b.clearance * 1e6:g} um, viscosity "
-          f"{b.viscosity:.4g} Pa s{_oil_words(args)}, {args.omega:g} rad/s ({args.omega * 30 / math.pi:g} rpm), "
+          f"{b.viscosity:.4g} Pa s{_oil_words(args)}, {args.omega:g} rad/s "
+          f"({args.omega * 30 / math.pi:g} rpm), "
           f"load {args.load:g} N toward {args.direction:g} deg (inertial)")
     print_rows(eq_rows)
     print(f"  K, C ({kc.method}); {axes}")
