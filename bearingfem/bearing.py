@@ -26,6 +26,18 @@ def check_finite(name: str, value) -> float:
     return v
 
 
+def check_turn_angle(name: str, value) -> float:
+    """``value`` [rad] finite and within a turn either way, [-2 pi, 2 pi]; ValueError
+    naming ``name`` otherwise, with degrees typed for radians as the likely slip (90 was
+    an angle of 90 rad, unseen: every angle of the API is in radians)."""
+    a = check_finite(name, value)
+    if abs(a) > 2.0 * math.pi:
+        raise ValueError(f"{name} {a:g} rad is more than a turn: typed in degrees? "
+                         f"({a:g} deg = {math.radians(a):.4g} rad); it lies in "
+                         "[-2 pi, 2 pi] rad (a computed one: wrap it, angle % (2 pi))")
+    return a
+
+
 def check_positive(name: str, value) -> float:
     """Return ``value`` as float if finite and > 0, else raise ``ValueError``."""
     v = check_finite(name, value)
@@ -303,13 +315,7 @@ class Groove:
     fraction: float = 1.0
 
     def __post_init__(self):
-        a = check_finite("groove angle", self.angle)
-        if abs(a) > 2.0 * math.pi:
-            # radians, as every angle of the API: 90 was a groove at 90 rad, unseen
-            raise ValueError(f"groove angle {a:g} rad is more than a turn: typed in degrees? "
-                             f"({a:g} deg = {math.radians(a):.4g} rad); it lies in "
-                             "[-2 pi, 2 pi] rad (a computed one: wrap it, angle % (2 pi))")
-        object.__setattr__(self, "angle", a)
+        object.__setattr__(self, "angle", check_turn_angle("groove angle", self.angle))
         w = check_finite("groove width", self.width)
         if not 0.0 < w < math.pi:
             raise ValueError(f"groove width must lie in (0, pi) [rad], got {self.width!r}")

@@ -9,7 +9,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ..bearing import Bearing, JournalState, check_finite
+from ..bearing import Bearing, JournalState, check_finite, check_turn_angle
 from ..solution import FilmSolution
 from ..validation import check_choice
 
@@ -92,12 +92,8 @@ def load_vector(load, direction):
                              f"direction=angle [rad], got {load!r}") from None
     else:
         W = check_finite("load", load)
-        a = check_finite("direction", direction)
-        if abs(a) > 2.0 * math.pi:
-            # radians, as every angle of the API (the command line's --direction is degrees)
-            raise ValueError(f"direction {a:g} rad is more than a turn: typed in degrees? "
-                             f"({a:g} deg = {math.radians(a):.4g} rad); it lies in "
-                             "[-2 pi, 2 pi] rad (a computed one: wrap it, angle % (2 pi))")
+        # radians, as every angle of the API (the command line's --direction is degrees)
+        a = check_turn_angle("direction", direction)
         wx, wy = W * math.cos(a), W * math.sin(a)
     if wx == 0.0 and wy == 0.0:
         raise ValueError("load must be non-zero: an unloaded journal sits at the centre")
