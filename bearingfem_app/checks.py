@@ -16,7 +16,7 @@ from bearingfem.bearing import check_squeeze_speed, check_surface_speed, plausib
 from bearingfem.validation import MAX_UNKNOWNS, MIN_N_THETA, MIN_N_Z, estimated_unknowns
 from mechanism.scene import oil_viscosity as scene_oil_viscosity
 
-__all__ = ["check_numbers", "given_options", "check_writable", "parse_angles",
+__all__ = ["check_numbers", "range_words", "given_options", "check_writable", "parse_angles",
            "check_scheduler_address", "oil_viscosity", "RULES"]
 
 #: dest -> (option as typed, low, low included, high, high included); None: open end.
@@ -60,6 +60,12 @@ def _range(lo, lo_in, hi, hi_in):
     if hi is None:
         return (f">= {lo:g}" if lo_in else "positive" if lo == 0 else f"> {lo:g}")
     return f"in {'[' if lo_in else '('}{lo:g}, {hi:g}{']' if hi_in else ')'}"
+
+
+def range_words(dest: str) -> str:
+    """The range :func:`check_numbers` holds option ``dest`` to, as its help says it (one
+    table, RULES, for the check and the help)."""
+    return _range(*RULES[dest][1:])
 
 
 def check_numbers(args) -> None:

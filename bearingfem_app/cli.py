@@ -22,7 +22,7 @@ from bearingfem.routes.problem import OPTION_DEFAULTS
 from mechanism.scene import shipped_scenes
 
 from .bush import add_bush_args
-from .checks import RULES, _range, check_numbers, given_options, oil_viscosity
+from .checks import check_numbers, given_options, oil_viscosity, range_words
 
 from .commands import (WORKERS_PER_CORE, command_convergence, command_frames, command_render,
                        command_simulate, command_solve, command_sweep)
@@ -74,12 +74,6 @@ AMBIENT_MODEL = (f"with --model fem-jfo (default {JFO_AMBIENT:g} Pa: atmospheric
                  f"supply line)")
 
 
-def _said(dest: str) -> str:
-    """The range check_numbers holds option ``dest`` to, as its help says it (RULES: one
-    table for the check and the help)."""
-    return _range(*RULES[dest][1:])
-
-
 def _bearing_args(p, film=True):
     p.add_argument("--length-ratio", "--ld", dest="length_ratio", type=float, default=1.0,
                    help="L/D, the bearing's length over its diameter")
@@ -109,8 +103,9 @@ def _bearing_args(p, film=True):
                    help="no progress lines on stderr (a mesh search's estimates, an elastic "
                         "film's Newton steps)")
     p.add_argument("--n-theta", type=int, default=120,
-                   help=f"cells around the film ({_said('n_theta')})")
-    p.add_argument("--n-z", type=int, default=20, help=f"cells along the length ({_said('n_z')})")
+                   help=f"cells around the film ({range_words('n_theta')})")
+    p.add_argument("--n-z", type=int, default=20,
+                   help=f"cells along the length ({range_words('n_z')})")
     p.add_argument("--element", default="P1", help="P1 | P2 (finite elements only)")
     p.add_argument("--ambient-pressure", type=float, default=None,
                    help="the JFO film's oil pressure at the ends above the cavitation "
@@ -135,7 +130,8 @@ def _film_discretisation(name: str) -> str:
 
 def _film_args(p):
     _bearing_args(p)
-    p.add_argument("--eps", type=float, default=0.6, help=f"eccentricity ratio {_said('eps')}")
+    p.add_argument("--eps", type=float, default=0.6,
+                   help=f"eccentricity ratio {range_words('eps')}")
     p.add_argument("--eps-dot", type=float, default=0.0, help="d(eps)/dt [1/s]")
     p.add_argument("--supply-angle", default=None,
                    help="an axial supply line at ambient pressure: its angle [deg] from "
@@ -148,15 +144,15 @@ def _load_args(p, required):
                    help="load magnitude [N], > 0" + ("" if required else
                                                 ": K, C at the equilibrium under it"))
     p.add_argument("--direction", type=float, default=-90.0,
-                   help=f"load direction [deg] {_said('direction')}, inertial, "
+                   help=f"load direction [deg] {range_words('direction')}, inertial, "
                         "counter-clockwise from x (-90: downward)")
 
 
 def _rtol_arg(p):
     p.add_argument("--rtol", type=float, default=None,
-                   help=f"a requested relative accuracy {_said('rtol')} (e.g. 1e-3): the mesh "
-                        "(and element, P2 unless --element) is chosen to reach it; not with "
-                        "--n-theta, --n-z")
+                   help=f"a requested relative accuracy {range_words('rtol')} (e.g. 1e-3): "
+                        "the mesh (and element, P2 unless --element) is chosen to reach it; "
+                        "not with --n-theta, --n-z")
 
 
 #: the designer's film models the command line can build (the thermal film needs an
@@ -212,7 +208,7 @@ def build_parser():
     s.add_argument("-o", "--output", required=True, help="output directory")
     s.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
     s.add_argument("--turns", type=float, default=None,
-                   help=f"run this many crank turns, {_said('turns')}, all recorded "
+                   help=f"run this many crank turns, {range_words('turns')}, all recorded "
                         "(a quick look; default: the scene's turns and record_from_turn)")
     s.set_defaults(func=command_simulate)
     f = add("solve", help="one film solve; print forces, optionally export VTU",
@@ -231,7 +227,7 @@ def build_parser():
     _film_args(c)
     c.set_defaults(n_theta=24, n_z=4)
     c.add_argument("--levels", type=int, default=4,
-                   help=f"meshes, each twice as fine ({_said('levels')})")
+                   help=f"meshes, each twice as fine ({range_words('levels')})")
     c.add_argument("--methods", default="P1,P2,fvm", help="comma list of P1, P2, fvm")
     c.add_argument("--quantity", default="force",
                    help="quantity for the figure: " + " | ".join(
@@ -264,7 +260,7 @@ def build_parser():
                    "scheduler (refused if it does not answer within 5 s); default: a local "
                    "cluster")
     w.add_argument("--workers", type=int, default=2,
-                   help=f"local cluster processes ({_said('workers')}, at most "
+                   help=f"local cluster processes ({range_words('workers')}, at most "
                         f"{WORKERS_PER_CORE} per core; not with --scheduler)")
     w.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
     w.set_defaults(func=command_sweep)
@@ -278,7 +274,7 @@ def build_parser():
     fr.add_argument("--angles", help="crank angles [deg] in [0, 360), comma-separated; "
                     "taken in increasing order (default: evenly spaced --frames)")
     fr.add_argument("--frames", type=int, default=12,
-                    help=f"number of evenly spaced frames ({_said('frames')})")
+                    help=f"number of evenly spaced frames ({range_words('frames')})")
     fr.add_argument("--field", default="pressure",
                     help="pressure | film_thickness | fraction (a fem-jfo run)")
     fr.add_argument("--surface", default="journal", help="journal | unwrapped")
@@ -304,9 +300,9 @@ def build_parser():
     _design_args(k)
     _rtol_arg(k)
     k.add_argument("--eps", type=float,
-                   help=f"steady state at this eccentricity ratio, {_said('eps')}")
+                   help=f"steady state at this eccentricity ratio, {range_words('eps')}")
     k.add_argument("--gamma", type=float, default=0.0,
-                   help=f"its attitude [deg] {_said('gamma')} (with --eps)")
+                   help=f"its attitude [deg] {range_words('gamma')} (with --eps)")
     _load_args(k, required=False)
     k.add_argument("--frame", default="inertial", choices=["inertial", "local", "load"],
                    help="axes of K and C")
