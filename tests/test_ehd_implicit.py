@@ -121,7 +121,7 @@ def test_the_rate_inverse_is_the_dense_solve(dt, monkeypatch):
     falls back to GMRES from its solve: both meet 1e-6.
     Fails with the Woodbury's small matrix missing its tau I, or the left-out nodes' bound
     not checked (the capped set returned as it is)."""
-    from bearingfem.ehd import implicit
+    from bearingfem.ehd import bush_rate, implicit
     film, _, state, _ = _heavy()
     film.force(state, 1e-7)
     step = film.step_film(state, dt)
@@ -137,7 +137,7 @@ def test_the_rate_inverse_is_the_dense_solve(dt, monkeypatch):
         r = np.linalg.norm(S @ y - b, axis=0) / np.linalg.norm(b, axis=0)
         assert np.all(r <= max(rtol, 1e-12)), r
     assert np.allclose(y, np.linalg.solve(S, b), rtol=0, atol=1e-12 * np.max(np.abs(y)))
-    monkeypatch.setattr(implicit, "WOODBURY_NODES", 5)
+    monkeypatch.setattr(bush_rate, "WOODBURY_NODES", 5)
     inverse = implicit._RateInverse(step, k, 1e-6, 0.5)
     y = inverse.solve(b)
     assert inverse.capped and inverse.lu is None
@@ -145,7 +145,7 @@ def test_the_rate_inverse_is_the_dense_solve(dt, monkeypatch):
     assert np.all(r <= 1e-6), r
     # the left-out nodes' bound: a set of the stiffest 5 (planted by hand) fails it and
     # falls back to GMRES from its solve
-    monkeypatch.setattr(implicit, "WOODBURY_NODES", 128)
+    monkeypatch.setattr(bush_rate, "WOODBURY_NODES", 128)
     inverse = implicit._RateInverse(step, k, 1e-6, 0.5)
     keep = np.argsort(k)[-5:]
     inverse.active = keep
