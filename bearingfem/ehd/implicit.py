@@ -138,7 +138,7 @@ class _StepFilm:
         m = op.mesh
         self.th = op.qp_theta
         self.cos_th = np.cos(self.th)
-        self.gap_q0 = film_thickness(self.th, state.eps)      # rigid gap at the points
+        self.gap_q0 = 1.0 + state.eps * self.cos_th       # rigid gap at the points
         self.gap_n0 = film_thickness(m.theta, state.eps)      # and at the nodes
         if run.profile is not None:          # the bore's crown or chamfer: fixed, no rate
             self.gap_q0 = self.gap_q0 + run.profile.film_gap(b, op.qp_zeta)
