@@ -199,6 +199,30 @@ def test_the_node_compliance_gathered_is_the_products_for_every_bush(model):
         gathered = step.node_compliance(np.arange(film.size))
         assert np.max(np.abs(gathered - products)) < 1e-12 * np.max(np.abs(products))
 
+def test_the_pressure_slopes_are_taken_when_a_newton_matrix_asks(monkeypatch):
+    """The lubricant's pressure slopes (Dowson-Higginson density) are not taken at a film
+    evaluation, only when unpacked (a Newton matrix); then they are the lubricant's at the
+    evaluation's pressure, bit for bit, taken once. Fails with them taken at every
+    evaluation (the count), or their order swapped (the values)."""
+    film, _, state, _ = _heavy()
+    film.force(state, 1e-7)
+    step = film.step_film(state, 1e-6)
+    lub = film.lubricant
+    calls = []
+    density_derivative = type(lub).density_derivative
+    monkeypatch.setattr(type(lub), "density_derivative",
+                        lambda self, p: calls.append(1) or density_derivative(self, p))
+    P = film._P * 1.01
+    ev = step.evaluate(P)
+    assert calls == []
+    drho, dmu = ev.slopes
+    p = step.scale * step.op.at_quadrature(P)
+    assert np.array_equal(drho, density_derivative(lub, p))
+    assert np.array_equal(dmu, lub.viscosity_derivative(p) / B.viscosity)
+    drho_again, _ = ev.slopes
+    assert drho_again is drho and len(calls) == 1
+
+
 @pytest.mark.parametrize("dt", [0.0, 1e-4])
 def test_the_bush_rate_solves_its_equation_from_the_held_summits_start(dt, monkeypatch):
     """The bush rate with the summits (_StepFilm.rate) starts from the summits' pressure
