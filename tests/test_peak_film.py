@@ -9,6 +9,7 @@ on 24 x 4, 5 deg of crank from top dead centre, recorded from 3.1 deg: its run-u
 bearing's centre peaks at 9.9e3 N near 2 deg, before the recorded window, whose own peak
 (4.7e3 N near 4.6 deg) lies inside it."""
 import dataclasses
+import types
 
 import numpy as np
 import pytest
@@ -111,6 +112,34 @@ def test_the_kept_film_is_saved_and_drawn(run, tmp_path):
     rigid = dataclasses.replace(r.peak_film.solution, deformation=None)
     with pytest.raises(ValueError, match="deformation"):
         render_deflection(rigid, r.peak_film.state, tmp_path / "no.png")
+
+
+def test_the_kept_step_is_the_largest_film_and_summits_force_once_the_run_records():
+    """Scripted film steps through FilmEffect.commit: a run-up step (not recording) of
+    500 N, then recorded steps of 100 N (film), 80 N film + 50 N summits, 120 N film, and
+    a step of 1000 N without a whole film. The kept step is the 130 N one: the run-up's is
+    forgotten once the run records, the summits count, a step without its film is not
+    kept. Fails with the peak over the whole run or ranked by the film's force alone."""
+    from mechanism.effects import JointKinematics
+    from mechanism.result import FILM_COLUMNS
+    from mechanism.simulate import build_effects
+    from bearingfem import JournalState
+    from bearingfem.contract import FilmStep
+
+    def step(t, film, summits, whole=True):
+        sol = types.SimpleNamespace(force_local=(film, 0.0), **dict.fromkeys(
+            ("pressure_max", "cavitated_fraction", "friction_force", "mass_balance",
+             "film_min", "asperity_load"), 0.0)) if whole else None
+        return FilmStep(t, JournalState(eps=0.5, omega=250.0), (film + summits, 0.0), sol)
+
+    script = [step(1e-5, 500.0, 0.0), step(2e-5, 100.0, 0.0), step(3e-5, 80.0, 50.0),
+              step(4e-5, 120.0, 0.0), step(5e-5, 1000.0, 0.0, whole=False)]
+    _, film, _ = build_effects(load_scene("paper-short-analytic"))
+    film.run = types.SimpleNamespace(commit=lambda state, t: script.pop(0))
+    for k, recording in enumerate((False, True, True, True, True)):
+        film.commit(JointKinematics(1e-6, 0.0, 0.0, 0.0, 250.0, (k + 1) * 1e-5), recording)
+    assert len(film.history) == 5 and len(FILM_COLUMNS) == len(film.history[0])
+    assert film.peak.t == 3e-5 and film.peak.force_local == (130.0, 0.0)
 
 
 def test_a_film_without_memory_keeps_none():
