@@ -97,7 +97,7 @@ def peak_figure(r, path, label=""):
     turn, angle = divmod(np.degrees(q), 360.0)
     w, h = 1e6 * float(np.max(sol.deformation)), 1e6 * float(sol.film_min)
     render_deflection(sol, step.state, path,
-                      f"crowned seed pin{label}, film at the peak joint load: crank "
+                      f"crowned seed pin{label}\nfilm at the peak joint load: crank "
                       f"{angle:.1f} deg, eps {step.state.eps:.4f}")
     return (f"peak film{label}: crank {angle:.2f} deg of turn {int(turn) + 1}, t = "
             f"{step.t:.6g} s, eps {step.state.eps:.5f}, force "
