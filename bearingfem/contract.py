@@ -61,6 +61,10 @@ A film with memory (its state carries the past, e.g. the JFO film fraction) adds
 13. ``replay(start, steps)``: the committed steps taken again from the recorded
     (t, state) of the start and of each step; yields (t, FilmSolution) per step (None for
     a model without a whole film), the same solves on the same data as the run.
+    ``replay_tolerance``: the largest departure of a replayed step's force from the
+    run's, relative to the run's largest force, that the film's own solves allow
+    (:data:`REPLAY_TOLERANCE`, round-off, unless its solves stop short of it); a caller
+    refuses a replay that departs further (its scene is not the run's).
 14. ``steps``: the number of film steps taken.
 
 A film that carries the journal beyond the rigid clearance circle:
@@ -106,7 +110,14 @@ from .solution import FilmSolution, ForceDerivatives
 from .errors import ConvergenceError   # a solve that did not converge
 
 __all__ = ["FilmContract", "RunFilm", "FilmStep", "SteadyRun", "StatelessRun", "StateTangent",
-           "ConvergenceError"]
+           "ConvergenceError", "REPLAY_TOLERANCE"]
+
+#: Largest departure of a replayed film step's force from the run's record, relative to
+#: the record's largest force, for a film whose replay takes the same solves on the same
+#: data (round-off only; a film solved again from its kept states starts elsewhere than
+#: the run's warm solve did, so the two agree to the Newton tolerance, 1e-10 of the
+#: residual's terms: 1e-11 measured) (rule 13)
+REPLAY_TOLERANCE = 1e-9
 
 
 @dataclass(frozen=True)
@@ -139,6 +150,7 @@ class RunFilm(Protocol):
     steps: int
     state_size: int
     has_tangent: bool
+    replay_tolerance: float
 
     def start(self, state: JournalState, t: float) -> None: ...
 
@@ -184,11 +196,12 @@ class FilmContract(Protocol):
 
 
 class StatelessRun:
-    """What a run film without states of its own declares (rules 16-17): a base for the
-    run films; ``rates`` and ``tangent`` are refused."""
+    """What a run film without states of its own declares (rules 13, 16-17): a base for
+    the run films; ``rates`` and ``tangent`` are refused; a replay to round-off."""
 
     state_size = 0
     has_tangent = False
+    replay_tolerance = REPLAY_TOLERANCE
 
     def rates(self, state: JournalState, z, t: float):
         raise ValueError(f"{type(self).__name__} has no states of its own (state_size 0): "

@@ -3,7 +3,7 @@
 tolerance, and its cost against the rigid JFO run of the same mesh.
 
     python -m benchmarks.ehd_implicit [--turns 2] [--meshes 48 4 96 8 192 16]
-        [--tau 1e-5 ...] [--rtol 1e-6 ...] [--states] [--save DIR]
+        [--tau 1e-5 ...] [--rtol 1e-6 ...] [--states] [--save DIR] [--figure PATH]
 
 The seed pin at 250 rad/s from top dead centre, the bush of ``paper-short-ehd-sharp`` (the
 per-harmonic solid), a 2 um crown over the whole length, rough surfaces (sigma 0.2 um,
@@ -17,6 +17,14 @@ shear and the summits' Coulomb friction), NaN for a run under a turn; and over t
 run its peak eps, least film, peak film pressure, summits' share and friction power. ``--states`` adds the run with the whole
 deflection integrated as states (FullStateEHD) on each mesh. A Ctrl-C stops the row's
 run and prints what it computed (marked partial).
+
+``--figure PATH`` draws the last row's film at its peak joint load (the film step with the
+largest film + summits force, kept by the run: ``SimulationResult.peak_film``, no replay),
+bush deflection and film pressure over the unwrapped film, and prints where it was
+(crank angle, eps, force, peak pressure, largest deflection, least film). The rows then
+record from the last whole turn (the periodic turn's peak, not the start's from the
+bearing's centre, whose load is 2.7x larger): the "run:" columns' peak eps and least
+film cover that turn (``--save`` keeps the samples of that turn alone).
 """
 from __future__ import annotations
 
@@ -27,6 +35,7 @@ import numpy as np
 
 from bearingfem.fields import EdgeProfile
 from mechanism import load_scene, simulate
+from mechanism.figures import render_deflection
 from mechanism.result import film_column
 
 from .common import OILS, best_of, scene
@@ -35,12 +44,19 @@ from .ehd_states import ROUGH, last_turn, last_turn_work, rigid_jfo
 CROWN = EdgeProfile("crown", 2e-6)
 
 
-def implicit_run(turns, nt, nz, tau, rtol, coupling="implicit", progress=False):
-    """(result, CPU [s]) of one run."""
+def implicit_scene(turns, nt, nz, tau, rtol, coupling="implicit", record_from_turn=0.0):
+    """The crowned seed pin's scene (module docstring), recorded from ``record_from_turn``."""
     sc = scene("paper-short-ehd-sharp", 250.0, turns, n_theta=nt, n_z=nz, modes=0, film_step=0.0,
                lubricant=OILS["iso"], coupling=coupling, relaxation=tau, roughness=ROUGH,
                profile=CROWN)
-    sc = dataclasses.replace(sc, run=dataclasses.replace(sc.run, rtol=rtol))
+    return dataclasses.replace(sc, run=dataclasses.replace(
+        sc.run, rtol=rtol, record_from_turn=record_from_turn))
+
+
+def implicit_run(turns, nt, nz, tau, rtol, coupling="implicit", progress=False,
+                 record_from_turn=0.0):
+    """(result, CPU [s]) of one run."""
+    sc = implicit_scene(turns, nt, nz, tau, rtol, coupling, record_from_turn)
     t = best_of(lambda: simulate(sc, progress=progress))
     return t.out, t.cpu
 
@@ -70,6 +86,25 @@ def last_turn_numbers(r, turns, radius):
     return h, p, share, power
 
 
+def peak_figure(r, path, label=""):
+    """Draw ``r``'s peak film (:func:`mechanism.figures.render_deflection`) to ``path``
+    and return the line saying where it was; a run without one says so."""
+    step = r.peak_film
+    if step is None:
+        return f"no film step kept at the peak load{label}: no figure"
+    sol = step.solution
+    q = r.crank_angle_at(step.t)
+    turn, angle = divmod(np.degrees(q), 360.0)
+    w, h = 1e6 * float(np.max(sol.deformation)), 1e6 * float(sol.film_min)
+    render_deflection(sol, step.state, path,
+                      f"crowned seed pin{label}\nfilm at the peak joint load: crank "
+                      f"{angle:.1f} deg, eps {step.state.eps:.4f}")
+    return (f"peak film{label}: crank {angle:.2f} deg of turn {int(turn) + 1}, t = "
+            f"{step.t:.6g} s, eps {step.state.eps:.5f}, force "
+            f"{np.hypot(*step.force_local):.1f} N, peak pressure {sol.pressure_max / 1e6:.1f} "
+            f"MPa, largest deflection {w:.4f} um, least film {h:.4f} um -> {path}")
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--turns", type=float, default=2.0)
@@ -80,7 +115,12 @@ def main(argv=None):
                     help="each mesh also with the whole deflection integrated as states")
     ap.add_argument("--save", metavar="DIR", default=None)
     ap.add_argument("--progress", action="store_true", help="each run's progress on stderr")
+    ap.add_argument("--figure", metavar="PATH", default=None,
+                    help="draw the last row's film at its peak joint load in the last whole "
+                         "turn (the rows then record from that turn)")
     a = ap.parse_args(argv)
+    # the periodic turn's peak: the rows record from the last whole turn (module docstring)
+    record_from = max(np.floor(a.turns) - 1.0, 0.0) if a.figure else 0.0
     radius = load_scene("paper-short-ehd-sharp").bearing.radius
     print(f"crowned seed pin (2 um), 250 rad/s, {a.turns:g} turns; last turn's numbers",
           flush=True)
@@ -96,7 +136,8 @@ def main(argv=None):
         if a.states:
             rows.append(("states", a.tau[0], a.rtol[0]))
         for coupling, tau, rtol in rows:
-            r, cpu = implicit_run(a.turns, nt, nz, tau, rtol, coupling, a.progress)
+            r, cpu = implicit_run(a.turns, nt, nz, tau, rtol, coupling, a.progress,
+                                  record_from)
             h, p, share, power = last_turn_numbers(r, a.turns, radius)
             window_share, window_power = window_work(r, radius)
             if a.save:
@@ -109,6 +150,10 @@ def main(argv=None):
                   f"{film_column(r.film_record, 'pressure_max').max() / 1e6:10.1f} "
                   f"{window_share:7.4f} {window_power:8.3f}" + note,
                   flush=True)
+    if a.figure:
+        print(f"(recorded from turn {record_from:g}: the run's peak eps and least film over "
+              "it)")
+        print(peak_figure(r, a.figure, f" ({nt} x {nz}, {coupling})"), flush=True)
 
 
 if __name__ == "__main__":

@@ -51,10 +51,10 @@ def _timed_film(counts: dict):
         counts["stiff"] += int(self._lsoda_solver._integrator.iwork[18] == 2)  # MUSED
         return out
 
-    def timed(self, k):
+    def timed(self, k, recording=True):
         c0 = time.process_time()
         try:
-            return commit(self, k)
+            return commit(self, k, recording)
         finally:
             counts["commit_cpu"] += time.process_time() - c0
 

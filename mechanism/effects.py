@@ -13,6 +13,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from bearingfem import Bearing, ElasticJournalState, JournalState
+from bearingfem.contract import FilmStep
 from bearingfem.film import local_to_inertial
 
 from bearingfem.models import film_model
@@ -70,7 +71,11 @@ class FilmEffect(Effect):
     A model with memory keeps what it committed in ``history``: one row per film step,
     columns :data:`mechanism.result.FILM_COLUMNS` (what the step gave, then the journal
     state it was taken at), and the film's first state in ``start`` (t and the state's
-    fields): what the model's ``replay`` needs to take the same film steps again.
+    fields): what the model's ``replay`` needs to take the same film steps again. Of the
+    steps that hand their whole film it keeps one in ``peak``: the step with the largest
+    force (film and summits) among those committed while the run records, or, until the
+    run records, among all (what a run stopped before its recorded turns keeps): the film
+    at the peak load with no replay, one solution held, not one per step.
     """
 
     bearing: Bearing
@@ -96,6 +101,8 @@ class FilmEffect(Effect):
         self.z_rate = np.zeros(self.state_size)
         self.samples: list = []
         self.deepest: JournalState | None = None
+        self.peak: FilmStep | None = None
+        self._peak_recorded = False      # whether ``peak`` is of the recorded steps
 
     @property
     def wall(self) -> float:
@@ -139,17 +146,31 @@ class FilmEffect(Effect):
         fx, fy = local_to_inertial(t.force_local[0], t.force_local[1], self._gamma)
         return np.vstack([fx, fy]), t.rates
 
-    def commit(self, k: JointKinematics) -> None:
+    def commit(self, k: JointKinematics, recording: bool = True) -> bool:
         """Advance the film to the accepted state ``k`` (at time k.t); a film step that
-        fails raises and leaves the film and its history as they were. Returns whether a
-        film step was taken (the force at ``k`` may then have changed)."""
+        fails raises and leaves the film and its history as they were. ``recording``:
+        whether the run records at ``k`` (its peak film is then kept from the recorded
+        steps alone). Returns whether a film step was taken (the force at ``k`` may then
+        have changed)."""
         step = (self.run.commit(self._state(k), k.t, self.z) if self.state_size
                 else self.run.commit(self._state(k), k.t))
         if step is not None:
             self.history.append(film_row(step))
             if self.state_size:
                 self.z_history.append(np.array(self.z, float))
+            self._keep_peak(step, recording)
         return step is not None
+
+    def _keep_peak(self, step: FilmStep, recording: bool) -> None:
+        """``step`` as ``peak`` where it carries more than the one kept (the first
+        recorded step replaces the run-up's)."""
+        if step.solution is None:
+            return
+        if recording and not self._peak_recorded:
+            self.peak, self._peak_recorded = None, True
+        if self.peak is None or (math.hypot(*step.force_local)
+                                 > math.hypot(*self.peak.force_local)):
+            self.peak = step
 
     @property
     def steps(self) -> int:

@@ -6,10 +6,11 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+from pathlib import Path  # noqa: E402
 
 from .result import SimulationResult  # noqa: E402
 
-__all__ = ["plot_run", "plot_comparison", "label_log_axis"]
+__all__ = ["plot_run", "plot_comparison", "label_log_axis", "render_deflection"]
 
 #: Films thinner than this [um] (contact) are drawn at it on the log axis.
 FILM_FLOOR_UM = 1e-3
@@ -108,3 +109,27 @@ def plot_comparison(results, labels, clearance, title="", path=None):
 
 def plot_run(r: SimulationResult, clearance, path=None):
     return plot_comparison([r], [r.scene], clearance or 1.0, title=r.scene, path=path)
+
+
+def render_deflection(sol, state, path, title=None) -> Path:
+    """The bush deflection [um] and film pressure [MPa] of the elastic film ``sol`` (a
+    FilmSolution with its ``deformation``) over the unwrapped film to ``path`` (its
+    folder made). ``state``: the journal state (its eps titles the figure, unless
+    ``title``). Returns the path."""
+    if sol.deformation is None:
+        raise ValueError("sol has no deformation (a rigid film): no bush deflection to draw")
+    theta, z = np.degrees(np.asarray(sol.theta)), 1e3 * np.asarray(sol.z)
+    fig, ax = plt.subplots(2, 1, figsize=(7, 5), sharex=True)
+    for a, v, label in ((ax[0], 1e6 * np.asarray(sol.deformation), "bush deflection w [um]"),
+                        (ax[1], np.asarray(sol.pressure) / 1e6, "film pressure [MPa]")):
+        c = a.tricontourf(theta, z, v, levels=20)
+        fig.colorbar(c, ax=a, label=label)
+        a.set_ylabel("z [mm]")
+    ax[1].set_xlabel("film angle from the largest gap [deg]")
+    ax[0].set_title(title or f"EHD film at the peak joint load (eps {state.eps:.4f})")
+    fig.tight_layout()
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path

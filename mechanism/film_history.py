@@ -111,13 +111,6 @@ def film_history(result, scene, crank_angles_deg=None, n_frames=12, n_theta=None
     return frames
 
 
-#: Largest departure of a replayed film step's force from the run's record, relative to
-#: the record's largest force (the same solves on the same data: round-off only; a film
-#: solved again from its kept states starts elsewhere than the run's warm solve did, so
-#: the two agree to the Newton tolerance, 1e-10 of the residual's terms: 1e-11 measured).
-REPLAY_TOLERANCE = 1e-9
-
-
 def _replayed(result, scene, model, crank_angles_deg, progress=None):
     """Frames of a film with memory: its run's film steps replayed (see the module)."""
     from .result import FILM_COLUMNS, film_column, film_states
@@ -151,7 +144,7 @@ def _replayed(result, scene, model, crank_angles_deg, progress=None):
         # the record holds what carried the joint: the film and, where a film has
         # them, its summits (the force of a film without roughness)
         miss = float(np.hypot(*np.subtract(sol.total_force, force[i]))) / peak
-        if miss > REPLAY_TOLERANCE:
+        if miss > film.replay_tolerance:      # its own solves' (contract rule 13)
             raise ValueError(f"the replayed film departs from the run's record at film step "
                              f"{i} (t = {t:.6g} s) by {miss:.2g} of the peak force: the scene's "
                              "film options differ from the run's")

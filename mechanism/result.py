@@ -108,6 +108,12 @@ class SimulationResult:
     #: where the integrator's accepted steps end [s] (the whole run, not only the
     #: recorded turns): where a run spends its steps, e.g. per crank angle
     step_t: np.ndarray = field(default_factory=lambda: np.empty(0))
+    #: a film with memory that hands its whole film at each step: the committed film step
+    #: (t, journal state, force, ``.solution`` the FilmSolution) with the largest force,
+    #: film and summits, in the recorded turns (over the whole run for one stopped before
+    #: them); None for a run without such steps. Not re-read by :func:`load_result`:
+    #: :meth:`save` writes its film beside the arrays (``peak_film.vtu``)
+    peak_film: FilmStep | None = None
 
     def __repr__(self) -> str:
         # the arrays hold thousands of points: name the run, not every value
@@ -115,6 +121,11 @@ class SimulationResult:
                 if len(self.t) else "no points")
         return (f"SimulationResult(scene={self.scene!r}, {span}, message={self.message!r}"
                 + (", partial" if self.partial else "") + ")")
+
+    def crank_angle_at(self, t: float) -> float:
+        """The crank angle [rad] at time ``t`` [s] within the saved samples (linear
+        between them)."""
+        return float(np.interp(t, self.t, self.crank_angle))
 
     def summary(self) -> str:
         s = self.stats
@@ -160,9 +171,17 @@ class SimulationResult:
     def save(self, directory) -> Path:
         """Write ``result.npz`` (arrays), ``result.csv`` (the same histories, units in the
         header) and ``result.json`` (units, statistics, message, and the provenance: the
-        resolved scene, the toolkit and library versions, the date - enough to re-run it)."""
+        resolved scene, the toolkit and library versions, the date - enough to re-run it);
+        with a ``peak_film``, its film to ``peak_film.vtu`` (its time, crank angle and eps
+        as uniform fields)."""
         d = Path(directory)
         d.mkdir(parents=True, exist_ok=True)
+        if self.peak_film is not None and self.peak_film.solution is not None:
+            from bearingfem.outputs.export import write_solution   # meshio: on demand
+            step = self.peak_film
+            write_solution(step.solution, d / "peak_film.vtu", constants={
+                "time [s]": step.t, "crank_angle [rad]": self.crank_angle_at(step.t),
+                "eps [1]": step.state.eps})
         np.savez_compressed(d / "result.npz", **{k: getattr(self, k) for k in FIELDS + DENSE})
         columns = [f"{k} [{UNITS[k]}]" for k in FIELDS]
         write_csv([dict(zip(columns, row)) for row in

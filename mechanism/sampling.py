@@ -10,7 +10,7 @@ from .dynamics import accelerations
 from .joint import coordinates, joint_force, joint_kinematics
 from .result import FIELDS, FILM_COLUMNS, SimulationResult, provenance
 
-__all__ = ["sample_run", "output_times"]
+__all__ = ["sample_run", "output_times", "record_start"]
 
 
 def _dense(pieces):
@@ -26,13 +26,18 @@ def _dense(pieces):
     return at, bounds[0], bounds[-1]
 
 
+def record_start(scene) -> float:
+    """The crank angle [rad] from which a run records: q0 + 2 pi record_from_turn."""
+    return scene.crank_angle + 2 * math.pi * scene.run.record_from_turn
+
+
 def output_times(scene, crank_angle_at, t0, t1):
     """Saved time points: every 1/samples_per_turn of a nominal turn, from where the crank
     passes q0 + 2 pi record_from_turn to t1. A run that stopped before that window keeps
     its whole computed trajectory, from t0."""
     tt = np.linspace(t0, t1, 20001)
     q = crank_angle_at(tt)
-    q_rec = scene.crank_angle + 2 * math.pi * scene.run.record_from_turn
+    q_rec = record_start(scene)
     t_rec = float(np.interp(q_rec, q, tt)) if q[-1] >= q_rec else t0
     dt = 2 * math.pi / scene.crank_speed / scene.run.samples_per_turn
     t = np.arange(t_rec, t1 + 0.5 * dt, dt)
@@ -89,4 +94,5 @@ def sample_run(scene, pieces, effects, g, stats, partial, message):
         force_y=out["force_y"], scene=scene.name, partial=partial, message=message,
         stats=stats, provenance=provenance(scene), dense_t=td, dense_e_x=Yd[1],
         dense_e_y=Yd[2], film_record=record, film_z=film_z,
-        step_t=np.concatenate([p.ts[1:] for p in pieces]))
+        step_t=np.concatenate([p.ts[1:] for p in pieces]),
+        peak_film=None if memory is None else memory.peak)

@@ -32,7 +32,7 @@ from .joint import METHODS, coordinates, joint_force
 from .parameters import GRAVITY
 from .progress import Progress
 from .result import SimulationResult
-from .sampling import sample_run
+from .sampling import record_start, sample_run
 from .scene import Scene
 from .stepping import INTERRUPTED, STEP_FAILURE, STOPPED, integrate
 
@@ -224,11 +224,15 @@ def simulate(scene: Scene, progress: bool | None = None) -> SimulationResult:
 
     events = [ev_end, None]
 
+    q_rec = record_start(scene)
+
     def accept(t, y):        # each accepted step: a film with memory commits there
         _, _, _, _, Ad, _ = coordinates(m, y[:6])
         if n_film:
             film.z = y[6:]
-        return film.commit(JointKinematics(y[1], y[2], y[4], y[5], -Ad, t))
+        # recording where the saved samples are (mechanism.sampling.output_times)
+        return film.commit(JointKinematics(y[1], y[2], y[4], y[5], -Ad, t),
+                           recording=y[0] >= q_rec)
 
     opts = dict(method=METHODS[run.integrator], rtol=run.rtol, atol=atol)
     if eq.has_jacobian and opts["method"] in ("LSODA", "BDF", "Radau"):

@@ -37,6 +37,7 @@ from bearingfem.contact import Roughness
 from bearingfem.ehd.transient import ehd_solution
 from bearingfem.outputs.tables import write_csv
 from mechanism import load_scene, simulate
+from mechanism.figures import render_deflection
 from mechanism.film_history import film_history
 from mechanism.result import film_column
 
@@ -150,25 +151,6 @@ def peak_film(sc, r, rigid, speed: float):
                                o["n_theta"], o["n_z"], o["modes"])
 
 
-def render_deflection(sol, state: JournalState, path: Path) -> None:
-    """The bush deflection and film pressure of ``sol`` over the unwrapped film to
-    ``path``."""
-    import matplotlib.pyplot as plt
-    theta, z = np.degrees(np.asarray(sol.theta)), 1e3 * np.asarray(sol.z)
-    fig, ax = plt.subplots(2, 1, figsize=(7, 5), sharex=True)
-    for a, v, label in ((ax[0], 1e6 * sol.deformation, "bush deflection w [um]"),
-                        (ax[1], sol.pressure / 1e6, "film pressure [MPa]")):
-        c = a.tricontourf(theta, z, v, levels=20)
-        fig.colorbar(c, ax=a, label=label)
-        a.set_ylabel("z [mm]")
-    ax[1].set_xlabel("film angle from the largest gap [deg]")
-    ax[0].set_title(f"seed pin, EHD film at the peak joint load (eps {state.eps:.4f})")
-    fig.tight_layout()
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-
-
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("-o", "--output", default="results/ehd_paper")
@@ -200,7 +182,8 @@ def main(argv=None):
     write_csv(rows, out / "ehd_paper.csv")
     _, sc_ehd, r_ehd = runs[2]
     state, sol = peak_film(sc_ehd, r_ehd, runs[0][2], a.speed)
-    render_deflection(sol, state, Path(a.figure))
+    render_deflection(sol, state, Path(a.figure),
+                      f"seed pin, EHD film at the peak joint load (eps {state.eps:.4f})")
     print(f"deflection at the peak load (eps {state.eps:.4f}): max "
           f"{1e6 * np.max(sol.deformation):.3f} um, peak pressure "
           f"{sol.pressure_max / 1e6:.1f} MPa -> {a.figure}")

@@ -43,7 +43,7 @@ import scipy.sparse as sp
 
 from ..bearing import Bearing, JournalState
 from ..contact.flow_factors import FLOW_FLOOR
-from ..contract import FilmStep, StateTangent
+from ..contract import REPLAY_TOLERANCE, FilmStep, StateTangent
 from ..errors import ConvergenceError
 from ..fe.assembly import fe_operator
 from ..fe.kernel import film_outputs
@@ -217,6 +217,7 @@ class ModalStateEHD:
 
     memory = True
     has_tangent = True       # contract rule 17: tangent() after a rates call
+    replay_tolerance = REPLAY_TOLERANCE     # rule 13: a step solved from its kept states
 
     def __init__(self, bearing: Bearing, lubricant=None, bush=None, n_theta: int = 48,
                  n_z: int = 8, modes: int = 16, relaxation: float = 1e-5, roughness=None,

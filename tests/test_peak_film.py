@@ -1,0 +1,149 @@
+"""The film at a run's peak joint load, kept by the run (SimulationResult.peak_film): the
+committed film step with the largest film + summits force in the recorded turns, against
+the run's own film record and against the film replayed to that step; a stopped run keeps
+the one it had; saved beside the arrays; drawn (mechanism.figures.render_deflection). And
+the implicit film's replay tolerance: a scene that is not the run's is still refused.
+
+The run: the crowned seed pin with the implicit-step EHD film (benchmarks/ehd_implicit.py's)
+on 24 x 4, 5 deg of crank from top dead centre, recorded from 3.1 deg: its run-up from the
+bearing's centre peaks at 9.9e3 N near 2 deg, before the recorded window, whose own peak
+(4.7e3 N near 4.6 deg) lies inside it."""
+import dataclasses
+import types
+
+import numpy as np
+import pytest
+
+from bearingfem.fields import EdgeProfile
+from benchmarks.ehd_implicit import implicit_scene, peak_figure
+from mechanism import load_result, load_scene, simulate
+from mechanism.figures import render_deflection
+from mechanism.film_history import film_history
+from mechanism.result import film_column
+
+TURNS, RECORD_FROM = 0.014, 0.0085
+
+
+def _scene(**changes):
+    sc = implicit_scene(TURNS, 24, 4, 1e-5, 1e-6, record_from_turn=RECORD_FROM)
+    lub = dataclasses.replace(sc.lubrication, options=dict(sc.lubrication.options, **changes))
+    return dataclasses.replace(sc, lubrication=lub)
+
+
+@pytest.fixture(scope="module")
+def run():
+    return simulate(_scene(), progress=False)
+
+
+def _forces(r):
+    rec = r.film_record
+    return film_column(rec, "t"), np.hypot(film_column(rec, "force_x"),
+                                          film_column(rec, "force_y"))
+
+
+def test_the_kept_film_is_the_records_largest_force_in_the_recorded_turns(run):
+    """From the film record alone: the row of largest |F| among those at or after the
+    first saved sample. The run-up's larger peak (before the window) is not it. Fails
+    with the peak kept over the whole run, or with the film's force alone (no summits)."""
+    r = run
+    t, f = _forces(r)
+    inside = np.flatnonzero(t >= r.t[0])
+    j = inside[np.argmax(f[inside])]
+    assert f.max() > 1.5 * f[j]                      # the run-up's peak lies before
+    step = r.peak_film
+    assert step.t == t[j]
+    assert np.hypot(*step.force_local) == pytest.approx(f[j], rel=1e-12)
+    assert step.solution.total_force == pytest.approx(
+        (film_column(r.film_record, "force_x")[j], film_column(r.film_record, "force_y")[j]),
+        rel=1e-12)
+    assert step.solution.deformation is not None
+
+
+def test_the_kept_film_is_the_replayed_film_at_its_step(run):
+    """The run's film steps replayed (mechanism.film_history) to the kept step give its
+    film: pressure, deflection and gap to 1e-7 of their largest (the implicit film's
+    replay agrees with its run to its Newton tolerance: 4e-11 of the force measured)."""
+    r = run
+    step = r.peak_film
+    frame, = film_history(r, _scene(), [np.degrees(r.crank_angle_at(step.t))])
+    assert frame.t == step.t
+    for name in ("pressure", "deformation", "film_thickness"):
+        a, b = np.asarray(getattr(frame.solution, name)), np.asarray(getattr(step.solution, name))
+        assert np.max(np.abs(a - b)) <= 1e-7 * np.max(np.abs(b)), name
+
+
+def test_a_scene_not_the_runs_is_refused_by_the_replay(run):
+    """The implicit film's replay tolerance (its Newton tolerance's, not round-off) still
+    refuses a replay with another crown (2.02 um for 2) or relaxation time (1.01e-5 s for
+    1e-5). Fails with a tolerance that lets them through."""
+    q = np.degrees(run.crank_angle_at(run.peak_film.t))
+    for changes in (dict(profile=EdgeProfile("crown", 2.02e-6)), dict(relaxation=1.01e-5)):
+        with pytest.raises(ValueError, match="departs from the run's record"):
+            film_history(run, _scene(**changes), [q])
+
+
+def test_a_stopped_run_keeps_the_film_it_had(ctrl_c_at_film_force):
+    """A Ctrl-C in the run-up (the 120th film force), before the recorded turns: the run
+    is partial, its samples the whole run from t = 0, and its kept film the record's
+    largest force over them. Fails when a stopped run's film is dropped."""
+    forces = ctrl_c_at_film_force(120)
+    r = simulate(_scene(), progress=False)
+    assert forces["n"] >= 120 and r.partial and r.t[0] == 0.0
+    t, f = _forces(r)
+    assert len(t) > 10
+    assert r.peak_film.t == t[np.argmax(f)]
+
+
+def test_the_kept_film_is_saved_and_drawn(run, tmp_path):
+    """save() writes it beside the arrays (peak_film.vtu: its pressure and time); the
+    benchmark's figure file is written and its line says where the peak was; a film
+    without a bush is refused by the drawing."""
+    import meshio
+    r = run
+    d = r.save(tmp_path / "run")
+    m = meshio.read(d / "peak_film.vtu")
+    assert np.allclose(m.point_data["pressure [Pa]"], r.peak_film.solution.pressure)
+    assert np.all(m.point_data["time [s]"] == r.peak_film.t)
+    assert load_result(d).peak_film is None
+    line = peak_figure(r, tmp_path / "fig" / "peak.png")
+    assert (tmp_path / "fig" / "peak.png").stat().st_size > 10_000
+    angle = np.degrees(r.crank_angle_at(r.peak_film.t))
+    assert f"crank {angle:.2f} deg of turn 1" in line and "least film" in line
+    rigid = dataclasses.replace(r.peak_film.solution, deformation=None)
+    with pytest.raises(ValueError, match="deformation"):
+        render_deflection(rigid, r.peak_film.state, tmp_path / "no.png")
+
+
+def test_the_kept_step_is_the_largest_film_and_summits_force_once_the_run_records():
+    """Scripted film steps through FilmEffect.commit: a run-up step (not recording) of
+    500 N, then recorded steps of 100 N (film), 80 N film + 50 N summits, 120 N film, and
+    a step of 1000 N without a whole film. The kept step is the 130 N one: the run-up's is
+    forgotten once the run records, the summits count, a step without its film is not
+    kept. Fails with the peak over the whole run or ranked by the film's force alone."""
+    from mechanism.effects import JointKinematics
+    from mechanism.result import FILM_COLUMNS
+    from mechanism.simulate import build_effects
+    from bearingfem import JournalState
+    from bearingfem.contract import FilmStep
+
+    def step(t, film, summits, whole=True):
+        sol = types.SimpleNamespace(force_local=(film, 0.0), **dict.fromkeys(
+            ("pressure_max", "cavitated_fraction", "friction_force", "mass_balance",
+             "film_min", "asperity_load"), 0.0)) if whole else None
+        return FilmStep(t, JournalState(eps=0.5, omega=250.0), (film + summits, 0.0), sol)
+
+    script = [step(1e-5, 500.0, 0.0), step(2e-5, 100.0, 0.0), step(3e-5, 80.0, 50.0),
+              step(4e-5, 120.0, 0.0), step(5e-5, 1000.0, 0.0, whole=False)]
+    _, film, _ = build_effects(load_scene("paper-short-analytic"))
+    film.run = types.SimpleNamespace(commit=lambda state, t: script.pop(0))
+    for k, recording in enumerate((False, True, True, True, True)):
+        film.commit(JointKinematics(1e-6, 0.0, 0.0, 0.0, 250.0, (k + 1) * 1e-5), recording)
+    assert len(film.history) == 5 and len(FILM_COLUMNS) == len(film.history[0])
+    assert film.peak.t == 3e-5 and film.peak.force_local == (130.0, 0.0)
+
+
+def test_a_film_without_memory_keeps_none():
+    sc = load_scene("paper-short-analytic")
+    sc = dataclasses.replace(sc, run=dataclasses.replace(sc.run, turns=0.01,
+                                                         record_from_turn=0.0))
+    assert simulate(sc, progress=False).peak_film is None
