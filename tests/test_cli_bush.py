@@ -103,12 +103,13 @@ def test_the_modulus_help_says_its_range(capsys):
 @pytest.mark.parametrize("diameter, outer", [(0.05, 0.04), (0.02, 0.016), (0.03, 0.024)])
 def test_the_default_outer_radius_is_printed_as_typed(diameter, outer):
     """1.6 R is rounded to 12 digits, so that a header prints outer_radius=0.04 for a 50 mm
-    journal (1.6 * 0.025 is 0.04000000000000001), and the seed's 16 mm is the library's
-    own default at the default --diameter."""
+    journal (1.6 * 0.025 is 0.04000000000000001); it is the library's own default,
+    ElasticBush's 1.6 R, the seed's 16 mm at the default --diameter."""
     import argparse
     from bearingfem_app.bush import BUSH_OPTIONS, bush_from_args
     args = argparse.Namespace(bush="ring", diameter=diameter,
                               **{dest: None for dest in BUSH_OPTIONS})
     bush = bush_from_args(args)
     assert bush.outer_radius == outer and f"outer_radius={outer!r}," in repr(bush)
-    assert diameter != SEED_TABLE1["diameter"] or outer == ElasticBush().outer_radius
+    assert bush == ElasticBush(model="ring").at_radius(diameter / 2)    # the library's rule
+    assert diameter != SEED_TABLE1["diameter"] or outer == 0.016
