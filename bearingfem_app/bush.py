@@ -6,7 +6,7 @@ from __future__ import annotations
 from bearingfem.bearing import SEED_TABLE1
 from bearingfem.elastic.bush import MODELS, OUTER_RATIO, ElasticBush
 
-__all__ = ["add_bush_args", "bush_from_args", "BUSH_OPTIONS"]
+__all__ = ["add_bush_args", "bush_from_args", "bush_words", "BUSH_OPTIONS"]
 
 #: Young's modulus [Pa] of any bush material, soft rubber (~1e6) to diamond (~1.1e12):
 #: outside it the number was typed in another unit (110 for 110 GPa), and the EHD Newton
@@ -33,6 +33,18 @@ def add_bush_args(p):
                         f"{MODULUS_RANGE[1]:g}], rubber to diamond (default {d.modulus:g})")
     p.add_argument("--bush-poisson", type=float, default=None,
                    help=f"the bush's Poisson's ratio, in (-1, 0.5) (default {d.poisson:g})")
+
+
+#: ElasticBush field -> its unit as printed
+UNITS = {"outer_radius": " m", "modulus": " Pa", "poisson": ""}
+
+
+def bush_words(bush: ElasticBush) -> str:
+    """The bush in the options' own names: '--bush ring, --bush-outer-radius 0.016 m,
+    --bush-modulus 1.1e+11 Pa, --bush-poisson 0.34' (its outer radius resolved)."""
+    return ", ".join([f"--bush {bush.model}"] + [
+        f"{option} {getattr(bush, field):g}{UNITS[field]}"
+        for option, field in BUSH_OPTIONS.values()])
 
 
 def bush_from_args(args) -> ElasticBush | None:

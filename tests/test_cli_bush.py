@@ -3,6 +3,7 @@
 input is one line with exit status 2."""
 import re
 
+import numpy as np
 import pytest
 
 from bearingfem import Bearing, ElasticBush, JournalState, solve_reynolds
@@ -29,6 +30,22 @@ def test_solve_with_a_bush_is_the_api_film(capsys):
                                           model="ring"))
     printed = float(re.search(r"\|F\| ([\d.e+-]+) N", out).group(1))
     assert printed == pytest.approx(float(f"{abs(complex(*sol.force_local)):.6g}"), rel=1e-12)
+    # the bush as the options name it, and the film's largest deflection (1.9 um here)
+    line = [x for x in out.splitlines() if x.startswith("  bush: ")]
+    assert len(line) == 1 and line[0].startswith(
+        "  bush: --bush ring, --bush-outer-radius 0.015 m, --bush-modulus 5e+09 Pa, "
+        "--bush-poisson 0.3; largest deflection "), out
+    i = int(np.argmax(np.abs(sol.deformation)))
+    w = float(re.search(r"largest deflection ([\d.e+-]+) um at theta ([\d.]+) deg",
+                        line[0]).group(1))
+    assert w == float(f"{sol.deformation[i] * 1e6:.4g}") and w > 1.0
+    assert f"at theta {np.degrees(sol.theta[i]) % 360:.1f} deg" in line[0]
+
+
+def test_solve_without_a_bush_prints_no_bush(capsys):
+    """The rigid film's output has no bush line."""
+    assert main(["solve", "--ld", "0.5", "--eps", "0.8", *MESH]) == 0
+    assert "bush" not in capsys.readouterr().out
 
 
 def test_equilibrium_takes_the_bush(capsys):
@@ -88,6 +105,9 @@ def test_the_default_outer_radius_scales_with_the_diameter(capsys):
                          bush=ElasticBush(outer_radius=0.04, modulus=5e9, model="ring"))
     printed = float(re.search(r"\|F\| ([\d.e+-]+) N", out).group(1))
     assert printed == pytest.approx(float(f"{abs(complex(*sol.force_local)):.6g}"), rel=1e-12)
+    # the library's default, printed as resolved
+    assert "  bush: --bush ring, --bush-outer-radius 0.04 m, --bush-modulus 5e+09 Pa, " \
+        "--bush-poisson 0.34; largest deflection " in out, out
 
 
 def test_the_modulus_help_says_its_range(capsys):
