@@ -216,6 +216,16 @@ def command_render(args):
 WORKERS_PER_CORE = 4
 
 
+def usable_cores() -> int:
+    """The cores this process may run on: its CPU affinity where the system reports it
+    (Linux), else the machine's count. Why: a container pinned to 2 of a host's 64 cores
+    reports 64 to os.cpu_count(), and --workers would be allowed 256."""
+    try:
+        return len(os.sched_getaffinity(0)) or 1
+    except AttributeError:        # no affinity call (macOS, Windows)
+        return os.cpu_count() or 1
+
+
 def check_workers(args) -> None:
     """--workers: local processes, at most WORKERS_PER_CORE per core; not with --scheduler,
     whose cluster's own workers run the cases (it was ignored there)."""
@@ -224,7 +234,7 @@ def check_workers(args) -> None:
             raise ValueError("--workers starts a local cluster; with --scheduler the "
                              "cluster's own workers run the cases: give one of them")
         return
-    cores = os.cpu_count() or 1
+    cores = usable_cores()
     if args.workers > WORKERS_PER_CORE * cores:
         raise ValueError(f"--workers {args.workers} local processes on {cores} cores: at "
                          f"most {WORKERS_PER_CORE * cores} (more only share the cores; "
