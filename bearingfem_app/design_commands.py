@@ -6,6 +6,7 @@ import math
 
 from bearingfem.errors import LoadCapacityError
 
+from .bush import bush_words
 from .options import (accuracy_options, bearing_from_args, check_output, coarse_film_note,
                       model_options, note_coarse_film, print_rows, write_numbers)
 
@@ -13,8 +14,10 @@ __all__ = ["command_equilibrium", "command_coefficients", "command_design"]
 
 
 def _options_words(opts) -> str:
-    """The film model's options as words for a header: ' (n_theta 120, element P1)'."""
-    return f" ({', '.join(f'{k} {v}' for k, v in opts.items())})" if opts else ""
+    """The film model's options as words for a header: ' (n_theta 120, element P1)'; a
+    bush in its options' names (as ``solve`` prints it)."""
+    words = [bush_words(v) if k == "bush" else f"{k} {v}" for k, v in opts.items()]
+    return f" ({', '.join(words)})" if words else ""
 
 
 def _equilibrium_rows(eq, b):
