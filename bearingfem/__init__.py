@@ -14,7 +14,7 @@ from .closed.long_bearing import long_bearing_exact_force, long_bearing_force
 from .closed.short_bearing import short_bearing_exact_force, short_bearing_force
 from .design import coefficients, equilibrium
 from .elastic import ElasticBush
-from .errors import ConvergenceError
+from .errors import ConvergenceError, LoadCapacityError
 from .reynolds import fvm_reynolds, solve_reynolds
 from .lubricant import Lubricant
 from .ehl import line_contact, point_contact
@@ -25,5 +25,5 @@ __all__ = ["Bearing", "JournalState", "ElasticJournalState", "Groove", "solve_re
            "short_bearing_force", "long_bearing_force", "short_bearing_exact_force",
            "long_bearing_exact_force", "equilibrium", "coefficients", "ElasticBush",
            "Lubricant", "line_contact", "point_contact", "ConvergenceError", "Roughness",
-           "FlowFactors", "clear_caches", "Thermal"]
+           "FlowFactors", "clear_caches", "Thermal", "LoadCapacityError"]
 from .version import __version__  # noqa: F401  (the package version)

@@ -1,7 +1,7 @@
 """Errors the toolkit raises besides ``ValueError`` (bad input)."""
 from __future__ import annotations
 
-__all__ = ["ConvergenceError", "OilRangeWarning"]
+__all__ = ["ConvergenceError", "LoadCapacityError", "OilRangeWarning"]
 
 
 class ConvergenceError(RuntimeError):
@@ -30,6 +30,39 @@ class ConvergenceError(RuntimeError):
 
     def __reduce__(self):      # picklable (dask workers send errors back)
         return ConvergenceError, (self.solve, self.iterations, self.residual, self.where)
+
+
+class LoadCapacityError(ValueError):
+    """A steady load beyond what the film carries before contact (its force at
+    ``eps_max``): bad input, refused before an equilibrium is searched past the wall.
+
+    The capacity is that of the film as solved: on a mesh too coarse for the film at
+    ``eps_max`` it is the mesh's, not the bearing's (8 x 2 cells carried 1991 N where
+    120 x 20 carry 2.5e5 N), and a finer ``n_theta`` (or ``rtol``) is what helps; on a
+    mesh that resolves the film, a larger bearing or a lighter load.
+
+    Parameters
+    ----------
+    load : the load's magnitude [N]
+    capacity : what the film carries at ``eps_max`` [N]
+    eps_max : the largest eccentricity ratio searched
+    model : the film model's name
+    mesh : the film's mesh options the capacity was found on (``n_theta``, ``n_z`` and,
+        for the FE film, ``element``), or None for a model without a mesh
+    """
+
+    def __init__(self, load: float, capacity: float, eps_max: float, model: str,
+                 mesh: dict | None = None):
+        self.load, self.capacity, self.eps_max, self.model = (
+            float(load), float(capacity), float(eps_max), model)
+        self.mesh = None if mesh is None else dict(mesh)
+        super().__init__(f"load {self.load:.6g} N exceeds what the film carries before "
+                         f"contact: {self.capacity:.6g} N at eps_max = {self.eps_max:g} "
+                         f"({model} model)")
+
+    def __reduce__(self):      # picklable (dask workers send errors back)
+        return LoadCapacityError, (self.load, self.capacity, self.eps_max, self.model,
+                                   self.mesh)
 
 
 class OilRangeWarning(UserWarning):

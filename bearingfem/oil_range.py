@@ -13,8 +13,8 @@ import math
 
 import numpy as np
 
-__all__ = ["CELSIUS", "OIL_TEMPERATURE_RANGE", "check_oil_temperature",
-           "temperature_range_note"]
+__all__ = ["CELSIUS", "OIL_TEMPERATURE_RANGE", "LEAST_KELVIN", "check_oil_temperature",
+           "check_kelvin", "temperature_range_note"]
 
 CELSIUS = 273.15                   # [K]
 #: [K] the oil temperatures taken, -50 to 200 C: a mineral oil film's, where the D341 chart
@@ -22,9 +22,33 @@ CELSIUS = 273.15                   # [K]
 #: extrapolation far above 200 C). It refuses the command line's --oil-temperature and a
 #: scene's oil_temperature (an ISO VG oil); a solved thermal film or an oil held by
 #: at_temperature outside it warns (:func:`temperature_range_note`): other fluids, hot
-#: synthetic oils and cryogens, have their own laws, so a Thermal or a law's points are
-#: refused only at or below 0 K.
+#: synthetic oils, have their own laws, so a Thermal's temperatures are refused only
+#: below :data:`LEAST_KELVIN` and a law's points only at or below 0 K.
 OIL_TEMPERATURE_RANGE = (CELSIUS - 50.0, CELSIUS + 200.0)
+#: [K] the least temperature a Thermal takes (-73.15 C): below it a number meant in kelvin
+#: was surely typed in degrees Celsius (40 for 313.15 K, the likeliest slip), which the
+#: film took and warned of only once solved. An oil film colder than any mineral oil's
+#: pour point (~-50 C) is none of a thermal film's, and an aircraft's ambient at altitude
+#: (-56.5 C, 216.65 K) is still taken.
+LEAST_KELVIN = 200.0
+
+
+def _number(name: str, value, span: str) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float, np.floating, np.integer)):
+        raise ValueError(f"{name} must be a number in {span}, got {value!r}")
+    return float(value)
+
+
+def check_kelvin(name: str, value) -> float:
+    """``value`` [K], finite and >= :data:`LEAST_KELVIN`; ValueError naming ``name``, the
+    range and, when the number is a temperature in degrees Celsius, that slip."""
+    span = f"[{LEAST_KELVIN:g}, inf) K ({LEAST_KELVIN - CELSIUS:g} C up: kelvin, not degC)"
+    v = _number(name, value, span)
+    if not (math.isfinite(v) and v >= LEAST_KELVIN):
+        hint = (f" (typed in degC? {value!r} degC is {v + CELSIUS:g} K)"
+                if math.isfinite(v) and v + CELSIUS >= LEAST_KELVIN else "")
+        raise ValueError(f"{name} must lie in {span}, got {value!r}{hint}")
+    return v
 
 
 def check_oil_temperature(name: str, value, *, unit: str = "K") -> float:
@@ -34,9 +58,7 @@ def check_oil_temperature(name: str, value, *, unit: str = "K") -> float:
     shift = CELSIUS if unit == "degC" else 0.0
     span = (f"[{lo - shift:g}, {hi - shift:g}] degC (an oil film's)" if unit == "degC" else
             f"[{lo:g}, {hi:g}] K ({lo - CELSIUS:g} to {hi - CELSIUS:g} C, an oil film's)")
-    if isinstance(value, bool) or not isinstance(value, (int, float, np.floating, np.integer)):
-        raise ValueError(f"{name} must be a number in {span}, got {value!r}")
-    v = float(value)
+    v = _number(name, value, span)
     if not (math.isfinite(v) and lo <= v + shift <= hi):
         # the other unit's number in range is the likely slip (313 for 40 C, 40 for 313 K)
         other = v - CELSIUS if unit == "degC" else v + CELSIUS

@@ -3,14 +3,10 @@ Young's modulus and Poisson's ratio (the :class:`bearingfem.ElasticBush` of
 ``solve``, ``equilibrium`` and ``coefficients``)."""
 from __future__ import annotations
 
-from bearingfem.elastic.bush import MODELS, ElasticBush
+from bearingfem.bearing import SEED_TABLE1
+from bearingfem.elastic.bush import MODELS, OUTER_RATIO, ElasticBush
 
-__all__ = ["add_bush_args", "bush_from_args", "BUSH_OPTIONS"]
-
-#: the bush's outer radius over the film radius R when --bush-outer-radius is not given: the
-#: seed pin's bronze bush (R 10 mm, held at 16 mm), scaled with --diameter so that any
-#: journal gets a bush (a fixed 16 mm was refused from D = 32 mm on)
-OUTER_RATIO = 1.6
+__all__ = ["add_bush_args", "bush_from_args", "bush_words", "BUSH_OPTIONS"]
 
 #: Young's modulus [Pa] of any bush material, soft rubber (~1e6) to diamond (~1.1e12):
 #: outside it the number was typed in another unit (110 for 110 GPa), and the EHD Newton
@@ -30,12 +26,25 @@ def add_bush_args(p):
                         "slice, or a thin liner; outer surface held")
     p.add_argument("--bush-outer-radius", type=float, default=None,
                    help=f"the bush's held outer radius [m] (> R; default {OUTER_RATIO:g} R, "
-                        f"{d.outer_radius:g} at the default --diameter)")
+                        f"{d.at_radius(SEED_TABLE1['diameter'] / 2).outer_radius:g} at the "
+                        "default --diameter)")
     p.add_argument("--bush-modulus", type=float, default=None,
                    help=f"the bush's Young's modulus [Pa] in [{MODULUS_RANGE[0]:g}, "
                         f"{MODULUS_RANGE[1]:g}], rubber to diamond (default {d.modulus:g})")
     p.add_argument("--bush-poisson", type=float, default=None,
                    help=f"the bush's Poisson's ratio, in (-1, 0.5) (default {d.poisson:g})")
+
+
+#: ElasticBush field -> its unit as printed
+UNITS = {"outer_radius": " m", "modulus": " Pa", "poisson": ""}
+
+
+def bush_words(bush: ElasticBush) -> str:
+    """The bush in the options' own names: '--bush ring, --bush-outer-radius 0.016 m,
+    --bush-modulus 1.1e+11 Pa, --bush-poisson 0.34' (its outer radius resolved)."""
+    return ", ".join([f"--bush {bush.model}"] + [
+        f"{option} {getattr(bush, field):g}{UNITS[field]}"
+        for option, field in BUSH_OPTIONS.values()])
 
 
 def bush_from_args(args) -> ElasticBush | None:
@@ -52,8 +61,6 @@ def bush_from_args(args) -> ElasticBush | None:
     radius = args.diameter / 2
     fields = {f: getattr(args, dest) for dest, (_, f) in BUSH_OPTIONS.items()
               if getattr(args, dest) is not None}
-    # rounded: the header prints 0.04, not 0.04000000000000001
-    fields.setdefault("outer_radius", float(f"{OUTER_RATIO * radius:.12g}"))
     try:
         bush = ElasticBush(model=args.bush, **fields)
     except ValueError as err:
@@ -76,7 +83,9 @@ def bush_from_args(args) -> ElasticBush | None:
     if bush.modulus > hi:
         raise ValueError(f"--bush-modulus {bush.modulus:g} Pa is above any solid's "
                          f"(<= {hi:.1e} Pa, diamond's): give it in Pa")
-    if not bush.outer_radius > radius:                   # before any work
+    if bush.outer_radius is not None and not bush.outer_radius > radius:   # before any work
         raise ValueError(f"--bush-outer-radius must exceed the film radius R = --diameter / 2"
                          f" = {radius:g} m, got {bush.outer_radius:g}")
-    return bush
+    # the library's default outer radius, OUTER_RATIO R, resolved here: the header and
+    # the table print it
+    return bush.at_radius(radius)

@@ -12,7 +12,7 @@ from pathlib import Path
 
 from bearingfem.outputs.tables import write_csv
 
-from .bush import bush_from_args
+from .bush import bush_from_args, bush_words
 from .checks import check_writable, parse_angles
 from .options import (ambient_pressure, check_film_options, check_output, check_rtol_mesh,
                       film_state, make_dir, note_coarse_film, supply_angle)
@@ -101,10 +101,20 @@ def _note_coarse(args, s, element, bush) -> None:
                                  "element": "FV" if args.model == "fvm" else element})
 
 
+def _deflection_words(sol) -> str:
+    """The bush's largest deflection (by magnitude, signed) and where it is."""
+    i = int(abs(sol.deformation).argmax())
+    return (f"largest deflection {sol.deformation[i] * 1e6:.4g} um at theta "
+            f"{math.degrees(float(sol.theta[i]) % (2 * math.pi)):.1f} deg from the maximum "
+            "film (> 0 opens the gap)")
+
+
 def command_solve(args):
     check_output(args.output, FILM_FORMATS)
     b, s, element, bush, sol = _film(args)
     print(sol.summary())
+    if bush is not None:
+        print(f"  bush: {bush_words(bush)}; {_deflection_words(sol)}")
     _note_coarse(args, s, element, bush)
     from bearingfem.design import sommerfeld_number
     load = math.hypot(*sol.force_local)
@@ -206,6 +216,16 @@ def command_render(args):
 WORKERS_PER_CORE = 4
 
 
+def usable_cores() -> int:
+    """The cores this process may run on: its CPU affinity where the system reports it
+    (Linux), else the machine's count. Why: a container pinned to 2 of a host's 64 cores
+    reports 64 to os.cpu_count(), and --workers would be allowed 256."""
+    try:
+        return len(os.sched_getaffinity(0)) or 1
+    except AttributeError:        # no affinity call (macOS, Windows)
+        return os.cpu_count() or 1
+
+
 def check_workers(args) -> None:
     """--workers: local processes, at most WORKERS_PER_CORE per core; not with --scheduler,
     whose cluster's own workers run the cases (it was ignored there)."""
@@ -214,7 +234,7 @@ def check_workers(args) -> None:
             raise ValueError("--workers starts a local cluster; with --scheduler the "
                              "cluster's own workers run the cases: give one of them")
         return
-    cores = os.cpu_count() or 1
+    cores = usable_cores()
     if args.workers > WORKERS_PER_CORE * cores:
         raise ValueError(f"--workers {args.workers} local processes on {cores} cores: at "
                          f"most {WORKERS_PER_CORE * cores} (more only share the cores; "

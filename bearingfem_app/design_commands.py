@@ -4,8 +4,9 @@ from __future__ import annotations
 
 import math
 
-from bearingfem.design.records import EPS_MAX
+from bearingfem.errors import LoadCapacityError
 
+from .bush import bush_words
 from .options import (accuracy_options, bearing_from_args, check_output, coarse_film_note,
                       model_options, note_coarse_film, print_rows, write_numbers)
 
@@ -13,8 +14,10 @@ __all__ = ["command_equilibrium", "command_coefficients", "command_design"]
 
 
 def _options_words(opts) -> str:
-    """The film model's options as words for a header: ' (n_theta 120, element P1)'."""
-    return f" ({', '.join(f'{k} {v}' for k, v in opts.items())})" if opts else ""
+    """The film model's options as words for a header: ' (n_theta 120, element P1)'; a
+    bush in its options' names (as ``solve`` prints it)."""
+    words = [bush_words(v) if k == "bush" else f"{k} {v}" for k, v in opts.items()]
+    return f" ({', '.join(words)})" if words else ""
 
 
 def _equilibrium_rows(eq, b):
@@ -80,17 +83,18 @@ def _check_linearisable(model: str, command: str) -> None:
 
 def _equilibrium(b, args, model, opts, acc=None):
     """The equilibrium under --load and --direction. A refusal of the load as beyond the
-    film's capacity, on a mesh surely too coarse for the film at eps_max, says so: the
-    capacity it names is the mesh's (8 x 2 cells gave 1991 N for a bearing that carries
-    ~1e5 N), not the bearing's."""
+    film's capacity (:class:`~bearingfem.errors.LoadCapacityError`), on a rigid film's
+    mesh given here and surely too coarse for the film at eps_max, says so: the capacity
+    it names is the mesh's (8 x 2 cells gave 1991 N for a bearing that carries ~1e5 N),
+    not the bearing's."""
     from bearingfem.design import equilibrium
     try:
         return equilibrium(b, args.load, args.omega, model,
                            direction=math.radians(args.direction), **opts, **(acc or {}))
-    except ValueError as err:
-        note = (coarse_film_note(EPS_MAX, opts["n_theta"], opts.get("element", "P1"))
-                if "exceeds what the film carries" in str(err) and "n_theta" in opts
-                and "bush" not in opts else None)
+    except LoadCapacityError as err:
+        mesh = err.mesh if "n_theta" in opts and "bush" not in opts else None
+        note = (None if mesh is None else
+                coarse_film_note(err.eps_max, mesh["n_theta"], mesh.get("element", "P1")))
         if note is None:
             raise
         raise ValueError(f"{err}; {note.removeprefix('note: ')}") from None

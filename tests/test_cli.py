@@ -551,6 +551,34 @@ def test_a_capacity_refusal_on_a_coarse_mesh_says_the_mesh_is_coarse(capsys):
     assert "exceeds what the film carries" in err and "node spacings" not in err
 
 
+def test_the_coarse_mesh_note_reads_the_typed_refusal_not_its_words(monkeypatch, capsys):
+    """The note is added to a LoadCapacityError (it carries eps_max and the mesh), not to
+    any refusal whose text says 'exceeds what the film carries': a plain ValueError with
+    those words passes through as it is, and the note's mesh is the error's."""
+    import bearingfem.design
+    from bearingfem import LoadCapacityError
+    from bearingfem_app.cli import main
+
+    def refuse(error):
+        def equilibrium(*args, **kwargs):
+            raise error
+        return equilibrium
+
+    argv = ["equilibrium", "--load", "2000", "--n-theta", "8", "--n-z", "2"]
+    words = "load 2000 N exceeds what the film carries before contact: 5 N"
+    monkeypatch.setattr(bearingfem.design, "equilibrium", refuse(ValueError(words)))
+    assert main(argv) == 2
+    assert capsys.readouterr().err.strip() == f"bearingfem: error: {words}"
+    monkeypatch.setattr(bearingfem.design, "equilibrium", refuse(LoadCapacityError(
+        2000.0, 5.0, 0.9, "fem", dict(n_theta=8, n_z=2, element="P2"))))
+    assert main(argv) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith(
+        "bearingfem: error: load 2000 N exceeds what the film carries before contact: 5 N "
+        "at eps_max = 0.9 (fem model); the film under twice its least (eps 0.9) spans "), err
+    assert "node spacings of --n-theta 8 (P2)" in err[0], err
+
+
 def test_version_is_printed_for_citing():
     """`bearingfem --version` prints the package version, exit 0 (it said 'the following
     arguments are required: command')."""

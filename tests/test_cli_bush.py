@@ -3,6 +3,7 @@
 input is one line with exit status 2."""
 import re
 
+import numpy as np
 import pytest
 
 from bearingfem import Bearing, ElasticBush, JournalState, solve_reynolds
@@ -29,6 +30,22 @@ def test_solve_with_a_bush_is_the_api_film(capsys):
                                           model="ring"))
     printed = float(re.search(r"\|F\| ([\d.e+-]+) N", out).group(1))
     assert printed == pytest.approx(float(f"{abs(complex(*sol.force_local)):.6g}"), rel=1e-12)
+    # the bush as the options name it, and the film's largest deflection (1.9 um here)
+    line = [x for x in out.splitlines() if x.startswith("  bush: ")]
+    assert len(line) == 1 and line[0].startswith(
+        "  bush: --bush ring, --bush-outer-radius 0.015 m, --bush-modulus 5e+09 Pa, "
+        "--bush-poisson 0.3; largest deflection "), out
+    i = int(np.argmax(np.abs(sol.deformation)))
+    w = float(re.search(r"largest deflection ([\d.e+-]+) um at theta ([\d.]+) deg",
+                        line[0]).group(1))
+    assert w == float(f"{sol.deformation[i] * 1e6:.4g}") and w > 1.0
+    assert f"at theta {np.degrees(sol.theta[i]) % 360:.1f} deg" in line[0]
+
+
+def test_solve_without_a_bush_prints_no_bush(capsys):
+    """The rigid film's output has no bush line."""
+    assert main(["solve", "--ld", "0.5", "--eps", "0.8", *MESH]) == 0
+    assert "bush" not in capsys.readouterr().out
 
 
 def test_equilibrium_takes_the_bush(capsys):
@@ -37,7 +54,11 @@ def test_equilibrium_takes_the_bush(capsys):
     assert main(["equilibrium", "--ld", "0.5", "--load", "200", "--model", "fem-ehd",
                  *MESH, "--bush", "liner", "--bush-outer-radius", "0.0105",
                  "--bush-modulus", "5e9"]) == 0
-    assert "eccentricity ratio" in capsys.readouterr().out
+    out = capsys.readouterr().out
+    assert "eccentricity ratio" in out
+    # the header names the bush as solve does, in the options' names
+    assert "cavitation reynolds, --bush liner, --bush-outer-radius 0.0105 m, --bush-modulus " \
+        "5e+09 Pa, --bush-poisson 0.34): load 200 N" in out.splitlines()[0], out
 
 
 @pytest.mark.parametrize("args, needle", [
@@ -88,6 +109,9 @@ def test_the_default_outer_radius_scales_with_the_diameter(capsys):
                          bush=ElasticBush(outer_radius=0.04, modulus=5e9, model="ring"))
     printed = float(re.search(r"\|F\| ([\d.e+-]+) N", out).group(1))
     assert printed == pytest.approx(float(f"{abs(complex(*sol.force_local)):.6g}"), rel=1e-12)
+    # the library's default, printed as resolved
+    assert "  bush: --bush ring, --bush-outer-radius 0.04 m, --bush-modulus 5e+09 Pa, " \
+        "--bush-poisson 0.34; largest deflection " in out, out
 
 
 def test_the_modulus_help_says_its_range(capsys):
@@ -103,12 +127,13 @@ def test_the_modulus_help_says_its_range(capsys):
 @pytest.mark.parametrize("diameter, outer", [(0.05, 0.04), (0.02, 0.016), (0.03, 0.024)])
 def test_the_default_outer_radius_is_printed_as_typed(diameter, outer):
     """1.6 R is rounded to 12 digits, so that a header prints outer_radius=0.04 for a 50 mm
-    journal (1.6 * 0.025 is 0.04000000000000001), and the seed's 16 mm is the library's
-    own default at the default --diameter."""
+    journal (1.6 * 0.025 is 0.04000000000000001); it is the library's own default,
+    ElasticBush's 1.6 R, the seed's 16 mm at the default --diameter."""
     import argparse
     from bearingfem_app.bush import BUSH_OPTIONS, bush_from_args
     args = argparse.Namespace(bush="ring", diameter=diameter,
                               **{dest: None for dest in BUSH_OPTIONS})
     bush = bush_from_args(args)
     assert bush.outer_radius == outer and f"outer_radius={outer!r}," in repr(bush)
-    assert diameter != SEED_TABLE1["diameter"] or outer == ElasticBush().outer_radius
+    assert bush == ElasticBush(model="ring").at_radius(diameter / 2)    # the library's rule
+    assert diameter != SEED_TABLE1["diameter"] or outer == 0.016

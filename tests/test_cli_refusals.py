@@ -393,8 +393,16 @@ def test_a_film_too_coarse_for_its_least_film_is_noted(capsys, argv, noted):
 def test_sweep_workers_are_checked_against_the_cores(monkeypatch, tmp_path, capsys):
     """--workers above 4 per core is refused before any process starts (--workers 200
     started 200 on a 2-core machine), and --workers beside --scheduler is refused by name
-    (it was ignored: the cluster's own workers run the cases)."""
-    monkeypatch.setattr(os, "cpu_count", lambda: 2)
+    (it was ignored: the cluster's own workers run the cases). The cores are those the
+    process may run on (its affinity: a container pinned to 2 of 64 cores), not the
+    machine's count; without an affinity call, the machine's count."""
+    import bearingfem_app.sweep
+
+    def started(*args, **kwargs):
+        raise AssertionError("the sweep started")
+    monkeypatch.setattr(bearingfem_app.sweep, "run_sweep", started)
+    monkeypatch.setattr(os, "cpu_count", lambda: 64)
+    monkeypatch.setattr(os, "sched_getaffinity", lambda pid: {0, 1}, raising=False)
     assert main(["sweep", "capacity", "-o", str(tmp_path / "s"), "--workers", "9"]) == 2
     assert capsys.readouterr().err.strip() == (
         "bearingfem: error: --workers 9 local processes on 2 cores: at most 8 (more only "
@@ -407,6 +415,10 @@ def test_sweep_workers_are_checked_against_the_cores(monkeypatch, tmp_path, caps
         main(["sweep", "--help"])
     assert "(>= 1, at most 4 per core; not with --scheduler)" in " ".join(
         capsys.readouterr().out.split())
+    monkeypatch.delattr(os, "sched_getaffinity")
+    monkeypatch.setattr(os, "cpu_count", lambda: 1)
+    assert main(["sweep", "capacity", "-o", str(tmp_path / "s"), "--workers", "5"]) == 2
+    assert "--workers 5 local processes on 1 cores: at most 4" in capsys.readouterr().err
 
 
 def test_an_output_of_another_commands_kind_names_that_command(capsys):

@@ -11,7 +11,7 @@ from bearingfem.design import (coefficients, equilibrium, journal_orbit, lund_st
 from bearingfem.differentiate import central_differences
 from bearingfem.film import local_to_inertial
 from bearingfem.closed.long_bearing import long_bearing_derivatives, long_bearing_force
-from bearingfem.models import FILM_MODELS
+from bearingfem.models import FILM_MODELS, film_model
 from bearingfem.routes import fe_force
 from bearingfem.fe.sensitivity import fe_force_derivatives
 from bearingfem.closed.short_bearing import short_bearing_derivatives, short_bearing_force
@@ -91,6 +91,35 @@ def test_equilibrium_refuses_what_it_cannot_do():
         equilibrium(b, (0.0, -10.0), 250.0, "fe")
     with pytest.raises(ValueError, match="n_thta is not an option of film model 'fem'"):
         equilibrium(b, (0.0, -10.0), 250.0, "fem", n_thta=10)
+
+
+@pytest.mark.parametrize("model,options,mesh", [
+    ("short", {}, None),                                                   # Newton, no mesh
+    ("fem", dict(n_theta=8, n_z=2), dict(n_theta=8, n_z=2, element="P1")),   # Newton
+    ("fvm", dict(n_theta=16, n_z=4), dict(n_theta=16, n_z=4)),              # Brent
+])
+def test_a_load_beyond_the_capacity_is_a_typed_refusal(model, options, mesh):
+    """The capacity refusal is a LoadCapacityError (a ValueError) that carries the load,
+    the film's force at eps_max and the mesh it was solved on: the command line reads the
+    mesh from it to say a coarse mesh's capacity is the mesh's (it matched the message's
+    words before), on both routes to the equilibrium; it survives pickling (dask)."""
+    import pickle
+
+    from bearingfem import LoadCapacityError
+    b = Bearing(radius=0.01, length=0.02, clearance=20e-6, viscosity=0.0117)
+    with pytest.raises(LoadCapacityError) as info:
+        equilibrium(b, (0.0, -1e7), 250.0, model, eps_max=0.95, **options)
+    err = info.value
+    assert isinstance(err, ValueError)
+    assert (err.load, err.eps_max, err.model, err.mesh) == (1e7, 0.95, model, mesh)
+    film = film_model(model).options(options)
+    carried = math.hypot(*film_model(model).film_force(b, JournalState(0.95, omega=250.0),
+                                                       **film))
+    assert err.capacity == pytest.approx(carried, rel=1e-12) and carried < 1e7
+    assert str(err) == (f"load 1e+07 N exceeds what the film carries before contact: "
+                        f"{carried:.6g} N at eps_max = 0.95 ({model} model)")
+    again = pickle.loads(pickle.dumps(err))
+    assert (str(again), again.mesh, again.capacity) == (str(err), err.mesh, err.capacity)
 
 
 STATES = [JournalState(0.6, 0.0, 0.3, 0.0, 250.0), JournalState(0.8, 20.0, -1.0, 5.0, 250.0),

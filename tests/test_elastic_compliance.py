@@ -122,6 +122,32 @@ def test_bad_bush_raises(kwargs, match):
         ElasticBush(**kwargs)
 
 
+@pytest.mark.parametrize("model", ["ring", "liner", "solid"])
+def test_the_default_outer_radius_is_1_6_r_of_any_bearing(model):
+    """ElasticBush() holds its outer surface at 1.6 R, the command line's default, under
+    any film (it was a fixed 16 mm: refused from D = 32 mm on, a 1 mm liner at
+    D = 30 mm): a D = 40 mm journal's bush is held at 32 mm, the same compliance as that
+    outer radius given, and a heat model takes the same wall."""
+    from bearingfem.thermal.bush import bush_heat
+    default = ElasticBush(modulus=110e9, poisson=0.34, model=model)
+    given = ElasticBush(outer_radius=0.032, modulus=110e9, poisson=0.34, model=model)
+    assert default.outer_radius is None and default.at_radius(0.02) == given
+    a, b = (bush_compliance(bush, 0.02, 0.008, 16, 3) for bush in (default, given))
+    assert a.bush == given and np.array_equal(a.stored, b.stored)
+    heat = dict(conductivity=50.0, outer_coefficient=700.0, ambient_temperature=300.0,
+                inner_flux=1e4, n_theta=16, n_radial=2, n_axial=2)
+    ta, tb = (bush_heat(bush, 0.02, 0.008, **heat) for bush in (default, given))
+    assert np.array_equal(ta.temperature, tb.temperature)
+
+
+def test_an_outer_radius_inside_the_film_names_the_default():
+    """A given outer radius at or inside R is refused, naming the default that fits."""
+    with pytest.raises(ValueError, match=r"outer_radius must exceed the film radius "
+                       r"R=0\.02, got outer_radius=0\.016 \(leave it out for the default, "
+                       r"1\.6 R = 0\.032 m\)"):
+        bush_compliance(ElasticBush(**BRONZE), 0.02, 0.004, 16, 3)
+
+
 def test_bad_compliance_input_raises(small_solid):
     with pytest.raises(ValueError, match="outer_radius must exceed"):
         bush_compliance(ElasticBush(**BRONZE), 0.016, 0.004, 16, 3)

@@ -237,16 +237,25 @@ def test_bad_thermal_spec_names_the_parameter(kwargs, name):
 
 @pytest.mark.parametrize("name", ["supply_temperature", "ambient_temperature",
                                   "journal_temperature"])
-def test_thermal_temperatures_take_any_oil_and_refuse_only_nonphysical(name):
+def test_thermal_temperatures_take_any_oil_and_refuse_degc(name):
     """A Thermal's temperatures are any oil's, not the command line's ISO VG range: a
     300 C (573.15 K) supply and an aircraft's ambient at altitude (ISA -56.5 C, 216.65 K)
-    are taken (both refused when the ISO VG range applied here); 0 K and below are refused
-    naming the parameter. The ISO VG oil of --oil-temperature keeps its -50 to 200 C."""
+    are taken (both refused when the ISO VG range applied here). Below 200 K
+    (oil_range.LEAST_KELVIN) the number is degrees Celsius typed for kelvin: 40.0 was taken
+    and the film only warned once solved (OilRangeWarning, the oil's law extrapolated to
+    40 K); now refused before any work, naming the parameter, the range and the slip.
+    The ISO VG oil of --oil-temperature keeps its -50 to 200 C."""
     base = dict(supply_temperature=SUPPLY, model="conducting")
-    for value in (573.15, 216.65):
+    for value in (573.15, 216.65, 200.0):
         assert getattr(Thermal(**dict(base, **{name: value})), name) == value
-    with pytest.raises(ValueError, match=rf"{name} must be finite and > 0 \[K\]"):
-        Thermal(**dict(base, **{name: 0.0}))
+    span = r"must lie in \[200, inf\) K \(-73.15 C up: kelvin, not degC\), got "
+    with pytest.raises(ValueError, match=rf"^{name} {span}40.0 \(typed in degC\? 40.0 degC "
+                                         r"is 313.15 K\)$"):
+        Thermal(**dict(base, **{name: 40.0}))
+    with pytest.raises(ValueError, match=rf"^{name} {span}199.9 \(typed in degC\? "):
+        Thermal(**dict(base, **{name: 199.9}))
+    with pytest.raises(ValueError, match=rf"^{name} {span}-300.0$"):     # no slip fits
+        Thermal(**dict(base, **{name: -300.0}))
     with pytest.raises(ValueError, match=r"oil_temperature must lie in \[-50, 200\] degC"):
         oil_viscosity("ISO VG 32", 300.0)
 

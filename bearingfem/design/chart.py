@@ -22,7 +22,7 @@ from ..models import film_model
 from .coefficients import coefficients
 from .equilibrium import EPS_MAX
 from .groups import load_from_sommerfeld, petroff_friction
-from .newton import closed_form_start, newton_position, polar_linearisation
+from .newton import closed_form_start, film_mesh, newton_position, polar_linearisation
 
 __all__ = ["ChartPoint", "DesignChart", "design_chart", "CHART_SOMMERFELD", "chart_grading"]
 
@@ -143,7 +143,8 @@ def design_chart(bearing: Bearing, omega: float, sommerfeld=CHART_SOMMERFELD,
         W = load_from_sommerfeld(bearing, s, omega)
         load = W * u
         q0 = closed_form_start(bearing, omega, load) if q is None else q
-        eps, gamma = newton_position(film, load, q0, eps_max, rtol, capacity, model)
+        eps, gamma = newton_position(film, load, q0, eps_max, rtol, capacity, model,
+                                     mesh=film_mesh(opts))
         q = eps * np.array([math.cos(gamma), math.sin(gamma)])
         state = JournalState(eps, omega=omega, gamma=gamma)
         kc = coefficients(bearing, state, model, frame="load", **opts)

@@ -26,7 +26,7 @@ from scipy.optimize import brentq, root
 
 from ..accuracy import check_rtol
 from ..bearing import Bearing, JournalState, check_finite, check_surface_speed
-from ..errors import ConvergenceError
+from ..errors import ConvergenceError, LoadCapacityError
 from ..reynolds import solve_reynolds
 from ..fe.sensitivity import fe_tilt_coefficients
 from ..fields import check_tilt
@@ -35,10 +35,11 @@ from ..models import film_model, solve_film
 from .groups import petroff_friction, sommerfeld_number
 from .records import EPS_MAX, Equilibrium, least_film, load_vector
 from .thermal import thd_equilibrium
-from .newton import closed_form_start, newton_position, polar_linearisation, shrink_inside
+from .newton import (closed_form_start, film_mesh, newton_position, polar_linearisation,
+                     shrink_inside)
 from .tolerance import answer_to_tolerance
 
-__all__ = ["Equilibrium", "equilibrium", "EPS_MAX", "ConvergenceError"]
+__all__ = ["Equilibrium", "equilibrium", "EPS_MAX", "ConvergenceError", "LoadCapacityError"]
 
 
 def equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
@@ -135,8 +136,7 @@ def equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
 
     f_max = math.hypot(*force(eps_max))
     if not f_max >= W:
-        raise ValueError(f"load {W:.6g} N exceeds what the film carries before contact: "
-                         f"{f_max:.6g} N at eps_max = {eps_max:g} ({model} model)")
+        raise LoadCapacityError(W, f_max, eps_max, model, film_mesh(opts))
     eps = brentq(lambda e: math.hypot(*force(e)) - W, 0.0, eps_max, xtol=1e-300, rtol=xtol)
     f_r, f_t = force(eps)
     # turn the eccentricity so that the film force points opposite the load
@@ -296,7 +296,8 @@ def _newton_position(m, bearing, omega, load, opts, q0, eps_max, rtol, model, ti
         o = {**opts, "grooves": ()} if opts.get("grooves") else opts
         return math.hypot(*m.film_force(bearing, JournalState(eps_max, omega=omega), **o))
 
-    eps, gamma = newton_position(film, load, q0, eps_max, rtol, capacity, model, d_end)
+    eps, gamma = newton_position(film, load, q0, eps_max, rtol, capacity, model, d_end,
+                                 film_mesh(opts))
     return eps, gamma, partials, calls
 
 

@@ -30,11 +30,11 @@ from scipy.optimize import brentq
 from ..bearing import Bearing, JournalState
 from ..closed.long_bearing import long_bearing_force
 from ..closed.short_bearing import short_bearing_force
-from ..errors import ConvergenceError
+from ..errors import ConvergenceError, LoadCapacityError
 from ..film import local_to_inertial
 
-__all__ = ["closed_form_start", "newton_position", "polar_linearisation", "shrink_inside",
-           "NEWTON_MAX_STEPS"]
+__all__ = ["closed_form_start", "film_mesh", "newton_position", "polar_linearisation",
+           "shrink_inside", "NEWTON_MAX_STEPS"]
 
 #: Newton steps before giving up: converged films need 3-6 from the closed-form start
 #: (benchmarks/design.py --grooved); more means a start outside the basin.
@@ -82,7 +82,8 @@ def polar_linearisation(partials):
     return film
 
 
-def newton_position(film, load, q0, eps_max, rtol, capacity, model, ends=(0.0, 0.0)):
+def newton_position(film, load, q0, eps_max, rtol, capacity, model, ends=(0.0, 0.0),
+                    mesh=None):
     """(eps, gamma) where the film force balances ``load`` (W_x, W_y) [N].
 
     ``film(q)`` -> (F, dF/dq) [N], inertial, at the journal position q = e/c (e.g.
@@ -91,8 +92,9 @@ def newton_position(film, load, q0, eps_max, rtol, capacity, model, ends=(0.0, 0
     convergence) and takes that step. ``ends`` = d: the journal centres q + d and q - d (a
     tilted journal's ends) stay inside eps_max; (0, 0) for an aligned journal.
     ``capacity()`` -> what the film carries at eps_max [N], asked only on failure or when a
-    step heads past eps_max: a load beyond it raises ValueError, any other failure
-    ConvergenceError.
+    step heads past eps_max: a load beyond it raises :class:`LoadCapacityError` (a
+    ValueError naming ``mesh``, the film's mesh options, see :func:`film_mesh`), any other
+    failure ConvergenceError.
     """
     W = math.hypot(*load)
     d_end = np.asarray(ends, float)
@@ -110,9 +112,7 @@ def newton_position(film, load, q0, eps_max, rtol, capacity, model, ends=(0.0, 0
         if not checked:
             checked.append(capacity())
         if not checked[0] >= W:
-            f_max = checked[0]
-            raise ValueError(f"load {W:.6g} N exceeds what the film carries before contact: "
-                             f"{f_max:.6g} N at eps_max = {eps_max:g} ({model} model)")
+            raise LoadCapacityError(W, checked[0], eps_max, model, mesh)
 
     def fail(why):
         check_capacity()
@@ -152,6 +152,13 @@ def newton_position(film, load, q0, eps_max, rtol, capacity, model, ends=(0.0, 0
 def _reach(q, d_end) -> float:
     """The larger eccentricity ratio of the journal's ends q + d and q - d."""
     return max(math.hypot(*(q + d_end)), math.hypot(*(q - d_end)))
+
+
+def film_mesh(opts) -> dict | None:
+    """The mesh options of a film model's ``opts`` (n_theta, n_z, element: those it has),
+    or None for a model without a mesh: what a :class:`LoadCapacityError` names."""
+    mesh = {k: opts[k] for k in ("n_theta", "n_z", "element") if k in opts}
+    return mesh or None
 
 
 def shrink_inside(q, d_end, target) -> np.ndarray:

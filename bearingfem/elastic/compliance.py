@@ -174,8 +174,10 @@ class ReducedCompliance:
 
 @dataclass(frozen=True)
 class Discretisation:
-    """The checked film grid and bush mesh options (see :func:`bush_compliance`)."""
+    """The checked film grid, the bush under it (its outer radius resolved) and the bush
+    mesh options (see :func:`bush_compliance`)."""
 
+    bush: ElasticBush
     radius: float
     film: FilmGrid
     refine_theta: int
@@ -189,6 +191,7 @@ def discretise(bush, radius, length, n_theta, n_z, refine_theta=1, refine_z=None
     """Check the arguments of :func:`bush_compliance` and fill in its defaults."""
     if not isinstance(bush, ElasticBush):
         raise ValueError(f"bush must be a bearingfem.ElasticBush, got {type(bush).__name__}")
+    bush = bush.at_radius(radius)      # the default outer radius is R's
     radius = bush.check_inner_radius(radius)
     length = check_positive("length", length)
     n_theta = check_int("n_theta", n_theta, 8)
@@ -203,8 +206,8 @@ def discretise(bush, radius, length, n_theta, n_z, refine_theta=1, refine_z=None
         factor = g / math.expm1(g) if g else 1.0
         n_radial = max(2, math.ceil((bush.outer_radius - radius) * factor / arc - 1e-9))
     n_radial = check_int("n_radial", n_radial, 1)
-    return Discretisation(radius, FilmGrid(n_theta, n_z, length), refine_theta, refine_z,
-                          n_radial, grading)
+    return Discretisation(bush, radius, FilmGrid(n_theta, n_z, length), refine_theta,
+                          refine_z, n_radial, grading)
 
 
 def bush_compliance(bush: ElasticBush, radius: float, length: float, n_theta: int,
@@ -224,6 +227,7 @@ def bush_compliance(bush: ElasticBush, radius: float, length: float, n_theta: in
     """
     d = discretise(bush, radius, length, n_theta, n_z, refine_theta, refine_z, n_radial,
                    grading)
+    bush = d.bush
     if bush.model == "liner":
         columns = liner_columns(bush, d.radius, d.film)
     elif bush.model == "ring":

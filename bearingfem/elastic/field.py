@@ -117,7 +117,7 @@ def bush_field(bush, radius, length: float | None = None, pressure=None,
     d = discretise(bush, radius, length, shape[0], shape[1], refine_theta, refine_z,
                    n_radial, grading)
     p = check_pressure(pressure, shape)
-    system = solid_system(bush, d.radius, d.film, d.refine_theta, d.refine_z, d.n_radial,
+    system = solid_system(d.bush, d.radius, d.film, d.refine_theta, d.refine_z, d.n_radial,
                           d.grading)
     solution = system.solve([lambda x: d.film.interpolate(p, x)])[:, 0]
     mesh = system.bush_mesh

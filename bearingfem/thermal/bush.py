@@ -117,6 +117,7 @@ def bush_heat(bush: ElasticBush, radius: float, length: float, *, conductivity: 
         inner surface's angle [rad] and axial place [m] (z = 0 for the ring)
     n_theta, n_radial, n_axial, grading : the mesh (:mod:`bearingfem.elastic.mesh`)
     """
+    bush = bush.at_radius(radius)      # the default outer radius is R's
     R = bush.check_inner_radius(radius)
     k = check_positive("conductivity", conductivity)
     h = check_positive("outer_coefficient", outer_coefficient)
@@ -196,10 +197,11 @@ def bush_response(spec: BushConduction, radius: float, length: float, n_theta: i
     cached. Why columns: the response is dense on the inner surface (n_theta (n_axial +
     1) nodes), but circulant in theta, so n_axial + 1 solves build it and an FFT applies
     it (docs/thd.md, "The bush's conduction")."""
-    R = spec.bush.check_inner_radius(radius)
+    bush = spec.bush.at_radius(radius)      # the default outer radius is R's
+    R = bush.check_inner_radius(radius)
     n_theta = spec.n_theta or n_theta
     n_axial = spec.n_axial or n_axial
-    bm, basis, inner, outer, A = _system(spec.solid, R, spec.bush.outer_radius, length,
+    bm, basis, inner, outer, A = _system(spec.solid, R, bush.outer_radius, length,
                                      spec.conductivity, spec.outer_coefficient, n_theta,
                                      spec.n_radial, n_axial, spec.grading)
     scale = 1.0 if spec.solid else float(length)

@@ -9,7 +9,7 @@ import numpy as np
 
 from ..elastic.bush import ElasticBush
 from ..errors import OilRangeWarning
-from ..oil_range import temperature_range_note
+from ..oil_range import check_kelvin, temperature_range_note
 
 __all__ = ["Thermal", "ThermalRecord", "BushConduction", "THERMAL_MODELS", "warn_out_of_range",
            "MAX_FILM_COEFFICIENT", "DEFAULT_WALL_COEFFICIENT"]
@@ -113,7 +113,9 @@ class Thermal:
     Parameters
     ----------
     supply_temperature : temperature of the fresh oil fed at the grooves (or the supply
-        line) [K], > 0, as ``ambient_temperature`` and ``journal_temperature``; a film
+        line) [K], >= :data:`~bearingfem.oil_range.LEAST_KELVIN` (200 K: a smaller number
+        is degC typed for K, refused), as ``ambient_temperature`` and
+        ``journal_temperature``; a film
         whose temperature leaves :data:`~bearingfem.oil_range.OIL_TEMPERATURE_RANGE`
         warns once solved (:class:`~bearingfem.errors.OilRangeWarning`)
     model : "adiabatic" (no heat to the walls: all the film's heat leaves with its oil) or
@@ -144,9 +146,9 @@ class Thermal:
     bush: BushConduction | None = None
 
     def __post_init__(self):
-        # any oil's, hot or cryogenic: a film that leaves the oil law's range warns once
-        # solved (warn_out_of_range); the range refuses only the command line's ISO VG oil
-        _number("supply_temperature", self.supply_temperature, lo=1e-300, allowed="> 0 [K]")
+        # any oil's, hot or cold: a film that leaves the oil law's range warns once solved
+        # (warn_out_of_range); below LEAST_KELVIN the number is degC typed for K
+        check_kelvin("supply_temperature", self.supply_temperature)
         if self.model not in THERMAL_MODELS:
             raise ValueError(f"model must be one of {THERMAL_MODELS}, got {self.model!r}")
         _number("carry_over", self.carry_over, lo=0.0, hi=1.0, allowed="in [0, 1]")
@@ -160,7 +162,7 @@ class Thermal:
         for name in ("ambient_temperature", "journal_temperature"):
             value = getattr(self, name)
             if value is not None:     # an aircraft's ambient at altitude is -56.5 C
-                _number(name, value, lo=1e-300, allowed="> 0 [K]")
+                check_kelvin(name, value)
         if self.bush is not None:
             if not isinstance(self.bush, BushConduction):
                 raise ValueError(f"bush must be a BushConduction, got "
