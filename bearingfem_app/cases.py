@@ -213,18 +213,6 @@ def _precheck(kind: str, params: dict) -> None:
         check_surface_speed(b.radius, state.omega, "rpm" if "rpm" in params else "omega",
                             rpm="rpm" in params)
         check_squeeze_speed(b.clearance, state.eps_dot)
-        if kind == "design":
-            # a design point is a loaded film's (its groups and the load frame divide by
-            # the load) and its K, C a state's alone: these failed case by case at run time
-            if state.eps == 0.0 or state.omega == 0.0:
-                raise ValueError("a design case needs a film that carries a load: eps > 0 "
-                                 f"and omega != 0, got eps {state.eps:g}, omega "
-                                 f"{state.omega:g} rad/s")
-            from bearingfem.models import film_model
-            if film_model(p["model"]).memory:
-                raise ValueError(f"model {p['model']!r} has memory (its film depends on the "
-                                 "states before): a design case's K and C are a state's "
-                                 "alone; use 'fem'")
     except ValueError as err:
         raise ValueError(f"sweep case {params}: {err}") from None
 

@@ -317,21 +317,6 @@ def test_a_speed_no_journal_bearing_has_stops_the_sweep_before_it_starts(tmp_pat
     assert not (tmp_path / "out").exists()
 
 
-@pytest.mark.parametrize("base, match", [
-    ({"eps": 0.0}, r"a design case needs a film that carries a load: eps > 0"),
-    ({"omega": 0.0}, r"a design case needs a film that carries a load"),
-    ({"model": "fem-jfo"}, r"model 'fem-jfo' has memory")])
-def test_a_design_case_without_a_load_stops_the_sweep_before_it_starts(tmp_path, base,
-                                                                      match):
-    """eps 0 (or omega 0, or a film with memory) in a design sweep failed case by case at
-    run time ("frame='load' needs a film that carries a load"), after the other cases ran."""
-    sw = parse_sweep({"name": "d", "kind": "design", "base": {"n_theta": 24, "n_z": 4, **base},
-                      "vary": {"length_ratio": [0.5, 1.0]}})
-    with pytest.raises(ValueError, match=match):
-        run_sweep(sw, tmp_path / "out", workers=1, progress=False)
-    assert not (tmp_path / "out").exists()
-
-
 def test_rpm_and_oil_are_the_command_lines_names():
     """A film or design case takes the command line's rpm [1/min] and oil at
     oil_temperature [degC] (they were 'not a design sweep parameter'): the same row as
