@@ -138,6 +138,11 @@ def _at_quadrature(name: str, f, op) -> np.ndarray:
     shape = op.qp_theta.shape
     if callable(f):
         v = np.asarray(f(op.qp_theta, op.qp_zeta), dtype=float)
+        if v.size != 1 and v.shape != shape:
+            # numpy's own "could not be broadcast ... remapped shapes" named nothing
+            raise ValueError(f"film field {name}: its function of (theta, zeta) must "
+                             f"return a number or an array of their shape {shape}, got "
+                             f"shape {v.shape}")
     else:
         v = np.asarray(f, dtype=float)
         if v.ndim == 1 and v.shape[0] == op.mesh.ndofs:     # nodal values

@@ -11,7 +11,8 @@ from dataclasses import replace
 
 import numpy as np
 
-from bearingfem.bearing import SEED_TABLE1, check_finite
+from bearingfem.bearing import (SEED_TABLE1, check_finite, check_squeeze_speed,
+                                check_surface_speed)
 from mechanism.parameters import check_crank_speed
 from mechanism.scene import oil_viscosity, parse_scene, read_toml, scene_path
 
@@ -205,8 +206,13 @@ def _precheck(kind: str, params: dict) -> None:
         return
     try:
         p = _film_params(params)
-        _film_inputs(p)
+        b, state = _film_inputs(p)
         _film_options(p)
+        # as the command line's: rpm typed as omega, or an eps_dot with a wrong exponent,
+        # ran (a film at 1000 m/s) where solve_reynolds and the CLI refuse them
+        check_surface_speed(b.radius, state.omega, "rpm" if "rpm" in params else "omega",
+                            rpm="rpm" in params)
+        check_squeeze_speed(b.clearance, state.eps_dot)
     except ValueError as err:
         raise ValueError(f"sweep case {params}: {err}") from None
 

@@ -142,6 +142,16 @@ class SimulationResult:
         if s.get("step_cuts"):
             lines.append(f"  {len(s['step_cuts'])} step(s) cut where a film solve did not "
                          "converge (stats['step_cuts'])")
+        if s.get("film_rtol") is not None and "film_force_error" in s:
+            # the mesh a scene's rtol chose and the run's own estimate (docs/accuracy.md):
+            # a run that went deeper than the start's probes says so here, not only in
+            # result.json
+            n_theta, n_z, element = s["film_mesh"]
+            err, rtol = s["film_force_error"], s["film_rtol"]
+            lines.append(f"  film mesh {n_theta} x {n_z} {element} chosen for rtol {rtol:g}; "
+                         f"estimated force error over the run {err:.2g}"
+                         + (" (above the request: the run met states beyond the probes)"
+                            if err > rtol else ""))
         if "fem_table_mesh_error" in s:
             lines.append(f"  fem-table: its mesh's forces are within "
                          f"{100 * s['fem_table_mesh_error']:.2g} % of a mesh twice as fine "

@@ -91,3 +91,24 @@ def test_the_chart_refuses_bad_input(kwargs, message):
     args.update(kwargs)
     with pytest.raises(ValueError, match=message):
         design_chart(bearing(1.0), args.pop("omega"), **args)
+
+
+def test_angles_in_degrees_and_a_strength_off_the_grading_are_refused_by_name():
+    """direction=-90 (degrees meant) walked a chart loaded toward -90 rad, the misalignment
+    angle 45 was taken as 45 rad, and a strength of 1.5 left chart_grading to fail later in
+    the mesh; design_chart's rtol (Newton's) now says it is not the film's accuracy."""
+    from bearingfem import JournalState
+    from bearingfem.design import chart_grading, design_chart
+    from bearingfem.design.misalignment import misalignment_tilt
+    b = Bearing(radius=0.05, length=0.1, clearance=100e-6, viscosity=0.02)
+    with pytest.raises(ValueError, match="direction -90 rad is more than a turn: typed in "
+                                         "degrees"):
+        design_chart(b, 314.16, [0.5], "short", direction=-90.0)
+    with pytest.raises(ValueError, match="direction -90 rad is more than a turn"):
+        chart_grading(b, 314.16, [0.1], direction=-90.0)
+    with pytest.raises(ValueError, match=r"strength must lie in \[0, 0.99\]"):
+        chart_grading(b, 314.16, [0.1], strength=1.5)
+    with pytest.raises(ValueError, match="angle 45 rad is more than a turn"):
+        misalignment_tilt(b, JournalState(eps=0.6, omega=250.0), degree=0.5, angle=45.0)
+    with pytest.raises(ValueError, match="rtol must lie in .* Newton's tolerance .* not a film accuracy"):
+        design_chart(b, 314.16, [0.5], "short", rtol=1e-2)

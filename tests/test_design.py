@@ -450,3 +450,37 @@ def test_a_load_direction_in_degrees_is_named():
             (1000.0, 0.0), abs=1e-9)
     with pytest.raises(ValueError, match=r"it lies in \[-2 pi, 2 pi\] rad"):
         equilibrium(b, 1000.0, 250.0, "short", direction=2.0 * math.pi + 1e-9)
+
+
+@pytest.mark.parametrize("bad, match", [
+    (dict(eps_error=float("nan")), "eps_error must be finite"),   # named eps before
+    (dict(eps_error=-0.01), r"eps_error .* must lie in \[0, 1\)"),  # taken, the error moved
+    (dict(eps_error=1.5), r"eps_error .* must lie in \[0, 1\)")])
+def test_coefficients_refuse_a_bad_eps_error_by_name(bad, match):
+    b = Bearing(radius=0.01, length=0.02, clearance=20e-6, viscosity=0.0117)
+    s = JournalState(eps=0.6, omega=250.0)
+    with pytest.raises(ValueError, match=match):
+        coefficients(b, s, "fem", n_theta=24, n_z=4, estimate=True, **bad)
+
+
+def test_eps_error_without_an_estimate_is_refused_not_dropped():
+    """eps_error is added to K and C's estimated error; without rtol or estimate the
+    coefficients carried no error and the eps_error given vanished unseen."""
+    b = Bearing(radius=0.01, length=0.02, clearance=20e-6, viscosity=0.0117)
+    s = JournalState(eps=0.6, omega=250.0)
+    with pytest.raises(ValueError, match="eps_error .* give rtol= or estimate=True"):
+        coefficients(b, s, "fem", n_theta=24, n_z=4, eps_error=0.01)
+    assert coefficients(b, s, "fem", n_theta=24, n_z=4, eps_error=None).error is None
+
+
+def test_tilt_with_an_accuracy_request_is_refused_as_such():
+    """equilibrium and coefficients take tilt on a mesh given; with rtol or estimate the
+    refusal said "tilt is not an option of film model 'fem'", which it is."""
+    b = Bearing(radius=0.01, length=0.01, clearance=20e-6, viscosity=0.0117)
+    with pytest.raises(ValueError, match="tilt: not taken with rtol"):
+        equilibrium(b, (0.0, -100.0), 250.0, "fem", rtol=1e-2, tilt=(0.0, 1e-3))
+    with pytest.raises(ValueError, match="tilt: not taken with estimate"):
+        equilibrium(b, (0.0, -100.0), 250.0, "fem", estimate=True, tilt=(0.0, 1e-3))
+    s = JournalState(eps=0.6, omega=250.0)
+    with pytest.raises(ValueError, match="tilt: not taken with rtol"):
+        coefficients(b, s, "fem", rtol=1e-2, tilt=(0.0, 1e-3))

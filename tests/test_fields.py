@@ -108,6 +108,8 @@ def test_viscosity_scales_the_film():
     (dict(viscosity=-1.0), "viscosity must be > 0"),
     (dict(density=np.nan), "density must be finite"),
     (dict(gap_rate=np.ones(7)), "gap_rate must be a number"),
+    # a function returning the wrong shape met numpy's "could not be broadcast" unnamed
+    (dict(gap=lambda t, z: np.ones(5)), r"film field gap: its function .* got shape \(5,\)"),
 ])
 def test_bad_fields_raise(kwargs, match):
     with pytest.raises(ValueError, match=match):

@@ -305,3 +305,20 @@ def test_window_note_counts_turns_from_the_scenes_starting_crank_angle(monkeypat
                               "whole run from t = 0)")
     said = float(r.message.split("(after ")[1].split(" of")[0])
     assert said == pytest.approx(turns_done, abs=7e-3)
+
+
+def test_summary_names_the_mesh_an_rtol_chose_and_its_error_over_the_run():
+    """A scene's rtol chooses the film's mesh and the run estimates its error after: the
+    command line's summary printed neither (they were in result.json alone), so an estimate
+    above the request (the pin past the deepest probe) went unseen."""
+    from dataclasses import replace
+    r = simulate(scene({"lubrication": {"model": "long"}}, turns=0.1, ld=2.0), progress=False)
+    assert "rtol" not in r.summary()
+    over = replace(r, stats={**r.stats, "film_rtol": 0.01, "film_mesh": [96, 8, "P2"],
+                             "film_force_error": 0.022})
+    assert ("film mesh 96 x 8 P2 chosen for rtol 0.01; estimated force error over the run "
+            "0.022 (above the request") in over.summary()
+    within = replace(r, stats={**r.stats, "film_rtol": 0.01, "film_mesh": [96, 8, "P2"],
+                               "film_force_error": 0.004})
+    assert "error over the run 0.004\n" in within.summary() + "\n"
+    assert "above the request" not in within.summary()

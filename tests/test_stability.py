@@ -155,3 +155,31 @@ def test_stability_prints_as_a_sentence():
     assert len(text.splitlines()) == 1 and not text.startswith("Stability(")
     assert st.verdict.value in text and f"{st.critical_mass:.6g} kg" in text
     assert f"{st.whirl_ratio:.3g} of the running speed" in text
+
+
+def test_threshold_speed_default_range_reaches_its_high_end():
+    """The default range ends at 300 m/s of surface speed, 30000 rad/s here; exp(log(hi))
+    rounds to 30000.000000000007, which the equilibrium's speed check refused as above
+    300 m/s: the default range failed for this bearing before any threshold was sought."""
+    from bearingfem.design import equilibrium, threshold_speed
+    eq = equilibrium(B, (0.0, -300.0), 1000.0, "short")
+    mass = lund_stability(coefficients(B, eq.state, "short")).critical_mass
+    th = threshold_speed(B, (0.0, -300.0), mass, "short")
+    assert th.omega == pytest.approx(1000.0, rel=1e-6)
+
+
+@pytest.mark.parametrize("bad, match", [
+    (dict(turns=0.0), "turns"), (dict(turns=-1.0), "turns"),   # -1 hung the integrator
+    (dict(samples=0), "samples"), (dict(samples=1), "samples"),
+    (dict(kick=0.0), "kick"), (dict(kick=2.0), "kick"), (dict(kick=float("nan")), "kick")])
+def test_journal_orbit_refuses_bad_run_options_by_name(bad, match):
+    """turns 0 / samples 0 raised IndexError, kick 0 returned a growth of 9e4 (a ratio of
+    round-off), kick 2 started outside the clearance, NaN reached scipy's own message."""
+    from bearingfem.design import equilibrium, journal_orbit
+    eq = equilibrium(B, (0.0, -300.0), OMEGA, "short")
+    with pytest.raises(ValueError, match=match):
+        journal_orbit(B, eq, 100.0, "short", **{"turns": 5.0, "samples": 200, **bad})
+    with pytest.raises(ValueError, match="eq must be an Equilibrium"):
+        journal_orbit(B, eq.state, 100.0, "short")
+    with pytest.raises(ValueError, match="kc must be the DynamicCoefficients"):
+        lund_stability(eq)

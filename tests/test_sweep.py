@@ -302,6 +302,21 @@ def test_a_crank_speed_in_rpm_stops_a_mechanism_sweep_before_it_starts(tmp_path)
     assert not (tmp_path / "out").exists()
 
 
+@pytest.mark.parametrize("base, match", [
+    ({"omega": 1e5}, r"omega 100000 rad/s gives a surface speed of 1000 m/s"),
+    ({"rpm": 1e6}, r"rpm 1e\+06 1/min gives a surface speed"),
+    ({"eps_dot": 1e9}, r"eps_dot 1e\+09 1/s moves the journal centre")])
+def test_a_speed_no_journal_bearing_has_stops_the_sweep_before_it_starts(tmp_path, base,
+                                                                        match):
+    """An omega of 1e5 rad/s (1000 m/s at the seed's 10 mm) ran and returned a 117 kN film,
+    where solve_reynolds and the command line refuse it (the "fem" model's film_force and
+    the closed forms do not check the speed)."""
+    sw = parse_sweep({**SWEEP, "base": base})
+    with pytest.raises(ValueError, match=match):
+        run_sweep(sw, tmp_path / "out", workers=1, progress=False)
+    assert not (tmp_path / "out").exists()
+
+
 def test_rpm_and_oil_are_the_command_lines_names():
     """A film or design case takes the command line's rpm [1/min] and oil at
     oil_temperature [degC] (they were 'not a design sweep parameter'): the same row as

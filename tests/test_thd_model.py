@@ -207,3 +207,16 @@ def test_film_steps_with_a_piezoviscous_oil_settle_on_the_steady_film():
                        thermal=THERMAL, grooves=GROOVES)
     T = run.snapshot().temperature
     assert np.max(np.abs(T - steady.temperature)) < 1e-6
+
+
+def test_scene_refuses_a_supply_temperature_in_celsius_before_the_run():
+    """A scene's thermal table with supply_temperature = 40 (meant as 40 C) ran and stopped
+    at t = 0 with "non-finite temperature", leaving a partial result; now refused when the
+    scene is read, naming the key."""
+    from mechanism.scene import _lubrication, _Table
+    table = dict(model="fem-thd", n_theta=48, n_z=8, oil="ISO VG 32",
+                 grooves=[dict(angle=0.0, width=0.35), dict(angle=math.pi, width=0.35)],
+                 thermal=dict(supply_temperature=40.0, carry_over=0.8))
+    with pytest.raises(ValueError, match=r"effects.lubrication.thermal.supply_temperature 40 K"
+                                         r" .* typed in degC\?"):
+        _lubrication(_Table(dict(table), "effects.lubrication"))

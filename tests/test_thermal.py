@@ -577,3 +577,26 @@ def test_jfo_thermal_film_at_high_eccentricity():
     assert np.hypot(*jfo.force) == pytest.approx(np.hypot(*rey.force), rel=0.01)
     assert jfo.temperature_max > SUPPLY + 80.0
     assert abs(jfo.thermal.balance.residual) < 1e-10 * jfo.thermal.balance.dissipation
+
+
+def test_supply_temperature_typed_in_celsius_is_refused_before_any_work():
+    """40 for 40 C reached the solvers as 40 K (the ISO VG law's viscosity inf there) and
+    stopped in "Factor is exactly singular"; 150 K (1.5e21 Pa s) in "the energy equation
+    gave a non-finite temperature (a film without flow through it?)", the equilibrium in a
+    Bearing's "typed in cSt?". A cold start inside the oil range and a cryogen's own law
+    are taken."""
+    from bearingfem.design import equilibrium
+    from bearingfem.routes.thd import check_supply_temperature
+    oil = Lubricant.iso_vg(32)
+    for t in (40.0, 150.0):
+        th = Thermal(supply_temperature=t, model="adiabatic")
+        with pytest.raises(ValueError, match=rf"supply_temperature {t:g} K .* typed in degC\? "
+                                             rf"\({t:g} C = {t + 273.15:g} K\)"):
+            solve_reynolds(BEARING, STATE, 24, 4, grooves=GROOVES, lubricant=oil, thermal=th)
+        with pytest.raises(ValueError, match=f"supply_temperature {t:g} K"):
+            equilibrium(BEARING, (0.0, -2000.0), STATE.omega, "fem", n_theta=24, n_z=4,
+                        grooves=GROOVES, lubricant=oil, thermal=th)
+    check_supply_temperature(oil, Thermal(supply_temperature=223.15))   # -50 C: 232 Pa s
+    cryogen = Lubricant.two_point((77.0, 1.6e-4), (90.0, 1.2e-4), density=800.0,
+                                  specific_heat=2000.0, conductivity=0.14, law="exponential")
+    check_supply_temperature(cryogen, Thermal(supply_temperature=77.0))

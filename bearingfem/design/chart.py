@@ -16,8 +16,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..bearing import Bearing, JournalState, check_finite
+from ..bearing import Bearing, JournalState, check_finite, check_turn_angle
 from ..errors import ConvergenceError
+from ..fe.mesh import GRADING_MAX
 from ..models import film_model
 from .coefficients import coefficients
 from .equilibrium import EPS_MAX
@@ -85,6 +86,10 @@ def chart_grading(bearing: Bearing, omega: float, sommerfeld=CHART_SOMMERFELD,
     what benchmarks/chart_accuracy.py measured best (cells ~19x finer there than opposite).
     """
     S = _sommerfeld_numbers(sommerfeld)
+    direction = check_turn_angle("direction", direction)
+    strength = check_finite("strength", strength)
+    if not 0.0 <= strength <= GRADING_MAX:      # the grading's own range (check_grading)
+        raise ValueError(f"strength must lie in [0, {GRADING_MAX:g}], got {strength!r}")
     heavy = S[S < 0.1]
     s = float(np.exp(np.mean(np.log(heavy)))) if heavy.size else float(S.min())
     W = load_from_sommerfeld(bearing, s, check_finite("omega", omega))
@@ -115,13 +120,17 @@ def design_chart(bearing: Bearing, omega: float, sommerfeld=CHART_SOMMERFELD,
     if omega == 0.0:
         raise ValueError("omega must be non-zero [rad/s]: without rotation a film carries "
                          "no steady load")
-    direction = check_finite("direction", direction)
+    direction = check_turn_angle("direction", direction)
     eps_max = check_finite("eps_max", eps_max)
     if not 0.0 < eps_max < 1.0:
         raise ValueError(f"eps_max must lie in (0, 1), got {eps_max!r}")
     rtol = check_finite("rtol", rtol)
     if not 0.0 < rtol < 1e-3:
-        raise ValueError(f"rtol must lie in (0, 1e-3), got {rtol!r}")
+        # not the film's accuracy (rtol of equilibrium, coefficients): said, as 1e-2 asked
+        # for that read "must lie in (0, 1e-3)" with no word of what it is
+        raise ValueError(f"rtol must lie in (0, 1e-3), got {rtol!r}: Newton's tolerance on "
+                         "each point's equilibrium, not a film accuracy (the chart is "
+                         "solved on the mesh given)")
     S = _sommerfeld_numbers(sommerfeld)
     count = [0]
 

@@ -28,7 +28,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from ..bearing import Bearing, JournalState
+from ..bearing import Bearing, JournalState, check_finite
 from ..fe.sensitivity import fe_tilt_coefficients
 from ..fields import check_tilt
 from ..film import local_to_inertial
@@ -82,7 +82,20 @@ def coefficients(bearing: Bearing, state: JournalState, model: str = "fem",
         if model != "fem":
             raise ValueError(f"a thermal film needs model 'fem', got {model!r}")
         return thd_coefficients(bearing, state, frame, **options)
+    if eps_error is not None:
+        eps_error = check_finite("eps_error", eps_error)
+        if eps_error < 0.0 or eps_error >= 1.0:
+            raise ValueError(f"eps_error (the absolute error of eps, an equilibrium's "
+                             f"eps_error) must lie in [0, 1), got {eps_error!r}")
+        if rtol is None and not estimate:
+            # it is added to an estimate: without one it was dropped unseen
+            raise ValueError("eps_error is added to K and C's estimated error: give rtol= "
+                             "or estimate=True with it")
     if rtol is not None or estimate:
+        if options.get("tilt") is not None:
+            raise ValueError(f"tilt: not taken with {'rtol' if rtol is not None else 'estimate'}"
+                             " (the tilted film's K and C are found on the mesh given: "
+                             "n_theta, n_z)")
         return _with_error(bearing, state, model, frame, rtol, eps_error, options)
     tilt = check_tilt("tilt", options.pop("tilt", (0.0, 0.0)))
     if any(tilt):

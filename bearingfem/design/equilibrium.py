@@ -91,6 +91,12 @@ def equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
         return thd_equilibrium(bearing, load, omega, model, direction=direction,
                                eps_max=eps_max, isothermal=isothermal_position, **options)
     if rtol is not None or estimate:
+        if options.get("tilt") is not None:
+            # the search's meshes are the aligned film's (a tilt was refused there as
+            # "not an option of film model 'fem'", which it is without rtol)
+            raise ValueError(f"tilt: not taken with {'rtol' if rtol is not None else 'estimate'}"
+                             " (the tilted equilibrium is solved on the mesh given: n_theta, "
+                             "n_z)")
         if rtol is not None and xtol == 1e-13:
             # the root to 1e-4 of the accuracy asked: its error then leaves the mesh
             # pairs' differences alone, and Newton takes a step fewer

@@ -32,7 +32,7 @@ from __future__ import annotations
 
 import math
 
-from ..bearing import Bearing, JournalState, check_finite
+from ..bearing import Bearing, JournalState, check_finite, check_turn_angle
 from ..validation import check_inputs
 
 __all__ = ["misalignment_tilt", "degree_of_misalignment", "largest_end_offset"]
@@ -49,7 +49,7 @@ def misalignment_tilt(bearing: Bearing, state: JournalState, degree: float,
     """(tilt_x, tilt_y) [rad] of the degree of misalignment D_m = ``degree`` in [0, 1) and
     the angle of misalignment alpha = ``angle`` [rad] at the journal position ``state``."""
     check_inputs(bearing, state)
-    degree, angle = check_finite("degree", degree), check_finite("angle", angle)
+    degree, angle = check_finite("degree", degree), check_turn_angle("angle", angle)
     if not 0.0 <= degree < 1.0:
         raise ValueError(f"degree (of misalignment) must lie in [0, 1): 1 is the end touching "
                          f"the bush, got {degree!r}")

@@ -193,6 +193,9 @@ def lund_stability(kc: DynamicCoefficients) -> Stability:
     """The verdict, critical mass and whirl frequency of a rigid journal from K and C; with
     coefficients that carry their error (``coefficients(..., rtol=...)``), the ranges of
     the critical mass and whirl ratio over it, and whether the verdict is ill-conditioned."""
+    if not isinstance(kc, DynamicCoefficients):
+        raise ValueError(f"kc must be the DynamicCoefficients of coefficients(...), got "
+                         f"{type(kc).__name__}")
     return _with_ranges(_lund(kc))
 
 
@@ -275,7 +278,9 @@ def threshold_speed(bearing: Bearing, load, mass: float, model: str = "fem", *,
     check_surface_speed(bearing.radius, hi, "omega_range's high end")
 
     def margin(log_omega):
-        eq = equilibrium(bearing, load, math.exp(log_omega), model, **options)
+        # exp(log(hi)) can round above hi, past the surface-speed check at the default end
+        eq = equilibrium(bearing, load, min(max(math.exp(log_omega), lo), hi), model,
+                         **options)
         st = lund_stability(coefficients(bearing, eq.state, model, **options))
         if st.verdict is Verdict.CRITICAL_MASS:
             return math.log(st.critical_mass / mass)
@@ -291,7 +296,7 @@ def threshold_speed(bearing: Bearing, load, mass: float, model: str = "fem", *,
     if m_hi > 0.0:
         raise ValueError(f"the journal is stable up to the highest speed of omega_range "
                          f"({hi:g} rad/s)")
-    omega = math.exp(brentq(margin, math.log(lo), math.log(hi), rtol=rtol))
+    omega = min(max(math.exp(brentq(margin, math.log(lo), math.log(hi), rtol=rtol)), lo), hi)
     eq = equilibrium(bearing, load, omega, model, **options)
     st = lund_stability(coefficients(bearing, eq.state, model, **options))
     return ThresholdSpeed(omega, mass, eq, st)
@@ -320,6 +325,15 @@ def journal_orbit(bearing: Bearing, eq: Equilibrium, mass: float, model: str = "
     """Integrate m x'' = F_film(x, x') + load from the equilibrium ``eq`` displaced by
     ``kick`` clearances along the load; the nonlinear check of the linear threshold."""
     mass = check_positive("mass", mass)
+    if not isinstance(eq, Equilibrium):
+        raise ValueError(f"eq must be an Equilibrium (equilibrium(...)), got {type(eq).__name__}")
+    kick = check_positive("kick", kick)
+    if kick >= 1.0:      # in clearances: 1 puts the journal on the bush
+        raise ValueError(f"kick must lie in (0, 1) clearances, got {kick!r}")
+    turns = check_positive("turns", turns)
+    if isinstance(samples, bool) or not isinstance(samples, (int, np.integer)) or samples < 10:
+        # growth() compares the first and last fifths of the samples
+        raise ValueError(f"samples must be an integer >= 10, got {samples!r}")
     m = film_model(model)
     opts = m.options(options)
     c, omega = bearing.clearance, eq.state.omega
