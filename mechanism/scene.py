@@ -252,6 +252,12 @@ def _lubrication(t: _Table) -> Lubrication:
                 given[key] = cls(**given[key])
             except (TypeError, ValueError) as err:
                 raise ValueError(f"{t.where}.{key}: {err}") from None
+    if isinstance(given.get("thermal"), Thermal) and isinstance(given.get("lubricant"),
+                                                                 Lubricant):
+        try:      # degC typed for K, against the oil's law (a cryogen's takes any > 0 K)
+            given["thermal"].check_fluid(given["lubricant"])
+        except ValueError as err:
+            raise ValueError(f"{t.where}.thermal: {err}") from None
     opts = m.options(given, where=t.where)
     t.done()
     if rtol is not None:     # the mesh (and the element, unless given) is chosen at the start

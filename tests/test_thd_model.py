@@ -188,6 +188,11 @@ def test_scene_names_the_oil_and_the_heat_exchanges():
     assert lub.options["thermal"] == THERMAL
     with pytest.raises(ValueError, match="effects.lubrication.oil"):
         _lubrication(_Table(dict(table, oil="ISO VG 33"), "effects.lubrication"))
+    # 40 typed for 40 C: refused at the scene, against the oil's law (it ran at 40 K)
+    degc = dict(table, thermal=dict(supply_temperature=40.0))
+    with pytest.raises(ValueError, match=r"effects.lubrication.thermal: supply_temperature "
+                                         r"must lie in \[200, inf\) K .* 40.0 degC is 313.15"):
+        _lubrication(_Table(degc, "effects.lubrication"))
 
 
 def test_film_steps_with_a_piezoviscous_oil_settle_on_the_steady_film():

@@ -90,6 +90,7 @@ def check_thermal(lubricant, thermal, state, cavitation, element):
     if lubricant.density is not None or lubricant.bulk_modulus is not None:
         raise ValueError("a thermal film takes an incompressible lubricant (no density "
                          "law or bulk_modulus)")
+    thermal.check_fluid(lubricant)        # degC typed for K, against an oil's law
     if state.eps_dot != 0.0 or state.gamma_dot != 0.0:
         raise ValueError("a thermal film is steady: eps_dot and gamma_dot must be 0")
     if not (math.isfinite(state.omega) and state.omega != 0.0):
