@@ -25,11 +25,14 @@ CELSIUS = 273.15                   # [K]
 #: synthetic oils, have their own laws, so a Thermal's temperatures are refused only
 #: below :data:`LEAST_KELVIN` and a law's points only at or below 0 K.
 OIL_TEMPERATURE_RANGE = (CELSIUS - 50.0, CELSIUS + 200.0)
-#: [K] the least temperature a Thermal takes (-73.15 C): below it a number meant in kelvin
-#: was surely typed in degrees Celsius (40 for 313.15 K, the likeliest slip), which the
-#: film took and warned of only once solved. An oil film colder than any mineral oil's
-#: pour point (~-50 C) is none of a thermal film's, and an aircraft's ambient at altitude
-#: (-56.5 C, 216.65 K) is still taken.
+#: [K] the least temperature a Thermal takes for an oil (-73.15 C): a fluid whose
+#: temperature law is referenced at or above it (Lubricant.temperature, or no law). Below
+#: it a number meant in kelvin was surely typed in degrees Celsius (40 for 313.15 K, the
+#: likeliest slip), which the film took and warned of only once solved. An oil film colder
+#: than any mineral oil's pour point (~-50 C) is none of a thermal film's, and an
+#: aircraft's ambient at altitude (-56.5 C, 216.65 K) is still taken. A fluid referenced
+#: below it (a cryogen's law: liquid nitrogen's at 77-90 K) takes any temperature > 0 K
+#: (:meth:`bearingfem.thermal.Thermal.check_fluid`).
 LEAST_KELVIN = 200.0
 
 
@@ -39,10 +42,12 @@ def _number(name: str, value, span: str) -> float:
     return float(value)
 
 
-def check_kelvin(name: str, value) -> float:
+def check_kelvin(name: str, value, why: str = "") -> float:
     """``value`` [K], finite and >= :data:`LEAST_KELVIN`; ValueError naming ``name``, the
-    range and, when the number is a temperature in degrees Celsius, that slip."""
-    span = f"[{LEAST_KELVIN:g}, inf) K ({LEAST_KELVIN - CELSIUS:g} C up: kelvin, not degC)"
+    range (``why`` it applies, words after it) and, when the number is a temperature in
+    degrees Celsius, that slip."""
+    span = (f"[{LEAST_KELVIN:g}, inf) K ({LEAST_KELVIN - CELSIUS:g} C up: kelvin, not degC)"
+            f"{why}")
     v = _number(name, value, span)
     if not (math.isfinite(v) and v >= LEAST_KELVIN):
         hint = (f" (typed in degC? {value!r} degC is {v + CELSIUS:g} K)"

@@ -21,7 +21,6 @@ from bearingfem.bearing import plausibility_errors
 from bearingfem.fields import EdgeProfile
 from bearingfem.lubricant import Lubricant, iso_vg_grade
 from bearingfem.oil_range import check_oil_temperature
-from bearingfem.routes.thd import check_supply_temperature
 from bearingfem.models import film_model
 from bearingfem.thermal import Thermal
 
@@ -255,10 +254,10 @@ def _lubrication(t: _Table) -> Lubrication:
                 raise ValueError(f"{t.where}.{key}: {err}") from None
     opts = m.options(given, where=t.where)
     if isinstance(opts.get("thermal"), Thermal) and isinstance(opts.get("lubricant"), Lubricant):
-        try:        # before any work, not when the run starts (a partial result at t = 0)
-            check_supply_temperature(opts["lubricant"], opts["thermal"])
+        try:      # before any work, not when the run starts (a partial result at t = 0)
+            opts["thermal"].check_fluid(opts["lubricant"])
         except ValueError as err:
-            raise ValueError(f"{t.where}.{err}") from None
+            raise ValueError(f"{t.where}.thermal: {err}") from None
     t.done()
     if rtol is not None:     # the mesh (and the element, unless given) is chosen at the start
         opts = {k: v for k, v in opts.items()

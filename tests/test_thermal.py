@@ -237,27 +237,53 @@ def test_bad_thermal_spec_names_the_parameter(kwargs, name):
 
 @pytest.mark.parametrize("name", ["supply_temperature", "ambient_temperature",
                                   "journal_temperature"])
-def test_thermal_temperatures_take_any_oil_and_refuse_degc(name):
-    """A Thermal's temperatures are any oil's, not the command line's ISO VG range: a
+def test_thermal_temperatures_take_any_fluid_and_refuse_degc_for_an_oil(name):
+    """A Thermal's temperatures are any fluid's, not the command line's ISO VG range: a
     300 C (573.15 K) supply and an aircraft's ambient at altitude (ISA -56.5 C, 216.65 K)
-    are taken (both refused when the ISO VG range applied here). Below 200 K
-    (oil_range.LEAST_KELVIN) the number is degrees Celsius typed for kelvin: 40.0 was taken
-    and the film only warned once solved (OilRangeWarning, the oil's law extrapolated to
-    40 K); now refused before any work, naming the parameter, the range and the slip.
-    The ISO VG oil of --oil-temperature keeps its -50 to 200 C."""
+    are taken (both refused when the ISO VG range applied here); 0 K and below are refused
+    naming the parameter. With an oil (its law referenced at or above
+    oil_range.LEAST_KELVIN, 200 K) a number below 200 K is degrees Celsius typed for
+    kelvin: 40.0 was taken and the film only warned once solved (OilRangeWarning, the
+    oil's law extrapolated to 40 K); it is refused before any work, naming the parameter,
+    the range and the slip. A cryogen's law (liquid nitrogen's, 77-90 K) takes 80 K. The
+    ISO VG oil of --oil-temperature keeps its -50 to 200 C."""
     base = dict(supply_temperature=SUPPLY, model="conducting")
     for value in (573.15, 216.65, 200.0):
-        assert getattr(Thermal(**dict(base, **{name: value})), name) == value
-    span = r"must lie in \[200, inf\) K \(-73.15 C up: kelvin, not degC\), got "
+        thermal = Thermal(**dict(base, **{name: value}))
+        assert getattr(thermal, name) == value
+        thermal.check_fluid(VG32)
+    for value in (0.0, -300.0):
+        with pytest.raises(ValueError, match=rf"{name} must be finite and > 0 \[K\]"):
+            Thermal(**dict(base, **{name: value}))
+    span = (r"must lie in \[200, inf\) K \(-73.15 C up: kelvin, not degC\) with a "
+            r"lubricant referenced at 313.15 K, got ")
+    degc = Thermal(**dict(base, **{name: 40.0}))
     with pytest.raises(ValueError, match=rf"^{name} {span}40.0 \(typed in degC\? 40.0 degC "
                                          r"is 313.15 K\)$"):
-        Thermal(**dict(base, **{name: 40.0}))
+        degc.check_fluid(VG32)
+    with pytest.raises(ValueError, match=rf"^{name} {span}40.0 \(typed in degC"):
+        solve_thd(BEARING, STATE, 48, 8, lubricant=VG32, thermal=degc, grooves=GROOVES)
     with pytest.raises(ValueError, match=rf"^{name} {span}199.9 \(typed in degC\? "):
-        Thermal(**dict(base, **{name: 199.9}))
-    with pytest.raises(ValueError, match=rf"^{name} {span}-300.0$"):     # no slip fits
-        Thermal(**dict(base, **{name: -300.0}))
+        Thermal(**dict(base, **{name: 199.9})).check_fluid(VG32)
+    cryogen = Lubricant.two_point((77.0, 1.6e-4), (90.0, 1.2e-4), law="exponential",
+                                  density=808.0, specific_heat=2040.0, conductivity=0.14)
+    Thermal(**dict(base, **{"supply_temperature": 80.0, name: 80.0})).check_fluid(cryogen)
     with pytest.raises(ValueError, match=r"oil_temperature must lie in \[-50, 200\] degC"):
         oil_viscosity("ISO VG 32", 300.0)
+
+
+def test_a_cryogens_thermal_film_solves():
+    """Liquid nitrogen (its exponential law through 77 and 90 K) fed at 80 K: the thermal
+    film solves, warmer than its supply, and warns that it left the oil law's range (it
+    was refused as degC typed for K when every Thermal took 200 K at least)."""
+    b = Bearing(radius=0.025, length=0.025, clearance=50e-6, viscosity=1.6e-4)
+    ln2 = Lubricant.two_point((77.0, 1.6e-4), (90.0, 1.2e-4), law="exponential",
+                              density=808.0, specific_heat=2040.0, conductivity=0.14)
+    state = JournalState(eps=0.6, omega=30000 * 2 * math.pi / 60, gamma=-0.3)
+    with pytest.warns(OilRangeWarning):
+        sol = solve_thd(b, state, 48, 8, lubricant=ln2, thermal=Thermal(80.0),
+                        grooves=GROOVES)
+    assert 80.0 < sol.temperature_max < 90.0
 
 
 def test_a_supply_above_the_oil_range_solves_and_warns():
@@ -584,19 +610,25 @@ def test_supply_temperature_typed_in_celsius_is_refused_before_any_work():
     stopped in "Factor is exactly singular"; 150 K (1.5e21 Pa s) in "the energy equation
     gave a non-finite temperature (a film without flow through it?)", the equilibrium in a
     Bearing's "typed in cSt?". A cold start inside the oil range and a cryogen's own law
-    are taken."""
+    are taken; a supply in [200 K, the oil range) where the law's viscosity exceeds any
+    lubricant's is refused by the law's own number."""
     from bearingfem.design import equilibrium
-    from bearingfem.routes.thd import check_supply_temperature
     oil = Lubricant.iso_vg(32)
     for t in (40.0, 150.0):
         th = Thermal(supply_temperature=t, model="adiabatic")
-        with pytest.raises(ValueError, match=rf"supply_temperature {t:g} K .* typed in degC\? "
-                                             rf"\({t:g} C = {t + 273.15:g} K\)"):
+        with pytest.raises(ValueError, match=rf"supply_temperature must lie in .* got {t!r} "
+                                             rf"\(typed in degC\? {t!r} degC is "):
             solve_reynolds(BEARING, STATE, 24, 4, grooves=GROOVES, lubricant=oil, thermal=th)
-        with pytest.raises(ValueError, match=f"supply_temperature {t:g} K"):
+        with pytest.raises(ValueError, match=f"supply_temperature must lie in .* got {t!r}"):
             equilibrium(BEARING, (0.0, -2000.0), STATE.omega, "fem", n_theta=24, n_z=4,
                         grooves=GROOVES, lubricant=oil, thermal=th)
-    check_supply_temperature(oil, Thermal(supply_temperature=223.15))   # -50 C: 232 Pa s
+    Thermal(supply_temperature=223.15).check_fluid(oil)       # -50 C: 232 Pa s
+    # 200 K, below the oil range: the ISO VG 460 law's viscosity there exceeds any oil's
+    heavy = Lubricant.iso_vg(460)
+    assert heavy.viscosity_at(0.0, temperature=200.0) > 1e4
+    with pytest.raises(ValueError, match=r"supply_temperature 200 K gives the lubricant a "
+                                         r"viscosity of .* typed in degC\? \(210 C = "):
+        Thermal(supply_temperature=200.0).check_fluid(heavy)
     cryogen = Lubricant.two_point((77.0, 1.6e-4), (90.0, 1.2e-4), density=800.0,
                                   specific_heat=2000.0, conductivity=0.14, law="exponential")
-    check_supply_temperature(cryogen, Thermal(supply_temperature=77.0))
+    Thermal(supply_temperature=77.0).check_fluid(cryogen)

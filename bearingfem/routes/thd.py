@@ -42,12 +42,11 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ..bearing import PLAUSIBLE, Bearing, JournalState
+from ..bearing import Bearing, JournalState
 from ..errors import ConvergenceError
 from ..fe.assembly import fe_operator
 from ..fields import FilmFields
 from ..lubricant import Lubricant
-from ..oil_range import CELSIUS, OIL_TEMPERATURE_RANGE
 from ..solution import FilmSolution
 from ..solvers.cavitation import LCPResult
 from ..thermal.bush import bush_wall
@@ -91,7 +90,7 @@ def check_thermal(lubricant, thermal, state, cavitation, element):
     if lubricant.density is not None or lubricant.bulk_modulus is not None:
         raise ValueError("a thermal film takes an incompressible lubricant (no density "
                          "law or bulk_modulus)")
-    check_supply_temperature(lubricant, thermal)
+    thermal.check_fluid(lubricant)        # degC typed for K, against an oil's law
     if state.eps_dot != 0.0 or state.gamma_dot != 0.0:
         raise ValueError("a thermal film is steady: eps_dot and gamma_dot must be 0")
     if not (math.isfinite(state.omega) and state.omega != 0.0):
@@ -103,27 +102,6 @@ def check_thermal(lubricant, thermal, state, cavitation, element):
                          f"{cavitation!r}")
     if cavitation == "jfo" and element != "P1":
         raise ValueError(f"element must be 'P1' with cavitation 'jfo', got {element!r}")
-
-
-def check_supply_temperature(lubricant: Lubricant, thermal: Thermal) -> None:
-    """ValueError naming ``supply_temperature`` when the oil's law gives no viscosity a
-    film could have there: non-finite (Walther's below ~60 K), or above any lubricant's
-    (:data:`~bearingfem.bearing.PLAUSIBLE`) below the oil range's low end, where the law is
-    an extrapolation. Why: 40 typed for 40 C reached the solvers as 40 K and stopped in
-    "Factor is exactly singular" or "non-finite temperature"; a cold start inside the
-    range (ISO VG 32 at -50 C, 232 Pa s) and a cryogen's own law stay taken."""
-    t = thermal.supply_temperature
-    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-        mu = float(lubricant.viscosity_at(0.0, temperature=t))
-    lo, hi = OIL_TEMPERATURE_RANGE
-    if math.isfinite(mu) and mu > 0.0 and not (t < lo and mu > PLAUSIBLE["viscosity"][1]):
-        return
-    hint = (f": typed in degC? ({t:g} C = {t + CELSIUS:g} K)" if lo <= t + CELSIUS <= hi
-            else "")
-    raise ValueError(f"thermal.supply_temperature {t:g} K gives the oil a viscosity of "
-                     f"{mu:g} Pa s (more than any lubricant's, <= "
-                     f"{PLAUSIBLE['viscosity'][1]:g} Pa s, or none){hint}; temperatures "
-                     "are in K")
 
 
 def thermal_operator(bearing, state, n_theta, n_z, element="P1", supply_angle=None,

@@ -7,14 +7,18 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..bearing import PLAUSIBLE
 from ..elastic.bush import ElasticBush
 from ..errors import OilRangeWarning
-from ..oil_range import check_kelvin, temperature_range_note
+from ..oil_range import (CELSIUS, LEAST_KELVIN, OIL_TEMPERATURE_RANGE, check_kelvin,
+                         temperature_range_note)
 
 __all__ = ["Thermal", "ThermalRecord", "BushConduction", "THERMAL_MODELS", "warn_out_of_range",
            "MAX_FILM_COEFFICIENT", "DEFAULT_WALL_COEFFICIENT"]
 
 THERMAL_MODELS = ("adiabatic", "conducting")
+#: a Thermal's temperatures [K]
+TEMPERATURES = ("supply_temperature", "ambient_temperature", "journal_temperature")
 #: [W/(m^2 K)] film -> ambient through a steel bush and film -> journal, when the
 #: "conducting" model is given no coefficient: the order of a 50 W/(m K) bush 0.15 m thick
 #: in series with a 700 W/(m^2 K) outer convection (about 230 W/(m^2 K)).
@@ -113,11 +117,12 @@ class Thermal:
     Parameters
     ----------
     supply_temperature : temperature of the fresh oil fed at the grooves (or the supply
-        line) [K], >= :data:`~bearingfem.oil_range.LEAST_KELVIN` (200 K: a smaller number
-        is degC typed for K, refused), as ``ambient_temperature`` and
-        ``journal_temperature``; a film
-        whose temperature leaves :data:`~bearingfem.oil_range.OIL_TEMPERATURE_RANGE`
-        warns once solved (:class:`~bearingfem.errors.OilRangeWarning`)
+        line) [K], > 0, as ``ambient_temperature`` and ``journal_temperature``; with an
+        oil (:meth:`check_fluid`, before any film is solved) >=
+        :data:`~bearingfem.oil_range.LEAST_KELVIN` (200 K: a smaller number is degC typed
+        for K, refused), any > 0 with a cryogen's law; a film whose temperature leaves
+        :data:`~bearingfem.oil_range.OIL_TEMPERATURE_RANGE` warns once solved
+        (:class:`~bearingfem.errors.OilRangeWarning`)
     model : "adiabatic" (no heat to the walls: all the film's heat leaves with its oil) or
         "conducting" (heat to the bush and to the journal by heat-transfer coefficients)
     carry_over : share, in [0, 1], of an arc's exit flow that passes the groove into the
@@ -146,9 +151,9 @@ class Thermal:
     bush: BushConduction | None = None
 
     def __post_init__(self):
-        # any oil's, hot or cold: a film that leaves the oil law's range warns once solved
-        # (warn_out_of_range); below LEAST_KELVIN the number is degC typed for K
-        check_kelvin("supply_temperature", self.supply_temperature)
+        # any fluid's, hot or cryogenic: a film that leaves the oil law's range warns once
+        # solved (warn_out_of_range); check_fluid refuses degC typed for K against the oil
+        _number("supply_temperature", self.supply_temperature, lo=1e-300, allowed="> 0 [K]")
         if self.model not in THERMAL_MODELS:
             raise ValueError(f"model must be one of {THERMAL_MODELS}, got {self.model!r}")
         _number("carry_over", self.carry_over, lo=0.0, hi=1.0, allowed="in [0, 1]")
@@ -162,7 +167,7 @@ class Thermal:
         for name in ("ambient_temperature", "journal_temperature"):
             value = getattr(self, name)
             if value is not None:     # an aircraft's ambient at altitude is -56.5 C
-                check_kelvin(name, value)
+                _number(name, value, lo=1e-300, allowed="> 0 [K]")
         if self.bush is not None:
             if not isinstance(self.bush, BushConduction):
                 raise ValueError(f"bush must be a BushConduction, got "
@@ -173,6 +178,38 @@ class Thermal:
             if self.bush_coefficient is not None:
                 raise ValueError("give bush_coefficient or bush, not both: the conducting "
                                  "bush replaces the coefficient")
+
+    def check_fluid(self, lubricant) -> None:
+        """The temperatures against the fluid they heat, before any film is solved: with a
+        lubricant whose temperature law is referenced at or above
+        :data:`~bearingfem.oil_range.LEAST_KELVIN` (an oil's; or one without a reference
+        temperature) a temperature below it is degC typed for K (40.0 for 313.15 K) and
+        refused, naming it; a law referenced below it (a cryogen's: liquid nitrogen's at
+        77-90 K) takes any temperature > 0 K. The supply temperature is also refused where
+        the lubricant's own law gives no film's viscosity there (non-finite, or above
+        :data:`~bearingfem.bearing.PLAUSIBLE`'s below the oil range): ValueError naming it."""
+        reference = getattr(lubricant, "temperature", None)
+        if reference is None or reference >= LEAST_KELVIN:
+            why = (f" with a lubricant referenced at {reference:g} K" if reference is not None
+                   else " with a lubricant without a reference temperature")
+            for name in TEMPERATURES:
+                if getattr(self, name) is not None:
+                    check_kelvin(name, getattr(self, name), why)
+        # the law's own viscosity at the supply: none (Walther's below ~60 K), or above any
+        # lubricant's below the oil range, where the law is an extrapolation (40 K typed for
+        # 40 C stopped in the solvers: "Factor is exactly singular")
+        t = self.supply_temperature
+        with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+            mu = float(lubricant.viscosity_at(0.0, temperature=t))
+        lo, hi = OIL_TEMPERATURE_RANGE
+        most = PLAUSIBLE["viscosity"][1]
+        if math.isfinite(mu) and mu > 0.0 and not (t < lo and mu > most):
+            return
+        hint = (f": typed in degC? ({t:g} C = {t + CELSIUS:g} K)" if lo <= t + CELSIUS <= hi
+                else "")
+        raise ValueError(f"supply_temperature {t:g} K gives the lubricant a viscosity of "
+                         f"{mu:g} Pa s (more than any lubricant's, <= {most:g} Pa s, or none)"
+                         f"{hint}; temperatures are in K")
 
     @property
     def walls(self) -> tuple:
