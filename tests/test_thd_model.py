@@ -223,5 +223,5 @@ def test_scene_refuses_a_supply_temperature_in_celsius_before_the_run():
                  grooves=[dict(angle=0.0, width=0.35), dict(angle=math.pi, width=0.35)],
                  thermal=dict(supply_temperature=40.0, carry_over=0.8))
     with pytest.raises(ValueError, match=r"effects.lubrication.thermal: supply_temperature "
-                                         r"must lie in .* typed in degC\?"):
+                                         r"must lie in .*typed in degC\?"):
         _lubrication(_Table(dict(table), "effects.lubrication"))
