@@ -22,14 +22,16 @@ from bearingfem.models.ehd import ehd_run_film
 from test_ehd_states import B, NT, NZ, SOLID, STALLED_Q, stalled_film
 
 
-def _heavy(tau=1e-5):
+def _heavy(tau=1e-5, barus=None):
     """The implicit film and the states film at :data:`STALLED_Q`'s state (past the
     circle, summits carrying, cavitated, whirling, Dowson-Higginson oil, 48 x 4), and that
-    state's deflection on the bush grid, committed as w_n at t = 0."""
+    state's deflection on the bush grid, committed as w_n at t = 0 (``barus`` [1/Pa]: the
+    oil's Barus pressure-viscosity coefficient)."""
     part, state = stalled_film()
     w = part.left @ np.asarray(STALLED_Q)
-    full = FullStateEHD(B, part.lubricant, SOLID, 48, 4, tau, part.roughness)
-    film = ImplicitStepEHD(B, part.lubricant, SOLID, 48, 4, tau, part.roughness)
+    oil = replace(part.lubricant, barus=barus)
+    full = FullStateEHD(B, oil, SOLID, 48, 4, tau, part.roughness)
+    film = ImplicitStepEHD(B, oil, SOLID, 48, 4, tau, part.roughness)
     film.start(state, 0.0)
     film._w = w.copy()
     return film, full, state, w
@@ -199,12 +201,15 @@ def test_the_node_compliance_gathered_is_the_products_for_every_bush(model):
         gathered = step.node_compliance(np.arange(film.size))
         assert np.max(np.abs(gathered - products)) < 1e-12 * np.max(np.abs(products))
 
-def test_the_pressure_slopes_are_taken_when_a_newton_matrix_asks(monkeypatch):
-    """The lubricant's pressure slopes (Dowson-Higginson density) are not taken at a film
-    evaluation, only when unpacked (a Newton matrix); then they are the lubricant's at the
-    evaluation's pressure, bit for bit, taken once. Fails with them taken at every
-    evaluation (the count), or their order swapped (the values)."""
-    film, _, state, _ = _heavy()
+@pytest.mark.parametrize("barus", [None, 2e-8])
+def test_the_pressure_slopes_are_taken_when_a_newton_matrix_asks(barus, monkeypatch):
+    """The lubricant's pressure slopes (Dowson-Higginson density; with Barus's
+    pressure-viscosity or without) are not taken at a film evaluation, only when unpacked
+    (a Newton matrix); then they are the lubricant's at the evaluation's pressure, bit for
+    bit, taken once. Fails with them taken at every evaluation (the count), their order
+    swapped, the viscosity's slope not a ratio to mu0, or taken at the pressure without
+    the continuation's factor s (the values, Barus's oil)."""
+    film, _, state, _ = _heavy(barus=barus)
     film.force(state, 1e-7)
     step = film.step_film(state, 1e-6)
     lub = film.lubricant
@@ -212,13 +217,14 @@ def test_the_pressure_slopes_are_taken_when_a_newton_matrix_asks(monkeypatch):
     density_derivative = type(lub).density_derivative
     monkeypatch.setattr(type(lub), "density_derivative",
                         lambda self, p: calls.append(1) or density_derivative(self, p))
-    P = film._P * 1.01
-    ev = step.evaluate(P)
+    P, s = film._P * 1.01, 0.7
+    ev = step.evaluate(P, s)
     assert calls == []
     drho, dmu = ev.slopes
-    p = step.scale * step.op.at_quadrature(P)
+    p = s * step.scale * step.op.at_quadrature(P)
     assert np.array_equal(drho, density_derivative(lub, p))
     assert np.array_equal(dmu, lub.viscosity_derivative(p) / B.viscosity)
+    assert (np.max(np.abs(dmu)) > 0.0) == (barus is not None)
     drho_again, _ = ev.slopes
     assert drho_again is drho and len(calls) == 1
 
