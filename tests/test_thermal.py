@@ -588,6 +588,15 @@ def test_supply_temperature_typed_in_celsius_is_refused_before_any_work():
             equilibrium(BEARING, (0.0, -2000.0), STATE.omega, "fem", n_theta=24, n_z=4,
                         grooves=GROOVES, lubricant=oil, thermal=th)
     check_supply_temperature(oil, Thermal(supply_temperature=223.15))   # -50 C: 232 Pa s
+    # just below the range the message says the limit is there, not that 240 Pa s is more
+    # than any lubricant's (232 Pa s at 223.15 K is taken)
+    with pytest.raises(ValueError, match=r"supply_temperature 223 K gives the oil a "
+                                         r"viscosity of 239.8[0-9]* Pa s below the oil range's "
+                                         r"223.15 K, where its law is extrapolated"):
+        check_supply_temperature(oil, Thermal(supply_temperature=223.0))
+    with pytest.raises(ValueError, match=r"supply_temperature 40 K gives the oil no finite "
+                                         r"viscosity \(inf Pa s\)"):
+        check_supply_temperature(oil, Thermal(supply_temperature=40.0))
     cryogen = Lubricant.two_point((77.0, 1.6e-4), (90.0, 1.2e-4), density=800.0,
                                   specific_heat=2000.0, conductivity=0.14, law="exponential")
     check_supply_temperature(cryogen, Thermal(supply_temperature=77.0))

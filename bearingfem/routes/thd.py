@@ -107,11 +107,12 @@ def check_thermal(lubricant, thermal, state, cavitation, element):
 
 def check_supply_temperature(lubricant: Lubricant, thermal: Thermal) -> None:
     """ValueError naming ``supply_temperature`` when the oil's law gives no viscosity a
-    film could have there: non-finite (Walther's below ~60 K), or above any lubricant's
-    (:data:`~bearingfem.bearing.PLAUSIBLE`) below the oil range's low end, where the law is
-    an extrapolation. Why: 40 typed for 40 C reached the solvers as 40 K and stopped in
-    "Factor is exactly singular" or "non-finite temperature"; a cold start inside the
-    range (ISO VG 32 at -50 C, 232 Pa s) and a cryogen's own law stay taken."""
+    film could have there: non-finite (Walther's below ~60 K), or below the oil range's low
+    end, where the law is an extrapolation, above any lubricant's
+    (:data:`~bearingfem.bearing.PLAUSIBLE`, 10 Pa s; within the range the law's value is
+    taken, however viscous). Why: 40 typed for 40 C reached the solvers as 40 K and
+    stopped in "Factor is exactly singular" or "non-finite temperature"; a cold start
+    inside the range (ISO VG 32 at -50 C, 232 Pa s) and a cryogen's own law stay taken."""
     t = thermal.supply_temperature
     with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
         mu = float(lubricant.viscosity_at(0.0, temperature=t))
@@ -120,10 +121,13 @@ def check_supply_temperature(lubricant: Lubricant, thermal: Thermal) -> None:
         return
     hint = (f": typed in degC? ({t:g} C = {t + CELSIUS:g} K)" if lo <= t + CELSIUS <= hi
             else "")
-    raise ValueError(f"thermal.supply_temperature {t:g} K gives the oil a viscosity of "
-                     f"{mu:g} Pa s (more than any lubricant's, <= "
-                     f"{PLAUSIBLE['viscosity'][1]:g} Pa s, or none){hint}; temperatures "
-                     "are in K")
+    # within the range any viscosity of the law is taken (ISO VG 32 at -50 C: 232 Pa s),
+    # so the message says where the limit applies
+    what = (f"a viscosity of {mu:g} Pa s below the oil range's {lo:g} K, where its law is "
+            f"extrapolated (at most {PLAUSIBLE['viscosity'][1]:g} Pa s taken there)"
+            if math.isfinite(mu) and mu > 0.0 else f"no finite viscosity ({mu:g} Pa s)")
+    raise ValueError(f"thermal.supply_temperature {t:g} K gives the oil {what}{hint}; "
+                     "temperatures are in K")
 
 
 def thermal_operator(bearing, state, n_theta, n_z, element="P1", supply_angle=None,
