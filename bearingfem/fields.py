@@ -138,11 +138,13 @@ def _at_quadrature(name: str, f, op) -> np.ndarray:
     shape = op.qp_theta.shape
     if callable(f):
         v = np.asarray(f(op.qp_theta, op.qp_zeta), dtype=float)
-        if v.size != 1 and v.shape != shape:
-            # numpy's own "could not be broadcast ... remapped shapes" named nothing
+        try:    # numpy's own "could not be broadcast ... remapped shapes" named nothing
+            return np.broadcast_to(v, shape).astype(float)
+        except ValueError:
             raise ValueError(f"film field {name}: its function of (theta, zeta) must "
-                             f"return a number or an array of their shape {shape}, got "
-                             f"shape {v.shape}")
+                             f"return a number or an array that broadcasts to their shape "
+                             f"{shape} (e.g. one value per element, ({shape[0]}, 1)), got "
+                             f"shape {v.shape}") from None
     else:
         v = np.asarray(f, dtype=float)
         if v.ndim == 1 and v.shape[0] == op.mesh.ndofs:     # nodal values

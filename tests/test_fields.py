@@ -151,6 +151,22 @@ def test_bad_fields_raise(kwargs, match):
         solve_reynolds(B, S, 16, 4, fields=FilmFields(**kwargs))
 
 
+def test_a_field_function_may_return_what_broadcasts_to_the_points():
+    """One value per element ((elements, 1), e.g. a viscosity taken at each element's
+    mean angle) broadcasts over the element's points as numpy does: the same film as the
+    array written out. A shape that does not broadcast is refused naming the field."""
+    def per_element(t, z):
+        return 1.0 + 0.5 * np.cos(t.mean(axis=1, keepdims=True))
+
+    op = fe_operator(B, S, 16, 4, "P1", None, False)
+    full = np.broadcast_to(per_element(op.qp_theta, op.qp_zeta), op.qp_theta.shape)
+    a = solve_reynolds(B, S, 16, 4, fields=FilmFields(viscosity=per_element))
+    b = solve_reynolds(B, S, 16, 4, fields=FilmFields(viscosity=lambda t, z: full))
+    assert np.array_equal(a.pressure, b.pressure)
+    with pytest.raises(ValueError, match=r"film field viscosity: .* got shape \(1, 3\)"):
+        solve_reynolds(B, S, 16, 4, fields=FilmFields(viscosity=lambda t, z: np.ones((1, 3))))
+
+
 def test_fields_with_jfo_need_p1():
     """The JFO film takes fields on P1 (its control volumes); P2 is refused by name."""
     with pytest.raises(ValueError, match="element"):

@@ -171,7 +171,8 @@ def test_threshold_speed_default_range_reaches_its_high_end():
 @pytest.mark.parametrize("bad, match", [
     (dict(turns=0.0), "turns"), (dict(turns=-1.0), "turns"),   # -1 hung the integrator
     (dict(samples=0), "samples"), (dict(samples=1), "samples"),
-    (dict(kick=0.0), "kick"), (dict(kick=2.0), "kick"), (dict(kick=float("nan")), "kick")])
+    (dict(kick=0.0), "kick"), (dict(kick=2.0), "kick"), (dict(kick=-2.0), "kick"),
+    (dict(kick=float("nan")), "kick")])
 def test_journal_orbit_refuses_bad_run_options_by_name(bad, match):
     """turns 0 / samples 0 raised IndexError, kick 0 returned a growth of 9e4 (a ratio of
     round-off), kick 2 started outside the clearance, NaN reached scipy's own message."""
@@ -183,3 +184,20 @@ def test_journal_orbit_refuses_bad_run_options_by_name(bad, match):
         journal_orbit(B, eq.state, 100.0, "short")
     with pytest.raises(ValueError, match="kc must be the DynamicCoefficients"):
         lund_stability(eq)
+
+
+def test_journal_orbit_takes_a_kick_against_the_load_and_refuses_a_start_past_the_bush():
+    """The kick is a displacement along the load in clearances: a negative one (toward
+    the bush centre) is an orbit as good as any (it was refused as not > 0); one that
+    puts the start outside the clearance is refused, however small (0.95 < 1 was taken
+    from eps 0.65 and the film capped at the wall)."""
+    from bearingfem.design import equilibrium, journal_orbit
+    eq = equilibrium(B, (0.0, -1000.0), OMEGA, "short")
+    assert eq.eps > 0.5
+    orbit = journal_orbit(B, eq, 0.01, "short", kick=-0.02, turns=3.0, samples=200)
+    start = np.hypot(orbit.x[0], orbit.y[0]) / B.clearance
+    assert orbit.distance[0] == pytest.approx(0.02 * B.clearance, rel=1e-12)
+    assert start < eq.eps       # moved toward the centre, against the downward load
+    with pytest.raises(ValueError, match=r"kick must be non-zero and keep the start inside "
+                                         r"the clearance \(eps 1\.[0-9]+ there"):
+        journal_orbit(B, eq, 0.01, "short", kick=0.95, turns=3.0, samples=200)

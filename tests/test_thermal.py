@@ -629,8 +629,15 @@ def test_supply_temperature_typed_in_celsius_is_refused_before_any_work():
     heavy = Lubricant.iso_vg(460)
     assert heavy.viscosity_at(0.0, temperature=200.0) > 1e4
     with pytest.raises(ValueError, match=r"supply_temperature 200 K gives the lubricant a "
-                                         r"viscosity of .* typed in degC\? \(200 C = "):
+                                         r"viscosity of .* below the oil range's .* "
+                                         r"typed in degC\? \(200 C = "):
         Thermal(supply_temperature=200.0).check_fluid(heavy)
+    # just below the range the message says the limit is there, not that 240 Pa s is more
+    # than any lubricant's (232 Pa s at 223.15 K is taken)
+    with pytest.raises(ValueError, match=r"supply_temperature 223 K gives the lubricant a "
+                                         r"viscosity of 239.8[0-9]* Pa s below the oil range's "
+                                         r"223.15 K, where its law is extrapolated"):
+        Thermal(supply_temperature=223.0).check_fluid(oil)
     cryogen = Lubricant.two_point((77.0, 1.6e-4), (90.0, 1.2e-4), density=800.0,
                                   specific_heat=2000.0, conductivity=0.14, law="exponential")
     Thermal(supply_temperature=77.0).check_fluid(cryogen)

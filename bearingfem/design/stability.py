@@ -35,7 +35,8 @@ import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
-from ..bearing import PLAUSIBLE, Bearing, JournalState, check_positive, check_surface_speed
+from ..bearing import (PLAUSIBLE, Bearing, JournalState, check_finite, check_positive,
+                       check_surface_speed)
 from ..film import local_to_inertial
 from ..models import film_model
 from .coefficients import DynamicCoefficients, coefficients
@@ -323,13 +324,20 @@ def journal_orbit(bearing: Bearing, eq: Equilibrium, mass: float, model: str = "
                   kick: float = 0.02, turns: float = 60.0, samples: int = 4000,
                   rtol: float = 1e-9, **options) -> Orbit:
     """Integrate m x'' = F_film(x, x') + load from the equilibrium ``eq`` displaced by
-    ``kick`` clearances along the load; the nonlinear check of the linear threshold."""
+    ``kick`` clearances along the load (negative: against it), starting inside the
+    clearance; the nonlinear check of the linear threshold."""
     mass = check_positive("mass", mass)
     if not isinstance(eq, Equilibrium):
         raise ValueError(f"eq must be an Equilibrium (equilibrium(...)), got {type(eq).__name__}")
-    kick = check_positive("kick", kick)
-    if kick >= 1.0:      # in clearances: 1 puts the journal on the bush
-        raise ValueError(f"kick must lie in (0, 1) clearances, got {kick!r}")
+    kick = check_finite("kick", kick)
+    wx, wy = eq.load
+    W = math.hypot(wx, wy)
+    q0 = eq.eps * np.array([math.cos(eq.state.gamma), math.sin(eq.state.gamma)])
+    start = q0 + kick * np.array([wx, wy]) / W       # [clearances]
+    if kick == 0.0 or not math.hypot(*start) < 1.0:     # 0: growth() a ratio of round-off
+        raise ValueError(f"kick must be non-zero and keep the start inside the clearance "
+                         f"(eps {math.hypot(*start):.4g} there, < 1) [clearances], got "
+                         f"{kick!r}")
     turns = check_positive("turns", turns)
     if isinstance(samples, bool) or not isinstance(samples, (int, np.integer)) or samples < 10:
         # growth() compares the first and last fifths of the samples
@@ -337,16 +345,13 @@ def journal_orbit(bearing: Bearing, eq: Equilibrium, mass: float, model: str = "
     m = film_model(model)
     opts = m.options(options)
     c, omega = bearing.clearance, eq.state.omega
-    wx, wy = eq.load
-    x0 = np.array([eq.eps * math.cos(eq.state.gamma), eq.eps * math.sin(eq.state.gamma)]) * c
-    W = math.hypot(wx, wy)
+    x0, start = q0 * c, start * c
 
     def rhs(t, y):
         s = JournalState.from_eccentricity(y[0], y[1], y[2], y[3], c, omega, eps_max=0.999)
         fx, fy = local_to_inertial(*m.film_force(bearing, s, **opts), s.gamma)
         return [y[2], y[3], (fx + wx) / mass, (fy + wy) / mass]
 
-    start = x0 + kick * c * np.array([wx, wy]) / W
     t_end = turns * 2.0 * math.pi / abs(omega)
     sol = solve_ivp(rhs, (0.0, t_end), [start[0], start[1], 0.0, 0.0], method="LSODA",
                     rtol=rtol, atol=1e-6 * c, t_eval=np.linspace(0.0, t_end, samples))

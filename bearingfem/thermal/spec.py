@@ -207,9 +207,13 @@ class Thermal:
             return
         hint = (f": typed in degC? ({t:g} C = {t + CELSIUS:g} K)" if lo <= t + CELSIUS <= hi
                 else "")
-        raise ValueError(f"supply_temperature {t:g} K gives the lubricant a viscosity of "
-                         f"{mu:g} Pa s (more than any lubricant's, <= {most:g} Pa s, or none)"
-                         f"{hint}; temperatures are in K")
+        # within the range any viscosity of the law is taken (ISO VG 32 at -50 C: 232 Pa s),
+        # so the message says where the limit applies
+        what = (f"a viscosity of {mu:g} Pa s below the oil range's {lo:g} K, where its law "
+                f"is extrapolated (at most {most:g} Pa s taken there)"
+                if math.isfinite(mu) and mu > 0.0 else f"no finite viscosity ({mu:g} Pa s)")
+        raise ValueError(f"supply_temperature {t:g} K gives the lubricant {what}{hint}; "
+                         "temperatures are in K")
 
     @property
     def walls(self) -> tuple:
