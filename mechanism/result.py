@@ -123,9 +123,15 @@ class SimulationResult:
                 + (", partial" if self.partial else "") + ")")
 
     def crank_angle_at(self, t: float) -> float:
-        """The crank angle [rad] at time ``t`` [s] within the saved samples (linear
-        between them)."""
-        return float(np.interp(t, self.t, self.crank_angle))
+        """The crank angle [rad] at time ``t`` [s]: linear between the saved samples, and
+        beyond them from the nearest one at its crank speed (the run's last steps and a
+        kept film step may lie after its last sample, up to a sample's interval)."""
+        if not len(self.t):
+            raise ValueError("crank_angle_at needs a result with saved samples, got none")
+        i = 0 if t < self.t[0] else -1 if t > self.t[-1] else None
+        if i is None:
+            return float(np.interp(t, self.t, self.crank_angle))
+        return float(self.crank_angle[i] + self.crank_speed[i] * (t - self.t[i]))
 
     def summary(self) -> str:
         s = self.stats
