@@ -35,8 +35,12 @@ def _scene(**changes):
 def _kept_copies(sc):
     """(the run of ``sc``, {id of a kept film: its deep copy made when it was kept}): what
     a film that reuses or updates its solution in place would change after the fact."""
-    copies = {}
-    keep = FilmEffect._keep_peak
+    copies, flags = {}, []
+    keep, commit = FilmEffect._keep_peak, FilmEffect.commit
+
+    def logging(self, k, recording=True):
+        flags.append((k.t, recording))
+        return commit(self, k, recording)
 
     def copying(self, step, *args):
         keep(self, step, *args)
@@ -44,7 +48,20 @@ def _kept_copies(sc):
             copies[id(step.solution)] = (step.solution, copy.deepcopy(step.solution))
     with pytest.MonkeyPatch.context() as mp:
         mp.setattr(FilmEffect, "_keep_peak", copying)
-        return simulate(sc, progress=False), copies
+        mp.setattr(FilmEffect, "commit", logging)
+        r = simulate(sc, progress=False)
+    copies["recording"] = np.array(flags)
+    return r, copies
+
+
+def test_the_run_records_its_commits_from_its_first_saved_sample(kept):
+    """The commits' recording flag (simulate's, by the crank angle) against the saved
+    samples' first time (mechanism.sampling.output_times', by the dense output): off
+    before it, on from it. Fails when the two rules part (e.g. recording a degree late)."""
+    r, copies = kept
+    t, recording = copies["recording"].T
+    assert 0 < np.count_nonzero(recording) < len(t)
+    assert np.all(recording == (t >= r.t[0]))
 
 
 def _unchanged(sol, copies):
@@ -114,23 +131,28 @@ def test_a_scene_not_the_runs_is_refused_by_the_replay(run):
             film_history(run, _scene(**changes), [q])
 
 
-def test_a_stopped_run_keeps_the_film_it_had(ctrl_c_at_film_force):
+def test_a_stopped_run_keeps_the_film_it_had(ctrl_c_at_film_force, tmp_path):
     """A Ctrl-C in the run-up (the 120th film force), before the recorded turns: the run
     is partial, its samples the whole run from t = 0, and its kept film the record's
-    largest force over them. Fails when a stopped run's film is dropped."""
+    largest force over them, saved by save(). Fails when a stopped run's film is
+    dropped or not saved."""
     forces = ctrl_c_at_film_force(120)
     r = simulate(_scene(), progress=False)
     assert forces["n"] >= 120 and r.partial and r.t[0] == 0.0
     t, f = _forces(r)
     assert len(t) > 10
     assert r.peak_film.t == t[np.argmax(f)]
+    import meshio                             # optional: the VTU writer's
+    d = r.save(tmp_path)                      # a stopped run's film is saved too
+    m = meshio.read(d / "peak_film.vtu")
+    assert np.all(m.point_data["time [s]"] == r.peak_film.t)
 
 
 def test_the_kept_film_is_saved_and_drawn(run, tmp_path):
     """save() writes it beside the arrays (peak_film.vtu: its pressure and time); the
     benchmark's figure file is written and its line says where the peak was; a film
     without a bush is refused by the drawing."""
-    import meshio
+    import meshio                             # optional: the VTU writer's
     r = run
     d = r.save(tmp_path / "run")
     m = meshio.read(d / "peak_film.vtu")
@@ -141,6 +163,7 @@ def test_the_kept_film_is_saved_and_drawn(run, tmp_path):
     assert (tmp_path / "fig" / "peak.png").stat().st_size > 10_000
     angle = np.degrees(r.crank_angle_at(r.peak_film.t))
     assert f"crank {angle:.2f} deg of turn 1" in line and "least film" in line
+    assert f"force {np.hypot(*r.peak_film.force_local):.1f} N" in line   # film + summits
     rigid = dataclasses.replace(r.peak_film.solution, deformation=None)
     with pytest.raises(ValueError, match="deformation"):
         render_deflection(rigid, r.peak_film.state, tmp_path / "no.png")
