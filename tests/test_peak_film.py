@@ -82,6 +82,21 @@ def run(kept):
     return kept[0]
 
 
+def _jfo_scene(**changes):
+    """The seed pin's rigid JFO film on 16 x 4, a film step at each accepted step, 0.01
+    turn recorded from 0.005 (0.6 s CPU, 142 film steps)."""
+    sc = load_scene("paper-short-jfo")
+    lub = dataclasses.replace(sc.lubrication, options=dict(
+        sc.lubrication.options, n_theta=16, n_z=4, film_step=0.0, **changes))
+    return dataclasses.replace(sc, lubrication=lub, run=dataclasses.replace(
+        sc.run, turns=0.01, record_from_turn=0.005))
+
+
+@pytest.fixture(scope="module")
+def jfo_kept():
+    return _kept_copies(_jfo_scene())
+
+
 def _forces(r):
     rec = r.film_record
     return film_column(rec, "t"), np.hypot(film_column(rec, "force_x"),
@@ -163,7 +178,13 @@ def test_the_kept_film_is_saved_and_drawn(run, tmp_path):
     assert (tmp_path / "fig" / "peak.png").stat().st_size > 10_000
     angle = np.degrees(r.crank_angle_at(r.peak_film.t))
     assert f"crank {angle:.2f} deg of turn 1" in line and "least film" in line
-    assert f"force {np.hypot(*r.peak_film.force_local):.1f} N" in line   # film + summits
+    assert f"force {np.hypot(*r.peak_film.force_local):.1f} N" in line
+    # the force it names is the step's, film + summits (no summits' load at this peak)
+    step = r.peak_film
+    summits = dataclasses.replace(step, force_local=(step.force_local[0] + 50.0,
+                                                     step.force_local[1]))
+    line = peak_figure(dataclasses.replace(r, peak_film=summits), tmp_path / "fig" / "s.png")
+    assert f"force {np.hypot(*summits.force_local):.1f} N" in line
     rigid = dataclasses.replace(r.peak_film.solution, deformation=None)
     with pytest.raises(ValueError, match="deformation"):
         render_deflection(rigid, r.peak_film.state, tmp_path / "no.png")
@@ -204,21 +225,29 @@ def test_a_film_without_memory_keeps_none():
     assert simulate(sc, progress=False).peak_film is None
 
 
-def test_the_kept_film_is_not_changed_by_the_later_steps(kept):
+def test_the_kept_film_is_not_changed_by_the_later_steps(kept, jfo_kept):
     """The kept film's arrays as they were when it was kept, after the run's later film
     steps (a film that reused or updated its solution in place would change them); the
     rigid JFO film (TransientJFO, its film fraction carried) too."""
     r, copies = kept
     assert r.peak_film.t < film_column(r.film_record, "t")[-1]     # later steps were taken
     assert _unchanged(r.peak_film.solution, copies) == []
-    sc = load_scene("paper-short-jfo")
-    lub = dataclasses.replace(sc.lubrication, options=dict(sc.lubrication.options, n_theta=16,
-                                                           n_z=4, film_step=0.0))
-    sc = dataclasses.replace(sc, lubrication=lub, run=dataclasses.replace(
-        sc.run, turns=0.01, record_from_turn=0.005))
-    r, copies = _kept_copies(sc)
+    r, copies = jfo_kept
     assert r.peak_film.t < film_column(r.film_record, "t")[-1]
     assert _unchanged(r.peak_film.solution, copies) == []
+
+
+def test_a_round_off_replay_refuses_a_scene_0_01_percent_off(jfo_kept):
+    """The rigid JFO film declares round-off (StatelessRun's REPLAY_TOLERANCE, 1e-9): its
+    replay of its own run passes (it departs by 0: the same solves), one with the ambient
+    pressure 0.01 % off (1.0001e5 Pa for 1e5) is refused (1.4e-8 of the peak force at its
+    third step; 0.1 % off: 1.4e-7). Fails with a tolerance of 1.4e-8 or more."""
+    r, _ = jfo_kept
+    q = np.degrees(r.crank_angle_at(r.peak_film.t))
+    frame, = film_history(r, _jfo_scene(), [q])
+    assert frame.t == r.peak_film.t
+    with pytest.raises(ValueError, match="departs from the run's record"):
+        film_history(r, _jfo_scene(ambient_pressure=1.0001e5), [q])
 
 
 def test_a_run_stopped_before_its_first_recorded_film_step_keeps_none():
