@@ -111,7 +111,8 @@ class SimulationResult:
     #: a film with memory that hands its whole film at each step: the committed film step
     #: (t, journal state, force, ``.solution`` the FilmSolution) with the largest force,
     #: film and summits, in the recorded turns (over the whole run for one stopped before
-    #: them); None for a run without such steps. Not re-read by :func:`load_result`:
+    #: them); None for a run without such steps (or stopped in its recorded turns before
+    #: their first film step). Not re-read by :func:`load_result`:
     #: :meth:`save` writes its film beside the arrays (``peak_film.vtu``)
     peak_film: FilmStep | None = None
 
