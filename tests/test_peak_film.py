@@ -148,17 +148,26 @@ def test_a_scene_not_the_runs_is_refused_by_the_replay(run):
             film_history(run, _scene(**changes), [q])
 
 
-def test_a_stopped_run_keeps_the_film_it_had(ctrl_c_at_film_force, tmp_path):
-    """A Ctrl-C in the run-up (the 120th film force), before the recorded turns: the run
-    is partial, its samples the whole run from t = 0, and its kept film the record's
-    largest force over them, saved by save(). Fails when a stopped run's film is
-    dropped or not saved."""
-    forces = ctrl_c_at_film_force(120)
-    r = simulate(_scene(), progress=False)
-    assert forces["n"] >= 120 and r.partial and r.t[0] == 0.0
+@pytest.mark.parametrize("n", [130, 250])
+def test_a_stopped_run_keeps_the_film_it_had(ctrl_c_at_film_force, tmp_path, n):
+    """A Ctrl-C in the rigid JFO run at its n-th film force: at the 130th in the run-up,
+    after its peak and before the recorded turns (the run is partial, its samples the
+    whole run from t = 0, its kept film the record's largest force over them, not its
+    last step); at the 250th inside the recorded turns (its samples from where they
+    begin, its kept film the largest force from there, not the run-up's). Saved by
+    save(). Fails when a stopped run's film is dropped or not saved, or the kept film's
+    window is not its samples'."""
+    forces = ctrl_c_at_film_force(n)
+    r = simulate(_jfo_scene(), progress=False)
+    assert forces["n"] >= n and r.partial
     t, f = _forces(r)
-    assert len(t) > 10
-    assert r.peak_film.t == t[np.argmax(f)]
+    inside = np.flatnonzero(t >= r.t[0])
+    j = inside[np.argmax(f[inside])]
+    assert r.peak_film.t == t[j]
+    if n == 130:
+        assert r.t[0] == 0.0 and 10 < j < len(t) - 1
+    else:
+        assert r.t[0] > 0.0 and f.max() > f[j]       # the run-up's peak lies before
     import meshio                             # optional: the VTU writer's
     d = r.save(tmp_path)                      # a stopped run's film is saved too
     m = meshio.read(d / "peak_film.vtu")
