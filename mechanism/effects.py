@@ -158,16 +158,19 @@ class FilmEffect(Effect):
             self.history.append(film_row(step))
             if self.state_size:
                 self.z_history.append(np.array(self.z, float))
-            self._keep_peak(step, recording)
+        if recording and not self._peak_recorded:
+            # the run-up's forgotten at the first recorded commit, a film step or not: a
+            # run stopped before its first recorded film step keeps none, not a film from
+            # before its saved samples
+            self.peak, self._peak_recorded = None, True
+        if step is not None:
+            self._keep_peak(step)
         return step is not None
 
-    def _keep_peak(self, step: FilmStep, recording: bool) -> None:
-        """``step`` as ``peak`` where it carries more than the one kept (the first
-        recorded step replaces the run-up's)."""
+    def _keep_peak(self, step: FilmStep) -> None:
+        """``step`` as ``peak`` where it carries more than the one kept."""
         if step.solution is None:
             return
-        if recording and not self._peak_recorded:
-            self.peak, self._peak_recorded = None, True
         if self.peak is None or (math.hypot(*step.force_local)
                                  > math.hypot(*self.peak.force_local)):
             self.peak = step

@@ -111,7 +111,8 @@ class SimulationResult:
     #: a film with memory that hands its whole film at each step: the committed film step
     #: (t, journal state, force, ``.solution`` the FilmSolution) with the largest force,
     #: film and summits, in the recorded turns (over the whole run for one stopped before
-    #: them); None for a run without such steps. Not re-read by :func:`load_result`:
+    #: them); None for a run without such steps (or stopped in its recorded turns before
+    #: their first film step). Not re-read by :func:`load_result`:
     #: :meth:`save` writes its film beside the arrays (``peak_film.vtu``)
     peak_film: FilmStep | None = None
 
@@ -123,9 +124,15 @@ class SimulationResult:
                 + (", partial" if self.partial else "") + ")")
 
     def crank_angle_at(self, t: float) -> float:
-        """The crank angle [rad] at time ``t`` [s] within the saved samples (linear
-        between them)."""
-        return float(np.interp(t, self.t, self.crank_angle))
+        """The crank angle [rad] at time ``t`` [s]: linear between the saved samples, and
+        beyond them from the nearest one at its crank speed (the run's last steps and a
+        kept film step may lie after its last sample, up to a sample's interval)."""
+        if not len(self.t):
+            raise ValueError("crank_angle_at needs a result with saved samples, got none")
+        i = 0 if t < self.t[0] else -1 if t > self.t[-1] else None
+        if i is None:
+            return float(np.interp(t, self.t, self.crank_angle))
+        return float(self.crank_angle[i] + self.crank_speed[i] * (t - self.t[i]))
 
     def summary(self) -> str:
         s = self.stats
