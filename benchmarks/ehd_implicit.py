@@ -4,6 +4,7 @@ tolerance, and its cost against the rigid JFO run of the same mesh.
 
     python -m benchmarks.ehd_implicit [--turns 2] [--meshes 48 4 96 8 192 16]
         [--tau 1e-5 ...] [--rtol 1e-6 ...] [--states] [--save DIR] [--figure PATH]
+    python -m benchmarks.ehd_implicit --replay DIR --figure PATH [--turns 5] [--meshes 192 16]
 
 The seed pin at 250 rad/s from top dead centre, the bush of ``paper-short-ehd-sharp`` (the
 per-harmonic solid), a 2 um crown over the whole length, rough surfaces (sigma 0.2 um,
@@ -25,6 +26,11 @@ bush deflection and film pressure over the unwrapped film, and prints where it w
 record from the last whole turn (the periodic turn's peak, not the start's from the
 bearing's centre, whose load is 2.7x larger): the "run:" columns' peak eps and least
 film cover that turn (``--save`` keeps the samples of that turn alone).
+
+``--replay DIR --figure PATH`` runs nothing: it draws the peak of the last whole turn of a
+run saved in DIR (of ``--turns``, the first mesh, tau and rtol given), its film steps
+replayed from the start (:func:`replayed_peak`; each checked against the run's record):
+for a run saved without its kept peak, or recorded from its start.
 """
 from __future__ import annotations
 
@@ -34,9 +40,11 @@ import dataclasses
 import numpy as np
 
 from bearingfem.fields import EdgeProfile
-from mechanism import load_scene, simulate
+from mechanism import load_result, load_scene, simulate
+from bearingfem.contract import FilmStep
 from mechanism.figures import render_deflection
-from mechanism.result import film_column
+from mechanism.film_history import film_history
+from mechanism.result import film_column, film_states
 
 from .common import OILS, best_of, scene
 from .ehd_states import ROUGH, last_turn, last_turn_work, rigid_jfo
@@ -105,6 +113,34 @@ def peak_figure(r, path, label=""):
             f"MPa, largest deflection {w:.4f} um, least film {h:.4f} um -> {path}")
 
 
+def replayed_peak(r, sc, from_turn):
+    """The film step of a saved run ``r`` of scene ``sc`` with the largest film + summits
+    force from crank turn ``from_turn`` on, its film solved again by replaying the run's
+    film steps from its start (:func:`mechanism.film_history`, checked against the
+    record at every step): a :class:`~bearingfem.contract.FilmStep`, as ``r.peak_film``.
+    For a run saved without its kept peak (or recorded from another turn)."""
+    rec = np.asarray(r.film_record)
+    t_rec = film_column(rec, "t")
+    t0 = float(np.interp(sc.crank_angle + 2 * np.pi * from_turn, r.crank_angle, r.t))
+    window = np.flatnonzero(t_rec >= t0)
+    if not len(window):
+        raise ValueError(f"the run has no film step from turn {from_turn:g} on")
+    force = np.hypot(film_column(rec, "force_x"), film_column(rec, "force_y"))
+    j = int(window[np.argmax(force[window])])
+    # the samples of the window alone: film_history picks among their film steps by crank
+    # angle (modulo a turn), so an earlier turn's step at that angle is not taken
+    m = r.t >= t0
+    frame, = film_history(dataclasses.replace(r, t=r.t[m], crank_angle=r.crank_angle[m]),
+                          sc, crank_angles_deg=[np.degrees(r.crank_angle_at(t_rec[j]))])
+    if frame.t != t_rec[j]:
+        raise ValueError(f"the replay took the film step at t = {frame.t:.9g} s, not the "
+                         f"peak's at {t_rec[j]:.9g} s")
+    sol = frame.solution
+    f, a = sol.force_local, sol.asperity_force_local
+    return FilmStep(float(t_rec[j]), film_states(rec[j:j + 1])[0][1],
+                    (f[0] + a[0], f[1] + a[1]), sol)
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--turns", type=float, default=2.0)
@@ -115,10 +151,23 @@ def main(argv=None):
                     help="each mesh also with the whole deflection integrated as states")
     ap.add_argument("--save", metavar="DIR", default=None)
     ap.add_argument("--progress", action="store_true", help="each run's progress on stderr")
+    ap.add_argument("--replay", metavar="DIR", default=None,
+                    help="no run: draw --figure from the run saved in DIR (of --turns, the "
+                         "first mesh, tau and rtol), its film steps replayed to the peak "
+                         "joint load of its last whole turn")
     ap.add_argument("--figure", metavar="PATH", default=None,
                     help="draw the last row's film at its peak joint load in the last whole "
                          "turn (the rows then record from that turn)")
     a = ap.parse_args(argv)
+    if a.replay:
+        if not a.figure:
+            ap.error("--replay draws a figure: give --figure PATH")
+        r = load_result(a.replay)
+        sc = implicit_scene(a.turns, a.meshes[0], a.meshes[1], a.tau[0], a.rtol[0])
+        step = replayed_peak(r, sc, max(np.floor(a.turns) - 1.0, 0.0))
+        print(peak_figure(dataclasses.replace(r, peak_film=step), a.figure,
+                          f" ({a.meshes[0]} x {a.meshes[1]}, replayed)"), flush=True)
+        return
     # the periodic turn's peak: the rows record from the last whole turn (module docstring)
     record_from = max(np.floor(a.turns) - 1.0, 0.0) if a.figure else 0.0
     radius = load_scene("paper-short-ehd-sharp").bearing.radius
