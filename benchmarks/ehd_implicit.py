@@ -15,8 +15,9 @@ the ratio to the rigid JFO run, and over the last whole turn the least film (the
 itself, negative where the summits carry), the peak film pressure, the summits' share
 (their load's time integral over the joint force's) and the mean friction power (film
 shear and the summits' Coulomb friction), NaN for a run under a turn; and over the whole
-run its peak eps, least film, peak film pressure, summits' share and friction power. ``--states`` adds the run with the whole
-deflection integrated as states (FullStateEHD) on each mesh. A Ctrl-C stops the row's
+run its peak eps, least film, peak film pressure, summits' share and friction power.
+``--states`` adds the run with the whole deflection integrated as states (FullStateEHD) on
+each mesh. A Ctrl-C stops the row's
 run and prints what it computed (marked partial).
 
 ``--figure PATH`` draws the last row's film at its peak joint load (the film step with the
