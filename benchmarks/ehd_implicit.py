@@ -128,14 +128,7 @@ def replayed_peak(r, sc, from_turn):
         raise ValueError(f"the run has no film step from turn {from_turn:g} on")
     force = np.hypot(film_column(rec, "force_x"), film_column(rec, "force_y"))
     j = int(window[np.argmax(force[window])])
-    # the samples of the window alone: film_history picks among their film steps by crank
-    # angle (modulo a turn), so an earlier turn's step at that angle is not taken
-    m = r.t >= t0
-    frame, = film_history(dataclasses.replace(r, t=r.t[m], crank_angle=r.crank_angle[m]),
-                          sc, crank_angles_deg=[np.degrees(r.crank_angle_at(t_rec[j]))])
-    if frame.t != t_rec[j]:
-        raise ValueError(f"the replay took the film step at t = {frame.t:.9g} s, not the "
-                         f"peak's at {t_rec[j]:.9g} s")
+    frame, = film_history(r, sc, film_steps=[j])
     sol = frame.solution
     f, a = sol.force_local, sol.asperity_force_local
     return FilmStep(float(t_rec[j]), film_states(rec[j:j + 1])[0][1],

@@ -5,10 +5,11 @@ at a sample (eccentricity rate, the journal's speed relative to the bearing = mi
 rod's angular velocity) follows by differentiating those records in time, so a film can
 be re-solved at any saved instant without re-running the mechanism.
 
-A film with memory (a model whose ``memory`` is True, e.g. "fem-jfo") depends on its whole past, not on the instant: its run
-records the state of every film step (``film_record``), and the film is replayed through
-them (the same solves as in the run, checked against the recorded forces); each frame is
-the film step nearest its crank angle in the saved turns. A film whose own states the run
+A film with memory (a model whose ``memory`` is True, e.g. "fem-jfo") depends on its whole
+past, not on the instant: its run records the state of every film step (``film_record``),
+and the film is replayed through them (the same solves as in the run, checked against the
+recorded forces); each frame is the film step nearest its crank angle in the saved turns,
+or the record's rows asked by ``film_steps``. A film whose own states the run
 integrated (e.g. the bush's modes, "fem-ehd" coupling "states") needs no replay: each
 frame is solved from its step's state and the states kept there (``film_z``), checked
 the same way.
@@ -57,9 +58,11 @@ def history_fields(scene) -> tuple:
 
 
 def film_history(result, scene, crank_angles_deg=None, n_frames=12, n_theta=None, n_z=None,
-                 element=None, cavitation=None, progress=None):
+                 element=None, cavitation=None, progress=None, film_steps=None):
     """FE film solutions at the crank angles of a run (default: ``n_frames`` evenly spaced
     over a turn, or over the run's crank angles, ends included, when it covers less).
+    A film with memory may be asked for rows of its run's ``film_record`` instead
+    (``film_steps``, indices): a crank angle names a step of every turn the samples hold.
 
     The mesh and cavitation default to the scene's FE/FV/table lubrication options, else
     96 x 16 P1 with Gumbel cavitation. Returns a list of :class:`FilmFrame`.
@@ -83,13 +86,16 @@ def film_history(result, scene, crank_angles_deg=None, n_frames=12, n_theta=None
                                 + span * np.arange(n_frames) / max(n_frames - 1, 1))
     model = (film_model(scene.lubrication.model, "lubrication.model")
              if scene.lubrication is not None else None)
+    if film_steps is not None and not (model is not None and model.memory):
+        raise ValueError("film_steps names rows of a film record: a film with memory's "
+                         "(the scene's film keeps none)")
     if model is not None and model.memory:
         given = dict(n_theta=n_theta, n_z=n_z, element=element, cavitation=cavitation)
         if any(v is not None for v in given.values()):
             raise ValueError(f"a {model.name} film is replayed on its run's own mesh: leave "
                              f"{', '.join(k for k, v in given.items() if v is not None)} "
                              "unset")
-        return _replayed(result, scene, model, crank_angles_deg, progress)
+        return _replayed(result, scene, model, crank_angles_deg, progress, film_steps)
     opts = scene.lubrication.options if scene.lubrication is not None else {}
     n_theta = n_theta or opts.get("n_theta", 96)
     n_z = n_z or opts.get("n_z", 16)
@@ -111,7 +117,7 @@ def film_history(result, scene, crank_angles_deg=None, n_frames=12, n_theta=None
     return frames
 
 
-def _replayed(result, scene, model, crank_angles_deg, progress=None):
+def _replayed(result, scene, model, crank_angles_deg, progress=None, film_steps=None):
     """Frames of a film with memory: its run's film steps replayed (see the module)."""
     from .result import FILM_COLUMNS, film_column, film_states
     rec, start = result.film_record, result.stats.get("film_start")
@@ -120,15 +126,23 @@ def _replayed(result, scene, model, crank_angles_deg, progress=None):
                          f"{model.name} record them from this version on): run the scene "
                          "again")
     t_rec = film_column(rec, "t")
-    inside = np.flatnonzero((t_rec >= result.t[0]) & (t_rec <= result.t[-1]))
-    if not len(inside):
-        raise ValueError("no film step of the run falls in its saved turns")
     crank = lambda t: np.mod(np.degrees(np.interp(t, result.t, result.crank_angle)),  # noqa
                              360.0)
-    q_rec = crank(t_rec[inside])
-    wanted = set()
-    for a in np.mod(np.asarray(crank_angles_deg, float), 360.0):
-        wanted.add(int(inside[np.argmin(np.abs((q_rec - a + 180.0) % 360.0 - 180.0))]))
+    if film_steps is not None:
+        wanted = set()
+        for i in np.atleast_1d(film_steps):
+            if not (isinstance(i, (int, np.integer)) and 0 <= i < len(rec)):
+                raise ValueError(f"film_steps must be rows of the film record, integers in "
+                                 f"[0, {len(rec) - 1}], got {i!r}")
+            wanted.add(int(i))
+    else:
+        inside = np.flatnonzero((t_rec >= result.t[0]) & (t_rec <= result.t[-1]))
+        if not len(inside):
+            raise ValueError("no film step of the run falls in its saved turns")
+        q_rec = crank(t_rec[inside])
+        wanted = set()
+        for a in np.mod(np.asarray(crank_angles_deg, float), 360.0):
+            wanted.add(int(inside[np.argmin(np.abs((q_rec - a + 180.0) % 360.0 - 180.0))]))
     last = max(wanted)
     force = np.column_stack([film_column(rec, "force_x"), film_column(rec, "force_y")])
     peak = float(np.max(np.hypot(force[:, 0], force[:, 1]))) or 1.0

@@ -312,3 +312,20 @@ def test_a_saved_run_replayed_to_its_peak_is_the_kept_peak_film(kept, tmp_path):
                                                         rel=1e-7)
     p, q = step.solution.pressure, r.peak_film.solution.pressure
     assert np.max(np.abs(p - q)) <= 1e-7 * np.max(q)
+
+
+def test_film_steps_name_rows_of_the_film_record(jfo_kept):
+    """film_history(film_steps=): a film with memory's record rows, the frame at each row's
+    own time; a row outside the record, a non-integer, or a film without memory is
+    refused by name before any replay."""
+    r, _ = jfo_kept
+    n = len(r.film_record)
+    frames = film_history(r, _jfo_scene(), film_steps=[1, n - 1])
+    assert [f.t for f in frames] == list(film_column(r.film_record, "t")[[1, n - 1]])
+    for bad in (n, -1, 1.0):
+        with pytest.raises(ValueError, match=r"film_steps must be rows of the film record, "
+                                             rf"integers in \[0, {n - 1}\]"):
+            film_history(r, _jfo_scene(), film_steps=[bad])
+    rigid = load_scene("paper-short-fem")
+    with pytest.raises(ValueError, match="film_steps names rows of a film record"):
+        film_history(r, rigid, film_steps=[1])
