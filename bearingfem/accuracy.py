@@ -392,6 +392,9 @@ def estimate_at(evaluate: Callable, difference: Callable, mesh: tuple, *, elemen
     t0 = time.perf_counter()
     mesh = tuple(int(v) for v in mesh)
     half = (max(8, 2 * math.ceil(mesh[0] / 4.0)), max(2, 2 * math.ceil(mesh[1] / 4.0)))
+    if half == mesh:       # the coarsest mesh is its own half: no pair to estimate from
+        raise ValueError(f"an error estimate needs a mesh finer than {half[0]} x {half[1]} "
+                         f"(n_theta > {half[0]} or n_z > {half[1]}), got {mesh[0]} x {mesh[1]}")
     fine, coarse = evaluate(*mesh, element), evaluate(*half, element)
     ratio = math.sqrt(mesh[0] * mesh[1] / (half[0] * half[1]))
     err, order = estimate_error([1.0, ratio], [difference(fine, coarse)], order)

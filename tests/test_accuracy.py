@@ -403,3 +403,18 @@ def test_a_rough_grooved_search_is_left_uniform():
     same = solve_reynolds(B1, s, *sol.accuracy.mesh, sol.accuracy.element, grooves=grooves,
                           roughness=rough)
     assert same.force_local == pytest.approx(sol.force_local, rel=1e-12)
+
+
+def test_an_estimate_on_the_coarsest_mesh_is_refused_by_name():
+    """8 x 2 is its own half mesh (the estimate's partner is at least 8 x 2): the h/2h
+    pair had a ratio of 1 and the estimate divided by zero (ZeroDivisionError from
+    richardson_error). Refused before any solve, naming the mesh needed; 10 x 2 and
+    8 x 3 have a coarser partner and are estimated."""
+    b = Bearing(radius=0.05, length=0.05, clearance=1e-4, viscosity=0.01)
+    with pytest.raises(ValueError, match=r"an error estimate needs a mesh finer than 8 x 2 "
+                                         r"\(n_theta > 8 or n_z > 2\), got 8 x 2"):
+        equilibrium(b, (0.0, -500.0), 300.0, "fem", n_theta=8, n_z=2, estimate=True)
+    for mesh in ((10, 2), (8, 3)):
+        eq = equilibrium(b, (0.0, -500.0), 300.0, "fem", n_theta=mesh[0], n_z=mesh[1],
+                         estimate=True)
+        assert np.isfinite(eq.eps_error) and eq.eps_error > 0.0
