@@ -84,7 +84,7 @@ def test_a_light_load_has_petroffs_friction_and_any_bearing_the_same_chart():
     (dict(omega=0.0), "omega must be non-zero"),
     (dict(model="fem-table"), "exact partials"),
     (dict(eps_max=1.0), "eps_max must lie in"),
-    (dict(rtol=0.1), "rtol must lie in"),
+    (dict(xtol=0.1), "xtol must lie in"),
 ])
 def test_the_chart_refuses_bad_input(kwargs, message):
     args = dict(sommerfeld=[0.5], omega=100.0, model="short")
@@ -96,7 +96,7 @@ def test_the_chart_refuses_bad_input(kwargs, message):
 def test_angles_in_degrees_and_a_strength_off_the_grading_are_refused_by_name():
     """direction=-90 (degrees meant) walked a chart loaded toward -90 rad, the misalignment
     angle 45 was taken as 45 rad, and a strength of 1.5 left chart_grading to fail later in
-    the mesh; design_chart's rtol (Newton's) now says it is not the film's accuracy."""
+    the mesh; design_chart's rtol (a film accuracy elsewhere) is refused naming xtol."""
     from bearingfem import JournalState
     from bearingfem.design import chart_grading, design_chart
     from bearingfem.design.misalignment import misalignment_tilt
@@ -110,5 +110,24 @@ def test_angles_in_degrees_and_a_strength_off_the_grading_are_refused_by_name():
         chart_grading(b, 314.16, [0.1], strength=1.5)
     with pytest.raises(ValueError, match="angle 45 rad is more than a turn"):
         misalignment_tilt(b, JournalState(eps=0.6, omega=250.0), degree=0.5, angle=45.0)
-    with pytest.raises(ValueError, match="rtol must lie in .* Newton's tolerance .* not a film accuracy"):
+    with pytest.raises(ValueError, match="rtol is a film-accuracy request.*Newton's "
+                                         "tolerance is xtol"):
         design_chart(b, 314.16, [0.5], "short", rtol=1e-2)
+
+
+def test_newtons_tolerance_is_xtol_and_rtol_is_refused_before_any_film():
+    """``rtol`` is the toolkit's film accuracy; the chart's Newton tolerance was called
+    rtol too, so rtol=1e-2 (1 % film accuracy asked) was read as Newton's. Now it is
+    ``xtol``: a loose xtol gives the numbers the old rtol gave, bit for bit (float.hex,
+    measured on the code before the rename; the short film is closed form), which differ
+    from the default's - wired to nothing, or the default, this fails."""
+    b = Bearing(radius=0.01, length=0.02, clearance=20e-6, viscosity=0.0117)
+    with pytest.raises(ValueError, match=r"rtol is a film-accuracy request, got "
+                                         r"rtol=1e-06; Newton's tolerance is xtol"):
+        design_chart(b, 250.0, [float("nan")], "short", rtol=1e-6)   # refused before S
+    loose = design_chart(b, 250.0, [0.5, 0.1], "short", xtol=1e-4)
+    tight = design_chart(b, 250.0, [0.5, 0.1], "short")
+    assert [p.eps.hex() for p in loose.points] == ["0x1.7e73677e75edfp-3",
+                                                   "0x1.060db5415b064p-1"]
+    assert [p.eps.hex() for p in tight.points] == ["0x1.7e73677526d10p-3",
+                                                   "0x1.060dae890ecc1p-1"]

@@ -201,3 +201,39 @@ def test_journal_orbit_takes_a_kick_against_the_load_and_refuses_a_start_past_th
     with pytest.raises(ValueError, match=r"kick must be non-zero and keep the start inside "
                                          r"the clearance \(eps 1\.[0-9]+ there"):
         journal_orbit(B, eq, 0.01, "short", kick=0.95, turns=3.0, samples=200)
+
+
+def test_threshold_and_orbit_tolerances_have_their_own_names_and_rtol_is_refused():
+    """``rtol`` is the toolkit's film accuracy; threshold_speed's root tolerance and
+    journal_orbit's integrator tolerance were called rtol too (rtol=1e-2, 1 % film accuracy
+    asked, loosened Brent's search). Now ``xtol`` and ``integrator_rtol``; rtol is refused
+    by name before any film. A loose value gives the numbers the old rtol gave, bit for
+    bit (float.hex, measured on the code before the rename; short film, closed form), which
+    differ from the default's: wired to nothing, or to the default, this fails."""
+    from bearingfem.design import equilibrium, journal_orbit, threshold_speed
+    with pytest.raises(ValueError, match=r"rtol is a film-accuracy request, got rtol=0.01; "
+                                         r"the root search's tolerance is xtol"):
+        threshold_speed(B, (0.0, -300.0), -1.0, "short", rtol=1e-2)   # before mass
+    with pytest.raises(ValueError, match=r"xtol must lie in"):
+        threshold_speed(B, (0.0, -300.0), 1.0, "short", xtol=0.0)
+    eq = equilibrium(B, (0.0, -300.0), 1000.0, "short")
+    mass = lund_stability(coefficients(B, eq.state, "short")).critical_mass
+    assert threshold_speed(B, (0.0, -300.0), mass, "short",
+                           xtol=1e-3).omega.hex() == "0x1.f40496661c7cep+9"
+    assert threshold_speed(B, (0.0, -300.0), mass, "short").omega.hex() == \
+        "0x1.f400000000136p+9"
+
+    eq = equilibrium(B, (0.0, -1000.0), OMEGA, "short")
+    with pytest.raises(ValueError, match=r"rtol is a film-accuracy request, got rtol=0.01; "
+                                         r"the orbit integrator's tolerance is "
+                                         r"integrator_rtol"):
+        journal_orbit(B, eq, -1.0, "short", rtol=1e-2)
+    with pytest.raises(ValueError, match=r"integrator_rtol must lie in \(0, 1\)"):
+        journal_orbit(B, eq, 0.01, "short", integrator_rtol=0.0)
+    run = dict(turns=3.0, samples=200)
+    loose = journal_orbit(B, eq, 0.01, "short", integrator_rtol=1e-4, **run)
+    tight = journal_orbit(B, eq, 0.01, "short", **run)
+    assert (loose.x[-1].hex(), loose.y[-1].hex()) == ("0x1.270085c489dafp-17",
+                                                      "-0x1.4072c1c100ea3p-17")
+    assert (tight.x[-1].hex(), tight.y[-1].hex()) == ("0x1.270085b898c45p-17",
+                                                      "-0x1.4072c1c50eaddp-17")

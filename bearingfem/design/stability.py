@@ -261,15 +261,24 @@ class ThresholdSpeed:
 
 
 def threshold_speed(bearing: Bearing, load, mass: float, model: str = "fem", *,
-                    omega_range=None, rtol: float = 1e-8,
+                    omega_range=None, xtol: float = 1e-8, rtol=None,
                     **options) -> ThresholdSpeed:
     """The onset speed of oil whirl of a rigid journal of ``mass`` [kg] carrying ``load``
     [N] (vector, inertial), within ``omega_range`` [rad/s] (default: 1 rad/s up to the
     speed whose surface speed omega R is the highest of any journal bearing, 300 m/s).
 
     As the speed grows the journal rises toward the centre and its critical mass falls;
-    the threshold is where the critical mass equals ``mass`` (Brent's method in ln omega).
+    the threshold is where the critical mass equals ``mass`` (Brent's method in ln omega,
+    relative tolerance ``xtol``, formerly ``rtol``).
+    ``rtol`` (a film accuracy elsewhere) is refused: a mesh chosen per speed makes the
+    margin jump between meshes under Brent's steps, and the threshold would carry no error.
     """
+    if rtol is not None:
+        raise ValueError(f"rtol is a film-accuracy request, got rtol={rtol!r}; the root "
+                         "search's tolerance is xtol (the films are solved on the mesh given)")
+    xtol = check_finite("xtol", xtol)
+    if not 4.0 * np.finfo(float).eps <= xtol < 1.0:     # brentq's own floor
+        raise ValueError(f"xtol must lie in [{4.0 * np.finfo(float).eps:.3g}, 1), got {xtol!r}")
     mass = check_positive("mass", mass)
     if omega_range is None:
         omega_range = (1.0, PLAUSIBLE["surface_speed"] / bearing.radius)
@@ -297,7 +306,7 @@ def threshold_speed(bearing: Bearing, load, mass: float, model: str = "fem", *,
     if m_hi > 0.0:
         raise ValueError(f"the journal is stable up to the highest speed of omega_range "
                          f"({hi:g} rad/s)")
-    omega = min(max(math.exp(brentq(margin, math.log(lo), math.log(hi), rtol=rtol)), lo), hi)
+    omega = min(max(math.exp(brentq(margin, math.log(lo), math.log(hi), rtol=xtol)), lo), hi)
     eq = equilibrium(bearing, load, omega, model, **options)
     st = lund_stability(coefficients(bearing, eq.state, model, **options))
     return ThresholdSpeed(omega, mass, eq, st)
@@ -322,10 +331,20 @@ class Orbit:
 
 def journal_orbit(bearing: Bearing, eq: Equilibrium, mass: float, model: str = "fem", *,
                   kick: float = 0.02, turns: float = 60.0, samples: int = 4000,
-                  rtol: float = 1e-9, **options) -> Orbit:
+                  integrator_rtol: float = 1e-9, rtol=None, **options) -> Orbit:
     """Integrate m x'' = F_film(x, x') + load from the equilibrium ``eq`` displaced by
     ``kick`` clearances along the load (negative: against it), starting inside the
-    clearance; the nonlinear check of the linear threshold."""
+    clearance; the nonlinear check of the linear threshold. ``integrator_rtol`` (formerly
+    ``rtol``): LSODA's relative tolerance (absolute: 1e-6 c).
+    ``rtol`` (a film accuracy elsewhere) is refused: the orbit's films are solved on the
+    mesh given (their force takes no rtol), none carries an error estimate.
+    """
+    if rtol is not None:
+        raise ValueError(f"rtol is a film-accuracy request, got rtol={rtol!r}; the "
+                         "orbit integrator's tolerance is integrator_rtol")
+    integrator_rtol = check_finite("integrator_rtol", integrator_rtol)
+    if not 0.0 < integrator_rtol < 1.0:
+        raise ValueError(f"integrator_rtol must lie in (0, 1), got {integrator_rtol!r}")
     mass = check_positive("mass", mass)
     if not isinstance(eq, Equilibrium):
         raise ValueError(f"eq must be an Equilibrium (equilibrium(...)), got {type(eq).__name__}")
@@ -354,7 +373,7 @@ def journal_orbit(bearing: Bearing, eq: Equilibrium, mass: float, model: str = "
 
     t_end = turns * 2.0 * math.pi / abs(omega)
     sol = solve_ivp(rhs, (0.0, t_end), [start[0], start[1], 0.0, 0.0], method="LSODA",
-                    rtol=rtol, atol=1e-6 * c, t_eval=np.linspace(0.0, t_end, samples))
+                    rtol=integrator_rtol, atol=1e-6 * c, t_eval=np.linspace(0.0, t_end, samples))
     if not sol.success:
         raise RuntimeError(f"orbit integration stopped at t = {sol.t[-1]:.6g} s: {sol.message}")
     d = np.hypot(sol.y[0] - x0[0], sol.y[1] - x0[1])
