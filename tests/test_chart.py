@@ -40,8 +40,8 @@ def test_the_chart_walks_lund_and_thomsens_table(ld):
 
 def test_each_point_is_the_equilibrium_and_its_coefficients():
     """The walk against equilibrium() and coefficients() called cold at each Sommerfeld
-    number (closed-form start, default rtol): eps, attitude and the dimensionless K, B
-    and the friction variable agree to 1e-7 (Newton's stop at rtol 1e-10). Fails with the
+    number (closed-form start, default xtol): eps, attitude and the dimensionless K, B
+    and the friction variable agree to 1e-7 (Newton's stop at xtol 1e-10). Fails with the
     previous point's state kept instead of the new equilibrium, B scaled by omega twice
     or the friction's Poiseuille part read from F_r."""
     S = (2.0, 0.5, 0.1)
