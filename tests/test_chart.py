@@ -118,16 +118,16 @@ def test_angles_in_degrees_and_a_strength_off_the_grading_are_refused_by_name():
 def test_newtons_tolerance_is_xtol_and_rtol_is_refused_before_any_film():
     """``rtol`` is the toolkit's film accuracy; the chart's Newton tolerance was called
     rtol too, so rtol=1e-2 (1 % film accuracy asked) was read as Newton's. Now it is
-    ``xtol``: a loose xtol gives the numbers the old rtol gave, bit for bit (float.hex,
-    measured on the code before the rename; the short film is closed form), which differ
-    from the default's - wired to nothing, or the default, this fails."""
+    ``xtol``: a loose xtol moves the answers off the default's by what it allows (the
+    short film is closed form: no discretisation to hide it) - wired to nothing, or the
+    default, this fails."""
     b = Bearing(radius=0.01, length=0.02, clearance=20e-6, viscosity=0.0117)
     with pytest.raises(ValueError, match=r"rtol is a film-accuracy request, got "
                                          r"rtol=1e-06; Newton's tolerance is xtol"):
         design_chart(b, 250.0, [float("nan")], "short", rtol=1e-6)   # refused before S
     loose = design_chart(b, 250.0, [0.5, 0.1], "short", xtol=1e-4)
     tight = design_chart(b, 250.0, [0.5, 0.1], "short")
-    assert [p.eps.hex() for p in loose.points] == ["0x1.7e73677e75edfp-3",
-                                                   "0x1.060db5415b064p-1"]
-    assert [p.eps.hex() for p in tight.points] == ["0x1.7e73677526d10p-3",
-                                                   "0x1.060dae890ecc1p-1"]
+    # measured: the loose chart's eps 1.5e-9 and 3.9e-7 off the default's (within
+    # Newton's xtol 1e-4 of the step, far above the default's 1e-10 round-off)
+    for lo, ti in zip(loose.points, tight.points):
+        assert 1e-10 < abs(lo.eps - ti.eps) / ti.eps < 1e-5
