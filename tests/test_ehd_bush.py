@@ -3,7 +3,7 @@ load, the coupled Jacobian (full and reduced compliance), the seed pin's heavy s
 import numpy as np
 import pytest
 
-from bearingfem import Bearing, JournalState, solve_reynolds
+from bearingfem import JournalState, solve_reynolds
 from bearingfem.bearing import seed_bearing
 from bearingfem.ehd.coupling import ehd_film
 from bearingfem.elastic import ElasticBush, bush_compliance
@@ -94,6 +94,33 @@ def test_coupled_jacobian(reduced):
     diff = (film.residual(P + h * v)[0] - film.residual(P - h * v)[0]) / (2 * h)
     assert np.max(np.abs(Jv - diff)) <= 1e-7 * np.max(np.abs(diff))
 
+
+
+def test_the_jacobian_stays_finite_where_a_piezoviscous_mu_squared_overflows():
+    """A Newton trial's pressure can reach where Barus's mu (1e173 mu0 at 2e10 Pa) is
+    finite but mu^2 overflows: d(1/mu)/dp as dmu/mu^2 raised an overflow there (the seed
+    pin's 192 x 8 scene mesh with a Barus oil, a slow test, stopped in it), where
+    (dmu/mu)/mu is the same derivative and finite. The Jacobian there is finite and
+    equals its differences. Fails with dmu / mu**2 (overflow as an error)."""
+    state = JournalState(eps=0.8, gamma=0.2, omega=250.0)
+    op = fe_operator(SEED, state, 24, 4, "P1", None, False)
+    base, gap = general_film(SEED, state, op)
+    comp = bush_compliance(RING, SEED.radius, SEED.length, 24, 5)
+    oil = Lubricant(viscosity=0.0117, barus=2e-8, density="dowson-higginson")
+    film = ehd_film(SEED, state, op, base, gap, oil, comp)
+    shape = np.maximum(np.sin(op.mesh.theta), 0.0) * (
+        1 - (op.mesh.zeta / op.mesh.length_ratio) ** 2)
+    P = 2.0e10 / SEED.pressure_scale * shape
+    mu = film.evaluate(P).fields.viscosity               # its square overflows there
+    assert 2.0 * np.log(np.max(mu)) > np.log(np.finfo(float).max)
+    with np.errstate(over="raise", invalid="raise"):
+        J, U, V = film.jacobian(P)
+    v = shape * np.max(P) * 1e-3
+    Jv = J @ v + (U @ v if V is None else U @ (V.T @ v))
+    assert np.all(np.isfinite(Jv))
+    h = 1e-4
+    diff = (film.residual(P + h * v)[0] - film.residual(P - h * v)[0]) / (2 * h)
+    assert np.max(np.abs(Jv - diff)) <= 1e-5 * np.max(np.abs(diff))
 
 def test_reduced_full_rank_is_the_full_compliance():
     """All 48 x 5 = 240 vectors of the reduced compliance: the Woodbury Newton solve gives

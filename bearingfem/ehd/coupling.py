@@ -318,13 +318,15 @@ class EHDFilm:
         if slopes is not None and ev.flow is None:
             drho, dmu = slopes
             ds = s * self.scale
-            data += assemble(ds * (drho * H**3 / mu - rho * H**3 * dmu / mu**2),
+            # d(1/mu)/dp as (dmu/mu)/mu: a piezoviscous oil's mu at a Newton trial's high
+            # pressure (Barus, 1e160 and up) overflows when squared
+            data += assemble(ds * (drho * H**3 / mu - rho * H**3 * (dmu / mu) / mu),
                              ds * 6.0 * self.wedge * drho * H,
                              ds * -12.0 * drho * film.gap_rate)
         elif slopes is not None:    # the rough gap's coefficients through rho and mu
             drho, dmu = slopes
             ds, f = s * self.scale, ev.flow
-            data += assemble(tuple(ds * (drho * C / mu - rho * C * dmu / mu**2)
+            data += assemble(tuple(ds * (drho * C / mu - rho * C * (dmu / mu) / mu)
                                    for C in f.conductance),
                              ds * 6.0 * drho * (self.wedge * f.mean_gap
                                                 + f.shear_speed * f.shear),
