@@ -15,15 +15,21 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["film_thickness", "film_thickness_integral", "cubed_thickness_coefficients",
-           "reynolds_source",
+__all__ = ["film_thickness", "film_thickness_at", "film_thickness_integral",
+           "cubed_thickness_coefficients", "reynolds_source",
            "source_coefficients", "reynolds_source_integral", "theta_from_inertial",
            "inertial_from_theta", "local_to_inertial"]
 
 
 def film_thickness(theta, eps, clearance=1.0):
     """h = c (1 + eps cos theta) [m] (seed Eq. 7); dimensionless H when clearance=1."""
-    return clearance * (1.0 + eps * np.cos(theta))
+    return film_thickness_at(np.cos(theta), eps, clearance)
+
+
+def film_thickness_at(cos_theta, eps, clearance=1.0):
+    """:func:`film_thickness` from cos(theta) given: a fixed mesh's points keep their
+    cosine, which costs more than the gap itself at every film evaluation."""
+    return clearance * (1.0 + eps * cos_theta)
 
 
 def film_thickness_integral(theta_lo, theta_hi, eps):

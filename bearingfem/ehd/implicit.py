@@ -59,7 +59,7 @@ from ..fe.assembly import fe_operator
 from ..fe.kernel import film_outputs
 from ..fe.mixed import friction_fields
 from ..fields import FilmFields
-from ..film import film_thickness, local_to_inertial
+from ..film import film_thickness, film_thickness_at, local_to_inertial
 from ..scales import force_factor
 from .bush_rate import _Frame, _RateCompliance, _RateInverse  # noqa: F401 (_RateInverse: tests)
 from .coupling import ehd_film, jacobian_tables
@@ -138,7 +138,7 @@ class _StepFilm:
         m = op.mesh
         self.th = op.qp_theta
         self.cos_th = np.cos(self.th)
-        self.gap_q0 = 1.0 + state.eps * self.cos_th       # rigid gap at the points
+        self.gap_q0 = film_thickness_at(self.cos_th, state.eps)   # rigid gap at the points
         self.gap_n0 = film_thickness(m.theta, state.eps)      # and at the nodes
         if run.profile is not None:          # the bore's crown or chamfer: fixed, no rate
             self.gap_q0 = self.gap_q0 + run.profile.film_gap(b, op.qp_zeta)

@@ -33,6 +33,7 @@ from ..bearing import Bearing, JournalState
 from ..caches import cached
 from ..contact.flow_factors import FlowFields
 from ..fields import EdgeProfile, FilmFields, tilted_gap
+from ..film import film_thickness_at
 from ..scales import moment_factor
 from .assembly import FilmOperator
 
@@ -195,14 +196,14 @@ def film_system(op: FilmOperator, fields, wedge_speed: float, eps: float = 0.0,
     if flow is None:
         k = rho * H ** 3 / fields.viscosity
         squeeze = -12.0 * (rho * fields.gap_rate + fields.density_rate * H)
-        departure = rho * H - (1.0 + eps * ga.cos_theta)   # film_thickness's
+        departure = rho * H - film_thickness_at(ga.cos_theta, eps)
         couette = 6.0 * wedge_speed * departure
     else:
         k = tuple(rho * c / fields.viscosity for c in flow.conductance)
         E = flow.mean_gap
         squeeze = -12.0 * (rho * flow.gap_slope * fields.gap_rate + fields.density_rate * E)
         # (U1 + U2)/2 carries the mean gap, (U1 - U2)/2 = omega R/2 the shear flow
-        couette = (6.0 * wedge_speed * (rho * E - (1.0 + eps * ga.cos_theta))
+        couette = (6.0 * wedge_speed * (rho * E - film_thickness_at(ga.cos_theta, eps))
                    + 6.0 * flow.shear_speed * rho * flow.shear)
     load = ga.load(couette, squeeze)
     if eps:
