@@ -136,6 +136,14 @@ def check_rtol(rtol, name: str = "rtol") -> float:
     return v
 
 
+
+def refuse_rtol(rtol, tolerance: str) -> None:
+    """ValueError where ``rtol`` is given to a function whose own tolerance is another
+    (``tolerance``: what it is called there and why rtol cannot be taken): rtol is the
+    toolkit's film-accuracy request, never a solver's tolerance."""
+    if rtol is not None:
+        raise ValueError(f"rtol is a film-accuracy request, got rtol={rtol!r}; {tolerance}")
+
 def check_no_mesh(n_theta=None, n_z=None, hint: str = "") -> None:
     """ValueError naming n_theta and/or n_z when given (not None) beside ``rtol``: the
     search's mesh would replace them unseen. ``hint`` ends the message."""

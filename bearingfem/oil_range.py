@@ -22,8 +22,9 @@ CELSIUS = 273.15                   # [K]
 #: extrapolation far above 200 C). It refuses the command line's --oil-temperature and a
 #: scene's oil_temperature (an ISO VG oil); a solved thermal film or an oil held by
 #: at_temperature outside it warns (:func:`temperature_range_note`): other fluids, hot
-#: synthetic oils, have their own laws, so a Thermal's temperatures are refused only
-#: below :data:`LEAST_KELVIN` and a law's points only at or below 0 K.
+#: synthetic oils and cryogens, have their own laws, so a Thermal's temperatures are
+#: refused against an oil only below :data:`LEAST_KELVIN` and a law's points only at or
+#: below 0 K.
 OIL_TEMPERATURE_RANGE = (CELSIUS - 50.0, CELSIUS + 200.0)
 #: [K] the least temperature a Thermal takes for an oil (-73.15 C): a fluid whose
 #: temperature law is referenced at or above it (Lubricant.temperature, or no law). Below

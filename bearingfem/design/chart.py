@@ -16,6 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..accuracy import refuse_rtol
 from ..bearing import Bearing, JournalState, check_finite, check_turn_angle
 from ..errors import ConvergenceError
 from ..fe.mesh import GRADING_MAX
@@ -114,9 +115,7 @@ def design_chart(bearing: Bearing, omega: float, sommerfeld=CHART_SOMMERFELD,
     ``rtol`` (a film accuracy elsewhere) is refused: the chart is solved on the mesh given,
     a mesh per point would break the warm-started walk and multiply its cost.
     """
-    if rtol is not None:
-        raise ValueError(f"rtol is a film-accuracy request, got rtol={rtol!r}; Newton's "
-                         "tolerance is xtol (the chart is solved on the mesh given)")
+    refuse_rtol(rtol, "Newton's tolerance is xtol (the chart is solved on the mesh given)")
     m = film_model(model)
     opts = m.options(options)
     if not m.exact_derivatives or m.memory:

@@ -35,6 +35,7 @@ import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
+from ..accuracy import refuse_rtol
 from ..bearing import (PLAUSIBLE, Bearing, JournalState, check_finite, check_positive,
                        check_surface_speed)
 from ..film import local_to_inertial
@@ -273,9 +274,8 @@ def threshold_speed(bearing: Bearing, load, mass: float, model: str = "fem", *,
     ``rtol`` (a film accuracy elsewhere) is refused: a mesh chosen per speed makes the
     margin jump between meshes under Brent's steps, and the threshold would carry no error.
     """
-    if rtol is not None:
-        raise ValueError(f"rtol is a film-accuracy request, got rtol={rtol!r}; the root "
-                         "search's tolerance is xtol (the films are solved on the mesh given)")
+    refuse_rtol(rtol, "the root search's tolerance is xtol (the films are solved on the mesh "
+                "given)")
     xtol = check_finite("xtol", xtol)
     if not 4.0 * np.finfo(float).eps <= xtol < 1.0:     # brentq's own floor
         raise ValueError(f"xtol must lie in [{4.0 * np.finfo(float).eps:.3g}, 1), got {xtol!r}")
@@ -339,9 +339,7 @@ def journal_orbit(bearing: Bearing, eq: Equilibrium, mass: float, model: str = "
     ``rtol`` (a film accuracy elsewhere) is refused: the orbit's films are solved on the
     mesh given (their force takes no rtol), none carries an error estimate.
     """
-    if rtol is not None:
-        raise ValueError(f"rtol is a film-accuracy request, got rtol={rtol!r}; the "
-                         "orbit integrator's tolerance is integrator_rtol")
+    refuse_rtol(rtol, "the orbit integrator's tolerance is integrator_rtol")
     integrator_rtol = check_finite("integrator_rtol", integrator_rtol)
     if not 0.0 < integrator_rtol < 1.0:
         raise ValueError(f"integrator_rtol must lie in (0, 1), got {integrator_rtol!r}")
