@@ -1,5 +1,6 @@
-"""The film on a mesh fitted to its cavitation boundary (studies/kc_fitted.py), on Lund &
-Thomsen's L/D 0.5, S 0.244 row (eps 0.655), P2 graded toward the least film.
+"""The film on a mesh fitted to its cavitation boundary (studies/kc_fitted.py, its mesh
+kc_fitted_mesh.py and kc_fitted_band.py, its film kc_fitted_film.py), on Lund & Thomsen's
+L/D 0.5, S 0.244 row (eps 0.655), P2 graded toward the least film.
 
 Measured (``python -m studies.kc_fitted``, docs/accuracy.md): the fitted film's K and C
 are 2.6e-3, 6.6e-4, 2.6e-4 from the fitted P2 288 at 36 / 54 / 72 cells around (orders
@@ -19,6 +20,9 @@ from bearingfem.fe.grooved import GroovedOperator, groove_operator_for, grooved_
 from bearingfem.fe.grooved_build import build_grooved_tables
 from bearingfem.fe.mesh import quiet_skfem
 from studies import kc_fitted as kf
+from studies import kc_fitted_band as kfb
+from studies import kc_fitted_film as kff
+from studies import kc_fitted_mesh as kfm
 from studies.lund_thomsen import GROOVES, LOAD_DIRECTION, OMEGA, bearing, mesh
 
 LD, S = 0.5, 0.244
@@ -44,9 +48,9 @@ def test_a_fit_that_moves_no_vertex_is_the_plain_film_bit_for_bit():
     gop = groove_operator_for(b, 54, kf._nz(LD, 54), "P2", GROOVES, kf.reference_grading(s))
     gop.last.clear()
     res = grooved_pressure(gop, b, s, GROOVES, "reynolds")
-    plain, P = kf.held_film(gop, b, s, res.active)
-    fit = kf.Fit(gop, "P2")
-    same, Q = kf.held_film(fit.operator({}, {}), b, s, fit.held({}, res.active))
+    plain, P = kff.held_film(gop, b, s, res.active)
+    fit = kfm.Fit(gop, "P2")
+    same, Q = kff.held_film(fit.operator({}, {}), b, s, fit.held({}, res.active))
     assert np.array_equal(P, Q)
     for x, y in zip(plain, same):
         assert np.array_equal(x, y)
@@ -55,7 +59,7 @@ def test_a_fit_that_moves_no_vertex_is_the_plain_film_bit_for_bit():
 def test_the_held_film_is_the_librarys_coefficients():
     """The study's film on the LCP's held set (its references and "plain" rows) is the
     library's K, C on the same mesh: within 1e-12 of the largest entries (measured 6e-15).
-    Fails (run) with the damping's squeeze column's sign flipped in kf._coefficients."""
+    Fails (run) with the damping's squeeze column's sign flipped in kff._coefficients."""
     b, s = _state()
     grading = kf.reference_grading(s)
     f, *_ = kf.films(b, s, 54, kf._nz(LD, 54), "P2", grading, iterations=0)
@@ -92,7 +96,7 @@ def test_the_band_update_is_the_full_build_of_the_moved_mesh():
     b, s = _state()
     gop = groove_operator_for(b, 54, kf._nz(LD, 54), "P2", GROOVES, kf.reference_grading(s))
     res = grooved_pressure(gop, b, s, GROOVES, "reynolds")
-    band = kf.BandFit(gop, "P2")
+    band = kfb.BandFit(gop, "P2")
     located = band.locate(res.pressure, gop.op.mesh.theta, ~res.active & (res.pressure > 0))
     cols = band.choose(located)
     x = band.moved(cols, located)
@@ -101,7 +105,7 @@ def test_the_band_update_is_the_full_build_of_the_moved_mesh():
         basis = Basis(MeshTri1(np.vstack([x, band.p[1]]), band.t), ElementTriP2(), intorder=6)
     full = GroovedOperator(*build_grooved_tables(band._film_mesh(basis, basis.doflocs)))
     active = band.held(cols, res.active)
-    (F, K, C), P = kf.held_film(band.operator(cols, located), b, s, active)
-    (F0, K0, C0), P0 = kf.held_film(full, b, s, active)
+    (F, K, C), P = kff.held_film(band.operator(cols, located), b, s, active)
+    (F0, K0, C0), P0 = kff.held_film(full, b, s, active)
     assert kf._errors((F, K, C), (F0, K0, C0))[1] < 1e-11
     assert np.abs(P - P0).max() < 1e-11 * np.abs(P0).max()
