@@ -1,5 +1,5 @@
 """What the film and run commands of ``bearingfem`` do (the parser is in
-:mod:`bearingfem_app.cli`; the designer's commands in :mod:`bearingfem_app.design_commands`).
+:mod:`bearingfem_app.parser`; the designer's commands in :mod:`bearingfem_app.design_commands`).
 
 Every command checks what it can before any work - options that contradict each other,
 output kinds and folders - and raises ValueError with one line naming the option.

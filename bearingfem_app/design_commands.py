@@ -1,5 +1,5 @@
 """The designer's commands: ``equilibrium``, ``coefficients`` and ``design`` (the parser is
-in :mod:`bearingfem_app.cli`; the options they read in :mod:`bearingfem_app.options`)."""
+in :mod:`bearingfem_app.parser`; the options they read in :mod:`bearingfem_app.options`)."""
 from __future__ import annotations
 
 import math
