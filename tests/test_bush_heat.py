@@ -32,7 +32,7 @@ from bearingfem.thermal.energy import (
     solve_energy,
 )
 from bearingfem.thermal.spec import BushConduction
-from tests.test_thermal import held_rows
+from tests.test_thermal_energy import held_rows
 
 R, RO, K, H, TA, Q = 0.025, 0.05, 50.0, 80.0, 300.0, 2e4
 
@@ -199,7 +199,7 @@ def one_sparse_system(it, flow, mixing, linearised, wall, thermal, Kb, g_out):
     """The film's energy equation, the whole bush (its matrix ``Kb`` and outer load
     ``g_out``) and the zero-flux journal as one sparse matrix and right-hand side, the
     unknowns (film T, bush T, journal T); film rows by the operator's tables, the held
-    rows written out (tests/test_thermal.held_rows)."""
+    rows written out (tests/test_thermal_energy.held_rows)."""
     op, Rb = it.eop, BEARING.radius
     hb, ta, hj, _ = thermal.walls
     Hf = _film_coefficient(wall, flow)

@@ -11,7 +11,8 @@ from bearingfem.routes.thd import ThermalIteration
 from bearingfem.routes.thd_newton import ThermalNewton, solve_thd_newton
 from bearingfem.thermal import Thermal
 from tests.test_bush_heat import _conducting
-from tests.test_thermal import BEARING, GROOVES, STATE, SUPPLY, VG32, _plain_fixed_point
+from tests.test_thermal_energy import _plain_fixed_point
+from tests.test_thermal_film import BEARING, GROOVES, STATE, SUPPLY, VG32
 
 CASES = [
     Thermal(SUPPLY),
@@ -74,7 +75,7 @@ def test_block_jacobian_is_the_residuals_derivative(thermal, oil):
 
 @pytest.mark.parametrize("thermal", CASES, ids=IDS)
 def test_newton_converges_quadratically_to_the_fixed_points_answer(thermal):
-    """The Newton solve lands where the plain fixed point (test_thermal's reference, its
+    """The Newton solve lands where the plain fixed point (test_thermal_energy's reference, its
     energy equation by scikit-fem forms and a general LU) lands: temperatures to 1e-6 K
     (measured ~1e-12 K), force and friction to 1e-8; its energy residual falls
     quadratically, r_{k+1} <= 10 r_k^2 / r_0, down to round-off (measured r_k: 0.91,

@@ -12,7 +12,7 @@ from bearingfem.thermal import Thermal
 from bearingfem.thermal.energy import energy_operator
 from bearingfem.thermal.mixing import _column_flows, arc_theta_difference, groove_mixing
 from studies.thd_designer import BEARING as B, GROOVES as G, OMEGA, OIL
-from tests.test_thermal import BEARING, GROOVES, SUPPLY
+from tests.test_thermal_film import BEARING, GROOVES, SUPPLY
 
 
 def _inlet_flows(n_theta, n_z):

@@ -6,7 +6,7 @@ Hughes 1982): the test function v gains tau beta . grad v, beta = rho cp q, with
 tau = h_e / (2 |beta|) (coth Pe - 1/Pe), Pe = |beta| h_e / (2 k h), h_e the element's
 length along the flow. The film is convection-dominated (Pe ~ 1e3 .. 1e5), so the
 scheme is close to a pure upwind transport; its order on smooth fields is shown by a
-manufactured solution (tests/test_thermal.py).
+manufactured solution (tests/test_thermal_energy.py).
 
 Assembled by array products on element tables built once per mesh
 (:class:`EnergyOperator`: the arcs' basis values and gradients at the quadrature points;
