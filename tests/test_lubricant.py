@@ -216,7 +216,9 @@ def test_exponential_law_through_both_points():
 def test_pressure_and_temperature_together(law, pressure):
     """mu(p, T) = mu_T(T) times the pressure law with mu_T as its mu0, so mu(p, T) equals
     the oil held at T (at_temperature) at p; d mu/dT against a central difference (fails
-    if Roelands' exponent kept the reference mu0 or the Walther chain rule slips)."""
+    if Roelands' exponent kept the reference mu0 or the Walther chain rule slips), and
+    viscosity_and_slopes' three values against the same differences (its d mu/dT without
+    Roelands' growth s^Z fails: planted once, 1.75x off at 300 MPa)."""
     oil = Lubricant.two_point((313.15, 0.0278), (373.15, 0.00466), density=870.0,
                               specific_heat=1950.0, conductivity=0.13, law=law, **pressure)
     p = np.array([0.0, 1e6, 5e7, 3e8])
@@ -229,6 +231,14 @@ def test_pressure_and_temperature_together(law, pressure):
         d = 1e-3
         fd = (oil.viscosity_at(p, temperature=t + d) - oil.viscosity_at(p, temperature=t - d)) / (2 * d)
         np.testing.assert_allclose(oil.viscosity_temperature_derivative(t, p), fd, rtol=1e-6)
+        # the three at once (a coupled Newton's Jacobian): the same differences
+        mu, mu_p, mu_t = oil.viscosity_and_slopes(p, t)
+        np.testing.assert_allclose(mu, oil.viscosity_at(p, temperature=t), rtol=1e-12)
+        np.testing.assert_allclose(mu_t, fd, rtol=1e-6)
+        dp = 1e3
+        fd_p = (oil.viscosity_at(p + dp, temperature=t)
+                - oil.viscosity_at(p - dp, temperature=t)) / (2 * dp)
+        np.testing.assert_allclose(mu_p, fd_p, rtol=1e-6, atol=1e-30)
     # no temperature argument: the reference temperature, as before the temperature laws
     np.testing.assert_allclose(oil.viscosity_at(p), oil.viscosity_at(p, temperature=313.15),
                                rtol=1e-12)

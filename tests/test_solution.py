@@ -55,3 +55,22 @@ def test_summary_of_a_film_without_pressure_places_no_peak():
     assert "-0 " not in text and "side leakage 0 m^3/s" in text
     loaded = solve_reynolds(b, JournalState(0.6, omega=250.0), 24, 4).summary()
     assert "Pa at theta" in loaded and "no pressure" not in loaded
+
+
+def test_peak_pressure_sits_where_ocvirk_puts_it_in_both_frames():
+    """The peak's film angle and its inertial angle against Ocvirk's short bearing, whose
+    pressure eps sin(theta) / H^3 peaks at cos(theta_m) = (1 - sqrt(1 + 24 eps^2)) / (4
+    eps), at the inertial angle theta_m + gamma + pi. A P2 240 x 8 Gumbel film at L/D 1/8
+    is within 0.83 deg of it at eps 0.3, 0.6, 0.8 (nodes 0.75 deg apart), whatever gamma;
+    bound 1.5 deg. Fails with the inertial angle turned by -gamma (planted once: 127 deg
+    off at gamma 1.1), which films at gamma = 0 cannot tell."""
+    import numpy as np
+    b = Bearing(radius=0.01, length=0.0025, clearance=20e-6, viscosity=0.0117)
+    for eps, gamma in ((0.6, 1.1), (0.6, 4.0), (0.8, 2.5)):
+        theta_m = np.arccos((1.0 - np.sqrt(1.0 + 24.0 * eps ** 2)) / (4.0 * eps))
+        sol = solve_reynolds(b, JournalState(eps, gamma=gamma, omega=250.0), 240, 8, "P2",
+                             "gumbel")
+        assert abs(sol.pressure_max_theta - theta_m) <= np.radians(1.5)
+        turned = np.mod(sol.pressure_max_angle - (theta_m + gamma + np.pi) + np.pi,
+                        2.0 * np.pi) - np.pi
+        assert abs(turned) <= np.radians(1.5)

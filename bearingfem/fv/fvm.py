@@ -343,8 +343,12 @@ def solve_fv(bearing: Bearing, state: JournalState, n_theta: int, n_z: int,
     if g.theta0 is None:
         dP = (np.roll(Pg, -1, 0) - np.roll(Pg, 1, 0)) / (2 * g.dtheta)
     else:
-        dP = np.gradient(np.vstack([np.zeros((1, n_z)), Pg, np.zeros((1, n_z))]),
-                         g.dtheta, axis=0)[1:-1]
+        # the supply line holds its pressure on the face half a cell beyond each edge
+        # column: a ghost column mirrored through that face keeps the central difference
+        # second order there (a ghost of the supply's value a whole cell away is first)
+        line = ambient_pressure / bearing.pressure_scale if cavitation == "jfo" else 0.0
+        ghost = 2.0 * line - Pg
+        dP = np.gradient(np.vstack([ghost[:1], Pg, ghost[-1:]]), g.dtheta, axis=0)[1:-1]
     friction = shear_friction(bearing, state.omega, dA, H, dP.ravel(), couette_share=shear,
                               poiseuille_share=full)
     # Side leakage through the end faces: flux H^3 (P_face=0 - P_c) / (dzeta/2) per face.
