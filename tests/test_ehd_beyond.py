@@ -5,7 +5,6 @@ import pytest
 
 from bearingfem import Bearing, ElasticBush, ElasticJournalState, JournalState, solve_reynolds
 from bearingfem.bearing import ELASTIC_EPS_CAP
-from bearingfem.ehd import beyond
 from bearingfem.ehd.transient import ehd_compliance
 from bearingfem.lubricant import Lubricant
 

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from bearingfem import ElasticBush, JournalState
-from bearingfem.bearing import Bearing, seed_bearing
+from bearingfem.bearing import seed_bearing
 from bearingfem.ehd.transient import TransientEHD, ehd_solution
 from bearingfem.lubricant import Lubricant
 from bearingfem.models import FILM_MODELS, film_model

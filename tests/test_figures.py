@@ -36,7 +36,6 @@ def test_curves_that_agree_stay_apart(tmp_path):
     colour, width and markers at its own crank angles, so that both can be told apart
     (old: a dashed and a dotted line of the default cycle on top of each other); the film
     axis says um as \u00b5m and has no unlabelled tick."""
-    from mechanism import load_result
     sc = load_scene("paper-short-analytic")
     sc = replace(sc, run=replace(sc.run, turns=0.5, record_from_turn=0.0))
     r = simulate(sc, progress=False)

@@ -3,8 +3,6 @@ that hold exactly (the aligned limit, mirror symmetry, reciprocity of squeeze da
 plus a second method (finite volumes on the same gap)."""
 import numpy as np
 import pytest
-import scipy.sparse as sp
-import scipy.sparse.linalg as spla
 
 from bearingfem import Bearing, JournalState, fvm_reynolds, solve_reynolds
 from bearingfem.fe.general import film_system

@@ -1,7 +1,6 @@
 """The planar JFO film (bearingfem.fe.planar) and its inputs (bearingfem.planar): mutants of
 the mesh-to-mesh interpolation its coarse starts use and of the inputs' checks survived the
 planar JFO tests (docs/mutation.md)."""
-import numpy as np
 import pytest
 
 from bearingfem.fe.planar import _interpolation, planar_mesh

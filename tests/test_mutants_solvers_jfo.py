@@ -2,7 +2,6 @@
 Fischer-Burmeister fallback survived the JFO tests, none of which reaches the fallback
 (docs/mutation.md)."""
 import numpy as np
-import pytest
 
 import bearingfem.solvers.jfo as sj
 from bearingfem import JournalState, solve_reynolds

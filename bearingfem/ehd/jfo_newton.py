@@ -87,7 +87,7 @@ def _split(u, can):
 class _Newton:
     """Damped semismooth Newton on the universal variable at one coupling s."""
 
-    def __init__(self, film: JFOCoupling, free, can):
+    def __init__(self, film, free, can):     # film: a jfo.JFOCoupling (jfo.py imports us)
         self.film, self.free, self.can = film, free, can
 
     def nodal(self, u):

@@ -137,7 +137,7 @@ def point_contact(*, radius: float, reduced_modulus: float, lubricant: Lubricant
     grids = [nodes]
     while (grids[-1] + 1) // 2 >= COARSEST and grids[-1] % 2 == 1:
         grids.append((grids[-1] + 1) // 2)
-    record = None
+    record = X_coarse = Y_coarse = None
     for n in reversed(grids):
         d = (outlet - inlet) / (n - 1)
         half = int(math.ceil(SIDE / d))
