@@ -33,7 +33,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from ..accuracy import refuse_rtol
+from ..accuracy import refuse_estimate, refuse_rtol
 from ..bearing import Bearing, JournalState, check_finite
 from ..errors import ConvergenceError
 from ..reynolds import solve_reynolds
@@ -165,7 +165,7 @@ def _predicted_change(change: float, rates: list) -> float:
 
 def thd_equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
                     direction=None, eps_max: float = EPS_MAX, xtol: float = 1e-8,
-                    isothermal=None, rtol=None, **options) -> Equilibrium:
+                    isothermal=None, rtol=None, estimate=None, **options) -> Equilibrium:
     """Where the journal sits under ``load`` with a thermal film (module docstring).
 
     Options: ``lubricant`` and ``thermal`` (required), the film's mesh options
@@ -176,8 +176,8 @@ def thd_equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
     equilibrium's own acceptance, and below what the temperature tolerance fixes, a 1e-6 K
     error moving the force by ~3e-8 of it; 1e-9 before took one more position on ROSS's
     fixture and moved eps by at most 2.6e-9, K and C by 1.1e-8). ``rtol`` (the toolkit's
-    film accuracy) is refused here, on one mesh: ``equilibrium(..., thermal=, rtol=)``
-    chooses the mesh and estimates ``eps_error``. ``eq.solution`` is the THD
+    film accuracy) and ``estimate`` are refused here, on one mesh: ``equilibrium(...,
+    thermal=, rtol=)`` chooses the mesh and estimates ``eps_error``. ``eq.solution`` is the THD
     film; ``friction_force`` and ``power_loss`` its own shear integral. ``isothermal``:
     (bearing, load, omega, model, eps_max=, xtol=, **mesh options) -> (eps, gamma) of
     the isothermal equilibrium that starts the search (to START_XTOL)
@@ -186,6 +186,8 @@ def thd_equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
     """
     refuse_rtol(rtol, "the thermal equilibrium's force tolerance is xtol (it is solved on "
                 "the mesh given; equilibrium(..., thermal=, rtol=) chooses the mesh)")
+    refuse_estimate(estimate, "thd_equilibrium solves one mesh; equilibrium(..., thermal=, "
+                    "estimate=True) estimates eps_error")
     if model != "fem":
         raise ValueError(f"a thermal film needs model 'fem', got {model!r}")
     xtol = check_finite("xtol", xtol)
@@ -320,14 +322,17 @@ def thd_equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
 
 
 def thd_coefficients(bearing: Bearing, state: JournalState, frame: str = "inertial", *,
-                     solution=None, rtol=None, **options) -> DynamicCoefficients:
+                     solution=None, rtol=None, estimate=None,
+                     **options) -> DynamicCoefficients:
     """K [N/m] and C [N s/m] of the thermal film at ``state`` with its viscosity field
     frozen (module docstring); ``solution``: the THD film at ``state`` (e.g.
     ``eq.solution``), solved here when None. Options as :func:`thd_equilibrium`.
-    ``rtol`` is refused here, on one mesh: ``coefficients(..., thermal=, rtol=)`` chooses
-    the mesh and estimates ``error``."""
+    ``rtol`` and ``estimate`` are refused here, on one mesh: ``coefficients(..., thermal=,
+    rtol=)`` chooses the mesh and estimates ``error``."""
     refuse_rtol(rtol, "the thermal film's K and C are found here on the mesh given; "
                 "coefficients(..., thermal=, rtol=) chooses the mesh")
+    refuse_estimate(estimate, "thd_coefficients linearises one mesh; coefficients(..., "
+                    "thermal=, estimate=True) estimates K and C's error")
     mesh = thermal_mesh(options)
     if solution is None:
         solve_opts = {k: options[k] for k in ("temperature_tol", "relaxation",
