@@ -55,6 +55,7 @@ from .caches import kept
 from .errors import ConvergenceError
 
 __all__ = ["AccuracyRecord", "solve_to_tolerance", "refine_to_tolerance", "check_rtol",
+           "refuse_rtol", "refuse_estimate",
            "check_no_mesh", "nominal_order", "force_difference", "SAFETY", "RTOL_RANGE", "clear_memo",
            "film_to_tolerance", "estimate_error", "estimate_at", "grid_multiple",
            "groove_multiple", "start_mesh", "search_grading", "GRADING_STRENGTH",
@@ -143,6 +144,14 @@ def refuse_rtol(rtol, tolerance: str) -> None:
     toolkit's film-accuracy request, never a solver's tolerance."""
     if rtol is not None:
         raise ValueError(f"rtol is a film-accuracy request, got rtol={rtol!r}; {tolerance}")
+
+
+def refuse_estimate(estimate, reason: str) -> None:
+    """ValueError where ``estimate`` is given to a function that carries no error
+    estimate (``reason``: why, and where one is made): passed on to each film it would
+    double their cost and be dropped unseen."""
+    if estimate is not None and estimate is not False:
+        raise ValueError(f"estimate={estimate!r} is not taken here: {reason}")
 
 def check_no_mesh(n_theta=None, n_z=None, hint: str = "") -> None:
     """ValueError naming n_theta and/or n_z when given (not None) beside ``rtol``: the

@@ -48,14 +48,16 @@ UNITS = {"diameter": "m", "length_ratio": "1", "clearance": "m", "viscosity": "P
          "n_z": "1", "element": "", "cavitation": "", "scene": "", "turns": "1",
          "crank_speed": "rad/s", "pressure_max": "Pa", "friction_force": "N",
          "side_leakage": "m^3/s", "cavitated_fraction": "1", "F_r": "N", "F_t": "N",
-         "force": "N", "attitude_deg": "deg", "sommerfeld": "1", "friction_variable": "1",
+         "force": "N", "force_error": "1", "attitude_deg": "deg", "sommerfeld": "1",
+         "friction_variable": "1",
          "flow_variable": "1", "coefficient_method": "", "wall_s": "s",
          **{f"{m}{i}{j}{e}": "1" for m in "KC" for i in (1, 2) for j in (1, 2)
             for e in ("", "_error")},
          "crank_speed_max_rad_s": "rad/s", "crank_speed_min_rad_s": "rad/s",
          "max_dspeed_vs_ideal_rad_s": "rad/s", "min_film_um": "um", "peak_eps": "1",
          "peak_slider_acc_m_s2": "m/s^2", "film_solves": "1", "rhs_evals": "1",
-         "steps": "1", "status": "", "wall_time_s": "s"}
+         "steps": "1", "status": "", "wall_time_s": "s", "film_rtol": "1",
+         "film_force_error": "1"}
 #: old column -> its name now (the contract's); results.csv keeps the old columns too,
 #: for one version (docs/cli.md), and a case file written under the old names is read
 RENAMED = {"force_r": "F_r", "force_t": "F_t", "load": "force"}
@@ -137,6 +139,16 @@ def _film_inputs(p: dict):
     return b, JournalState(p["eps"], p.get("eps_dot", 0.0), 0.0, 0.0, p["omega"])
 
 
+def _force_error(b, model, options: dict, state) -> dict:
+    """``force_error``: the estimated relative error of the case's film force (h/2h with
+    the half mesh, one film more at a quarter of the cost) for a model on a mesh; nothing
+    for a closed form. The Sommerfeld number, W's inverse, has the same relative error."""
+    from bearingfem.design.tolerance import run_force_error
+    if not {"n_theta", "n_z"} <= set(model.defaults):
+        return {}
+    return {"force_error": run_force_error(b, model.name, options, [state])}
+
+
 def _film_case(params: dict) -> dict:
     from bearingfem.design import sommerfeld_number
     from bearingfem.models import film_model
@@ -145,6 +157,7 @@ def _film_case(params: dict) -> dict:
     b, s = _film_inputs(p)
     out = {}
     model = film_model(p["model"])
+    out.update(_force_error(b, model, o, s))
     sol = model.film_solution(b, s, **o)
     if sol is not None:
         f_r, f_t = sol.force_local
@@ -181,6 +194,7 @@ def _design_case(params: dict) -> dict:
                friction_variable=friction_variable(
                    b, petroff_friction(b, p["eps"], p["omega"], f_t), load),
                coefficient_method=kc.method)
+    out.update(_force_error(b, model, opts, s))
     sol = model.film_solution(b, s, **opts)
     if sol is not None:
         out["flow_variable"] = flow_variable(b, sol.side_leakage, p["omega"])
@@ -232,10 +246,18 @@ def _mechanism_case(params: dict, scene: dict | None = None) -> dict:
     sc = replace(sc, bearing=b, crank_speed=params.get("crank_speed", sc.crank_speed))
     opts = {k: params[k] for k in ("n_theta", "n_z", "element", "cavitation") if k in params}
     if sc.lubrication is not None and ("model" in params or opts):
+        from bearingfem.models import film_model
         lub = sc.lubrication
         model = params.get("model", lub.model)
         keep = {} if model != lub.model else lub.options
-        sc = replace(sc, lubrication=Lubrication(model, {**keep, **opts}, lub.eps_max))
+        # the scene's rtol (a mesh chosen at the start) holds unless the case gives a mesh
+        # or a model without one: dropped, the case ran on the model's default mesh unseen
+        on_mesh = {"n_theta", "n_z"} <= set(film_model(model).defaults)
+        rtol = lub.rtol if on_mesh and not {"n_theta", "n_z"} & set(opts) else None
+        sc = replace(sc, lubrication=Lubrication(model, {**keep, **opts}, lub.eps_max,
+                                                 rtol))
     r = simulate(sc, progress=False)
     row = r.summary_row()
+    # a run whose mesh was chosen to an rtol says what it asked and what it estimates
+    row.update({k: r.stats[k] for k in ("film_rtol", "film_force_error") if k in r.stats})
     return {k: v for k, v in row.items() if k != "scene"}

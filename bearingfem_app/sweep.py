@@ -54,6 +54,13 @@ class Sweep:
 
 def _checked(kind, key, value, where):
     params = KINDS[kind]
+    if key in ("rtol", "estimate"):
+        raise ValueError(f"{where}.{key} is not a sweep parameter: a sweep's cases are "
+                         "solved on the mesh given (n_theta, n_z, element), and each film "
+                         "or design case on a mesh reports force_error (a design case also "
+                         "K and C's errors), estimated on the half mesh"
+                         + ("; a mechanism scene takes rtol in [effects.lubrication]"
+                            if kind == "mechanism" else ""))
     if key not in params:
         near = difflib.get_close_matches(key, sorted(params), n=1, cutoff=0.7)
         raise ValueError(f"{where}.{key} is not a {kind} sweep parameter"

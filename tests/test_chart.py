@@ -131,3 +131,34 @@ def test_newtons_tolerance_is_xtol_and_rtol_is_refused_before_any_film():
     # Newton's xtol 1e-4 of the step, far above the default's 1e-10 round-off)
     for lo, ti in zip(loose.points, tight.points):
         assert 1e-10 < abs(lo.eps - ti.eps) / ti.eps < 1e-5
+
+
+def _position(point):
+    return point.eps * np.array([math.cos(point.state.gamma), math.sin(point.state.gamma)])
+
+
+def test_a_charts_estimate_errs_high():
+    """design_chart(..., estimate=True): each point's eps_error (the position's, h/2h
+    with the chart on the half mesh) and the largest entries of K_error and B_error at
+    least the true errors against the chart on P2 96 x 32 (within ~1e-4 of P2 192 x 64),
+    eps_error at most 3x (P1 48 x 16, L/D 1, Reynolds' condition; measured effectivity
+    1.5-1.8 for eps, 4.4-9.5 for K, 3.5-35 for B, against P2 192 x 64; P1 96 x 32 alike,
+    1.5-1.6 for eps). The chart's record is the pair's; the points on the mesh given
+    are the plain chart's. Fails with the half walk on the mesh given (estimates 0;
+    planted)."""
+    b = Bearing(radius=0.01, length=0.02, clearance=20e-6, viscosity=0.0117)
+    S = [1.0, 0.1, 0.03]
+    opts = dict(element="P1", cavitation="reynolds")
+    ref = design_chart(b, 250.0, S, "fem", n_theta=96, n_z=32, element="P2",
+                       cavitation="reynolds")
+    chart = design_chart(b, 250.0, S, "fem", n_theta=48, n_z=16, estimate=True, **opts)
+    plain = design_chart(b, 250.0, S, "fem", n_theta=48, n_z=16, **opts)
+    assert chart.accuracy.mesh == (48, 16) and chart.accuracy.partner == (24, 8)
+    for p, q, r in zip(chart.points, plain.points, ref.points):
+        assert p.eps == q.eps and np.array_equal(p.K, q.K) and q.eps_error is None
+        true = float(np.linalg.norm(_position(p) - _position(r)))
+        assert 1.0 <= p.eps_error / true <= 3.0, (p.sommerfeld, p.eps_error, true)
+        assert np.max(p.K_error) >= np.max(np.abs(p.K - r.K))
+        assert np.max(p.B_error) >= np.max(np.abs(p.B - r.B))
+    with pytest.raises(ValueError, match="estimate=True is for film models on a mesh"):
+        design_chart(b, 250.0, S, "short", estimate=True)

@@ -286,13 +286,15 @@ def test_isothermal_position_is_the_equilibriums(model):
                                                                         eq.state.gamma)
     with pytest.raises(ValueError, match="eps_max"):
         isothermal_position(BEARING, load, OMEGA, model, eps_max=1.0, **opts)
-    with pytest.raises(ValueError, match="rtol"):
-        isothermal_position(BEARING, load, OMEGA, model, rtol=0.0, **opts)
+    with pytest.raises(ValueError, match="xtol"):
+        isothermal_position(BEARING, load, OMEGA, model, xtol=0.0, **opts)
+    with pytest.raises(ValueError, match="rtol is a film-accuracy request.*xtol"):
+        isothermal_position(BEARING, load, OMEGA, model, rtol=1e-4, **opts)
 
 
 def test_the_start_to_a_looser_tolerance_keeps_the_answer(monkeypatch):
     """The thermal equilibrium starts from the supply temperature's isothermal position
-    to Newton's rtol 1e-4 (design.thermal.START_RTOL: its last step below 1e-2 |q|) instead
+    to Newton's xtol 1e-4 (design.thermal.START_XTOL: its last step below 1e-2 |q|) instead
     of the equilibrium's 1e-13: on the designer's bearing (48x8, 2 kN, adiabatic,
     carry-over 0.8) the start takes 2 isothermal films and partials instead of 4 and lies
     within 1e-3 of the exact one in eps and gamma (measured 1e-4 and 1e-4 rad), and the
@@ -312,7 +314,7 @@ def test_the_start_to_a_looser_tolerance_keeps_the_answer(monkeypatch):
     monkeypatch.setattr(model, "force_derivatives", spy)
     cold = replace(BEARING, viscosity=float(VG32.viscosity_at(temperature=SUPPLY)))
     exact = isothermal_position(cold, load, OMEGA, "fem", **opts)
-    loose = isothermal_position(cold, load, OMEGA, "fem", rtol=design_thermal.START_RTOL,
+    loose = isothermal_position(cold, load, OMEGA, "fem", xtol=design_thermal.START_XTOL,
                                 **opts)
     assert abs(loose[0] - exact[0]) < 1e-3 and abs(loose[1] - exact[1]) < 1e-3
 
@@ -323,7 +325,7 @@ def test_the_start_to_a_looser_tolerance_keeps_the_answer(monkeypatch):
         return eq, calls["n"]
 
     eq, n_start = solved()
-    monkeypatch.setattr(design_thermal, "START_RTOL", 1e-13)
+    monkeypatch.setattr(design_thermal, "START_XTOL", 1e-13)
     ref, n_ref = solved()
     assert (n_start, n_ref) == (2, 4)
     assert eq.iterations == ref.iterations

@@ -12,11 +12,11 @@ and the previous cavitated set, and the coefficients reuse the last solve's film
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ..accuracy import refuse_rtol
+from ..accuracy import estimate_at, estimate_error, nominal_order, refuse_rtol
 from ..bearing import Bearing, JournalState, check_finite, check_turn_angle
 from ..errors import ConvergenceError
 from ..fe.mesh import GRADING_MAX
@@ -44,6 +44,8 @@ class ChartPoint:
         cavity, :func:`~bearingfem.design.groups.petroff_friction`)
     K, B : 2x2 K c / W and C c omega / W in the load frame (axis 1 along the load)
     state : the journal's :class:`JournalState` there
+    eps_error, K_error, B_error : with ``estimate=True``, the estimated absolute errors of
+        the journal position |q| = eps and of K and B's entries (same units); else None
     """
 
     sommerfeld: float
@@ -53,16 +55,22 @@ class ChartPoint:
     K: np.ndarray
     B: np.ndarray
     state: JournalState
+    eps_error: float | None = None
+    K_error: np.ndarray | None = None
+    B_error: np.ndarray | None = None
 
 
 @dataclass(frozen=True)
 class DesignChart:
     """The chart's points in the order asked, the model, and the film evaluations (each a
-    force with its partials) the walk took."""
+    force with its partials) the walk took; ``accuracy``: with ``estimate=True`` the
+    :class:`~bearingfem.accuracy.AccuracyRecord` of the chart's h/2h pair (its ``error``
+    the largest point's relative position error), else None."""
 
     points: tuple
     model: str
     evaluations: int
+    accuracy: object = None
 
     def column(self, name: str) -> np.ndarray:
         """One output over the chart: an array of the points' ``name`` (e.g. "eps", "K")."""
@@ -102,7 +110,7 @@ def chart_grading(bearing: Bearing, omega: float, sommerfeld=CHART_SOMMERFELD,
 def design_chart(bearing: Bearing, omega: float, sommerfeld=CHART_SOMMERFELD,
                  model: str = "fem", *, direction: float = -0.5 * math.pi,
                  eps_max: float = EPS_MAX, xtol: float = 1e-10, rtol=None,
-                 **options) -> DesignChart:
+                 estimate: bool = False, **options) -> DesignChart:
     """Walk the Sommerfeld numbers ``sommerfeld`` of ``bearing`` turning at ``omega``
     [rad/s] under a load along ``direction`` [rad] (inertial; default downward, the
     grooves of :class:`~bearingfem.bearing.Groove` stay where they are given).
@@ -114,6 +122,11 @@ def design_chart(bearing: Bearing, omega: float, sommerfeld=CHART_SOMMERFELD,
     beyond what the film carries before eps_max raises ValueError.
     ``rtol`` (a film accuracy elsewhere) is refused: the chart is solved on the mesh given,
     a mesh per point would break the warm-started walk and multiply its cost.
+    ``estimate=True`` (models on a mesh): the chart is walked again on the half mesh (a
+    quarter of the cost) and each point's ``eps_error``, ``K_error``, ``B_error`` are the
+    h/2h estimates (:func:`~bearingfem.accuracy.estimate_at`; the position at the film
+    force's order, K and B at order 1 for a cavitated film, as
+    :func:`~bearingfem.design.coefficients.coefficients` estimates them).
     """
     refuse_rtol(rtol, "Newton's tolerance is xtol (the chart is solved on the mesh given)")
     m = film_model(model)
@@ -134,6 +147,50 @@ def design_chart(bearing: Bearing, omega: float, sommerfeld=CHART_SOMMERFELD,
         raise ValueError(f"xtol must lie in (0, 1e-3), got {xtol!r}: Newton's tolerance on "
                          "each point's equilibrium")
     S = _sommerfeld_numbers(sommerfeld)
+    if estimate is not True and estimate is not False:
+        raise ValueError(f"estimate must be True or False, got {estimate!r}")
+    if not estimate:
+        return _walk(bearing, omega, S, m, opts, direction, eps_max, xtol, model)
+    if not {"n_theta", "n_z"} <= set(m.defaults):
+        raise ValueError(f"estimate=True is for film models on a mesh (options n_theta, "
+                         f"n_z); model {model!r} has none")
+    has_element = "element" in m.defaults
+    element = opts["element"] if has_element else "P1"
+    smooth = opts.get("cavitation") == "none" and not opts.get("grooves")
+
+    def walk(n_theta, n_z, el):
+        o = {**opts, "n_theta": n_theta, "n_z": n_z, **({"element": el} if has_element else {})}
+        return _walk(bearing, omega, S, m, o, direction, eps_max, xtol, model)
+
+    def difference(fine, coarse):      # the largest point's relative position change
+        return max(float(np.linalg.norm(_position(f) - _position(c)) / f.eps)
+                   for f, c in zip(fine.points, coarse.points))
+
+    fine, coarse, record = estimate_at(walk, difference, (opts["n_theta"], opts["n_z"]),
+                                       element=element, order=nominal_order(element, smooth))
+    ratio = math.sqrt(record.mesh[0] * record.mesh[1] / (record.partner[0] * record.partner[1]))
+    # K and B of a cavitated film at order 1 (design.coefficients._order: the held set's
+    # error behaves like noise in where the nodes fall), else the force's
+    kc_order = 1.0 if opts.get("cavitation", "reynolds") != "none" else record.order
+    points = []
+    for f, c in zip(fine.points, coarse.points):
+        eps_error = estimate_error([1.0, ratio], [float(np.linalg.norm(_position(f)
+                                                                       - _position(c)))],
+                                   record.order)[0]
+        K_error = estimate_error([1.0, ratio], [np.abs(f.K - c.K)], kc_order)[0]
+        B_error = estimate_error([1.0, ratio], [np.abs(f.B - c.B)], kc_order)[0]
+        points.append(replace(f, eps_error=float(eps_error), K_error=K_error,
+                              B_error=B_error))
+    return DesignChart(tuple(points), model, fine.evaluations + coarse.evaluations, record)
+
+
+def _position(point: ChartPoint) -> np.ndarray:
+    """The journal position q = e/c of a chart point."""
+    return point.eps * np.array([math.cos(point.state.gamma), math.sin(point.state.gamma)])
+
+
+def _walk(bearing, omega, S, m, opts, direction, eps_max, xtol, model) -> DesignChart:
+    """The chart's points on the mesh of ``opts`` (the module docstring's walk)."""
     count = [0]
 
     def partials(eps, gamma):

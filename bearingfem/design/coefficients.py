@@ -60,7 +60,9 @@ def coefficients(bearing: Bearing, state: JournalState, model: str = "fem",
 
     ``thermal`` and ``lubricant`` (model "fem"): the thermal film's K and C with its
     viscosity field frozen (:func:`bearingfem.design.thermal.thd_coefficients`; give
-    ``solution=eq.solution`` to reuse the equilibrium's thermal film).
+    ``solution=eq.solution`` to reuse the equilibrium's thermal film); with ``rtol`` or
+    ``estimate`` the thermal film is solved on each mesh of the search (P1 unless an
+    ``element`` is given; ``solution`` is then refused).
 
     ``rtol`` (mesh models): a requested accuracy of K and C, each relative to its largest
     entry, in [1e-6, 0.1]; the mesh (and element, P2 unless given) is chosen to reach it and
@@ -74,14 +76,14 @@ def coefficients(bearing: Bearing, state: JournalState, model: str = "fem",
     check_inputs(bearing, state)
     check_choice("frame", frame, FRAMES)
     if options.get("thermal") is not None:     # the thermal film (bearingfem.design.thermal)
-        given = [k for k, v in (("rtol", rtol), ("estimate", estimate),
-                                ("eps_error", eps_error)) if v]
-        if given:
-            raise ValueError(f"{', '.join(given)}: not taken with thermal= (the thermal "
-                             "film's K and C are found on the mesh given)")
         if model != "fem":
             raise ValueError(f"a thermal film needs model 'fem', got {model!r}")
-        return thd_coefficients(bearing, state, frame, **options)
+        if rtol is None and not estimate and eps_error is None:
+            return thd_coefficients(bearing, state, frame, **options)
+        if (rtol is not None or estimate) and options.get("solution") is not None:
+            raise ValueError("solution: not taken with rtol or estimate (the thermal film "
+                             "is solved on each mesh of the pair)")
+        # on to the same search as the isothermal film's (P1 unless given: tolerance.py)
     if eps_error is not None:
         # no upper bound: a coarse mesh's equilibrium estimates 1 or more (the shifted
         # state below stops halfway to the wall)

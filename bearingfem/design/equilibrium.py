@@ -24,7 +24,7 @@ from dataclasses import replace
 import numpy as np
 from scipy.optimize import brentq, root
 
-from ..accuracy import check_rtol
+from ..accuracy import check_rtol, refuse_rtol
 from ..bearing import Bearing, JournalState, check_finite, check_surface_speed
 from ..errors import ConvergenceError, LoadCapacityError
 from ..reynolds import solve_reynolds
@@ -44,7 +44,7 @@ __all__ = ["Equilibrium", "equilibrium", "EPS_MAX", "ConvergenceError", "LoadCap
 
 def equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
                 direction: float | None = None, eps_max: float = EPS_MAX,
-                xtol: float = 1e-13, start=None, rtol: float | None = None,
+                xtol: float | None = None, start=None, rtol: float | None = None,
                 estimate: bool = False, **options) -> Equilibrium:
     """Where the journal sits under a steady ``load`` at speed ``omega``.
 
@@ -58,7 +58,9 @@ def equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
         options, e.g. ``n_theta=120, n_z=20, element="P2", cavitation="reynolds"``
     eps_max : largest eccentricity ratio searched, in (0, 1)
     xtol : relative tolerance of the root on eps (relative, so light loads, eps ~ 1e-8,
-        stay exact): the iteration's, not the film's
+        stay exact): the iteration's, not the film's (None: 1e-13; 1e-4 rtol with
+        ``rtol``; a thermal film's, the force residual relative to the load at which its
+        Broyden iteration stops, 1e-8: :func:`~bearingfem.design.thermal.thd_equilibrium`)
     rtol : a requested relative accuracy of the journal position q = e/c against the mesh
         limit, in [1e-6, 0.1] (mesh models): the mesh (and element, P2 unless given) is
         chosen to reach it and ``eps_error`` reports the estimate; n_theta and n_z are
@@ -79,17 +81,25 @@ def equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
         the least gap over the length (at an end) and its angle, and the friction the
         film's own shear integral
     thermal, lubricant : a :class:`~bearingfem.thermal.Thermal` and its oil: the thermal
-        film's equilibrium (:func:`bearingfem.design.thermal.thd_equilibrium`)
+        film's equilibrium (:func:`bearingfem.design.thermal.thd_equilibrium`); with
+        ``rtol`` or ``estimate`` its mesh is searched, or its error estimated, as the
+        isothermal film's (P1 unless an ``element`` is given); ``start`` is refused
     """
     check_surface_speed(bearing.radius, check_finite("omega", omega))
     if options.get("thermal") is not None:     # the thermal film (bearingfem.design.thermal)
-        given = [k for k, v in (("rtol", rtol), ("estimate", estimate), ("start", start),
-                                ("xtol", xtol != 1e-13)) if v]
-        if given:
-            raise ValueError(f"{', '.join(given)}: not taken with thermal= (the thermal "
-                             "film's equilibrium is solved on the mesh given)")
+        if start is not None:
+            raise ValueError("start: not taken with thermal= (the thermal equilibrium starts "
+                             "from the supply temperature's isothermal one)")
+        if rtol is not None or estimate:
+            # the same search on the thermal equilibrium, P1 unless given (the thermal
+            # film's element, as solve_reynolds' search takes it), no warm start (its
+            # iteration starts from the isothermal position)
+            xtol = 1e-4 * check_rtol(rtol) if xtol is None and rtol is not None else xtol
+            return _equilibrium_with_error(bearing, load, omega, model, rtol, dict(
+                direction=direction, eps_max=eps_max, xtol=xtol, start=None), options)
         return thd_equilibrium(bearing, load, omega, model, direction=direction,
-                               eps_max=eps_max, isothermal=isothermal_position, **options)
+                               eps_max=eps_max, isothermal=isothermal_position,
+                               **({} if xtol is None else {"xtol": xtol}), **options)
     if rtol is not None or estimate:
         if options.get("tilt") is not None:
             # the search's meshes are the aligned film's (a tilt was refused there as
@@ -97,12 +107,13 @@ def equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
             raise ValueError(f"tilt: not taken with {'rtol' if rtol is not None else 'estimate'}"
                              " (the tilted equilibrium is solved on the mesh given: n_theta, "
                              "n_z)")
-        if rtol is not None and xtol == 1e-13:
+        if rtol is not None and xtol is None:
             # the root to 1e-4 of the accuracy asked: its error then leaves the mesh
             # pairs' differences alone, and Newton takes a step fewer
             xtol = 1e-4 * check_rtol(rtol)
         return _equilibrium_with_error(bearing, load, omega, model, rtol, dict(
             direction=direction, eps_max=eps_max, xtol=xtol, start=start), options)
+    xtol = 1e-13 if xtol is None else xtol
     tilt = check_tilt("tilt", options.pop("tilt", (0.0, 0.0)))
     m = film_model(model)
     if any(tilt) and not m.tilts:
@@ -165,7 +176,8 @@ def _equilibrium_with_error(bearing, load, omega, model, rtol, how, options):
     """The equilibrium on the mesh that reaches ``rtol`` (or on the mesh given, with its
     error), each mesh's Newton started from the last mesh's answer."""
     m = film_model(model)
-    newton = m.exact_derivatives and not m.memory
+    # a thermal equilibrium starts from its own isothermal position, never from a start
+    newton = m.exact_derivatives and not m.memory and options.get("thermal") is None
     last = []
 
     def evaluate(opts):
@@ -242,26 +254,28 @@ NEWTON_RESTARTS = 2
 
 
 def isothermal_position(bearing: Bearing, load, omega: float, model: str, *,
-                        eps_max: float = EPS_MAX, rtol: float = 1e-13,
+                        eps_max: float = EPS_MAX, xtol: float = 1e-13, rtol=None,
                         **options) -> tuple:
     """(eps, gamma) of :func:`equilibrium` (aligned journal, default tolerance) without
     the film's outputs there: Newton's position alone for models with exact partials,
     else the whole equilibrium's. Why: a search that only starts from it (the thermal
     film's, :func:`~bearingfem.design.thermal.thd_equilibrium`) needs no solution record,
     whose film and partials cost a quarter of the isothermal equilibrium at 48 x 8.
-    ``rtol`` (Newton's models only): Newton stops on a step below sqrt(rtol) |q| and takes
-    it, the force then off by ~rtol of the load; the default is the equilibrium's, a
-    start may take a looser one."""
+    ``xtol`` (formerly ``rtol``; Newton's models only): Newton stops on a step below
+    sqrt(xtol) |q| and takes it, the force then off by ~xtol of the load; the default is
+    the equilibrium's, a start may take a looser one. ``rtol`` (a film accuracy) is
+    refused: the start is found on the mesh given."""
+    refuse_rtol(rtol, "Newton's tolerance is xtol (the position is found on the mesh given)")
     m = film_model(model)
     if not 0.0 < check_finite("eps_max", eps_max) < 1.0:
         raise ValueError(f"eps_max must lie in (0, 1), got {eps_max!r}")
-    if not 0.0 < check_finite("rtol", rtol) < 1.0:
-        raise ValueError(f"rtol must lie in (0, 1), got {rtol!r}")
+    if not 0.0 < check_finite("xtol", xtol) < 1.0:
+        raise ValueError(f"xtol must lie in (0, 1), got {xtol!r}")
     if not (m.exact_derivatives and not m.memory and omega != 0.0):
         eq = equilibrium(bearing, load, omega, model, eps_max=eps_max, **options)
         return eq.eps, eq.state.gamma
     eps, gamma, _, _ = _newton_position(m, bearing, omega, tuple(load),
-                                        m.options(options), None, eps_max, rtol, model,
+                                        m.options(options), None, eps_max, xtol, model,
                                         (0.0, 0.0))
     return eps, gamma
 

@@ -35,7 +35,7 @@ import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
-from ..accuracy import refuse_rtol
+from ..accuracy import refuse_estimate, refuse_rtol
 from ..bearing import (PLAUSIBLE, Bearing, JournalState, check_finite, check_positive,
                        check_surface_speed)
 from ..film import local_to_inertial
@@ -262,7 +262,7 @@ class ThresholdSpeed:
 
 
 def threshold_speed(bearing: Bearing, load, mass: float, model: str = "fem", *,
-                    omega_range=None, xtol: float = 1e-8, rtol=None,
+                    omega_range=None, xtol: float = 1e-8, rtol=None, estimate=None,
                     **options) -> ThresholdSpeed:
     """The onset speed of oil whirl of a rigid journal of ``mass`` [kg] carrying ``load``
     [N] (vector, inertial), within ``omega_range`` [rad/s] (default: 1 rad/s up to the
@@ -273,9 +273,13 @@ def threshold_speed(bearing: Bearing, load, mass: float, model: str = "fem", *,
     relative tolerance ``xtol``, formerly ``rtol``).
     ``rtol`` (a film accuracy elsewhere) is refused: a mesh chosen per speed makes the
     margin jump between meshes under Brent's steps, and the threshold would carry no error.
+    ``estimate`` is refused too: the threshold carries no error estimate (estimate K and C
+    at its state: ``coefficients(..., ts.equilibrium.state, estimate=True)``).
     """
     refuse_rtol(rtol, "the root search's tolerance is xtol (the films are solved on the mesh "
                 "given)")
+    refuse_estimate(estimate, "the threshold speed carries no error estimate (estimate K "
+                    "and C at its state with coefficients(..., estimate=True))")
     xtol = check_finite("xtol", xtol)
     if not 4.0 * np.finfo(float).eps <= xtol < 1.0:     # brentq's own floor
         raise ValueError(f"xtol must lie in [{4.0 * np.finfo(float).eps:.3g}, 1), got {xtol!r}")
@@ -331,7 +335,8 @@ class Orbit:
 
 def journal_orbit(bearing: Bearing, eq: Equilibrium, mass: float, model: str = "fem", *,
                   kick: float = 0.02, turns: float = 60.0, samples: int = 4000,
-                  integrator_rtol: float = 1e-9, rtol=None, **options) -> Orbit:
+                  integrator_rtol: float = 1e-9, rtol=None, estimate=None,
+                  **options) -> Orbit:
     """Integrate m x'' = F_film(x, x') + load from the equilibrium ``eq`` displaced by
     ``kick`` clearances along the load (negative: against it), starting inside the
     clearance; the nonlinear check of the linear threshold. ``integrator_rtol`` (formerly
@@ -340,6 +345,8 @@ def journal_orbit(bearing: Bearing, eq: Equilibrium, mass: float, model: str = "
     mesh given (their force takes no rtol), none carries an error estimate.
     """
     refuse_rtol(rtol, "the orbit integrator's tolerance is integrator_rtol")
+    refuse_estimate(estimate, "the orbit's films are solved on the mesh given and carry no "
+                    "error estimate")
     integrator_rtol = check_finite("integrator_rtol", integrator_rtol)
     if not 0.0 < integrator_rtol < 1.0:
         raise ValueError(f"integrator_rtol must lie in (0, 1), got {integrator_rtol!r}")

@@ -33,7 +33,8 @@ from dataclasses import replace
 
 import numpy as np
 
-from ..bearing import Bearing, JournalState
+from ..accuracy import refuse_estimate, refuse_rtol
+from ..bearing import Bearing, JournalState, check_finite
 from ..errors import ConvergenceError
 from ..reynolds import solve_reynolds
 from ..fields import FilmFields
@@ -44,14 +45,17 @@ from ..routes.thd import (ReynoldsFieldFilm, ThermalIteration, check_thermal, so
 from .records import EPS_MAX, DynamicCoefficients, Equilibrium, least_film, load_vector
 from .groups import sommerfeld_number
 
-__all__ = ["thd_equilibrium", "thd_coefficients", "frozen_film"]
+__all__ = ["thd_equilibrium", "thd_coefficients", "frozen_film", "thermal_mesh"]
 
 STEP = 1e-5            # central-difference step in q = e/c (and v/(c omega))
 MAX_STEPS = 40
 PRESSURE_RTOL = 1e-8   # the film's last change, relative to its peak, at the answer
 
 
-def _mesh_options(options):
+def thermal_mesh(options: dict) -> dict:
+    """The thermal film's mesh options (n_theta, n_z, element, cavitation, grooves,
+    supply_angle; tol where given) from ``options``, its defaults (48 x 8, P1, Reynolds'
+    condition) where they are not given; ValueError naming an option it does not take."""
     known = ("n_theta", "n_z", "element", "cavitation", "grooves", "supply_angle", "tol")
     unknown = set(options) - set(known) - {"lubricant", "thermal", "temperature_tol",
                                            "relaxation", "max_iterations"}
@@ -144,7 +148,7 @@ FIRST_TOL = 1.0
 #: last step below 1e-2 |q| (the force then off by ~1e-4 of the load), where the first
 #: thermal step moves eps by ~0.07 (ROSS's fixture); the equilibrium's 1e-13 took one or
 #: two more isothermal films and partials for the same thermal search
-START_RTOL = 1e-4
+START_XTOL = 1e-4
 
 
 def _predicted_change(change: float, rates: list) -> float:
@@ -160,27 +164,38 @@ def _predicted_change(change: float, rates: list) -> float:
 
 
 def thd_equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
-                    direction=None, eps_max: float = EPS_MAX, rtol: float = 1e-8,
-                    isothermal=None, **options) -> Equilibrium:
+                    direction=None, eps_max: float = EPS_MAX, xtol: float = 1e-8,
+                    isothermal=None, rtol=None, estimate=None, **options) -> Equilibrium:
     """Where the journal sits under ``load`` with a thermal film (module docstring).
 
     Options: ``lubricant`` and ``thermal`` (required), the film's mesh options
     (``n_theta``, ``n_z``, ``element``, ``cavitation``, ``grooves``, ``supply_angle``)
     and the thermal solve's (``temperature_tol``, ``relaxation``, ``max_iterations``).
-    ``rtol``: the film force's residual relative to the load (1e-8: the isothermal
-    Newton equilibrium's own acceptance, and below what the temperature tolerance fixes,
-    a 1e-6 K error moving the force by ~3e-8 of it; 1e-9 before took one more position on
-    ROSS's fixture and moved eps by at most 2.6e-9, K and C by 1.1e-8). ``eq.solution`` is the THD
+    ``xtol`` (formerly ``rtol``), in (0, 1): the film force's residual relative to
+    the load at which Broyden's iteration stops (1e-8: the isothermal Newton
+    equilibrium's own acceptance, and below what the temperature tolerance fixes, a 1e-6 K
+    error moving the force by ~3e-8 of it; 1e-9 before took one more position on ROSS's
+    fixture and moved eps by at most 2.6e-9, K and C by 1.1e-8). ``rtol`` (the toolkit's
+    film accuracy) and ``estimate`` are refused here, on one mesh: ``equilibrium(...,
+    thermal=, rtol=)`` chooses the mesh and estimates ``eps_error``. ``eq.solution`` is the THD
     film; ``friction_force`` and ``power_loss`` its own shear integral. ``isothermal``:
-    (bearing, load, omega, model, eps_max=, rtol=, **mesh options) -> (eps, gamma) of
-    the isothermal equilibrium that starts the search (to START_RTOL)
+    (bearing, load, omega, model, eps_max=, xtol=, **mesh options) -> (eps, gamma) of
+    the isothermal equilibrium that starts the search (to START_XTOL)
     (:func:`~bearingfem.design.equilibrium.isothermal_position`, passed in by
     :func:`~bearingfem.design.equilibrium`: this module lies below it).
     """
+    refuse_rtol(rtol, "the thermal equilibrium's force tolerance is xtol (it is solved on "
+                "the mesh given; equilibrium(..., thermal=, rtol=) chooses the mesh)")
+    refuse_estimate(estimate, "thd_equilibrium solves one mesh; equilibrium(..., thermal=, "
+                    "estimate=True) estimates eps_error")
     if model != "fem":
         raise ValueError(f"a thermal film needs model 'fem', got {model!r}")
+    xtol = check_finite("xtol", xtol)
+    if not 0.0 < xtol < 1.0:
+        raise ValueError(f"xtol must lie in (0, 1), got {xtol!r}: the thermal "
+                         "equilibrium's force residual relative to the load")
     lubricant, thermal = options.get("lubricant"), options.get("thermal")
-    mesh = _mesh_options(options)
+    mesh = thermal_mesh(options)
     final_tol = options.get("temperature_tol", 1e-6)
     wx, wy = load_vector(load, direction)
     W = math.hypot(wx, wy)
@@ -199,7 +214,7 @@ def thd_equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
     if iso_model == "fem":
         iso_opts.update(element=mesh["element"], cavitation=mesh["cavitation"])
     eps0, gamma0 = isothermal(cold, (wx, wy), omega, iso_model, eps_max=eps_max,
-                              rtol=START_RTOL, **iso_opts)
+                              xtol=START_XTOL, **iso_opts)
     q = eps0 * np.array([math.cos(gamma0), math.sin(gamma0)])
     c = bearing.clearance
     target = -np.array([wx, wy])
@@ -264,7 +279,7 @@ def thd_equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
     r = film.force() - target
     tol_used = FIRST_TOL
     for _ in range(MAX_STEPS):
-        if np.hypot(*r) <= rtol * W:
+        if np.hypot(*r) <= xtol * W:
             if tol_used <= final_tol:
                 break
             # balanced on loose temperatures: the same position with the final ones
@@ -307,11 +322,18 @@ def thd_equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
 
 
 def thd_coefficients(bearing: Bearing, state: JournalState, frame: str = "inertial", *,
-                     solution=None, **options) -> DynamicCoefficients:
+                     solution=None, rtol=None, estimate=None,
+                     **options) -> DynamicCoefficients:
     """K [N/m] and C [N s/m] of the thermal film at ``state`` with its viscosity field
     frozen (module docstring); ``solution``: the THD film at ``state`` (e.g.
-    ``eq.solution``), solved here when None. Options as :func:`thd_equilibrium`."""
-    mesh = _mesh_options(options)
+    ``eq.solution``), solved here when None. Options as :func:`thd_equilibrium`.
+    ``rtol`` and ``estimate`` are refused here, on one mesh: ``coefficients(..., thermal=,
+    rtol=)`` chooses the mesh and estimates ``error``."""
+    refuse_rtol(rtol, "the thermal film's K and C are found here on the mesh given; "
+                "coefficients(..., thermal=, rtol=) chooses the mesh")
+    refuse_estimate(estimate, "thd_coefficients linearises one mesh; coefficients(..., "
+                    "thermal=, estimate=True) estimates K and C's error")
+    mesh = thermal_mesh(options)
     if solution is None:
         solve_opts = {k: options[k] for k in ("temperature_tol", "relaxation",
                                               "max_iterations") if k in options}

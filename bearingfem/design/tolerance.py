@@ -15,6 +15,7 @@ from ..accuracy import (GRADED_FROM_EPS, GRADING_STRENGTH, check_no_mesh, check_
 from ..bearing import JournalState
 from ..models import FilmModel, film_model
 from ..routes import FilmProblem
+from .thermal import thermal_mesh
 
 __all__ = ["answer_to_tolerance", "mesh_for_run", "run_force_error", "RUN_PROBES",
            "GRADING_STRENGTH", "GRADED_FROM_EPS"]
@@ -58,13 +59,15 @@ def answer_to_tolerance(m: FilmModel, what: str, key, options: dict, evaluate: C
     has_element = "element" in m.defaults
     element = options.get("element") if has_element else None
     given = element is not None
-    element = element or ("P2" if has_element and rtol is not None else
+    # a thermal film is searched on P1 unless given, as solve_reynolds' search takes it
+    thermal = options.get("thermal") is not None
+    element = element or ("P2" if has_element and rtol is not None and not thermal else
                           m.defaults.get("element", "P1"))
     cavitation = options.get("cavitation", m.defaults.get("cavitation", "reynolds"))
     smooth = cavitation == "none" and not options.get("grooves")
     order = nominal_order(element, smooth) if order is None else order
     graded = None
-    if rtol is not None and toward is not None and "grading" in m.defaults:
+    if rtol is not None and toward is not None and "grading" in m.defaults and not thermal:
         graded = search_grading(_problem(m, options), toward)
 
     def run(n_theta, n_z, el, grading=graded):
@@ -83,7 +86,8 @@ def answer_to_tolerance(m: FilmModel, what: str, key, options: dict, evaluate: C
         return run(n_theta, n_z, el, (float(toward[0]) + PARTNER_SHIFT, graded))
 
     if rtol is None:
-        o = m.options(options)
+        # the mesh given, or the film's default (a thermal film's its own, 48 x 8)
+        o = thermal_mesh(options) if thermal else m.options(options)
         return estimate_at(run, difference, (o["n_theta"], o["n_z"]), element=element,
                            order=order)
     rest = {k: v for k, v in options.items() if k not in ("n_theta", "n_z", "element")}
