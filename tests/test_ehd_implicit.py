@@ -299,34 +299,6 @@ def test_the_predicted_start_lands_on_the_cold_starts_step():
     assert np.max(np.abs(predicted.pressure - cold.pressure)) < 1e-8 * np.max(cold.pressure)
 
 
-
-def test_three_commits_start_from_their_quadratic():
-    """Commits at 1e-5, 2e-5 and 3.5e-5 s (the journal moving on its rates), a trial at
-    5e-5 s: the start is the quadratic through the three commits' pressures at 5e-5 s,
-    floored at 0, against numpy's least-squares quadratic of each node's three values
-    (exact through three points: to 1e-9 of the largest pressure, the fit's round-off on
-    times of 1e-5 s), and from it the solve lands on the same pressure as from the last
-    commit's pressure alone, to 1e-8 of its largest (both converged to the Newton test of
-    1e-10). Fails with the oldest commit dropped from the extrapolation (the line through
-    the last two, planted: 1.1e-2 off) and with the quadratic's weights taken at the
-    commits' times shifted by one (planted: 0.12 off)."""
-    film, _, s0, _ = _heavy()
-    times, pressures = (1e-5, 2e-5, 3.5e-5), []
-    for t_k in times:
-        film.commit(_moving(s0, t_k), t_k)
-        pressures.append(film._P.copy())
-    t = 5e-5
-    start = film.start_pressure(t, pressures[0].size)
-    a2, a1, a0 = np.polyfit(np.array(times) / 1e-5, np.array(pressures), 2)
-    x = t / 1e-5
-    fit = np.maximum(a2 * x * x + a1 * x + a0, 0.0)
-    assert np.max(np.abs(start - fit)) < 1e-9 * np.max(pressures[-1])
-    snap = film.snapshot()
-    _, predicted = film.solve(_moving(s0, t), t)
-    film.restore(replace(snap, committed=snap.committed[-1:]))
-    _, cold = film.solve(_moving(s0, t), t)
-    assert np.max(np.abs(predicted.pressure - cold.pressure)) < 1e-8 * np.max(cold.pressure)
-
 def test_a_new_time_takes_one_fresh_newton_matrix(monkeypatch):
     """Commits at 1e-5 and 2e-5 s, then trials at 3e-5 s (the journal's eps moved by 0,
     1e-6, 2e-6: the predictor and corrector) and at 4e-5 s: the first solve at each new

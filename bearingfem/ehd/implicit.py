@@ -30,10 +30,9 @@ the next step's film at dt = 0); as dt grows with the journal held still, w tend
 steady EHD film's deflection; with tau -> 0, w = C (p + p_a) is the quasi-static bush,
 with its squeeze by the backward difference (w - w_n) / dt.
 
-Each solve at a new time starts from the last three commits' pressures extrapolated in t
-by their quadratic (two commits: linearly; :meth:`ImplicitStepEHD.start_pressure`): where
-the integrator's step grows, the last pressure is a whole step behind and Newton from it
-stalls where the gap closes. The first
+Each solve starts from the last two commits' pressures extrapolated linearly in t
+(:meth:`ImplicitStepEHD.start_pressure`): where the integrator's step grows, the last
+pressure is a whole step behind and Newton from it stalls where the gap closes. The first
 solve at a new time factorises the Newton matrix at that start; every solve at that time
 (the integrator's predictor, corrector and the commit) takes its chord steps on it
 (:meth:`ImplicitStepEHD._refactor`).
@@ -333,7 +332,7 @@ class ImplicitStepEHD(StatelessRun):
 
     memory = True
     #: A replay's departure from its run (contract rule 13), relative to the run's largest
-    #: force: a replayed commit starts from the last commits' pressures, the run's
+    #: force: a replayed commit starts from the last two commits' pressures, the run's
     #: from its trial solves at that time, and both stop at the Newton tolerance TOL of
     #: the residual's terms, so they agree to TOL times the film's conditioning, which
     #: grows with the mesh. Measured on the seed pin's first 0.05 turn (its largest where
@@ -358,7 +357,7 @@ class ImplicitStepEHD(StatelessRun):
         self._P, self._factor, self._frame = None, [], None
         self._P_t = None                 # the time [s] of the last solve's pressure
         self._factor_t = None            # the time [s] of the kept Newton matrix's film
-        self._committed = ()             # (t, P) of the last three commits, older first
+        self._committed = ()             # (t, P) of the last two commits, older first
         self._whirls, self._spreads = {}, {}
 
     @cached_property
@@ -457,23 +456,16 @@ class ImplicitStepEHD(StatelessRun):
     def start_pressure(self, t: float, n: int) -> np.ndarray:
         """The warm start at time ``t`` [s] (n nodes): the last solve's pressure where it
         was at ``t`` (the integrator's corrector iterating at one time); else the pressure
-        of the last three commits extrapolated in t to ``t`` by their quadratic (of two,
-        linearly), floored at 0 (where a step's dt jumps, the last pressure is a step
-        behind: from it the chord and Newton stalled past the gap's closure and the
-        continuation in s took over); else the last solve's. Why the quadratic: the seed
-        pin's first 2 % of a turn (48 x 4) started 2.7 chord steps from it a new time
-        against 3.1 from the line (the start 2.2x nearer the solution, median, in max
-        |P|), 6 % fewer evaluations; the answers the same to 4e-5 (docs/ehd-states.md)."""
+        of the last two commits extrapolated linearly in t to ``t``, floored at 0 (where a
+        step's dt jumps, the last pressure is a step behind: from it the chord and Newton
+        stalled past the gap's closure and the continuation in s took over); else the
+        last solve's."""
         if self._P_t == t or len(self._committed) < 2:
             return self._P
-        times = [tk for tk, _ in self._committed]
-        if (any(P.shape != (n,) for _, P in self._committed)
-                or not all(b > a for a, b in zip(times, times[1:]))):
+        (t0, P0), (t1, P1) = self._committed
+        if P0.shape != (n,) or P1.shape != (n,) or not t1 > t0:
             return self._P
-        # the Lagrange weights of the commits' times at t: sum_k l_k(t) P_k
-        weights = [np.prod([(t - tj) / (tk - tj) for tj in times if tj != tk])
-                   for tk in times]
-        return np.maximum(sum(w * P for w, (_, P) in zip(weights, self._committed)), 0.0)
+        return np.maximum(P1 + (t - t1) / (t1 - t0) * (P1 - P0), 0.0)
 
     def _force(self, film: _StepFilm, P: np.ndarray) -> tuple:
         """(F_r, F_t) [N]: the film's and the summits' pressure on the journal."""
@@ -540,7 +532,7 @@ class ImplicitStepEHD(StatelessRun):
             return None
         sol, w = self.solution(state, t)
         self._w, self.t = w, t
-        self._committed = self._committed[-2:] + ((t, self._P),)
+        self._committed = self._committed[-1:] + ((t, self._P),)
         self.steps += 1
         f, a = sol.force_local, sol.asperity_force_local
         return FilmStep(t, state, (f[0] + a[0], f[1] + a[1]), sol)
