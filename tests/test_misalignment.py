@@ -116,17 +116,29 @@ def test_finite_volumes_on_a_squeezing_and_tilting_journal():
     (120x20, 240x40) it meets FE P2 at 120x20 to 2e-3 of the force and of the moment
     (measured 7.4e-5 and 4.0e-4; FE P2 120x20 against 240x40: 2.8e-5 and 1.4e-4). Fails
     with the rigid part added to the rest instead of taken out of it (force 1.5 off:
-    planted once), which the steady tilted films above cannot see."""
+    planted once), which the steady tilted films above cannot see.
+
+    The tilt rate moves the force by 1 % only, so its own part is checked apart: the full
+    film is linear in its source, and the films with and without the tilt rate differ by
+    the rate's film alone; that difference meets FE P2's to 2e-3 of itself (measured 4.7e-4
+    force, 3.9e-4 moment). Fails with the rest taken at the cells' west faces instead of
+    their centres (4.2e-2 and 2.7e-2; the whole moment 1.9e-3 off, inside the bound above:
+    planted once)."""
     state = JournalState(eps=0.6, eps_dot=30.0, gamma=0.3, gamma_dot=0.0, omega=250.0)
     rate = (0.05, 0.02)
-    fe = solve_reynolds(B, state, 120, 20, "P2", "none", tilt=TILT, tilt_rate=rate)
-    coarse, fine = (fvm_reynolds(B, state, 120 * k, 20 * k, "none", tilt=TILT,
-                                 tilt_rate=rate) for k in (1, 2))
+
+    def films(solve, *mesh):
+        return (solve(B, state, *mesh, "none", tilt=TILT, tilt_rate=rate),
+                solve(B, state, *mesh, "none", tilt=TILT))
+    fe = films(solve_reynolds, 120, 20, "P2")
+    coarse, fine = (films(fvm_reynolds, 120 * k, 20 * k) for k in (1, 2))
     for name in ("force", "moment"):
-        a, b = np.array(getattr(coarse, name)), np.array(getattr(fine, name))
-        extrapolated = b + (b - a) / 3.0
-        ref = np.array(getattr(fe, name))
-        assert np.abs(extrapolated - ref).max() <= 2e-3 * np.abs(ref).max(), name
+        def whole_and_rate(sols):
+            moving, still = (np.array(getattr(s, name)) for s in sols)
+            return moving, moving - still
+        for a, b, ref in zip(*map(whole_and_rate, (coarse, fine, fe))):
+            extrapolated = b + (b - a) / 3.0
+            assert np.abs(extrapolated - ref).max() <= 2e-3 * np.abs(ref).max(), name
 
 
 def test_equilibrium_with_a_prescribed_misalignment():
