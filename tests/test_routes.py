@@ -113,15 +113,17 @@ def test_the_light_path_is_the_whole_film(cavitation, options):
 
 
 def test_the_thermal_film_refuses_what_it_does_not_use():
-    """tol with the JFO thermal film (its inner JFO films have no projected iteration), and
-    the accuracy keywords in the thermal designer functions, are refused by name."""
+    """tol with the JFO thermal film (its inner JFO films have no projected iteration), a
+    start in the thermal equilibrium (it starts from its own isothermal position) and a
+    model with no thermal film, are refused by name (rtol with a thermal film is a mesh
+    search: tests/test_thd_accuracy.py)."""
     from bearingfem import coefficients, equilibrium
     with pytest.raises(ValueError, match="tol"):
         solve_reynolds(B, S, 24, 4, "P1", "jfo", grooves=G, lubricant=VG32, thermal=HOT,
                        tol=1e-9)
-    with pytest.raises(ValueError, match="rtol"):
+    with pytest.raises(ValueError, match="start: not taken with thermal="):
         equilibrium(B, (0.0, -20.0), 250.0, "fem", grooves=G, lubricant=VG32, thermal=HOT,
-                    rtol=1e-3)
+                    start=(0.5, 0.5))
     with pytest.raises(ValueError, match="model 'fem'"):
         coefficients(B, S, "short", grooves=G, lubricant=VG32, thermal=HOT)
 
