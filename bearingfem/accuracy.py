@@ -55,7 +55,7 @@ from .caches import kept
 from .errors import ConvergenceError
 
 __all__ = ["AccuracyRecord", "solve_to_tolerance", "refine_to_tolerance", "check_rtol",
-           "refuse_rtol", "refuse_estimate",
+           "refuse_rtol", "refuse_estimate", "check_estimate",
            "check_no_mesh", "nominal_order", "force_difference", "SAFETY", "RTOL_RANGE", "clear_memo",
            "film_to_tolerance", "estimate_error", "estimate_at", "grid_multiple",
            "groove_multiple", "start_mesh", "search_grading", "GRADING_STRENGTH",
@@ -152,6 +152,19 @@ def refuse_estimate(estimate, reason: str) -> None:
     double their cost and be dropped unseen."""
     if estimate is not None and estimate is not False:
         raise ValueError(f"estimate={estimate!r} is not taken here: {reason}")
+
+
+def check_estimate(estimate) -> bool:
+    """``estimate`` as a bool (None: False), or ValueError: a tolerance given there by
+    mistake (``estimate=1e-3`` for ``rtol=1e-3``) was taken as True and estimated the
+    default mesh."""
+    if estimate is None:
+        return False
+    if not isinstance(estimate, (bool, np.bool_)):
+        raise ValueError(f"estimate must be True or False, got {estimate!r} (a requested "
+                         "accuracy is rtol=)")
+    return bool(estimate)
+
 
 def check_no_mesh(n_theta=None, n_z=None, hint: str = "") -> None:
     """ValueError naming n_theta and/or n_z when given (not None) beside ``rtol``: the

@@ -285,6 +285,21 @@ def test_designer_functions_refuse_a_mesh_beside_rtol(mesh):
         coefficients(B1, s, "fem", rtol=1e-2, **mesh)
 
 
+@pytest.mark.parametrize("estimate", [1e-3, "yes", 1])
+def test_estimate_given_other_than_true_or_false_is_refused_by_name(estimate):
+    """estimate is a switch: a tolerance typed there (estimate=1e-3 for rtol=1e-3) was
+    taken as True and estimated the default mesh unseen; equilibrium, coefficients and
+    design_chart refuse it naming estimate before any film. Fails with equilibrium's check
+    removed (1e-3 estimated the default 120 x 20: no error; planted)."""
+    from bearingfem.design import design_chart
+    s = JournalState(eps=0.6, omega=250.0)
+    for call in (lambda: equilibrium(B1, (0.0, -1000.0), 250.0, "fem", estimate=estimate),
+                 lambda: coefficients(B1, s, "fem", estimate=estimate),
+                 lambda: design_chart(B1, 250.0, [1.0], "fem", estimate=estimate)):
+        with pytest.raises(ValueError, match="estimate must be True or False.*rtol="):
+            call()
+
+
 def test_the_search_logs_its_progress_and_prints_nothing(capfd, caplog):
     """The library reports each mesh pair of a search at INFO on bearingfem.accuracy (what
     the command line shows) and writes nothing to stdout or stderr itself."""

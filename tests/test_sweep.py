@@ -373,16 +373,18 @@ def test_film_and_design_cases_report_their_force_error():
 def test_a_mechanism_case_keeps_its_scenes_rtol_unless_it_gives_a_mesh():
     """A scene asking for an accuracy (rtol in [effects.lubrication]) keeps it in a case
     that varies another film option (cavitation here): the row reports film_rtol and the
-    run's film_force_error (within the request on this short run: measured 3.4e-3). A case
-    that gives the mesh runs on it, without rtol. Fails with the case's lubrication built
-    without the scene's rtol (the model's default 120 x 20 mesh unseen; as before)."""
+    run's film_force_error (within the request on this short run: measured 3.6e-2 at rtol
+    0.1; 3.4e-3 at 1e-2, whose search took 5 s of the test's 8). A case that gives the
+    mesh runs on it, without rtol. Fails with the case's lubrication built without the
+    scene's rtol (the model's default 120 x 20 mesh unseen; as before) and with the
+    scene's rtol kept beside the case's mesh (refused: both given; planted)."""
     from mechanism.scene import read_toml, scene_path
     data = read_toml(scene_path("scenes/paper-short-fem.toml"), "scene")
     lub = data["effects"]["lubrication"]
     lub.pop("n_theta"), lub.pop("n_z")
-    lub["rtol"] = 1e-2
+    lub["rtol"] = 0.1
     row = run_case("mechanism", {"turns": 0.01, "cavitation": "gumbel"}, data)
-    assert row["status"] == "completed" and row["film_rtol"] == 1e-2
-    assert 0.0 < row["film_force_error"] <= 1e-2
+    assert row["status"] == "completed" and row["film_rtol"] == 0.1
+    assert 0.0 < row["film_force_error"] <= 0.1
     meshed = run_case("mechanism", {"turns": 0.01, "n_theta": 48, "n_z": 4}, data)
     assert meshed["status"] == "completed" and "film_rtol" not in meshed

@@ -84,6 +84,10 @@ def test_the_thermal_equilibriums_force_tolerance_is_xtol():
      "n_theta is not taken with rtol"),
     (lambda: equilibrium(BEARING, LOAD, OMEGA, "fem", rtol=0.5, **THERMAL),
      r"rtol must lie in \[1e-06, 0.1\]"),
+    (lambda: equilibrium(BEARING, LOAD, OMEGA, "short", rtol=1e-2, **THERMAL),
+     "a thermal film needs model 'fem', got 'short'"),
+    (lambda: equilibrium(BEARING, LOAD, OMEGA, "fem", estimate=1e-2, **THERMAL),
+     "estimate must be True or False"),
     (lambda: equilibrium(BEARING, LOAD, OMEGA, "fem", start=JournalState(0.5, omega=OMEGA),
                          **THERMAL), "start: not taken with thermal="),
     (lambda: coefficients(BEARING, JournalState(0.6, omega=OMEGA), "fem", eps_error=1e-3,
@@ -94,7 +98,9 @@ def test_the_thermal_equilibriums_force_tolerance_is_xtol():
 def test_a_thermal_tolerance_given_wrongly_is_refused_by_name(call, needle):
     """Each refusal names the parameter before any work (a thermal film would take
     seconds): rtol where the function's tolerance is xtol, a mesh or a start it cannot
-    take, eps_error without an estimate to add it to."""
+    take, eps_error without an estimate to add it to, a model other than "fem" (with rtol
+    it was named as rtol's "model 'short' has no mesh"; fails with equilibrium's model
+    check after the search's, planted), estimate other than True or False."""
     with pytest.raises(ValueError, match=needle):
         call()
 

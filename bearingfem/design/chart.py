@@ -16,7 +16,8 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ..accuracy import estimate_at, estimate_error, nominal_order, refuse_rtol
+from ..accuracy import (check_estimate, estimate_at, estimate_error, nominal_order,
+                        refuse_rtol)
 from ..bearing import Bearing, JournalState, check_finite, check_turn_angle
 from ..errors import ConvergenceError
 from ..fe.mesh import GRADING_MAX
@@ -147,9 +148,7 @@ def design_chart(bearing: Bearing, omega: float, sommerfeld=CHART_SOMMERFELD,
         raise ValueError(f"xtol must lie in (0, 1e-3), got {xtol!r}: Newton's tolerance on "
                          "each point's equilibrium")
     S = _sommerfeld_numbers(sommerfeld)
-    if estimate is not True and estimate is not False:
-        raise ValueError(f"estimate must be True or False, got {estimate!r}")
-    if not estimate:
+    if not check_estimate(estimate):
         return _walk(bearing, omega, S, m, opts, direction, eps_max, xtol, model)
     if not {"n_theta", "n_z"} <= set(m.defaults):
         raise ValueError(f"estimate=True is for film models on a mesh (options n_theta, "

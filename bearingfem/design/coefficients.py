@@ -28,6 +28,7 @@ from dataclasses import replace
 
 import numpy as np
 
+from ..accuracy import check_estimate
 from ..bearing import Bearing, JournalState, check_finite
 from ..fe.sensitivity import fe_tilt_coefficients
 from ..fields import check_tilt
@@ -75,6 +76,7 @@ def coefficients(bearing: Bearing, state: JournalState, model: str = "fem",
     """
     check_inputs(bearing, state)
     check_choice("frame", frame, FRAMES)
+    estimate = check_estimate(estimate)
     if options.get("thermal") is not None:     # the thermal film (bearingfem.design.thermal)
         if model != "fem":
             raise ValueError(f"a thermal film needs model 'fem', got {model!r}")

@@ -24,7 +24,7 @@ from dataclasses import replace
 import numpy as np
 from scipy.optimize import brentq, root
 
-from ..accuracy import check_rtol, refuse_rtol
+from ..accuracy import check_estimate, check_rtol, refuse_rtol
 from ..bearing import Bearing, JournalState, check_finite, check_surface_speed
 from ..errors import ConvergenceError, LoadCapacityError
 from ..reynolds import solve_reynolds
@@ -86,7 +86,10 @@ def equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
         isothermal film's (P1 unless an ``element`` is given); ``start`` is refused
     """
     check_surface_speed(bearing.radius, check_finite("omega", omega))
+    estimate = check_estimate(estimate)
     if options.get("thermal") is not None:     # the thermal film (bearingfem.design.thermal)
+        if model != "fem":     # named before the search's own "no mesh" refusal of rtol
+            raise ValueError(f"a thermal film needs model 'fem', got {model!r}")
         if start is not None:
             raise ValueError("start: not taken with thermal= (the thermal equilibrium starts "
                              "from the supply temperature's isothermal one)")
