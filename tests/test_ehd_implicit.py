@@ -421,9 +421,13 @@ def test_the_seed_pin_runs_as_with_the_states_film():
     """The seed pin at 250 rad/s, 1 % of a turn from a centred start, 24 x 4, rough (sigma
     0.2 um), 2 um crown: the implicit step against the whole deflection integrated as
     states (FullStateEHD, the integrator's error control on w): peak eps to 2e-3 and least
-    film to 5e-4 c (measured 8.5e-4 and 9e-5 c: the backward Euler step's O(dt) error,
-    which the integrator does not control), every accepted step recorded. Fails with the bush's
-    rate dropped from the squeeze."""
+    film to 3e-3 c, every accepted step recorded. Measured at the test's rtol 1e-6: 8.5e-4
+    and 9e-5 c; the least film's bound is the backward Euler step's O(dt) error, which the
+    integrator does not control and any change of the steps re-samples: 1.7e-3 c and
+    2.0e-3 c from the states film at rtol 1e-7 and 1e-8 (docs/ehd-states.md, "Why 1.74x
+    the steps"). Fails with the bush's rate halved in the squeeze (peak eps 1.2512 against
+    1.2917, least film -0.07 um against 1.47 um); with the rate dropped the run does not
+    finish in 15 min."""
     from bearingfem.contact import Roughness
     from bearingfem.fields import EdgeProfile
     from benchmarks.ehd_run import scene
@@ -438,7 +442,7 @@ def test_the_seed_pin_runs_as_with_the_states_film():
     states, implicit = runs["states"], runs["implicit"]
     assert not implicit.partial and len(implicit.film_record) == implicit.stats["steps"]
     assert abs(implicit.eps.max() - states.eps.max()) < 2e-3 * states.eps.max()
-    assert abs(implicit.film_min.min() - states.film_min.min()) < 5e-4 * 20e-6
+    assert abs(implicit.film_min.min() - states.film_min.min()) < 3e-3 * 20e-6
 
 
 def test_a_ctrl_c_keeps_the_steps_taken(ctrl_c_at_film_force):
