@@ -185,9 +185,16 @@ class Thermal:
         :data:`~bearingfem.oil_range.LEAST_KELVIN` (an oil's; or one without a reference
         temperature) a temperature below it is degC typed for K (40.0 for 313.15 K) and
         refused, naming it; a law referenced below it (a cryogen's: liquid nitrogen's at
-        77-90 K) takes any temperature > 0 K. The supply temperature is also refused where
-        the lubricant's own law gives no film's viscosity there (non-finite, or above
-        :data:`~bearingfem.bearing.PLAUSIBLE`'s below the oil range): ValueError naming it."""
+        77-90 K) takes any temperature > 0 K.
+
+        The supply temperature is refused, naming it, where the lubricant's own law gives
+        no viscosity a film takes: none (outside
+        :attr:`~bearingfem.lubricant.Lubricant.temperature_range`), or more than any
+        :class:`~bearingfem.bearing.Bearing` takes (:data:`~bearingfem.bearing.PLAUSIBLE`,
+        10 Pa s), at any temperature: the film starts from the oil at its supply, and the
+        equilibrium's isothermal start is a Bearing at that viscosity (ISO VG 32 passes
+        10 Pa s at 241.0 K, -32.1 C). This is the one rule; the oil range itself
+        (:data:`~bearingfem.oil_range.OIL_TEMPERATURE_RANGE`) only warns once solved."""
         reference = getattr(lubricant, "temperature", None)
         if reference is None or reference >= LEAST_KELVIN:
             why = (f" with a lubricant referenced at {reference:g} K" if reference is not None
@@ -195,23 +202,19 @@ class Thermal:
             for name in TEMPERATURES:
                 if getattr(self, name) is not None:
                     check_kelvin(name, getattr(self, name), why)
-        # the law's own viscosity at the supply: none (Walther's below ~60 K), or above any
-        # lubricant's below the oil range, where the law is an extrapolation (40 K typed for
-        # 40 C stopped in the solvers: "Factor is exactly singular")
         t = self.supply_temperature
-        with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+        try:
             mu = float(lubricant.viscosity_at(0.0, temperature=t))
-        lo, hi = OIL_TEMPERATURE_RANGE
+        except ValueError:           # outside the law's range: no viscosity there
+            mu = math.nan
         most = PLAUSIBLE["viscosity"][1]
-        if math.isfinite(mu) and mu > 0.0 and not (t < lo and mu > most):
+        if math.isfinite(mu) and 0.0 < mu <= most:
             return
+        lo, hi = OIL_TEMPERATURE_RANGE
         hint = (f": typed in degC? ({t:g} C = {t + CELSIUS:g} K)" if lo <= t + CELSIUS <= hi
                 else "")
-        # within the range any viscosity of the law is taken (ISO VG 32 at -50 C: 232 Pa s),
-        # so the message says where the limit applies
-        what = (f"a viscosity of {mu:g} Pa s below the oil range's {lo:g} K, where its law "
-                f"is extrapolated (at most {most:g} Pa s taken there)"
-                if math.isfinite(mu) and mu > 0.0 else f"no finite viscosity ({mu:g} Pa s)")
+        what = (f"a viscosity of {mu:g} Pa s, more than any bearing's film takes (at most "
+                f"{most:g} Pa s)" if math.isfinite(mu) else "no finite viscosity")
         raise ValueError(f"supply_temperature {t:g} K gives the lubricant {what}{hint}; "
                          "temperatures are in K")
 
