@@ -188,13 +188,14 @@ class Thermal:
         77-90 K) takes any temperature > 0 K.
 
         The supply temperature is refused, naming it, where the lubricant's own law gives
-        no viscosity a film takes: none (outside
-        :attr:`~bearingfem.lubricant.Lubricant.temperature_range`), or more than any
-        :class:`~bearingfem.bearing.Bearing` takes (:data:`~bearingfem.bearing.PLAUSIBLE`,
-        10 Pa s), at any temperature: the film starts from the oil at its supply, and the
-        equilibrium's isothermal start is a Bearing at that viscosity (ISO VG 32 passes
-        10 Pa s at 241.0 K, -32.1 C). This is the one rule; the oil range itself
-        (:data:`~bearingfem.oil_range.OIL_TEMPERATURE_RANGE`) only warns once solved."""
+        no viscosity there (outside
+        :attr:`~bearingfem.lubricant.Lubricant.temperature_range`), or below the oil range
+        (:data:`~bearingfem.oil_range.OIL_TEMPERATURE_RANGE`, where the law is an
+        extrapolation) more than any :class:`~bearingfem.bearing.Bearing` takes
+        (:data:`~bearingfem.bearing.PLAUSIBLE`, 10 Pa s). Inside the range any viscosity of
+        the law is a film's: a cold start (ISO VG 32 fed at -50 C, 232 Pa s) solves, the
+        film heating it; the equilibrium, whose isothermal start is a Bearing at the
+        supply's viscosity, refuses more than 10 Pa s itself."""
         reference = getattr(lubricant, "temperature", None)
         if reference is None or reference >= LEAST_KELVIN:
             why = (f" with a lubricant referenced at {reference:g} K" if reference is not None
@@ -207,14 +208,17 @@ class Thermal:
             mu = float(lubricant.viscosity_at(0.0, temperature=t))
         except ValueError:           # outside the law's range: no viscosity there
             mu = math.nan
-        most = PLAUSIBLE["viscosity"][1]
-        if math.isfinite(mu) and 0.0 < mu <= most:
-            return
         lo, hi = OIL_TEMPERATURE_RANGE
+        most = PLAUSIBLE["viscosity"][1]
+        if math.isfinite(mu) and not (t < lo and mu > most):
+            return
         hint = (f": typed in degC? ({t:g} C = {t + CELSIUS:g} K)" if lo <= t + CELSIUS <= hi
                 else "")
-        what = (f"a viscosity of {mu:g} Pa s, more than any bearing's film takes (at most "
-                f"{most:g} Pa s)" if math.isfinite(mu) else "no finite viscosity")
+        # within the range any viscosity of the law is taken (a film's cold start), so the
+        # message says where the limit applies
+        what = (f"a viscosity of {mu:g} Pa s below the oil range's {lo:g} K, where its law "
+                f"is extrapolated (at most {most:g} Pa s taken there)"
+                if math.isfinite(mu) else "no finite viscosity")
         raise ValueError(f"supply_temperature {t:g} K gives the lubricant {what}{hint}; "
                          "temperatures are in K")
 
