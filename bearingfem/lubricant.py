@@ -58,7 +58,7 @@ from functools import cached_property
 
 import numpy as np
 
-from .errors import OilRangeWarning
+from .errors import OilRangeWarning, TemperatureRangeError
 from .oil_range import (CELSIUS, OIL_TEMPERATURE_RANGE, check_oil_temperature,
                         temperature_range_note)
 
@@ -377,8 +377,8 @@ class Lubricant:
         span = f"({lo:.6g}, {hi:.6g}) K" if hi < math.inf else f"({lo:.6g}, inf) K"
         hint = (f": temperatures are in kelvin ({bad:g} degC = {bad + CELSIUS:g} K)"
                 if math.isfinite(bad) and bad <= lo else "")
-        raise ValueError(f"temperature {bad:g} K is outside {span}, where the oil's "
-                         f"viscosity law gives a finite viscosity{hint}")
+        raise TemperatureRangeError(f"temperature {bad:g} K is outside {span}, where the "
+                                    f"oil's viscosity law gives a finite viscosity{hint}")
 
     def _viscosity_ambient(self, temperature) -> tuple[np.ndarray, np.ndarray]:
         """mu_T [Pa s] at ambient pressure and d ln(mu_T)/dT [1/K] at ``temperature``

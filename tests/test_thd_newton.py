@@ -155,3 +155,18 @@ def test_an_iterate_outside_the_oils_law_is_an_unconverged_newton():
     start.T = np.full_like(start.T, 40.0)
     with pytest.raises(ValueError, match="temperature 40 K is outside"):
         start.solve(STATE)
+
+
+def test_only_the_oils_refusal_becomes_an_unconverged_newton(monkeypatch):
+    """Any other ValueError inside a Newton step (a defect, say a shape) is raised as
+    itself, not dressed as an unconverged solve (fails with the conversion catching every
+    ValueError)."""
+    nw = _newton(CASES[0])
+    nw.steps = 1
+
+    def broken(state):
+        raise ValueError("operands could not be broadcast together")
+    monkeypatch.setattr(nw, "system", broken)
+    with pytest.raises(ValueError, match="broadcast") as caught:
+        nw.solve(STATE)
+    assert not isinstance(caught.value, ConvergenceError)

@@ -45,7 +45,7 @@ import scipy.sparse as sp
 from scipy.linalg import lapack
 from scipy.sparse.linalg import LinearOperator, gmres, splu
 
-from ..errors import ConvergenceError
+from ..errors import ConvergenceError, TemperatureRangeError
 from ..fe.general import general_assembly
 from ..film import film_thickness
 from ..solvers.cavitation import LCPResult
@@ -343,7 +343,7 @@ class ThermalNewton:
                 if self.steps and not self._settle_set(s):
                     small = False          # the set moved: the system on the new set
                     s = self.system(state)
-            except ValueError as err:
+            except TemperatureRangeError as err:
                 if not self.steps:         # the start's: an input, refused as given
                     raise
                 # a step's temperatures where the oil's law has no viscosity (the lubricant
