@@ -1,7 +1,8 @@
 """Errors the toolkit raises besides ``ValueError`` (bad input)."""
 from __future__ import annotations
 
-__all__ = ["ConvergenceError", "LoadCapacityError", "OilRangeWarning"]
+__all__ = ["ConvergenceError", "LoadCapacityError", "OilRangeWarning",
+           "TemperatureRangeError"]
 
 
 class ConvergenceError(RuntimeError):
@@ -64,6 +65,13 @@ class LoadCapacityError(ValueError):
     def __reduce__(self):      # picklable (dask workers send errors back)
         return LoadCapacityError, (self.load, self.capacity, self.eps_max, self.model,
                                    self.mesh)
+
+
+class TemperatureRangeError(ValueError):
+    """A temperature [K] where a lubricant's viscosity law gives no finite viscosity
+    (<= 0 K, NaN, or outside :attr:`bearingfem.lubricant.Lubricant.temperature_range`).
+    A ValueError, as any input refused; typed so that a solver can tell its own iterate
+    leaving the law (a diverged step) from any other ValueError."""
 
 
 class OilRangeWarning(UserWarning):

@@ -54,10 +54,11 @@ import math
 import re
 import warnings
 from dataclasses import dataclass, replace
+from functools import cached_property
 
 import numpy as np
 
-from .errors import OilRangeWarning
+from .errors import OilRangeWarning, TemperatureRangeError
 from .oil_range import (CELSIUS, OIL_TEMPERATURE_RANGE, check_oil_temperature,
                         temperature_range_note)
 
@@ -73,6 +74,8 @@ WALTHER_SHIFT = 0.7                # [mm^2/s] ASTM D341's Z = nu + 0.7
 LN10 = math.log(10.0)
 WALTHER_LEAST = 2.0                # [mm^2/s] D341's simple form holds from here up
 TEMPERATURE_LAWS = ("walther", "exponential")
+LN_MAX = math.log(np.finfo(float).max)     # ln of the largest float, 709.78
+LN_TINY = math.log(np.finfo(float).tiny)   # ln of the least normal float, -708.40
 
 # ISO 3448 grades: the 40 C kinematic viscosity midpoint [mm^2/s] (the grade's number, but
 # for VG 7) and the 100 C viscosity [mm^2/s] of an oil of viscosity index 100 with that
@@ -294,12 +297,11 @@ class Lubricant:
         """The same oil held at ``temperature`` [K]: viscosity mu(T) as its mu0, the same
         pressure laws and properties, no temperature law (what an isothermal film
         takes)."""
-        t = _positive("temperature", temperature, allowed="> 0 [K]")
-        with np.errstate(over="ignore", invalid="ignore"):
-            mu = float(self.viscosity_at(0.0, temperature=t))
-        if not (math.isfinite(mu) and mu > 0.0):     # the law's range, named by its input
-            raise ValueError(f"temperature {t:g} K is outside the oil's viscosity law "
-                             f"(mu(T) = {mu:g} Pa s there)")
+        if isinstance(temperature, bool) or not isinstance(
+                temperature, (int, float, np.floating, np.integer)):
+            raise ValueError(f"temperature must be a number > 0 [K], got {temperature!r}")
+        t = float(temperature)
+        mu = float(self.viscosity_at(0.0, temperature=t))    # refused outside the law's range
         if self.is_thermal:       # the law extrapolated: said, not refused (a hot transient)
             note = temperature_range_note(t, "the oil held at a temperature")
             if note is not None:
@@ -316,12 +318,76 @@ class Lubricant:
             return self.roelands * (math.log(self.viscosity) - ROELANDS_LN_MU_INF) / ROELANDS_P0
         return float(self.barus or 0.0)
 
-    def _viscosity_ambient(self, temperature) -> tuple[np.ndarray, np.ndarray]:
-        """mu_T [Pa s] at ambient pressure and d ln(mu_T)/dT [1/K] at ``temperature``."""
-        if temperature is None or not self.is_thermal:
-            shape = np.shape(temperature) if temperature is not None else ()
-            return np.full(shape, self.viscosity), np.zeros(shape)
+    @cached_property          # once per oil: it bounds every call's temperatures
+    def temperature_range(self) -> tuple[float, float]:
+        """(T_lo, T_hi) [K]: the open range where the temperature law gives a finite
+        viscosity > 0 and a finite slope d mu/dT at ambient pressure (a pressure law
+        multiplies them further); (0, inf) without a law.
+
+        Walther's nu + 0.7 = z = 10^x, x = 10^(A - B log10 T), overflows towards 0 K: T_lo
+        is where its slope d nu/dT = -z ln10 x ln10 B / T, as evaluated (its partial
+        products up to z ln10 x max(1, B, B/T)), reaches the largest float, a fraction of a
+        kelvin above where nu itself does (x = log10 of the largest float, 308.25); it has
+        no upper end (nu -> 0.3 mm^2/s). The exponential law mu0 exp(x), x = -beta (T - T0),
+        overflows where exp(x), mu or beta mu reaches the largest float and vanishes where
+        exp(x) or mu falls below the least normal float (T_hi). Where an ISO VG oil's law
+        is its measured chart is :data:`~bearingfem.oil_range.OIL_TEMPERATURE_RANGE`; this
+        is only where the law's numbers exist."""
+        if self.walther is not None:
+            a, b = self.walther
+            # Newton on u = log10 T for ln(z ln10 x max(1, B, B/T)) = LN_MAX, x = 10^(A - B u)
+            # (z = 10^x): from where z overflows (x ln10 = LN_MAX) it moves up, a few steps
+            u = (a - math.log10(LN_MAX / LN10)) / b
+            for _ in range(30):
+                x = 10.0 ** (a - b * u)
+                # the slope's largest partial product as evaluated: z ln10 x max(1, B, B/T)
+                last = max(0.0, math.log(b), math.log(b) - u * LN10)
+                f = x * LN10 + math.log(LN10 * x) + last - LN_MAX
+                df = -b * LN10 * (x * LN10 + 1.0) - (LN10 if last > max(0.0, math.log(b))
+                                                     else 0.0)
+                step = f / df
+                u -= step
+                if abs(step) < 1e-14 * abs(u):
+                    break
+            # the rounding of the law's evaluation (a few ulp of its 709 in the exponent)
+            return 10.0 ** u * (1.0 + 1e-12), math.inf
+        beta = self.temperature_exponent
+        if beta:                  # mu = mu0 exp(x), x = -beta (T - T0)
+            t0, ln_mu0 = self.temperature, math.log(self.viscosity)
+            # exp(x), mu and beta mu floats; exp(x) and mu at least the least normal float
+            lo = t0 - (LN_MAX - max(0.0, ln_mu0, ln_mu0 + math.log(beta))) / beta
+            hi = t0 + (min(0.0, ln_mu0) - LN_TINY) / beta
+            return max(lo, 0.0), hi
+        return 0.0, math.inf
+
+    def _temperature(self, temperature) -> np.ndarray:
+        """``temperature`` [K] as an array, refused (ValueError) where the law has no
+        finite viscosity: <= 0 K, NaN, or outside :attr:`temperature_range`."""
         t = np.asarray(temperature, dtype=float)
+        lo, hi = self.temperature_range
+        if t.size == 0:
+            return t
+        # one pass over the points (a thermal film's every quadrature point); NaN fails it
+        least = float(t.min()) if hi == math.inf else None
+        if least is not None and least > lo:
+            return t
+        if least is None and float(t.min()) > lo and float(t.max()) < hi:
+            return t
+        bad = t[~((t > lo) & (t < hi))].flat[0]
+        span = f"({lo:.6g}, {hi:.6g}) K" if hi < math.inf else f"({lo:.6g}, inf) K"
+        hint = (f": temperatures are in kelvin ({bad:g} degC = {bad + CELSIUS:g} K)"
+                if math.isfinite(bad) and bad <= lo else "")
+        raise TemperatureRangeError(f"temperature {bad:g} K is outside {span}, where the "
+                                    f"oil's viscosity law gives a finite viscosity{hint}")
+
+    def _viscosity_ambient(self, temperature) -> tuple[np.ndarray, np.ndarray]:
+        """mu_T [Pa s] at ambient pressure and d ln(mu_T)/dT [1/K] at ``temperature``
+        (refused outside :attr:`temperature_range`)."""
+        if temperature is None:
+            return np.full((), self.viscosity), np.zeros(())
+        t = self._temperature(temperature)
+        if not self.is_thermal:
+            return np.full(t.shape, self.viscosity), np.zeros(t.shape)
         if self.temperature_exponent is not None:
             beta = self.temperature_exponent
             return self.viscosity * np.exp(-beta * (t - self.temperature)), \

@@ -24,7 +24,9 @@ CELSIUS = 273.15                   # [K]
 #: at_temperature outside it warns (:func:`temperature_range_note`): other fluids, hot
 #: synthetic oils and cryogens, have their own laws, so a Thermal's temperatures are
 #: refused against an oil only below :data:`LEAST_KELVIN` and a law's points only at or
-#: below 0 K.
+#: below 0 K. A supply temperature is refused where the law's viscosity is none, or below
+#: this range more than a Bearing takes (:meth:`bearingfem.thermal.Thermal.check_fluid`);
+#: a law's numbers exist only in Lubricant.temperature_range.
 OIL_TEMPERATURE_RANGE = (CELSIUS - 50.0, CELSIUS + 200.0)
 #: [K] the least temperature a Thermal takes for an oil (-73.15 C): a fluid whose
 #: temperature law is referenced at or above it (Lubricant.temperature, or no law). Below

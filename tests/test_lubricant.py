@@ -1,5 +1,6 @@
 """Lubricant: pressure-viscosity and pressure-density laws, their limits and derivatives."""
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -321,3 +322,100 @@ def test_an_oil_temperature_in_the_other_unit_is_named_as_the_slip():
         check_oil_temperature("oil_temperature", 40)
     with pytest.raises(ValueError, match=r"got 1000$"):
         check_oil_temperature("--oil-temperature", 1000, unit="degC")
+
+
+# -- the temperature laws' range --------------------------------------------------------
+LARGEST = np.finfo(float).max
+
+
+def _methods(oil, t):
+    """Every public method taking a temperature, at ``t`` [K]."""
+    return (lambda: oil.viscosity_at(1e7, temperature=t),
+            lambda: oil.viscosity_derivative(1e7, temperature=t),
+            lambda: oil.viscosity_temperature_derivative(t, 1e7),
+            lambda: oil.viscosity_and_slopes(1e7, t),
+            lambda: oil.kinematic_viscosity_at(t),
+            lambda: oil.at_temperature(t))
+
+
+@pytest.mark.parametrize("grade", [7, 32, 1500])
+def test_walther_range_starts_where_the_law_overflows(grade):
+    """Walther's nu + 0.7 = 10^10^(A - B log10 T) overflows where 10^(A - B log10 T) is
+    log10 of the largest float: T* = 10^((A - log10 log10 max) / B), by hand from A and B
+    (ISO VG 32: 76.35 K). The range starts above it by where the slope's product
+    overflows (measured 0.29-0.35 %, asserted < 1 %); just inside, every method gives
+    finite numbers, the viscosity Walther's formula by hand in Python floats to 1e-11
+    (its exponent 709 carries the round-off of 10^(A - B log10 T): measured 2e-13); at
+    and below T* the formula by hand overflows and every method is refused with no numpy
+    warning. Fails with the range's Newton left out (T* itself: the slope is -inf just
+    above it) and with the check removed (inf and numpy's overflow warnings)."""
+    oil = Lubricant.iso_vg(grade)      # no pressure law: it multiplies mu_T past the largest
+    a, b = oil.walther
+    t_star = 10.0 ** ((a - math.log10(math.log10(LARGEST))) / b)
+    lo, hi = oil.temperature_range
+    assert hi == math.inf and t_star < lo < 1.01 * t_star
+    with pytest.raises(OverflowError):
+        10.0 ** 10.0 ** (a - b * math.log10(t_star * (1.0 - 1e-12)))
+    with np.errstate(over="raise", invalid="raise", divide="raise"), \
+            warnings.catch_warnings():      # a numpy warning fails the test
+        warnings.simplefilter("ignore", OilRangeWarning)     # at_temperature's, below 223 K
+        inside = np.array([lo * (1.0 + 1e-15), 1.05 * lo, 100.0, 313.15])
+        for t in inside:
+            for call in _methods(oil, t):
+                out = call()
+                values = (out.viscosity,) if isinstance(out, Lubricant) else np.ravel(out)
+                assert np.all(np.isfinite(values)), (t, out)
+            hand = 1e-6 * oil.mass_density * (10.0 ** 10.0 ** (a - b * math.log10(t)) - 0.7)
+            assert float(oil.viscosity_at(temperature=t)) == pytest.approx(hand, rel=1e-11)
+        for t in (t_star, 0.5 * (t_star + lo), 40.0, 1.0):
+            for call in _methods(oil, np.array([313.15, t]))[:-1] + _methods(oil, t)[-1:]:
+                with pytest.raises(ValueError, match=rf"^temperature {t:g} K is outside "
+                                                     rf"\({lo:.6g}, inf\) K, where the oil's"):
+                    call()
+
+
+@pytest.mark.parametrize("t, hint", [
+    (40, r"40 K is outside .*: temperatures are in kelvin \(40 degC = 313.15 K\)$"),
+    (0.0, r"0 K is outside .*: temperatures are in kelvin \(0 degC = 273.15 K\)$"),
+    (-20.0, r"-20 K is outside .*: temperatures are in kelvin \(-20 degC = 253.15 K\)$"),
+    (math.nan, r"nan K is outside .* finite viscosity$"),
+    (-math.inf, r"-inf K is outside .* finite viscosity$")])
+def test_a_temperature_without_the_laws_viscosity_is_refused_naming_it(t, hint):
+    """40 typed for 40 C gave inf with numpy's overflow and invalid warnings, <= 0 K NaN
+    from log10: each method refuses it, naming the temperature, its value, the law's
+    range and the kelvin slip, with no numpy warning; <= 0 K and NaN also for the
+    exponential law and an oil without a temperature law (fails with the check removed)."""
+    exponential = Lubricant.two_point((313.15, 0.03), (373.15, 0.005), density=870.0,
+                                      specific_heat=1950.0, conductivity=0.13,
+                                      law="exponential")     # its range from 0 K: 40 K taken
+    for oil in (Lubricant.iso_vg(32),) + ((exponential, Lubricant(0.03, mass_density=870.0)) if not t > 0
+                                        else ()):
+        with np.errstate(over="raise", invalid="raise", divide="raise"):
+            for call in _methods(oil, t):
+                with pytest.raises(ValueError, match=rf"^temperature {hint}"):
+                    call()
+
+
+def test_exponential_range_is_where_its_viscosity_and_slope_are_floats():
+    """mu0 exp(x), x = -beta (T - T0), mu0 = 0.03 Pa s < 1: exp(x) reaches the largest
+    float at T_lo = T0 - ln max / beta (beta mu0 < mu0 < 1) and mu the least normal float
+    at T_hi = T0 + (ln mu0 - ln tiny) / beta, by hand (beta 5 1/K: 171.2 K; ISO-like beta
+    0.03: T_lo < 0, the range from 0 K). Inside at 1e-12 of either end the numbers are
+    finite, mu > 0; outside refused (fails with T_hi's sign flipped, and with T_lo where
+    beta mu overflows: exp(x) overflows first)."""
+    tiny = np.finfo(float).tiny
+    for beta in (5.0, 0.03):
+        oil = Lubricant(0.03, temperature=313.15, temperature_exponent=beta,
+                        mass_density=870.0)
+        t_lo = 313.15 - math.log(LARGEST) / beta
+        t_hi = 313.15 + (math.log(0.03) - math.log(tiny)) / beta
+        lo, hi = oil.temperature_range
+        assert lo == pytest.approx(max(t_lo, 0.0), rel=1e-12, abs=0.0)
+        assert hi == pytest.approx(t_hi, rel=1e-12)
+        with np.errstate(over="raise", invalid="raise", divide="raise"):
+            ends = np.array([hi * (1.0 - 1e-12)] + ([lo * (1.0 + 1e-12)] if lo > 0 else []))
+            mu, _, d_t = oil.viscosity_and_slopes(0.0, ends)
+            assert np.all(np.isfinite(d_t)) and np.all(mu > 0.0)
+            for t in [hi * (1.0 + 1e-9)] + ([lo * (1.0 - 1e-9)] if lo > 0 else [0.0]):
+                with pytest.raises(ValueError, match=r"^temperature .* is outside"):
+                    oil.viscosity_at(temperature=t)

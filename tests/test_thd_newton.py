@@ -138,3 +138,35 @@ def test_warm_start_lands_on_the_cold_answer_and_unconverged_raises():
     with pytest.raises(ValueError, match="thermal.bush"):
         solve_thd_newton(BEARING, STATE, 24, 6, lubricant=VG32,
                          thermal=_conducting("ring"), grooves=GROOVES)
+
+
+def test_an_iterate_outside_the_oils_law_is_an_unconverged_newton():
+    """A Newton step whose temperatures leave the oil's law (ISO VG 32 below 76.57 K,
+    where Walther's law overflows: its viscosity was inf, the next step NaN and the solve
+    ConvergenceError) stays a ConvergenceError naming the temperature the lubricant
+    refuses, not the lubricant's ValueError; the start's temperatures, an input, are
+    refused as given (fails with the Newton's conversion removed)."""
+    nw = _newton(CASES[0])
+    nw.steps, nw.T = 1, np.full_like(nw.T, 40.0)         # as a step would leave them
+    with pytest.raises(ConvergenceError, match=r"coupled Newton\) did not converge at "
+                                               r"eps = .*: temperature 40 K is outside"):
+        nw.solve(STATE)
+    start = _newton(CASES[0])
+    start.T = np.full_like(start.T, 40.0)
+    with pytest.raises(ValueError, match="temperature 40 K is outside"):
+        start.solve(STATE)
+
+
+def test_only_the_oils_refusal_becomes_an_unconverged_newton(monkeypatch):
+    """Any other ValueError inside a Newton step (a defect, say a shape) is raised as
+    itself, not dressed as an unconverged solve (fails with the conversion catching every
+    ValueError)."""
+    nw = _newton(CASES[0])
+    nw.steps = 1
+
+    def broken(state):
+        raise ValueError("operands could not be broadcast together")
+    monkeypatch.setattr(nw, "system", broken)
+    with pytest.raises(ValueError, match="broadcast") as caught:
+        nw.solve(STATE)
+    assert not isinstance(caught.value, ConvergenceError)

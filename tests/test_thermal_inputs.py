@@ -59,7 +59,7 @@ def test_thermal_temperatures_take_any_fluid_and_refuse_degc_for_an_oil(name):
     the range and the slip. A cryogen's law (liquid nitrogen's, 77-90 K) takes 80 K. The
     ISO VG oil of --oil-temperature keeps its -50 to 200 C."""
     base = dict(supply_temperature=SUPPLY, model="conducting")
-    # a supply below the oil range is refused by the oil's own viscosity there (the test
+    # a supply below the oil range is refused by the oil's own viscosity there (the tests
     # below): -50 C, the range's end, is its coldest
     for value in ((573.15, 223.15) if name == "supply_temperature" else (573.15, 216.65, 200.0)):
         thermal = Thermal(**dict(base, **{name: value}))
@@ -143,7 +143,9 @@ def test_supply_temperature_typed_in_celsius_is_refused_before_any_work():
     gave a non-finite temperature (a film without flow through it?)", the equilibrium in a
     Bearing's "typed in cSt?". A cold start inside the oil range and a cryogen's own law
     are taken; a supply in [200 K, the oil range) where the law's viscosity exceeds any
-    lubricant's is refused by the law's own number."""
+    lubricant's is refused by the law's own number. The equilibrium refuses a supply
+    above a Bearing's 10 Pa s by name (its isothermal start's Bearing refused -50 C as
+    "typed in cSt?")."""
     from bearingfem.design import equilibrium
     oil = Lubricant.iso_vg(32)
     for t in (40.0, 150.0):
@@ -154,10 +156,10 @@ def test_supply_temperature_typed_in_celsius_is_refused_before_any_work():
         with pytest.raises(ValueError, match=f"supply_temperature must lie in .* got {t!r}"):
             equilibrium(BEARING, (0.0, -2000.0), STATE.omega, "fem", n_theta=24, n_z=4,
                         grooves=GROOVES, lubricant=oil, thermal=th)
-    Thermal(supply_temperature=223.15).check_fluid(oil)       # -50 C: 232 Pa s
     # 200 K, below the oil range: the ISO VG 460 law's viscosity there exceeds any oil's
     heavy = Lubricant.iso_vg(460)
     assert heavy.viscosity_at(0.0, temperature=200.0) > 1e4
+    Thermal(supply_temperature=223.15).check_fluid(oil)       # -50 C: 232 Pa s
     with pytest.raises(ValueError, match=r"supply_temperature 200 K gives the lubricant a "
                                          r"viscosity of .* below the oil range's .* "
                                          r"typed in degC\? \(200 C = "):
@@ -168,6 +170,47 @@ def test_supply_temperature_typed_in_celsius_is_refused_before_any_work():
                                          r"viscosity of 239.8[0-9]* Pa s below the oil range's "
                                          r"223.15 K, where its law is extrapolated"):
         Thermal(supply_temperature=223.0).check_fluid(oil)
+    cold = Thermal(supply_temperature=223.15, model="adiabatic")
+    with pytest.raises(ValueError, match=r"supply_temperature 223.15 K .* the equilibrium's "
+                                         r"isothermal start takes \(at most 10 Pa s"):
+        equilibrium(BEARING, (0.0, -2000.0), STATE.omega, "fem", n_theta=24, n_z=4,
+                    grooves=GROOVES, lubricant=oil, thermal=cold)
     cryogen = Lubricant.two_point((77.0, 1.6e-4), (90.0, 1.2e-4), density=800.0,
                                   specific_heat=2000.0, conductivity=0.14, law="exponential")
     Thermal(supply_temperature=77.0).check_fluid(cryogen)
+
+
+def test_a_cold_start_inside_the_oil_range_solves_and_the_equilibrium_refuses_it():
+    """ISO VG 32 fed at -50 C (232 Pa s at the supply, the oil range's end) is a cold
+    start the thermal film at a given position solves: the fixed point and the coupled
+    Newton, two methods, agree on the temperatures within the fixed point's
+    temperature_tol 1e-6 K (1.2e-8 K measured at 24 x 4; T_max 349.36 K). The
+    equilibrium, whose isothermal start is a Bearing at the supply's viscosity, refuses
+    a supply above a Bearing's 10 Pa s by name before any work, from Walther's line
+    inverted by hand, T = 10^((A - log10 log10(nu + 0.7)) / B) at nu = 10 Pa s / rho,
+    1e-9 below it (the law's round-off ~1e-15). Fails with the supply refused above
+    10 Pa s at any temperature (the film's cold start refused), and with the
+    equilibrium's check removed (its Bearing's "typed in cSt?")."""
+    from bearingfem.design import equilibrium
+    from bearingfem.routes.thd_newton import solve_thd_newton
+    cold = Thermal(supply_temperature=223.15, model="adiabatic")
+    assert VG32.viscosity_at(0.0, temperature=223.15) > 200.0
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", OilRangeWarning)
+        fixed = solve_reynolds(BEARING, STATE, 24, 4, grooves=GROOVES, lubricant=VG32,
+                               thermal=cold)
+        newton = solve_thd_newton(BEARING, STATE, 24, 4, lubricant=VG32, thermal=cold,
+                                  grooves=GROOVES)
+    assert np.max(np.abs(fixed.temperature - newton.temperature)) < 1e-6
+    assert fixed.temperature_max > 340.0
+    a, b = VG32.walther
+    nu = 1e6 * 10.0 / VG32.mass_density                      # [mm^2/s]
+    limit = 10.0 ** ((a - math.log10(math.log10(nu + 0.7))) / b)      # 241.0 K
+    for t in (limit * (1.0 - 1e-9), 223.15):
+        with pytest.raises(ValueError, match=rf"supply_temperature {t:g} K gives the "
+                                             r"lubricant a viscosity of .* more than the "
+                                             r"equilibrium's isothermal start takes "
+                                             r"\(at most 10 Pa s"):
+            equilibrium(BEARING, (0.0, -2000.0), STATE.omega, "fem", n_theta=24, n_z=4,
+                        grooves=GROOVES, lubricant=VG32,
+                        thermal=Thermal(supply_temperature=t, model="adiabatic"))

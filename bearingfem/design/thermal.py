@@ -34,7 +34,7 @@ from dataclasses import replace
 import numpy as np
 
 from ..accuracy import refuse_estimate, refuse_rtol
-from ..bearing import Bearing, JournalState, check_finite
+from ..bearing import PLAUSIBLE, Bearing, JournalState, check_finite
 from ..errors import ConvergenceError
 from ..reynolds import solve_reynolds
 from ..fields import FilmFields
@@ -206,9 +206,17 @@ def thd_equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
                          f"{omega!r}")
     check_thermal(lubricant, thermal, JournalState(0.5, omega=omega), mesh["cavitation"],
                   mesh["element"])
-    # the isothermal equilibrium at the supply temperature starts the search
-    cold = replace(bearing, viscosity=float(lubricant.viscosity_at(
-        temperature=thermal.supply_temperature)))
+    # the isothermal equilibrium at the supply temperature starts the search: a Bearing at
+    # the supply's viscosity, refused here by name above a Bearing's (a film at a given
+    # position takes a colder start: Thermal.check_fluid)
+    mu_supply = float(lubricant.viscosity_at(temperature=thermal.supply_temperature))
+    most = PLAUSIBLE["viscosity"][1]
+    if mu_supply > most:
+        raise ValueError(f"supply_temperature {thermal.supply_temperature:g} K gives the "
+                         f"lubricant a viscosity of {mu_supply:g} Pa s, more than the "
+                         f"equilibrium's isothermal start takes (at most {most:g} Pa s, a "
+                         "Bearing's); a thermal film at a given position solves it")
+    cold = replace(bearing, viscosity=mu_supply)
     iso_model = "fem-jfo" if mesh["cavitation"] == "jfo" else "fem"
     iso_opts = dict(n_theta=mesh["n_theta"], n_z=mesh["n_z"], grooves=mesh["grooves"])
     if iso_model == "fem":
@@ -310,7 +318,6 @@ def thd_equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
     f_r, f_t = sol.force_local
     film_min, film_min_angle = least_film(bearing, state)
     friction = float(sol.friction_force)   # plain floats, as the isothermal record's
-    mu_supply = float(lubricant.viscosity_at(temperature=thermal.supply_temperature))
     return Equilibrium(
         eps=state.eps, attitude=math.atan2(f_t, -f_r), state=state, load=(wx, wy),
         film_force=tuple(float(f) for f in local_to_inertial(f_r, f_t, state.gamma)),

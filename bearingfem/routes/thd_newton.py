@@ -45,7 +45,7 @@ import scipy.sparse as sp
 from scipy.linalg import lapack
 from scipy.sparse.linalg import LinearOperator, gmres, splu
 
-from ..errors import ConvergenceError
+from ..errors import ConvergenceError, TemperatureRangeError
 from ..fe.general import general_assembly
 from ..film import film_thickness
 from ..solvers.cavitation import LCPResult
@@ -338,10 +338,18 @@ class ThermalNewton:
         docstring); the last assembled system is kept for :meth:`solution`."""
         small = False
         for _ in range(max_iterations + 1):
-            s = self.system(state)
-            if self.steps and not self._settle_set(s):
-                small = False          # the set moved: the system on the new set
+            try:
                 s = self.system(state)
+                if self.steps and not self._settle_set(s):
+                    small = False          # the set moved: the system on the new set
+                    s = self.system(state)
+            except TemperatureRangeError as err:
+                if not self.steps:         # the start's: an input, refused as given
+                    raise
+                # a step's temperatures where the oil's law has no viscosity (the lubricant
+                # refuses them): diverged, as a step with NaN (before, the law's inf gave one)
+                raise ConvergenceError("thermal film (coupled Newton)", self.steps,
+                                       self.change, f"eps = {state.eps:.6g}: {err}") from err
             r = float(np.max(np.abs(s["r_T"][self.free_rows]), initial=0.0))
             self.history.append(r)
             if small:

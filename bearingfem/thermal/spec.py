@@ -185,9 +185,17 @@ class Thermal:
         :data:`~bearingfem.oil_range.LEAST_KELVIN` (an oil's; or one without a reference
         temperature) a temperature below it is degC typed for K (40.0 for 313.15 K) and
         refused, naming it; a law referenced below it (a cryogen's: liquid nitrogen's at
-        77-90 K) takes any temperature > 0 K. The supply temperature is also refused where
-        the lubricant's own law gives no film's viscosity there (non-finite, or above
-        :data:`~bearingfem.bearing.PLAUSIBLE`'s below the oil range): ValueError naming it."""
+        77-90 K) takes any temperature > 0 K.
+
+        The supply temperature is refused, naming it, where the lubricant's own law gives
+        no viscosity there (outside
+        :attr:`~bearingfem.lubricant.Lubricant.temperature_range`), or below the oil range
+        (:data:`~bearingfem.oil_range.OIL_TEMPERATURE_RANGE`, where the law is an
+        extrapolation) more than any :class:`~bearingfem.bearing.Bearing` takes
+        (:data:`~bearingfem.bearing.PLAUSIBLE`, 10 Pa s). Inside the range any viscosity of
+        the law is a film's: a cold start (ISO VG 32 fed at -50 C, 232 Pa s) solves, the
+        film heating it; the equilibrium, whose isothermal start is a Bearing at the
+        supply's viscosity, refuses more than 10 Pa s itself."""
         reference = getattr(lubricant, "temperature", None)
         if reference is None or reference >= LEAST_KELVIN:
             why = (f" with a lubricant referenced at {reference:g} K" if reference is not None
@@ -195,23 +203,22 @@ class Thermal:
             for name in TEMPERATURES:
                 if getattr(self, name) is not None:
                     check_kelvin(name, getattr(self, name), why)
-        # the law's own viscosity at the supply: none (Walther's below ~60 K), or above any
-        # lubricant's below the oil range, where the law is an extrapolation (40 K typed for
-        # 40 C stopped in the solvers: "Factor is exactly singular")
         t = self.supply_temperature
-        with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+        try:
             mu = float(lubricant.viscosity_at(0.0, temperature=t))
+        except ValueError:           # outside the law's range: no viscosity there
+            mu = math.nan
         lo, hi = OIL_TEMPERATURE_RANGE
         most = PLAUSIBLE["viscosity"][1]
-        if math.isfinite(mu) and mu > 0.0 and not (t < lo and mu > most):
+        if math.isfinite(mu) and not (t < lo and mu > most):
             return
         hint = (f": typed in degC? ({t:g} C = {t + CELSIUS:g} K)" if lo <= t + CELSIUS <= hi
                 else "")
-        # within the range any viscosity of the law is taken (ISO VG 32 at -50 C: 232 Pa s),
-        # so the message says where the limit applies
+        # within the range any viscosity of the law is taken (a film's cold start), so the
+        # message says where the limit applies
         what = (f"a viscosity of {mu:g} Pa s below the oil range's {lo:g} K, where its law "
                 f"is extrapolated (at most {most:g} Pa s taken there)"
-                if math.isfinite(mu) and mu > 0.0 else f"no finite viscosity ({mu:g} Pa s)")
+                if math.isfinite(mu) else "no finite viscosity")
         raise ValueError(f"supply_temperature {t:g} K gives the lubricant {what}{hint}; "
                          "temperatures are in K")
 
