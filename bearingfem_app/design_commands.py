@@ -28,7 +28,7 @@ def _equilibrium_rows(eq, b):
     ``Equilibrium.flow_in``); a film fed at its ends (JFO) draws in there what it loses."""
     return [("eccentricity ratio", eq.eps, "-")] + (
         [] if eq.eps_error is None else [("  its estimated error", eq.eps_error, "-"),
-                                         ("  mesh chosen", "{} x {} {}".format(
+                                         (_mesh_words(eq.accuracy), "{} x {} {}".format(
                                              *eq.accuracy.mesh, eq.accuracy.element), "")]) + [
             ("attitude angle", math.degrees(eq.attitude), "deg"),
             ("Sommerfeld number", eq.sommerfeld, "-"),
@@ -41,6 +41,11 @@ def _equilibrium_rows(eq, b):
             ("friction coefficient", eq.friction_coefficient, "-"),
             ("power loss", eq.power_loss, "W"),
             ("side leakage (outflow)", _side_leakage(eq), "m^3/s")]
+
+
+def _mesh_words(record) -> str:
+    """The mesh row's name: chosen for an rtol, or the one given (--estimate)."""
+    return "  mesh given" if record.rtol is None else "  mesh chosen"
 
 
 def _side_leakage(eq):

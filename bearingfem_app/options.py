@@ -140,9 +140,16 @@ def check_rtol_mesh(args) -> None:
 
 def accuracy_options(args, opts):
     """With --rtol the mesh options are the toolkit's to choose (the element too unless
-    given): (options without them, {"rtol": ...}); without, (options, {}). A mesh typed
+    given): (options without them, {"rtol": ...}); with --estimate, (options,
+    {"estimate": True}): the mesh given and its error; neither, (options, {}). A mesh typed
     beside --rtol is refused (:func:`check_rtol_mesh`)."""
     check_rtol_mesh(args)
+    if getattr(args, "estimate", False):
+        # the library takes both and estimates rtol's mesh: the flag would do nothing
+        if args.rtol is not None:
+            raise ValueError("--estimate is not taken with --rtol (--rtol chooses the mesh "
+                             "and gives its estimated error): give one of them")
+        return opts, {"estimate": True}
     if args.rtol is None:
         return opts, {}
     drop = ("n_theta", "n_z") + (() if args.element_given else ("element",))
@@ -203,7 +210,7 @@ def make_dir(path, option):
 #: (Equilibrium, coefficients' result, LundStability; e_x, e_y the mechanism's), with the
 #: unit in the key where the value is not the API's SI one (degrees)
 KEYS = {"eccentricity ratio": "eps", "its estimated error": "eps_error",
-        "mesh chosen": "mesh", "attitude angle": "attitude_deg",
+        "mesh chosen": "mesh", "mesh given": "mesh", "attitude angle": "attitude_deg",
         "Sommerfeld number": "sommerfeld", "minimum film": "film_min",
         "minimum film angle": "film_min_angle_deg", "journal x": "e_x", "journal y": "e_y",
         "peak pressure": "pressure_max", "friction force": "friction_force",
@@ -273,7 +280,7 @@ def coarse_film_note(eps: float, n_theta: int, element: str = "P1") -> str | Non
     return (f"note: the film under twice its least (eps {eps:.4g}) spans {spacings:.2g} node "
             f"spacings of --n-theta {n_theta} ({element}); force errors up to 86 % were "
             f"measured below {RESOLVED_SPACINGS:g} (docs/cli.md): a finer --n-theta, or "
-            f"--rtol for an estimated error")
+            f"--rtol or --estimate for an estimated error")
 
 
 def note_coarse_film(eps: float, opts: dict) -> None:
