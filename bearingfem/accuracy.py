@@ -52,7 +52,7 @@ import numpy as np
 
 from .bearing import check_finite
 from .caches import kept
-from .errors import ConvergenceError
+from .errors import ConvergenceError, LoadCapacityError
 
 __all__ = ["AccuracyRecord", "solve_to_tolerance", "refine_to_tolerance", "check_rtol",
            "refuse_rtol", "refuse_estimate", "check_estimate",
@@ -425,7 +425,13 @@ def estimate_at(evaluate: Callable, difference: Callable, mesh: tuple, *, elemen
     if half == mesh:       # the coarsest mesh is its own half: no pair to estimate from
         raise ValueError(f"an error estimate needs a mesh finer than {half[0]} x {half[1]} "
                          f"(n_theta > {half[0]} or n_z > {half[1]}), got {mesh[0]} x {mesh[1]}")
-    fine, coarse = evaluate(*mesh, element), evaluate(*half, element)
+    fine = evaluate(*mesh, element)
+    try:
+        coarse = evaluate(*half, element)
+    except (ConvergenceError, LoadCapacityError) as err:
+        # the half mesh is the estimate's, not the caller's: a failure there named no mesh
+        # (and a thermal film's "start it nearer" cannot be followed), so it is named
+        raise _on_half_mesh(err, mesh, half) from err
     ratio = math.sqrt(mesh[0] * mesh[1] / (half[0] * half[1]))
     err, order = estimate_error([1.0, ratio], [difference(fine, coarse)], order)
     record = AccuracyRecord(rtol=None, error=float(err), element=element, mesh=mesh,
@@ -433,6 +439,18 @@ def estimate_at(evaluate: Callable, difference: Callable, mesh: tuple, *, elemen
                             seconds=time.perf_counter() - t0,
                             factor=SAFETY / (ratio ** order - 1.0))
     return fine, coarse, record
+
+
+def _on_half_mesh(err, mesh: tuple, half: tuple):
+    """``err`` (a film's ConvergenceError or LoadCapacityError on the half mesh ``half`` of
+    an estimate at ``mesh``) with that said, and what helps: a finer mesh (rtol= where the
+    function takes it)."""
+    words = (f"on the error estimate's half mesh {half[0]} x {half[1]} (the mesh given, "
+             f"{mesh[0]} x {mesh[1]}, solved): give a finer mesh")
+    if isinstance(err, ConvergenceError):
+        return err.at(words)
+    return LoadCapacityError(err.load, err.capacity, err.eps_max, err.model, err.mesh,
+                             f"{err.note}, {words}" if err.note else words)
 
 
 def solve_to_tolerance(solve: Callable, rtol: float, *, start_mesh: tuple, element: str,

@@ -433,3 +433,24 @@ def test_an_estimate_on_the_coarsest_mesh_is_refused_by_name():
         eq = equilibrium(b, (0.0, -500.0), 300.0, "fem", n_theta=mesh[0], n_z=mesh[1],
                          estimate=True)
         assert np.isfinite(eq.eps_error) and eq.eps_error > 0.0
+
+
+def test_a_failure_on_the_estimates_half_mesh_names_it():
+    """design_chart(estimate=True) on 10 x 2: the chart on 10 x 2 is walked (checked
+    here), while its half mesh 8 x 2 carries less than S 0.1's load (its LoadCapacityError
+    checked here alone). The refusal named no mesh, so it read as the mesh given's; now it
+    names the estimate's half mesh and the mesh given, and stays a LoadCapacityError that
+    pickles with its words (dask sends it back). Planted: estimate_at without the wrap
+    (the bare refusal): fails."""
+    import pickle
+
+    from bearingfem.design import design_chart
+    from bearingfem.errors import LoadCapacityError
+    S = [1.0, 0.1]
+    assert len(design_chart(B1, 250.0, S, "fem", n_theta=10, n_z=2).points) == 2
+    with pytest.raises(LoadCapacityError):
+        design_chart(B1, 250.0, S, "fem", n_theta=8, n_z=2)
+    with pytest.raises(LoadCapacityError, match=r"on the error estimate's half mesh 8 x 2 "
+                                                r"\(the mesh given, 10 x 2, solved\)") as err:
+        design_chart(B1, 250.0, S, "fem", n_theta=10, n_z=2, estimate=True)
+    assert str(pickle.loads(pickle.dumps(err.value))) == str(err.value)
