@@ -98,6 +98,8 @@ def _equilibrium(b, args, model, opts, acc=None):
                            direction=math.radians(args.direction), **opts, **(acc or {}))
     except LoadCapacityError as err:
         mesh = err.mesh if "n_theta" in opts and "bush" not in opts else None
+        if mesh is not None and mesh.get("n_theta") != opts["n_theta"]:
+            mesh = None      # --estimate's half mesh: its own words say so, not --n-theta's
         note = (None if mesh is None else
                 coarse_film_note(err.eps_max, mesh["n_theta"], mesh.get("element", "P1")))
         if note is None:

@@ -128,3 +128,16 @@ def test_bad_estimate_is_one_line_and_exit_2(args, needle):
     """Planted: the --rtol beside --estimate refusal removed: exit 0, fails."""
     r = run(*args)
     assert r.returncode == 2 and needle in r.stderr and r.stderr.count("\n") == 1
+
+
+def test_a_refusal_on_the_estimates_half_mesh_names_it_not_a_typed_n_theta():
+    """equilibrium --n-theta 10 --n-z 2 --estimate under 550 N: 10 x 2 carries it, the
+    estimate's half mesh 8 x 2 does not (515 N at eps_max). The refusal says so, and the
+    coarse-mesh advice, which named '--n-theta 8' (never typed) and advised --estimate
+    beside --estimate, is left out. Planted: the advice kept for the half mesh: fails."""
+    r = run("equilibrium", "--load", "550", "--n-theta", "10", "--n-z", "2", "--estimate")
+    assert r.returncode == 2 and r.stderr.count("\n") == 1
+    assert "on the error estimate's half mesh 8 x 2 (the mesh given, 10 x 2" in r.stderr
+    assert "--n-theta 8" not in r.stderr
+    plain = run("equilibrium", "--load", "550", "--n-theta", "10", "--n-z", "2", "-q")
+    assert plain.returncode == 0, plain.stderr
