@@ -8,7 +8,8 @@ from bearingfem.errors import LoadCapacityError
 
 from .bush import bush_words
 from .options import (accuracy_options, bearing_from_args, check_output, coarse_film_note,
-                      model_options, note_coarse_film, print_rows, write_numbers)
+                      estimate_options, model_options, note_coarse_film, print_rows,
+                      write_numbers)
 
 __all__ = ["command_equilibrium", "command_coefficients", "command_design"]
 
@@ -101,7 +102,8 @@ def _equilibrium(b, args, model, opts, acc=None):
         if mesh is not None and mesh.get("n_theta") != opts["n_theta"]:
             mesh = None      # --estimate's half mesh: its own words say so, not --n-theta's
         note = (None if mesh is None else
-                coarse_film_note(err.eps_max, mesh["n_theta"], mesh.get("element", "P1")))
+                coarse_film_note(err.eps_max, mesh["n_theta"], mesh.get("element", "P1"),
+                                 estimate_options(args)))
         if note is None:
             raise
         raise ValueError(f"{err}; {note.removeprefix('note: ')}") from None
@@ -118,7 +120,7 @@ def command_equilibrium(args):
           f"{args.direction:g} deg (inertial), {args.omega:g} rad/s, L/D {args.length_ratio:g}, "
           f"viscosity {b.viscosity:.4g} Pa s{_oil_words(args)}")
     print_rows(rows)
-    note_coarse_film(eq.eps, opts)
+    note_coarse_film(eq.eps, opts, estimate_options(args))
     write_numbers(out, rows)
     return 0
 
@@ -157,7 +159,7 @@ def command_coefficients(args):
     print_rows(rows)
     print(f"  {st}" if st is not None else "  no stability verdict: the film has no "
           "stiffness (K = 0; without rotation it only damps)")
-    note_coarse_film(state.eps, opts)
+    note_coarse_film(state.eps, opts, estimate_options(args))
     rows.append(("stability", "none (K = 0)" if st is None else st.verdict.value, "-"))
     write_numbers(out, rows)
     return 0
@@ -195,7 +197,7 @@ def command_design(args):
     print(f"  K, C ({kc.method}); {axes}")
     print_rows(k_rows)
     print(f"  {st}")
-    note_coarse_film(eq.eps, opts)
+    note_coarse_film(eq.eps, opts, estimate_options(args))
     rows = eq_rows + k_rows + [("stability", st.verdict.value, "-")]
     write_numbers(out, rows)
     return 0

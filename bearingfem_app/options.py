@@ -15,7 +15,8 @@ from .checks import check_writable
 __all__ = ["bearing_from_args", "supply_angle", "ambient_pressure", "film_state",
            "MODEL_OPTIONS", "model_options", "accuracy_options", "check_rtol_mesh",
            "check_film_options", "refuse_bush_film",
-           "check_cache", "coarse_film_note", "note_coarse_film", "RESOLVED_SPACINGS",
+           "check_cache", "coarse_film_note", "note_coarse_film", "estimate_options",
+           "RESOLVED_SPACINGS",
            "check_output", "make_dir", "write_numbers", "print_rows"]
 
 
@@ -267,10 +268,20 @@ def print_rows(rows):
 RESOLVED_SPACINGS = 4.0
 
 
-def coarse_film_note(eps: float, n_theta: int, element: str = "P1") -> str | None:
+def estimate_options(args) -> tuple:
+    """The command's options that give an estimated error and are not in use, the ones a
+    coarse-film note may advise: solve and render take --rtol, equilibrium and
+    coefficients --rtol and --estimate, design neither."""
+    return tuple(f"--{k}" for k in ("rtol", "estimate")
+                 if hasattr(args, k) and not getattr(args, k))
+
+
+def coarse_film_note(eps: float, n_theta: int, element: str = "P1",
+                     advice: tuple = ("--rtol",)) -> str | None:
     """A note when ``n_theta`` puts fewer than :data:`RESOLVED_SPACINGS` node spacings
     (P2: half cells) across the arc where h = c (1 + eps cos theta) < 2 c (1 - eps); else
-    None."""
+    None. ``advice``: the command's options that give an estimated error
+    (:func:`estimate_options`)."""
     if not (1.0 / 3.0 < eps < 1.0):      # below 1/3 the whole film is under twice its least
         return None
     arc = 2.0 * (math.pi - math.acos((1.0 - 2.0 * eps) / eps))
@@ -279,15 +290,15 @@ def coarse_film_note(eps: float, n_theta: int, element: str = "P1") -> str | Non
         return None
     return (f"note: the film under twice its least (eps {eps:.4g}) spans {spacings:.2g} node "
             f"spacings of --n-theta {n_theta} ({element}); force errors up to 86 % were "
-            f"measured below {RESOLVED_SPACINGS:g} (docs/cli.md): a finer --n-theta, or "
-            f"--rtol or --estimate for an estimated error")
+            f"measured below {RESOLVED_SPACINGS:g} (docs/cli.md): a finer --n-theta"
+            + (f", or {' or '.join(advice)} for an estimated error" if advice else ""))
 
 
-def note_coarse_film(eps: float, opts: dict) -> None:
+def note_coarse_film(eps: float, opts: dict, advice: tuple = ("--rtol",)) -> None:
     """Print :func:`coarse_film_note` on stderr for a rigid film on a given mesh (``opts``
     the film model's options: nothing without n_theta, with a bush or a chosen mesh)."""
     if "n_theta" not in opts or "bush" in opts:
         return
-    note = coarse_film_note(eps, opts["n_theta"], opts.get("element", "P1"))
+    note = coarse_film_note(eps, opts["n_theta"], opts.get("element", "P1"), advice)
     if note:
         print(f"bearingfem: {note}", file=sys.stderr)
