@@ -29,8 +29,8 @@ def _equilibrium_rows(eq, b):
     ``Equilibrium.flow_in``); a film fed at its ends (JFO) draws in there what it loses."""
     return [("eccentricity ratio", eq.eps, "-")] + (
         [] if eq.eps_error is None else [("  its estimated error", eq.eps_error, "-"),
-                                         (_mesh_words(eq.accuracy), "{} x {} {}".format(
-                                             *eq.accuracy.mesh, eq.accuracy.element), "")]) + [
+                                         (_mesh_words(eq.accuracy), _mesh_value(eq),
+                                          "")]) + [
             ("attitude angle", math.degrees(eq.attitude), "deg"),
             ("Sommerfeld number", eq.sommerfeld, "-"),
             ("minimum film", eq.film_min, "m"),
@@ -47,6 +47,13 @@ def _equilibrium_rows(eq, b):
 def _mesh_words(record) -> str:
     """The mesh row's name: chosen for an rtol, or the one given (--estimate)."""
     return "  mesh given" if record.rtol is None else "  mesh chosen"
+
+
+def _mesh_value(eq) -> str:
+    """'n_theta x n_z element' of the mesh estimated; the finite-volume film's grid as FV
+    (its record carries the P1 order it is estimated at, not an element)."""
+    n_theta, n_z = eq.accuracy.mesh
+    return f"{n_theta} x {n_z} {'FV' if eq.model == 'fvm' else eq.accuracy.element}"
 
 
 def _side_leakage(eq):

@@ -141,3 +141,13 @@ def test_a_refusal_on_the_estimates_half_mesh_names_it_not_a_typed_n_theta():
     assert "--n-theta 8" not in r.stderr
     plain = run("equilibrium", "--load", "550", "--n-theta", "10", "--n-z", "2", "-q")
     assert plain.returncode == 0, plain.stderr
+
+
+def test_the_finite_volume_films_mesh_is_named_fv():
+    """equilibrium --model fvm --rtol: the mesh chosen is the finite-volume grid, printed
+    'P1' before (the accuracy record's element, the order it is estimated at), as if a
+    finite-element film had been solved; now 'FV', as the coarse-film note names it."""
+    r = run("equilibrium", "--load", "1000", "--model", "fvm", "--rtol", "1e-2", "-q")
+    assert r.returncode == 0, r.stderr
+    line = next(x for x in r.stdout.splitlines() if "mesh chosen" in x)
+    assert line.split()[-1] == "FV", line
