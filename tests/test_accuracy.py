@@ -454,3 +454,21 @@ def test_a_failure_on_the_estimates_half_mesh_names_it():
                                                 r"\(the mesh given, 10 x 2, solved\)") as err:
         design_chart(B1, 250.0, S, "fem", n_theta=10, n_z=2, estimate=True)
     assert str(pickle.loads(pickle.dumps(err.value))) == str(err.value)
+
+
+def test_a_squeeze_films_coefficients_carry_their_error():
+    """Without rotation (omega 0, full film: a squeeze-film damper) K is exactly zero on
+    every mesh, and K's relative error 0 / 0 made coefficients(estimate=True)'s error NaN
+    and coefficients(rtol=) search to its largest mesh. Now C alone sets the error:
+    estimate=True on P1 48 x 8 within 1-3x C's true error against P2 192 x 32 (measured
+    4.5e-2 against 3.1e-2; 24 x 4 and 96 x 16 effectivity 1.3 and 1.5), rtol=1e-2 met
+    (measured P2 24 x 8, 2.1e-3 against 3.1e-4). Fails on the code before (NaN; run)."""
+    s = JournalState(0.6, omega=0.0)
+    ref = coefficients(B1, s, "fem", n_theta=192, n_z=32, element="P2", cavitation="none")
+    assert not ref.K.any()
+    for kc in (coefficients(B1, s, "fem", n_theta=48, n_z=8, estimate=True, cavitation="none"),
+               coefficients(B1, s, "fem", rtol=1e-2, cavitation="none")):
+        true = np.abs(kc.C - ref.C).max() / np.abs(ref.C).max()
+        assert not kc.K.any() and np.isfinite(kc.error)
+        assert true <= kc.error <= max(3.0 * true, 1e-2 if kc.accuracy.rtol else 0.0), (
+            kc.error, true)
