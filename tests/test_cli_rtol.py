@@ -77,7 +77,7 @@ def test_estimate_on_the_mesh_given_is_the_librarys_and_holds_the_true_error(tmp
     library had it, the command line refused --estimate as unknown: 'did you mean
     --diameter?'). A second route, the library called directly, gives the same numbers,
     and the estimate holds the true error against the P2 search at rtol 1e-4 (measured on
-    P1 48 x 8: eps 0.80036, eps_error 1.47e-2, true error 6.4e-3, effectivity 2.3).
+    P1 48 x 8: eps 0.80036, eps_error 1.47e-2, eps 6.6e-3 off, the position 9.2e-3).
     Planted: --estimate dropped before the library call (accuracy_options returning no
     estimate): no error row, fails."""
     from bearingfem import Bearing
