@@ -57,7 +57,8 @@ from .errors import ConvergenceError, LoadCapacityError
 __all__ = ["AccuracyRecord", "solve_to_tolerance", "refine_to_tolerance", "check_rtol",
            "refuse_rtol", "refuse_estimate", "check_estimate",
            "check_no_mesh", "nominal_order", "force_difference", "SAFETY", "RTOL_RANGE", "clear_memo",
-           "film_to_tolerance", "estimate_error", "estimate_at", "grid_multiple",
+           "film_to_tolerance", "estimate_error", "estimate_at", "half_mesh",
+           "grid_multiple",
            "groove_multiple", "start_mesh", "search_grading", "GRADING_STRENGTH",
            "GRADED_FROM_EPS", "PLAIN_GRADING_STRENGTH", "PLAIN_GRADED_FROM_EPS",
            "richardson_error"]
@@ -414,6 +415,12 @@ def refine_to_tolerance(evaluate: Callable, difference: Callable, rtol: float, *
     return q_fine, partner, record
 
 
+def half_mesh(mesh: tuple) -> tuple:
+    """The partner (n_theta, n_z) of :func:`estimate_at`'s h/2h pair: half of ``mesh``
+    (even counts), at least the coarsest mesh 8 x 2, which is its own half."""
+    return (max(8, 2 * math.ceil(mesh[0] / 4.0)), max(2, 2 * math.ceil(mesh[1] / 4.0)))
+
+
 def estimate_at(evaluate: Callable, difference: Callable, mesh: tuple, *, element: str,
                 order: float):
     """(answer, coarse answer, :class:`AccuracyRecord`) on the ``mesh`` given, its error
@@ -421,7 +428,7 @@ def estimate_at(evaluate: Callable, difference: Callable, mesh: tuple, *, elemen
     the nominal ``order``; ``record.rtol`` is None."""
     t0 = time.perf_counter()
     mesh = tuple(int(v) for v in mesh)
-    half = (max(8, 2 * math.ceil(mesh[0] / 4.0)), max(2, 2 * math.ceil(mesh[1] / 4.0)))
+    half = half_mesh(mesh)
     if half == mesh:       # the coarsest mesh is its own half: no pair to estimate from
         raise ValueError(f"an error estimate needs a mesh finer than {half[0]} x {half[1]} "
                          f"(n_theta > {half[0]} or n_z > {half[1]}), got {mesh[0]} x {mesh[1]}")

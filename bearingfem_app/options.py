@@ -150,6 +150,13 @@ def accuracy_options(args, opts):
         if args.rtol is not None:
             raise ValueError("--estimate is not taken with --rtol (--rtol chooses the mesh "
                              "and gives its estimated error): give one of them")
+        from bearingfem.accuracy import half_mesh
+        mesh = (opts.get("n_theta"), opts.get("n_z"))
+        if None not in mesh and half_mesh(mesh) == mesh:
+            # the library's refusal named n_theta and n_z, not the options typed
+            raise ValueError(f"--estimate needs a mesh finer than --n-theta {mesh[0]} --n-z "
+                             f"{mesh[1]} (its own half mesh: no pair to estimate from); "
+                             f"give --n-theta > {mesh[0]} or --n-z > {mesh[1]}")
         return opts, {"estimate": True}
     if args.rtol is None:
         return opts, {}

@@ -120,12 +120,16 @@ def test_coefficients_estimate_on_the_mesh_given():
      "--estimate is not taken with --rtol"),
     (("coefficients", "--eps", "0.5", "--rtol", "1e-2", "--estimate"),
      "--estimate is not taken with --rtol"),
+    # named as typed (the library's refusal named n_theta and n_z)
     (("equilibrium", "--load", "100", "--estimate", "--n-theta", "8", "--n-z", "2"),
-     "an error estimate needs a mesh finer than 8 x 2"),
+     "--estimate needs a mesh finer than --n-theta 8 --n-z 2"),
+    (("coefficients", "--eps", "0.5", "--estimate", "--n-theta", "8", "--n-z", "2"),
+     "give --n-theta > 8 or --n-z > 2"),
     (("equilibrium", "--load", "100", "--estimate", "--model", "short"),
      "model 'short' has none")])
 def test_bad_estimate_is_one_line_and_exit_2(args, needle):
-    """Planted: the --rtol beside --estimate refusal removed: exit 0, fails."""
+    """Planted: the --rtol beside --estimate refusal removed: exit 0, fails; the mesh check
+    of accuracy_options removed: the library's words (n_theta, n_z), fails."""
     r = run(*args)
     assert r.returncode == 2 and needle in r.stderr and r.stderr.count("\n") == 1
 
