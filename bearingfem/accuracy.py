@@ -52,12 +52,13 @@ import numpy as np
 
 from .bearing import check_finite
 from .caches import kept
-from .errors import ConvergenceError
+from .errors import ConvergenceError, LoadCapacityError
 
 __all__ = ["AccuracyRecord", "solve_to_tolerance", "refine_to_tolerance", "check_rtol",
            "refuse_rtol", "refuse_estimate", "check_estimate",
            "check_no_mesh", "nominal_order", "force_difference", "SAFETY", "RTOL_RANGE", "clear_memo",
-           "film_to_tolerance", "estimate_error", "estimate_at", "grid_multiple",
+           "film_to_tolerance", "estimate_error", "estimate_at", "half_mesh",
+           "grid_multiple",
            "groove_multiple", "start_mesh", "search_grading", "GRADING_STRENGTH",
            "GRADED_FROM_EPS", "PLAIN_GRADING_STRENGTH", "PLAIN_GRADED_FROM_EPS",
            "richardson_error"]
@@ -414,6 +415,12 @@ def refine_to_tolerance(evaluate: Callable, difference: Callable, rtol: float, *
     return q_fine, partner, record
 
 
+def half_mesh(mesh: tuple) -> tuple:
+    """The partner (n_theta, n_z) of :func:`estimate_at`'s h/2h pair: half of ``mesh``
+    (even counts), at least the coarsest mesh 8 x 2, which is its own half."""
+    return (max(8, 2 * math.ceil(mesh[0] / 4.0)), max(2, 2 * math.ceil(mesh[1] / 4.0)))
+
+
 def estimate_at(evaluate: Callable, difference: Callable, mesh: tuple, *, element: str,
                 order: float):
     """(answer, coarse answer, :class:`AccuracyRecord`) on the ``mesh`` given, its error
@@ -421,11 +428,17 @@ def estimate_at(evaluate: Callable, difference: Callable, mesh: tuple, *, elemen
     the nominal ``order``; ``record.rtol`` is None."""
     t0 = time.perf_counter()
     mesh = tuple(int(v) for v in mesh)
-    half = (max(8, 2 * math.ceil(mesh[0] / 4.0)), max(2, 2 * math.ceil(mesh[1] / 4.0)))
+    half = half_mesh(mesh)
     if half == mesh:       # the coarsest mesh is its own half: no pair to estimate from
         raise ValueError(f"an error estimate needs a mesh finer than {half[0]} x {half[1]} "
                          f"(n_theta > {half[0]} or n_z > {half[1]}), got {mesh[0]} x {mesh[1]}")
-    fine, coarse = evaluate(*mesh, element), evaluate(*half, element)
+    fine = evaluate(*mesh, element)
+    try:
+        coarse = evaluate(*half, element)
+    except (ConvergenceError, LoadCapacityError) as err:
+        # the half mesh is the estimate's, not the caller's: a failure there named no mesh
+        # (and a thermal film's "start it nearer" cannot be followed), so it is named
+        raise _on_half_mesh(err, mesh, half) from err
     ratio = math.sqrt(mesh[0] * mesh[1] / (half[0] * half[1]))
     err, order = estimate_error([1.0, ratio], [difference(fine, coarse)], order)
     record = AccuracyRecord(rtol=None, error=float(err), element=element, mesh=mesh,
@@ -433,6 +446,18 @@ def estimate_at(evaluate: Callable, difference: Callable, mesh: tuple, *, elemen
                             seconds=time.perf_counter() - t0,
                             factor=SAFETY / (ratio ** order - 1.0))
     return fine, coarse, record
+
+
+def _on_half_mesh(err, mesh: tuple, half: tuple):
+    """``err`` (a film's ConvergenceError or LoadCapacityError on the half mesh ``half`` of
+    an estimate at ``mesh``) with that said, and what helps: a finer mesh (rtol= where the
+    function takes it)."""
+    words = (f"on the error estimate's half mesh {half[0]} x {half[1]} (the mesh given, "
+             f"{mesh[0]} x {mesh[1]}, solved): give a finer mesh")
+    if isinstance(err, ConvergenceError):
+        return err.at(words)
+    return LoadCapacityError(err.load, err.capacity, err.eps_max, err.model, err.mesh,
+                             f"{err.note}, {words}" if err.note else words)
 
 
 def solve_to_tolerance(solve: Callable, rtol: float, *, start_mesh: tuple, element: str,

@@ -51,20 +51,21 @@ class LoadCapacityError(ValueError):
     model : the film model's name
     mesh : the film's mesh options the capacity was found on (``n_theta``, ``n_z`` and,
         for the FE film, ``element``), or None for a model without a mesh
+    note : words that end the message (e.g. that the mesh was an error estimate's), or ""
     """
 
     def __init__(self, load: float, capacity: float, eps_max: float, model: str,
-                 mesh: dict | None = None):
+                 mesh: dict | None = None, note: str = ""):
         self.load, self.capacity, self.eps_max, self.model = (
             float(load), float(capacity), float(eps_max), model)
-        self.mesh = None if mesh is None else dict(mesh)
+        self.mesh, self.note = (None if mesh is None else dict(mesh)), note
         super().__init__(f"load {self.load:.6g} N exceeds what the film carries before "
                          f"contact: {self.capacity:.6g} N at eps_max = {self.eps_max:g} "
-                         f"({model} model)")
+                         f"({model} model){f', {note}' if note else ''}")
 
     def __reduce__(self):      # picklable (dask workers send errors back)
         return LoadCapacityError, (self.load, self.capacity, self.eps_max, self.model,
-                                   self.mesh)
+                                   self.mesh, self.note)
 
 
 class TemperatureRangeError(ValueError):

@@ -8,7 +8,8 @@ from bearingfem.errors import LoadCapacityError
 
 from .bush import bush_words
 from .options import (accuracy_options, bearing_from_args, check_output, coarse_film_note,
-                      model_options, note_coarse_film, print_rows, write_numbers)
+                      estimate_options, model_options, note_coarse_film, print_rows,
+                      write_numbers)
 
 __all__ = ["command_equilibrium", "command_coefficients", "command_design"]
 
@@ -28,8 +29,8 @@ def _equilibrium_rows(eq, b):
     ``Equilibrium.flow_in``); a film fed at its ends (JFO) draws in there what it loses."""
     return [("eccentricity ratio", eq.eps, "-")] + (
         [] if eq.eps_error is None else [("  its estimated error", eq.eps_error, "-"),
-                                         ("  mesh chosen", "{} x {} {}".format(
-                                             *eq.accuracy.mesh, eq.accuracy.element), "")]) + [
+                                         (_mesh_words(eq.accuracy), _mesh_value(eq),
+                                          "")]) + [
             ("attitude angle", math.degrees(eq.attitude), "deg"),
             ("Sommerfeld number", eq.sommerfeld, "-"),
             ("minimum film", eq.film_min, "m"),
@@ -41,6 +42,18 @@ def _equilibrium_rows(eq, b):
             ("friction coefficient", eq.friction_coefficient, "-"),
             ("power loss", eq.power_loss, "W"),
             ("side leakage (outflow)", _side_leakage(eq), "m^3/s")]
+
+
+def _mesh_words(record) -> str:
+    """The mesh row's name: chosen for an rtol, or the one given (--estimate)."""
+    return "  mesh given" if record.rtol is None else "  mesh chosen"
+
+
+def _mesh_value(eq) -> str:
+    """'n_theta x n_z element' of the mesh estimated; the finite-volume film's grid as FV
+    (its record carries the P1 order it is estimated at, not an element)."""
+    n_theta, n_z = eq.accuracy.mesh
+    return f"{n_theta} x {n_z} {'FV' if eq.model == 'fvm' else eq.accuracy.element}"
 
 
 def _side_leakage(eq):
@@ -93,8 +106,11 @@ def _equilibrium(b, args, model, opts, acc=None):
                            direction=math.radians(args.direction), **opts, **(acc or {}))
     except LoadCapacityError as err:
         mesh = err.mesh if "n_theta" in opts and "bush" not in opts else None
+        if mesh is not None and mesh.get("n_theta") != opts["n_theta"]:
+            mesh = None      # --estimate's half mesh: its own words say so, not --n-theta's
         note = (None if mesh is None else
-                coarse_film_note(err.eps_max, mesh["n_theta"], mesh.get("element", "P1")))
+                coarse_film_note(err.eps_max, mesh["n_theta"], mesh.get("element", "P1"),
+                                 estimate_options(args)))
         if note is None:
             raise
         raise ValueError(f"{err}; {note.removeprefix('note: ')}") from None
@@ -111,7 +127,7 @@ def command_equilibrium(args):
           f"{args.direction:g} deg (inertial), {args.omega:g} rad/s, L/D {args.length_ratio:g}, "
           f"viscosity {b.viscosity:.4g} Pa s{_oil_words(args)}")
     print_rows(rows)
-    note_coarse_film(eq.eps, opts)
+    note_coarse_film(eq.eps, opts, estimate_options(args))
     write_numbers(out, rows)
     return 0
 
@@ -150,7 +166,7 @@ def command_coefficients(args):
     print_rows(rows)
     print(f"  {st}" if st is not None else "  no stability verdict: the film has no "
           "stiffness (K = 0; without rotation it only damps)")
-    note_coarse_film(state.eps, opts)
+    note_coarse_film(state.eps, opts, estimate_options(args))
     rows.append(("stability", "none (K = 0)" if st is None else st.verdict.value, "-"))
     write_numbers(out, rows)
     return 0
@@ -188,7 +204,7 @@ def command_design(args):
     print(f"  K, C ({kc.method}); {axes}")
     print_rows(k_rows)
     print(f"  {st}")
-    note_coarse_film(eq.eps, opts)
+    note_coarse_film(eq.eps, opts, estimate_options(args))
     rows = eq_rows + k_rows + [("stability", st.verdict.value, "-")]
     write_numbers(out, rows)
     return 0

@@ -15,7 +15,8 @@ from .checks import check_writable
 __all__ = ["bearing_from_args", "supply_angle", "ambient_pressure", "film_state",
            "MODEL_OPTIONS", "model_options", "accuracy_options", "check_rtol_mesh",
            "check_film_options", "refuse_bush_film",
-           "check_cache", "coarse_film_note", "note_coarse_film", "RESOLVED_SPACINGS",
+           "check_cache", "coarse_film_note", "note_coarse_film", "estimate_options",
+           "RESOLVED_SPACINGS",
            "check_output", "make_dir", "write_numbers", "print_rows"]
 
 
@@ -140,9 +141,23 @@ def check_rtol_mesh(args) -> None:
 
 def accuracy_options(args, opts):
     """With --rtol the mesh options are the toolkit's to choose (the element too unless
-    given): (options without them, {"rtol": ...}); without, (options, {}). A mesh typed
+    given): (options without them, {"rtol": ...}); with --estimate, (options,
+    {"estimate": True}): the mesh given and its error; neither, (options, {}). A mesh typed
     beside --rtol is refused (:func:`check_rtol_mesh`)."""
     check_rtol_mesh(args)
+    if getattr(args, "estimate", False):
+        # the library takes both and estimates rtol's mesh: the flag would do nothing
+        if args.rtol is not None:
+            raise ValueError("--estimate is not taken with --rtol (--rtol chooses the mesh "
+                             "and gives its estimated error): give one of them")
+        from bearingfem.accuracy import half_mesh
+        mesh = (opts.get("n_theta"), opts.get("n_z"))
+        if None not in mesh and half_mesh(mesh) == mesh:
+            # the library's refusal named n_theta and n_z, not the options typed
+            raise ValueError(f"--estimate needs a mesh finer than --n-theta {mesh[0]} --n-z "
+                             f"{mesh[1]} (its own half mesh: no pair to estimate from); "
+                             f"give --n-theta > {mesh[0]} or --n-z > {mesh[1]}")
+        return opts, {"estimate": True}
     if args.rtol is None:
         return opts, {}
     drop = ("n_theta", "n_z") + (() if args.element_given else ("element",))
@@ -203,7 +218,7 @@ def make_dir(path, option):
 #: (Equilibrium, coefficients' result, LundStability; e_x, e_y the mechanism's), with the
 #: unit in the key where the value is not the API's SI one (degrees)
 KEYS = {"eccentricity ratio": "eps", "its estimated error": "eps_error",
-        "mesh chosen": "mesh", "attitude angle": "attitude_deg",
+        "mesh chosen": "mesh", "mesh given": "mesh", "attitude angle": "attitude_deg",
         "Sommerfeld number": "sommerfeld", "minimum film": "film_min",
         "minimum film angle": "film_min_angle_deg", "journal x": "e_x", "journal y": "e_y",
         "peak pressure": "pressure_max", "friction force": "friction_force",
@@ -260,10 +275,20 @@ def print_rows(rows):
 RESOLVED_SPACINGS = 4.0
 
 
-def coarse_film_note(eps: float, n_theta: int, element: str = "P1") -> str | None:
+def estimate_options(args) -> tuple:
+    """The command's options that give an estimated error and are not in use, the ones a
+    coarse-film note may advise: solve and render take --rtol, equilibrium and
+    coefficients --rtol and --estimate, design neither."""
+    return tuple(f"--{k}" for k in ("rtol", "estimate")
+                 if hasattr(args, k) and not getattr(args, k))
+
+
+def coarse_film_note(eps: float, n_theta: int, element: str = "P1",
+                     advice: tuple = ("--rtol",)) -> str | None:
     """A note when ``n_theta`` puts fewer than :data:`RESOLVED_SPACINGS` node spacings
     (P2: half cells) across the arc where h = c (1 + eps cos theta) < 2 c (1 - eps); else
-    None."""
+    None. ``advice``: the command's options that give an estimated error
+    (:func:`estimate_options`)."""
     if not (1.0 / 3.0 < eps < 1.0):      # below 1/3 the whole film is under twice its least
         return None
     arc = 2.0 * (math.pi - math.acos((1.0 - 2.0 * eps) / eps))
@@ -272,15 +297,15 @@ def coarse_film_note(eps: float, n_theta: int, element: str = "P1") -> str | Non
         return None
     return (f"note: the film under twice its least (eps {eps:.4g}) spans {spacings:.2g} node "
             f"spacings of --n-theta {n_theta} ({element}); force errors up to 86 % were "
-            f"measured below {RESOLVED_SPACINGS:g} (docs/cli.md): a finer --n-theta, or "
-            f"--rtol for an estimated error")
+            f"measured below {RESOLVED_SPACINGS:g} (docs/cli.md): a finer --n-theta"
+            + (f", or {' or '.join(advice)} for an estimated error" if advice else ""))
 
 
-def note_coarse_film(eps: float, opts: dict) -> None:
+def note_coarse_film(eps: float, opts: dict, advice: tuple = ("--rtol",)) -> None:
     """Print :func:`coarse_film_note` on stderr for a rigid film on a given mesh (``opts``
     the film model's options: nothing without n_theta, with a bush or a chosen mesh)."""
     if "n_theta" not in opts or "bush" in opts:
         return
-    note = coarse_film_note(eps, opts["n_theta"], opts.get("element", "P1"))
+    note = coarse_film_note(eps, opts["n_theta"], opts.get("element", "P1"), advice)
     if note:
         print(f"bearingfem: {note}", file=sys.stderr)

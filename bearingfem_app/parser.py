@@ -149,6 +149,13 @@ def _rtol_arg(p):
                         "not with --n-theta, --n-z")
 
 
+def _estimate_arg(p):
+    p.add_argument("--estimate", action="store_true",
+                   help="also estimate the error on the mesh given (the library's "
+                        "estimate=True: the same answer on the half mesh, a quarter's cost); "
+                        "not with --rtol, which gives its own estimate")
+
+
 #: the designer's film models the command line can build (the thermal film needs an
 #: oil's heat properties, grooves and walls, which it does not take)
 DESIGN_MODELS = tuple(m for m in FILM_MODELS if m != "fem-thd")
@@ -284,6 +291,7 @@ def build_parser():
                    "--model fem --element P2")
     _design_args(e)
     _rtol_arg(e)
+    _estimate_arg(e)
     _load_args(e, required=True)
     add_bush_args(e)
     e.set_defaults(func=command_equilibrium)
@@ -293,6 +301,7 @@ def build_parser():
                    "--frame load")
     _design_args(k)
     _rtol_arg(k)
+    _estimate_arg(k)
     k.add_argument("--eps", type=float,
                    help=f"steady state at this eccentricity ratio, {range_words('eps')}")
     k.add_argument("--gamma", type=float, default=0.0,

@@ -429,3 +429,26 @@ def test_an_output_of_another_commands_kind_names_that_command(capsys):
     assert "(the film's fields: bearingfem solve ... -o FILE)" in refused(
         capsys, "render", "-o", "film.vtu")
     assert refused(capsys, "design", "--load", "10", "-o", "d.txt").endswith("got 'd.txt'")
+
+
+@pytest.mark.parametrize("argv", [
+    ("solve", "--eps", "0.999"),
+    ("coefficients", "--eps", "0.999", "--n-theta", "60", "--n-z", "4"),
+    ("coefficients", "--eps", "0.999", "--n-theta", "60", "--n-z", "4", "--estimate"),
+    ("equilibrium", "--load", "1.5e4", "--n-theta", "48", "--n-z", "4"),
+    ("design", "--load", "1.5e4", "--n-theta", "48", "--n-z", "4")])
+def test_the_coarse_film_notes_advice_names_options_the_command_takes(capsys, argv):
+    """The note's advice ('a finer --n-theta, or --rtol for an estimated error') names
+    only options the command takes, checked against its parser: design, which takes no
+    --rtol, advised it (refused then as 'an option of solve, render, equilibrium,
+    coefficients'), and an option already in use (--estimate) is not advised again.
+    Planted: one advice for every command (--rtol or --estimate): fails for solve and
+    design."""
+    from bearingfem_app.parser import build_parser
+    assert main(list(argv)) == 0
+    note = next(x for x in capsys.readouterr().err.splitlines() if "note: the film" in x)
+    advised = re.findall(r"--[a-z-]+", note.split("): a finer", 1)[1])
+    sub = build_parser()._subparsers._group_actions[0].choices[argv[0]]
+    taken = {o for a in sub._actions for o in a.option_strings}
+    assert advised[0] == "--n-theta" and set(advised) <= taken, advised
+    assert not set(advised[1:]) & set(argv[1:]), advised

@@ -135,9 +135,13 @@ def coefficients(bearing: Bearing, state: JournalState, model: str = "fem",
 
 
 def _relative(kc: DynamicCoefficients, dK, dC) -> float:
-    """The larger of |dK| / max|K| and |dC| / max|C| (entry-wise)."""
-    return float(max(np.max(np.abs(dK)) / np.max(np.abs(kc.K)),
-                     np.max(np.abs(dC)) / np.max(np.abs(kc.C))))
+    """The larger of |dK| / max|K| and |dC| / max|C| (entry-wise). A matrix zero on both
+    meshes adds nothing: K of a film without rotation (a squeeze film only damps) is
+    exactly zero, and its 0 / 0 made the estimate NaN (``estimate=True``) or never met
+    (``rtol``: the search ran to its largest mesh)."""
+    terms = [np.inf if not np.any(M) else np.max(np.abs(d)) / np.max(np.abs(M))
+             for M, d in ((kc.K, dK), (kc.C, dC)) if np.any(M) or np.any(d)]
+    return float(max(terms, default=0.0))
 
 
 def _order(m, options) -> float | None:
