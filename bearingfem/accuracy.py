@@ -155,15 +155,20 @@ def refuse_estimate(estimate, reason: str) -> None:
         raise ValueError(f"estimate={estimate!r} is not taken here: {reason}")
 
 
-def check_estimate(estimate) -> bool:
+def check_estimate(estimate, rtol=None) -> bool:
     """``estimate`` as a bool (None: False), or ValueError: a tolerance given there by
     mistake (``estimate=1e-3`` for ``rtol=1e-3``) was taken as True and estimated the
-    default mesh."""
+    default mesh; and ``estimate=True`` beside an ``rtol`` (not None), which was taken
+    silently and dropped (rtol chooses the mesh and reports its own estimate)."""
     if estimate is None:
         return False
     if not isinstance(estimate, (bool, np.bool_)):
         raise ValueError(f"estimate must be True or False, got {estimate!r} (a requested "
                          "accuracy is rtol=)")
+    if estimate and rtol is not None:
+        raise ValueError("estimate=True is not taken with rtol: rtol chooses the mesh and "
+                         "reports its error estimate; estimate=True estimates the error on "
+                         "the mesh given (n_theta, n_z)")
     return bool(estimate)
 
 

@@ -300,6 +300,21 @@ def test_estimate_given_other_than_true_or_false_is_refused_by_name(estimate):
             call()
 
 
+def test_estimate_beside_rtol_is_refused_by_name():
+    """rtol chooses the mesh and reports its own estimate; estimate=True beside it was
+    taken and dropped unseen (the answer rtol's alone). equilibrium and coefficients
+    refuse the pair naming both before any film; estimate=False beside rtol is rtol's
+    search (fails with the pair's check removed: the search ran; planted)."""
+    s = JournalState(eps=0.6, omega=250.0)
+    for call in (lambda: equilibrium(B1, (0.0, -1000.0), 250.0, "fem", rtol=1e-2,
+                                     estimate=True),
+                 lambda: coefficients(B1, s, "fem", rtol=1e-2, estimate=True)):
+        with pytest.raises(ValueError, match="estimate=True is not taken with rtol"):
+            call()
+    eq = equilibrium(B1, (0.0, -1000.0), 250.0, "fem", rtol=5e-2, estimate=False)
+    assert eq.eps_error is not None and eq.eps_error <= 5e-2 * eq.eps
+
+
 def test_the_search_logs_its_progress_and_prints_nothing(capfd, caplog):
     """The library reports each mesh pair of a search at INFO on bearingfem.accuracy (what
     the command line shows) and writes nothing to stdout or stderr itself."""

@@ -76,7 +76,7 @@ def coefficients(bearing: Bearing, state: JournalState, model: str = "fem",
     """
     check_inputs(bearing, state)
     check_choice("frame", frame, FRAMES)
-    estimate = check_estimate(estimate)
+    estimate = check_estimate(estimate, rtol)
     if options.get("thermal") is not None:     # the thermal film (bearingfem.design.thermal)
         if model != "fem":
             raise ValueError(f"a thermal film needs model 'fem', got {model!r}")

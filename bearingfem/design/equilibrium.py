@@ -86,7 +86,7 @@ def equilibrium(bearing: Bearing, load, omega: float, model: str = "fem", *,
         isothermal film's (P1 unless an ``element`` is given); ``start`` is refused
     """
     check_surface_speed(bearing.radius, check_finite("omega", omega))
-    estimate = check_estimate(estimate)
+    estimate = check_estimate(estimate, rtol)
     if options.get("thermal") is not None:     # the thermal film (bearingfem.design.thermal)
         if model != "fem":     # named before the search's own "no mesh" refusal of rtol
             raise ValueError(f"a thermal film needs model 'fem', got {model!r}")
